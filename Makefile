@@ -1,0 +1,45 @@
+# make test       -- unit tests and every chapter in fast mode (what CI runs)
+# make reproduce  -- every chapter in full mode, the figures and figures/report.csv
+# make bench      -- benchmarks (installs the bench extras: scikit-fem, pypardiso)
+PYTHON ?= $(shell command -v python3.11 || command -v python3)
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+CHAPTERS := $(sort $(wildcard chapters/[0-9]*.py))
+NOTEBOOKS := $(patsubst chapters/%.py,build/notebooks/%.ipynb,$(CHAPTERS))
+
+# one numba cache for every process (tests, chapter kernels): compile once per machine
+export NUMBA_CACHE_DIR := $(CURDIR)/.numba_cache
+export OMP_WAIT_POLICY := PASSIVE
+export MPLBACKEND := Agg
+
+.PHONY: test reproduce bench notebooks clean
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -e '.[test]'
+	touch $@
+
+build/notebooks/%.ipynb: chapters/%.py $(STAMP)
+	@mkdir -p build/notebooks
+	$(BIN)/jupytext --quiet --to ipynb -o $@ $<
+
+notebooks: $(NOTEBOOKS)
+
+test: $(STAMP) notebooks
+	SSI_FAST=1 $(BIN)/python -m pytest tests
+	SSI_FAST=1 $(BIN)/python -m pytest -q --nbmake --nbmake-timeout=900 build/notebooks
+
+reproduce: $(STAMP) notebooks
+	rm -rf figures/report.d
+	SSI_FAST=0 $(BIN)/python -m pytest -q --nbmake --nbmake-timeout=3600 --overwrite build/notebooks; \
+	status=$$?; $(BIN)/python -m ssi.report; report=$$?; \
+	test $$status -eq 0 -a $$report -eq 0
+
+bench: $(STAMP)
+	$(BIN)/python -m pip install -q -e '.[test,bench,fast]'
+	@for f in $(sort $(wildcard benchmarks/bench_*.py)); do $(BIN)/python $$f || exit 1; done
+
+clean:
+	rm -rf build figures results .pytest_cache

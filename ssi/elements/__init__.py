@@ -1,0 +1,1 @@
+"""Element groups: soil Q8, layered plate strip, interface. See ``base`` for the shared array layout."""

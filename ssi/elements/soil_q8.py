@@ -1,0 +1,213 @@
+"""The 8-node serendipity plane-strain soil element (paper §7, §10).
+
+Reduced 2x2 Gauss integration is the paper's default (it removes volumetric locking as nu -> 0.5 and the
+spurious mode it admits in a single element does not propagate in a mesh); 3x3 is the full-rule option.
+
+State per integration point: ``[sxx, szz, txz, syy, hist...]`` (stress, tension positive, then the law's
+history), shape (n_el, n_ip, 4 + N_SOIL_HIST). The law is applied incrementally: the stress increment comes
+from the strain increment ``B du_el`` since the last converged state (paper §8, incremental formulation).
+"""
+
+import numpy as np
+from numba import njit
+
+from ..materials.soil_laws import N_SOIL_HIST, soil_update
+from ..quadrature import gauss_2d
+from ..shapes import serendipity8
+
+N_STRESS = 4
+N_SOIL_STATE = N_STRESS + N_SOIL_HIST
+
+
+@njit(cache=True)
+def _shape_gradients(xy, xi, eta, dndx):
+    """Fill dndx (8, 2) with physical shape-function gradients; return N (8,) and det J."""
+    n, dn = serendipity8(xi, eta)
+    j00 = j01 = j10 = j11 = 0.0
+    for a in range(8):
+        j00 += dn[a, 0] * xy[a, 0]
+        j01 += dn[a, 0] * xy[a, 1]
+        j10 += dn[a, 1] * xy[a, 0]
+        j11 += dn[a, 1] * xy[a, 1]
+    det = j00 * j11 - j01 * j10
+    for a in range(8):
+        dndx[a, 0] = (j11 * dn[a, 0] - j01 * dn[a, 1]) / det
+        dndx[a, 1] = (-j10 * dn[a, 0] + j00 * dn[a, 1]) / det
+    return n, det
+
+
+@njit(cache=True)
+def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new, f_el, k_el, tangent):
+    """Internal forces and stiffness of all Q8 elements; returns the number of points that failed.
+
+    coords (n_el, 8, 2); du_el (n_el, 16); el_mat (n_el,) material index into kinds (n_mat,), params
+    (n_mat, n_par); gp (n_ip, 2), gw (n_ip,); state_old/state_new (n_el, n_ip, N_SOIL_STATE);
+    f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten.
+    """
+    n_el = coords.shape[0]
+    n_ip = gp.shape[0]
+    dndx = np.empty((8, 2))
+    deps = np.zeros(4)
+    sig = np.empty(4)
+    hist = np.empty(N_SOIL_HIST)
+    D = np.empty((4, 4))
+    failures = 0
+    for e in range(n_el):
+        f_el[e, :] = 0.0
+        k_el[e, :, :] = 0.0
+        m = el_mat[e]
+        for q in range(n_ip):
+            _, det = _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            if det <= 0.0:
+                failures += 1
+                continue
+            wdet = gw[q] * det
+            exx = ezz = gxz = 0.0
+            for a in range(8):
+                du = du_el[e, 2 * a]
+                dw = du_el[e, 2 * a + 1]
+                exx += dndx[a, 0] * du
+                ezz += dndx[a, 1] * dw
+                gxz += dndx[a, 1] * du + dndx[a, 0] * dw
+            deps[0] = exx
+            deps[1] = ezz
+            deps[2] = gxz
+            status = soil_update(kinds[m], params[m], deps, state_old[e, q, :N_STRESS],
+                                 state_old[e, q, N_STRESS:], sig, hist, D, tangent)
+            if status < 0:
+                failures += 1
+            state_new[e, q, :N_STRESS] = sig
+            state_new[e, q, N_STRESS:] = hist
+            for a in range(8):
+                bx = dndx[a, 0]
+                bz = dndx[a, 1]
+                # B_a^T sigma for rows (exx, ezz, gxz): u-row (bx, 0, bz), w-row (0, bz, bx)
+                f_el[e, 2 * a] += (bx * sig[0] + bz * sig[2]) * wdet
+                f_el[e, 2 * a + 1] += (bz * sig[1] + bx * sig[2]) * wdet
+                # D B_b for both columns of node b, then B_a^T (D B_b)
+                for b in range(8):
+                    cx = dndx[b, 0]
+                    cz = dndx[b, 1]
+                    # columns: u_b -> strain (cx, 0, cz); w_b -> strain (0, cz, cx)
+                    du0 = D[0, 0] * cx + D[0, 2] * cz
+                    du1 = D[1, 0] * cx + D[1, 2] * cz
+                    du2 = D[2, 0] * cx + D[2, 2] * cz
+                    dw0 = D[0, 1] * cz + D[0, 2] * cx
+                    dw1 = D[1, 1] * cz + D[1, 2] * cx
+                    dw2 = D[2, 1] * cz + D[2, 2] * cx
+                    k_el[e, 2 * a, 2 * b] += (bx * du0 + bz * du2) * wdet
+                    k_el[e, 2 * a, 2 * b + 1] += (bx * dw0 + bz * dw2) * wdet
+                    k_el[e, 2 * a + 1, 2 * b] += (bz * du1 + bx * du2) * wdet
+                    k_el[e, 2 * a + 1, 2 * b + 1] += (bz * dw1 + bx * dw2) * wdet
+    return failures
+
+
+@njit(cache=True)
+def q8_body_force(coords, el_mat, unit_weight, gp, gw, f_el):
+    """Equivalent nodal forces of the self-weight (unit weight per material, acting in -z)."""
+    dndx = np.empty((8, 2))
+    for e in range(coords.shape[0]):
+        f_el[e, :] = 0.0
+        for q in range(gp.shape[0]):
+            n, det = _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            for a in range(8):
+                f_el[e, 2 * a + 1] -= n[a] * unit_weight[el_mat[e]] * gw[q] * det
+
+
+@njit(cache=True)
+def q8_points(coords, gp, out):
+    """Physical (x, z) of the integration points, out (n_el, n_ip, 2)."""
+    for e in range(coords.shape[0]):
+        for q in range(gp.shape[0]):
+            n, _ = serendipity8(gp[q, 0], gp[q, 1])
+            out[e, q, 0] = 0.0
+            out[e, q, 1] = 0.0
+            for a in range(8):
+                out[e, q, 0] += n[a] * coords[e, a, 0]
+                out[e, q, 1] += n[a] * coords[e, a, 1]
+
+
+class SoilQ8:
+    """A group of 8-node plane-strain soil elements.
+
+    Parameters
+    ----------
+    coords : (n_el, 8, 2) nodal coordinates, node order of ``ssi.shapes.serendipity8``
+    edofs : (n_el, 16) global DOFs (u, w per node)
+    el_mat : (n_el,) material index of each element
+    kinds : (n_mat,) law kinds of ``ssi.materials.soil_laws``
+    params : (n_mat, n_par) law parameters
+    n_gauss : 2 (reduced, paper default) or 3 (full)
+    unit_weight : (n_mat,) unit weight gamma [N/m^3] for the self-weight body force, or None
+    initial_stress : (n_el, n_ip, 4) initial (e.g. geostatic) stress, or None for a stress-free start
+    """
+
+    name = "soil_q8"
+
+    def __init__(self, coords, edofs, el_mat, kinds, params, n_gauss=2, unit_weight=None,
+                 initial_stress=None):
+        self.coords = np.ascontiguousarray(coords, np.float64)
+        self.edofs = np.ascontiguousarray(edofs, np.int64)
+        n_el = self.coords.shape[0]
+        if self.coords.shape != (n_el, 8, 2) or self.edofs.shape != (n_el, 16):
+            raise ValueError("coords must be (n_el, 8, 2) and edofs (n_el, 16)")
+        if n_gauss not in (2, 3):
+            raise ValueError(f"n_gauss must be 2 (reduced) or 3 (full), got {n_gauss}")
+        self.el_mat = np.ascontiguousarray(np.broadcast_to(el_mat, (n_el,)), np.int64)
+        self.kinds = np.ascontiguousarray(np.atleast_1d(kinds), np.int64)
+        self.params = np.ascontiguousarray(np.atleast_2d(params), np.float64)
+        if self.el_mat.max(initial=0) >= len(self.kinds) or len(self.kinds) != len(self.params):
+            raise ValueError("el_mat must index kinds/params, which need one row per material")
+        self.n_gauss = n_gauss
+        self.gp, self.gw = gauss_2d(n_gauss)
+        self.unit_weight = None if unit_weight is None else np.asarray(unit_weight, np.float64)
+        self.initial_stress = initial_stress
+        self._k0 = None
+
+    @property
+    def n_el(self):
+        return self.coords.shape[0]
+
+    def initial_state(self):
+        state = np.zeros((self.n_el, len(self.gw), N_SOIL_STATE))
+        if self.initial_stress is not None:
+            state[:, :, :N_STRESS] = self.initial_stress
+        return state
+
+    def evaluate(self, u_el, du_el, state_old, tangent):
+        f_el = np.empty((self.n_el, 16))
+        k_el = np.empty((self.n_el, 16, 16))
+        state_new = np.empty_like(state_old)
+        failures = q8_kernel(self.coords, np.ascontiguousarray(du_el), self.el_mat, self.kinds, self.params,
+                             self.gp, self.gw, state_old, state_new, f_el, k_el, tangent)
+        if failures:
+            raise FloatingPointError(f"soil_q8: {failures} integration points failed (distorted element "
+                                     "or a stress update that did not converge)")
+        return f_el, k_el, state_new
+
+    def elastic_stiffness(self):
+        if self._k0 is None:
+            zero = np.zeros((self.n_el, 16))
+            self._k0 = self.evaluate(zero, zero, self.initial_state(), 0)[1]
+        return self._k0
+
+    def body_force(self):
+        if self.unit_weight is None:
+            return None
+        f_el = np.empty((self.n_el, 16))
+        q8_body_force(self.coords, self.el_mat, self.unit_weight, self.gp, self.gw, f_el)
+        return f_el
+
+    def integration_points(self):
+        """(n_el, n_ip, 2) physical coordinates of the integration points."""
+        out = np.empty((self.n_el, len(self.gw), 2))
+        q8_points(self.coords, self.gp, out)
+        return out
+
+    def stress(self, state):
+        """Stress [sxx, szz, txz, syy] at the integration points, (n_el, n_ip, 4)."""
+        return state[:, :, :N_STRESS]
+
+    def describe(self):
+        return {"name": self.name, "n_el": self.n_el, "n_gauss": self.n_gauss,
+                "kinds": self.kinds.tolist(), "params": self.params.tolist()}

@@ -1,0 +1,161 @@
+"""Structured meshes: the separated soil block of the paper's Fig. 1, the foundation strip on top of it and
+the interface node pairs between them.
+
+The soil block spans x in [x_left, x_right], z in [-depth, 0] (surface at z = 0, z upwards). Mesh lines are
+graded: element size ``h_fine`` under the foundation, growing geometrically (ratio ``growth``) up to
+``h_coarse`` away from it, sideways and downwards. Every layer boundary is a mesh line, so each element lies
+in one layer. Nodes are numbered column by column (z fastest), which keeps neighbours close in memory.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+def graded_lines(start, stop, h_start, h_max, growth=1.2):
+    """Mesh-line positions from ``start`` to ``stop`` with sizes growing from ``h_start`` by ``growth`` up to
+    ``h_max``; the sizes are scaled slightly so the last line falls exactly on ``stop``."""
+    length = abs(stop - start)
+    if length == 0.0:
+        return np.array([start])
+    if h_start <= 0 or h_max < h_start or growth < 1.0:
+        raise ValueError("need 0 < h_start <= h_max and growth >= 1")
+    sizes = []
+    h = h_start
+    while sum(sizes) < length - 1e-9 * length:
+        sizes.append(min(h, h_max))
+        h *= growth
+    sizes = np.array(sizes)
+    if len(sizes) > 1 and sizes.sum() - length > 0.5 * sizes[-1]:
+        sizes = sizes[:-1]
+    sizes *= length / sizes.sum()
+    return start + np.sign(stop - start) * np.concatenate([[0.0], np.cumsum(sizes)])
+
+
+@dataclass
+class SoilMesh:
+    """A structured Q8 mesh. ``conn`` (n_el, 8) in the node order of ``ssi.shapes.serendipity8``."""
+
+    xy: np.ndarray
+    conn: np.ndarray
+    el_layer: np.ndarray
+    x_lines: np.ndarray
+    z_lines: np.ndarray
+    grid: np.ndarray = field(repr=False)  # (2*nx+1, 2*nz+1) node id at each grid position, -1 at centres
+
+    @property
+    def surface(self):
+        """Node ids on z = 0, ordered by x."""
+        return self.grid[:, -1].copy()
+
+    @property
+    def bottom(self):
+        return self.grid[:, 0].copy()
+
+    @property
+    def left(self):
+        return self.grid[0, :].copy()
+
+    @property
+    def right(self):
+        return self.grid[-1, :].copy()
+
+    def nodes_between(self, x0, x1, z=0.0, tol=1e-9):
+        """Ids of the nodes on the line z (must be a mesh line) with x0 <= x <= x1, ordered by x."""
+        ids = np.flatnonzero((np.abs(self.xy[:, 1] - z) < tol) & (self.xy[:, 0] >= x0 - tol)
+                             & (self.xy[:, 0] <= x1 + tol))
+        return ids[np.argsort(self.xy[ids, 0])]
+
+
+def structured_q8(x_lines, z_lines, z_layer_tops=None):
+    """Q8 mesh on the tensor grid of element edges ``x_lines`` (nx+1,) and ``z_lines`` (nz+1,), both
+    increasing. ``z_layer_tops`` (descending tops of layers 2, 3, ...) assigns ``el_layer``."""
+    x_lines = np.asarray(x_lines, np.float64)
+    z_lines = np.asarray(z_lines, np.float64)
+    if np.any(np.diff(x_lines) <= 0) or np.any(np.diff(z_lines) <= 0):
+        raise ValueError("x_lines and z_lines must be strictly increasing")
+    nx, nz = len(x_lines) - 1, len(z_lines) - 1
+    xs = np.empty(2 * nx + 1)
+    xs[0::2] = x_lines
+    xs[1::2] = 0.5 * (x_lines[:-1] + x_lines[1:])
+    zs = np.empty(2 * nz + 1)
+    zs[0::2] = z_lines
+    zs[1::2] = 0.5 * (z_lines[:-1] + z_lines[1:])
+    i, j = np.meshgrid(np.arange(2 * nx + 1), np.arange(2 * nz + 1), indexing="ij")
+    keep = ~((i % 2 == 1) & (j % 2 == 1))  # serendipity: no centre node
+    grid = np.full(i.shape, -1, np.int64)
+    grid[keep] = np.arange(np.count_nonzero(keep))  # C order over (i, j): z fastest
+    xy = np.column_stack([xs[i[keep]], zs[j[keep]]])
+    ei, ej = np.meshgrid(np.arange(nx), np.arange(nz), indexing="ij")
+    ei, ej = 2 * ei.ravel(), 2 * ej.ravel()
+    conn = np.column_stack([grid[ei, ej], grid[ei + 2, ej], grid[ei + 2, ej + 2], grid[ei, ej + 2],
+                            grid[ei + 1, ej], grid[ei + 2, ej + 1], grid[ei + 1, ej + 2], grid[ei, ej + 1]])
+    z_mid = 0.5 * (z_lines[:-1] + z_lines[1:])[ej // 2]
+    el_layer = np.zeros(len(conn), np.int64)
+    for top in (z_layer_tops if z_layer_tops is not None else []):
+        el_layer += z_mid < top
+    return SoilMesh(xy, conn, el_layer, x_lines, z_lines, grid)
+
+
+def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_fine=0.25, h_coarse=2.0,
+               growth=1.25, x_left=None):
+    """The graded soil block of Fig. 1.
+
+    Parameters
+    ----------
+    width, depth : block size [m]; the block spans x_left .. x_left + width (default centred on x = 0)
+    layer_thicknesses : thicknesses of the horizontal layers from the surface down; must sum to ``depth``
+        (default: one layer)
+    foundation : (x0, x1) of the foundation; mesh lines fall on both ends, spacing ``h_fine`` between them
+    h_fine, h_coarse, growth : element size under the foundation, the largest size, the growth ratio
+    """
+    if width <= 0 or depth <= 0:
+        raise ValueError(f"width and depth must be positive, got width={width}, depth={depth}")
+    x_left = -0.5 * width if x_left is None else x_left
+    x_right = x_left + width
+    x0, x1 = foundation
+    if not (x_left <= x0 < x1 <= x_right):
+        raise ValueError(f"foundation {foundation} must lie within the block [{x_left}, {x_right}] "
+                         "and have x0 < x1")
+    layers = [depth] if layer_thicknesses is None else list(layer_thicknesses)
+    if any(t <= 0 for t in layers) or abs(sum(layers) - depth) > 1e-9 * depth:
+        raise ValueError(f"layer_thicknesses {layers} must be positive and tile the depth {depth}")
+    n_under = max(1, int(round((x1 - x0) / h_fine)))
+    under = np.linspace(x0, x1, n_under + 1)
+    h0 = (x1 - x0) / n_under
+    left = graded_lines(x0, x_left, h0, h_coarse, growth)[::-1]
+    right = graded_lines(x1, x_right, h0, h_coarse, growth)
+    x_lines = np.unique(np.concatenate([left, under, right]))
+    z_parts = [np.array([0.0])]
+    top, h = 0.0, h0
+    for t in layers:
+        part = graded_lines(top, top - t, h, h_coarse, growth)
+        z_parts.append(part[1:])
+        h = min(abs(part[-1] - part[-2]) * growth, h_coarse)
+        top -= t
+    z_lines = np.concatenate(z_parts)[::-1]
+    tops = -np.cumsum(layers)[:-1]
+    return structured_q8(x_lines, z_lines, tops)
+
+
+@dataclass
+class Contact:
+    """The foundation strip on the block's surface and the interface node pairs under it."""
+
+    plate_xy: np.ndarray        # (n, 2) plate mid-surface nodes, z = thickness / 2
+    soil_nodes: np.ndarray      # (n,) soil surface node ids under them, ordered by x
+    plate_conn: np.ndarray      # (n_el, 3) local plate-node indices of each 3-node plate/interface element
+    soil_conn: np.ndarray       # (n_el, 3) soil node ids of each interface element's lower side
+
+
+def foundation_contact(mesh: SoilMesh, x0, x1, thickness):
+    """Plate-strip nodes above the soil surface nodes between x0 and x1 (which must be mesh lines)."""
+    soil = mesh.nodes_between(x0, x1)
+    if len(soil) < 3 or len(soil) % 2 == 0:
+        raise ValueError(f"the foundation ({x0}, {x1}) must start and end on soil element edges")
+    if abs(mesh.xy[soil[0], 0] - x0) > 1e-9 or abs(mesh.xy[soil[-1], 0] - x1) > 1e-9:
+        raise ValueError(f"the foundation ends x0={x0}, x1={x1} must be mesh lines of the soil block")
+    plate_xy = np.column_stack([mesh.xy[soil, 0], np.full(len(soil), 0.5 * thickness)])
+    local = np.arange(0, len(soil) - 2, 2)
+    plate_conn = np.column_stack([local, local + 1, local + 2])
+    return Contact(plate_xy, soil, plate_conn, soil[plate_conn])

@@ -1,0 +1,245 @@
+"""A scene as the solver sees it: nodes with their DOFs, element groups, supports and loads.
+
+Nodes carry 2 DOFs (soil: u, w) or 3 DOFs (plate strip: u, w, alpha); one numbering holds both kinds.
+Node ``n``'s DOFs are ``dof_start[n] + (0, 1[, 2])``, in the order nodes were added, so a structured mesh
+keeps its locality in the global matrix.
+
+Only what the scene contains is instantiated: element groups are added one by one, and a scene without
+nonlinear laws is solved by :meth:`Model.solve_linear` -- one factorisation, one solve.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .assembly import SparsePattern, gather_vector, scatter_vector
+from .elements.base import ELASTIC
+from .linsolve import Factorization
+
+COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
+
+
+def _component(comp):
+    c = COMPONENTS.get(comp, comp)
+    if c not in (0, 1, 2):
+        raise ValueError(f"comp must be one of 'u', 'w', 'alpha' or 0, 1, 2; got {comp!r}")
+    return c
+
+
+class Model:
+    """Nodes, element groups, supports and loads of one scene."""
+
+    def __init__(self):
+        self._coords: list[np.ndarray] = []
+        self._ndof: list[np.ndarray] = []
+        self.groups: list = []
+        self._fixed: dict[int, float] = {}
+        self._prescribed: dict[int, float] = {}
+        self._loads: list[tuple[np.ndarray, np.ndarray]] = []
+        self._dead_loads: list[tuple[np.ndarray, np.ndarray]] = []
+        self.info: dict = {}
+
+    # ---- nodes and DOFs -------------------------------------------------------------------------------
+    def add_nodes(self, xy, ndof: int) -> np.ndarray:
+        """Add nodes at ``xy`` (n, 2) with ``ndof`` DOFs each (2 or 3); return their ids."""
+        xy = np.atleast_2d(np.asarray(xy, dtype=np.float64))
+        if xy.ndim != 2 or xy.shape[1] != 2:
+            raise ValueError(f"xy must have shape (n, 2), got {xy.shape}")
+        if ndof not in (2, 3):
+            raise ValueError(f"ndof must be 2 (soil) or 3 (plate strip), got {ndof}")
+        start = self.n_nodes
+        self._coords.append(xy)
+        self._ndof.append(np.full(len(xy), ndof, np.int64))
+        self._invalidate()
+        return np.arange(start, start + len(xy))
+
+    def _invalidate(self):
+        self.__dict__.pop("_cache", None)
+
+    @property
+    def _arrays(self):
+        if "_cache" not in self.__dict__:
+            coords = np.concatenate(self._coords) if self._coords else np.zeros((0, 2))
+            ndof = np.concatenate(self._ndof) if self._ndof else np.zeros(0, np.int64)
+            start = np.concatenate([[0], np.cumsum(ndof)])
+            self.__dict__["_cache"] = (coords, ndof, start)
+        return self.__dict__["_cache"]
+
+    @property
+    def coords(self) -> np.ndarray:
+        return self._arrays[0]
+
+    @property
+    def n_nodes(self) -> int:
+        return sum(len(c) for c in self._coords)
+
+    @property
+    def n_dof(self) -> int:
+        return int(self._arrays[2][-1])
+
+    @property
+    def node_ndof(self) -> np.ndarray:
+        return self._arrays[1]
+
+    def node_dofs(self, ids) -> np.ndarray:
+        """Global DOFs (n, ndof) of nodes that all have the same number of DOFs."""
+        ids = np.atleast_1d(np.asarray(ids, dtype=np.int64))
+        _, ndof, start = self._arrays
+        k = np.unique(ndof[ids])
+        if k.size != 1:
+            raise ValueError("node_dofs needs nodes of one kind (all 2-DOF or all 3-DOF)")
+        return start[ids][:, None] + np.arange(k[0])
+
+    def dof(self, ids, comp) -> np.ndarray:
+        """Global DOF of component ``comp`` ('u', 'w', 'alpha' or 0, 1, 2) of nodes ``ids``."""
+        ids = np.atleast_1d(np.asarray(ids, dtype=np.int64))
+        c = _component(comp)
+        _, ndof, start = self._arrays
+        if np.any(ndof[ids] <= c):
+            raise ValueError("comp 'alpha' exists only on plate-strip nodes (3 DOFs)")
+        return start[ids] + c
+
+    def element_dofs(self, conn) -> np.ndarray:
+        """Element DOF table (n_el, n_edof): each node's DOFs in turn, in the order of ``conn``."""
+        conn = np.atleast_2d(np.asarray(conn, dtype=np.int64))
+        _, ndof, start = self._arrays
+        per_col = [start[conn[:, j]][:, None] + np.arange(ndof[conn[0, j]]) for j in range(conn.shape[1])]
+        for j in range(conn.shape[1]):
+            if np.any(ndof[conn[:, j]] != ndof[conn[0, j]]):
+                raise ValueError("each column of conn must hold nodes of one kind")
+        return np.ascontiguousarray(np.hstack(per_col))
+
+    # ---- groups, supports, loads ----------------------------------------------------------------------
+    def add_group(self, group):
+        if group.edofs.size and group.edofs.max() >= self.n_dof:
+            raise ValueError(f"group {group.name!r} refers to DOFs that the model does not have")
+        self.groups.append(group)
+        return group
+
+    def fix(self, ids, comp, value=0.0):
+        """Hold component ``comp`` of nodes ``ids`` at ``value`` (not scaled by the load factor)."""
+        for d in self.dof(ids, comp):
+            self._fixed[int(d)] = float(value)
+            self._prescribed.pop(int(d), None)
+
+    def prescribe(self, ids, comp, value):
+        """Prescribe displacement ``value`` of ``comp`` at ``ids``, scaled by the load factor
+        (displacement control: the reaction there is the load measure)."""
+        for d in self.dof(ids, comp):
+            self._prescribed[int(d)] = float(value)
+            self._fixed.pop(int(d), None)
+
+    def add_load(self, ids, comp, value):
+        """Nodal force (or moment for 'alpha') per node, scaled by the load factor."""
+        d = self.dof(ids, comp)
+        self._loads.append((d, np.broadcast_to(np.asarray(value, np.float64), d.shape).copy()))
+
+    def add_dead_load(self, ids, comp, value):
+        """Nodal force applied in full at every step (e.g. weight already carried by the initial stress)."""
+        d = self.dof(ids, comp)
+        self._dead_loads.append((d, np.broadcast_to(np.asarray(value, np.float64), d.shape).copy()))
+
+    def add_element_load(self, edofs, f_el, dead=False):
+        """Equivalent nodal forces of distributed loads, given per element (n_el, n_edof)."""
+        target = self._dead_loads if dead else self._loads
+        target.append((np.asarray(edofs).ravel(), np.asarray(f_el, np.float64).ravel()))
+
+    # ---- what the solver needs ------------------------------------------------------------------------
+    def constrained(self):
+        """(dofs, fixed values, prescribed reference values) of all constrained DOFs."""
+        dofs = np.array(sorted(set(self._fixed) | set(self._prescribed)), np.int64)
+        fixed = np.array([self._fixed.get(int(d), 0.0) for d in dofs])
+        ref = np.array([self._prescribed.get(int(d), 0.0) for d in dofs])
+        return dofs, fixed, ref
+
+    def free_mask(self) -> np.ndarray:
+        free = np.ones(self.n_dof, bool)
+        free[self.constrained()[0]] = False
+        return free
+
+    def load_vectors(self):
+        """(reference load F_ref, dead load F_dead) as global vectors; body forces of groups are dead."""
+        f_ref = np.zeros(self.n_dof)
+        f_dead = np.zeros(self.n_dof)
+        for d, v in self._loads:
+            np.add.at(f_ref, d, v)
+        for d, v in self._dead_loads:
+            np.add.at(f_dead, d, v)
+        for g in self.groups:
+            body = g.body_force()
+            if body is not None:
+                scatter_vector(g.edofs, body, f_dead)
+        return f_ref, f_dead
+
+    def check(self):
+        """Raise ValueError for a scene that cannot be solved."""
+        if not self.groups:
+            raise ValueError("the scene is empty: add at least one element group")
+        if not (self._fixed or self._prescribed):
+            raise ValueError("the scene has no supports: fix or prescribe at least the rigid-body modes")
+        used = np.zeros(self.n_dof, bool)
+        for g in self.groups:
+            used[g.edofs.ravel()] = True
+        if not used.all():
+            raise ValueError(f"{np.count_nonzero(~used)} DOFs belong to no element (unconnected nodes)")
+
+    def describe(self) -> dict:
+        return {"n_nodes": self.n_nodes, "n_dof": self.n_dof,
+                "groups": [g.describe() for g in self.groups], **self.info}
+
+    # ---- linear solution ------------------------------------------------------------------------------
+    def solve_linear(self, backend="auto"):
+        """Solve the linear-elastic scene at load factor 1: one factorisation, one solve."""
+        self.check()
+        system = System(self)
+        u = system.apply_constraints(np.zeros(self.n_dof), 1.0)
+        states = [g.initial_state() for g in self.groups]
+        f_ref, f_dead = self.load_vectors()
+        f_int, k_el, _ = system.evaluate(u, u, states, ELASTIC)
+        residual = (f_ref + f_dead - f_int)[system.free]
+        fac = Factorization(system.pattern.matrix(system.pattern.assemble(k_el)), True, backend)
+        u[system.free] += fac.solve(residual)
+        f_int, _, states = system.evaluate(u, u, states, None)
+        return LinearResult(u=u, reactions=f_int - f_ref - f_dead, states=states, model=self)
+
+
+@dataclass
+class LinearResult:
+    u: np.ndarray
+    reactions: np.ndarray
+    states: list
+    model: Model
+
+    def at(self, ids, comp):
+        return self.u[self.model.dof(ids, comp)]
+
+
+class System:
+    """Assembly machinery of a model: free-DOF pattern, gather/scatter, evaluation of all groups."""
+
+    def __init__(self, model: Model):
+        self.model = model
+        self.free = model.free_mask()
+        self.free_dofs = np.flatnonzero(self.free)
+        self.cons_dofs, self.cons_fixed, self.cons_ref = model.constrained()
+        self.pattern = SparsePattern([g.edofs for g in model.groups], self.free)
+
+    def apply_constraints(self, u, load_factor):
+        """Write the fixed and prescribed values (at ``load_factor``) into ``u`` (in place)."""
+        u[self.cons_dofs] = self.cons_fixed + load_factor * self.cons_ref
+        return u
+
+    def evaluate(self, u, du, states, tangent):
+        """Global internal force and element matrices (None if ``tangent`` is None) of all groups."""
+        f_int = np.zeros(self.model.n_dof)
+        k_list, new_states = [], []
+        for g, state in zip(self.model.groups, states):
+            u_el = np.empty(g.edofs.shape)
+            du_el = np.empty(g.edofs.shape)
+            gather_vector(g.edofs, u, u_el)
+            gather_vector(g.edofs, du, du_el)
+            f_el, k_el, state_new = g.evaluate(u_el, du_el, state, ELASTIC if tangent is None else tangent)
+            scatter_vector(g.edofs, f_el, f_int)
+            k_list.append(k_el)
+            new_states.append(state_new)
+        return f_int, (None if tangent is None else k_list), new_states

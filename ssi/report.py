@@ -1,0 +1,77 @@
+"""The verification report: one row per checked claim, merged into ``figures/report.csv``.
+
+Chapters call :func:`record` (or :func:`record_empty` for a reference slot still waiting for data); each row
+lands in its own file under ``figures/report.d/`` so that chapters can run in any order or in parallel.
+``python -m ssi.report`` merges them into ``figures/report.csv`` (``id,metric,value,tolerance,status``) and
+prints it.
+"""
+
+import csv
+import sys
+
+from . import paths
+
+HEADER = ["id", "metric", "value", "tolerance", "status"]
+STATUSES = ("PASS", "FAIL", "EMPTY")
+
+
+def _row_file(row_id: str):
+    folder = paths.FIGURES / "report.d"
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder / f"{row_id}.csv"
+
+
+def _write(row_id, metric, value, tolerance, status):
+    if not row_id.replace("_", "").isalnum():
+        raise ValueError(f"report id must be alphanumeric with underscores, got {row_id!r}")
+    with open(_row_file(row_id), "w", newline="") as fh:
+        csv.writer(fh).writerow([row_id, metric, value, tolerance, status])
+
+
+def record(row_id: str, metric: str, value: float, tolerance: float, passed: bool) -> None:
+    """Record a checked number: status PASS if ``passed`` else FAIL. ``metric`` says what ``value`` is."""
+    _write(row_id, metric, f"{float(value):.6g}", f"{float(tolerance):.6g}", "PASS" if passed else "FAIL")
+
+
+def record_empty(row_id: str, metric: str) -> None:
+    """Record a reference slot that has no data yet (status EMPTY)."""
+    _write(row_id, metric, "", "", "EMPTY")
+
+
+def save_figure(fig, name: str) -> None:
+    """Save a matplotlib figure as ``figures/<name>.png``."""
+    paths.FIGURES.mkdir(parents=True, exist_ok=True)
+    fig.savefig(paths.FIGURES / f"{name}.png", dpi=120, bbox_inches="tight")
+
+
+def collect() -> list[list[str]]:
+    """Merge the per-row files into ``figures/report.csv`` and return the rows (sorted by id)."""
+    folder = paths.FIGURES / "report.d"
+    rows = []
+    for path in sorted(folder.glob("*.csv")) if folder.exists() else []:
+        with open(path, newline="") as fh:
+            rows.extend(r for r in csv.reader(fh) if r)
+    paths.FIGURES.mkdir(parents=True, exist_ok=True)
+    with open(paths.FIGURES / "report.csv", "w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(HEADER)
+        writer.writerows(rows)
+    return rows
+
+
+def main() -> int:
+    rows = collect()
+    widths = [max(len(r[i]) for r in rows + [HEADER]) for i in range(len(HEADER))]
+    for r in [HEADER] + rows:
+        print("  ".join(c.ljust(w) for c, w in zip(r, widths)))
+    n_fail = sum(r[4] == "FAIL" for r in rows)
+    n_empty = sum(r[4] == "EMPTY" for r in rows)
+    print(f"\n{len(rows)} rows: {len(rows) - n_fail - n_empty} PASS, {n_fail} FAIL, {n_empty} EMPTY "
+          f"(EMPTY = a reference slot still waiting for measured data)")
+    if n_empty:
+        print("empty slots: " + ", ".join(r[0] for r in rows if r[4] == "EMPTY"))
+    return 1 if n_fail else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,242 @@
+"""Incremental--iterative solution (paper §8, eq. 8.1).
+
+For each increment of the load factor lambda the solver iterates
+
+    K_T du = F_ext(lambda) - F_int(u),     u <- u + du
+
+until the residual is small, and only then commits the material state (the laws never see an unconverged
+state as history). ``method``:
+
+* ``"modified"`` (paper default): K_T = K0, the initial elastic stiffness, factorised **once** for the whole
+  analysis and reused for every iteration of every increment. Converges linearly; robust; symmetric even when
+  the material tangent is not (non-associated flow).
+* ``"full"``: K_T = the consistent tangent, refactorised every iteration (unsymmetric if the laws are).
+  Converges quadratically near the solution; if an increment diverges it is retried with K0 before the step
+  is cut.
+
+Load control scales the model's loads and prescribed displacements by lambda; displacement control is
+load control of a model whose "load" is a prescribed displacement (``Model.prescribe``), and the reaction at
+those DOFs is the load measure (``Result.reaction``).
+
+Convergence (both must hold): the residual-force norm relative to the larger of |F_ext| and |F_int| (which
+includes the reactions, so displacement control is covered), and the energy norm |du . r| relative to that of
+the increment's first iteration. A step that does not converge is halved (``max_cuts`` times); if it still
+fails, :class:`NonConvergence` is raised with what diverged, where and at which load -- no partial result is
+ever returned as if it were converged.
+"""
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .elements.base import CONSISTENT, ELASTIC
+from .linsolve import Factorization
+from .model import Model, System
+
+METHODS = ("modified", "full")
+
+
+@dataclass
+class Settings:
+    """Solver options; the defaults reproduce the paper (modified Newton--Raphson with K0)."""
+
+    method: str = "modified"
+    force_tol: float = 1e-5       # |r_f| <= force_tol * max(|F_ext|, |F_int|)
+    energy_tol: float = 1e-10     # |du . r| <= energy_tol * |du_0 . r_0|
+    max_iter: int = 300           # per increment
+    max_cuts: int = 6             # halvings of a failing increment
+    divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
+    backend: str = "auto"
+    symmetric_tangent: bool = False  # set True when every law's tangent is symmetric (associated flow)
+    verbose: bool = False
+    keep_states: bool = True      # keep the committed state of every step (False: only the last)
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
+        for name in ("force_tol", "energy_tol"):
+            if not 0.0 < getattr(self, name) < 1.0:
+                raise ValueError(f"{name} must be in (0, 1), got {getattr(self, name)}")
+        if self.max_iter < 1 or self.max_cuts < 0:
+            raise ValueError("max_iter must be >= 1 and max_cuts >= 0")
+
+
+class NonConvergence(RuntimeError):
+    """An increment failed after all step cuts; ``report`` says what, where and at which load."""
+
+    def __init__(self, report: dict, result: "Result"):
+        self.report = report
+        self.result = result  # the converged steps before the failure, for inspection only
+        text = ", ".join(f"{k}={v}" for k, v in report.items())
+        super().__init__(f"increment did not converge: {text}")
+
+
+@dataclass
+class Result:
+    """Converged steps of an analysis. Row 0 is the initial state (lambda = 0)."""
+
+    model: Model
+    load_factor: list = field(default_factory=list)
+    u: list = field(default_factory=list)
+    f_int: list = field(default_factory=list)
+    states: list = field(default_factory=list)
+    iterations: list = field(default_factory=list)
+    residuals: list = field(default_factory=list)   # per step: relative force norm of every iteration
+    energies: list = field(default_factory=list)    # per step: relative energy norm of every iteration
+    cuts: int = 0
+    wall_time: float = 0.0
+    factorizations: int = 0
+
+    @property
+    def n_steps(self):
+        return len(self.load_factor) - 1
+
+    def displacement(self, ids, comp):
+        """(n_steps + 1, n_ids) history of a displacement component."""
+        return np.array(self.u)[:, self.model.dof(ids, comp)]
+
+    def reaction(self, ids, comp):
+        """(n_steps + 1,) summed internal force (= support reaction) over ``ids`` in ``comp``."""
+        d = self.model.dof(ids, comp)
+        return np.array(self.f_int)[:, d].sum(axis=1)
+
+    @property
+    def final_state(self):
+        return self.states[-1]
+
+
+def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
+    """Follow the load path ``load_factors`` (increasing or not; each entry a target lambda).
+
+    Raises :class:`NonConvergence` if an increment fails after ``settings.max_cuts`` halvings.
+    """
+    settings = settings or Settings()
+    targets = np.atleast_1d(np.asarray(load_factors, np.float64))
+    if targets.size == 0 or not np.all(np.isfinite(targets)):
+        raise ValueError("load_factors must be a non-empty sequence of finite numbers")
+    model.check()
+    t_start = time.perf_counter()
+    system = System(model)
+    f_ref, f_dead = model.load_vectors()
+    free = system.free
+    states = [g.initial_state() for g in model.groups]
+    u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
+    f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
+    result = Result(model=model)
+    _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
+
+    k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
+    fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend)
+    result.factorizations = 1
+    lam = 0.0
+    for target in targets:
+        pending = [target]
+        cuts_here = 0
+        while pending:
+            lam_next = pending[-1]
+            outcome = _increment(system, settings, fac_k0, k0, u, states, lam_next, f_ref, f_dead, result)
+            if outcome["converged"]:
+                u, states = outcome["u"], outcome["states"]
+                lam = lam_next
+                pending.pop()
+                _record(result, lam, u, outcome["f_int"], states, outcome["iterations"],
+                        outcome["residuals"], outcome["energies"], settings)
+                if settings.verbose:
+                    print(f"step {result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}"
+                          f"  residual={outcome['residuals'][-1]:.2e}", flush=True)
+                continue
+            if cuts_here >= settings.max_cuts:
+                result.wall_time = time.perf_counter() - t_start
+                raise NonConvergence(_failure_report(model, free, outcome, lam, lam_next), result)
+            cuts_here += 1
+            result.cuts += 1
+            pending.append(0.5 * (lam + lam_next))
+    result.wall_time = time.perf_counter() - t_start
+    return result
+
+
+def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings):
+    result.load_factor.append(lam)
+    result.u.append(u.copy())
+    result.f_int.append(f_int.copy())
+    if settings.keep_states or not result.states:
+        result.states.append(states)
+    else:
+        result.states[-1] = states
+    result.iterations.append(iterations)
+    result.residuals.append(list(residuals))
+    result.energies.append(list(energies))
+
+
+def _increment(system, settings, fac_k0, k0, u_conv, states, lam, f_ref, f_dead, result):
+    """Iterate one increment from the committed (u_conv, states) to load factor ``lam``."""
+    free = system.free
+    f_ext = lam * f_ref + f_dead
+    u = system.apply_constraints(u_conv.copy(), lam)
+    full = settings.method == "full"
+    use_k0 = not full
+    residuals, energies = [], []
+    energy0 = None
+    r_first = None
+    outcome = {"converged": False, "residuals": residuals, "energies": energies, "iterations": 0}
+    for it in range(1, settings.max_iter + 1):
+        try:
+            tangent = ELASTIC if use_k0 else CONSISTENT
+            f_int, k_list, trial = system.evaluate(u, u - u_conv, states, tangent)
+        except FloatingPointError as err:
+            outcome.update(reason=f"material update failed: {err}", iterations=it)
+            return outcome
+        r = f_ext - f_int
+        r_f = r[free]
+        scale = max(np.linalg.norm(f_ext), np.linalg.norm(f_int), 1e-30)
+        rel = np.linalg.norm(r_f) / scale
+        residuals.append(rel)
+        outcome.update(iterations=it, residual=r, u=u)
+        if not np.isfinite(rel):
+            outcome.update(reason="residual is not finite")
+            return outcome
+        r_first = rel if r_first is None else r_first
+        if it > 1 and rel > settings.divergence_ratio * max(r_first, settings.force_tol):
+            outcome.update(reason=f"residual grew by more than {settings.divergence_ratio:g}")
+            return outcome
+        if use_k0:
+            du = fac_k0.solve(r_f)
+        else:
+            try:
+                kt = system.pattern.matrix(system.pattern.assemble(k_list))
+                du = Factorization(kt, symmetric=settings.symmetric_tangent, backend=settings.backend).solve(r_f)
+                result.factorizations += 1
+            except (FloatingPointError, RuntimeError):
+                use_k0 = True  # singular tangent: fall back to K0 for this increment
+                du = fac_k0.solve(r_f)
+        energy = abs(float(du @ r_f))
+        energy0 = energy if energy0 is None else energy0
+        rel_energy = energy / max(energy0, 1e-300)
+        energies.append(rel_energy)
+        if rel <= settings.force_tol and (rel_energy <= settings.energy_tol or it > 1 and rel <= 1e-3 *
+                                          settings.force_tol):
+            outcome.update(converged=True, u=u, f_int=f_int, states=trial)
+            return outcome
+        if rel <= 1e-14 * settings.force_tol or energy == 0.0:  # already exact (e.g. a linear step)
+            outcome.update(converged=True, u=u, f_int=f_int, states=trial)
+            return outcome
+        u = u.copy()
+        u[free] += du
+    outcome.update(reason=f"no convergence in {settings.max_iter} iterations")
+    return outcome
+
+
+def _failure_report(model, free, outcome, lam_from, lam_to):
+    report = {"reason": outcome.get("reason", "unknown"), "load_factor_from": float(lam_from),
+              "load_factor_to": float(lam_to), "iterations": outcome.get("iterations", 0)}
+    r = outcome.get("residual")
+    if r is not None and np.any(np.isfinite(r[free])):
+        r_free = np.where(free, np.abs(np.nan_to_num(r, nan=np.inf)), 0.0)
+        worst = int(np.argmax(r_free))
+        start = np.concatenate([[0], np.cumsum(model.node_ndof)])
+        node = int(np.searchsorted(start, worst, side="right") - 1)
+        report.update(worst_dof=worst, worst_node=node, worst_component=("u", "w", "alpha")[worst - start[node]],
+                      node_xy=tuple(float(v) for v in model.coords[node]),
+                      last_residual=float(outcome["residuals"][-1]) if outcome["residuals"] else float("nan"))
+    return report
