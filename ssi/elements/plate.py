@@ -1,0 +1,445 @@
+"""The 3-node layered Mindlin (Timoshenko) plate-strip element (paper §4, §10; paper-notes §2).
+
+Kinematics (eqs. 4.1-4.3), per unit width, z upwards from the reference surface on which the nodes lie::
+
+    u(x, z) = ubar(x) - z alpha(x),   w(x, z) = wbar(x),   gamma = wbar' - alpha
+    eps_x(z) = ubar' - z alpha' = eps0 - z kap
+
+Each node carries (u, w, alpha); ``alpha`` is the rotation of the normal, equal to the slope w' when there is
+no shear strain. Shape functions: quadratic Lagrange on the nodes (left, middle, right) at xi = -1, 0, +1.
+
+Section resultants (per unit width; M positive in sagging, i.e. tension at the bottom)::
+
+    N = int sig dz,   M = -int z sig dz,   Q = kappa_s int_{shear layers} tau dz
+
+Virtual work: f = int (dEps0/du N + dKap/du M + dGam/du Q) dx, which reproduces the blocks of eq. (4.7b).
+
+Through the thickness: **rectangular (midpoint) rule with the exact self-bending term**. The law is called
+once per layer, at its mid-depth z_n; inside the layer the stress is taken as linear with the layer's
+*initial* modulus e0_n (the D1 of eq. 4.4 of that layer)::
+
+    N = sum h_n sig_n
+    M = -sum h_n z_n sig_n + sum e0_n h_n^3/12 kap
+    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e0_n h_n^2/12)
+
+with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``) modulus. For a linear law the stress is
+exactly linear within a layer, so this *is* the integral: f_int = K0 u_el with K0 of eq. (4.7b), for any
+number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For a nonlinear law the self-bending
+term is an O(h_n^2) correction that keeps f continuous and the consistent tangent exact; it vanishes as layers
+are refined. (Using the tangent modulus there instead would make f jump when a layer cracks or yields.)
+
+Integration along the element (option ``integration``): ``"selective"`` (default, paper §10): membrane and
+bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in shear for thin strips);
+``"reduced"`` (2/2); or a tuple ``(n_axial, n_shear)`` with each in 1..3. Sampling points hold their own
+layer histories: with selective integration point 0-2 are the axial (membrane/bending) points and 3-4 the
+shear points, so ``n_ip = 5``; when both rules coincide one set serves both (n_ip = n).
+
+Array layout (see ``ssi.elements.base``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
+coords (n_el, 3, 2); state (n_el, n_ip, n_layer, N_LAYER_HIST) = the layer laws' history variables (total
+formulation: strains come from ``u_el``; ``du_el`` is not used).
+"""
+
+import numpy as np
+from numba import njit
+
+from ..materials.layer_laws import N_LAYER_HIST, layer_update
+from ..quadrature import gauss_legendre
+from ..section import Section
+from ..shapes import lagrange3
+
+__all__ = [
+    "N_LAYER_HIST",
+    "PlateStrip",
+    "add_plate_strip",
+    "beam_mesh",
+    "beam_mesh_from_ends",
+    "integration_rule",
+    "plate_kernel",
+    "plate_resultants",
+]
+
+INTEGRATIONS = {"selective": (3, 2), "full": (3, 3), "reduced": (2, 2)}
+
+
+def integration_rule(integration):
+    """Sampling points along the element for an integration option.
+
+    Returns ``(xi, w, axial, shear)``: points on [-1, 1], weights, and int8 flags saying whether the point
+    integrates the membrane/bending terms (``axial``) and/or the shear terms (``shear``)."""
+    if isinstance(integration, str):
+        if integration not in INTEGRATIONS:
+            raise ValueError(f"integration must be one of {sorted(INTEGRATIONS)} or (n_axial, n_shear), "
+                             f"got {integration!r}")
+        n_ax, n_sh = INTEGRATIONS[integration]
+    else:
+        n_ax, n_sh = (int(v) for v in integration)
+        if not (1 <= n_ax <= 3 and 1 <= n_sh <= 3):
+            raise ValueError(f"(n_axial, n_shear) must each be in 1..3, got {integration!r}")
+    pa, wa = gauss_legendre(n_ax)
+    if n_ax == n_sh:
+        one = np.ones(n_ax, np.int8)
+        return pa, wa, one, one.copy()
+    ps, ws = gauss_legendre(n_sh)
+    xi = np.concatenate([pa, ps])
+    w = np.concatenate([wa, ws])
+    ax = np.concatenate([np.ones(n_ax, np.int8), np.zeros(n_sh, np.int8)])
+    return xi, w, ax, (1 - ax).astype(np.int8)
+
+
+@njit(cache=True)
+def _point_b(x, xi, n_out, bx_out):
+    """Shape values n_out (3,) and x-derivatives bx_out (3,) at xi; return the Jacobian dx/dxi."""
+    n, dn = lagrange3(xi)
+    jac = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2]
+    for a in range(3):
+        n_out[a] = n[a]
+        bx_out[a] = dn[a] / jac
+    return jac
+
+
+@njit(cache=True)
+def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, hist_old, hist_new, tangent, do_ax, do_sh,
+             res):
+    """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
+
+    Writes ``res`` (8,) = [N, M, Q, A, B, D, S, 0] with A = dN/deps0, B = dN/dkap = dM/deps0,
+    D = dM/dkap, S = dQ/dgam; hist_old/hist_new (n_layer, N_LAYER_HIST)."""
+    eps0 = 0.0
+    kap = 0.0
+    gam = 0.0
+    for a in range(3):
+        eps0 += bx[a] * u[3 * a]
+        gam += bx[a] * u[3 * a + 1] - nn[a] * u[3 * a + 2]
+        kap += bx[a] * u[3 * a + 2]
+    N = 0.0
+    M = 0.0
+    Q = 0.0
+    A = 0.0
+    B = 0.0
+    D = 0.0
+    S = 0.0
+    for n in range(h.shape[0]):
+        z = z_mid[n]
+        hn = h[n]
+        sig, tau, e_t, g_t = layer_update(kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n],
+                                          tangent)
+        if do_ax:
+            self_d = e0[n] * hn * hn * hn / 12.0      # exact within-layer bending, eq. (4.7b) h_n^2/12
+            N += hn * sig
+            M += -hn * z * sig + self_d * kap
+            A += hn * e_t
+            B += -hn * z * e_t
+            D += hn * z * z * e_t + self_d
+        if do_sh and cshear[n]:
+            Q += kappa * hn * tau
+            S += kappa * hn * g_t
+    res[0] = N
+    res[1] = M
+    res[2] = Q
+    res[3] = A
+    res[4] = B
+    res[5] = D
+    res[6] = S
+
+
+@njit(cache=True)
+def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, params,
+                 cshear, kappa, e0, tangent):
+    """Internal forces and stiffness of all plate-strip elements; returns the number of bad Jacobians.
+
+    x_el (n_el, 3) nodal x; u_el (n_el, 9); state_old/state_new (n_el, n_ip, n_layer, N_LAYER_HIST);
+    f_el (n_el, 9) and k_el (n_el, 9, 9) are overwritten; xi, wt (n_ip,), ax, sh (n_ip,) int8 flags;
+    z_mid, h, e0 (n_layer,), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool.
+    """
+    n_el = x_el.shape[0]
+    nn = np.empty(3)
+    bx = np.empty(3)
+    be = np.zeros(9)   # d eps0 / d u_el
+    bk = np.zeros(9)   # d kap / d u_el
+    bg = np.zeros(9)   # d gam / d u_el
+    res = np.zeros(8)
+    bad = 0
+    for e in range(n_el):
+        for i in range(9):
+            f_el[e, i] = 0.0
+            for j in range(9):
+                k_el[e, i, j] = 0.0
+        for p in range(xi.shape[0]):
+            jac = _point_b(x_el[e], xi[p], nn, bx)
+            if jac <= 0.0:
+                bad += 1
+                state_new[e, p, :, :] = state_old[e, p, :, :]
+                continue
+            wj = wt[p] * jac
+            for a in range(3):
+                be[3 * a] = bx[a]
+                bg[3 * a + 1] = bx[a]
+                bg[3 * a + 2] = -nn[a]
+                bk[3 * a + 2] = bx[a]
+            _section(u_el[e], nn, bx, z_mid, h, kind, params, cshear, kappa, e0, state_old[e, p],
+                     state_new[e, p], tangent, ax[p] != 0, sh[p] != 0, res)
+            Nr = res[0] * wj
+            Mr = res[1] * wj
+            Qr = res[2] * wj
+            A = res[3] * wj
+            B = res[4] * wj
+            D = res[5] * wj
+            S = res[6] * wj
+            for i in range(9):
+                f_el[e, i] += be[i] * Nr + bk[i] * Mr + bg[i] * Qr
+                ei = A * be[i] + B * bk[i]      # (dN, dM)/d(eps0, kap) applied to row i
+                ki = B * be[i] + D * bk[i]
+                gi = S * bg[i]
+                for j in range(9):
+                    k_el[e, i, j] += ei * be[j] + ki * bk[j] + gi * bg[j]
+    return bad
+
+
+@njit(cache=True)
+def plate_resultants(x_el, u_el, state, xi, ax, sh, z_mid, h, kind, params, cshear, kappa, e0, out):
+    """Stress resultants at sampling points: out (n_el, n_pt, 4) = [x, N, M, Q], NaN where a point does not
+    carry the quantity (N, M at axial points, Q at shear points). ``state`` (n_el, n_pt, n_layer, n_hist) is
+    the committed history at these points."""
+    nn = np.empty(3)
+    bx = np.empty(3)
+    res = np.zeros(8)
+    scratch = np.empty((h.shape[0], state.shape[3]))
+    for e in range(x_el.shape[0]):
+        for p in range(xi.shape[0]):
+            _point_b(x_el[e], xi[p], nn, bx)
+            _section(u_el[e], nn, bx, z_mid, h, kind, params, cshear, kappa, e0, state[e, p], scratch, 0,
+                     ax[p] != 0, sh[p] != 0, res)
+            out[e, p, 0] = nn[0] * x_el[e, 0] + nn[1] * x_el[e, 1] + nn[2] * x_el[e, 2]
+            out[e, p, 1] = res[0] if ax[p] != 0 else np.nan
+            out[e, p, 2] = res[1] if ax[p] != 0 else np.nan
+            out[e, p, 3] = res[2] if sh[p] != 0 else np.nan
+
+
+@njit(cache=True)
+def _line_load(x_el, q_pts, xi, wt, comp, f_el):
+    """Equivalent nodal forces of a load intensity sampled at points: q_pts (n_el, n_pt)."""
+    nn = np.empty(3)
+    bx = np.empty(3)
+    for e in range(x_el.shape[0]):
+        for i in range(9):
+            f_el[e, i] = 0.0
+        for p in range(xi.shape[0]):
+            jac = _point_b(x_el[e], xi[p], nn, bx)
+            for a in range(3):
+                f_el[e, 3 * a + comp] += nn[a] * q_pts[e, p] * wt[p] * jac
+
+
+class PlateStrip:
+    """A group of 3-node layered Mindlin plate-strip elements sharing one section.
+
+    Parameters
+    ----------
+    coords : (n_el, 3, 2) nodal (x, z) of the nodes (left, middle, right) on the reference surface; the strip
+        is horizontal (x increasing along each element; z may differ between elements, not within one)
+    edofs : (n_el, 9) global DOFs, (u, w, alpha) per node (``Model.element_dofs(conn)`` for 3-DOF nodes)
+    section : :class:`ssi.section.Section` (layers: z_mid, h, kind, params, carries_shear)
+    kappa : shear correction factor on D2 (default 5/6; kappa = 1 is the paper's literal eq. 4.4)
+    integration : "selective" (default, 3-pt bending / 2-pt shear), "full" (3/3), "reduced" (2/2) or
+        (n_axial, n_shear)
+    self_weight : downward load per unit area of the strip [N/m^2] (e.g. 25e3 * depth), a dead body force
+    name : group name
+
+    Notes
+    -----
+    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.elements.base``.
+    Bottom face for the interface element: ``z_bottom`` (< 0, relative to the nodes) and ``bottom_offset =
+    -z_bottom`` so that u_g = u_b + bottom_offset * alpha_b (eq. 6.1); ``thickness`` is the section depth.
+    """
+
+    def __init__(self, coords, edofs, section: Section, kappa: float = 5.0 / 6.0, integration="selective",
+                 self_weight: float = 0.0, name: str = "plate"):
+        self.coords = np.ascontiguousarray(coords, np.float64)
+        self.edofs = np.ascontiguousarray(edofs, np.int64)
+        n_el = self.coords.shape[0] if self.coords.ndim == 3 else -1
+        if self.coords.shape != (n_el, 3, 2) or self.edofs.shape != (n_el, 9):
+            raise ValueError(f"coords must be (n_el, 3, 2) and edofs (n_el, 9); got {self.coords.shape}, "
+                             f"{self.edofs.shape}")
+        if not isinstance(section, Section):
+            raise ValueError("section must be an ssi.section.Section (see ssi.section.layered / rc_section)")  # noqa: TRY004
+        if not 0.0 < kappa <= 1.0:
+            raise ValueError(f"kappa must be in (0, 1], got {kappa}")
+        x = self.coords[:, :, 0]
+        length = x[:, 2] - x[:, 0]
+        if n_el and np.any(length <= 0.0):
+            raise ValueError("coords: each element's x must increase from the left to the right node")
+        if n_el and np.any(np.abs(x[:, 1] - 0.5 * (x[:, 0] + x[:, 2])) > 0.25 * length):
+            raise ValueError("coords: the middle node must lie within the middle half of the element")
+        if n_el and np.any(np.ptp(self.coords[:, :, 1], axis=1) > 1e-9 * length):
+            raise ValueError("coords: the strip must be horizontal (equal z within each element)")
+        self.section = section
+        self.kappa = float(kappa)
+        self.integration = integration
+        self.xi, self.wt, self.ax, self.sh = integration_rule(integration)
+        self.e0, self.g0 = section.initial_moduli()
+        self.self_weight = float(self_weight)
+        self.name = name
+        self._x = np.ascontiguousarray(x)
+        self._k0 = None
+
+    # ---- geometry ---------------------------------------------------------------------------------------
+    @property
+    def n_el(self) -> int:
+        return self.coords.shape[0]
+
+    @property
+    def n_ip(self) -> int:
+        return len(self.xi)
+
+    @property
+    def thickness(self) -> float:
+        return self.section.thickness
+
+    @property
+    def z_bottom(self) -> float:
+        return self.section.z_bottom
+
+    @property
+    def bottom_offset(self) -> float:
+        """Lever arm from the nodes to the bottom face: u_bottom = u + bottom_offset * alpha (eq. 6.1)."""
+        return -self.section.z_bottom
+
+    # ---- protocol -----------------------------------------------------------------------------------------
+    def initial_state(self) -> np.ndarray:
+        return np.zeros((self.n_el, self.n_ip, self.section.n_layer, N_LAYER_HIST))
+
+    def evaluate(self, u_el, du_el, state_old, tangent):
+        """Total formulation: strains from ``u_el``; ``du_el`` unused. Returns (f_el, k_el, state_new)."""
+        f_el = np.empty((self.n_el, 9))
+        k_el = np.empty((self.n_el, 9, 9))
+        state_new = np.empty_like(state_old)
+        s = self.section
+        bad = plate_kernel(self._x, np.ascontiguousarray(u_el, np.float64), state_old, state_new, f_el, k_el,
+                           self.xi, self.wt, self.ax, self.sh, s.z_mid, s.h, s.kind, s.params,
+                           s.carries_shear, self.kappa, self.e0, int(tangent))
+        if bad:
+            raise FloatingPointError(f"{self.name}: {bad} points with non-positive Jacobian")
+        return f_el, k_el, state_new
+
+    def elastic_stiffness(self) -> np.ndarray:
+        if self._k0 is None:
+            zero = np.zeros((self.n_el, 9))
+            self._k0 = self.evaluate(zero, zero, self.initial_state(), 0)[1]
+        return self._k0
+
+    def body_force(self):
+        if self.self_weight == 0.0:
+            return None
+        return self.distributed_load(-self.self_weight, comp="w")
+
+    def describe(self) -> dict:
+        return {"name": self.name, "type": "PlateStrip", "n_el": self.n_el, "kappa": self.kappa,
+                "integration": str(self.integration), "self_weight": self.self_weight,
+                "section": self.section.describe()}
+
+    # ---- loads and results --------------------------------------------------------------------------------
+    def distributed_load(self, q, comp="w", elements=None) -> np.ndarray:
+        """Equivalent nodal forces (n_el, 9) of a distributed load along the strip (per unit width).
+
+        q : float (uniform intensity), (n_el, 2) array of intensities at each element's left and right ends
+            (linear in between), or a callable q(x) (exact for q up to cubic; 4-point Gauss)
+        comp : "u" (tangential force), "w" (vertical force, positive up: a downward load is negative) or
+            "alpha" (distributed moment)
+        elements : optional boolean mask or index array; other elements get zero rows
+        Use with ``Model.add_element_load(group.edofs, f_el)``.
+        """
+        c = {"u": 0, "w": 1, "alpha": 2}.get(comp, comp)
+        if c not in (0, 1, 2):
+            raise ValueError(f"comp must be 'u', 'w' or 'alpha', got {comp!r}")
+        xi, wt = gauss_legendre(4)
+        x = self._x
+        # physical x of the Gauss points (quadratic map)
+        nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in xi])
+        xq = x @ nvals.T                                                   # (n_el, 4)
+        if callable(q):
+            q_pts = np.asarray(q(xq), np.float64) * np.ones_like(xq)
+        else:
+            qa = np.asarray(q, np.float64)
+            if qa.ndim == 0:
+                q_pts = np.full_like(xq, float(qa))
+            elif qa.shape == (self.n_el, 2):
+                t = 0.5 * (xi + 1.0)                                       # linear in xi between the ends
+                q_pts = qa[:, :1] * (1.0 - t) + qa[:, 1:] * t
+            else:
+                raise ValueError(f"q must be a number, a callable or shape ({self.n_el}, 2); got {qa.shape}")
+        if elements is not None:
+            mask = np.zeros(self.n_el, bool)
+            mask[np.asarray(elements)] = True
+            q_pts = np.where(mask[:, None], q_pts, 0.0)
+        f_el = np.empty((self.n_el, 9))
+        _line_load(x, np.ascontiguousarray(q_pts), xi, wt, c, f_el)
+        return f_el
+
+    def resultants(self, u_el, state=None):
+        """Stress resultants per unit width at the sampling points, from total displacements ``u_el``
+        (n_el, 9) and the committed ``state`` (default: virgin).
+
+        Returns a dict of arrays: ``x_ax`` (n_el, n_ax) with ``N``, ``M`` (axial/bending points) and
+        ``x_sh`` (n_el, n_sh) with ``Q`` (shear points); M is positive in sagging (tension at the bottom)."""
+        if state is None:
+            state = self.initial_state()
+        s = self.section
+        out = np.empty((self.n_el, self.n_ip, 4))
+        plate_resultants(self._x, np.ascontiguousarray(u_el, np.float64), state, self.xi, self.ax, self.sh,
+                         s.z_mid, s.h, s.kind, s.params, s.carries_shear, self.kappa, self.e0, out)
+        a = self.ax.astype(bool)
+        b = self.sh.astype(bool)
+        return {"x_ax": out[:, a, 0], "N": out[:, a, 1], "M": out[:, a, 2],
+                "x_sh": out[:, b, 0], "Q": out[:, b, 3]}
+
+    def layer_strains(self, u_el):
+        """Axial strain (n_el, n_ip, n_layer) at every layer's mid-depth and shear strain (n_el, n_ip)."""
+        nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in self.xi])
+        dvals = np.array([[s - 0.5, -2.0 * s, s + 0.5] for s in self.xi])
+        jac = self._x @ dvals.T                                            # (n_el, n_ip)
+        u = np.asarray(u_el).reshape(self.n_el, 3, 3)
+        eps0 = (u[:, :, 0] @ dvals.T) / jac
+        kap = (u[:, :, 2] @ dvals.T) / jac
+        gam = (u[:, :, 1] @ dvals.T) / jac - u[:, :, 2] @ nvals.T
+        eps = eps0[:, :, None] - self.section.z_mid[None, None, :] * kap[:, :, None]
+        return eps, gam
+
+
+# ---- meshes ------------------------------------------------------------------------------------------------
+def beam_mesh_from_ends(x_ends, z: float = 0.0):
+    """Nodes and connectivity of a strip whose element ends are ``x_ends`` (increasing, n_el + 1 values).
+
+    Returns ``(xy, conn)``: xy (2 n_el + 1, 2) nodes ordered along x (ends and mid-points interleaved, so
+    node 2e is the left end of element e) and conn (n_el, 3) = (left, middle, right)."""
+    xe = np.asarray(x_ends, np.float64)
+    if xe.ndim != 1 or xe.size < 2 or np.any(np.diff(xe) <= 0.0):
+        raise ValueError("x_ends must be an increasing 1-D array with at least 2 values")
+    n_el = xe.size - 1
+    x = np.empty(2 * n_el + 1)
+    x[0::2] = xe
+    x[1::2] = 0.5 * (xe[:-1] + xe[1:])
+    xy = np.column_stack([x, np.full_like(x, float(z))])
+    conn = np.column_stack([2 * np.arange(n_el), 2 * np.arange(n_el) + 1, 2 * np.arange(n_el) + 2])
+    return xy, conn.astype(np.int64)
+
+
+def beam_mesh(x0: float, x1: float, n_el: int, z: float = 0.0):
+    """Uniform strip mesh from x0 to x1 with ``n_el`` 3-node elements; see :func:`beam_mesh_from_ends`."""
+    if int(n_el) < 1:
+        raise ValueError(f"n_el must be >= 1, got {n_el}")
+    if not x1 > x0:
+        raise ValueError(f"need x1 > x0, got x0={x0}, x1={x1}")
+    return beam_mesh_from_ends(np.linspace(x0, x1, int(n_el) + 1), z)
+
+
+def add_plate_strip(model, x_ends, section: Section, z: float = 0.0, **kwargs):
+    """Add a strip's nodes (3 DOFs each) and its element group to ``model``.
+
+    Returns ``(group, node_ids, conn_global)``; node_ids are ordered along x, node_ids[2e] is the left end
+    of element e. Extra keyword arguments go to :class:`PlateStrip` (kappa, integration, self_weight, name).
+    """
+    xy, conn = beam_mesh_from_ends(x_ends, z)
+    ids = model.add_nodes(xy, ndof=3)
+    conn_g = ids[conn]
+    group = PlateStrip(xy[conn], model.element_dofs(conn_g), section, **kwargs)
+    model.add_group(group)
+    return group, ids, conn_g

@@ -1,0 +1,229 @@
+"""Cross-sections of the layered plate strip: from a description (depth, cover, bars) to layers.
+
+A section is a stack of layers through the thickness of the strip (paper §4, Fig. 4). Each layer ``n`` has
+
+=================  ==========  =================================================================
+array              shape       meaning
+=================  ==========  =================================================================
+``z_mid``          (n_layer,)  mid-depth of the layer, measured upwards from the reference surface
+                               (the surface the element's nodes lie on; default: mid-depth)
+``h``              (n_layer,)  thickness [m]; a steel layer's thickness is its bar area per unit
+                               width As/b [m^2/m], its *mechanically equivalent* thickness
+``kind``           (n_layer,)  law kind of ``ssi.materials.layer_laws`` (ELASTIC, concrete, steel...)
+``params``         (n_layer,   law parameters, padded with zeros to a common length
+                   n_par)
+``carries_shear``  (n_layer,)  False for steel layers: bars carry only axial stress (paper §5.4)
+=================  ==========  =================================================================
+
+Layers are stacked from the bottom face upwards; bar layers *replace* the concrete they occupy, so the
+layer thicknesses add up to the section depth. With the paper's beam (§9.2): 9 concrete layers and two
+steel layers give 11 layers, steel in layers 2 and 10 (counted from the bottom), see :func:`rc_section`.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .materials.layer_laws import ELASTIC, N_LAYER_HIST, layer_update
+from .quadrature import layer_rule
+
+__all__ = ["Section", "homogeneous", "layered", "paper_rc_section", "rc_section"]
+
+
+@dataclass(frozen=True)
+class Section:
+    """Layers of a plate-strip section (arrays described in the module docstring).
+
+    ``z_bottom``/``z_top`` are the faces relative to the reference surface (``z_bottom < 0 < z_top`` when the
+    reference is inside the section). The interface element attaches to the bottom face: its upper nodes move
+    with ``u_g = u_b - z_bottom * alpha_b`` (paper eq. 6.1 with ``-z_bottom = h/2`` for a mid-depth reference).
+    """
+
+    z_mid: np.ndarray
+    h: np.ndarray
+    kind: np.ndarray
+    params: np.ndarray
+    carries_shear: np.ndarray
+    z_bottom: float
+    z_top: float
+    labels: tuple = ()
+
+    @property
+    def n_layer(self) -> int:
+        return len(self.h)
+
+    @property
+    def thickness(self) -> float:
+        return self.z_top - self.z_bottom
+
+    def initial_moduli(self) -> tuple[np.ndarray, np.ndarray]:
+        """Initial moduli ``(e0, g0)`` (n_layer,) of every layer's law at zero strain and zero history:
+        ``e0 = d sig/d eps`` (D1 of eq. 4.4), ``g0 = d tau/d gam`` (D2, before the shear factor kappa)."""
+        e0 = np.empty(self.n_layer)
+        g0 = np.empty(self.n_layer)
+        hist0 = np.zeros(N_LAYER_HIST)
+        hist1 = np.zeros(N_LAYER_HIST)
+        for n in range(self.n_layer):
+            _, _, e0[n], g0[n] = layer_update(self.kind[n], self.params[n], 0.0, 0.0, hist0, hist1, 0)
+        return e0, g0
+
+    def elastic_resultant_stiffness(self, kappa: float = 5.0 / 6.0) -> dict:
+        """Section stiffnesses of the undamaged section about the reference surface, eq. (4.7b) integrated
+        through the thickness with the rectangular rule and its exact h_n^2/12 term:
+
+        A = sum e0 h (axial), B = -sum e0 h z (coupling), D = sum e0 h (z^2 + h^2/12) (bending),
+        S = kappa sum_{shear layers} g0 h (shear); also the elastic neutral axis z_na = -B/A and
+        D_na = D - B^2/A (bending stiffness about it)."""
+        e0, g0 = self.initial_moduli()
+        A = float(np.sum(e0 * self.h))
+        B = float(-np.sum(e0 * self.h * self.z_mid))
+        D = float(np.sum(e0 * self.h * (self.z_mid ** 2 + self.h ** 2 / 12.0)))
+        S = float(kappa * np.sum(np.where(self.carries_shear, g0 * self.h, 0.0)))
+        return {"A": A, "B": B, "D": D, "S": S, "z_na": -B / A, "D_na": D - B * B / A}
+
+    def describe(self) -> dict:
+        return {"n_layer": self.n_layer, "thickness": self.thickness, "z_bottom": self.z_bottom,
+                "z_mid": self.z_mid.tolist(), "h": self.h.tolist(), "kind": self.kind.tolist(),
+                "params": self.params.tolist(), "carries_shear": self.carries_shear.tolist(),
+                "labels": list(self.labels)}
+
+
+def _pad_params(params_list) -> np.ndarray:
+    rows = [np.atleast_1d(np.asarray(p, np.float64)) for p in params_list]
+    if any(r.ndim != 1 or r.size == 0 for r in rows):
+        raise ValueError("params must give a non-empty 1-D parameter vector per layer")
+    out = np.zeros((len(rows), max(r.size for r in rows)))
+    for i, r in enumerate(rows):
+        out[i, :r.size] = r
+    return out
+
+
+def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=()) -> Section:
+    """A section from layer thicknesses listed from the bottom face upwards.
+
+    Parameters
+    ----------
+    thicknesses : (n_layer,) positive thicknesses [m], bottom to top
+    kinds : int or (n_layer,) law kinds
+    params : (n_par,) for all layers, or a list of per-layer parameter vectors
+    carries_shear : None (all layers carry shear) or (n_layer,) bool
+    z_ref : height of the reference surface (the nodes) above the bottom face; default mid-depth
+    """
+    h_in = np.asarray(thicknesses, np.float64)
+    if h_in.ndim != 1 or h_in.size == 0 or np.any(~(h_in > 0.0)):
+        raise ValueError("thicknesses must be a non-empty 1-D list of positive numbers")
+    n = h_in.size
+    total = float(h_in.sum())
+    if z_ref is None:
+        z_ref = 0.5 * total
+    if not 0.0 <= z_ref <= total:
+        raise ValueError(f"z_ref must lie within the section, 0 <= z_ref <= {total}, got {z_ref}")
+    z_mid, h = layer_rule(h_in, -float(z_ref))
+    kind = np.ascontiguousarray(np.broadcast_to(np.asarray(kinds, np.int64), (n,)))
+    if all(np.isscalar(x) for x in params):
+        plist = [np.asarray(params, np.float64)] * n    # one parameter vector for every layer
+    else:
+        plist = list(params)
+    if len(plist) != n:
+        raise ValueError(f"params must be one vector or {n} vectors (one per layer), got {len(plist)}")
+    cs = np.ones(n, bool) if carries_shear is None else np.asarray(carries_shear, bool)
+    if cs.shape != (n,):
+        raise ValueError(f"carries_shear must have shape ({n},), got {cs.shape}")
+    if not cs.any():
+        raise ValueError("at least one layer must carry shear (carries_shear all False)")
+    return Section(z_mid=np.ascontiguousarray(z_mid), h=np.ascontiguousarray(h), kind=kind,
+                   params=_pad_params(plist), carries_shear=np.ascontiguousarray(cs),
+                   z_bottom=-float(z_ref), z_top=total - float(z_ref), labels=tuple(labels))
+
+
+def homogeneous(thickness: float, E: float, nu: float, n_layers: int = 1, z_ref=None) -> Section:
+    """A linear-elastic homogeneous section split into ``n_layers`` equal layers."""
+    if not thickness > 0.0:
+        raise ValueError(f"thickness must be > 0, got {thickness}")
+    if not (E > 0.0 and -1.0 < nu < 0.5):
+        raise ValueError(f"need E > 0 and -1 < nu < 0.5, got E={E}, nu={nu}")
+    if int(n_layers) < 1:
+        raise ValueError(f"n_layers must be >= 1, got {n_layers}")
+    n = int(n_layers)
+    return layered(np.full(n, thickness / n), ELASTIC, [E, nu], z_ref=z_ref, labels=("concrete",) * n)
+
+
+def _allocate(n_total: int, gaps: np.ndarray) -> np.ndarray:
+    """Split ``n_total`` layers over gaps in proportion to their thickness, at least one per gap
+    (largest-remainder rounding)."""
+    k = len(gaps)
+    if n_total < k:
+        raise ValueError(f"n_concrete must be >= {k} (one layer per concrete gap), got {n_total}")
+    share = gaps / gaps.sum() * (n_total - k)
+    n = 1 + np.floor(share).astype(int)
+    rest = n_total - n.sum()
+    order = sorted(range(k), key=lambda i: -(share[i] - np.floor(share[i])))
+    for i in order[:rest]:
+        n[i] += 1
+    return n
+
+
+def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) -> Section:
+    """A reinforced-concrete section: concrete layers with smeared bar layers between them.
+
+    Parameters
+    ----------
+    depth : section depth [m]
+    bars : list of ``(z_bar, As)``: height of the bar centroid above the bottom face [m] and bar area per
+        unit width [m^2/m]; the bar layer has thickness ``As`` centred on ``z_bar`` (equivalent thickness)
+    concrete : ``(kind, params)`` of the concrete layers
+    steel : ``(kind, params)`` of all bar layers, or a list with one ``(kind, params)`` per bar
+    n_concrete : total number of concrete layers (int, spread over the gaps between faces and bars in
+        proportion to the gap thickness, at least one each) or a list with one count per gap, bottom up
+    z_ref : reference surface height above the bottom face (default depth/2)
+
+    Steel layers carry no shear. The concrete a bar layer occupies is not counted twice (layers are
+    stacked), so the thicknesses add up to ``depth``.
+    """
+    if not depth > 0.0:
+        raise ValueError(f"depth must be > 0, got {depth}")
+    bars = sorted((float(z), float(a)) for z, a in bars)
+    if isinstance(steel, tuple) and len(steel) == 2 and np.isscalar(steel[0]):
+        steel = [steel] * len(bars)
+    if len(steel) != len(bars):
+        raise ValueError(f"steel must be one (kind, params) or one per bar ({len(bars)}), got {len(steel)}")
+    edges = [0.0]
+    for z, a in bars:
+        if not a > 0.0:
+            raise ValueError(f"bar area per width As must be > 0, got {a}")
+        lo, hi = z - 0.5 * a, z + 0.5 * a
+        if lo <= edges[-1] or hi >= depth:
+            raise ValueError(f"bar layer at z_bar={z} (thickness {a}) overlaps a face or another bar; "
+                             f"need 0 < z_bar - As/2 and z_bar + As/2 < depth={depth}")
+        edges += [lo, hi]
+    edges.append(depth)
+    gaps = np.array([edges[2 * i + 1] - edges[2 * i] for i in range(len(bars) + 1)])
+    if np.isscalar(n_concrete):
+        counts = _allocate(int(n_concrete), gaps)
+    else:
+        counts = np.asarray(n_concrete, int)
+        if counts.shape != gaps.shape or np.any(counts < 1):
+            raise ValueError(f"n_concrete per gap must be {len(gaps)} counts >= 1, got {n_concrete}")
+    th, kinds, params, shear, labels = [], [], [], [], []
+    for i, gap in enumerate(gaps):
+        for _ in range(counts[i]):
+            th.append(gap / counts[i])
+            kinds.append(concrete[0])
+            params.append(concrete[1])
+            shear.append(True)
+            labels.append("concrete")
+        if i < len(bars):
+            th.append(bars[i][1])
+            kinds.append(steel[i][0])
+            params.append(steel[i][1])
+            shear.append(False)
+            labels.append("steel")
+    return layered(th, kinds, params, carries_shear=shear, z_ref=z_ref, labels=labels)
+
+
+def paper_rc_section(depth: float, cover: float, as_bottom: float, as_top: float, concrete, steel,
+                     n_concrete: int = 9) -> Section:
+    """The paper's doubly reinforced section (§9.2): bars at ``cover`` (to the bar centroid) from each face;
+    with the default 9 concrete layers (1 + 7 + 1) there are 11 layers, steel in layers 2 and 10."""
+    return rc_section(depth, [(cover, as_bottom), (depth - cover, as_top)], concrete, steel,
+                      n_concrete=[1, n_concrete - 2, 1] if n_concrete >= 3 else n_concrete)
