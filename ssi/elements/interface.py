@@ -1,0 +1,278 @@
+"""Six-node zero-thickness interface element (paper §6.1, eqs. 6.1-6.6; integration §9.1, §10).
+
+An element joins three upper nodes to three lower (soil) nodes along a quadratic line. The upper nodes are
+either **plate-strip nodes** (DOFs u, w, alpha at the plate's mid-surface) or **solid nodes** (u, w):
+
+* plate, eq. (6.1a): the contact face is the plate's bottom face, u_g = u_b + (h/2) alpha_b, w_g = w_b
+  (from the plate kinematics u(z) = u_b - z alpha with z = -h/2 at the bottom face);
+* solid, eq. (6.1b): u_g = u, w_g = w, the same as the lower side u_d = u_s, w_d = w_s.
+
+The gap Delta u = u_g - u_d (eq. 6.5) is taken into the local frame of the contact line, built from the
+lower nodes' geometry at every integration point: tangent t = (dx/dxi, dz/dxi)/|.|, normal n = (-t_z, t_x).
+Order the lower nodes so that the upper body lies on the left when walking from node 0 to node 2 (for a
+horizontal contact under a plate: left to right, then n points up and g_n > 0 opens the contact).
+Tractions [tau, sig_n] follow from :func:`ssi.materials.interface_law.interface_update`, and
+
+    f_el = sum_ip w_ip |J| B^T t,    k_el = sum_ip w_ip |J| B^T D B    (eq. 6.6),
+
+with B (2, n_edof) the map from element DOFs to [g_t, g_n]. Two integration rules:
+
+* ``rule="newton_cotes"`` (default, the paper's): Simpson on the three node pairs (weights 1/3, 4/3, 1/3 on
+  [-1, 1]). Each integration point sees one node pair only, so the stiffness couples a node to its partner
+  and nothing else ("diagonal" in node pairs, Hohberg).
+* ``rule="gauss"``: ``n_gauss``-point Gauss--Legendre (3 = full integration of N^T D N). Every point sees all
+  three pairs, which couples neighbouring pairs and lets stiff interfaces oscillate (Fig. 10).
+
+Layout (see ``base``): coords (n_el, 6, 2) [upper 0-2, lower 3-5]; edofs (n_el, 15) for plate upper nodes
+(3 x (u, w, alpha) then 3 x (u, w)) or (n_el, 12) for solid upper nodes; state (n_el, n_ip, N_VAR) with
+[tau, sig_n, status, g_t, g_n, slip_t, slip_n, open_gap, broken] per point (status 0 stick, 1 slip, 2 open).
+"""
+
+import numpy as np
+from numba import njit
+
+from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, interface_update
+from ..quadrature import gauss_legendre, newton_cotes
+from ..shapes import lagrange3
+from .base import CONSISTENT, ELASTIC
+
+__all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6"]
+
+_lagrange3_py = getattr(lagrange3, "py_func", lagrange3)   # plain Python version (also under NUMBA_DISABLE_JIT)
+
+N_VAR = 2 + N_HIST
+V_TAU, V_SIG, V_STATUS, V_GT, V_GN, V_SLIPT, V_SLIPN, V_OPEN, V_BROKEN = range(N_VAR)
+
+
+@njit(cache=True)
+def _b_matrix(xl, zl, hoff, n_up_dof, xi, B):
+    """Fill B (2, n_edof) at ``xi``; return |dx/dxi| (the line Jacobian). xl, zl: lower-node coordinates."""
+    n, dn = lagrange3(xi)
+    dx = 0.0
+    dz = 0.0
+    for a in range(3):
+        dx += dn[a] * xl[a]
+        dz += dn[a] * zl[a]
+    jac = np.sqrt(dx * dx + dz * dz)
+    tx = dx / jac
+    tz = dz / jac
+    nx = -tz
+    nz = tx
+    for j in range(B.shape[1]):
+        B[0, j] = 0.0
+        B[1, j] = 0.0
+    step = n_up_dof // 3
+    for a in range(3):
+        # upper node a: +N_a (u + hoff alpha, w); eq. (6.3)
+        k = a * step
+        B[0, k] = n[a] * tx
+        B[1, k] = n[a] * nx
+        B[0, k + 1] = n[a] * tz
+        B[1, k + 1] = n[a] * nz
+        if step == 3:
+            B[0, k + 2] = n[a] * hoff * tx
+            B[1, k + 2] = n[a] * hoff * nx
+        # lower node a: -N_a (u, w); eq. (6.4)
+        k = n_up_dof + 2 * a
+        B[0, k] = -n[a] * tx
+        B[1, k] = -n[a] * nx
+        B[0, k + 1] = -n[a] * tz
+        B[1, k + 1] = -n[a] * nz
+    return jac
+
+
+@njit(cache=True)
+def _evaluate(coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangent, f_el, k_el, state_new):
+    n_el, n_edof = du_el.shape
+    n_ip = xis.shape[0]
+    B = np.empty((2, n_edof))
+    xl = np.empty(3)
+    zl = np.empty(3)
+    dgap = np.empty(2)
+    t_new = np.empty(2)
+    h_new = np.empty(N_HIST)
+    D = np.empty((2, 2))
+    DB = np.empty((2, n_edof))
+    for e in range(n_el):
+        for a in range(3):
+            xl[a] = coords[e, 3 + a, 0]
+            zl[a] = coords[e, 3 + a, 1]
+        for i in range(n_edof):
+            f_el[e, i] = 0.0
+            for j in range(n_edof):
+                k_el[e, i, j] = 0.0
+        for q in range(n_ip):
+            jac = _b_matrix(xl, zl, hoff[e], n_up_dof, xis[q], B)
+            dv = wts[q] * jac
+            for r in range(2):
+                s = 0.0
+                for j in range(n_edof):
+                    s += B[r, j] * du_el[e, j]
+                dgap[r] = s
+            interface_update(params[e], dgap, state_old[e, q, 0:2], state_old[e, q, 2:], t_new, h_new, D, tangent)
+            state_new[e, q, 0] = t_new[0]
+            state_new[e, q, 1] = t_new[1]
+            for k in range(N_HIST):
+                state_new[e, q, 2 + k] = h_new[k]
+            for j in range(n_edof):
+                DB[0, j] = D[0, 0] * B[0, j] + D[0, 1] * B[1, j]
+                DB[1, j] = D[1, 0] * B[0, j] + D[1, 1] * B[1, j]
+            for i in range(n_edof):
+                b0 = B[0, i] * dv
+                b1 = B[1, i] * dv
+                if b0 == 0.0 and b1 == 0.0:
+                    continue
+                f_el[e, i] += b0 * t_new[0] + b1 * t_new[1]
+                for j in range(n_edof):
+                    k_el[e, i, j] += b0 * DB[0, j] + b1 * DB[1, j]
+
+
+class Interface6:
+    """A group of 6-node zero-thickness interface elements (see the module docstring).
+
+    Parameters
+    ----------
+    coords : array (n_el, 6, 2)
+        Node coordinates: upper nodes 0-2 (plate mid-surface nodes, or solid nodes), lower nodes 3-5.
+    edofs : int array (n_el, 15) or (n_el, 12)
+        Global DOFs, upper nodes first; 15 columns = plate upper nodes, 12 = solid upper nodes.
+    params : array (N_PARAMS,) or (n_el, N_PARAMS)
+        Interface law parameters from :func:`ssi.materials.interface_law.interface_params`.
+    thickness : float or array (n_el,), optional
+        Plate thickness h (plate variant only): the offset of the bottom face is h/2.
+    rule : {"newton_cotes", "gauss"}
+        Integration along the element (default the paper's Newton--Cotes / Simpson on the node pairs).
+    n_gauss : int
+        Number of Gauss points for ``rule="gauss"`` (1..5; 3 integrates N^T D N exactly).
+    name : str
+        Group name used in result files.
+    """
+
+    def __init__(self, coords, edofs, params, thickness=None, rule="newton_cotes", n_gauss=3,
+                 name="interface"):
+        coords = np.ascontiguousarray(coords, dtype=np.float64)
+        edofs = np.ascontiguousarray(edofs, dtype=np.int64)
+        if coords.ndim != 3 or coords.shape[1:] != (6, 2):
+            raise ValueError(f"coords must have shape (n_el, 6, 2), got {coords.shape}")
+        n_el = coords.shape[0]
+        if edofs.ndim != 2 or edofs.shape[0] != n_el or edofs.shape[1] not in (12, 15):
+            raise ValueError(f"edofs must have shape (n_el, 15) (plate upper nodes) or (n_el, 12) "
+                             f"(solid upper nodes) with n_el = {n_el}, got {edofs.shape}")
+        self.upper = "plate" if edofs.shape[1] == 15 else "solid"
+        n_up_dof = 9 if self.upper == "plate" else 6
+        params = np.asarray(params, dtype=np.float64)
+        if params.shape == (N_PARAMS,):
+            params = np.tile(params, (n_el, 1))
+        if params.shape != (n_el, N_PARAMS):
+            raise ValueError(f"params must have shape ({N_PARAMS},) or ({n_el}, {N_PARAMS}); "
+                             "build it with interface_params()")
+        lower = coords[:, 3:, :]
+        chord = np.hypot(*(lower[:, 2] - lower[:, 0]).T)
+        if np.any(chord <= 0.0):
+            raise ValueError("coords: lower nodes 3 and 5 of an element coincide (zero-length element)")
+        mid = 0.5 * (lower[:, 0] + lower[:, 2])
+        if np.any(np.hypot(*(lower[:, 1] - mid).T) > 0.25 * chord):
+            raise ValueError("coords: the middle lower node must lie near the middle of the element "
+                             "(within a quarter of its length)")
+        if self.upper == "plate":
+            if thickness is None:
+                raise ValueError("thickness (the plate's h, > 0) is required when the upper nodes are plate nodes")
+            h = np.broadcast_to(np.asarray(thickness, dtype=np.float64), (n_el,)).copy()
+            if np.any(~(h > 0.0)):
+                raise ValueError("thickness must be > 0 [m]")
+            # the plate strip runs along x; its mid-surface nodes sit h/2 above the contact face
+            off = coords[:, :3, :] - lower
+            tol = 1e-6 * chord[:, None]
+            if np.any(np.abs(off[:, :, 0]) > tol) or np.any(np.abs(off[:, :, 1] - 0.5 * h[:, None]) > tol):
+                raise ValueError("coords: plate nodes must lie h/2 straight above their lower (soil) nodes "
+                                 "(mid-surface over the bottom face, eq. 6.1a)")
+            hoff = 0.5 * h
+        else:
+            if thickness is not None:
+                raise ValueError("thickness applies only to plate upper nodes (edofs with 15 columns)")
+            if np.any(np.abs(coords[:, :3, :] - lower) > 1e-6 * chord[:, None, None]):
+                raise ValueError("coords: solid upper nodes must coincide with their lower nodes "
+                                 "(zero-thickness interface)")
+            hoff = np.zeros(n_el)
+        if rule == "newton_cotes":
+            xis, wts = newton_cotes(3)
+        elif rule == "gauss":
+            if not 1 <= int(n_gauss) <= 5:
+                raise ValueError(f"n_gauss must be in 1..5, got {n_gauss}")
+            xis, wts = gauss_legendre(int(n_gauss))
+        else:
+            raise ValueError(f"rule must be 'newton_cotes' or 'gauss', got {rule!r}")
+        self.name = name
+        self.rule = rule
+        self.coords = coords
+        self.edofs = edofs
+        self.params = np.ascontiguousarray(params)
+        self.hoff = np.ascontiguousarray(hoff)
+        self.n_up_dof = n_up_dof
+        self.xi = np.ascontiguousarray(xis)
+        self.w = np.ascontiguousarray(wts)
+        self.n_el = n_el
+        self.n_ip = len(xis)
+
+    # ---- protocol -------------------------------------------------------------------------------------
+    def initial_state(self) -> np.ndarray:
+        return np.zeros((self.n_el, self.n_ip, N_VAR))
+
+    def evaluate(self, u_el, du_el, state_old, tangent):
+        if tangent not in (ELASTIC, CONSISTENT):
+            raise ValueError(f"tangent must be ELASTIC (0) or CONSISTENT (1), got {tangent}")
+        du_el = np.ascontiguousarray(du_el, dtype=np.float64)
+        if du_el.shape != self.edofs.shape:
+            raise ValueError(f"du_el must have shape {self.edofs.shape}, got {du_el.shape}")
+        f_el = np.empty(self.edofs.shape)
+        k_el = np.empty((self.n_el, self.edofs.shape[1], self.edofs.shape[1]))
+        state_new = np.empty_like(state_old)
+        _evaluate(self.coords, self.hoff, self.n_up_dof, self.xi, self.w, self.params, du_el,
+                  np.ascontiguousarray(state_old), int(tangent), f_el, k_el, state_new)
+        return f_el, k_el, state_new
+
+    def elastic_stiffness(self) -> np.ndarray:
+        z = np.zeros(self.edofs.shape)
+        return self.evaluate(z, z, self.initial_state(), ELASTIC)[1]
+
+    def body_force(self):
+        return None
+
+    def describe(self) -> dict:
+        return {"type": "Interface6", "name": self.name, "n_el": self.n_el, "upper": self.upper,
+                "rule": self.rule, "n_ip": self.n_ip,
+                "params": "[kt, kn, c, tan_phi, tan_psi, sig_t]", "params_first": self.params[0].tolist()}
+
+    # ---- reporting ------------------------------------------------------------------------------------
+    def ip_coords(self) -> np.ndarray:
+        """(n_el, n_ip, 2) coordinates (x, z) of the integration points on the contact line."""
+        out = np.empty((self.n_el, self.n_ip, 2))
+        for q, xi in enumerate(self.xi):
+            n, _ = _lagrange3_py(float(xi))
+            out[:, q, :] = np.einsum("a,eak->ek", n, self.coords[:, 3:, :])
+        return out
+
+    def ip_weights(self) -> np.ndarray:
+        """(n_el, n_ip) integration weights times the line Jacobian (sum = contact length)."""
+        out = np.empty((self.n_el, self.n_ip))
+        for q, xi in enumerate(self.xi):
+            _, dn = _lagrange3_py(float(xi))
+            d = np.einsum("a,eak->ek", dn, self.coords[:, 3:, :])
+            out[:, q] = self.w[q] * np.hypot(d[:, 0], d[:, 1])
+        return out
+
+    @staticmethod
+    def tractions(state) -> np.ndarray:
+        """(n_el, n_ip, 2) tractions [tau, sig_n] from a state array."""
+        return state[..., V_TAU:V_SIG + 1]
+
+    @staticmethod
+    def status(state) -> np.ndarray:
+        """(n_el, n_ip) int state codes: 0 stick, 1 slip, 2 open."""
+        return np.rint(state[..., V_STATUS]).astype(np.int64)
+
+    @staticmethod
+    def status_counts(state) -> dict:
+        """Number of integration points in each state, e.g. {'stick': 10, 'slip': 4, 'open': 0}."""
+        codes = Interface6.status(state).ravel()
+        return {name: int(np.count_nonzero(codes == k)) for k, name in STATE_NAMES.items()}
