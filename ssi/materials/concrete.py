@@ -1,0 +1,202 @@
+"""Concrete at one layer point of the plate strip (paper §5.1-5.3; paper-notes §3.1-3.5).
+
+Pure numba kernels: strain and committed history in, stress, tangent and new history out. Tension is
+positive; the compression law (eq. 5.1) is written in magnitudes ``x = -eps >= 0``.
+
+Parameter vector (``params``, float64, indices ``P_*`` below)
+--------------------------------------------------------------
+====  ==========  =============================================================================
+idx   name        meaning
+====  ==========  =============================================================================
+0     E0          initial Young modulus [Pa]
+1     nu          Poisson ratio (enters only the shear modulus G = E0 / (2 (1 + nu)))
+2     fc          compressive strength, magnitude [Pa]
+3     eps_c       strain at the peak fc, magnitude
+4     eps_cu      ultimate (crushing) strain, magnitude; beyond it the point carries no stress (open)
+5     fr          tensile strength [Pa]
+6     Gf          fracture energy [N/m]
+7     ls          crack band width [m] (eq. 5.4)
+8     alpha_ts    tension-stiffening factor (open, default 0.5; 0 switches it off)
+9     eps_y       yield strain of the reinforcement crossing the crack (fy / Es of the section)
+10    beta0       shear retention just after cracking (open, default 0.25)
+11    beta_floor  smallest shear retention (open, default 1e-4: keeps the matrix non-singular)
+====  ==========  =============================================================================
+
+The axial law is the *uniaxial* law of §5 (no plane-strain factor 1/(1-nu^2)); nu enters only G.
+
+History (``hist``, first ``N_CONCRETE_HIST`` entries of the layer history)
+--------------------------------------------------------------------------
+0. ``x_max``: largest compressive strain magnitude reached (irreversible strain, eq. 5.3; crushing);
+1. ``e_max``: largest tensile strain reached, measured from the irreversible strain (crack opening).
+
+Algorithm of :func:`concrete_update` (one call, total formulation)
+-------------------------------------------------------------------
+1. Crushed (``max(x_max, x) >= eps_cu``): sig = 0, shear retention beta_floor.
+2. Compression loading (``x > x_max``): sig = -f(x) on the envelope eq. (5.1), x_max <- x.
+3. Otherwise shift by the irreversible strain eps_p = x_max - f(x_max)/E0 (eq. 5.3):
+   e = eps + eps_p. e <= 0: unloading/reloading along E0 (sig = E0 e).
+4. e > 0: tension. Uncracked (max(e, e_max) <= eps_r = fr/E0): sig = E0 e. Loading on the cracked
+   envelope (e >= e_max > eps_r): sig = max(softening eq. 5.4, tension stiffening). Unloading
+   (e < e_max): secant towards the origin (open choice of paper-notes §3.3).
+5. Shear: tau = beta G gam with beta = 1 uncracked, max(beta0 (1 - e_max/eps_y), beta_floor) cracked
+   (Fig. 6; vanishes at steel yield). beta uses the current crack strain, so tau depends on eps too;
+   that cross derivative d tau / d eps is *not* returned (the layer interface carries only the two
+   diagonal moduli), so a full-Newton tangent is approximate in cracked shear zones only.
+"""
+
+import math
+
+from numba import njit
+
+P_E0, P_NU, P_FC, P_EPS_C, P_EPS_CU, P_FR, P_GF, P_LS, P_ALPHA_TS, P_EPS_Y, P_BETA0, P_BETA_FLOOR = range(12)
+N_CONCRETE_PARAMS = 12
+N_CONCRETE_HIST = 2
+H_XMAX, H_EMAX = 0, 1
+
+
+@njit(cache=True)
+def compression_envelope(x, E0, fc, eps_c, eps_cu):
+    """Eq. (5.1) in magnitudes: return ``(f, df/dx)`` at compressive strain magnitude ``x >= 0``.
+
+    f = E0 x / (1 + (E0 eps_c / fc - 2) r + r^2), r = x / eps_c; df/dx = E0 (1 - r^2) / den^2.
+    Zero stress and slope at and beyond ``eps_cu`` (open choice of paper-notes §3.1).
+    """
+    if x >= eps_cu:
+        return 0.0, 0.0
+    a = E0 * eps_c / fc
+    r = x / eps_c
+    den = 1.0 + (a - 2.0) * r + r * r
+    return E0 * x / den, E0 * (1.0 - r * r) / (den * den)
+
+
+@njit(cache=True)
+def irreversible_strain(x_max, E0, fc, eps_c, eps_cu):
+    """Second form of eq. (5.3): eps_p = x_max - f(x_max) / E0 (magnitudes; 0 before any compression)."""
+    if x_max <= 0.0:
+        return 0.0
+    f, _ = compression_envelope(x_max, E0, fc, eps_c, eps_cu)
+    return x_max - f / E0
+
+
+@njit(cache=True)
+def irreversible_strain_from_stress(sig, descending, E0, fc, eps_c):
+    """First form of eq. (5.3): eps_p from the stress magnitude ``sig`` on the envelope (0 < sig <= fc).
+
+    Inverting eq. (5.1) for x = eps/eps_c gives sig x^2 + (sig (a - 2) - E0 eps_c) x + sig = 0,
+    a = E0 eps_c / fc; the smaller root is on the ascending branch, the larger (``descending`` = True)
+    on the descending one. Then eps_p = eps_c x - sig / E0.
+    """
+    a = E0 * eps_c / fc
+    bq = sig * (a - 2.0) - E0 * eps_c
+    disc = bq * bq - 4.0 * sig * sig
+    if disc < 0.0:
+        disc = 0.0
+    root = math.sqrt(disc)
+    if descending:
+        x = (-bq + root) / (2.0 * sig)
+    else:
+        x = (-bq - root) / (2.0 * sig)
+    return eps_c * x - sig / E0
+
+
+@njit(cache=True)
+def softening_modulus(E0, fr, Gf, ls):
+    """Eq. (5.4): Es = -E0 / (2 E0 Gf / (ls fr^2) - 1); negative only while ls < 2 E0 Gf / fr^2."""
+    return -E0 / (2.0 * E0 * Gf / (ls * fr * fr) - 1.0)
+
+
+@njit(cache=True)
+def tension_envelope(e, E0, fr, Gf, ls, alpha_ts, eps_y):
+    """Cracked tension envelope at strain ``e`` > eps_r = fr/E0: return ``(sig, dsig/de)``.
+
+    max(linear softening eq. 5.4 reaching zero at eps_u = 2 Gf / (fr ls), tension stiffening
+    alpha_ts fr (eps_y - e) / (eps_y - eps_r) reaching zero at eps_y).
+    """
+    eps_r = fr / E0
+    eps_u = 2.0 * Gf / (fr * ls)
+    s_soft = 0.0
+    d_soft = 0.0
+    if e < eps_u:
+        d_soft = softening_modulus(E0, fr, Gf, ls)
+        s_soft = fr + d_soft * (e - eps_r)
+    s_ts = 0.0
+    d_ts = 0.0
+    if alpha_ts > 0.0 and e < eps_y:
+        d_ts = -alpha_ts * fr / (eps_y - eps_r)
+        s_ts = alpha_ts * fr * (eps_y - e) / (eps_y - eps_r)
+    if s_ts > s_soft:
+        return s_ts, d_ts
+    return s_soft, d_soft
+
+
+@njit(cache=True)
+def shear_retention(e_max, eps_r, eps_y, beta0, beta_floor):
+    """Fig. 6: 1 before cracking, beta0 (1 - e_max/eps_y) after, never below ``beta_floor``."""
+    if e_max <= eps_r:
+        return 1.0
+    b = beta0 * (1.0 - e_max / eps_y)
+    if b < beta_floor:
+        return beta_floor
+    return b
+
+
+@njit(cache=True)
+def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
+    """One concrete layer point: return ``(sig, tau, e_t, g_t)`` and write ``hist_new``.
+
+    ``tangent`` = 0 returns the initial moduli (E0, G) for K0, else d sig/d eps and d tau/d gam.
+    Shapes: params (>= N_CONCRETE_PARAMS,), hist_old/hist_new (>= N_CONCRETE_HIST,).
+    """
+    E0 = params[P_E0]
+    G = 0.5 * E0 / (1.0 + params[P_NU])
+    fc = params[P_FC]
+    eps_c = params[P_EPS_C]
+    eps_cu = params[P_EPS_CU]
+    fr = params[P_FR]
+    eps_r = fr / E0
+    eps_y = params[P_EPS_Y]
+    x_max = hist_old[H_XMAX]
+    e_max = hist_old[H_EMAX]
+    x = -eps
+    sig = 0.0
+    e_t = 0.0
+    if x_max >= eps_cu or x >= eps_cu:
+        # 1. crushed: no stress from now on
+        if x > x_max:
+            x_max = x
+        beta = params[P_BETA_FLOOR]
+    elif x > x_max:
+        # 2. compression loading on the envelope, eq. (5.1)
+        f, df = compression_envelope(x, E0, fc, eps_c, eps_cu)
+        sig = -f
+        e_t = df
+        x_max = x
+        beta = shear_retention(e_max, eps_r, eps_y, params[P_BETA0], params[P_BETA_FLOOR])
+    else:
+        # 3. shift by the irreversible strain, eq. (5.3)
+        e = eps + irreversible_strain(x_max, E0, fc, eps_c, eps_cu)
+        if e <= 0.0:
+            sig = E0 * e
+            e_t = E0
+        elif e <= eps_r and e_max <= eps_r:
+            sig = E0 * e
+            e_t = E0
+        elif e >= e_max:
+            # 4. loading on the cracked envelope
+            sig, e_t = tension_envelope(e, E0, fr, params[P_GF], params[P_LS], params[P_ALPHA_TS], eps_y)
+            e_max = e
+        else:
+            # 4. unloading of a cracked point: secant towards the origin
+            s_env, _ = tension_envelope(e_max, E0, fr, params[P_GF], params[P_LS], params[P_ALPHA_TS], eps_y)
+            e_t = s_env / e_max
+            sig = e_t * e
+        if e > e_max:
+            e_max = e
+        beta = shear_retention(e_max, eps_r, eps_y, params[P_BETA0], params[P_BETA_FLOOR])
+    hist_new[H_XMAX] = x_max
+    hist_new[H_EMAX] = e_max
+    g_t = beta * G
+    tau = g_t * gam
+    if tangent == 0:
+        return sig, tau, E0, G
+    return sig, tau, e_t, g_t

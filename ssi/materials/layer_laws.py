@@ -1,0 +1,61 @@
+"""Uniaxial laws of the plate strip's layers (axial stress sig from axial strain eps, shear stress tau
+from shear strain gam), at one integration point of one layer.
+
+Law kinds (``kind``) and their parameter vectors ``params`` (length <= N_LAYER_PARAMS):
+
+* ``ELASTIC`` (0): [E, nu]; sig = E/(1-nu^2) eps (cylindrical bending), tau = E/(2(1+nu)) gam.
+* ``CONCRETE`` (1): [E0, nu, fc, eps_c, eps_cu, fr, Gf, ls, alpha_ts, eps_y, beta0, beta_floor] --
+  eq. (5.1) in compression with irreversible strain (5.3), crack-band softening (5.4), tension
+  stiffening and cracked shear retention (Figs. 5-6). Uniaxial: no 1/(1-nu^2). See ``concrete``.
+* ``STEEL`` (2): [Es, 0, fy, EH] -- bilinear with hardening EH, unloading Es, no shear. See ``steel``.
+
+Build the vectors with ``ssi.materials.rc.concrete_params`` / ``steel_params`` (they validate).
+For every kind params[0] is the initial (K0) modulus.
+
+The plate element applies the shear correction factor kappa to tau; laws return the unfactored tau.
+
+Crack band width (for the plate element): ``params[P_LS]`` (index 7 of a CONCRETE vector) is the width ls
+of eq. (5.4). The element size entering eq. (5.4) should be the length the integration point
+represents, ``crack_band_width(L_e, w_i) = w_i L_e / 2`` for Gauss weight w_i on [-1, 1] of an element
+of length L_e, so that a point that cracks through dissipates exactly Gf per unit crack area.
+A model builder sets it per element and point (the params array may be per point); if a single ls is
+given for all elements the law is a plain (mesh-dependent) strain-softening law.
+
+History: N_LAYER_HIST = 4 floats per layer point (concrete uses 2: max compressive strain, max crack
+strain; steel uses 1: plastic strain). Unused entries are copied through.
+"""
+
+from numba import njit
+
+from .concrete import N_CONCRETE_PARAMS, P_LS, concrete_update
+from .steel import steel_update
+
+ELASTIC = 0
+CONCRETE = 1
+STEEL = 2
+N_LAYER_HIST = 4  # history variables per layer point (laws may use fewer)
+N_LAYER_PARAMS = N_CONCRETE_PARAMS  # longest parameter vector of any kind
+
+__all__ = ["ELASTIC", "CONCRETE", "STEEL", "N_LAYER_HIST", "N_LAYER_PARAMS", "P_LS", "layer_update",
+           "crack_band_width"]
+
+
+def crack_band_width(element_length: float, weight: float) -> float:
+    """Length represented by a Gauss point of weight ``weight`` (on [-1, 1]) in an element of length
+    ``element_length``: the crack band width ls of eq. (5.4) for that point."""
+    return 0.5 * weight * element_length
+
+
+@njit(cache=True)
+def layer_update(kind, params, eps, gam, hist_old, hist_new, tangent):
+    """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (tangent=1) or initial (tangent=0)
+    moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
+    hist_new[:] = hist_old
+    if kind == CONCRETE:
+        return concrete_update(params, eps, gam, hist_old, hist_new, tangent)
+    if kind == STEEL:
+        return steel_update(params, eps, gam, hist_old, hist_new, tangent)
+    E, nu = params[0], params[1]
+    e1 = E / (1.0 - nu * nu)
+    g = 0.5 * E / (1.0 + nu)
+    return e1 * eps, g * gam, e1, g

@@ -1,0 +1,161 @@
+"""Python side of the reinforced-concrete laws: validated parameter vectors and designer defaults.
+
+The numba kernels (``concrete``, ``steel``) trust their input; everything a user can get wrong is
+checked here and reported as a ``ValueError`` naming the parameter and its allowed range.
+
+Designer values from the compressive strength alone (:func:`designer_concrete`), all from one source,
+the *fib* Model Code 2010 (§5.1), with fc read as the mean cylinder strength fcm [Pa]:
+
+* E0 = Eci = 21.5 GPa (fcm / 10 MPa)^(1/3)                         (MC2010 eq. 5.1-21, alpha_E = 1)
+* fr = fctm = 0.30 (fcm - 8 MPa)^(2/3) MPa  (fck = fcm - 8 MPa <= 50 MPa)  (MC2010 eq. 5.1-3a)
+* Gf = 73 fcm^0.18 N/m                                              (MC2010 eq. 5.1-9)
+* eps_c = 2 fc / E0: the peak strain that makes eq. (5.1) the curve whose secant at the peak is E0/2
+  (a = E0 eps_c / fc = 2); smaller eps_c would bend the curve above its initial tangent (a < 2).
+* eps_cu = 0.0035 (MC2010/EC2 ultimate strain in bending).
+"""
+
+import math
+
+import numpy as np
+
+from .concrete import N_CONCRETE_PARAMS
+from .layer_laws import CONCRETE, ELASTIC, STEEL
+from .steel import N_STEEL_PARAMS
+
+MPA = 1.0e6
+
+
+def _positive(name, value):
+    value = float(value)
+    if not (value > 0.0 and math.isfinite(value)):
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    return value
+
+
+def snap_back_limit(E0: float, Gf: float, fr: float) -> float:
+    """Largest crack band width 2 E0 Gf / fr^2 for which eq. (5.4) gives a softening (negative) modulus."""
+    return 2.0 * E0 * Gf / (fr * fr)
+
+
+def check_crack_band(ls, E0: float, Gf: float, fr: float) -> None:
+    """Raise ValueError unless every crack band width in ``ls`` satisfies 0 < ls < 2 E0 Gf / fr^2."""
+    ls = np.atleast_1d(np.asarray(ls, dtype=np.float64))
+    limit = snap_back_limit(E0, Gf, fr)
+    if np.any(~np.isfinite(ls)) or np.any(ls <= 0.0):
+        raise ValueError(f"crack band width ls must be positive, got min ls = {ls.min()!r} m")
+    if np.any(ls >= limit):
+        raise ValueError(
+            f"crack band width ls = {ls.max():.6g} m is too large: eq. (5.4) snaps back unless "
+            f"ls < 2*E0*Gf/fr**2 = {limit:.6g} m (E0 = {E0:.6g} Pa, Gf = {Gf:.6g} N/m, fr = {fr:.6g} Pa); "
+            "refine the mesh or raise Gf")
+
+
+def designer_concrete(fc: float) -> dict:
+    """Designer values of E0, fr, Gf, eps_c, eps_cu from the mean compressive strength ``fc`` [Pa]
+    (fib Model Code 2010; see the module docstring)."""
+    fc = _positive("fc", fc)
+    fcm = fc / MPA
+    if not 8.0 < fcm <= 58.0:
+        raise ValueError(f"fc must be within (8, 58] MPa for the MC2010 designer formulas, got {fcm} MPa")
+    E0 = 21.5e3 * (fcm / 10.0) ** (1.0 / 3.0) * MPA
+    return {
+        "E0": E0,
+        "fr": 0.30 * (fcm - 8.0) ** (2.0 / 3.0) * MPA,
+        "Gf": 73.0 * fcm**0.18,
+        "eps_c": 2.0 * fc / E0,
+        "eps_cu": 0.0035,
+    }
+
+
+def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, alpha_ts=0.5,
+                    beta0=0.25, beta_floor=1e-4) -> np.ndarray:
+    """Validated CONCRETE parameter vector (N_CONCRETE_PARAMS,), SI units (Pa, m, N/m).
+
+    ``ls`` is the crack band width of eq. (5.4) (the length the integration point represents);
+    ``eps_y`` the yield strain fy/Es of the reinforcement crossing the crack (tension stiffening and
+    shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off.
+    """
+    fc = _positive("fc", fc)
+    E0 = _positive("E0", E0)
+    eps_c = _positive("eps_c", eps_c)
+    fr = _positive("fr", fr)
+    Gf = _positive("Gf", Gf)
+    eps_cu = _positive("eps_cu", eps_cu)
+    eps_y = _positive("eps_y", eps_y)
+    a = E0 * eps_c / fc
+    if a < 2.0 - 1e-12:
+        raise ValueError(f"E0*eps_c/fc must be >= 2 (eq. 5.1 would rise above its initial tangent and the "
+                         f"irreversible strain turn negative), got E0*eps_c/fc = {a:.6g}; raise eps_c to "
+                         f">= 2*fc/E0 = {2 * fc / E0:.6g}")
+    if eps_cu <= eps_c:
+        raise ValueError(f"eps_cu must exceed eps_c = {eps_c:.6g}, got {eps_cu:.6g}")
+    if fr >= fc:
+        raise ValueError(f"fr must be below fc = {fc:.6g} Pa, got {fr:.6g} Pa")
+    check_crack_band(ls, E0, Gf, fr)
+    if eps_y <= fr / E0:
+        raise ValueError(f"eps_y must exceed the cracking strain fr/E0 = {fr / E0:.6g}, got {eps_y:.6g}")
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"nu must be in (-1, 0.5), got {nu!r}")
+    if not 0.0 <= alpha_ts <= 1.0:
+        raise ValueError(f"alpha_ts must be in [0, 1], got {alpha_ts!r}")
+    if not 0.0 < beta0 <= 1.0:
+        raise ValueError(f"beta0 must be in (0, 1], got {beta0!r}")
+    if not 0.0 < beta_floor <= beta0:
+        raise ValueError(f"beta_floor must be in (0, beta0 = {beta0}], got {beta_floor!r}")
+    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor])
+    assert p.size == N_CONCRETE_PARAMS
+    return p
+
+
+def steel_params(fy, Es=200.0e9, EH=0.0) -> np.ndarray:
+    """Validated STEEL parameter vector [Es, 0, fy, EH]; 0 <= EH < Es (EH = 0: no hardening)."""
+    fy = _positive("fy", fy)
+    Es = _positive("Es", Es)
+    EH = float(EH)
+    if not (0.0 <= EH < Es):
+        raise ValueError(f"EH must be in [0, Es = {Es:.6g}) Pa, got {EH!r} (a negative hardening modulus "
+                         "would soften the bars)")
+    p = np.array([Es, 0.0, fy, EH])
+    assert p.size == N_STEEL_PARAMS
+    return p
+
+
+def elastic_params(E, nu) -> np.ndarray:
+    """Validated ELASTIC parameter vector [E, nu]."""
+    E = _positive("E", E)
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"nu must be in (-1, 0.5), got {nu!r}")
+    return np.array([E, float(nu)])
+
+
+def with_crack_band(params, ls) -> np.ndarray:
+    """Copy of a CONCRETE vector with the crack band width replaced by ``ls`` (validated)."""
+    from .concrete import P_E0, P_FR, P_GF, P_LS
+    p = np.array(params, dtype=np.float64)
+    check_crack_band(ls, p[P_E0], p[P_GF], p[P_FR])
+    p[P_LS] = float(ls)
+    return p
+
+
+KINDS = {"elastic": ELASTIC, "concrete": CONCRETE, "steel": STEEL}
+
+
+def drive(kind: int, params, eps_path, gam_path=None, tangent: int = 1):
+    """Drive one layer point along a strain path, committing the history after every step.
+
+    Returns ``(sig, tau, e_t, g_t, hist)`` with shapes (n,), (n,), (n,), (n,), (n, N_LAYER_HIST).
+    """
+    from .layer_laws import N_LAYER_HIST, layer_update
+    eps_path = np.asarray(eps_path, dtype=np.float64)
+    gam_path = np.zeros_like(eps_path) if gam_path is None else np.asarray(gam_path, dtype=np.float64)
+    params = np.asarray(params, dtype=np.float64)
+    n = eps_path.size
+    out = np.zeros((4, n))
+    hist = np.zeros((n, N_LAYER_HIST))
+    h_old = np.zeros(N_LAYER_HIST)
+    h_new = np.zeros(N_LAYER_HIST)
+    for i in range(n):
+        out[:, i] = layer_update(kind, params, eps_path[i], gam_path[i], h_old, h_new, tangent)
+        h_old[:] = h_new
+        hist[i] = h_new
+    return out[0], out[1], out[2], out[3], hist
