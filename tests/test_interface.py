@@ -202,14 +202,14 @@ def straight(n_el=1, L=1.0, angle=0.0, plate_h=None, x0=0.0):
 def test_element_rejects_bad_input():
     coords, edofs, _ = straight(plate_h=0.4)
     p = interface_params(KT, KN)
-    with pytest.raises(ValueError, match="thickness"):
+    with pytest.raises(ValueError, match="offset"):
         Interface6(coords, edofs, p)
-    with pytest.raises(ValueError, match="h/2"):
-        Interface6(coords, edofs, p, thickness=0.3)
+    with pytest.raises(ValueError, match="straight above"):
+        Interface6(coords, edofs, p, offset=0.15)
     with pytest.raises(ValueError, match="rule"):
-        Interface6(coords, edofs, p, thickness=0.4, rule="lobatto")
+        Interface6(coords, edofs, p, offset=0.2, rule="lobatto")
     with pytest.raises(ValueError, match="params"):
-        Interface6(coords, edofs, p[:4], thickness=0.4)
+        Interface6(coords, edofs, p[:4], offset=0.2)
 
 
 @pytest.mark.parametrize("rule", ["newton_cotes", "gauss"])
@@ -218,7 +218,7 @@ def test_zero_force_at_zero_gap_and_rigid_motion(rule, plate_h):
     """Zero displacement and any small rigid motion of the glued pair (translation + rotation theta, with
     the plate rotating alpha = theta about its mid-surface) give zero gap, force and traction."""
     coords, edofs, n_dof = straight(n_el=1, L=0.8, angle=0.0, plate_h=plate_h, x0=0.3)
-    g = Interface6(coords, edofs, interface_params(KT, KN, PHI, C), thickness=plate_h, rule=rule)
+    g = Interface6(coords, edofs, interface_params(KT, KN, PHI, C), offset=None if plate_h is None else plate_h / 2, rule=rule)
     f, _, st = g.evaluate(np.zeros(edofs.shape), np.zeros(edofs.shape), g.initial_state(), CONSISTENT)
     assert np.all(f == 0.0) and np.all(st == 0.0)
     theta, a, b = 1e-4, 2e-3, -3e-3
@@ -299,7 +299,7 @@ def test_uniform_gap_gives_exact_tractions_and_consistent_forces(rule):
     """A uniform gap is reproduced exactly by both rules; nodal forces are t * L * (1/6, 2/3, 1/6)."""
     L, gt, gn = 0.6, 1e-4, -2e-4
     coords, edofs, _ = straight(n_el=1, L=L, plate_h=0.3)
-    g = Interface6(coords, edofs, interface_params(KT, KN, c=math.inf), thickness=0.3, rule=rule)
+    g = Interface6(coords, edofs, interface_params(KT, KN, c=math.inf), offset=0.15, rule=rule)
     u = np.zeros((1, 15))
     u[0, [0, 3, 6]] = gt
     u[0, [1, 4, 7]] = gn
@@ -315,7 +315,7 @@ def test_plate_rotation_shears_the_bottom_face():
     """eq. (6.1a): a plate rotation alpha alone moves the bottom face by u_g = (h/2) alpha."""
     h, alpha = 0.5, 1e-3
     coords, edofs, _ = straight(n_el=1, L=1.0, plate_h=h)
-    g = Interface6(coords, edofs, interface_params(KT, KN, c=math.inf), thickness=h)
+    g = Interface6(coords, edofs, interface_params(KT, KN, c=math.inf), offset=h / 2)
     u = np.zeros((1, 15))
     u[0, [2, 5, 8]] = alpha
     _, _, st = g.evaluate(u, u, g.initial_state(), CONSISTENT)
@@ -332,7 +332,7 @@ def test_element_fd_tangent_with_mixed_states(rule, plate_h):
     coords, edofs, _ = straight(n_el=1, L=1.0, plate_h=plate_h)
     if plate_h is None:
         coords[0, 1, 1] = coords[0, 4, 1] = 0.05          # curved contact line
-    g = Interface6(coords, edofs, p, thickness=plate_h, rule=rule)
+    g = Interface6(coords, edofs, p, offset=None if plate_h is None else plate_h / 2, rule=rule)
     n = edofs.shape[1]
     # committed state: everything pressed and slipping a little
     u0 = np.zeros((1, n))

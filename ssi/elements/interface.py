@@ -3,8 +3,9 @@
 An element joins three upper nodes to three lower (soil) nodes along a quadratic line. The upper nodes are
 either **plate-strip nodes** (DOFs u, w, alpha at the plate's mid-surface) or **solid nodes** (u, w):
 
-* plate, eq. (6.1a): the contact face is the plate's bottom face, u_g = u_b + (h/2) alpha_b, w_g = w_b
-  (from the plate kinematics u(z) = u_b - z alpha with z = -h/2 at the bottom face);
+* plate, eq. (6.1a): the contact face is the plate's bottom face, u_g = u_b + e alpha_b, w_g = w_b, with the
+  lever arm ``offset`` e from the plate nodes down to the bottom face (e = h/2 for nodes on the mid-surface;
+  ``PlateStrip.bottom_offset`` in general), from the plate kinematics u(z) = u_b - z alpha at z = -e;
 * solid, eq. (6.1b): u_g = u, w_g = w, the same as the lower side u_d = u_s, w_d = w_s.
 
 The gap Delta u = u_g - u_d (eq. 6.5) is taken into the local frame of the contact line, built from the
@@ -36,7 +37,7 @@ from ..quadrature import gauss_legendre, newton_cotes
 from ..shapes import lagrange3
 from .base import CONSISTENT, ELASTIC
 
-__all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6"]
+__all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 
 _lagrange3_py = getattr(lagrange3, "py_func", lagrange3)   # plain Python version (also under NUMBA_DISABLE_JIT)
 
@@ -138,8 +139,10 @@ class Interface6:
         Global DOFs, upper nodes first; 15 columns = plate upper nodes, 12 = solid upper nodes.
     params : array (N_PARAMS,) or (n_el, N_PARAMS)
         Interface law parameters from :func:`ssi.materials.interface_law.interface_params`.
-    thickness : float or array (n_el,), optional
-        Plate thickness h (plate variant only): the offset of the bottom face is h/2.
+    offset : float or array (n_el,), optional
+        Plate variant only: lever arm e [m] from the plate nodes down to the bottom face, u_g = u_b + e alpha_b
+        (h/2 for mid-surface nodes; use ``PlateStrip.bottom_offset``). The plate nodes must lie e straight
+        above their lower nodes.
     rule : {"newton_cotes", "gauss"}
         Integration along the element (default the paper's Newton--Cotes / Simpson on the node pairs).
     n_gauss : int
@@ -148,7 +151,7 @@ class Interface6:
         Group name used in result files.
     """
 
-    def __init__(self, coords, edofs, params, thickness=None, rule="newton_cotes", n_gauss=3,
+    def __init__(self, coords, edofs, params, offset=None, rule="newton_cotes", n_gauss=3,
                  name="interface"):
         coords = np.ascontiguousarray(coords, dtype=np.float64)
         edofs = np.ascontiguousarray(edofs, dtype=np.int64)
@@ -175,21 +178,22 @@ class Interface6:
             raise ValueError("coords: the middle lower node must lie near the middle of the element "
                              "(within a quarter of its length)")
         if self.upper == "plate":
-            if thickness is None:
-                raise ValueError("thickness (the plate's h, > 0) is required when the upper nodes are plate nodes")
-            h = np.broadcast_to(np.asarray(thickness, dtype=np.float64), (n_el,)).copy()
-            if np.any(~(h > 0.0)):
-                raise ValueError("thickness must be > 0 [m]")
-            # the plate strip runs along x; its mid-surface nodes sit h/2 above the contact face
+            if offset is None:
+                raise ValueError("offset (plate nodes to bottom face, >= 0 [m]; h/2 for mid-surface nodes) is "
+                                 "required when the upper nodes are plate nodes")
+            e_off = np.broadcast_to(np.asarray(offset, dtype=np.float64), (n_el,)).copy()
+            if np.any(~(e_off >= 0.0)):
+                raise ValueError("offset must be >= 0 [m]")
+            # the plate strip runs along x; its nodes sit e above the contact face
             off = coords[:, :3, :] - lower
             tol = 1e-6 * chord[:, None]
-            if np.any(np.abs(off[:, :, 0]) > tol) or np.any(np.abs(off[:, :, 1] - 0.5 * h[:, None]) > tol):
-                raise ValueError("coords: plate nodes must lie h/2 straight above their lower (soil) nodes "
-                                 "(mid-surface over the bottom face, eq. 6.1a)")
-            hoff = 0.5 * h
+            if np.any(np.abs(off[:, :, 0]) > tol) or np.any(np.abs(off[:, :, 1] - e_off[:, None]) > tol):
+                raise ValueError("coords: plate nodes must lie offset (e.g. h/2) straight above their lower "
+                                 "(soil) nodes (plate reference surface over its bottom face, eq. 6.1a)")
+            hoff = e_off
         else:
-            if thickness is not None:
-                raise ValueError("thickness applies only to plate upper nodes (edofs with 15 columns)")
+            if offset is not None:
+                raise ValueError("offset applies only to plate upper nodes (edofs with 15 columns)")
             if np.any(np.abs(coords[:, :3, :] - lower) > 1e-6 * chord[:, None, None]):
                 raise ValueError("coords: solid upper nodes must coincide with their lower nodes "
                                  "(zero-thickness interface)")
@@ -276,3 +280,23 @@ class Interface6:
         """Number of integration points in each state, e.g. {'stick': 10, 'slip': 4, 'open': 0}."""
         codes = Interface6.status(state).ravel()
         return {name: int(np.count_nonzero(codes == k)) for k, name in STATE_NAMES.items()}
+
+
+def add_interface(model, upper_conn, lower_conn, params, offset=None, rule="newton_cotes", n_gauss=3,
+                  name="interface"):
+    """Build an :class:`Interface6` group from node ids and add it to ``model``.
+
+    ``upper_conn`` (n_el, 3): plate-strip nodes (3 DOFs; then ``offset`` is required, e.g. the plate group's
+    ``bottom_offset``) or solid nodes (2 DOFs); ``lower_conn`` (n_el, 3): soil nodes, ordered so that the upper
+    body lies on the left when walking from the first to the third node. Returns the group.
+    """
+    upper_conn = np.atleast_2d(np.asarray(upper_conn, np.int64))
+    lower_conn = np.atleast_2d(np.asarray(lower_conn, np.int64))
+    if upper_conn.shape != lower_conn.shape or upper_conn.shape[1:] != (3,):
+        raise ValueError(f"upper_conn and lower_conn must both be (n_el, 3), got {upper_conn.shape} and "
+                         f"{lower_conn.shape}")
+    conn = np.hstack([upper_conn, lower_conn])
+    group = Interface6(model.coords[conn], model.element_dofs(conn), params, offset=offset, rule=rule,
+                       n_gauss=n_gauss, name=name)
+    model.add_group(group)
+    return group
