@@ -1,0 +1,250 @@
+"""A user's scene, described by its components: a strip foundation on layered subsoil under column loads.
+
+    scene = Scene(width=20.0, depth=10.0,
+                  layers=[SoilLayer(3.0, E=20e6, nu=0.3, unit_weight=18e3, c=5e3, phi_deg=30.0, psi_deg=0.0),
+                          SoilLayer(7.0, E=60e6, nu=0.3, unit_weight=19e3)],
+                  foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+                  contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+                  loads=[ColumnLoad(x=0.0, N=400e3)])
+    built = scene.build()
+    out = built.solve(n_steps=10)          # one factorisation and one solve if the scene is linear
+
+Only what the scene contains is built: no plate or interface group without a foundation, no plasticity state
+in a layer given without strength (``c=None``), no Newton loop for a linear scene. Layers are listed from the
+surface down; a layer with ``unit_weight > 0`` starts from geostatic stress (K0 = 1 - sin(phi) unless given),
+equilibrated with its self-weight so the structural loads produce the displacements. The block's bottom is
+fixed and its sides are on vertical rollers (the separated block of the paper's Fig. 1).
+
+Signs: z upwards; a column force ``N > 0`` pushes down, ``H > 0`` pushes in +x, ``M > 0`` is counter-clockwise
+(the direction of a positive rotation alpha). Settlements are reported positive downwards.
+"""
+
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from .elements.interface import V_SIG, V_TAU, Interface6, add_interface
+from .elements.plate import PlateStrip
+from .elements.soil_q8 import SoilQ8
+from .materials.interface_law import interface_params
+from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
+from .materials.soil_laws import elastic_params, geostatic_stress, material_table, mohr_coulomb_params
+from .mesh import foundation_contact, soil_block
+from .model import Model
+from .section import Section
+from .solver import Settings, run
+
+
+@dataclass(frozen=True)
+class SoilLayer:
+    """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi."""
+
+    thickness: float
+    E: float
+    nu: float
+    unit_weight: float = 0.0
+    c: float | None = None
+    phi_deg: float = 0.0
+    psi_deg: float | None = None
+    K0: float | None = None
+    scheme: str = "implicit"
+
+    def law(self):
+        if self.c is None:
+            return 0, elastic_params(self.E, self.nu)
+        return mohr_coulomb_params(self.E, self.nu, self.c, self.phi_deg, self.psi_deg, scheme=self.scheme)
+
+
+@dataclass(frozen=True)
+class Foundation:
+    """The strip from x0 to x1 (both become soil mesh lines) with its layered ``section``."""
+
+    x0: float
+    x1: float
+    section: Section
+    kappa: float = 5.0 / 6.0
+    integration: str = "selective"
+    self_weight: float = 0.0  # [N/m^2] of the strip's plan area, a dead load
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Foundation--soil interface (Coulomb). ``phi_deg=None``: bonded and elastic (never slips or opens)."""
+
+    kn: float
+    kt: float
+    phi_deg: float | None = None
+    c: float = 0.0
+    psi_deg: float | None = None
+    sig_t: float | None = None
+    rule: str = "newton_cotes"
+
+    def params(self):
+        if self.phi_deg is None:
+            return interface_params(self.kt, self.kn, 0.0, np.inf, None, np.inf)
+        return interface_params(self.kt, self.kn, self.phi_deg, self.c, self.psi_deg, self.sig_t)
+
+
+@dataclass(frozen=True)
+class ColumnLoad:
+    """Column forces per unit length of the strip at a plate node (x must be a node of the strip)."""
+
+    x: float
+    N: float = 0.0
+    H: float = 0.0
+    M: float = 0.0
+
+
+@dataclass(frozen=True)
+class MeshSize:
+    h_fine: float = 0.25
+    h_coarse: float = 2.0
+    growth: float = 1.25
+    n_gauss: int = 2
+
+
+@dataclass
+class Scene:
+    width: float
+    depth: float
+    layers: list
+    foundation: Foundation | None = None
+    contact: Contact | None = None
+    loads: list = field(default_factory=list)
+    mesh: MeshSize = field(default_factory=MeshSize)
+    surcharge: float = 0.0  # uniform pressure on the ground surface in the geostatic state [Pa]
+
+    def build(self) -> "BuiltScene":
+        """Mesh the block, add only the groups the scene needs, supports and loads."""
+        if not self.layers:
+            raise ValueError("layers: the scene needs at least one soil layer")
+        if self.foundation is not None and self.contact is None:
+            raise ValueError("contact: a foundation needs a Contact (interface) to rest on the soil")
+        if self.foundation is None and self.loads:
+            raise ValueError("loads: column loads need a foundation to act on")
+        f = self.foundation
+        x0, x1 = (f.x0, f.x1) if f else (-0.25 * self.width, 0.25 * self.width)
+        mesh = soil_block(self.width, self.depth, [lay.thickness for lay in self.layers], (x0, x1),
+                          self.mesh.h_fine, self.mesh.h_coarse, self.mesh.growth)
+        model = Model()
+        model.info["scene"] = _describe(self)
+        soil_ids = model.add_nodes(mesh.xy, ndof=2)
+        kinds, params = material_table([lay.law() for lay in self.layers])
+        weights = np.array([lay.unit_weight for lay in self.layers])
+        soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(soil_ids[mesh.conn]), mesh.el_layer, kinds, params,
+                      n_gauss=self.mesh.n_gauss, unit_weight=weights if weights.any() else None)
+        if weights.any() or self.surcharge:
+            soil.initial_stress = self._geostatic(soil)
+        model.add_group(soil)
+        model.fix(mesh.bottom, "u")
+        model.fix(mesh.bottom, "w")
+        model.fix(mesh.left, "u")
+        model.fix(mesh.right, "u")
+        built = BuiltScene(self, model, mesh, soil)
+        if f is not None:
+            self._add_foundation(built)
+        return built
+
+    def _geostatic(self, soil):
+        layers = [{"thickness": lay.thickness, "gamma": lay.unit_weight,
+                   **({"K0": lay.K0} if lay.K0 is not None else {"phi_deg": lay.phi_deg})} for lay in self.layers]
+        return geostatic_stress(soil.integration_points()[..., 1], layers, self.surcharge)
+
+    def _add_foundation(self, built):
+        f, model, mesh = self.foundation, built.model, built.mesh
+        contact = foundation_contact(mesh, f.x0, f.x1, f.section.thickness)
+        offset = -f.section.z_bottom  # plate nodes sit on the reference surface, this far above the soil
+        plate_xy = np.column_stack([contact.plate_xy[:, 0], np.full(len(contact.plate_xy), offset)])
+        ids = model.add_nodes(plate_xy, ndof=3)
+        conn = ids[contact.plate_conn]
+        plate = PlateStrip(plate_xy[contact.plate_conn], model.element_dofs(conn), f.section, kappa=f.kappa,
+                           integration=f.integration, self_weight=f.self_weight)
+        model.add_group(plate)
+        iface = add_interface(model, conn, contact.soil_conn, self.contact.params(), offset=plate.bottom_offset,
+                              rule=self.contact.rule)
+        built.plate, built.interface, built.plate_nodes = plate, iface, ids
+        for load in self.loads:
+            node = built.plate_node_at(load.x)
+            if load.N:
+                model.add_load(node, "w", -load.N)
+            if load.H:
+                model.add_load(node, "u", load.H)
+            if load.M:
+                model.add_load(node, "alpha", load.M)
+
+
+def _describe(scene):
+    d = asdict(scene)
+    if scene.foundation is not None:
+        s = scene.foundation.section
+        d["foundation"]["section"] = {"z_mid": s.z_mid.tolist(), "h": s.h.tolist(), "kind": s.kind.tolist(),
+                                      "params": s.params.tolist(), "carries_shear": s.carries_shear.tolist()}
+    return d
+
+
+@dataclass
+class BuiltScene:
+    scene: Scene
+    model: Model
+    mesh: object
+    soil: SoilQ8
+    plate: PlateStrip | None = None
+    interface: Interface6 | None = None
+    plate_nodes: np.ndarray | None = None
+
+    def plate_node_at(self, x, tol=1e-6):
+        xs = self.model.coords[self.plate_nodes, 0]
+        i = int(np.argmin(np.abs(xs - x)))
+        if abs(xs[i] - x) > tol * max(1.0, abs(x)):
+            raise ValueError(f"x={x}: column loads must act at a plate node; nearest is x={xs[i]:.6g} "
+                             "(refine or align the mesh)")
+        return self.plate_nodes[i]
+
+    @property
+    def is_linear(self) -> bool:
+        soil_linear = all(lay.c is None for lay in self.scene.layers)
+        plate_linear = self.plate is None or bool(np.all(self.plate.section.kind == LAYER_ELASTIC))
+        contact_linear = self.scene.contact is None or self.scene.contact.phi_deg is None
+        return soil_linear and plate_linear and contact_linear
+
+    def solve(self, n_steps=10, settings: Settings | None = None):
+        """Apply the loads in ``n_steps`` equal increments (one linear solve if the scene is linear)."""
+        if self.is_linear:
+            lin = self.model.solve_linear(backend=(settings or Settings()).backend)
+            return SceneResult(self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None)
+        if int(n_steps) < 1:
+            raise ValueError(f"n_steps must be >= 1, got {n_steps}")
+        res = run(self.model, np.linspace(0.0, 1.0, int(n_steps) + 1)[1:], settings)
+        return SceneResult(self, res.load_factor, res.u, res.states, res)
+
+
+@dataclass
+class SceneResult:
+    """What a foundation engineer reads off a scene, at step ``k`` (default: the last)."""
+
+    built: BuiltScene
+    load_factor: list
+    u: list
+    states: list
+    solver_result: object
+
+    def _group_state(self, group, k):
+        return self.states[k][self.built.model.groups.index(group)]
+
+    def settlement(self, k=-1):
+        """(x, settlement) along the foundation's nodes, settlement positive downwards."""
+        ids = self.built.plate_nodes
+        return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
+
+    def contact(self, k=-1):
+        """Interface points: dict of x, normal stress sig_n (< 0 compression), shear tau and the zone name
+        ('stick', 'slip', 'open') at each integration point."""
+        iface = self.built.interface
+        st = self._group_state(iface, k)
+        names = np.array(["stick", "slip", "open"])[Interface6.status(st)]
+        return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": names}
+
+    def surface(self, k=-1):
+        """(x, settlement) of the soil surface, positive downwards."""
+        ids = self.built.mesh.surface
+        return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
