@@ -1,0 +1,136 @@
+"""Closed-form reference solutions used by the verification chapters (a plain module of functions).
+
+Every function here is an *independent* reference: it uses no element, law or solver of ``ssi``. Sources are
+in ``reference-data`` of the project notes and in each docstring. Units: SI (m, N per unit width, Pa).
+
+* :func:`sadowsky_pressure` -- rigid flat smooth punch on an elastic half-plane (Fig. 10).
+* :func:`hetenyi_deflection`, :func:`hetenyi_moment` -- infinite beam on a Winkler bed under a point load.
+* :func:`shear_lag_state`, :func:`shear_lag_from_slip`, :func:`shear_lag_slip_length`,
+  :func:`shear_lag_displacement` -- an elastic bar pushed along a rigid plate through an elastic--perfectly
+  plastic interface (the exact check behind Fig. 13).
+"""
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+__all__ = [
+    "hetenyi_deflection",
+    "hetenyi_moment",
+    "sadowsky_pressure",
+    "shear_lag_displacement",
+    "shear_lag_from_slip",
+    "shear_lag_onset",
+    "shear_lag_slip_length",
+    "shear_lag_state",
+]
+
+
+# ---- Sadowsky ------------------------------------------------------------------------------------------------
+def sadowsky_pressure(x, a, P):
+    """Contact pressure p(x) = P / (pi sqrt(a^2 - x^2)) (compression positive) under a rigid smooth punch of
+    half-width ``a`` pressed by ``P`` per unit length into an elastic half-plane; nan for |x| >= a."""
+    x = np.asarray(x, dtype=np.float64)
+    if not (a > 0.0):
+        raise ValueError(f"a must be > 0, got {a}")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p = P / (math.pi * np.sqrt(a * a - x * x))
+    return np.where(np.abs(x) < a, p, np.nan)
+
+
+# ---- Hetenyi ---------------------------------------------------------------------------------------------------
+def _hetenyi_lambda(k, EI):
+    if not (k > 0.0 and EI > 0.0):
+        raise ValueError(f"k and EI must be > 0, got k={k}, EI={EI}")
+    return (k / (4.0 * EI)) ** 0.25
+
+
+def hetenyi_deflection(x, P, k, EI):
+    """Settlement (downward positive) of an infinite Euler--Bernoulli beam on a Winkler bed of modulus ``k``
+    [N/m per m of beam] under a point load ``P`` at x = 0:
+    w(x) = P lam / (2k) exp(-lam|x|) (cos lam x + sin lam|x|), lam = (k / 4EI)^(1/4) (Hetenyi 1946)."""
+    lam = _hetenyi_lambda(k, EI)
+    r = lam * np.abs(np.asarray(x, dtype=np.float64))
+    return P * lam / (2.0 * k) * np.exp(-r) * (np.cos(r) + np.sin(r))
+
+
+def hetenyi_moment(x, P, k, EI):
+    """Bending moment (sagging positive) M(x) = P/(4 lam) exp(-lam|x|) (cos lam x - sin lam|x|)."""
+    lam = _hetenyi_lambda(k, EI)
+    r = lam * np.abs(np.asarray(x, dtype=np.float64))
+    return P / (4.0 * lam) * np.exp(-r) * (np.cos(r) - np.sin(r))
+
+
+# ---- shear lag with slip -------------------------------------------------------------------------------------
+# A bar of axial stiffness EA (per unit width) lies on a rigid plate over 0 <= x <= L, is pushed by F at x = 0
+# and is free at x = L. The interface carries tau = kt u up to |tau| = tau_f. Equilibrium EA u'' = tau(u).
+# Elastic zone: u = A cosh(lam (L - x)), lam = sqrt(kt / EA). Slip zone 0 <= x <= s: tau = tau_f, so the axial
+# force falls linearly, N(x) = F - tau_f x, and u(s) = tau_f / kt marks the slip front.
+def _check_bar(EA, kt, L, tau_f):
+    if not (EA > 0 and kt > 0 and L > 0 and tau_f > 0):
+        raise ValueError(f"EA, kt, L, tau_f must all be > 0, got {EA}, {kt}, {L}, {tau_f}")
+    return math.sqrt(kt / EA)
+
+
+def shear_lag_onset(EA, kt, L, tau_f):
+    """Mean shear stress tau_bar = F/L at which the loaded edge starts to slip:
+    tau_f / (L lam coth(lam L))."""
+    lam = _check_bar(EA, kt, L, tau_f)
+    return tau_f * math.tanh(lam * L) / (L * lam)
+
+
+def shear_lag_from_slip(s, EA, kt, L, tau_f):
+    """Mean shear stress ``tau_bar`` and edge displacement ``u0`` at which the slip zone has length ``s``
+    (0 <= s <= L); explicit, so it also serves to invert the other functions.
+
+    F = tau_f s + tau_f tanh(lam (L - s)) / lam,   u0 = tau_f / kt + (F s - tau_f s^2 / 2) / EA."""
+    lam = _check_bar(EA, kt, L, tau_f)
+    s = np.asarray(s, dtype=np.float64)
+    if np.any((s < 0) | (s > L)):
+        raise ValueError(f"s must lie in [0, L] = [0, {L}]")
+    F = tau_f * s + tau_f * np.tanh(lam * (L - s)) / lam
+    u0 = tau_f / kt + (F * s - 0.5 * tau_f * s * s) / EA
+    return F / L, u0
+
+
+def shear_lag_slip_length(tau_bar, EA, kt, L, tau_f):
+    """Slip length s(tau_bar): 0 below the onset, the root of (F - tau_f s) lam coth(lam (L - s)) = tau_f
+    above it, L at tau_bar = tau_f (full sliding). Raises ValueError for tau_bar > tau_f."""
+    _check_bar(EA, kt, L, tau_f)
+    tb = np.atleast_1d(np.asarray(tau_bar, dtype=np.float64))
+    if np.any(tb > tau_f * (1 + 1e-12)) or np.any(tb < 0):
+        raise ValueError(f"tau_bar must lie in [0, tau_f] = [0, {tau_f}] (no static solution beyond)")
+    onset = shear_lag_onset(EA, kt, L, tau_f)
+    out = np.zeros_like(tb)
+    for i, t in enumerate(tb):
+        if t <= onset:
+            out[i] = 0.0
+        elif t >= tau_f:
+            out[i] = L
+        else:
+            out[i] = brentq(lambda s, t=t: shear_lag_from_slip(s, EA, kt, L, tau_f)[0] - t, 0.0, L,
+                            xtol=1e-14 * L, rtol=1e-14)
+    return out if np.ndim(tau_bar) else float(out[0])
+
+
+def shear_lag_displacement(x, tau_bar, EA, kt, L, tau_f):
+    """Bar displacement u(x) at mean shear stress ``tau_bar`` (elastic and partial-slip regimes)."""
+    lam = _check_bar(EA, kt, L, tau_f)
+    x = np.asarray(x, dtype=np.float64)
+    F = tau_bar * L
+    s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
+    if s >= L:
+        raise ValueError("tau_bar = tau_f: the whole bar slides, the displacement is not determined")
+    N_s = F - tau_f * s                       # axial force at the slip front
+    u_el = N_s * np.cosh(lam * (L - x)) / (EA * lam * np.sinh(lam * (L - s)))
+    u_sl = tau_f / kt + (F * (s - x) - 0.5 * tau_f * (s * s - x * x)) / EA
+    return np.where(x < s, u_sl, u_el)
+
+
+def shear_lag_state(tau_bar, EA, kt, L, tau_f):
+    """Dict with the slip length ``s``, edge displacement ``u0`` and edge shear stress ``tau0`` at
+    ``tau_bar``."""
+    s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
+    u0 = float(shear_lag_displacement(0.0, tau_bar, EA, kt, L, tau_f)) if s < L else math.inf
+    return {"s": s, "u0": u0, "tau0": min(kt * u0, tau_f)}
