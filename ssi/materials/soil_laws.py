@@ -1,0 +1,220 @@
+"""Soil constitutive laws at one integration point (plane strain).
+
+Vectors: strain ``eps = [exx, ezz, gxz, eyy]`` (engineering shear, eyy the out-of-plane strain, zero in
+plane strain), stress ``sig = [sxx, szz, txz, syy]``, tension positive. ``D`` is (4, 4) in that order.
+
+Law kinds (``kind``) and their parameter vectors ``params`` (one row per material; rows of different
+kinds are padded to ``N_SOIL_PARAMS`` by :func:`material_table`):
+
+* ``ELASTIC`` (0): [E, nu].
+* ``MOHR_COULOMB`` (1): implicit return mapping in principal stresses (plane, edges, apex) with its
+  consistent tangent — ``[E, nu, c, phi, psi, n_sub, drift, 0]`` from :func:`mohr_coulomb_params`.
+* ``MOHR_COULOMB_EXPLICIT`` (2): the paper's tangent scheme Δσ = D_ep Δε (eq. 6.9), optional sub-stepping
+  (n_sub) and drift correction (drift = 1); same parameter vector.
+* ``VON_MISES`` (3): [E, nu, cu], f = sqrt(J2) - cu (the law of Smith & Griffiths' Program 6.1).
+
+History (``N_SOIL_HIST`` = 2): [accumulated plastic strain norm, branch of the last update
+(0 elastic, 1 plane, 2 edge s1 = s2, 3 edge s2 = s3, 4 apex)].
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .mohr_coulomb import mc_explicit, mc_implicit, vm_implicit
+
+ELASTIC = 0
+MOHR_COULOMB = 1
+MOHR_COULOMB_EXPLICIT = 2
+VON_MISES = 3
+N_SOIL_HIST = 2  # history variables per integration point (laws may use fewer)
+N_SOIL_PARAMS = 8  # width of a padded parameter row
+KIND_NAMES = {ELASTIC: "elastic", MOHR_COULOMB: "mohr_coulomb", MOHR_COULOMB_EXPLICIT: "mohr_coulomb_explicit",
+              VON_MISES: "von_mises"}
+
+
+@njit(cache=True)
+def elastic_matrix(E, nu, D):
+    """Fill ``D`` (4, 4) with the isotropic linear-elastic matrix in the [xx, zz, xz, yy] order."""
+    lam = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
+    mu = 0.5 * E / (1.0 + nu)
+    D[:, :] = 0.0
+    for i in (0, 1, 3):
+        for j in (0, 1, 3):
+            D[i, j] = lam
+        D[i, i] = lam + 2.0 * mu
+    D[2, 2] = mu
+
+
+@njit(cache=True)
+def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
+    """Update the stress of one point for the strain increment ``deps``; return a status code.
+
+    Writes ``sig_new`` (4,), ``hist_new`` (N_SOIL_HIST,) and ``D`` (4, 4): the elastic matrix when
+    ``tangent == 0``, else the consistent tangent. Status 0 = elastic, 1 = plastic, < 0 = failure.
+    """
+    if kind == MOHR_COULOMB:
+        return mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+    if kind == MOHR_COULOMB_EXPLICIT:
+        return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+    if kind == VON_MISES:
+        return vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+    elastic_matrix(params[0], params[1], D)
+    for i in range(4):
+        s = sig_old[i]
+        for j in range(4):
+            s += D[i, j] * deps[j]
+        sig_new[i] = s
+    hist_new[:] = hist_old
+    return 0
+
+
+# ---------------------------------------------------------------------------------------------------------
+# validating parameter builders (plain Python)
+# ---------------------------------------------------------------------------------------------------------
+def _check_elastic(E, nu):
+    if not (np.isfinite(E) and E > 0.0):
+        raise ValueError(f"E must be > 0 (Young's modulus, Pa), got {E}")
+    if not (-1.0 < nu < 0.5):
+        raise ValueError(f"nu must lie in (-1, 0.5) (Poisson's ratio), got {nu}")
+
+
+def elastic_params(E, nu):
+    """Parameter row of the ELASTIC law, padded to N_SOIL_PARAMS."""
+    _check_elastic(E, nu)
+    row = np.zeros(N_SOIL_PARAMS)
+    row[:2] = E, nu
+    return row
+
+
+def mohr_coulomb_params(E, nu, c, phi_deg, psi_deg=None, scheme="implicit", n_sub=1, drift=False):
+    """Return ``(kind, params)`` of a Mohr–Coulomb soil.
+
+    Parameters
+    ----------
+    E, nu : Young's modulus [Pa] (> 0) and Poisson's ratio (-1 < nu < 0.5)
+    c : cohesion [Pa] (>= 0)
+    phi_deg : friction angle [deg], 0 <= phi < 90; c and phi may not both be zero
+    psi_deg : dilation angle [deg], 0 <= psi <= phi (default psi = phi, associated flow)
+    scheme : "implicit" (return mapping, default of this code) or "explicit" (the paper's Δσ = D_ep Δε)
+    n_sub : sub-steps of the explicit scheme (>= 1; paper: 1)
+    drift : drift correction of the explicit scheme (paper: False)
+    """
+    _check_elastic(E, nu)
+    if not (np.isfinite(c) and c >= 0.0):
+        raise ValueError(f"c must be >= 0 (cohesion, Pa), got {c}")
+    if not (0.0 <= phi_deg < 90.0):
+        raise ValueError(f"phi_deg must lie in [0, 90) (friction angle, degrees), got {phi_deg}")
+    psi_deg = phi_deg if psi_deg is None else psi_deg
+    if not (0.0 <= psi_deg <= phi_deg):
+        raise ValueError(f"psi_deg must lie in [0, phi_deg] = [0, {phi_deg}] (dilation angle, degrees), "
+                         f"got {psi_deg}")
+    if c == 0.0 and phi_deg == 0.0:
+        raise ValueError("c and phi_deg are both zero: the soil would have no strength (need c > 0 or phi > 0)")
+    if scheme not in ("implicit", "explicit"):
+        raise ValueError(f"scheme must be 'implicit' or 'explicit', got {scheme!r}")
+    if int(n_sub) != n_sub or n_sub < 1:
+        raise ValueError(f"n_sub must be an integer >= 1 (explicit sub-steps), got {n_sub}")
+    row = np.zeros(N_SOIL_PARAMS)
+    row[:7] = E, nu, c, math.radians(phi_deg), math.radians(psi_deg), n_sub, 1.0 if drift else 0.0
+    return (MOHR_COULOMB if scheme == "implicit" else MOHR_COULOMB_EXPLICIT), row
+
+
+def von_mises_params(E, nu, cu):
+    """Return ``(VON_MISES, params)``: f = sqrt(J2) - cu (cu > 0, the undrained shear strength)."""
+    _check_elastic(E, nu)
+    if not (np.isfinite(cu) and cu > 0.0):
+        raise ValueError(f"cu must be > 0 (undrained shear strength, Pa), got {cu}")
+    row = np.zeros(N_SOIL_PARAMS)
+    row[:3] = E, nu, cu
+    return VON_MISES, row
+
+
+def material_table(materials):
+    """Stack ``[(kind, params), ...]`` into ``(kinds (n_mat,), params (n_mat, N_SOIL_PARAMS))`` for SoilQ8."""
+    kinds = np.array([int(k) for k, _ in materials], np.int64)
+    table = np.zeros((len(materials), N_SOIL_PARAMS))
+    for i, (_, p) in enumerate(materials):
+        p = np.asarray(p, np.float64)
+        table[i, :len(p)] = p
+    return kinds, table
+
+
+# ---------------------------------------------------------------------------------------------------------
+# geostatic initial stress
+# ---------------------------------------------------------------------------------------------------------
+def k0_jaky(phi_deg):
+    """Jáky's at-rest coefficient K0 = 1 - sin φ (the default of paper-notes §7)."""
+    return 1.0 - math.sin(math.radians(phi_deg))
+
+
+def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0):
+    """Geostatic stress [sxx, szz, txz, syy] (tension positive) at depths ``z`` (any shape, z upwards).
+
+    Parameters
+    ----------
+    z : array of z coordinates of the points (e.g. ``SoilQ8.integration_points()[..., 1]``), <= z_surface
+    layers : list of dicts from the surface down, each with ``thickness`` [m], ``gamma`` [N/m^3] and either
+        ``K0`` or ``phi_deg`` (then K0 = 1 - sin φ); the last layer extends downwards without limit
+    surcharge : uniform vertical pressure on the surface [Pa] (>= 0, compression)
+    z_surface : z of the ground surface
+
+    Returns an array of shape ``z.shape + (4,)``: szz = -(surcharge + Σ γ_i t_i) above the point,
+    sxx = syy = K0 szz of the point's layer, txz = 0. Equilibrium with the body force γ holds exactly for
+    piecewise-constant γ.
+    """
+    z = np.asarray(z, np.float64)
+    if surcharge < 0.0:
+        raise ValueError(f"surcharge must be >= 0 (a compressive pressure, Pa), got {surcharge}")
+    if not layers:
+        raise ValueError("layers must list at least one layer")
+    if np.any(z > z_surface + 1e-9):
+        raise ValueError(f"all points must lie at or below the surface z = {z_surface}")
+    depth = z_surface - z
+    szz = np.full(z.shape, -float(surcharge))
+    k0 = np.zeros(z.shape)
+    top = 0.0
+    for i, lay in enumerate(layers):
+        gamma = float(lay["gamma"])
+        if gamma < 0.0:
+            raise ValueError(f"layers[{i}]['gamma'] must be >= 0 (unit weight, N/m^3), got {gamma}")
+        K0 = lay.get("K0")
+        if K0 is None:
+            K0 = k0_jaky(lay["phi_deg"])
+        if not (0.0 <= K0 < 10.0):
+            raise ValueError(f"layers[{i}] K0 must lie in [0, 10), got {K0}")
+        last = i == len(layers) - 1
+        t = math.inf if last else float(lay["thickness"])
+        if not last and t <= 0.0:
+            raise ValueError(f"layers[{i}]['thickness'] must be > 0, got {t}")
+        inside = (depth >= top - 1e-12) & ((depth <= top + t) if last else (depth < top + t))
+        szz -= gamma * np.clip(depth - top, 0.0, t)
+        k0 = np.where(inside, K0, k0)
+        top += t
+    out = np.zeros(z.shape + (4,))
+    out[..., 1] = szz
+    out[..., 0] = k0 * szz
+    out[..., 3] = k0 * szz
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------------
+# material-point driver (plain Python; for tests and chapters)
+# ---------------------------------------------------------------------------------------------------------
+def drive(kind, params, deps_path, sig0=None, tangent=1):
+    """Drive one point along strain increments ``deps_path`` (n, 4); return (sig (n+1, 4), hist (n+1, 2),
+    status (n,), D (n, 4, 4)). Each increment is committed before the next (as the solver does)."""
+    deps_path = np.atleast_2d(np.asarray(deps_path, np.float64))
+    params = np.asarray(params, np.float64)
+    n = len(deps_path)
+    sig = np.zeros((n + 1, 4))
+    if sig0 is not None:
+        sig[0] = sig0
+    hist = np.zeros((n + 1, N_SOIL_HIST))
+    status = np.zeros(n, np.int64)
+    Ds = np.zeros((n, 4, 4))
+    for i in range(n):
+        status[i] = soil_update(int(kind), params, deps_path[i], sig[i], hist[i], sig[i + 1], hist[i + 1],
+                                Ds[i], tangent)
+    return sig, hist, status, Ds
