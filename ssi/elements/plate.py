@@ -42,7 +42,7 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
-from ..materials.layer_laws import N_LAYER_HIST, layer_update
+from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, layer_update
 from ..quadrature import gauss_legendre
 from ..section import Section
 from ..shapes import lagrange3
@@ -98,6 +98,14 @@ def _point_b(x, xi, n_out, bx_out):
 
 
 @njit(cache=True)
+def _crack_band(prm, band, ls_index, ls):
+    """Set the crack band width of the flagged layers (paper eq. 5.4 with ls = the point's length)."""
+    for n in range(band.shape[0]):
+        if band[n]:
+            prm[n, ls_index] = ls
+
+
+@njit(cache=True)
 def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, hist_old, hist_new, tangent, do_ax, do_sh,
              res):
     """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
@@ -144,12 +152,14 @@ def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, hist_old, his
 
 @njit(cache=True)
 def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, params,
-                 cshear, kappa, e0, tangent):
+                 cshear, kappa, e0, band, ls_index, tangent):
     """Internal forces and stiffness of all plate-strip elements; returns the number of bad Jacobians.
 
     x_el (n_el, 3) nodal x; u_el (n_el, 9); state_old/state_new (n_el, n_ip, n_layer, N_LAYER_HIST);
     f_el (n_el, 9) and k_el (n_el, 9, 9) are overwritten; xi, wt (n_ip,), ax, sh (n_ip,) int8 flags;
-    z_mid, h, e0 (n_layer,), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool.
+    z_mid, h, e0 (n_layer,), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool;
+    band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the crack band
+    width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
     """
     n_el = x_el.shape[0]
     nn = np.empty(3)
@@ -158,6 +168,7 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
     bk = np.zeros(9)   # d kap / d u_el
     bg = np.zeros(9)   # d gam / d u_el
     res = np.zeros(8)
+    prm = params.copy()
     bad = 0
     for e in range(n_el):
         for i in range(9):
@@ -171,12 +182,13 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
                 state_new[e, p, :, :] = state_old[e, p, :, :]
                 continue
             wj = wt[p] * jac
+            _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
             for a in range(3):
                 be[3 * a] = bx[a]
                 bg[3 * a + 1] = bx[a]
                 bg[3 * a + 2] = -nn[a]
                 bk[3 * a + 2] = bx[a]
-            _section(u_el[e], nn, bx, z_mid, h, kind, params, cshear, kappa, e0, state_old[e, p],
+            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, state_old[e, p],
                      state_new[e, p], tangent, ax[p] != 0, sh[p] != 0, res)
             Nr = res[0] * wj
             Mr = res[1] * wj
@@ -196,7 +208,8 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
 
 
 @njit(cache=True)
-def plate_resultants(x_el, u_el, state, xi, ax, sh, z_mid, h, kind, params, cshear, kappa, e0, out):
+def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, cshear, kappa, e0, band,
+                     ls_index, out):
     """Stress resultants at sampling points: out (n_el, n_pt, 4) = [x, N, M, Q], NaN where a point does not
     carry the quantity (N, M at axial points, Q at shear points). ``state`` (n_el, n_pt, n_layer, n_hist) is
     the committed history at these points."""
@@ -204,10 +217,12 @@ def plate_resultants(x_el, u_el, state, xi, ax, sh, z_mid, h, kind, params, cshe
     bx = np.empty(3)
     res = np.zeros(8)
     scratch = np.empty((h.shape[0], state.shape[3]))
+    prm = params.copy()
     for e in range(x_el.shape[0]):
         for p in range(xi.shape[0]):
             _point_b(x_el[e], xi[p], nn, bx)
-            _section(u_el[e], nn, bx, z_mid, h, kind, params, cshear, kappa, e0, state[e, p], scratch, 0,
+            _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
+            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, state[e, p], scratch, 0,
                      ax[p] != 0, sh[p] != 0, res)
             out[e, p, 0] = nn[0] * x_el[e, 0] + nn[1] * x_el[e, 1] + nn[2] * x_el[e, 2]
             out[e, p, 1] = res[0] if ax[p] != 0 else np.nan
@@ -242,6 +257,9 @@ class PlateStrip:
     integration : "selective" (default, 3-pt bending / 2-pt shear), "full" (3/3), "reduced" (2/2) or
         (n_axial, n_shear)
     self_weight : downward load per unit area of the strip [N/m^2] (e.g. 25e3 * depth), a dead body force
+    crack_band : "point" (default): every CONCRETE layer's crack band width ls (eq. 5.4) is set, at each
+        sampling point, to the length that point represents, w_p L_e / 2 (so a point cracking through
+        dissipates Gf per unit crack area; checked against the snap-back limit); None: use ls as given
     name : group name
 
     Notes
@@ -252,7 +270,7 @@ class PlateStrip:
     """
 
     def __init__(self, coords, edofs, section: Section, kappa: float = 5.0 / 6.0, integration="selective",
-                 self_weight: float = 0.0, name: str = "plate"):
+                 self_weight: float = 0.0, crack_band="point", name: str = "plate"):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0] if self.coords.ndim == 3 else -1
@@ -277,6 +295,17 @@ class PlateStrip:
         self.xi, self.wt, self.ax, self.sh = integration_rule(integration)
         self.e0, self.g0 = section.initial_moduli()
         self.self_weight = float(self_weight)
+        if crack_band not in ("point", None):
+            raise ValueError(f"crack_band must be 'point' or None, got {crack_band!r}")
+        self.crack_band = crack_band
+        self.band = np.ascontiguousarray((section.kind == CONCRETE) & (crack_band == "point"))
+        if self.band.any() and n_el:
+            from ..materials.concrete import P_E0, P_FR, P_GF
+            from ..materials.rc import check_crack_band
+            ls_max = 0.5 * self.wt.max() * length.max()
+            for n in np.flatnonzero(self.band):
+                prm = section.params[n]
+                check_crack_band(ls_max, prm[P_E0], prm[P_GF], prm[P_FR])
         self.name = name
         self._x = np.ascontiguousarray(x)
         self._k0 = None
@@ -315,7 +344,7 @@ class PlateStrip:
         s = self.section
         bad = plate_kernel(self._x, np.ascontiguousarray(u_el, np.float64), state_old, state_new, f_el, k_el,
                            self.xi, self.wt, self.ax, self.sh, s.z_mid, s.h, s.kind, s.params,
-                           s.carries_shear, self.kappa, self.e0, int(tangent))
+                           s.carries_shear, self.kappa, self.e0, self.band, P_LS, int(tangent))
         if bad:
             raise FloatingPointError(f"{self.name}: {bad} points with non-positive Jacobian")
         return f_el, k_el, state_new
@@ -334,6 +363,7 @@ class PlateStrip:
     def describe(self) -> dict:
         return {"name": self.name, "type": "PlateStrip", "n_el": self.n_el, "kappa": self.kappa,
                 "integration": str(self.integration), "self_weight": self.self_weight,
+                "crack_band": str(self.crack_band),
                 "section": self.section.describe()}
 
     # ---- loads and results --------------------------------------------------------------------------------
@@ -384,8 +414,9 @@ class PlateStrip:
             state = self.initial_state()
         s = self.section
         out = np.empty((self.n_el, self.n_ip, 4))
-        plate_resultants(self._x, np.ascontiguousarray(u_el, np.float64), state, self.xi, self.ax, self.sh,
-                         s.z_mid, s.h, s.kind, s.params, s.carries_shear, self.kappa, self.e0, out)
+        plate_resultants(self._x, np.ascontiguousarray(u_el, np.float64), state, self.xi, self.wt, self.ax,
+                         self.sh, s.z_mid, s.h, s.kind, s.params, s.carries_shear, self.kappa, self.e0,
+                         self.band, P_LS, out)
         a = self.ax.astype(bool)
         b = self.sh.astype(bool)
         return {"x_ax": out[:, a, 0], "N": out[:, a, 1], "M": out[:, a, 2],
