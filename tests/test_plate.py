@@ -87,11 +87,12 @@ def test_rigid_body_modes_selective(n_el):
 def test_internal_force_equals_K0_u_for_elastic_layers(n_layers):
     """Mid-depth sampling + the exact self-bending term reproduces eq. (4.7b): f_int = K0 u."""
     rng = np.random.default_rng(n_layers)
-    g = one_element(homogeneous(H, E, NU, n_layers), x=(0.0, 1.1, 2.0))
-    u = rng.standard_normal((1, 9)) * 1e-3
-    f, k, _ = g.evaluate(u, u, g.initial_state(), CONSISTENT)
-    assert np.abs(f[0] - g.elastic_stiffness()[0] @ u[0]).max() <= ROUND * np.abs(f).max()
-    assert np.abs(k - g.elastic_stiffness()).max() <= ROUND * np.abs(k).max()
+    for self_bending in ("initial", "tangent"):
+        g = one_element(homogeneous(H, E, NU, n_layers), x=(0.0, 1.1, 2.0), self_bending=self_bending)
+        u = rng.standard_normal((1, 9)) * 1e-3
+        f, k, _ = g.evaluate(u, u, g.initial_state(), CONSISTENT)
+        assert np.abs(f[0] - g.elastic_stiffness()[0] @ u[0]).max() <= ROUND * np.abs(f).max()
+        assert np.abs(k - g.elastic_stiffness()).max() <= ROUND * np.abs(k).max()
 
 
 def test_layer_rule_exact_and_composite():
@@ -322,6 +323,8 @@ def test_integration_rules_and_bad_input():
     sec = homogeneous(H, E, NU)
     with pytest.raises(ValueError, match="integration"):
         one_element(sec, "exact")
+    with pytest.raises(ValueError, match="self_bending"):
+        one_element(sec, self_bending="secant")
     with pytest.raises(ValueError, match="kappa"):
         one_element(sec, kappa=0.0)
     with pytest.raises(ValueError, match="coords"):

@@ -22,11 +22,14 @@ once per layer, at its mid-depth z_n; inside the layer the stress is taken as li
     M = -sum h_n z_n sig_n + sum e0_n h_n^3/12 kap
     dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e0_n h_n^2/12)
 
-with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``) modulus. For a linear law the stress is
-exactly linear within a layer, so this *is* the integral: f_int = K0 u_el with K0 of eq. (4.7b), for any
-number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For a nonlinear law the self-bending
-term is an O(h_n^2) correction that keeps f continuous and the consistent tangent exact; it vanishes as layers
-are refined. (Using the tangent modulus there instead would make f jump when a layer cracks or yields.)
+with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``: K0, constant) modulus. For a linear law
+the stress is exactly linear within a layer, so this *is* the integral: f_int = K0 u_el with K0 of eq.
+(4.7b), for any number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For a nonlinear law the
+self-bending term is an O(h_n^2) correction that keeps f continuous and the consistent tangent exact; its
+error vanishes as layers are refined, but it over-stiffens a *thick* cracked layer (chapter 02 measures
+1-3 % in M for the paper's 1+7+1 concrete layering). Option ``self_bending="tangent"`` uses the layer's tangent
+modulus there instead: 5-10x more accurate on coarse layerings, at the price of an O(h_n^3) jump of f when a
+layer's law changes branch (cracking, yielding) and a tangent that omits d e_t/d eps.
 
 Integration along the element (option ``integration``): ``"selective"`` (default, paper §10): membrane and
 bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in shear for thin strips);
@@ -106,12 +109,14 @@ def _crack_band(prm, band, ls_index, ls):
 
 
 @njit(cache=True)
-def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, hist_old, hist_new, tangent, do_ax, do_sh,
-             res):
+def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, g0, self_tangent, hist_old, hist_new,
+             tangent, do_ax, do_sh, res):
     """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
 
     Writes ``res`` (8,) = [N, M, Q, A, B, D, S, 0] with A = dN/deps0, B = dN/dkap = dM/deps0,
-    D = dM/dkap, S = dQ/dgam; hist_old/hist_new (n_layer, N_LAYER_HIST)."""
+    D = dM/dkap, S = dQ/dgam (tangent=1: the laws' tangent moduli; tangent=0: the initial moduli e0, g0,
+    i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
+    (self_tangent=False) or the layer's tangent modulus (self_tangent=True)."""
     eps0 = 0.0
     kap = 0.0
     gam = 0.0
@@ -129,18 +134,21 @@ def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, hist_old, his
     for n in range(h.shape[0]):
         z = z_mid[n]
         hn = h[n]
-        sig, tau, e_t, g_t = layer_update(kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n],
-                                          tangent)
+        # the law always returns its tangent; K0 (tangent=0) uses the initial moduli instead, so that the
+        # internal force never depends on which matrix the solver asks for
+        sig, tau, e_t, g_t = layer_update(kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], 1)
         if do_ax:
-            self_d = e0[n] * hn * hn * hn / 12.0      # exact within-layer bending, eq. (4.7b) h_n^2/12
+            i_n = hn * hn * hn / 12.0                 # exact within-layer bending, eq. (4.7b) h_n^2/12
+            e_self = e_t if self_tangent else e0[n]
+            e_k = e_t if tangent == 1 else e0[n]
             N += hn * sig
-            M += -hn * z * sig + self_d * kap
-            A += hn * e_t
-            B += -hn * z * e_t
-            D += hn * z * z * e_t + self_d
+            M += -hn * z * sig + e_self * i_n * kap
+            A += hn * e_k
+            B += -hn * z * e_k
+            D += hn * z * z * e_k + (e_self if tangent == 1 else e0[n]) * i_n
         if do_sh and cshear[n]:
             Q += kappa * hn * tau
-            S += kappa * hn * g_t
+            S += kappa * hn * (g_t if tangent == 1 else g0[n])
     res[0] = N
     res[1] = M
     res[2] = Q
@@ -152,12 +160,12 @@ def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, hist_old, his
 
 @njit(cache=True)
 def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, params,
-                 cshear, kappa, e0, band, ls_index, tangent):
+                 cshear, kappa, e0, g0, self_tangent, band, ls_index, tangent):
     """Internal forces and stiffness of all plate-strip elements; returns the number of bad Jacobians.
 
     x_el (n_el, 3) nodal x; u_el (n_el, 9); state_old/state_new (n_el, n_ip, n_layer, N_LAYER_HIST);
     f_el (n_el, 9) and k_el (n_el, 9, 9) are overwritten; xi, wt (n_ip,), ax, sh (n_ip,) int8 flags;
-    z_mid, h, e0 (n_layer,), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool;
+    z_mid, h, e0, g0 (n_layer,) (initial moduli: K0), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool;
     band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the crack band
     width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
     """
@@ -188,7 +196,7 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
                 bg[3 * a + 1] = bx[a]
                 bg[3 * a + 2] = -nn[a]
                 bk[3 * a + 2] = bx[a]
-            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, state_old[e, p],
+            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, g0, self_tangent, state_old[e, p],
                      state_new[e, p], tangent, ax[p] != 0, sh[p] != 0, res)
             Nr = res[0] * wj
             Mr = res[1] * wj
@@ -208,8 +216,8 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
 
 
 @njit(cache=True)
-def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, cshear, kappa, e0, band,
-                     ls_index, out):
+def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, cshear, kappa, e0, g0,
+                     self_tangent, band, ls_index, out):
     """Stress resultants at sampling points: out (n_el, n_pt, 4) = [x, N, M, Q], NaN where a point does not
     carry the quantity (N, M at axial points, Q at shear points). ``state`` (n_el, n_pt, n_layer, n_hist) is
     the committed history at these points."""
@@ -222,7 +230,8 @@ def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, 
         for p in range(xi.shape[0]):
             _point_b(x_el[e], xi[p], nn, bx)
             _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
-            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, state[e, p], scratch, 0,
+            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, g0, self_tangent, state[e, p],
+                     scratch, 0,
                      ax[p] != 0, sh[p] != 0, res)
             out[e, p, 0] = nn[0] * x_el[e, 0] + nn[1] * x_el[e, 1] + nn[2] * x_el[e, 2]
             out[e, p, 1] = res[0] if ax[p] != 0 else np.nan
@@ -260,6 +269,10 @@ class PlateStrip:
     crack_band : "point" (default): every CONCRETE layer's crack band width ls (eq. 5.4) is set, at each
         sampling point, to the length that point represents, w_p L_e / 2 (so a point cracking through
         dissipates Gf per unit crack area; checked against the snap-back limit); None: use ls as given
+    self_bending : modulus of each layer's own bending term e h_n^3/12 k: "initial" (default; f continuous,
+        consistent tangent exact) or "tangent" (more accurate for thick cracked layers, but f jumps by
+        O(h_n^3) when a layer's law changes branch and the tangent omits d e_t / d eps); both are exact for
+        linear layers (see the module docstring and chapter 02)
     name : group name
 
     Notes
@@ -270,7 +283,7 @@ class PlateStrip:
     """
 
     def __init__(self, coords, edofs, section: Section, kappa: float = 5.0 / 6.0, integration="selective",
-                 self_weight: float = 0.0, crack_band="point", name: str = "plate"):
+                 self_weight: float = 0.0, crack_band="point", self_bending="initial", name: str = "plate"):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0] if self.coords.ndim == 3 else -1
@@ -298,6 +311,10 @@ class PlateStrip:
         if crack_band not in ("point", None):
             raise ValueError(f"crack_band must be 'point' or None, got {crack_band!r}")
         self.crack_band = crack_band
+        if self_bending not in ("initial", "tangent"):
+            raise ValueError(f"self_bending must be 'initial' or 'tangent', got {self_bending!r}")
+        self.self_bending = self_bending
+        self.self_tangent = self_bending == "tangent"
         self.band = np.ascontiguousarray((section.kind == CONCRETE) & (crack_band == "point"))
         if self.band.any() and n_el:
             from ..materials.concrete import P_E0, P_FR, P_GF
@@ -344,7 +361,8 @@ class PlateStrip:
         s = self.section
         bad = plate_kernel(self._x, np.ascontiguousarray(u_el, np.float64), state_old, state_new, f_el, k_el,
                            self.xi, self.wt, self.ax, self.sh, s.z_mid, s.h, s.kind, s.params,
-                           s.carries_shear, self.kappa, self.e0, self.band, P_LS, int(tangent))
+                           s.carries_shear, self.kappa, self.e0, self.g0, self.self_tangent, self.band, P_LS,
+                           int(tangent))
         if bad:
             raise FloatingPointError(f"{self.name}: {bad} points with non-positive Jacobian")
         return f_el, k_el, state_new
@@ -363,7 +381,7 @@ class PlateStrip:
     def describe(self) -> dict:
         return {"name": self.name, "type": "PlateStrip", "n_el": self.n_el, "kappa": self.kappa,
                 "integration": str(self.integration), "self_weight": self.self_weight,
-                "crack_band": str(self.crack_band),
+                "crack_band": str(self.crack_band), "self_bending": self.self_bending,
                 "section": self.section.describe()}
 
     # ---- loads and results --------------------------------------------------------------------------------
@@ -416,7 +434,7 @@ class PlateStrip:
         out = np.empty((self.n_el, self.n_ip, 4))
         plate_resultants(self._x, np.ascontiguousarray(u_el, np.float64), state, self.xi, self.wt, self.ax,
                          self.sh, s.z_mid, s.h, s.kind, s.params, s.carries_shear, self.kappa, self.e0,
-                         self.band, P_LS, out)
+                         self.g0, self.self_tangent, self.band, P_LS, out)
         a = self.ax.astype(bool)
         b = self.sh.astype(bool)
         return {"x_ax": out[:, a, 0], "N": out[:, a, 1], "M": out[:, a, 2],
