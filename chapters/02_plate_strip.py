@@ -359,9 +359,12 @@ timoshenko_max = max(cases.values())
 n_list = [2, 4, 8, 16, 32] if FAST else [2, 4, 8, 16, 32, 64, 128]
 err_w, err_m, err_q, t_solve = [], [], [], []
 for n in n_list:
-    t0 = time.perf_counter()
-    m, g, ids, r = simply_supported(n, SPAN, ("uniform", Q))
-    t_solve.append(time.perf_counter() - t0)
+    best = np.inf
+    for _ in range(3):                      # best of 3: the machine is shared, take the least disturbed run
+        t0 = time.perf_counter()
+        m, g, ids, r = simply_supported(n, SPAN, ("uniform", Q))
+        best = min(best, time.perf_counter() - t0)
+    t_solve.append(best)
     x = m.coords[ids, 0]
     err_w.append(np.abs(r.at(ids, "w") - w_ss_uniform(x, SPAN, Q)).max() / abs(w_ss_uniform(SPAN / 2, SPAN, Q)))
     res = g.resultants(r.u[g.edofs])
@@ -430,6 +433,8 @@ ax.loglog(nn, full_thin, "C3o-", label=f"full, span/depth {slender[-1]:.0e}: slo
 ax.loglog(nn, 0.8 / nn ** 2, "k:", label="4/(5 n²)")
 sel_err = np.array([abs(ratio["selective", slender[-1], n] - 1) for n in nn]) + 1e-17
 ax.loglog(nn, sel_err, "C0s-", label="selective (round-off)")
+ax.set_xticks(nn, [str(n) for n in nn])
+ax.minorticks_off()
 ax.set_xlabel("number of elements")
 ax.set_ylabel("|w / w_Timoshenko − 1|")
 ax.legend(fontsize=8)
@@ -522,10 +527,15 @@ fig, axes = plt.subplots(1, 2, figsize=(10, 4), gridspec_kw={"width_ratios": [1,
 ax = axes[0]
 for n in range(rc_sec.n_layer):
     bottom = rc_sec.z_mid[n] - rc_sec.h[n] / 2
-    color = "C3" if rc_sec.kind[n] == STEEL else "0.8"
-    ax.barh(bottom, 1.0, height=rc_sec.h[n], align="edge", color=color, edgecolor="k", lw=0.5)
-    ax.text(1.05, rc_sec.z_mid[n], f"{n + 1}", va="center", fontsize=7)
-ax.set_xlim(0, 1.3)
+    if rc_sec.kind[n] == STEEL:
+        ax.barh(bottom, 1.0, height=rc_sec.h[n], align="edge", color="C3", edgecolor="C3", lw=1.5)
+        ax.text(1.03, rc_sec.z_mid[n], f"{n + 1}: steel, {rc_sec.h[n] * 1e3:.1f} mm", va="center",
+                fontsize=7, color="C3")
+    else:
+        ax.barh(bottom, 1.0, height=rc_sec.h[n], align="edge", color="0.85", edgecolor="k", lw=0.5)
+        ax.text(1.03, rc_sec.z_mid[n] + (0.006 if n in (0, rc_sec.n_layer - 1) else 0.0), f"{n + 1}",
+                va="center", fontsize=7)
+ax.set_xlim(0, 1.6)
 ax.set_xticks([])
 ax.set_ylabel("z [m] (reference surface at 0)")
 ax.set_title("(a) paper section: 11 layers, steel 2 and 10")
@@ -637,11 +647,12 @@ for nc in n_conc_list:
     u_t[:, 1::3] = 0.002 * xy_t[conn_t][:, :, 0] ** 2
     st = gt.initial_state()
     gt.evaluate(u_t, u_t, st, CONSISTENT)
-    reps = 3
-    t0 = time.perf_counter()
-    for _ in range(reps):
+    best = np.inf
+    for _ in range(5):                      # best of 5 (shared machine)
+        t0 = time.perf_counter()
         gt.evaluate(u_t, u_t, st, CONSISTENT)
-    t_eval.append((time.perf_counter() - t0) / reps / n_time)
+        best = min(best, time.perf_counter() - t0)
+    t_eval.append(best / n_time)
 print("time per element evaluation [µs] by concrete layers:", [f"{t * 1e6:.1f}" for t in t_eval])
 
 # %%
@@ -649,9 +660,10 @@ fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
 ax = axes[0]
 ax.loglog(n_list, err_m, "C0o-", label=f"M at Gauss points (slope {-rate_m:.2f})")
 ax.loglog(n_list, err_w, "C1s-", label=f"w at all nodes (slope {-rate_w:.2f})")
-ax2 = ax.twinx()
-ax2.semilogx(n_list, np.array(t_solve) * 1e3, "0.5", ls=":", marker=".", label="solve time")
-ax2.set_ylabel("wall time of the solve [ms] (dotted)")
+ax.set_xticks(n_list, [str(n) for n in n_list])
+ax.minorticks_off()
+ax.text(0.97, 0.97, f"solve: {min(t_solve) * 1e3:.1f}–{max(t_solve) * 1e3:.1f} ms\n(overhead-dominated)",
+        transform=ax.transAxes, ha="right", va="top", fontsize=8)
 ax.set_xlabel("elements")
 ax.set_ylabel("relative error")
 ax.legend(fontsize=8, loc="lower left")
@@ -661,6 +673,8 @@ for c, col in zip(curvatures, ("C0", "C2", "C3")):
     ax.loglog(n_conc_list, layer_err[c, "initial"], col + "o-", ms=4, label=f"k = {c}, initial")
     ax.loglog(n_conc_list, layer_err[c, "tangent"], col + "s--", ms=4, label=f"k = {c}, tangent")
     ax.loglog([9], [paper_err[c, "initial"]], col + "*", ms=12)
+ax.set_xticks(n_conc_list, [str(n) for n in n_conc_list])
+ax.minorticks_off()
 ax.set_xlabel("concrete layers (★: the paper's 1 + 7 + 1)")
 ax.set_ylabel("|M / M_ref − 1|")
 ax.legend(fontsize=7, ncol=2)
@@ -670,6 +684,8 @@ for c, col in zip(curvatures[1:], ("C2", "C3")):
     ax.loglog(np.array(t_eval) * 1e6, layer_err[c, "initial"], col + "o-", ms=4, label=f"k = {c}")
 for nc, t, e in zip(n_conc_list, t_eval, layer_err[curvatures[-1], "initial"]):
     ax.annotate(f"{nc + 2}", (t * 1e6, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
+ax.xaxis.set_minor_formatter(plt.NullFormatter())
+ax.xaxis.set_major_formatter(plt.ScalarFormatter())
 ax.set_xlabel("wall time per element evaluation [µs] (f + tangent)")
 ax.set_ylabel("|M / M_ref − 1|")
 ax.legend(fontsize=8)
@@ -684,9 +700,9 @@ print("solve times [ms] by elements:", dict(zip(n_list, [f"{t * 1e3:.1f}" for t 
 # geometry and loads, the *layers* set both accuracy and cost once the section cracks. The paper's 11-layer
 # section (1 + 7 + 1 concrete layers) has 49 mm thick cover layers; with the default initial-modulus
 # self-bending term a cracked cover layer keeps its uncracked bending stiffness over its own thickness,
-# which over-estimates M by 1–3 %; the tangent option cuts that to a few tenths of a per cent. Spreading
-# ~30 concrete layers in proportion to the gaps brings either option below 0.1–0.3 % at ~2–3× the cost of
-# the 11-layer section, still only tens of µs per element.
+# which over-estimates M by 1–3 % (the stars in Fig. 2.5b); the tangent option cuts that to a few tenths of a
+# per cent. Spreading ~30 concrete layers in proportion to the gaps brings either option to the 0.1 % level
+# at roughly 2–3× the cost of the 11-layer section — still only tens of µs per element evaluation.
 
 # %% [markdown]
 # ## Verification
