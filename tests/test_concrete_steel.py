@@ -141,10 +141,13 @@ def test_tension_stiffening_and_shear_retention_vanish_at_yield():
     assert abs(sig - 0.5 * FR * (EPS_Y - e) / (EPS_Y - eps_r)) <= 1e-9 * FR
     assert call(CONCRETE, p, EPS_Y * 1.001)[0] == 0.0
     G = E0 / 2.4
-    _, tau, _, g_t = call(CONCRETE, p, e, 1e-4)
-    assert abs(g_t - 0.25 * (1 - e / EPS_Y) * G) <= 1e-12 * G
-    assert abs(call(CONCRETE, p, 1.5 * EPS_Y, 1e-4)[3] - 1e-4 * G) <= 1e-12 * G   # the named floor
-    assert abs(call(CONCRETE, p, 0.5 * eps_r, 1e-4)[3] - G) <= 1e-12 * G          # uncracked
+    # shear retention follows the committed crack strain (hist[1]), not the trial strain
+    _, tau, _, g_t = call(CONCRETE, p, 0.0, 1e-4, hist(0.0, e))
+    assert abs(g_t - 0.25 * (1 - e / EPS_Y) * G) <= 1e-12 * G and abs(tau - g_t * 1e-4) <= 1e-12 * G * 1e-4
+    assert abs(call(CONCRETE, p, e, 1e-4)[3] - G) <= 1e-12 * G                          # not yet committed
+    assert abs(call(CONCRETE, p, 0.0, 1e-4, hist(0.0, 1.5 * EPS_Y))[3] - 1e-4 * G) <= 1e-12 * G  # floor
+    assert abs(call(CONCRETE, p, 0.0, 1e-4, hist(0.004, 0.0))[3] - 1e-4 * G) <= 1e-12 * G      # crushed
+    assert abs(call(CONCRETE, p, 0.5 * eps_r, 1e-4)[3] - G) <= 1e-12 * G                # uncracked
 
 
 def test_steel_bilinear_hardening_and_unloading():

@@ -31,7 +31,7 @@ History (``hist``, first ``N_CONCRETE_HIST`` entries of the layer history)
 
 Algorithm of :func:`concrete_update` (one call, total formulation)
 -------------------------------------------------------------------
-1. Crushed (``max(x_max, x) >= eps_cu``): sig = 0, shear retention beta_floor.
+1. Crushed (``max(x_max, x) >= eps_cu``): sig = 0 (shear retention beta_floor from the next increment).
 2. Compression loading (``x > x_max``): sig = -f(x) on the envelope eq. (5.1), x_max <- x.
 3. Otherwise shift by the irreversible strain eps_p = x_max - f(x_max)/E0 (eq. 5.3):
    e = eps + eps_p. e <= 0: unloading/reloading along E0 (sig = E0 e).
@@ -39,9 +39,13 @@ Algorithm of :func:`concrete_update` (one call, total formulation)
    envelope (e >= e_max > eps_r): sig = max(softening eq. 5.4, tension stiffening). Unloading
    (e < e_max): secant towards the origin (open choice of paper-notes §3.3).
 5. Shear: tau = beta G gam with beta = 1 uncracked, max(beta0 (1 - e_max/eps_y), beta_floor) cracked
-   (Fig. 6; vanishes at steel yield). beta uses the current crack strain, so tau depends on eps too;
-   that cross derivative d tau / d eps is *not* returned (the layer interface carries only the two
-   diagonal moduli), so a full-Newton tangent is approximate in cracked shear zones only.
+   (Fig. 6; vanishes at steel yield), beta_floor once crushed. beta is evaluated from the *committed*
+   history (``hist_old``: the crack state at the start of the increment). Reasons: (i) beta jumps from
+   1 to about beta0 when a point cracks; evaluated from the trial strain, that jump makes the
+   iterations chatter between cracked and uncracked states (measured: modified Newton stalls on the
+   beam of chapter 08); (ii) with beta fixed within an increment, tau depends on gam only, so the two
+   returned moduli are the complete, exact tangent (no d tau/d eps term is lost). Cost: the shear
+   retention lags the crack state by one increment -- an O(step) effect that vanishes as steps shrink.
 """
 
 import math
@@ -157,6 +161,11 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     eps_y = params[P_EPS_Y]
     x_max = hist_old[H_XMAX]
     e_max = hist_old[H_EMAX]
+    # 5. shear retention from the committed crack state (see the module docstring)
+    if x_max >= eps_cu:
+        beta = params[P_BETA_FLOOR]
+    else:
+        beta = shear_retention(e_max, eps_r, eps_y, params[P_BETA0], params[P_BETA_FLOOR])
     x = -eps
     sig = 0.0
     e_t = 0.0
@@ -164,14 +173,12 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
         # 1. crushed: no stress from now on
         if x > x_max:
             x_max = x
-        beta = params[P_BETA_FLOOR]
     elif x > x_max:
         # 2. compression loading on the envelope, eq. (5.1)
         f, df = compression_envelope(x, E0, fc, eps_c, eps_cu)
         sig = -f
         e_t = df
         x_max = x
-        beta = shear_retention(e_max, eps_r, eps_y, params[P_BETA0], params[P_BETA_FLOOR])
     else:
         # 3. shift by the irreversible strain, eq. (5.3)
         e = eps + irreversible_strain(x_max, E0, fc, eps_c, eps_cu)
@@ -192,7 +199,6 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
             sig = e_t * e
         if e > e_max:
             e_max = e
-        beta = shear_retention(e_max, eps_r, eps_y, params[P_BETA0], params[P_BETA_FLOOR])
     hist_new[H_XMAX] = x_max
     hist_new[H_EMAX] = e_max
     g_t = beta * G
