@@ -183,7 +183,7 @@ def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) ->
     if not depth > 0.0:
         raise ValueError(f"depth must be > 0, got {depth}")
     bars = sorted((float(z), float(a)) for z, a in bars)
-    if isinstance(steel, tuple) and len(steel) == 2 and np.isscalar(steel[0]):
+    if len(steel) == 2 and np.isscalar(steel[0]):                    # one (kind, params) for all bars
         steel = [steel] * len(bars)
     if len(steel) != len(bars):
         raise ValueError(f"steel must be one (kind, params) or one per bar ({len(bars)}), got {len(steel)}")

@@ -157,6 +157,22 @@ def test_tangent_matches_finite_differences(integration):
         assert np.abs(k_fd - k[0]).max() <= 1e-6 * np.abs(k[0]).max(), kap
 
 
+def test_force_independent_of_tangent_flag_and_K0_constant():
+    """Modified Newton needs f(u) whatever matrix is requested, and the ELASTIC matrix must be K0 in any state
+    (cracked, yielding): checked in a strongly nonlinear bending state with shear."""
+    g = one_element(rc_test_section(), x=(0.0, 0.45, 1.0))
+    rng = np.random.default_rng(7)
+    x = g.coords[0, :, 0]
+    u = np.zeros((1, 9))
+    u[0, 1::3] = 0.5 * 0.02 * x ** 2 + 1e-4 * rng.standard_normal(3)
+    u[0, 2::3] = 0.02 * x
+    f1, k1, s1 = g.evaluate(u, u, g.initial_state(), CONSISTENT)
+    f0, k0, s0 = g.evaluate(u, u, g.initial_state(), 0)
+    assert np.array_equal(f0, f1) and np.array_equal(s0, s1)
+    assert np.array_equal(k0, g.elastic_stiffness())
+    assert np.abs(k1 - k0).max() > 0.1 * np.abs(k0).max()      # the state is really nonlinear
+
+
 # ---- Timoshenko closed forms (global, through Model) --------------------------------------------------------
 def strip(n_el, length=L, integration="selective", n_layers=1):
     m = Model()
