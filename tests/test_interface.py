@@ -361,3 +361,44 @@ def test_element_fd_tangent_with_mixed_states(rule, plate_h):
     st0_copy = st0.copy()
     g.evaluate(u0 + du, du, st0, CONSISTENT)
     np.testing.assert_array_equal(st0, st0_copy)
+
+
+def test_initial_traction_is_a_prestressed_committed_state():
+    """A pre-compressed contact: at zero displacement f_el holds the consistent forces of the initial
+    traction (L (1/6, 2/3, 1/6) sig0 on the upper w-DOFs), and the first slip happens at tau = -sig0 tan(phi)."""
+    L, sig0 = 0.6, -40e3
+    coords, edofs, _ = straight(n_el=1, L=L)
+    g = Interface6(coords, edofs, interface_params(KT, KN, PHI, 0.0, psi_deg=0.0), initial_traction=(0.0, sig0))
+    z = np.zeros((1, 12))
+    f, _, st = g.evaluate(z, z, g.initial_state(), CONSISTENT)
+    np.testing.assert_allclose(f[0, [1, 3, 5]], sig0 * L * np.array([1, 4, 1]) / 6, rtol=1e-13)
+    np.testing.assert_allclose(st[0, :, 1], sig0)
+    du = np.zeros((1, 12))
+    du[0, [0, 2, 4]] = 1e-2                                  # a large tangential push of the upper side
+    _, _, st = g.evaluate(du, du, g.initial_state(), CONSISTENT)
+    np.testing.assert_allclose(st[0, :, 0], -sig0 * TAN, rtol=1e-12)
+    assert np.all(st[0, :, V_STATUS] == SLIP)
+    with pytest.raises(ValueError, match="initial_traction"):
+        Interface6(coords, edofs, interface_params(KT, KN), initial_traction=np.zeros((2, 2, 2)))
+
+
+def test_analytical_references_against_reference_data():
+    """ssi.analytical against the numbers of reference-data.md (independent hand values) and equilibrium."""
+    from ssi.analytical import (
+        hetenyi_deflection,
+        sadowsky_pressure,
+        shear_lag_from_slip,
+        shear_lag_onset,
+        shear_lag_slip_length,
+    )
+    EA, kt, L, tf = 4000e3, 2e7, 0.6, 50e3
+    assert shear_lag_onset(EA, kt, L, tf) == pytest.approx(32.5e3, abs=0.05e3)
+    for tb, s in ((38e3, 0.093), (40e3, 0.130), (45e3, 0.244), (49e3, 0.402), (49.9e3, 0.510)):
+        assert shear_lag_slip_length(tb, EA, kt, L, tf) == pytest.approx(s, abs=0.0005)   # 3 decimals given
+    assert shear_lag_from_slip(L, EA, kt, L, tf)[0] == pytest.approx(tf)                  # full sliding
+    xi = np.array([0, 0.2, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.99])
+    pp = [0.6366, 0.6497, 0.6946, 0.7351, 0.7958, 0.8914, 1.0610, 1.4605, 2.0388, 4.5129]
+    np.testing.assert_allclose(sadowsky_pressure(xi, 1.0, 2.0), pp, atol=5e-5)             # P = 2 a: p_m = 1
+    x = np.linspace(-40, 40, 400001)
+    w = hetenyi_deflection(x, 1e3, 5e6, 3e5)
+    assert np.trapezoid(5e6 * w, x) == pytest.approx(1e3, rel=1e-6)                         # springs carry P

@@ -149,10 +149,13 @@ class Interface6:
         Number of Gauss points for ``rule="gauss"`` (1..5; 3 integrates N^T D N exactly).
     name : str
         Group name used in result files.
+    initial_traction : array broadcastable to (n_el, n_ip, 2), optional
+        Tractions [tau, sig_n] of the committed state before the first step (e.g. the contact pressure of a
+        geostatic or pre-loaded state that the loads already equilibrate; sig_n < 0 compression). Default 0.
     """
 
     def __init__(self, coords, edofs, params, offset=None, rule="newton_cotes", n_gauss=3,
-                 name="interface"):
+                 name="interface", initial_traction=None):
         coords = np.ascontiguousarray(coords, dtype=np.float64)
         edofs = np.ascontiguousarray(edofs, dtype=np.int64)
         if coords.ndim != 3 or coords.shape[1:] != (6, 2):
@@ -217,10 +220,23 @@ class Interface6:
         self.w = np.ascontiguousarray(wts)
         self.n_el = n_el
         self.n_ip = len(xis)
+        self.initial_traction = None
+        if initial_traction is not None:
+            try:
+                t0 = np.broadcast_to(np.asarray(initial_traction, np.float64), (n_el, self.n_ip, 2)).copy()
+            except ValueError as err:
+                raise ValueError(f"initial_traction must broadcast to (n_el, n_ip, 2) = ({n_el}, {self.n_ip}, 2)"
+                                 ) from err
+            if not np.all(np.isfinite(t0)):
+                raise ValueError("initial_traction must be finite")
+            self.initial_traction = t0
 
     # ---- protocol -------------------------------------------------------------------------------------
     def initial_state(self) -> np.ndarray:
-        return np.zeros((self.n_el, self.n_ip, N_VAR))
+        state = np.zeros((self.n_el, self.n_ip, N_VAR))
+        if self.initial_traction is not None:
+            state[..., V_TAU:V_SIG + 1] = self.initial_traction
+        return state
 
     def evaluate(self, u_el, du_el, state_old, tangent):
         if tangent not in (ELASTIC, CONSISTENT):
@@ -283,7 +299,7 @@ class Interface6:
 
 
 def add_interface(model, upper_conn, lower_conn, params, offset=None, rule="newton_cotes", n_gauss=3,
-                  name="interface"):
+                  name="interface", initial_traction=None):
     """Build an :class:`Interface6` group from node ids and add it to ``model``.
 
     ``upper_conn`` (n_el, 3): plate-strip nodes (3 DOFs; then ``offset`` is required, e.g. the plate group's
@@ -297,6 +313,6 @@ def add_interface(model, upper_conn, lower_conn, params, offset=None, rule="newt
                          f"{lower_conn.shape}")
     conn = np.hstack([upper_conn, lower_conn])
     group = Interface6(model.coords[conn], model.element_dofs(conn), params, offset=offset, rule=rule,
-                       n_gauss=n_gauss, name=name)
+                       n_gauss=n_gauss, name=name, initial_traction=initial_traction)
     model.add_group(group)
     return group
