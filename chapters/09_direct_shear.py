@@ -183,6 +183,10 @@ def exact_check(n_x, H=0.01, n_steps=N_STEPS):
 
 # %% [markdown]
 # ## The exact check: mesh convergence and the thin-layer limit
+#
+# Already 15 elements along the contact reach the bar solution to ~10⁻³; below that the remaining difference
+# is set by the solver's force tolerance (10⁻⁵ of the load) and the layer's own shear compliance β, not by
+# the mesh. The layer thickness H, at a fixed EA, shows the thin-layer limit: the error falls with β.
 
 # %%
 checks = {}
