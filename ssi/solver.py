@@ -20,7 +20,7 @@ those DOFs is the load measure (``Result.reaction``).
 
 Convergence (both must hold): the residual-force norm relative to the larger of |F_ext| and |F_int| (which
 includes the reactions, so displacement control is covered), and the energy norm |du . r| relative to that of
-the increment's first iteration. A step that does not converge is halved (``max_cuts`` times); if it still
+the increment's first iteration (or to the work |u . F_int| of the total state, if larger). A step that does not converge is halved (``max_cuts`` times); if it still
 fails, :class:`NonConvergence` is raised with what diverged, where and at which load -- no partial result is
 ever returned as if it were converged.
 """
@@ -43,7 +43,7 @@ class Settings:
 
     method: str = "modified"
     force_tol: float = 1e-5       # |r_f| <= force_tol * max(|F_ext|, |F_int|)
-    energy_tol: float = 1e-8      # |du . r| <= energy_tol * |du_0 . r_0|
+    energy_tol: float = 1e-8      # |du . r| <= energy_tol * max(|du_0 . r_0|, |u . F_int|)
     max_iter: int = 300           # per increment
     max_cuts: int = 6             # halvings of a failing increment
     divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
@@ -212,7 +212,7 @@ def _increment(system, settings, fac_k0, k0, u_conv, states, lam, f_ref, f_dead,
                 du = fac_k0.solve(r_f)
         energy = abs(float(du @ r_f))
         energy0 = energy if energy0 is None else energy0
-        rel_energy = energy / max(energy0, 1e-300)
+        rel_energy = energy / _energy_scale(energy0, u, f_int)
         energies.append(rel_energy)
         if _converged(rel, rel_energy, it, settings):
             outcome.update(converged=True, u=u, f_int=f_int, states=trial)
@@ -224,6 +224,12 @@ def _increment(system, settings, fac_k0, k0, u_conv, states, lam, f_ref, f_dead,
         u[free] += du
     outcome.update(reason=f"no convergence in {settings.max_iter} iterations")
     return outcome
+
+
+def _energy_scale(energy_first, u, f_int):
+    """Reference of the energy norm: the first iteration's |du . r|, or the work |u . F_int| of the total
+    state if larger -- a cut step's tiny first iteration must not make the test ever stricter."""
+    return max(energy_first, abs(float(u @ f_int)), 1e-300)
 
 
 def _converged(rel_force, rel_energy, iteration, settings):
@@ -336,7 +342,7 @@ def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, dire
         du_r = fac.solve(r[free])
         energy = abs(float(du_r @ r[free]))
         energy0 = energy if energy0 is None else energy0
-        energies.append(energy / max(energy0, 1e-300))
+        energies.append(energy / _energy_scale(energy0, u, f_int))
         if it > 1 and _converged(rel, energies[-1], it, settings):
             outcome.update(converged=True, u=u, f_int=f_int, states=trial, lam=lam)
             return outcome
