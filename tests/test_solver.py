@@ -1,0 +1,193 @@
+"""The incremental-iterative solver (paper §8) on problems whose answers are known in closed form: nonlinear
+springs (``ssi.elements.spring``) and a linear Q8 block; plus the HDF5 result files.
+
+Expected values come from the laws' closed forms (atanh of the load, the hardening rule), from finite
+differences, or from the direct linear solve -- never from the solver under test.
+"""
+
+import numpy as np
+import pytest
+
+from ssi.elements.base import CONSISTENT, ELASTIC
+from ssi.elements.soil_q8 import SoilQ8
+from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring, spring_chain
+from ssi.materials.soil_laws import elastic_params
+from ssi.mesh import structured_q8
+from ssi.model import Model
+from ssi.results import read_result, write_result
+from ssi.solver import NonConvergence, Settings, run
+
+K0, FU = 1e6, 1e3  # spring stiffness [N/m], tanh plateau [N]
+
+
+def fitted_order(residuals, lo=1e-13, hi=5e-2):
+    """Slope p of log e_{k+1} = p log e_k + c over consecutive residuals inside (lo, hi)."""
+    e = np.asarray(residuals)
+    pairs = [(a, b) for a, b in zip(e[:-1], e[1:]) if lo < a < hi and lo < b]
+    x, y = np.log([p[0] for p in pairs]), np.log([p[1] for p in pairs])
+    return np.polyfit(x, y, 1)[0], len(pairs)
+
+
+# ---- the spring group itself ----------------------------------------------------------------------------
+@pytest.mark.parametrize("kind, params, d0, dd", [
+    (TANH, [K0, FU, 0.0], 7e-4, 7e-4),               # tanh, on the softening part
+    (ELASTOPLASTIC, [K0, FU, 2e5], 5e-4, 5e-4),      # elastic branch
+    (ELASTOPLASTIC, [K0, FU, 2e5], 2e-3, 2e-3),      # plastic branch (loading)
+    (ELASTOPLASTIC, [K0, FU, 2e5], -2e-3, -2e-3),    # plastic branch, compression
+])
+def test_spring_tangent_matches_finite_differences(kind, params, d0, dd):
+    g = Spring([[0, 1]], kind, params)
+    st = g.initial_state()
+    h = 1e-9  # central differences: truncation ~h^2 F''' negligible, round-off ~1e-16 F / h ~ 1e-4 N/m
+
+    def force(delta):
+        u = np.array([[0.0, d0 + delta]])
+        du = np.array([[0.0, dd + delta]])
+        return g.evaluate(u, du, st, CONSISTENT)
+
+    f, k, _ = force(0.0)
+    fd = (force(h)[0][0, 1] - force(-h)[0][0, 1]) / (2 * h)
+    assert abs(k[0, 1, 1] - fd) < 1e-6 * K0
+    assert np.allclose(k[0], k[0, 1, 1] * np.array([[1, -1], [-1, 1]]))
+    assert abs(f[0, 0] + f[0, 1]) == 0.0                                        # action = reaction
+    assert np.allclose(g.evaluate(np.zeros((1, 2)), np.zeros((1, 2)), st, ELASTIC)[1][0, 1, 1], K0)
+
+
+def test_spring_bad_input():
+    with pytest.raises(ValueError, match="k0"):
+        Spring([[0, 1]], TANH, [0.0, 1.0, 0.0])
+    with pytest.raises(ValueError, match="F_u"):
+        Spring([[0, 1]], TANH, [1.0, -1.0, 0.0])
+    with pytest.raises(ValueError, match="kinds"):
+        Spring([[0, 1]], 7, [1.0, 1.0, 0.0])
+
+
+# ---- solver ---------------------------------------------------------------------------------------------
+def test_linear_problem_converges_in_one_iteration():
+    """A linear scene: one correction lands on the solution (the second evaluation only confirms it) and
+    equals the direct solve."""
+    m = structured_q8(np.linspace(0, 2, 5), np.linspace(-1, 0, 3))
+    model = Model()
+    model.add_nodes(m.xy, 2)
+    model.add_group(SoilQ8(m.xy[m.conn], model.element_dofs(m.conn), 0, [0], [elastic_params(20e6, 0.3)]))
+    model.fix(m.bottom, "u")
+    model.fix(m.bottom, "w")
+    model.add_load(m.surface, "w", -1e4)
+    model.prescribe(m.surface[:1], "u", 1e-4)
+    direct = model.solve_linear()
+    for method in ("modified", "full"):
+        res = run(model, [0.5, 1.0], Settings(method=method))
+        assert all(len(r) == 2 for r in res.residuals[1:])             # one solve per step
+        assert all(r[1] < 1e-12 for r in res.residuals[1:])            # ... already at round-off
+        assert np.abs(res.u[-1] - direct.u).max() < 1e-10 * np.abs(direct.u).max()
+        assert np.abs(res.u[1] - 0.5 * direct.u).max() < 1e-10 * np.abs(direct.u).max()
+    assert res.factorizations >= 1
+
+
+def test_tanh_spring_load_control_and_convergence_orders():
+    """F_u tanh(k0 d / F_u) = 0.9 F_u has d = atanh(0.9) F_u / k0. Full Newton converges quadratically,
+    modified Newton (K0) linearly with the contraction 1 - k_T / k0 at the solution."""
+    model, _, nodes = spring_chain([TANH], [K0, FU, 0.0])
+    model.add_load(nodes[-1], "u", 0.9 * FU)
+    exact = np.arctanh(0.9) * FU / K0
+    orders = {}
+    for method in ("modified", "full"):
+        res = run(model, [1.0], Settings(method=method, force_tol=1e-12, energy_tol=1e-12, max_iter=400))
+        assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-9 * exact
+        orders[method], n_pairs = fitted_order(res.residuals[1])
+        assert n_pairs >= 3
+    # tolerances: the asymptotic orders are 2 and 1; the fit over the last few iterates is within ~0.2
+    assert orders["full"] > 1.8, orders
+    assert abs(orders["modified"] - 1.0) < 0.05, orders
+
+
+def test_displacement_control_and_committed_plastic_state():
+    """Elastoplastic spring (k0, F_y, H) driven by a prescribed elongation d up to 3 d_y and back to 0: the
+    reaction follows the bilinear law on loading and unloads with k0; the state is committed per step."""
+    fy, h = FU, 2e5
+    model, _, nodes = spring_chain([ELASTOPLASTIC], [K0, fy, h])
+    dy = fy / K0
+    model.prescribe(nodes[-1], "u", dy)
+    path = [0.5, 1.0, 2.0, 3.0, 2.0, 1.0, 0.0]
+    res = run(model, path, Settings(method="full"))
+    f = res.reaction(nodes[-1], "u")
+    kep = K0 * h / (K0 + h)
+    f_peak = fy + kep * 2 * dy
+    kappa_peak = 3 * dy - f_peak / K0           # plastic elongation = total - elastic at the peak
+    # back to 0: the elastic trial f_peak - 3 k0 d_y passes the hardened reverse yield force
+    # -(F_y + H kappa_peak) by `over`, and plastic flow of over / (k0 + H) brings it back to the surface
+    over = -(f_peak - 3 * K0 * dy) - (fy + h * kappa_peak)
+    f_back = -(fy + h * (kappa_peak + over / (K0 + h)))
+    expected = [0.0, 0.5 * fy, fy, fy + kep * dy, f_peak, f_peak - K0 * dy, f_peak - 2 * K0 * dy, f_back]
+    assert over > 0
+    assert np.allclose(f, expected, rtol=1e-9, atol=1e-9 * fy)
+    assert abs(res.states[-2][0][0, 0, 1] - kappa_peak) < 1e-12   # elastic unloading keeps kappa
+    assert abs(res.final_state[0][0, 0, 1] - (kappa_peak + over / (K0 + h))) < 1e-12
+
+
+def test_step_cutting_recovers():
+    """Modified Newton contracts the residual by 1 - k_T/k0 per iteration (0.81 at 0.9 F_u): one step to
+    0.9 F_u needs ~45 iterations. Capped at 30 it must cut the step, and smaller steps (which start with a
+    smaller residual) then converge; the answer is still the exact one."""
+    model, _, nodes = spring_chain([TANH], [K0, FU, 0.0])
+    model.add_load(nodes[-1], "u", 0.9 * FU)
+    res = run(model, [1.0], Settings(method="modified", max_iter=30, max_cuts=10))
+    assert res.cuts > 0 and res.n_steps > 1
+    assert max(res.iterations) <= 30
+    # force_tol 1e-5 on a tangent k_T = 0.19 k0 gives a displacement error ~5e-5 relative
+    exact = np.arctanh(0.9) * FU / K0
+    assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-4 * exact
+    assert np.all(np.diff(res.load_factor) > 0) and res.load_factor[-1] == 1.0
+
+
+def test_nonconvergence_raises_with_report():
+    """1.2 F_u exceeds the spring's capacity: no equilibrium exists, every cut fails, and the error says
+    what, where and at which load, keeping the converged steps for inspection."""
+    model, _, nodes = spring_chain([TANH], [K0, FU, 0.0])
+    model.add_load(nodes[-1], "u", 1.2 * FU)
+    with pytest.raises(NonConvergence) as info:
+        run(model, [1.0], Settings(method="full", max_iter=30, max_cuts=4))
+    rep = info.value.report
+    assert {"reason", "load_factor_from", "load_factor_to", "worst_node", "worst_component"} <= set(rep)
+    assert rep["worst_node"] == nodes[-1] and rep["worst_component"] == "u"
+    assert rep["load_factor_from"] * 1.2 < 1.0 < rep["load_factor_to"] * 1.2 + 1e-12  # stuck at F_u
+    assert "did not converge" in str(info.value)
+    partial = info.value.result
+    assert partial.n_steps >= 1 and max(partial.load_factor) * 1.2 < 1.0
+
+
+def test_settings_validation():
+    with pytest.raises(ValueError, match="method"):
+        Settings(method="secant-ish")
+    with pytest.raises(ValueError, match="force_tol"):
+        Settings(force_tol=0.0)
+    model, _, _ = spring_chain([LINEAR], [K0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="load_factors"):
+        run(model, [])
+
+
+# ---- results files --------------------------------------------------------------------------------------
+def test_hdf5_round_trip_and_no_overwrite(tmp_path):
+    model, group, nodes = spring_chain([ELASTOPLASTIC, TANH], [[K0, FU, 1e5], [2 * K0, 2 * FU, 0.0]])
+    model.add_load(nodes[-1], "u", 1.5 * FU)
+    settings = Settings(method="full")
+    res = run(model, [0.5, 1.0], settings)
+    path = tmp_path / "spring.h5"
+    write_result(path, res, settings)
+    back = read_result(path)
+    assert np.array_equal(back["u"], np.array(res.u))
+    assert np.array_equal(back["load_factor"], np.array(res.load_factor))
+    assert np.array_equal(back["coords"], model.coords)
+    assert np.array_equal(back["state"][group.name], np.stack([s[0] for s in res.states]))
+    assert back["model"]["n_dof"] == model.n_dof and back["settings"]["method"] == "full"
+    assert back["model"]["groups"][0]["kinds"][:2] == ["elastoplastic", "tanh"]
+    with pytest.raises(FileExistsError):
+        write_result(path, res, settings)
+    write_result(path, res, settings, overwrite=True)  # allowed when asked
+    # a linear result round-trips too
+    lin_model, _, lin_nodes = spring_chain([LINEAR], [K0, 0.0, 0.0])
+    lin_model.add_load(lin_nodes[-1], "u", FU)
+    lin = lin_model.solve_linear()
+    write_result(tmp_path / "lin.h5", lin)
+    assert np.allclose(read_result(tmp_path / "lin.h5")["u"][0], lin.u)
+    assert abs(lin.u[lin_model.dof(lin_nodes[-1], "u")[0]] - FU / K0) < 1e-12
