@@ -5,6 +5,8 @@ Expected values come from the laws' closed forms (atanh of the load, the hardeni
 differences, or from the direct linear solve -- never from the solver under test.
 """
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -23,7 +25,7 @@ K0, FU = 1e6, 1e3  # spring stiffness [N/m], tanh plateau [N]
 def fitted_order(residuals, lo=1e-13, hi=5e-2):
     """Slope p of log e_{k+1} = p log e_k + c over consecutive residuals inside (lo, hi)."""
     e = np.asarray(residuals)
-    pairs = [(a, b) for a, b in zip(e[:-1], e[1:]) if lo < a < hi and lo < b]
+    pairs = [(a, b) for a, b in itertools.pairwise(e) if lo < a < hi and lo < b]
     x, y = np.log([p[0] for p in pairs]), np.log([p[1] for p in pairs])
     return np.polyfit(x, y, 1)[0], len(pairs)
 
