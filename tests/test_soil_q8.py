@@ -11,8 +11,7 @@ import pytest
 from ssi.analytical_soil import flamant_strip_quadrature, strip_load_stresses
 from ssi.assembly import SparsePattern
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.materials.elastic import elastic_params
-from ssi.materials.soil_laws import ELASTIC
+from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block, structured_q8
 from ssi.model import Model
 from ssi.quadrature import gauss_2d, gauss_legendre, newton_cotes
