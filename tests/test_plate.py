@@ -173,6 +173,30 @@ def test_force_independent_of_tangent_flag_and_K0_constant():
     assert np.abs(k1 - k0).max() > 0.1 * np.abs(k0).max()      # the state is really nonlinear
 
 
+def test_layer_stresses_integrate_to_resultants():
+    """Layer stresses recovered for plotting integrate (with the self-bending term) to N and M of the element,
+    and vanish in steel layers' shear."""
+    sec = rc_test_section()
+    g = one_element(sec, x=(0.0, 0.5, 1.0))
+    x = g.coords[0, :, 0]
+    u = np.zeros((1, 9))
+    u[0, 0::3] = 2e-4 * x
+    u[0, 1::3] = 0.5 * 0.006 * x ** 2 + 1e-4 * x             # plus a uniform shear strain 1e-4
+    u[0, 2::3] = 0.006 * x
+    sig, tau = g.layer_stresses(u)
+    res = g.resultants(u)
+    ax = g.ax.astype(bool)
+    e0, _ = sec.initial_moduli()
+    n_sum = (sig[0][ax] * sec.h).sum(axis=1)
+    m_sum = (-sig[0][ax] * sec.h * sec.z_mid).sum(axis=1) + (e0 * sec.h ** 3 / 12).sum() * 0.006
+    assert np.allclose(n_sum, res["N"][0], rtol=1e-12, atol=0)
+    assert np.allclose(m_sum, res["M"][0], rtol=1e-12, atol=0)
+    assert sig[0, 0, 0] > 0 > sig[0, 0, -1]                     # sagging: bottom in tension, top compressed
+    shear = g.sh.astype(bool)
+    q_sum = g.kappa * (tau[0][shear] * np.where(sec.carries_shear, sec.h, 0.0)).sum(axis=1)
+    assert np.allclose(q_sum, res["Q"][0], rtol=1e-12, atol=0) and np.all(res["Q"][0] > 0)
+
+
 # ---- Timoshenko closed forms (global, through Model) --------------------------------------------------------
 def strip(n_el, length=L, integration="selective", n_layers=1):
     m = Model()

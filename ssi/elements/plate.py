@@ -240,6 +240,23 @@ def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, 
 
 
 @njit(cache=True)
+def plate_layer_stresses(eps, gam, state, kind, params, band, ls_index, wt, length, sig, tau):
+    """Layer stresses at the sampling points from their strains and the committed history.
+
+    eps (n_el, n_ip, n_layer), gam (n_el, n_ip), state (n_el, n_ip, n_layer, n_hist), length (n_el,);
+    writes sig, tau (n_el, n_ip, n_layer) (tau unfactored by kappa, as the laws return it)."""
+    prm = params.copy()
+    scratch = np.empty(state.shape[3])
+    for e in range(eps.shape[0]):
+        for p in range(eps.shape[1]):
+            _crack_band(prm, band, ls_index, 0.5 * wt[p] * length[e])
+            for n in range(eps.shape[2]):
+                s, t, _, _ = layer_update(kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, 1)
+                sig[e, p, n] = s
+                tau[e, p, n] = t
+
+
+@njit(cache=True)
 def _line_load(x_el, q_pts, xi, wt, comp, f_el):
     """Equivalent nodal forces of a load intensity sampled at points: q_pts (n_el, n_pt)."""
     nn = np.empty(3)
@@ -451,6 +468,21 @@ class PlateStrip:
         gam = (u[:, :, 1] @ dvals.T) / jac - u[:, :, 2] @ nvals.T
         eps = eps0[:, :, None] - self.section.z_mid[None, None, :] * kap[:, :, None]
         return eps, gam
+
+    def layer_stresses(self, u_el, state=None):
+        """Axial and shear stress (n_el, n_ip, n_layer) of every layer at its mid-depth, from total
+        displacements and the committed ``state`` (default virgin); e.g. for crack and yield maps.
+        Which points carry which stress: ``self.ax`` (axial) and ``self.sh`` (shear) flags per point."""
+        if state is None:
+            state = self.initial_state()
+        eps, gam = self.layer_strains(u_el)
+        sig = np.empty_like(eps)
+        tau = np.empty_like(eps)
+        s = self.section
+        plate_layer_stresses(np.ascontiguousarray(eps), np.ascontiguousarray(gam), state, s.kind, s.params,
+                             self.band, P_LS, self.wt, np.ascontiguousarray(self._x[:, 2] - self._x[:, 0]),
+                             sig, tau)
+        return sig, tau
 
 
 # ---- meshes ------------------------------------------------------------------------------------------------
