@@ -1,0 +1,363 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 06 — Solution strategy: incremental–iterative Newton–Raphson (paper §8, eq. 8.1, Fig. 9)
+#
+# Soil plasticity, contact slip and concrete cracking make the equilibrium equations nonlinear. The paper
+# follows the load in increments and, within each, iterates with the *initial* stiffness K0 (modified
+# Newton–Raphson, its Fig. 9) because the non-associated soil law makes the true tangent unsymmetric. This
+# chapter runs that scheme, and the full Newton alternative, on problems whose answers are known.
+#
+# **In this chapter you will**
+# - redraw the paper's Fig. 9 from an actual run of a one-degree-of-freedom nonlinear spring;
+# - fit the convergence orders: quadratic for full Newton, linear for modified Newton;
+# - time both on the same plastic problem (a rigid footing on Mohr–Coulomb soil) and count their iterations
+#   per step;
+# - see an increment cut in half when it does not converge, and an analysis stop with a clear report when no
+#   equilibrium exists.
+
+# %% [markdown]
+# ## Theory
+#
+# At load factor λ the external forces are F_ext(λ) = λ F_ref + F_dead and the internal forces
+# F_int(r) = Σₑ ∫ Bᵀσ dV follow from the displacements r through the material laws. An increment from the
+# converged state t to t + Δt solves F_int(r) = F_ext(λ_{t+Δt}) by repeating eq. (8.1),
+#
+# $$K_T\,\Delta r = F_{ext}^{t+\Delta t} - F_{int}(r_i), \qquad r_{i+1} = r_i + \Delta r ,$$
+#
+# with the stresses of every trial r_i computed *incrementally* from the committed state of step t (the laws
+# never see an unconverged state as history; the solver commits only after convergence).
+#
+# - **Modified Newton–Raphson** (paper): K_T = K0, the elastic stiffness, factorised once for the whole
+#   analysis. Each iteration costs one back-substitution; the residual shrinks by a factor close to
+#   1 − k_T/k0 per iteration (for one DOF exactly that, in the limit), i.e. *linear* convergence that slows
+#   down as the structure softens. K0 is symmetric even when the material tangent is not.
+# - **Full Newton**: K_T = ∂F_int/∂r, the consistent tangent, refactorised every iteration (unsymmetric for
+#   ψ ≠ φ). Near the solution the error is squared each iteration: *quadratic* convergence.
+# - **Convergence** needs both ‖r_f‖ ≤ ε_f max(‖F_ext‖, ‖F_int‖) on the free DOFs (the internal force
+#   includes the reactions, which covers displacement control) and an energy norm |Δr·r| small relative to
+#   the increment's first; both are recorded per iteration (`Result.residuals`, `Result.energies`).
+# - **Step cutting**: an increment that diverges or runs out of iterations is retried as two halves; after
+#   `max_cuts` halvings the analysis stops with `NonConvergence`, whose `report` says what failed, at which
+#   node and DOF, between which load factors.
+#
+# | paper | code | meaning |
+# |---|---|---|
+# | K_T | `tangent=CONSISTENT` / `Settings(method="full")` | consistent tangent stiffness |
+# | K0 | `group.elastic_stiffness()`, `Settings(method="modified")` | initial (elastic) stiffness |
+# | F_ext^{t+Δt} | `lam * f_ref + f_dead` | external load at the end of the increment |
+# | F_int^t | `f_int` | internal forces of the current iterate |
+# | Δr | `du` | iterative displacement correction |
+# | t, t+Δt | `Result.load_factor[k]` | converged load factors |
+
+# %%
+import itertools
+import time
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from ssi import paths, report
+from ssi.elements.soil_q8 import SoilQ8
+from ssi.elements.spring import TANH, spring_chain
+from ssi.materials.soil_laws import material_table, mohr_coulomb_params
+from ssi.mesh import soil_block
+from ssi.model import Model
+from ssi.solver import NonConvergence, Settings, run
+
+FAST = paths.FAST
+print("fast mode" if FAST else "full mode")
+
+# %% [markdown]
+# ## 1. Fig. 9 from an actual run
+#
+# One spring with the smooth softening law F(r) = F_u tanh(k0 r / F_u) (`ssi.elements.spring`, kind `TANH`)
+# is loaded in two increments, to 0.5 F_u and 0.85 F_u, with modified Newton–Raphson. A thin wrapper records
+# every state the solver asks the spring for, so the figure shows the solver's own iterates: from each
+# (r_i, F_int(r_i)) a line of slope K0 up to the target load gives r_{i+1}, and the law brings the force back
+# down to F_int(r_{i+1}).
+
+# %%
+K0, FU = 1e6, 1e3  # spring stiffness [N/m] and plateau force [N]
+
+
+class Recorder:
+    """Wrap an element group and record (u_el, f_el) of every evaluation the solver asks for."""
+
+    def __init__(self, group):
+        self.group = group
+        self.name = group.name
+        self.edofs = group.edofs
+        self.calls = []
+
+    def evaluate(self, u_el, du_el, state_old, tangent):
+        f_el, k_el, state_new = self.group.evaluate(u_el, du_el, state_old, tangent)
+        self.calls.append((u_el.copy(), f_el.copy()))
+        return f_el, k_el, state_new
+
+    def __getattr__(self, attr):  # initial_state, elastic_stiffness, body_force, describe
+        return getattr(self.group, attr)
+
+
+model, spring, nodes = spring_chain([TANH], [K0, FU, 0.0])
+rec = Recorder(spring)
+model.groups[0] = rec
+model.add_load(nodes[-1], "u", FU)
+fig9_targets = [0.5, 0.85]
+res9 = run(model, fig9_targets, Settings(method="modified", force_tol=1e-4))
+r_it = np.array([c[0][0, 1] for c in rec.calls])   # spring 0: r of the loaded node
+f_it = np.array([c[1][0, 1] for c in rec.calls])   # and its force F_int
+print("iterations per increment:", res9.iterations[1:])
+print("iterates r [mm]:", np.round(1e3 * r_it, 4).tolist())
+r_exact = np.arctanh(np.array(fig9_targets)) * FU / K0
+r_solver = res9.displacement(nodes[-1], "u")[1:, 0]
+
+# %%
+fig, ax = plt.subplots(figsize=(7, 5))
+rr = np.linspace(0, 1.1 * r_exact[-1], 300)
+ax.plot(1e3 * rr, FU * np.tanh(K0 * rr / FU) / 1e3, "k-", lw=2, label="F_int(r) = F_u tanh(k0 r / F_u)")
+start = 1  # call 0 is the initial state; then one call per iteration
+for k, target in enumerate(fig9_targets):
+    n_it = res9.iterations[k + 1]
+    pts = list(range(start, start + n_it))  # this increment's evaluations; the last one is converged
+    fext = target * FU
+    ax.axhline(fext / 1e3, color="0.7", lw=0.8, ls=":")
+    for i in pts[:-1]:
+        r0, f0 = r_it[i], f_it[i]
+        r1 = r0 + (fext - f0) / K0
+        ax.plot(1e3 * np.array([r0, r1]), np.array([f0, fext]) / 1e3, "C0-", lw=1)
+        ax.plot(1e3 * np.array([r1, r1]), np.array([fext, f_it[i + 1]]) / 1e3, "C3--", lw=0.8)
+    ax.plot(1e3 * r_it[pts], f_it[pts] / 1e3, "C0o", ms=3)
+    ax.annotate(f"F_ext at t+Δt = {target:g} F_u", (0.02, fext / 1e3 + 0.015), fontsize=8)
+    start += n_it
+ax.plot([], [], "C0-", label="K0 (slope of every iteration)")
+ax.plot([], [], "C3--", label="F_int of the new iterate")
+ax.set_xlabel("displacement r [mm]")
+ax.set_ylabel("force F [kN]")
+ax.set_xlim(0, 1e3 * rr[-1])
+ax.set_ylim(0, 1.0)
+ax.legend(loc="lower right")
+ax.set_title("Figure 6.1 (paper Fig. 9) — modified Newton–Raphson on one nonlinear spring, two increments")
+report.save_figure(fig, "fig09_modified_newton")
+
+# %% [markdown]
+# ## 2. Convergence orders
+#
+# A chain of three different tanh springs in series (three free DOFs, each spring on its own softening
+# curve) is loaded in one increment to 80 % of the weakest spring's plateau, with a tolerance tight enough
+# to watch the tail: ε_f = 1e-12. If eₖ is the relative residual of iteration k, the order p is the slope of
+# log e_{k+1} against log e_k, fitted over the iterations with 1e-13 < e_k < 5e-2 (the tail, before the
+# round-off floor).
+
+# %%
+CHAIN = np.array([[K0, FU, 0.0], [2 * K0, 1.5 * FU, 0.0], [0.7 * K0, 2.0 * FU, 0.0]])
+
+
+def fitted_order(residuals, lo=1e-13, hi=5e-2):
+    e = np.asarray(residuals)
+    pairs = np.array([(a, b) for a, b in itertools.pairwise(e) if lo < a < hi and lo < b])
+    return np.polyfit(np.log(pairs[:, 0]), np.log(pairs[:, 1]), 1)[0], len(pairs)
+
+
+chain, _, chain_nodes = spring_chain([TANH] * 3, CHAIN)
+chain.add_load(chain_nodes[-1], "u", 0.8 * FU)
+tight = {"force_tol": 1e-12, "energy_tol": 1e-12, "max_iter": 500}
+histories, orders = {}, {}
+for method in ("full", "modified"):
+    res = run(chain, [1.0], Settings(method=method, **tight))
+    histories[method] = res.residuals[1]
+    orders[method], n_pairs = fitted_order(histories[method])
+    print(f"{method:8s}: {len(histories[method]):4d} iterations, fitted order {orders[method]:.2f} "
+          f"over {n_pairs} pairs")
+# the elongation of each spring is atanh(F / F_u) F_u / k0 -- the chain's end displacement is their sum
+u_end_exact = sum(np.arctanh(0.8 * FU / fu) * fu / k for k, fu, _ in CHAIN)
+u_end = res.displacement(chain_nodes[-1], "u")[-1, 0]
+contraction = np.exp(np.mean(np.diff(np.log(histories["modified"][-20:]))))
+print(f"modified Newton: residual contraction per iteration {contraction:.3f}")
+
+# %% [markdown]
+# ## 3. Both methods on the same plastic problem
+#
+# A rigid, rough strip footing of width B = 2 m is pushed into a weightless Mohr–Coulomb soil
+# (E = 10 MPa, ν = 0.3, c = 10 kPa, φ = ψ = 20°, associated) under displacement control: the surface nodes
+# under it are held horizontally and moved down together; their summed reaction divided by B is the mean
+# pressure. The block (10 m × 5 m, bottom fixed, sides on rollers) is graded from h under the footing.
+# Prandtl's limit for this case is c N_c = 14.835 c = 148.35 kPa (the Prandtl study with error shrinking under
+# refinement is chapter 10; here the point is the solver). Both methods follow the same 20 equal increments
+# of settlement.
+
+# %%
+C_SOIL, PHI = 10e3, 20.0
+Q_PRANDTL = 14.8347 * C_SOIL
+H_FOOT = 0.5 if FAST else 0.25
+N_STEPS = 20
+
+
+def footing_model(h):
+    mesh = soil_block(10.0, 5.0, foundation=(-1.0, 1.0), h_fine=h, h_coarse=1.5)
+    m = Model()
+    m.add_nodes(mesh.xy, 2)
+    kinds, params = material_table([mohr_coulomb_params(10e6, 0.3, C_SOIL, PHI, PHI)])
+    m.add_group(SoilQ8(mesh.xy[mesh.conn], m.element_dofs(mesh.conn), 0, kinds, params))
+    m.fix(mesh.bottom, "u")
+    m.fix(mesh.bottom, "w")
+    m.fix(mesh.left, "u")
+    m.fix(mesh.right, "u")
+    under = mesh.nodes_between(-1.0, 1.0)
+    m.fix(under, "u")                # rough
+    m.prescribe(under, "w", -0.05)   # 50 mm settlement at load factor 1
+    return m, under
+
+
+footing, under = footing_model(H_FOOT)
+print(f"footing model: {footing.n_dof} DOFs")
+runs = {}
+for method in ("modified", "full"):
+    t0 = time.perf_counter()
+    res = run(footing, np.linspace(1.0 / N_STEPS, 1.0, N_STEPS), Settings(method=method))
+    wall = time.perf_counter() - t0
+    q = -res.reaction(under, "w") / 2.0
+    runs[method] = {"res": res, "wall": wall, "q": q, "settle": -res.displacement(under[:1], "w")[:, 0]}
+    print(f"{method:8s}: wall {wall:6.2f} s, {sum(res.iterations):5d} iterations, {res.factorizations:4d} "
+          f"factorisations, {res.cuts} cuts, final q / Prandtl = {q[-1] / Q_PRANDTL:.4f}")
+# compare the two load-settlement curves at the load factors both visited (cuts add extra steps)
+lam_m = np.array(runs["modified"]["res"].load_factor)
+lam_f = np.array(runs["full"]["res"].load_factor)
+common = [(np.flatnonzero(np.isclose(lam_m, lam))[0], j) for j, lam in enumerate(lam_f)
+          if np.any(np.isclose(lam_m, lam))]
+curve_diff = max(abs(runs["modified"]["q"][i] - runs["full"]["q"][j]) for i, j in common) / Q_PRANDTL
+print(f"largest difference between the two curves: {curve_diff:.2e} of q_Prandtl")
+speedup = runs["modified"]["wall"] / runs["full"]["wall"]
+print(f"full Newton is {speedup:.1f}x faster than modified Newton on this problem")
+
+# full Newton's order on the plastic problem, over the steps with enough iterations to fit
+plastic_orders = [fitted_order(r, lo=1e-12, hi=1e-1)[0] for r in runs["full"]["res"].residuals[1:]
+                  if sum(1e-12 < x < 1e-1 for x in r) >= 4]
+print("full Newton, fitted order per plastic step:", np.round(plastic_orders, 2).tolist())
+
+# %% [markdown]
+# ## 4. Step cutting and the failure report
+#
+# (a) Modified Newton contracts the residual by about 1 − k_T/k0 per iteration: 0.81 at 0.9 F_u, so one
+# increment from 0 to 0.9 F_u needs ~45 iterations. With `max_iter=30` the solver must cut it, and the smaller
+# increments converge. (b) A load of 1.2 F_u exceeds the spring's capacity: there is no equilibrium, every cut
+# fails, and the analysis stops with `NonConvergence` instead of returning a result.
+
+# %%
+cut_model, _, cut_nodes = spring_chain([TANH], [K0, FU, 0.0])
+cut_model.add_load(cut_nodes[-1], "u", 0.9 * FU)
+res_cut = run(cut_model, [1.0], Settings(method="modified", max_iter=30, max_cuts=10))
+print(f"(a) {res_cut.cuts} cuts; accepted load factors {np.round(res_cut.load_factor, 4).tolist()}")
+print(f"    iterations per accepted step {res_cut.iterations[1:]}")
+u_cut = res_cut.displacement(cut_nodes[-1], "u")[-1, 0]
+u_cut_exact = np.arctanh(0.9) * FU / K0
+
+over_model, _, over_nodes = spring_chain([TANH], [K0, FU, 0.0])
+over_model.add_load(over_nodes[-1], "u", 1.2 * FU)
+try:
+    run(over_model, [1.0], Settings(method="full", max_iter=30, max_cuts=4))
+    failure = None
+except NonConvergence as err:
+    failure = err
+    print("(b)", err)
+    print("    converged steps kept for inspection, load factors:",
+          np.round(err.result.load_factor, 4).tolist())
+
+# %% [markdown]
+# ## Verification
+#
+# - Fig. 9 run: both increments end at the exact r = atanh(F/F_u) F_u/k0 within the force tolerance
+#   (1e-4 relative on a tangent ≥ 0.28 k0 → `TOL_R = 1e-3` relative).
+# - Orders: asymptotically 2 and 1; fitting over a few iterates of the tail leaves ~0.2, so full Newton
+#   ≥ 1.8 and modified Newton within 0.1 of 1. The chain's end displacement is exact to 1e-9 relative
+#   (ε_f = 1e-12).
+# - Plastic footing: both methods converge to the same curve within 1e-3 q_Prandtl (ε_f = 1e-5 on both), and
+#   the coarse-mesh limit pressure lies within 10 % above Prandtl (displacement FE over-estimates on coarse
+#   meshes; chapter 10 refines it).
+# - Step cutting ends at the exact answer (1e-4 relative); the failure report names the loaded DOF.
+
+# %%
+TOL_R = 1e-3
+assert np.all(np.abs(r_solver - r_exact) < TOL_R * r_exact), (r_solver, r_exact)
+assert all(n > 2 for n in res9.iterations[1:])            # modified NR iterates visibly (Fig. 9)
+assert orders["full"] >= 1.8, orders
+assert abs(orders["modified"] - 1.0) < 0.1, orders
+assert abs(u_end - u_end_exact) < 1e-9 * u_end_exact
+assert len(histories["full"]) < len(histories["modified"]) / 5
+assert curve_diff < 1e-3, curve_diff
+assert 1.0 < runs["full"]["q"][-1] / Q_PRANDTL < 1.10
+assert runs["modified"]["res"].factorizations == 1       # K0 factorised once for the whole analysis
+assert res_cut.cuts > 0 and abs(u_cut - u_cut_exact) < 1e-4 * u_cut_exact
+assert failure is not None and failure.report["worst_component"] == "u"
+assert failure.report["worst_node"] == over_nodes[-1]
+newton_ok = orders["full"] >= 1.8 and abs(orders["modified"] - 1.0) < 0.1
+report.record("newton_rates", f"fitted convergence order: full Newton {orders['full']:.2f} (value, expect 2), "
+              f"modified Newton {orders['modified']:.2f} (expect 1); 3-spring tanh chain",
+              orders["full"], 1.8, newton_ok)
+print("all checks passed")
+
+# %% [markdown]
+# ## Figures
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+for method, mk in (("full", "o-"), ("modified", ".-")):
+    axes[0].semilogy(np.arange(1, len(histories[method]) + 1), histories[method], mk,
+                     label=f"{method} Newton (fitted order {orders[method]:.2f})")
+axes[0].set_xlabel("iteration")
+axes[0].set_ylabel("relative residual force")
+axes[0].set_xlim(0, 60)
+axes[0].legend()
+axes[0].set_title("three-spring tanh chain, one increment")
+for method, mk in (("full", "o-"), ("modified", "s--")):
+    r = runs[method]
+    axes[1].plot(1e3 * r["settle"], r["q"] / 1e3, mk, ms=3,
+                 label=f"{method}: {r['wall']:.1f} s, {sum(r['res'].iterations)} iterations")
+axes[1].axhline(Q_PRANDTL / 1e3, color="k", ls=":", label="Prandtl 148.35 kPa")
+axes[1].set_xlabel("settlement [mm]")
+axes[1].set_ylabel("mean footing pressure [kPa]")
+axes[1].legend()
+axes[1].set_title(f"rigid rough footing, Mohr–Coulomb φ = ψ = 20°, {footing.n_dof} DOFs")
+fig.suptitle("Figure 6.2 — quadratic vs linear convergence, and the same plastic problem solved both ways")
+report.save_figure(fig, "ch06_convergence")
+
+# %%
+fig, ax = plt.subplots(figsize=(9, 4))
+for k, (method, color) in enumerate((("modified", "C1"), ("full", "C0"))):
+    res = runs[method]["res"]
+    lam = np.array(res.load_factor[1:])
+    ax.bar(np.arange(len(lam)) + (k * 0.4 - 0.2), res.iterations[1:], width=0.4,
+           color=color, label=f"{method} Newton ({len(lam)} steps, {res.cuts} cuts)")
+ax.set_yscale("log")
+ax.set_xlabel("accepted step (cut steps add bars)")
+ax.set_ylabel("iterations")
+ax.legend()
+ax.set_title("Figure 6.3 — iterations per load step, rigid footing on Mohr–Coulomb soil")
+report.save_figure(fig, "ch06_iterations_per_step")
+
+# %% [markdown]
+# ## Summary
+#
+# - The paper's modified Newton–Raphson (Fig. 9, redrawn from the solver's own iterates) converges linearly;
+#   the fitted orders are ≈ 1 for it and ≈ 2 for full Newton (row `newton_rates`).
+# - On a plastic footing near its limit load the contraction factor 1 − k_T/k0 of modified Newton approaches
+#   1: it needed thousands of iterations and several step cuts, while full Newton with the consistent
+#   tangent needed a handful per step and was an order of magnitude faster even though it refactorises
+#   every iteration; its fitted order on the plastic steps is ≈ 2 as well (the Mohr–Coulomb return mapping
+#   supplies a consistent tangent). Modified Newton keeps two virtues: one factorisation of a *symmetric* K0 (the paper's
+#   reason, non-associated flow) and robustness — it never needs the tangent.
+# - An increment that fails is halved; if it still fails the analysis stops with a report naming the DOF,
+#   the node, the load factors and the reason — no silent result.
+#
+# References: M. A. Crisfield, *Non-linear Finite Element Analysis of Solids and Structures*, vol. 1, ch. 9;
+# R. de Borst et al., *Nonlinear Finite Element Analysis of Solids and Structures*, 2nd ed., §2.2.
