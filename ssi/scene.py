@@ -27,6 +27,8 @@ from .elements.interface import V_SIG, V_TAU, Interface6, add_interface
 from .elements.plate import PlateStrip
 from .elements.soil_q8 import SoilQ8
 from .materials.interface_law import interface_params
+from .materials.concrete import P_E0, P_FR
+from .materials.layer_laws import CONCRETE, P_LS, STEEL, layer_update
 from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
 from .materials.soil_laws import elastic_params, geostatic_stress, material_table, mohr_coulomb_params
 from .mesh import foundation_contact, soil_block
@@ -248,3 +250,38 @@ class SceneResult:
         """(x, settlement) of the soil surface, positive downwards."""
         ids = self.built.mesh.surface
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
+
+    def plate_layers(self, k=-1):
+        """Layer strains and stresses of the foundation at its axial sampling points.
+
+        Returns a dict: ``x`` (n_el, n_ip), ``z`` (n_layer,) layer mid-depths above the reference surface,
+        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers whose
+        largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
+        """
+        plate = self.built.plate
+        sec = plate.section
+        u_el = self.u[k][plate.edofs]
+        state = self._group_state(plate, k)
+        eps, gam = plate.layer_strains(u_el)
+        length = plate._x[:, 2] - plate._x[:, 0]
+        sig = np.zeros_like(eps)
+        cracked = np.zeros(eps.shape, bool)
+        h_new = np.zeros(state.shape[-1])
+        for e in range(plate.n_el):
+            for q in range(plate.n_ip):
+                for n in range(sec.n_layer):
+                    prm = sec.params[n].copy()
+                    if plate.band[n]:
+                        prm[P_LS] = 0.5 * plate.wt[q] * length[e]
+                    hist = state[e, q, n]
+                    sig[e, q, n] = layer_update(sec.kind[n], prm, eps[e, q, n], gam[e, q], hist, h_new, 0)[0]
+                    if sec.kind[n] == CONCRETE:
+                        cracked[e, q, n] = hist[1] > prm[P_FR] / prm[P_E0]
+        x_pts = np.array([[np.dot(_lagrange_row(xi), plate._x[e]) for xi in plate.xi] for e in range(plate.n_el)])
+        axial = plate.ax.astype(bool)
+        return {"x": x_pts[:, axial], "z": sec.z_mid, "eps": eps[:, axial], "sig": sig[:, axial],
+                "cracked": cracked[:, axial], "steel": sec.kind == STEEL}
+
+
+def _lagrange_row(xi):
+    return np.array([0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)])
