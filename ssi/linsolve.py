@@ -52,6 +52,8 @@ class Factorization:
             raise ValueError("backend 'pardiso' needs pypardiso: pip install 'ssi[fast]'")
         self.backend = backend
         self.n = matrix.shape[0]
+        if not np.all(np.isfinite(matrix.data)):
+            raise FloatingPointError("the matrix has non-finite entries (a tangent of a material law failed)")
         if self.n == 0:
             self._solve = lambda b: np.zeros(0)
         elif backend == "superlu":
