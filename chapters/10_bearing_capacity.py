@@ -1,0 +1,349 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 10 — Bearing capacity: Mohr–Coulomb soil against Prandtl and a peer code (paper §7, §8)
+#
+# The paper models the subsoil with Mohr–Coulomb plasticity (cohesion c, friction angle φ) and a
+# non-associated flow rule whose potential has the dilation angle ψ in place of φ (§7, eq. 6.9), integrated
+# by increments Δσ = D_ep Δε and solved by modified Newton–Raphson (§8). It shows no bearing-capacity test.
+# This chapter verifies the soil law inside the Q8 element against the strongest references that exist: the
+# exact Prandtl collapse pressure of a strip footing on weightless soil and the recorded load–settlement
+# curve of Smith & Griffiths' Program 6.1 — and then measures what the paper's choices cost.
+#
+# **In this chapter you will**
+# - recall the two integration schemes of the soil law (the paper's explicit D_ep scheme and the implicit
+#   return mapping in principal stresses) and the displacement-controlled footing test;
+# - push rigid smooth and rough footings into weightless soil with φ = 0 and φ = 20° and compare the limit
+#   pressure with Prandtl's q_u = c·N_c on three meshes (the error must shrink; ≤ 3 % on the named mesh);
+# - reproduce the Smith & Griffiths flexible-footing curve within 3 % up to 500 kPa, and see why the yield
+#   function (von Mises vs Tresca) matters before collapse;
+# - measure how non-associated flow (ψ = 0) lowers the limit load and raises the iteration counts;
+# - plot the trade: explicit vs implicit integration, full vs modified Newton, step size — error vs wall time.
+
+# %% [markdown]
+# ## Theory
+#
+# **Yield function and potential.** With principal stresses ordered σ₁ ≥ σ₂ ≥ σ₃ (tension positive),
+#
+# $$f = k\,\sigma_1 - \sigma_3 - 2c\sqrt{k},\quad k = \frac{1+\sin\varphi}{1-\sin\varphi};\qquad
+#   g = m\,\sigma_1 - \sigma_3,\quad m = \frac{1+\sin\psi}{1-\sin\psi}.$$
+#
+# In principal-stress space f = 0 is a six-sided pyramid with its apex at the hydrostatic tension c·cot φ
+# (φ > 0); φ = 0 gives Tresca's prism. The out-of-plane stress σ_yy is carried, so each of the three principal
+# stresses can be the largest or the smallest.
+#
+# **Explicit tangent scheme (the paper).** Split off the elastic part of the increment up to f = 0, then
+# Δσ = D_ep Δε with D_ep = D − D b aᵀ D / (aᵀ D b), a = ∂f/∂σ, b = ∂g/∂σ at the current stress (eq. 6.9),
+# optionally in n_sub sub-steps and with a drift correction back to f = 0. Without the correction the stress
+# leaves the surface wherever the principal axes rotate.
+#
+# **Implicit return mapping.** The trial stress σ_B = σ_n + D Δε is returned along D b to the closest
+# admissible feature of the pyramid in principal space — a face, one of the two edges next to it, or the
+# apex — by one linear solve each (the faces are planes and isotropic elasticity keeps the principal axes).
+# Its consistent tangent adds the rotation of the principal axes and is unsymmetric when ψ ≠ φ. Both schemes
+# live in `ssi/materials/mohr_coulomb.py`; their material-point checks (every branch, finite-difference
+# tangents, symmetry only for ψ = φ) are in `tests/test_mohr_coulomb.py` and chapter 05.
+#
+# **Prandtl's collapse pressure** of a strip footing on weightless soil (smooth or rough base — for γ = 0 both
+# give the same value):
+#
+# $$N_q = e^{\pi\tan\varphi}\tan^2(45^\circ+\varphi/2),\qquad N_c = (N_q-1)\cot\varphi\ (=2+\pi\ \text{for}\ \varphi=0),
+#   \qquad q_u = c\,N_c + q\,N_q .$$
+#
+# It is exact for associated flow (ψ = φ). With ψ < φ no exact value exists; displacement-based FE gives
+# lower limit loads (de Borst & Vermeer 1984; Loukidis & Salgado 2009).
+#
+# **The footing test.** By symmetry, half of the footing (0 ≤ x ≤ B/2) on a block x ∈ [0, 6 m], z ∈ [−5 m, 0]
+# (u = 0 on x = 0 and x = 6 m, base fixed): for φ ≤ 20° the Prandtl mechanism stays within ≈ 3.5 m of the axis
+# and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also holds
+# u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and grow
+# by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking line
+# search (`ssi.bearing_capacity.newton_line_search`): plain Newton steps near the footing corner overshoot
+# into a far plastic state and diverge.
+#
+# | paper / text | code | meaning |
+# |---|---|---|
+# | c, φ, ψ | `c`, `phi_deg`, `psi_deg` | cohesion [Pa], friction and dilation angles [°] |
+# | k, m | `k`, `m` in `mc_constants` | slopes of f and g in principal space |
+# | D_ep (eq. 6.9) | `_continuum_dep` | continuum elasto-plastic matrix (explicit scheme) |
+# | σ_B, Δλ | `sB`, `dl` in `mc_return_principal` | trial stress, plastic multiplier |
+# | B, q_u | `B`, `q_u` | footing width, limit (collapse) pressure |
+# | h | `h_fine` | element size under the footing |
+
+# %%
+import time
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from ssi import paths, report
+from ssi.bearing_capacity import prandtl, push_footing, read_reference, rigid_footing, sg61_scene
+from ssi.solver import NonConvergence, Settings, run
+
+FAST = paths.FAST
+C = 10e3                   # cohesion [Pa]
+E, NU = 20e6, 0.3          # the limit load does not depend on them
+BLOCK = dict(half_width=6.0, depth=5.0, h_coarse=1.0, growth=1.25)
+MESHES = [0.5, 0.25] if FAST else [0.25, 0.125, 0.0625]   # element size under the footing [m]
+H_NAMED = 0.0625           # the mesh on which the 3 % claim is made (16 elements under the half footing)
+TOL_PRANDTL = 0.03         # issue 4: within 3 % of the exact value on the named mesh
+SETTLE = {0.0: 0.04, 20.0: 0.06}   # settlement [m] at the end of the push (the curve has levelled off)
+N_STEPS = 30
+CASES = [(0.0, False), (0.0, True), (20.0, False), (20.0, True)]
+print("fast mode" if FAST else "full mode", "meshes h =", MESHES)
+
+# %% [markdown]
+# ## Prandtl: smooth and rough rigid footings, φ = 0 and φ = 20°
+
+# %%
+prandtl_runs = {}
+t_all = time.perf_counter()
+for phi, rough in CASES:
+    q_exact = prandtl(C, phi)[0]
+    for h in MESHES:
+        scene = rigid_footing(B=2.0, c=C, phi_deg=phi, E=E, nu=NU, rough=rough, h_fine=h, settle=SETTLE[phi],
+                              **BLOCK)
+        out = push_footing(scene, n_steps=N_STEPS, method="line_search")
+        if out["failure"]:
+            raise RuntimeError(f"phi={phi} rough={rough} h={h}: {out['failure']}")
+        out["err"] = out["q_u"] / q_exact - 1.0
+        out["n_dof"] = scene.info["n_dof"]
+        prandtl_runs[phi, rough, h] = out
+        print(f"phi={phi:4.0f}  {'rough ' if rough else 'smooth'}  h={h:6.4f}  DOFs={out['n_dof']:5d}  "
+              f"q_u={out['q_u'] / 1e3:7.2f} kPa  exact={q_exact / 1e3:7.2f}  error={100 * out['err']:+6.2f} %  "
+              f"iterations={out['n_iterations']:4d}  time={out['wall_time']:5.1f} s")
+print(f"all Prandtl runs: {time.perf_counter() - t_all:.1f} s")
+
+# %%
+for phi, rough in CASES:
+    errs = [prandtl_runs[phi, rough, h]["err"] for h in MESHES]
+    rid = f"prandtl_phi{int(phi)}_{'rough' if rough else 'smooth'}"
+    if not FAST:
+        report.record(rid, f"q_u,FE/q_u,exact - 1 (h={H_NAMED} m, {prandtl_runs[phi, rough, H_NAMED]['n_dof']} "
+                      "DOFs, half model)", errs[-1], TOL_PRANDTL,
+                      abs(errs[-1]) <= TOL_PRANDTL and all(abs(a) > abs(b) for a, b in zip(errs, errs[1:])))
+    slope = np.polyfit(np.log(MESHES), np.log(np.abs(errs)), 1)[0]
+    print(f"{rid:22s} errors {', '.join(f'{100 * e:+.2f} %' for e in errs)}   fitted order {slope:.2f}")
+
+# %% [markdown]
+# ## Smith & Griffiths, Program 6.1: a flexible footing on undrained clay
+#
+# The peer's yield function is √J₂ = c_u (von Mises matched in plane strain), so this regression runs the
+# von Mises law of `ssi.materials.soil_laws` (`VON_MISES`) on the peer's 8 × 4 mesh and pressures. The same
+# mesh with Tresca (Mohr–Coulomb, φ = 0) is shown beside it: both collapse at the same pressure, but before
+# collapse the out-of-plane stress is not the mean of the in-plane ones, so the two laws yield at different
+# points and their settlements differ by several per cent.
+
+# %%
+ref = read_reference("smith_griffiths_p61.csv")
+q_ref, d_ref = ref["q_kPa"], ref["delta_m"]
+path = [50.0, 100.0, 150.0, 200.0, 250.0, 300.0, 350.0, 400.0, 425.0, 450.0, 465.0, 480.0, 490.0, 500.0,
+        505.0, 510.0, 515.0, 519.0]
+sg = {}
+for law in ("von_mises", "tresca"):
+    scene = sg61_scene(law)
+    t0 = time.perf_counter()
+    try:
+        res = run(scene.model, path, Settings(method="full", backend="superlu", max_iter=100))
+        stop = None
+    except NonConvergence as err:
+        res, stop = err.result, err.report
+    lf = np.array(res.load_factor)
+    w = res.displacement(scene.footing, "w")[:, 0]
+    sg[law] = dict(q=lf, w=w, time=time.perf_counter() - t0, iterations=res.iterations, stop=stop)
+    print(f"{law}: {time.perf_counter() - t0:.2f} s, iterations per step {res.iterations[1:]}, stop: {stop}")
+print(" q [kPa]   peer [mm]   von Mises [mm]  error    Tresca [mm]  difference")
+sg_err = []
+for q, d in zip(q_ref, d_ref):
+    row = [f"{q:7.0f}  {1e3 * d:10.3f}"]
+    for law in ("von_mises", "tresca"):
+        i = np.flatnonzero(np.isclose(sg[law]["q"], q))
+        wv = sg[law]["w"][i[0]] if len(i) else np.nan
+        row.append(f"{1e3 * wv:12.3f}  {100 * (wv / d - 1):+6.2f} %")
+        if law == "von_mises" and q <= 500.0:
+            sg_err.append(abs(wv / d - 1))
+    print("   ".join(row))
+SG_TOL = 0.03   # issue 4: within 3 % at every pressure up to 500 kPa
+sg_max = max(sg_err)
+report.record("sg61", "max |settlement/peer - 1| for q <= 500 kPa (von Mises, peer mesh)", sg_max, SG_TOL,
+              sg_max <= SG_TOL)
+print(f"largest relative settlement error up to 500 kPa: {100 * sg_max:.2f} %")
+
+# %% [markdown]
+# ## Non-associated flow: ψ = 0 versus ψ = φ
+#
+# Same rough footing, φ = 20°, c = 10 kPa, on the middle mesh. With ψ = 0 the material flows without volume
+# change; the limit load drops and the unsymmetric tangent makes each step harder to converge.
+
+# %%
+H_NA = MESHES[-2] if not FAST else MESHES[-1]
+nonassoc = {}
+for psi in ((20.0, 0.0) if FAST else (20.0, 10.0, 0.0)):
+    scene = rigid_footing(B=2.0, c=C, phi_deg=20.0, psi_deg=psi, E=E, nu=NU, rough=True, h_fine=H_NA,
+                          settle=SETTLE[20.0], **BLOCK)
+    out = push_footing(scene, n_steps=N_STEPS, method="line_search")
+    nonassoc[psi] = out
+    print(f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = {out['q_u'] / prandtl(C, 20.0)[0]:.4f} x Prandtl, "
+          f"iterations={out['n_iterations']}, per step max {max(out['iterations'])}, cuts={out['cuts']}, "
+          f"time={out['wall_time']:.1f} s, stop: {out['failure']}")
+drop = nonassoc[0.0]["q_u"] / nonassoc[20.0]["q_u"] - 1.0
+print(f"limit-load change psi=0 vs psi=phi on h={H_NA} m: {100 * drop:+.2f} %; iterations "
+      f"{nonassoc[20.0]['n_iterations']} -> {nonassoc[0.0]['n_iterations']}")
+
+# %% [markdown]
+# ## The trade: integration scheme, Newton variant, step size
+#
+# The rough footing with φ = ψ = 20° on the coarse mesh, pushed with 10, 20 or 40 steps. The error is the
+# difference from the same mesh's converged implicit result with the finest steps (so it measures the
+# integration and solution error, not the discretisation error), relative to Prandtl's value.
+
+# %%
+H_TRADE = MESHES[0]
+q_p20 = prandtl(C, 20.0)[0]
+variants = [("implicit, full Newton", dict(scheme="implicit"), "line_search"),
+            ("explicit (paper), full Newton", dict(scheme="explicit"), "line_search"),
+            ("explicit, 8 sub-steps + drift corr.", dict(scheme="explicit", n_sub=8, drift=True), "line_search"),
+            ("implicit, modified Newton (paper)", dict(scheme="implicit"), "modified")]
+step_counts = [10, 20] if FAST else [10, 20, 40]
+trade = {}
+for name, kw, method in variants:
+    for n in step_counts:
+        if (method == "modified" or "sub-steps" in name) and n != step_counts[-1]:
+            continue
+        scene = rigid_footing(B=2.0, c=C, phi_deg=20.0, E=E, nu=NU, rough=True, h_fine=H_TRADE,
+                              settle=SETTLE[20.0], **BLOCK, **kw)
+        if method == "modified":
+            out = push_footing(scene, n_steps=n, settings=Settings(method="modified", backend="superlu",
+                                                                   max_iter=200 if FAST else 400, max_cuts=1))
+        else:
+            out = push_footing(scene, n_steps=n, method=method)
+        trade[name, n] = out
+ref_scene = rigid_footing(B=2.0, c=C, phi_deg=20.0, E=E, nu=NU, rough=True, h_fine=H_TRADE,
+                          settle=SETTLE[20.0], **BLOCK)
+q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1], method="line_search")["q_u"]
+for (name, n), out in trade.items():
+    out["trade_err"] = abs(out["q_u"] - q_ref_trade) / q_p20
+    stop = f"  STOPPED: {out['failure']['reason']} at settlement {out['settlement'][-1] * 1e3:.1f} mm" \
+        if out["failure"] else ""
+    print(f"{name:38s} steps={n:3d}  q_u/Prandtl={out['q_u'] / q_p20:.4f}  error={out['trade_err']:.2e}  "
+          f"iterations={out['n_iterations']:5d}  time={out['wall_time']:6.2f} s{stop}")
+
+# %% [markdown]
+# ## Verification
+
+# %%
+# Prandtl: the error shrinks under refinement in every case; the 3 % claim is made on the named mesh (full mode)
+for phi, rough in CASES:
+    errs = [abs(prandtl_runs[phi, rough, h]["err"]) for h in MESHES]
+    assert all(a > b for a, b in zip(errs, errs[1:])), (phi, rough, errs)
+    if not FAST:
+        assert errs[-1] <= TOL_PRANDTL, (phi, rough, errs)
+# each push levelled off: the last two steps differ by < 0.1 % of the pressure (a limit, not a hardening curve)
+LEVEL_TOL = 1e-3
+for key, out in prandtl_runs.items():
+    assert abs(out["q"][-1] - out["q"][-2]) <= LEVEL_TOL * out["q"][-1], key
+# Smith & Griffiths: within 3 % up to 500 kPa (the peer's own iteration tolerance is 1e-3)
+assert sg_max <= SG_TOL, sg_max
+# non-associated flow cannot raise the limit load of an associated material (ψ < φ is a weaker material)
+assert nonassoc[0.0]["q_u"] <= nonassoc[20.0]["q_u"] * (1 + LEVEL_TOL)
+print("all checks passed")
+
+# %% [markdown]
+# ## Figures
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+h_show = MESHES[-1]
+for phi, rough in CASES:
+    out = prandtl_runs[phi, rough, h_show]
+    axes[0].plot(1e3 * out["settlement"], out["q"] / prandtl(C, phi)[0],
+                 label=f"φ = {phi:.0f}°, {'rough' if rough else 'smooth'}")
+    errs = [abs(prandtl_runs[phi, rough, h]["err"]) for h in MESHES]
+    axes[1].loglog(MESHES, 100 * np.array(errs), "o-", label=f"φ = {phi:.0f}°, {'rough' if rough else 'smooth'}")
+axes[0].axhline(1.0, color="k", lw=0.8)
+axes[0].set_xlabel("settlement [mm]")
+axes[0].set_ylabel("q / q_u,Prandtl")
+axes[0].set_title(f"rigid footing, h = {h_show} m")
+axes[0].legend()
+axes[1].axhline(100 * TOL_PRANDTL, color="k", ls="--", lw=0.8, label="3 %")
+axes[1].set_xlabel("element size under the footing h [m]")
+axes[1].set_ylabel("|q_u,FE / q_u,exact − 1| [%]")
+axes[1].legend()
+report.save_figure(fig, "fig10_1_prandtl")
+plt.show()
+
+# %% [markdown]
+# *Figure 10.1 — Left: footing pressure over Prandtl's collapse pressure vs settlement on the finest mesh.
+# Right: the error of the limit pressure against the element size under the footing.*
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+axes[0].plot(-1e3 * d_ref, q_ref, "ko", label="Smith & Griffiths P6.1 (peer)")
+for law, style in (("von_mises", "-"), ("tresca", "--")):
+    axes[0].plot(-1e3 * sg[law]["w"], sg[law]["q"], style, label=f"ssi, {law.replace('_', ' ')}")
+axes[0].axhline(prandtl(100.0, 0.0)[0], color="k", lw=0.8)
+axes[0].set_xlim(0, 80)
+axes[0].set_xlabel("centre settlement [mm]")
+axes[0].set_ylabel("footing pressure [kPa]")
+axes[0].legend()
+for psi, out in nonassoc.items():
+    axes[1].plot(1e3 * out["settlement"], out["q"] / q_p20, label=f"ψ = {psi:.0f}°")
+axes[1].axhline(1.0, color="k", lw=0.8)
+axes[1].set_xlabel("settlement [mm]")
+axes[1].set_ylabel("q / q_u,Prandtl(φ = 20°)")
+axes[1].set_title(f"rough footing, φ = 20°, h = {H_NA} m")
+axes[1].legend()
+report.save_figure(fig, "fig10_2_sg61_nonassociated")
+plt.show()
+
+# %% [markdown]
+# *Figure 10.2 — Left: the flexible footing of Smith & Griffiths' Program 6.1 (8 × 4 Q8, c_u = 100 kPa);
+# von Mises reproduces the peer, Tresca settles less before the common collapse pressure 514 kPa.
+# Right: the rough footing with associated (ψ = φ) and non-associated flow.*
+
+# %%
+fig, ax = plt.subplots(figsize=(7, 4.5))
+markers = {variants[0][0]: "o-", variants[1][0]: "s-", variants[2][0]: "^-", variants[3][0]: "x"}
+for name, _, _ in variants:
+    pts = [(out["wall_time"], max(out["trade_err"], 1e-6), n, out["failure"])
+           for (nm, n), out in trade.items() if nm == name]
+    ax.loglog([p[0] for p in pts], [p[1] for p in pts], markers[name], label=name)
+    for t, e, n, fail in pts:
+        ax.annotate(f"{n}" + (" (stopped)" if fail else ""), (t, e), fontsize=7)
+ax.set_xlabel("wall time [s]")
+ax.set_ylabel("|q_u − q_u,ref| / q_u,Prandtl")
+ax.set_title(f"rough footing φ = ψ = 20°, h = {H_TRADE} m (labels: number of steps)")
+ax.legend(fontsize=8)
+report.save_figure(fig, "fig10_3_trade")
+plt.show()
+
+# %% [markdown]
+# *Figure 10.3 — Error of the limit pressure against wall time for the integration schemes and Newton
+# variants; labels give the number of displacement steps. "stopped" marks runs that the solver ended with a
+# NonConvergence report (their point is the largest pressure reached).*
+#
+# ## Summary
+#
+# - The implicit Mohr–Coulomb return mapping inside the reduced-integrated Q8 element converges to Prandtl's
+#   collapse pressure for smooth and rough footings, φ = 0 and 20°, with the error shrinking under refinement
+#   (about first order in h, the footing corner being singular); on the named mesh (h = 0.0625 m) all four
+#   cases are within 3 % (values in the table above and in `figures/report.csv`).
+# - The flexible-footing curve of Smith & Griffiths is reproduced to well within 3 % up to 500 kPa when the
+#   peer's yield function is used; Tresca with the same c_u differs by ≈ 8 % before collapse.
+# - ψ = 0 lowers the limit load of the φ = 20° footing and needs more iterations; no exact value exists.
+# - The paper's explicit scheme and modified Newton cost more wall time per digit of accuracy than the
+#   implicit return mapping with full Newton; modified Newton with K₀ stalls near the limit load.
+#
+# References: Prandtl (1920), Reissner (1924); Smith, Griffiths & Margetts, *Programming the Finite Element
+# Method*, Program 6.1; Clausen, Damkilde & Andersen (2006, 2007) on principal-space return mapping;
+# de Borst & Vermeer (1984); Loukidis & Salgado (2009); Sloan & Randolph (1982).

@@ -1,0 +1,308 @@
+"""Bearing-capacity scenes: a rigid strip footing pushed into a Mohr–Coulomb block under displacement control,
+and Smith & Griffiths' flexible footing (Program 6.1) under load control.
+
+Used by ``chapters/10_bearing_capacity.py``, ``tests/test_bearing_capacity.py`` and
+``benchmarks/bench_footing.py``. Plain Python orchestration; all numerics are the library's kernels.
+
+Geometry of the rigid footing: by symmetry only the half x >= 0 is modelled (u = 0 on x = 0): a block
+``half_width`` wide and ``depth`` deep, the footing on 0 <= x <= B/2. The footing nodes get a prescribed
+settlement (w = -lambda * settle) and, for a rough base, u = 0; smooth: u free. The footing pressure is
+q = 2 R / B with R the vertical reaction of the half footing.
+"""
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .elements.soil_q8 import SoilQ8
+from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_params
+from .mesh import soil_block, structured_q8
+from .model import Model
+from .elements.base import CONSISTENT
+from .linsolve import Factorization
+from .model import System
+from .solver import NonConvergence, Result, Settings, run
+
+
+def prandtl(c, phi_deg, q=0.0):
+    """Prandtl–Reissner bearing capacity of a weightless soil: returns (q_u, Nc, Nq).
+
+    Nq = exp(π tan φ) tan²(45° + φ/2), Nc = (Nq - 1) cot φ (Nc = 2 + π for φ = 0), q_u = c Nc + q Nq.
+    """
+    if not 0.0 <= phi_deg < 90.0:
+        raise ValueError(f"phi_deg must lie in [0, 90), got {phi_deg}")
+    if phi_deg == 0.0:
+        nq, nc = 1.0, 2.0 + math.pi
+    else:
+        t = math.tan(math.radians(phi_deg))
+        nq = math.exp(math.pi * t) * math.tan(math.radians(45.0 + 0.5 * phi_deg)) ** 2
+        nc = (nq - 1.0) / t
+    return c * nc + q * nq, nc, nq
+
+
+@dataclass
+class FootingScene:
+    model: Model
+    soil: SoilQ8
+    footing: np.ndarray   # node ids under the (half) footing
+    B: float
+    mesh: object
+    info: dict
+
+
+def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rough=True, half_width=10.0,
+                  depth=10.0, h_fine=0.25, h_coarse=2.0, growth=1.25, scheme="implicit", n_sub=1, drift=False,
+                  surcharge=0.0, settle=0.1, n_gauss=2, layers=None):
+    """Half model of a rigid strip footing of width ``B`` on a weightless Mohr–Coulomb block.
+
+    ``settle`` is the footing settlement at load factor 1 [m]. ``surcharge`` [Pa] acts on the ground surface
+    beside the footing and, as an isotropic initial stress, everywhere (weightless soil in equilibrium).
+    ``layers``: optional list of (thickness, E, c, phi_deg, psi_deg) from the surface down, overriding the
+    single material (for the stiffness-contrast extreme).
+    """
+    if B <= 0 or half_width <= B / 2 or depth <= 0:
+        raise ValueError(f"need B > 0, half_width > B/2 and depth > 0; got B={B}, half_width={half_width}, "
+                         f"depth={depth}")
+    if settle <= 0:
+        raise ValueError(f"settle must be > 0 (footing settlement at load factor 1, m), got {settle}")
+    thick = None if layers is None else [lay[0] for lay in layers]
+    mesh = soil_block(half_width, depth, thick, foundation=(0.0, 0.5 * B), h_fine=h_fine, h_coarse=h_coarse,
+                      growth=growth, x_left=0.0)
+    model = Model()
+    ids = model.add_nodes(mesh.xy, ndof=2)
+    if layers is None:
+        mats = [mohr_coulomb_params(E, nu, c, phi_deg, psi_deg, scheme=scheme, n_sub=n_sub, drift=drift)]
+    else:
+        mats = [mohr_coulomb_params(lay[1], nu, lay[2], lay[3], lay[4], scheme=scheme, n_sub=n_sub, drift=drift)
+                for lay in layers]
+    kinds, params = material_table(mats)
+    soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params,
+                  n_gauss=n_gauss)
+    if surcharge:
+        if surcharge < 0:
+            raise ValueError(f"surcharge must be >= 0 (Pa), got {surcharge}")
+        s0 = np.zeros((soil.n_el, len(soil.gw), 4))
+        s0[..., [0, 1, 3]] = -surcharge
+        soil.initial_stress = s0
+    model.add_group(soil)
+    model.fix(mesh.bottom, "u")
+    model.fix(mesh.bottom, "w")
+    model.fix(mesh.left, "u")
+    model.fix(mesh.right, "u")
+    footing = mesh.nodes_between(0.0, 0.5 * B)
+    model.prescribe(footing, "w", -settle)
+    if rough:
+        model.fix(footing, "u")
+    if surcharge:
+        _surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, dead=True)
+    info = dict(B=B, c=c, phi_deg=phi_deg, psi_deg=phi_deg if psi_deg is None else psi_deg, E=E, nu=nu,
+                rough=rough, half_width=half_width, depth=depth, h_fine=h_fine, scheme=scheme, n_sub=n_sub,
+                drift=drift, surcharge=surcharge, n_el=len(mesh.conn), n_dof=model.n_dof)
+    return FootingScene(model, soil, footing, B, mesh, info)
+
+
+def _surface_pressure(model, mesh, x0, x1, p, dead=False):
+    """Consistent nodal forces (L/6, 4L/6, L/6 per quadratic edge) of a pressure p on the surface x0..x1."""
+    nodes = mesh.nodes_between(x0, x1)
+    xs = mesh.xy[nodes, 0]
+    f = np.zeros(len(nodes))
+    for i in range(0, len(nodes) - 2, 2):
+        L = xs[i + 2] - xs[i]
+        f[i] += L / 6.0
+        f[i + 1] += 4.0 * L / 6.0
+        f[i + 2] += L / 6.0
+    if dead:
+        model.add_dead_load(nodes, "w", -p * f)
+    else:
+        model.add_load(nodes, "w", -p * f)
+    return nodes, f
+
+
+def footing_pressure(scene: FootingScene, result):
+    """(settlement [m, positive down], pressure q [Pa]) histories of a rigid-footing run."""
+    w = result.displacement(scene.footing[:1], "w")[:, 0]
+    q = -result.reaction(scene.footing, "w") / (0.5 * scene.B)
+    return -w, q
+
+
+def push_footing(scene: FootingScene, n_steps=20, method="full", grading=1.0, settings=None, **kw):
+    """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
+    first steps smaller: lambda_i = (i/n)^grading). Returns a dict with settlement, q, q_u (the largest
+    pressure reached), iterations per step, wall time, and the failure report if the solver stopped."""
+    lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
+    t0 = time.perf_counter()
+    failure = None
+    try:
+        if method == "line_search":
+            res = newton_line_search(scene.model, lam, **kw)
+        else:
+            if settings is None:
+                settings = Settings(method=method, symmetric_tangent=False, **kw)
+            res = run(scene.model, lam, settings)
+    except NonConvergence as err:
+        res = err.result
+        failure = err.report
+    wall = time.perf_counter() - t0
+    s, q = footing_pressure(scene, res)
+    return dict(settlement=s, q=q, q_u=float(q.max()), iterations=list(res.iterations[1:]),
+                n_iterations=int(sum(res.iterations[1:])), wall_time=wall, result=res, failure=failure,
+                cuts=res.cuts, factorizations=res.factorizations)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# full Newton with a backtracking line search (helper until ssi.solver offers one)
+# ---------------------------------------------------------------------------------------------------------
+def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cuts=8, backend="superlu",
+                       symmetric=False, min_step=1.0 / 64.0, verbose=False):
+    """Full Newton with the consistent tangent and a backtracking line search on the residual norm.
+
+    Why: with perfectly plastic Mohr–Coulomb points near a footing corner, plain Newton steps overshoot into
+    a far plastic state (the tangent of reduced-integrated Q8 elements whose four points all flow is nearly
+    singular) and diverge even at small loads. Halving the Newton step until |r| decreases (down to
+    ``min_step``) restores convergence. Same convergence test as ``ssi.solver`` (relative force norm) and the
+    same ``Result`` (iterations, residuals per step); a step that still fails is halved (``max_cuts``), then
+    :class:`ssi.solver.NonConvergence` is raised with what, where and at which load.
+    """
+    import time as _time
+
+    t0 = _time.perf_counter()
+    model.check()
+    system = System(model)
+    free = system.free
+    f_ref, f_dead = model.load_vectors()
+    states = [g.initial_state() for g in model.groups]
+    u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
+    f_int, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
+    result = Result(model=model)
+    result.load_factor.append(0.0)
+    result.u.append(u.copy())
+    result.f_int.append(f_int.copy())
+    result.states.append(states)
+    result.iterations.append(0)
+    result.residuals.append([])
+    result.energies.append([])
+    lam = 0.0
+    for target in np.atleast_1d(np.asarray(load_factors, float)):
+        pending = [target]
+        cuts_here = 0
+        while pending:
+            lam_next = pending[-1]
+            f_ext = lam_next * f_ref + f_dead
+            u_try = system.apply_constraints(u.copy(), lam_next)
+            f, k_list, trial = system.evaluate(u_try, u_try - u, states, CONSISTENT)
+            r = (f_ext - f)[free]
+            res_hist = []
+            ok = False
+            for it in range(1, max_iter + 1):
+                scale = max(np.linalg.norm(f_ext), np.linalg.norm(f), 1e-30)
+                rel = np.linalg.norm(r) / scale
+                res_hist.append(rel)
+                if rel <= force_tol:
+                    ok = True
+                    break
+                try:
+                    kt = system.pattern.matrix(system.pattern.assemble(k_list))
+                    du = Factorization(kt, symmetric=symmetric, backend=backend).solve(r)
+                except (FloatingPointError, RuntimeError):
+                    break
+                result.factorizations += 1
+                r0 = np.linalg.norm(r)
+                step = 1.0
+                while True:
+                    u_new = u_try.copy()
+                    u_new[free] += step * du
+                    try:
+                        f_n, k_n, trial_n = system.evaluate(u_new, u_new - u, states, CONSISTENT)
+                        r_n = (f_ext - f_n)[free]
+                        good = np.all(np.isfinite(r_n)) and np.linalg.norm(r_n) < r0
+                    except FloatingPointError:
+                        good = False
+                    if good or step <= min_step:
+                        break
+                    step *= 0.5
+                if not good and not np.all(np.isfinite(r_n)):
+                    break
+                u_try, f, k_list, trial, r = u_new, f_n, k_n, trial_n, r_n
+            if ok:
+                u, states, lam = u_try, trial, lam_next
+                pending.pop()
+                result.load_factor.append(lam)
+                result.u.append(u.copy())
+                result.f_int.append(f.copy())
+                result.states.append(states)
+                result.iterations.append(len(res_hist) - 1)
+                result.residuals.append(res_hist)
+                result.energies.append([])
+                if verbose:
+                    print(f"lambda={lam:.5g} iterations={len(res_hist) - 1} residual={res_hist[-1]:.2e}")
+                continue
+            if cuts_here >= max_cuts:
+                result.wall_time = _time.perf_counter() - t0
+                worst = int(system.free_dofs[int(np.argmax(np.abs(np.nan_to_num(r, nan=np.inf))))])
+                raise NonConvergence({"reason": f"no convergence in {max_iter} line-searched Newton iterations",
+                                      "load_factor_from": float(lam), "load_factor_to": float(lam_next),
+                                      "worst_dof": worst, "last_residual": float(res_hist[-1])}, result)
+            cuts_here += 1
+            result.cuts += 1
+            pending.append(0.5 * (lam + lam_next))
+    result.wall_time = _time.perf_counter() - t0
+    return result
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Smith & Griffiths, Program 6.1
+# ---------------------------------------------------------------------------------------------------------
+SG61_X = (0.0, 1.0, 2.0, 3.0, 4.0, 5.5, 7.0, 9.0, 12.0)
+SG61_Z = (-5.0, -3.75, -2.5, -1.25, 0.0)
+
+
+def sg61_scene(law="von_mises", E=1e5 * 1e3, nu=0.3, cu=100e3, n_gauss=2, refine=1):
+    """The flexible strip footing of Smith & Griffiths' Program 6.1 (half model, 8 × 4 Q8 elements, footing
+    half width 2 m): x = 0 and x = 12 m on rollers (u = 0), base fixed. ``law``: "von_mises" (the peer's
+    sqrt(J2) = cu) or "tresca" (Mohr–Coulomb with φ = 0). Load factor = footing pressure in kPa.
+    ``refine`` splits every element into refine × refine."""
+    x = _refine_lines(SG61_X, refine)
+    z = _refine_lines(SG61_Z, refine)
+    mesh = structured_q8(x, z)
+    model = Model()
+    ids = model.add_nodes(mesh.xy, ndof=2)
+    if law == "von_mises":
+        mat = von_mises_params(E, nu, cu)
+    elif law == "tresca":
+        mat = mohr_coulomb_params(E, nu, cu, 0.0)
+    else:
+        raise ValueError(f"law must be 'von_mises' or 'tresca', got {law!r}")
+    kinds, params = material_table([mat])
+    soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), 0, kinds, params, n_gauss=n_gauss)
+    model.add_group(soil)
+    model.fix(mesh.bottom, "u")
+    model.fix(mesh.bottom, "w")
+    model.fix(mesh.left, "u")
+    model.fix(mesh.right, "u")
+    _surface_pressure(model, mesh, 0.0, 2.0, 1e3)  # 1 kPa per unit load factor
+    centre = mesh.nodes_between(0.0, 0.0)
+    return FootingScene(model, soil, centre, 4.0, mesh, dict(law=law, refine=refine))
+
+
+def _refine_lines(lines, r):
+    lines = np.asarray(lines, float)
+    if r == 1:
+        return lines
+    out = [lines[0]]
+    for a, b in zip(lines[:-1], lines[1:]):
+        out.extend(a + (b - a) * np.arange(1, r + 1) / r)
+    return np.array(out)
+
+
+def read_reference(name):
+    """Columns of ``reference_data/<name>`` (comment lines '#' skipped, first other line = header) as a dict
+    of float arrays."""
+    from . import paths
+
+    with open(paths.REFERENCE_DATA / name) as fh:
+        lines = [ln.strip() for ln in fh if ln.strip() and not ln.startswith("#")]
+    header = lines[0].split(",")
+    data = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]]).reshape(-1, len(header))
+    return {h: data[:, i] for i, h in enumerate(header)}
