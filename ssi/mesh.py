@@ -120,7 +120,7 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
     layers = [depth] if layer_thicknesses is None else list(layer_thicknesses)
     if any(t <= 0 for t in layers) or abs(sum(layers) - depth) > 1e-9 * depth:
         raise ValueError(f"layer_thicknesses {layers} must be positive and tile the depth {depth}")
-    n_under = max(1, int(round((x1 - x0) / h_fine)))
+    n_under = max(1, round((x1 - x0) / h_fine))
     under = np.linspace(x0, x1, n_under + 1)
     h0 = (x1 - x0) / n_under
     left = graded_lines(x0, x_left, h0, h_coarse, growth)[::-1]

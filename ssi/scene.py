@@ -26,8 +26,8 @@ import numpy as np
 from .elements.interface import V_SIG, V_TAU, Interface6, add_interface
 from .elements.plate import PlateStrip
 from .elements.soil_q8 import SoilQ8
-from .materials.interface_law import interface_params
 from .materials.concrete import P_E0, P_FR
+from .materials.interface_law import interface_params
 from .materials.layer_laws import CONCRETE, P_LS, STEEL, layer_update
 from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
 from .materials.soil_laws import elastic_params, geostatic_stress, material_table, mohr_coulomb_params

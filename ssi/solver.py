@@ -117,18 +117,8 @@ def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
     model.check()
     t_start = time.perf_counter()
-    system = System(model)
-    f_ref, f_dead = model.load_vectors()
+    system, f_ref, f_dead, states, u, result, k0, fac_k0 = _start(model, settings)
     free = system.free
-    states = [g.initial_state() for g in model.groups]
-    u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
-    f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
-    result = Result(model=model)
-    _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
-
-    k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
-    fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend)
-    result.factorizations = 1
     lam = 0.0
     for target in targets:
         pending = [target]
@@ -154,6 +144,21 @@ def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
             pending.append(0.5 * (lam + lam_next))
     result.wall_time = time.perf_counter() - t_start
     return result
+
+
+def _start(model, settings):
+    """Assembly machinery, loads, the initial state recorded as step 0, and the one factorisation of K0."""
+    system = System(model)
+    f_ref, f_dead = model.load_vectors()
+    states = [g.initial_state() for g in model.groups]
+    u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
+    f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
+    result = Result(model=model)
+    _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
+    k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
+    fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend)
+    result.factorizations = 1
+    return system, f_ref, f_dead, states, u, result, k0, fac_k0
 
 
 def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings):
@@ -276,19 +281,10 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
     if int(n_steps) < 1 or not first_increment > 0.0:
         raise ValueError("n_steps must be >= 1 and first_increment > 0")
     t_start = time.perf_counter()
-    system = System(model)
+    system, f_ref, f_dead, states, u, result, _, fac = _start(model, settings)
     free = system.free
-    f_ref, f_dead = model.load_vectors()
     if not np.any(f_ref[free]):
         raise ValueError("run_arc_length needs a reference load on free DOFs (Model.add_load)")
-    states = [g.initial_state() for g in model.groups]
-    u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
-    f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
-    result = Result(model=model)
-    _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
-    k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
-    fac = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend)
-    result.factorizations = 1
     du_ref = fac.solve(f_ref[free])
     arc0 = first_increment * np.linalg.norm(du_ref)
     arc, lam, direction = arc0, 0.0, None
