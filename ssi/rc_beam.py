@@ -26,7 +26,7 @@ from .materials import rc
 from .materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from .model import Model
 from .section import rc_section
-from .solver import Settings, run
+from .solver import NonConvergence, Settings, run
 
 __all__ = ["JANNEY", "janney_materials", "janney_section", "FourPointBeam", "build_four_point",
            "load_path", "read_reference_csv"]
@@ -80,8 +80,9 @@ class FourPointBeam:
 
 
 def build_four_point(section, span, a, n_shear, n_middle, crack_band="point", integration="selective",
-                     kappa=5.0 / 6.0):
-    """Half beam: ``n_shear`` equal elements on [0, a], ``n_middle`` on [a, L/2]."""
+                     kappa=5.0 / 6.0, **strip_options):
+    """Half beam: ``n_shear`` equal elements on [0, a], ``n_middle`` on [a, L/2]. Extra keywords go to
+    :class:`ssi.elements.plate.PlateStrip` (e.g. ``self_bending``)."""
     if not 0.0 < a < 0.5 * span:
         raise ValueError(f"a must be in (0, span/2 = {0.5 * span}), got {a}")
     if int(n_shear) < 1 or int(n_middle) < 1:
@@ -90,7 +91,7 @@ def build_four_point(section, span, a, n_shear, n_middle, crack_band="point", in
                              np.linspace(a, 0.5 * span, int(n_middle) + 1)[1:]])
     model = Model()
     group, ids, _ = add_plate_strip(model, x_ends, section, crack_band=crack_band, integration=integration,
-                                    kappa=kappa, name="beam")
+                                    kappa=kappa, name="beam", **strip_options)
     support, load, mid = int(ids[0]), int(ids[2 * int(n_shear)]), int(ids[-1])
     model.fix([support], "w")
     model.fix([mid], "u")
@@ -99,21 +100,29 @@ def build_four_point(section, span, a, n_shear, n_middle, crack_band="point", in
                          {"n_shear": int(n_shear), "n_middle": int(n_middle)})
 
 
-def load_path(beam: FourPointBeam, w_load_max, n_steps, settings: Settings | None = None):
+def load_path(beam: FourPointBeam, w_load_max, n_steps, settings: Settings | None = None,
+              allow_partial=False):
     """Drive the load point down to ``w_load_max`` (> 0, a deflection) in ``n_steps`` equal steps.
 
     Returns a dict of arrays (n_steps + 1,): ``P`` (load per unit width at the load point, positive
     down), ``M`` (mid-span moment per unit width), ``delta`` (mid-span deflection, positive down),
-    ``delta_load``; plus ``wall_time``, ``iterations``, ``result``."""
+    ``delta_load``; plus ``wall_time``, ``iterations``, ``result`` and ``failure`` (None, or the solver's
+    report when ``allow_partial`` kept the converged steps of a run that stopped early)."""
     m = beam.model
     m.prescribe([beam.load], "w", -float(w_load_max))
     t0 = time.perf_counter()
-    res = run(m, np.linspace(0.0, 1.0, int(n_steps) + 1)[1:], settings or Settings())
+    failure = None
+    try:
+        res = run(m, np.linspace(0.0, 1.0, int(n_steps) + 1)[1:], settings or Settings())
+    except NonConvergence as err:
+        if not allow_partial:
+            raise
+        res, failure = err.result, err.report
     wall = time.perf_counter() - t0
     P = -res.reaction([beam.load], "w")
     return {"P": P, "M": P * beam.a, "delta": -res.displacement([beam.mid], "w")[:, 0],
             "delta_load": -res.displacement([beam.load], "w")[:, 0], "wall_time": wall,
-            "iterations": np.array(res.iterations), "result": res}
+            "iterations": np.array(res.iterations), "result": res, "failure": failure}
 
 
 def linear_compliance(beam: FourPointBeam):
@@ -141,3 +150,27 @@ def read_reference_csv(name):
             rows.append([float(v) for v in next(csv.reader([line]))])
     data = np.array(rows, np.float64).reshape(-1, len(names))
     return comments, names, data
+
+
+def mean_crack_spacing_ec2(c, phi, As, b, h, d, k1=0.8, k2=0.5):
+    """Designer estimate of the mean crack spacing s_rm = s_r,max / 1.7 (EN 1992-1-1 eq. 7.11, 7.14):
+    s_r,max = 3.4 c + 0.425 k1 k2 phi / rho_eff, rho_eff = As / (b h_c,eff), h_c,eff = min(2.5 (h - d), h/2)
+    (the (h - x)/3 cap of EC2 is not used: it would exclude the bars of the substitute beam).
+    c: clear cover to the bar surface, phi: bar diameter [m]."""
+    for name, v in (("c", c), ("phi", phi), ("As", As), ("b", b), ("h", h), ("d", d)):
+        rc._positive(name, v)
+    if not d < h:
+        raise ValueError(f"d must be below h = {h}, got {d}")
+    h_eff = min(2.5 * (h - d), 0.5 * h)
+    rho = As / (b * h_eff)
+    return (3.4 * c + 0.425 * k1 * k2 * phi / rho) / 1.7
+
+
+JANNEY_BAR_DIAMETER = 0.0159   # No. 5 bar [m]
+
+
+def janney_crack_spacing():
+    """s_rm of the substitute beam (bars at d, clear bottom cover h - d - phi/2)."""
+    g = JANNEY
+    phi = JANNEY_BAR_DIAMETER
+    return mean_crack_spacing_ec2(g["h"] - g["d"] - 0.5 * phi, phi, g["As"], g["b"], g["h"], g["d"])

@@ -5,11 +5,11 @@ same layer laws (``ssi.materials.layer_laws.layer_update``) and the same layers 
 but none of the element code. Plane sections remain plane,
 
     eps(z) = eps0 - z kap,      N = sum h_n sig_n = 0 (no axial force in a simply supported beam),
-    M = -sum h_n z_n sig_n + sum e0_n h_n^3/12 kap      (sagging positive, per unit width),
+    M = -sum h_n z_n sig_n + sum e_n h_n^3/12 kap      (sagging positive, per unit width),
 
-the second term being the exact within-layer bending of the layer's initial modulus, the same discrete
-section model as the plate strip (see ``ssi.elements.plate``). The curvature is raised monotonically
-in small steps; at each step eps0 solves N = 0 (Newton on A = dN/deps0, bisection if Newton stalls) and
+the second term being the within-layer bending with the layer's initial (e_n = e0_n) or tangent modulus,
+the same discrete section model as the plate strip's ``self_bending`` option (see ``ssi.elements.plate``).
+The curvature is raised monotonically in small steps; at each step eps0 solves N = 0 (Newton on A = dN/deps0, bisection if Newton stalls) and
 the layer histories are committed, so the section follows the same loading path as a section of the
 beam whose moment grows monotonically. The shear stiffness of the section in that state is
 S = kappa_s sum_{shear layers} g_t,n h_n (cracked layers with their shear retention beta).
@@ -44,9 +44,11 @@ def _params(section: Section, ls):
     return prm
 
 
-def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6.0):
+def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6.0, self_bending="initial"):
     """Resultants of the section at (eps0, kap) from the committed layer histories ``hist_old``.
 
+    ``self_bending``: modulus of each layer's own bending term h^3/12 kap -- "initial" (e0, the plate
+    strip's default), "tangent" (the law's tangent, the strip's other option) or "none" (pure midpoint rule).
     Returns ``(N, M, A, S, hist_new)``: axial force, moment, dN/deps0, shear stiffness (per unit width),
     and the new histories (n_layer, N_LAYER_HIST)."""
     e0, _ = section.initial_moduli()
@@ -56,20 +58,21 @@ def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6
         z, h = section.z_mid[n], section.h[n]
         sig, _, e_t, g_t = layer_update(section.kind[n], params[n], eps0 - z * kap, 0.0, hist_old[n],
                                         hist_new[n], 1)
+        e_self = e0[n] if self_bending == "initial" else (e_t if self_bending == "tangent" else 0.0)
         N += h * sig
-        M += -h * z * sig + e0[n] * h**3 / 12.0 * kap
+        M += -h * z * sig + e_self * h**3 / 12.0 * kap
         A += h * e_t
         if section.carries_shear[n]:
             S += kappa_s * h * g_t
     return N, M, A, S, hist_new
 
 
-def _solve_eps0(section, params, kap, hist, guess, n_scale, kappa_s):
+def _solve_eps0(section, params, kap, hist, guess, n_scale, kappa_s, sb):
     """eps0 with N(eps0, kap) = 0 for the committed ``hist``: Newton, then bisection as a fallback."""
     tol = 1e-11 * n_scale
     x = guess
     for _ in range(60):
-        N, M, A, S, hn = section_state(section, params, x, kap, hist, kappa_s)
+        N, M, A, S, hn = section_state(section, params, x, kap, hist, kappa_s, sb)
         if abs(N) <= tol:
             return x, M, S, hn
         if A <= 0.0:
@@ -77,13 +80,13 @@ def _solve_eps0(section, params, kap, hist, guess, n_scale, kappa_s):
         x = x - N / A
     # bracket and bisect (N rises with eps0 wherever the section still has stiffness)
     lo, hi = guess - 1e-3, guess + 1e-3
-    while section_state(section, params, lo, kap, hist, kappa_s)[0] > 0.0:
+    while section_state(section, params, lo, kap, hist, kappa_s, sb)[0] > 0.0:
         lo -= 2.0 * (hi - lo)
-    while section_state(section, params, hi, kap, hist, kappa_s)[0] < 0.0:
+    while section_state(section, params, hi, kap, hist, kappa_s, sb)[0] < 0.0:
         hi += 2.0 * (hi - lo)
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        N, M, A, S, hn = section_state(section, params, mid, kap, hist, kappa_s)
+        N, M, A, S, hn = section_state(section, params, mid, kap, hist, kappa_s, sb)
         if abs(N) <= tol or hi - lo < 1e-16:
             return mid, M, S, hn
         if N > 0.0:
@@ -120,10 +123,14 @@ class MomentCurvature:
         return np.interp(M, m, self.S[: self.monotone], right=np.nan)
 
 
-def moment_curvature(section: Section, kap_max: float, n_steps: int = 2000, ls=None, kappa_s=5.0 / 6.0):
+def moment_curvature(section: Section, kap_max: float, n_steps: int = 2000, ls=None, kappa_s=5.0 / 6.0,
+                     self_bending="initial"):
     """Trace M(kap) of ``section`` for kap = 0 .. kap_max in ``n_steps`` equal steps (N = 0).
 
-    ``ls``: crack band width given to every CONCRETE layer (None: as in the section's params)."""
+    ``ls``: crack band width given to every CONCRETE layer (None: as in the section's params);
+    ``self_bending``: as in :func:`section_state` (match the strip's option)."""
+    if self_bending not in ("initial", "tangent", "none"):
+        raise ValueError(f"self_bending must be 'initial', 'tangent' or 'none', got {self_bending!r}")
     if not kap_max > 0.0 or int(n_steps) < 2:
         raise ValueError(f"need kap_max > 0 and n_steps >= 2, got {kap_max}, {n_steps}")
     params = _params(section, ls)
@@ -136,10 +143,11 @@ def moment_curvature(section: Section, kap_max: float, n_steps: int = 2000, ls=N
     M = np.zeros_like(kaps)
     eps0 = np.zeros_like(kaps)
     S = np.zeros_like(kaps)
-    _, M[0], _, S[0], _ = section_state(section, params, 0.0, 0.0, hist, kappa_s)
+    _, M[0], _, S[0], _ = section_state(section, params, 0.0, 0.0, hist, kappa_s, self_bending)
     first_yield = None
     for i in range(1, kaps.size):
-        eps0[i], M[i], S[i], hist = _solve_eps0(section, params, kaps[i], hist, eps0[i - 1], n_scale, kappa_s)
+        eps0[i], M[i], S[i], hist = _solve_eps0(section, params, kaps[i], hist, eps0[i - 1], n_scale, kappa_s,
+                                               self_bending)
         if first_yield is None and steel.size and np.any(hist[steel, 0] != 0.0):
             first_yield = i
     rising = np.diff(M) > 0.0
