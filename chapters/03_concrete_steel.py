@@ -182,7 +182,7 @@ def fd_error(kind, params, eps, hist):
     h0 = np.zeros(N_LAYER_HIST)
     h0[: len(hist)] = hist
     h1 = np.zeros(N_LAYER_HIST)
-    s, t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, 1)
+    _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, 1)
     d = 1e-9
     e_fd = (layer_update(kind, params, eps + d, 1e-4, h0, h1, 1)[0]
             - layer_update(kind, params, eps - d, 1e-4, h0, h1, 1)[0]) / (2 * d)

@@ -28,8 +28,15 @@ from .model import Model
 from .section import rc_section
 from .solver import NonConvergence, Settings, run
 
-__all__ = ["JANNEY", "janney_materials", "janney_section", "FourPointBeam", "build_four_point",
-           "load_path", "read_reference_csv"]
+__all__ = [
+    "JANNEY",
+    "FourPointBeam",
+    "build_four_point",
+    "janney_materials",
+    "janney_section",
+    "load_path",
+    "read_reference_csv",
+]
 
 JANNEY = {
     "b": 0.1524, "h": 0.3048, "span": 2.7432, "a": 0.9144, "As": 600.0e-6, "d": 0.2108,

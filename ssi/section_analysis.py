@@ -33,8 +33,13 @@ from .materials.concrete import P_LS
 from .materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
 from .section import Section
 
-__all__ = ["MomentCurvature", "section_state", "moment_curvature", "four_point_deflection",
-           "four_point_deflection_elastic"]
+__all__ = [
+    "MomentCurvature",
+    "four_point_deflection",
+    "four_point_deflection_elastic",
+    "moment_curvature",
+    "section_state",
+]
 
 
 def _params(section: Section, ls):

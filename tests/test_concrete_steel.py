@@ -11,8 +11,14 @@ import numpy as np
 import pytest
 
 from ssi.materials import rc
-from ssi.materials.concrete import (P_EPS_C, P_FC, compression_envelope, irreversible_strain,
-                                    irreversible_strain_from_stress, softening_modulus)
+from ssi.materials.concrete import (
+    P_EPS_C,
+    P_FC,
+    compression_envelope,
+    irreversible_strain,
+    irreversible_strain_from_stress,
+    softening_modulus,
+)
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
 
 FD_TOL = 1e-6
@@ -47,7 +53,7 @@ def call(kind, p, eps, gam=0.0, h=None, tangent=1):
 
 
 def fd_check(kind, p, eps, gam, h):
-    sig, tau, e_t, g_t = call(kind, p, eps, gam, h)
+    _sig, _tau, e_t, g_t = call(kind, p, eps, gam, h)
     s_p = call(kind, p, eps + H_FD, gam, h)[0]
     s_m = call(kind, p, eps - H_FD, gam, h)[0]
     t_p = call(kind, p, eps, gam + H_FD, h)[1]

@@ -93,8 +93,7 @@ def irreversible_strain_from_stress(sig, descending, E0, fc, eps_c):
     a = E0 * eps_c / fc
     bq = sig * (a - 2.0) - E0 * eps_c
     disc = bq * bq - 4.0 * sig * sig
-    if disc < 0.0:
-        disc = 0.0
+    disc = max(disc, 0.0)
     root = math.sqrt(disc)
     if descending:
         x = (-bq + root) / (2.0 * sig)
@@ -171,8 +170,7 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     e_t = 0.0
     if x_max >= eps_cu or x >= eps_cu:
         # 1. crushed: no stress from now on
-        if x > x_max:
-            x_max = x
+        x_max = max(x_max, x)
     elif x > x_max:
         # 2. compression loading on the envelope, eq. (5.1)
         f, df = compression_envelope(x, E0, fc, eps_c, eps_cu)
@@ -182,10 +180,7 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     else:
         # 3. shift by the irreversible strain, eq. (5.3)
         e = eps + irreversible_strain(x_max, E0, fc, eps_c, eps_cu)
-        if e <= 0.0:
-            sig = E0 * e
-            e_t = E0
-        elif e <= eps_r and e_max <= eps_r:
+        if e <= 0.0 or e <= eps_r and e_max <= eps_r:
             sig = E0 * e
             e_t = E0
         elif e >= e_max:
@@ -197,8 +192,7 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
             s_env, _ = tension_envelope(e_max, E0, fr, params[P_GF], params[P_LS], params[P_ALPHA_TS], eps_y)
             e_t = s_env / e_max
             sig = e_t * e
-        if e > e_max:
-            e_max = e
+        e_max = max(e_max, e)
     hist_new[H_XMAX] = x_max
     hist_new[H_EMAX] = e_max
     g_t = beta * G

@@ -21,6 +21,11 @@ of length L_e, so that a point that cracks through dissipates exactly Gf per uni
 A model builder sets it per element and point (the params array may be per point); if a single ls is
 given for all elements the law is a plain (mesh-dependent) strain-softening law.
 
+Numba cache caveat: ``cache=True`` keys a kernel's cache on its *own* file only. ``layer_update`` (here) and
+the plate kernels inline ``concrete_update`` / ``steel_update``; after editing ``concrete.py`` or ``steel.py``
+delete the cached ``layer_laws.*`` and ``plate.*`` entries under ``NUMBA_CACHE_DIR`` (or touch this file and
+``ssi/elements/plate.py``), otherwise stale law code keeps running.
+
 History: N_LAYER_HIST = 4 floats per layer point (concrete uses 2: max compressive strain, max crack
 strain; steel uses 1: plastic strain). Unused entries are copied through.
 """
@@ -36,8 +41,16 @@ STEEL = 2
 N_LAYER_HIST = 4  # history variables per layer point (laws may use fewer)
 N_LAYER_PARAMS = N_CONCRETE_PARAMS  # longest parameter vector of any kind
 
-__all__ = ["ELASTIC", "CONCRETE", "STEEL", "N_LAYER_HIST", "N_LAYER_PARAMS", "P_LS", "layer_update",
-           "crack_band_width"]
+__all__ = [
+    "CONCRETE",
+    "ELASTIC",
+    "N_LAYER_HIST",
+    "N_LAYER_PARAMS",
+    "P_LS",
+    "STEEL",
+    "crack_band_width",
+    "layer_update",
+]
 
 
 def crack_band_width(element_length: float, weight: float) -> float:
