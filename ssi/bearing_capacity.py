@@ -16,13 +16,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .elements.base import CONSISTENT
 from .elements.soil_q8 import SoilQ8
+from .linsolve import Factorization
 from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_params
 from .mesh import soil_block, structured_q8
-from .model import Model
-from .elements.base import CONSISTENT
-from .linsolve import Factorization
-from .model import System
+from .model import Model, System
 from .solver import NonConvergence, Result, Settings, run
 
 
@@ -155,15 +154,17 @@ def push_footing(scene: FootingScene, n_steps=20, method="full", grading=1.0, se
 # full Newton with a backtracking line search (helper until ssi.solver offers one)
 # ---------------------------------------------------------------------------------------------------------
 def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cuts=8, backend="superlu",
-                       symmetric=False, min_step=1.0 / 64.0, verbose=False):
+                       symmetric=False, min_step=1.0 / 64.0, k0_iter=300, verbose=False):
     """Full Newton with the consistent tangent and a backtracking line search on the residual norm.
 
     Why: with perfectly plastic Mohr–Coulomb points near a footing corner, plain Newton steps overshoot into
     a far plastic state (the tangent of reduced-integrated Q8 elements whose four points all flow is nearly
     singular) and diverge even at small loads. Halving the Newton step until |r| decreases (down to
     ``min_step``) restores convergence. Same convergence test as ``ssi.solver`` (relative force norm) and the
-    same ``Result`` (iterations, residuals per step); a step that still fails is halved (``max_cuts``), then
-    :class:`ssi.solver.NonConvergence` is raised with what, where and at which load.
+    same ``Result`` (iterations, residuals per step). An increment on which Newton fails is retried with the
+    initial stiffness K0 (modified Newton, up to ``k0_iter`` iterations: slow but it cannot be sent astray by
+    an indefinite unsymmetric tangent of non-associated flow); if that fails too the step is halved
+    (``max_cuts``), then :class:`ssi.solver.NonConvergence` is raised with what, where and at which load.
     """
     import time as _time
 
@@ -183,6 +184,7 @@ def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cut
     result.iterations.append(0)
     result.residuals.append([])
     result.energies.append([])
+    fac_k0 = None
     lam = 0.0
     for target in np.atleast_1d(np.asarray(load_factors, float)):
         pending = [target]
@@ -225,6 +227,26 @@ def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cut
                 if not good and not np.all(np.isfinite(r_n)):
                     break
                 u_try, f, k_list, trial, r = u_new, f_n, k_n, trial_n, r_n
+            if not ok and k0_iter > 0:
+                # fallback: modified Newton with K0 from the committed state
+                if fac_k0 is None:
+                    k0 = system.pattern.matrix(system.pattern.assemble([g.elastic_stiffness()
+                                                                        for g in model.groups]))
+                    fac_k0 = Factorization(k0, symmetric=True, backend=backend)
+                    result.factorizations += 1
+                u_try = system.apply_constraints(u.copy(), lam_next)
+                for _ in range(k0_iter):
+                    f, k_list, trial = system.evaluate(u_try, u_try - u, states, CONSISTENT)
+                    r = (f_ext - f)[free]
+                    rel = np.linalg.norm(r) / max(np.linalg.norm(f_ext), np.linalg.norm(f), 1e-30)
+                    res_hist.append(rel)
+                    if not np.isfinite(rel):
+                        break
+                    if rel <= force_tol:
+                        ok = True
+                        break
+                    u_try = u_try.copy()
+                    u_try[free] += fac_k0.solve(r)
             if ok:
                 u, states, lam = u_try, trial, lam_next
                 pending.pop()
