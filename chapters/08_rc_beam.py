@@ -95,7 +95,7 @@ mon_notes, _, MON = rb.read_reference_csv("monnier1970_fig12.csv")
 # discretisations (fast mode: coarse, for CI)
 N_LAYERS = 41                                  # main model; the trade study below justifies it
 SELF = "tangent"                               # PlateStrip self-bending option of the main model (see trade)
-N_EL = 2 if FAST else 8                        # elements per region (shear span, half middle third)
+N_EL = 2 if FAST else 4                        # elements per region (shear span, half middle third)
 N_STEPS = 40 if FAST else 100
 W_LOAD = 0.036                                 # load-point travel [m]: mid-span deflection passes 42 mm
 SETTINGS = Settings(max_iter=3000)             # modified Newton (paper): slow but sure past yield
@@ -120,7 +120,7 @@ for x in (A, SPAN - A):
     a0.text(x, G["h"] + 0.27, "P", ha="center")
 a0.set(xlim=(-0.2, SPAN + 0.2), ylim=(-0.2, 0.7), aspect="equal", xlabel="x [m]", ylabel="z [m]",
        title="(A) geometry: span 2.743 m, loads at the third points")
-a0.legend(loc="upper center", fontsize=8)
+a0.legend(loc="lower center", fontsize=8, bbox_to_anchor=(0.5, -0.02))
 a1 = ax[1]
 xe = beam.x_ends
 a1.plot(beam.model.coords[:, 0], np.zeros(beam.model.n_nodes), "o", ms=3, c="C0", label="nodes")
@@ -139,8 +139,9 @@ for n in range(section.n_layer):
     steel = section.kind[n] == STEEL
     a2.add_patch(plt.Rectangle((0, bottoms[n]), B, section.h[n], fc="C3" if steel else "0.85", ec="k",
                                lw=0.6))
-    a2.text(B * 1.05, bottoms[n] + section.h[n] / 2, f"{n + 1}" + (" steel" if steel else ""), va="center",
-            fontsize=7)
+    if steel or section.n_layer <= 15 or (n + 1) % 5 == 0 or n == 0:
+        a2.text(B * 1.05, bottoms[n] + section.h[n] / 2, f"{n + 1}" + (" (steel)" if steel else ""),
+                va="center", fontsize=7, color="C3" if steel else "k")
 a2.set(xlim=(-0.02, 0.3), ylim=(-0.01, G["h"] + 0.01), aspect="equal", xlabel="width [m]",
        ylabel="height above the bottom face [m]", title="(C) layers (bars smeared, As/b)")
 fig.tight_layout()
@@ -203,7 +204,8 @@ print(f"main run: {N_STEPS} steps, {main['iterations'].sum()} iterations, {main[
 
 # the paper's rule: band = the length each point represents, on the same mesh
 paper_rule = rb.load_path(rb.build_four_point(rb.janney_section(N_LAYERS, ls=S_RM), SPAN, A, N_EL, N_EL,
-                                              crack_band="point", self_bending=SELF), W_LOAD, N_STEPS, SETTINGS)
+                                              crack_band="point", self_bending=SELF), W_LOAD, N_STEPS,
+                          Settings(max_iter=3000, max_cuts=2), allow_partial=True)
 
 
 def moment_at(d_mm, delta_mm, m_knm):
@@ -226,15 +228,16 @@ print(f"yield (11.5 mm): FE {moment_at(11.5, d_fe, m_fe):.2f} vs {JAN[i_y, 1]} k
       f"(tolerance {tol_y:.1%}); last (42 mm): FE {moment_at(42, d_fe, m_fe):.2f} vs {JAN[i_last, 1]}, "
       f"error {err_last:.1%} (tolerance {tol_last:.1%})")
 d_pr, m_pr = paper_rule["delta"] * 1e3, paper_rule["M"] * KNM
-print(f"paper's band rule on the same mesh: {moment_at(11.5, d_pr, m_pr):.2f} and {moment_at(42, d_pr, m_pr):.2f} "
-      "kN m")
+print(f"paper's band rule on the same mesh: {moment_at(11.5, d_pr, m_pr):.2f} kN m at 11.5 mm; run reached "
+      f"{d_pr[-1]:.1f} mm" + ("" if paper_rule["failure"] is None else
+                              f" and stopped ({paper_rule['failure']['reason']})"))
 
 # %% [markdown]
 # ## Mesh sensitivity: the band tied to the element, or to the crack spacing
 
 # %%
 MESHES = (2, 3, 4, 6) if FAST else (2, 4, 8, 16)
-N_MESH_LAYERS = 11 if FAST else 21
+N_MESH_LAYERS = 11         # the layer error (~1 %, trade study) is common to all meshes; the spread is not
 mesh_runs = {}
 for rule in ("point", "spacing"):
     for n in MESHES:
@@ -267,11 +270,11 @@ print(f"spread of M over {len(MESHES)} meshes, delta in [2, 42] mm: band = crack
 # one factor at a time around a base: layers with the base mesh and steps; elements and steps with the
 # reference's 41 layers (so that the layer error does not hide theirs)
 base = {"layers": 11, "n_el": 2 if FAST else 4, "steps": 30 if FAST else 60, "self": "tangent"}
-ref_cfg = {"layers": 41, "n_el": 4 if FAST else 16, "steps": 60 if FAST else 200, "self": "tangent"}
+ref_cfg = {"layers": 41, "n_el": 4 if FAST else 8, "steps": 60 if FAST else 120, "self": "tangent"}
 LAYER_SET = (11, 41) if FAST else (5, 11, 21, 41)
 variants = ([("layers", v) for v in LAYER_SET]
             + [("layers, self-bending e0", v) for v in LAYER_SET]
-            + [("n_el", v) for v in ((1,) if FAST else (2, 4, 8))]
+            + [("n_el", v) for v in ((1,) if FAST else (1, 2, 4))]
             + [("steps", v) for v in ((15,) if FAST else (30, 60, 120))])
 
 
@@ -295,6 +298,15 @@ for key, value in variants:
 print(f"reference (41 layers, {2 * ref_cfg['n_el']} elements, {ref_cfg['steps']} steps): {t_ref:.2f} s")
 
 # %% [markdown]
+# **What the trade shows.** Through-thickness layering dominates the error, and how each layer's own bending
+# term $e\,h_n^3/12\,\kappa$ is evaluated matters more than anything else: with the strip's default (the layer's
+# *initial* modulus, exact for elastic layers) a cracked or crushed layer keeps its full elastic bending
+# stiffness, an error that grows with the curvature — about 20 % of the moment at 42 mm with the paper's 11
+# layers, still about 1 % with 41. With the layer's *tangent* modulus (`self_bending="tangent"`) 11 layers
+# are within about 1 % and 41 within 0.02 %. Elements and load steps matter far less once a node sits at the
+# load point (the moment is piecewise linear and the strip integrates it well). Hence the main model:
+# 41 layers, tangent self-bending.
+#
 # ## Verification
 
 # %%
@@ -400,8 +412,11 @@ plt.show()
 #
 # * Linear range: the layered strip reproduces the Timoshenko deflection to round-off (row `fig12_linear`).
 # * Before yield the strip converges to the independent curvature integral (row `fig12_curvature_integral`).
-# * Against the substitute beam (designer values only) see row `fig12_substitute_beam`: the FE is stiffer
-#   in the cracked range and the moments at yield and at 42 mm are compared with the reading uncertainty.
+# * Against the substitute beam (designer values only) see row `fig12_substitute_beam`: the strip is a
+#   little stiffer than the measurement in the cracked range, meets the moment at yield within the reading
+#   uncertainty, but stays flat after yield ($E_H$ = 0, as the data's summary reports the bars) while the
+#   measured moment keeps rising to 41.5 kN m at 42 mm — a gap (about 8 %) the model cannot close without
+#   inventing a hardening modulus, which we do not do.
 # * A band tied to the element makes the *reinforced* beam mesh-dependent (distributed cracking does not
 #   localise before yield); a band equal to the crack spacing removes that (row `fig12_mesh_spread`).
 # * Monnier's measurements remain an empty slot (row `fig12_monnier`).
