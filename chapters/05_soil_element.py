@@ -71,6 +71,7 @@
 # %%
 import inspect
 import itertools
+import math
 import time
 
 import matplotlib.pyplot as plt
@@ -79,7 +80,8 @@ import numpy as np
 from ssi import paths, report
 from ssi.analytical_soil import edge_forces, lame_cylinder_displacement, strip_load_stresses
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.materials.soil_laws import ELASTIC, elastic_params
+from ssi.materials.mohr_coulomb import B_APEX, B_EDGE12, B_EDGE23, B_PLANE, mc_yield
+from ssi.materials.soil_laws import ELASTIC, drive, elastic_matrix, elastic_params, mohr_coulomb_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.shapes import Q8_NODES, serendipity8
@@ -348,6 +350,78 @@ for (ng, nu), (ep, ed) in strip_nu.items():
     print(f"  {ng}x{ng}, nu = {nu:<6}: {ep:.2e} | {ed:.2e}")
 
 # %% [markdown]
+# ## 5. Mohr–Coulomb at a material point
+#
+# The plastic soil law (paper §7; `ssi.materials.mohr_coulomb`, written and unit-tested with its own FD
+# checks in `tests/test_mohr_coulomb.py`) is driven here alone, one integration point along prescribed
+# plane-strain strain paths, with the library's driver `ssi.materials.soil_laws.drive` — before it enters a
+# mesh (chapter 10). With principal stresses s1 ≥ s2 ≥ s3 (tension positive) the yield function and the
+# plastic potential are
+#
+# $$f = k\,s_1 - s_3 - 2c\sqrt{k},\quad k = \frac{1+\sin\varphi}{1-\sin\varphi};\qquad
+#   g = m\,s_1 - s_3,\quad m = \frac{1+\sin\psi}{1-\sin\psi}.$$
+#
+# The plastic strain increment is parallel to ∂g/∂σ: in principal axes (m, 0, −1)·Δλ on the main plane, so
+# the plastic dilatancy ratio Δε_v^p / Δγ_max^p = (m − 1)/(m + 1) = sin ψ. Where two principal stresses are
+# equal the return goes to an *edge*, and under enough volumetric extension to the *apex*
+# s1 = s2 = s3 = c cot φ. Four paths from an isotropic 100 kPa compression (E = 20 MPa, ν = 0.3, c = 10 kPa,
+# φ = 30°) reach the four branches: in-plane shear (plane), vertical extension (edge s2 = s3), equal biaxial
+# extension (edge s1 = s2, then apex). Each is run for ψ = 0, 10° and 30° (= φ, associated).
+
+# %%
+MC_E, MC_NU, MC_C, MC_PHI = 20e6, 0.3, 10e3, 30.0
+SIG0 = np.array([-100e3, -100e3, 0.0, -100e3])
+PATHS = {"in-plane shear": [1.0, -1.0, 0.0, 0.0], "vertical extension": [0.0, 1.0, 0.0, 0.0],
+         "biaxial extension": [1.0, 1.0, 0.0, 0.0]}
+BRANCH_NAMES = {B_PLANE: "plane", B_EDGE12: "edge s1=s2", B_EDGE23: "edge s2=s3", B_APEX: "apex"}
+D_el = np.empty((4, 4))
+elastic_matrix(MC_E, MC_NU, D_el)
+C_el = np.linalg.inv(D_el)
+
+
+def fd_tangent(kind, prm, deps, sig_old, h=1e-9):
+    """Central differences of the updated stress with respect to the strain increment (4 x 4)."""
+    D = np.empty((4, 4))
+    for j in range(4):
+        e = np.zeros(4)
+        e[j] = h
+        sp = drive(kind, prm, [deps + e], sig_old)[0][1]
+        sm = drive(kind, prm, [deps - e], sig_old)[0][1]
+        D[:, j] = (sp - sm) / (2 * h)
+    return D
+
+
+mc_rows = []
+mc_paths = {}
+for psi in (0.0, 10.0, 30.0):
+    kind, prm = mohr_coulomb_params(MC_E, MC_NU, MC_C, MC_PHI, psi)
+    for name, direction in PATHS.items():
+        deps = 2e-4 * np.array(direction)
+        sig, hist, status, D_alg = drive(kind, prm, np.tile(deps, (30, 1)), SIG0)
+        mc_paths[psi, name] = sig
+        plastic = np.flatnonzero(status > 0)
+        f_max = max(abs(mc_yield(sig[i + 1], MC_C, math.radians(MC_PHI))) for i in plastic) / MC_C
+        for branch in sorted(set(hist[plastic + 1, 1].astype(int))):
+            i = plastic[hist[plastic + 1, 1] == branch][-1]      # the last step returned to this branch
+            D_fd = fd_tangent(kind, prm, deps, sig[i])
+            fd_err = np.abs(D_alg[i] - D_fd).max() / np.abs(D_el).max()
+            asym = np.abs(D_alg[i] - D_alg[i].T).max() / np.abs(D_el).max()
+            deps_p = deps - C_el @ (sig[i + 1] - sig[i])          # plastic strain of that step
+            gamma_p = math.hypot(deps_p[0] - deps_p[1], deps_p[2])
+            ratio = (deps_p[0] + deps_p[1] + deps_p[3]) / gamma_p if gamma_p > 0 else float("nan")
+            mc_rows.append({"psi": psi, "path": name, "branch": int(branch), "f_max": f_max, "fd_err": fd_err,
+                            "asym": asym, "dilatancy": ratio, "eyy_p": deps_p[3], "sig": sig[i + 1]})
+print(" psi  path                 branch        max|f|/c   |D - D_FD|   asymmetry   dev_p/gam_p  (sin psi)")
+for r in mc_rows:
+    print(f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} {r['f_max']:9.1e}   {r['fd_err']:9.1e}"
+          f"   {r['asym']:9.1e}   " + (f"{r['dilatancy']:8.4f}    ({math.sin(math.radians(r['psi'])):.4f})"
+                                        if r["branch"] == B_PLANE else "   (plane branch only)"))
+apex = MC_C / math.tan(math.radians(MC_PHI))
+apex_rows = [r for r in mc_rows if r["branch"] == B_APEX]
+print(f"apex c cot(phi) = {apex / 1e3:.3f} kPa; apex stresses reached:",
+      [np.round(r["sig"] / 1e3, 3).tolist() for r in apex_rows])
+
+# %% [markdown]
 # ## Verification
 #
 # Tolerances and why:
@@ -362,6 +436,11 @@ for (ng, nu), (ep, ed) in strip_nu.items():
 #   the discretisation level, 3e-5); full integration more than 20 % too stiff at ν = 0.4999 on the coarse mesh.
 #   Strip window at ν = 0.4999: the full rule's mean-stress error at least 3× the reduced rule's; the reduced
 #   rule's deviatoric stress within 1 % of q (its ν = 0.3 level is 0.15 %), the full rule's not.
+# - Mohr–Coulomb point: after every plastic step |f| ≤ 1e-9 c (the return is exact up to round-off);
+#   consistent tangent = central differences within 1e-6 of the elastic modulus scale (h = 1e-9 on strains of
+#   2e-4: truncation ~1e-10, round-off ~1e-7 relative); asymmetric (> 1e-3) for ψ < φ and symmetric (< 1e-9)
+#   for ψ = φ on the main plane; plastic dilatancy ratio = sin ψ to 1e-9 and no out-of-plane plastic strain on
+#   the plane; the apex is the hydrostatic stress c cot φ to 1e-9.
 
 # %%
 TOL_PATCH = 1e-10
@@ -382,6 +461,17 @@ assert all(abs(v - 1.0) < 1e-3 for v in locking[(2, (4, 8))]), locking[(2, (4, 8
 assert locking[(3, (2, 4))][-1] < 0.8, locking[(3, (2, 4))]    # full integration locks
 assert strip_nu[3, 0.4999][0] > 3 * strip_nu[2, 0.4999][0], strip_nu  # full: pressure locked
 assert strip_nu[2, 0.4999][1] < 1e-2 < strip_nu[3, 0.4999][1], strip_nu  # deviator: reduced fine, full not
+branches_seen = {r["branch"] for r in mc_rows}
+assert branches_seen == {B_PLANE, B_EDGE12, B_EDGE23, B_APEX}, branches_seen
+for r in mc_rows:
+    assert r["f_max"] < 1e-9, r
+    assert r["fd_err"] < 1e-6, r
+    if r["branch"] == B_PLANE:
+        assert abs(r["dilatancy"] - math.sin(math.radians(r["psi"]))) < 1e-9, r
+        assert abs(r["eyy_p"]) < 1e-12, r
+        assert (r["asym"] < 1e-9) if r["psi"] == MC_PHI else (r["asym"] > 1e-3), r
+for r in apex_rows:
+    assert np.abs(r["sig"] - apex * np.array([1.0, 1.0, 0.0, 1.0])).max() < 1e-9 * apex, r
 report.record("patch_test", "max nodal error / max |u|, distorted 3x3 Q8 mesh, 2x2 and 3x3 Gauss",
               patch_err, TOL_PATCH, patch_err < TOL_PATCH)
 report.record("strip_load", f"max |sig_FE - sig_exact| / q at Gauss points 0.5b<=depth<=2.5b, x<=2b, 2x2 Gauss, "
@@ -464,6 +554,23 @@ axes[1].set_title("the trade: error vs DOFs vs wall time")
 fig.suptitle("Figure 5.3 — locking as ν → 0.5, and what each integration rule buys per second")
 report.save_figure(fig, "ch05_locking_and_trade")
 
+# %%
+fig, ax = plt.subplots(figsize=(7, 4.5))
+pp = np.linspace(-200e3, apex, 50)
+ax.plot(-pp / 1e3, (MC_C * math.cos(math.radians(MC_PHI)) - pp * math.sin(math.radians(MC_PHI))) / 1e3, "k-",
+        lw=2, label="Mohr–Coulomb: t = c cos φ − s sin φ")
+for (psi, name), sig in mc_paths.items():
+    if psi not in (0.0, 30.0):
+        continue
+    pr = np.array([sorted([*np.linalg.eigvalsh([[x[0], x[2]], [x[2], x[1]]]), x[3]]) for x in sig])
+    s_mid, t_rad = 0.5 * (pr[:, 2] + pr[:, 0]), 0.5 * (pr[:, 2] - pr[:, 0])
+    ax.plot(-s_mid / 1e3, t_rad / 1e3, "o-" if psi == 0 else "x--", ms=3, label=f"{name}, ψ = {psi:g}°")
+ax.set_xlabel("mean of the extreme principal stresses, compression (−s) [kPa]")
+ax.set_ylabel("radius t = (s1 − s3)/2 [kPa]")
+ax.legend(fontsize=7)
+ax.set_title("Figure 5.4 — Mohr–Coulomb material-point paths end on the yield line (apex at t = 0)")
+report.save_figure(fig, "ch05_mohr_coulomb_point")
+
 # %% [markdown]
 # ## Summary
 #
@@ -479,6 +586,9 @@ report.save_figure(fig, "ch05_locking_and_trade")
 #   displacements and deviatoric stresses stay accurate, but the mean stress at the Gauss points picks up
 #   noise of ~0.2 q at ν = 0.4999 on the n = 4 window (it shrinks slowly with h). Mixed (u–p) elements
 #   would cure it; the paper does not use them and neither do we.
+# - The Mohr–Coulomb law, driven alone, returns exactly onto the surface on the plane, both edges and the
+#   apex, flows along ∂g/∂σ (dilatancy ratio sin ψ), and its consistent tangent matches finite differences in
+#   every branch — symmetric only for associated flow, as the paper's choice of modified Newton presumes.
 #
 # References: O. C. Zienkiewicz, R. L. Taylor, *The Finite Element Method*, vol. 1 (reduced integration,
 # patch test); H. G. Poulos, E. H. Davis, *Elastic Solutions for Soil and Rock Mechanics* (strip load);

@@ -10,6 +10,7 @@ import pytest
 
 from ssi.analytical_soil import flamant_strip_quadrature, strip_load_stresses
 from ssi.assembly import SparsePattern
+from ssi.elements.q8_elastic import q8_elastic_stiffness
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block, structured_q8
@@ -284,3 +285,27 @@ def test_bad_scene():
     mesh = soil_block(10.0, 5.0, foundation=(-1.0, 1.0), h_fine=0.5)
     with pytest.raises(ValueError, match="foundation"):
         foundation_contact(mesh, -1.2, 1.0, 0.5)                  # not on a mesh line
+
+
+# ---- the fast K0 kernel ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("n_gauss", [2, 3])
+def test_fast_elastic_kernel_matches_the_element_group(n_gauss):
+    """q8_elastic_stiffness must return SoilQ8's K0 (and the dense reference) on distorted elements with
+    different materials per element."""
+    m, xy = distorted_mesh(3)
+    model = Model()
+    model.add_nodes(xy, 2)
+    el_mat = np.arange(len(m.conn)) % 2
+    params = np.array([elastic_params(E, NU), elastic_params(3 * E, 0.45)])
+    g = SoilQ8(xy[m.conn], model.element_dofs(m.conn), el_mat, [ELASTIC, ELASTIC], params, n_gauss=n_gauss)
+    out = np.full((g.n_el, 16, 16), np.nan)  # a reused buffer: every entry must be overwritten
+    K = q8_elastic_stiffness(g.coords, params[el_mat, 0], params[el_mat, 1], n_gauss, out)
+    assert K is out
+    K_ref = g.elastic_stiffness()
+    assert np.abs(K - K_ref).max() < TOL_ROUNDOFF * np.abs(K_ref).max()
+    K_dense = dense_q8_stiffness(g.coords[4], n_gauss, *params[el_mat[4], :2])
+    assert np.abs(K[4] - K_dense).max() < TOL_ROUNDOFF * np.abs(K_dense).max()
+    with pytest.raises(ValueError, match="nu"):
+        q8_elastic_stiffness(g.coords, E, 0.5)
+    with pytest.raises(ValueError, match="E"):
+        q8_elastic_stiffness(g.coords, -E, NU)

@@ -1,0 +1,266 @@
+"""Benchmark of the numerical core (issue 2): Q8 element throughput, assembly, factorisation and solve at
+~1e4, 1e5 and 1e6 DOFs, numba compile time, scikit-fem side by side, and the 1e5-DOF elastic block end to end.
+
+Run with ``make bench`` (installs the bench extras scikit-fem and pypardiso). Prints one ``key: value`` line
+per measured figure; all times are wall-clock seconds after JIT caching (best of a few repeats where cheap),
+except ``numba_compile_s``. Goals on the 2-core reference machine: ``assembly_1e6_dofs_s`` <= 0.3,
+``assembly_speedup_vs_skfem`` >= 20, ``elastic_1e5_dofs_total_s`` <= 1.0.
+
+Set ``SSI_BENCH_SKIP_1E6=1`` to skip the 1e6-DOF factorisation (≈ 10–20 s and several GB).
+"""
+
+import os
+import subprocess
+import sys
+import tempfile
+import textwrap
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from ssi.assembly import SparsePattern
+from ssi.elements.q8_elastic import q8_elastic_stiffness
+from ssi.elements.soil_q8 import SoilQ8, q8_kernel
+from ssi.linsolve import Factorization, pardiso_available
+from ssi.materials.soil_laws import ELASTIC, elastic_params
+from ssi.mesh import structured_q8
+from ssi.model import Model
+
+E, NU = 30e6, 0.3
+GOALS = {"assembly_1e6_dofs_s": ("<=", 0.3), "assembly_speedup_vs_skfem": (">=", 20.0),
+         "elastic_1e5_dofs_total_s": ("<=", 1.0)}
+results = {}
+
+
+def emit(key, value, fmt="{:.4g}"):
+    results[key] = value
+    print(f"{key}: {fmt.format(value) if isinstance(value, float) else value}", flush=True)
+
+
+def best_of(fn, repeat=3):
+    times = []
+    out = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return min(times), out
+
+
+def grid_for(n_dof):
+    """(nx, nz) of a 2:1 block of Q8 elements with about n_dof DOFs (2 * (3 nx nz + 2 nx + 2 nz + 1))."""
+    nz = round(np.sqrt(n_dof / 12.0))
+    return 2 * nz, nz
+
+
+def block(nx, nz, width=20.0, depth=10.0):
+    """The elastic 20 m x 10 m block: Q8 mesh, model, supports (bottom fixed, sides on rollers), a strip
+    load of 100 kPa on |x| <= 1 m of the surface."""
+    mesh = structured_q8(np.linspace(-0.5 * width, 0.5 * width, nx + 1), np.linspace(-depth, 0.0, nz + 1))
+    model = Model()
+    model.add_nodes(mesh.xy, 2)
+    group = model.add_group(SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC],
+                                   [elastic_params(E, NU)]))
+    model.fix(mesh.bottom, "u")
+    model.fix(mesh.bottom, "w")
+    model.fix(mesh.left, "u")
+    model.fix(mesh.right, "u")
+    loaded = mesh.nodes_between(-1.0, 1.0)
+    model.add_load(loaded, "w", -100e3 * (width / nx) / 2.0)  # ~100 kPa (lumped; the load is not benchmarked)
+    return mesh, model, group
+
+
+# ---- numba compile time: a cold cache in a fresh process, then the same again warm -----------------------
+COMPILE_SCRIPT = textwrap.dedent("""
+    import time
+    t0 = time.perf_counter()
+    import numpy as np
+    from ssi.mesh import structured_q8
+    from ssi.model import Model
+    from ssi.elements.soil_q8 import SoilQ8
+    from ssi.elements.q8_elastic import q8_elastic_stiffness
+    from ssi.materials.soil_laws import ELASTIC, elastic_params
+    m = structured_q8(np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    model = Model(); model.add_nodes(m.xy, 2)
+    g = model.add_group(SoilQ8(m.xy[m.conn], model.element_dofs(m.conn), 0, [ELASTIC],
+                               [elastic_params(1e7, 0.3)]))
+    model.fix(m.bottom, "u"); model.fix(m.bottom, "w"); model.add_load(m.surface, "w", -1.0)
+    model.solve_linear(backend="superlu")
+    q8_elastic_stiffness(g.coords, 1e7, 0.3)
+    print(time.perf_counter() - t0)
+""")
+
+
+def compile_time():
+    """(cold, warm) wall time of a tiny solve in fresh processes sharing one new cache folder. The package
+    keys its numba cache on a hash of its sources, so the warm runs take the best of two."""
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        runs = [float(subprocess.run([sys.executable, "-c", COMPILE_SCRIPT], env=env, capture_output=True,
+                                     text=True, check=True).stdout.split()[-1]) for _ in range(3)]
+    return runs[0], min(runs[1:])
+
+
+def throughput(group):
+    """Element stiffness per second: the generic kernel (law dispatch) and the fast elastic K0 kernel."""
+    n_el = group.n_el
+    k_buf = np.empty((n_el, 16, 16))
+    f_buf = np.empty((n_el, 16))
+    zero = np.zeros((n_el, 16))
+    st_old = group.initial_state()
+    st_new = np.empty_like(st_old)
+    E_el, nu_el = group.params[group.el_mat, 0], group.params[group.el_mat, 1]
+
+    def generic():
+        q8_kernel(group.coords, zero, group.el_mat, group.kinds, group.params, group.gp, group.gw, st_old,
+                  st_new, f_buf, k_buf, ELASTIC)
+
+    def fast():
+        q8_elastic_stiffness(group.coords, E_el, nu_el, group.n_gauss, k_buf)
+
+    generic()
+    fast()
+    return n_el / best_of(generic)[0], n_el / best_of(fast)[0]
+
+
+def assembly_and_solve(label, model, group, factorise=True):
+    """Pattern (once per mesh), assembly into the reused CSR values (fast K0 kernel + scatter; and the generic
+    kernel path of Model.solve_linear), factorisation and one back-substitution."""
+    free = model.free_mask()
+    t_pat, pattern = best_of(lambda: SparsePattern([group.edofs], free), repeat=1)
+    k_el = np.empty((group.n_el, 16, 16))  # buffers allocated once and reused, as modified NR would
+    data = pattern.new_data()
+    E_el, nu_el = group.params[group.el_mat, 0], group.params[group.el_mat, 1]
+
+    def assemble():
+        q8_elastic_stiffness(group.coords, E_el, nu_el, group.n_gauss, k_el)
+        return pattern.assemble([k_el], data)
+
+    def assemble_generic():  # what Model.solve_linear does today: generic kernel, fresh arrays
+        group._k0 = None
+        return pattern.assemble([group.elastic_stiffness()])
+
+    assemble()
+    t_asm, _ = best_of(assemble)
+    t_gen, _ = best_of(assemble_generic, repeat=2)
+    emit(f"dofs_{label}", model.n_dof, "{}")
+    emit(f"pattern_{label}_dofs_s", t_pat)
+    emit(f"assembly_{label}_dofs_s", t_asm)
+    emit(f"assembly_generic_kernel_{label}_dofs_s", t_gen)
+    if factorise:
+        matrix = pattern.matrix(data)
+        rhs = np.ones(pattern.n_free)
+        t_fac, fac = best_of(lambda: Factorization(matrix, True, "auto"), repeat=1)
+        t_sol, _ = best_of(lambda: fac.solve(rhs))
+        emit(f"factorisation_{label}_dofs_s", t_fac)
+        emit(f"solve_{label}_dofs_s", t_sol)
+        emit(f"backend_{label}", fac.backend, "{}")
+    return t_asm
+
+
+def skfem_assembly(nx, nz):
+    """scikit-fem: the same tensor mesh, ElementQuadS2 (8-node serendipity), the 2x2 Gauss rule."""
+    from skfem import Basis, ElementQuadS2, ElementVector, MeshQuad, asm
+    from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+    m = MeshQuad.init_tensor(np.linspace(-10.0, 10.0, nx + 1), np.linspace(-10.0, 0.0, nz + 1))
+    basis = Basis(m, ElementVector(ElementQuadS2()), intorder=3)  # intorder 3 -> 2x2 Gauss points
+    if basis.X.shape[1] != 4:
+        raise RuntimeError("expected the 2x2 Gauss rule in scikit-fem")
+    t0 = time.perf_counter()
+    K = asm(linear_elasticity(*lame_parameters(E, NU)), basis)
+    return time.perf_counter() - t0, K
+
+
+def elastic_block_total():
+    """Mesh + model + pattern + assembly + factorisation + solve (+ stress recovery) of the 1e5-DOF block."""
+    t0 = time.perf_counter()
+    _, m, _ = block(*grid_for(1e5))
+    m.solve_linear()
+    return time.perf_counter() - t0
+
+
+def elastic_block_breakdown():
+    """The steps of Model.solve_linear on the 1e5-DOF block, timed one by one (same calls, same order)."""
+    from ssi.elements.base import ELASTIC as K0_FLAG
+    from ssi.model import System
+
+    t = {}
+    t0 = time.perf_counter()
+    _, m, _ = block(*grid_for(1e5))
+    t["mesh_and_model"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    system = System(m)
+    t["pattern"] = time.perf_counter() - t0
+    u = system.apply_constraints(np.zeros(m.n_dof), 1.0)
+    states = [g.initial_state() for g in m.groups]
+    t0 = time.perf_counter()
+    f_int, k_el, _ = system.evaluate(u, u, states, K0_FLAG)
+    t["element_matrices"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    data = system.pattern.assemble(k_el)
+    t["scatter"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    fac = Factorization(system.pattern.matrix(data), True, "auto")
+    t["factorisation"] = time.perf_counter() - t0
+    f_ref, f_dead = m.load_vectors()
+    t0 = time.perf_counter()
+    u[system.free] += fac.solve((f_ref + f_dead - f_int)[system.free])
+    t["solve"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    system.evaluate(u, u, states, None)
+    t["stress_recovery"] = time.perf_counter() - t0
+    return t
+
+
+def main():
+    cold, warm = compile_time()
+    emit("numba_compile_s", cold - warm)
+    emit("first_run_cold_cache_s", cold)
+    emit("first_run_warm_cache_s", warm)
+    emit("pardiso_available", str(pardiso_available()), "{}")
+    if pardiso_available():  # pay the one-time MKL lookup before timing anything
+        Factorization(sp.identity(8, format="csr"), True, "pardiso")
+
+    _, model_big, group_big = block(*grid_for(1e6))
+    generic, fast = throughput(group_big)
+    emit("q8_stiffness_generic_elements_per_s", generic, "{:.3e}")
+    emit("q8_stiffness_elements_per_s", fast, "{:.3e}")
+
+    skip_big = os.environ.get("SSI_BENCH_SKIP_1E6", "0") not in ("", "0")
+    for label, target in (("1e4", 1e4), ("1e5", 1e5)):
+        _, model, group = block(*grid_for(target))
+        assembly_and_solve(label, model, group)
+    t_asm_big = assembly_and_solve("1e6", model_big, group_big, factorise=not skip_big)
+
+    try:
+        import skfem
+
+        t_sk, K_sk = skfem_assembly(*grid_for(1e6))
+        emit("skfem_version", skfem.__version__, "{}")
+        emit("skfem_assembly_1e6_dofs_s", t_sk)
+        emit("skfem_dofs", K_sk.shape[0], "{}")
+        emit("assembly_speedup_vs_skfem", t_sk / t_asm_big)
+        # the same operator: equal traces (DOF numberings differ, traces do not)
+        diag = np.zeros(model_big.n_dof)
+        np.add.at(diag, group_big.edofs.ravel(), np.einsum("eii->ei", group_big.elastic_stiffness()).ravel())
+        emit("trace_ratio_ssi_over_skfem", diag.sum() / K_sk.diagonal().sum(), "{:.12f}")
+        del K_sk
+    except ImportError:
+        print("scikit-fem not installed: pip install 'ssi[bench]'")
+    del model_big, group_big
+
+    elastic_block_total()
+    emit("elastic_1e5_dofs_total_s", min(elastic_block_total() for _ in range(3)))
+    for step, value in elastic_block_breakdown().items():
+        emit(f"elastic_1e5_{step}_s", value)
+
+    for key, (op, goal) in GOALS.items():
+        if key in results:
+            ok = results[key] <= goal if op == "<=" else results[key] >= goal
+            print(f"goal_{key}: {results[key]:.4g} {op} {goal:g} -> {'MET' if ok else 'MISSED'}")
+
+
+if __name__ == "__main__":
+    main()
