@@ -154,8 +154,12 @@ def push_footing(scene: FootingScene, n_steps=20, method="full", grading=1.0, se
 # full Newton with a backtracking line search (helper until ssi.solver offers one)
 # ---------------------------------------------------------------------------------------------------------
 def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cuts=8, backend="superlu",
-                       symmetric=False, min_step=1.0 / 64.0, k0_iter=300, verbose=False):
+                       symmetric=False, min_step=1.0 / 64.0, k0_iter=300, keep_ratio=0.0, verbose=False):
     """Full Newton with the consistent tangent and a backtracking line search on the residual norm.
+
+    ``keep_ratio`` > 0 keeps the last factorised tangent for the next iteration while each iteration still
+    reduces the residual by at least that factor (a chord iteration that saves factorisations; 0 = always
+    refactorise, plain Newton).
 
     Why: with perfectly plastic Mohr–Coulomb points near a footing corner, plain Newton steps overshoot into
     a far plastic state (the tangent of reduced-integrated Q8 elements whose four points all flow is nearly
@@ -197,6 +201,7 @@ def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cut
             r = (f_ext - f)[free]
             res_hist = []
             ok = False
+            fac = None
             for it in range(1, max_iter + 1):
                 scale = max(np.linalg.norm(f_ext), np.linalg.norm(f), 1e-30)
                 rel = np.linalg.norm(r) / scale
@@ -204,12 +209,16 @@ def newton_line_search(model, load_factors, force_tol=1e-5, max_iter=30, max_cut
                 if rel <= force_tol:
                     ok = True
                     break
+                if fac is not None and not (len(res_hist) > 1 and rel <= keep_ratio * res_hist[-2]):
+                    fac = None
                 try:
-                    kt = system.pattern.matrix(system.pattern.assemble(k_list))
-                    du = Factorization(kt, symmetric=symmetric, backend=backend).solve(r)
+                    if fac is None:
+                        kt = system.pattern.matrix(system.pattern.assemble(k_list))
+                        fac = Factorization(kt, symmetric=symmetric, backend=backend)
+                        result.factorizations += 1
+                    du = fac.solve(r)
                 except (FloatingPointError, RuntimeError):
                     break
-                result.factorizations += 1
                 r0 = np.linalg.norm(r)
                 step = 1.0
                 while True:
