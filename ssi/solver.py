@@ -51,6 +51,9 @@ class Settings:
     symmetric_tangent: bool = False  # set True when every law's tangent is symmetric (associated flow)
     verbose: bool = False
     keep_states: bool = True      # keep the committed state of every step (False: only the last)
+    line_search: bool = False     # full Newton: halve a step until the residual norm decreases
+    line_search_min: float = 1.0 / 64.0  # smallest step fraction the line search tries
+    fallback_iter: int = 300      # full Newton: iterations of the K0 retry of a failed increment (0: none)
 
     def __post_init__(self):
         if self.method not in METHODS:
@@ -58,8 +61,10 @@ class Settings:
         for name in ("force_tol", "energy_tol"):
             if not 0.0 < getattr(self, name) < 1.0:
                 raise ValueError(f"{name} must be in (0, 1), got {getattr(self, name)}")
-        if self.max_iter < 1 or self.max_cuts < 0:
-            raise ValueError("max_iter must be >= 1 and max_cuts >= 0")
+        if self.max_iter < 1 or self.max_cuts < 0 or self.fallback_iter < 0:
+            raise ValueError("max_iter must be >= 1, max_cuts >= 0 and fallback_iter >= 0")
+        if not 0.0 < self.line_search_min <= 1.0:
+            raise ValueError(f"line_search_min must be in (0, 1], got {self.line_search_min}")
 
 
 class NonConvergence(RuntimeError):
@@ -117,7 +122,7 @@ def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
     model.check()
     t_start = time.perf_counter()
-    system, f_ref, f_dead, states, u, result, k0, fac_k0 = _start(model, settings)
+    system, f_ref, f_dead, states, u, result, fac_k0 = _start(model, settings)
     free = system.free
     lam = 0.0
     for target in targets:
@@ -125,7 +130,11 @@ def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
         cuts_here = 0
         while pending:
             lam_next = pending[-1]
-            outcome = _increment(system, settings, fac_k0, k0, u, states, lam_next, f_ref, f_dead, result)
+            outcome = _increment(system, settings, fac_k0, u, states, lam_next, f_ref, f_dead, result)
+            if not outcome["converged"] and settings.method == "full" and settings.fallback_iter:
+                # an indefinite or poor consistent tangent can send Newton astray; K0 cannot
+                outcome = _increment(system, settings, fac_k0, u, states, lam_next, f_ref, f_dead, result,
+                                     force_k0=True)
             if outcome["converged"]:
                 u, states = outcome["u"], outcome["states"]
                 lam = lam_next
@@ -158,7 +167,7 @@ def _start(model, settings):
     k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
     fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend)
     result.factorizations = 1
-    return system, f_ref, f_dead, states, u, result, k0, fac_k0
+    return system, f_ref, f_dead, states, u, result, fac_k0
 
 
 def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings):
@@ -174,28 +183,28 @@ def _record(result, lam, u, f_int, states, iterations, residuals, energies, sett
     result.energies.append(list(energies))
 
 
-def _increment(system, settings, fac_k0, k0, u_conv, states, lam, f_ref, f_dead, result):
-    """Iterate one increment from the committed (u_conv, states) to load factor ``lam``."""
+def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, result, force_k0=False):
+    """Iterate one increment from the committed (u_conv, states) to load factor ``lam``.
+
+    ``force_k0`` iterates with K0 (modified Newton, ``settings.fallback_iter`` iterations) whatever the method.
+    """
     free = system.free
     f_ext = lam * f_ref + f_dead
-    u = system.apply_constraints(u_conv.copy(), lam)
-    full = settings.method == "full"
-    use_k0 = not full
+    scale_ext = np.linalg.norm(f_ext)
+    use_k0 = force_k0 or settings.method != "full"
+    max_iter = settings.fallback_iter if force_k0 else settings.max_iter
     residuals, energies = [], []
-    energy0 = None
-    r_first = None
+    energy0 = r_first = None
     outcome = {"converged": False, "residuals": residuals, "energies": energies, "iterations": 0}
-    for it in range(1, settings.max_iter + 1):
-        try:
-            tangent = ELASTIC if use_k0 else CONSISTENT
-            f_int, k_list, trial = system.evaluate(u, u - u_conv, states, tangent)
-        except FloatingPointError as err:
-            outcome.update(reason=f"material update failed: {err}", iterations=it)
+    u = system.apply_constraints(u_conv.copy(), lam)
+    evaluated = _evaluate(system, u, u_conv, states, use_k0, f_ext)
+    for it in range(1, max_iter + 1):
+        if evaluated is None:
+            outcome.update(reason="material update failed", iterations=it)
             return outcome
-        r = f_ext - f_int
+        f_int, k_list, trial, r = evaluated
         r_f = r[free]
-        scale = max(np.linalg.norm(f_ext), np.linalg.norm(f_int), 1e-30)
-        rel = np.linalg.norm(r_f) / scale
+        rel = np.linalg.norm(r_f) / max(scale_ext, np.linalg.norm(f_int), 1e-30)
         residuals.append(rel)
         outcome.update(iterations=it, residual=r, u=u)
         if not np.isfinite(rel):
@@ -205,30 +214,56 @@ def _increment(system, settings, fac_k0, k0, u_conv, states, lam, f_ref, f_dead,
         if it > 1 and rel > settings.divergence_ratio * max(r_first, settings.force_tol):
             outcome.update(reason=f"residual grew by more than {settings.divergence_ratio:g}")
             return outcome
-        if use_k0:
+        du = None if use_k0 else _tangent_solve(system, settings, k_list, r_f, result)
+        if du is None:  # modified Newton, or a tangent that cannot be factorised: K0 for the rest of the
+            use_k0 = True  # increment (retrying a singular tangent every iteration measured slower)
             du = fac_k0.solve(r_f)
-        else:
-            try:
-                kt = system.pattern.matrix(system.pattern.assemble(k_list))
-                du = Factorization(kt, symmetric=settings.symmetric_tangent, backend=settings.backend).solve(r_f)
-                result.factorizations += 1
-            except (FloatingPointError, RuntimeError):
-                use_k0 = True  # singular tangent: fall back to K0 for this increment
-                du = fac_k0.solve(r_f)
         energy = abs(float(du @ r_f))
         energy0 = energy if energy0 is None else energy0
         rel_energy = energy / _energy_scale(energy0, u, f_int)
         energies.append(rel_energy)
-        if _converged(rel, rel_energy, it, settings):
+        if _converged(rel, rel_energy, it, settings) or rel <= 1e-14 * settings.force_tol or energy == 0.0:
             outcome.update(converged=True, u=u, f_int=f_int, states=trial)
             return outcome
-        if rel <= 1e-14 * settings.force_tol or energy == 0.0:  # already exact (e.g. a linear step)
-            outcome.update(converged=True, u=u, f_int=f_int, states=trial)
-            return outcome
-        u = u.copy()
-        u[free] += du
-    outcome.update(reason=f"no convergence in {settings.max_iter} iterations")
+        u, evaluated = _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, np.linalg.norm(r_f))
+    outcome.update(reason=f"no convergence in {max_iter} iterations" + (" with K0" if force_k0 else ""))
     return outcome
+
+
+def _evaluate(system, u, u_conv, states, use_k0, f_ext):
+    """(f_int, element matrices, trial states, residual) at ``u``, or None if a material update failed."""
+    try:
+        f_int, k_list, trial = system.evaluate(u, u - u_conv, states, ELASTIC if use_k0 else CONSISTENT)
+    except FloatingPointError:
+        return None
+    return f_int, k_list, trial, f_ext - f_int
+
+
+def _tangent_solve(system, settings, k_list, r_f, result):
+    """Newton correction with the consistent tangent, or None if the tangent cannot be factorised."""
+    try:
+        kt = system.pattern.matrix(system.pattern.assemble(k_list))
+        du = Factorization(kt, symmetric=settings.symmetric_tangent, backend=settings.backend).solve(r_f)
+    except (FloatingPointError, RuntimeError):
+        return None
+    result.factorizations += 1
+    return du
+
+
+def _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, r_norm):
+    """u + s du with s = 1, or, with the line search in full Newton, the first s = 1, 1/2, ... whose residual
+    norm is below ``r_norm`` (a full step near a corner of the yield surface can overshoot far)."""
+    free = system.free
+    step = 1.0
+    while True:
+        u_new = u.copy()
+        u_new[free] += step * du
+        evaluated = _evaluate(system, u_new, u_conv, states, use_k0, f_ext)
+        if use_k0 or not settings.line_search or step <= settings.line_search_min:
+            return u_new, evaluated
+        if evaluated is not None and np.linalg.norm(evaluated[3][free]) < r_norm:
+            return u_new, evaluated
+        step *= 0.5
 
 
 def _energy_scale(energy_first, u, f_int):
@@ -281,7 +316,7 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
     if int(n_steps) < 1 or not first_increment > 0.0:
         raise ValueError("n_steps must be >= 1 and first_increment > 0")
     t_start = time.perf_counter()
-    system, f_ref, f_dead, states, u, result, _, fac = _start(model, settings)
+    system, f_ref, f_dead, states, u, result, fac = _start(model, settings)
     free = system.free
     if not np.any(f_ref[free]):
         raise ValueError("run_arc_length needs a reference load on free DOFs (Model.add_load)")
