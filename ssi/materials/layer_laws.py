@@ -21,10 +21,9 @@ of length L_e, so that a point that cracks through dissipates exactly Gf per uni
 A model builder sets it per element and point (the params array may be per point); if a single ls is
 given for all elements the law is a plain (mesh-dependent) strain-softening law.
 
-Numba cache caveat: ``cache=True`` keys a kernel's cache on its *own* file only. ``layer_update`` (here) and
-the plate kernels inline ``concrete_update`` / ``steel_update``; after editing ``concrete.py`` or ``steel.py``
-delete the cached ``layer_laws.*`` and ``plate.*`` entries under ``NUMBA_CACHE_DIR`` (or touch this file and
-``ssi/elements/plate.py``), otherwise stale law code keeps running.
+Numba cache: ``cache=True`` alone keys a kernel's cache on its *own* file, but ``layer_update`` and the plate
+kernels inline ``concrete_update`` / ``steel_update``. ``import ssi`` therefore points ``NUMBA_CACHE_DIR`` at a
+folder keyed on a hash of all package sources (``ssi/__init__.py``): any edit recompiles, nothing stale runs.
 
 History: N_LAYER_HIST = 4 floats per layer point (concrete uses 2: max compressive strain, max crack
 strain; steel uses 1: plastic strain). Unused entries are copied through.
