@@ -14,6 +14,7 @@ from numba import njit
 from ..materials.soil_laws import N_SOIL_HIST, soil_update
 from ..quadrature import gauss_2d
 from ..shapes import serendipity8
+from .q8_elastic import q8_elastic_stiffness
 
 N_STRESS = 4
 N_SOIL_STATE = N_STRESS + N_SOIL_HIST
@@ -186,9 +187,11 @@ class SoilQ8:
         return f_el, k_el, state_new
 
     def elastic_stiffness(self):
+        """K0 per element, from the dedicated elastic kernel (every soil law's params start with E, nu)."""
         if self._k0 is None:
-            zero = np.zeros((self.n_el, 16))
-            self._k0 = self.evaluate(zero, zero, self.initial_state(), 0)[1]
+            E = self.params[self.el_mat, 0]
+            nu = self.params[self.el_mat, 1]
+            self._k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
         return self._k0
 
     def body_force(self):
