@@ -92,7 +92,7 @@ FAST = paths.FAST
 # chapter asks for SuperLU explicitly.
 BACKEND = "superlu"
 print("fast mode" if FAST else "full mode")
-print(inspect.getsource(serendipity8.py_func))
+print(inspect.getsource(getattr(serendipity8, "py_func", serendipity8)))
 
 # %% [markdown]
 # ## 1. Zero-energy modes
