@@ -412,3 +412,27 @@ def test_geostatic_stress_is_inside_the_mohr_coulomb_surface():
         s = geostatic_stress(np.linspace(0, -20, 41), [dict(thickness=1.0, gamma=19e3, phi_deg=phi)])
         for row in s:
             assert mc_yield(row, 0.0, math.radians(phi)) <= 1e-9 * (abs(row[1]) + 1.0)
+
+
+@pytest.mark.parametrize("psi", [30.0, 0.0])
+def test_explicit_continuum_tangent_on_an_edge(psi):
+    """On the s1 = s2 edge (here sxx = syy) an isochoric load symmetric in x and y (the law accepts an
+    out-of-plane strain) activates both planes (Koiter's rule); the forward-Euler step is again linear in
+    the increment: Δσ = D_ep Δε with the two-plane D_ep."""
+    c, phi = 10e3, 30.0
+    kind, p = mohr_coulomb_params(E, NU, c, phi, psi, scheme="explicit")
+    k = k_of(phi)
+    s3 = -200e3
+    s1 = (s3 + 2 * c * math.sqrt(k)) / k
+    sig0 = np.array([s1, s3, 0.0, s1])
+    d = np.array([0.5e-4, -3e-4, 0.0, 0.5e-4])
+    st, s_base, h_base, _ = update(kind, p, d, sig0)
+    _, _, _, D = update(kind, p, d * 1e-9, sig0)
+    _, s_h, _, _ = update(kind, p, d * (1 + 1e-6), sig0)
+    assert st == 1 and h_base[1] == 2  # edge branch
+    np.testing.assert_allclose(s_h - s_base, D @ (d * 1e-6), atol=1e-6 * np.abs(D @ d * 1e-6).max())
+    # the stress stays on both planes: s1 = s2 after the step, f = 0
+    assert s_base[0] == pytest.approx(s_base[3], rel=1e-9)
+    assert abs(mc_yield(s_base, c, math.radians(phi))) < TOL_F * 1e6
+    asym = np.abs(D - D.T).max() / E
+    assert (asym < 1e-12) if psi == phi else (asym > 1e-3)
