@@ -125,8 +125,9 @@ def throughput(group):
 
 
 def assembly_and_solve(label, model, group, factorise=True):
-    """Pattern (once per mesh), assembly into the reused CSR values (fast K0 kernel + scatter; and the generic
-    kernel path of Model.solve_linear), factorisation and one back-substitution."""
+    """Pattern (once per mesh); assembly of K0 into the reused CSR values (the K0 kernel of
+    SoilQ8.elastic_stiffness + scatter, buffers reused) and, for comparison, through the generic law-dispatch
+    kernel of SoilQ8.evaluate with fresh arrays; factorisation and one back-substitution."""
     free = model.free_mask()
     t_pat, pattern = best_of(lambda: SparsePattern([group.edofs], free), repeat=1)
     k_el = np.empty((group.n_el, 16, 16))  # buffers allocated once and reused, as modified NR would
@@ -137,9 +138,9 @@ def assembly_and_solve(label, model, group, factorise=True):
         q8_elastic_stiffness(group.coords, E_el, nu_el, group.n_gauss, k_el)
         return pattern.assemble([k_el], data)
 
-    def assemble_generic():  # what Model.solve_linear does today: generic kernel, fresh arrays
-        group._k0 = None
-        return pattern.assemble([group.elastic_stiffness()])
+    def assemble_generic():  # the law-dispatch kernel of SoilQ8.evaluate (solve_linear, Newton iterations)
+        zero = np.zeros((group.n_el, 16))
+        return pattern.assemble([group.evaluate(zero, zero, group.initial_state(), ELASTIC)[1]])
 
     assemble()
     t_asm, _ = best_of(assemble)
