@@ -68,8 +68,9 @@
 # and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also holds
 # u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and grow
 # by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking line
-# search (`ssi.bearing_capacity.newton_line_search`): plain Newton steps near the footing corner overshoot
-# into a far plastic state and diverge.
+# search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
+# `ssi.bearing_capacity.push_footing`): plain Newton steps near the footing corner overshoot into a far
+# plastic state and diverge.
 #
 # | paper / text | code | meaning |
 # |---|---|---|

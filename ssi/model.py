@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
-from .elements.base import ELASTIC
+from .elements.base import ELASTIC, NO_MATRIX
 from .linsolve import Factorization
 
 COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
@@ -180,8 +180,10 @@ class Model:
         used = np.zeros(self.n_dof, bool)
         for g in self.groups:
             used[g.edofs.ravel()] = True
-        if not used.all():
-            raise ValueError(f"{np.count_nonzero(~used)} DOFs belong to no element (unconnected nodes)")
+        unconnected = ~used & self.free_mask()
+        if unconnected.any():
+            raise ValueError(f"{np.count_nonzero(unconnected)} free DOFs belong to no element (unconnected "
+                             "nodes): connect them or fix them")
 
     def describe(self) -> dict:
         return {"n_nodes": self.n_nodes, "n_dof": self.n_dof,
@@ -195,9 +197,10 @@ class Model:
         u = system.apply_constraints(np.zeros(self.n_dof), 1.0)
         states = [g.initial_state() for g in self.groups]
         f_ref, f_dead = self.load_vectors()
-        f_int, k_el, _ = system.evaluate(u, u, states, ELASTIC)
+        f_int, _, _ = system.evaluate(u, u, states, None)
         residual = (f_ref + f_dead - f_int)[system.free]
-        fac = Factorization(system.pattern.matrix(system.pattern.assemble(k_el)), True, backend)
+        k0 = system.pattern.assemble([g.elastic_stiffness() for g in self.groups])
+        fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
         u[system.free] += fac.solve(residual)
         f_int, _, states = system.evaluate(u, u, states, None)
         return LinearResult(u=u, reactions=f_int - f_ref - f_dead, states=states, model=self)
@@ -238,7 +241,11 @@ class System:
             du_el = np.empty(g.edofs.shape)
             gather_vector(g.edofs, u, u_el)
             gather_vector(g.edofs, du, du_el)
-            f_el, k_el, state_new = g.evaluate(u_el, du_el, state, ELASTIC if tangent is None else tangent)
+            if tangent is None:
+                flag = NO_MATRIX if getattr(g, "forces_only", False) else ELASTIC
+            else:
+                flag = tangent
+            f_el, k_el, state_new = g.evaluate(u_el, du_el, state, flag)
             scatter_vector(g.edofs, f_el, f_int)
             k_list.append(k_el)
             new_states.append(state_new)

@@ -165,7 +165,7 @@ def _start(model, settings):
     result = Result(model=model)
     _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
     k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
-    fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend)
+    fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend, spd=True)
     result.factorizations = 1
     return system, f_ref, f_dead, states, u, result, fac_k0
 
@@ -233,7 +233,7 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
 def _evaluate(system, u, u_conv, states, use_k0, f_ext):
     """(f_int, element matrices, trial states, residual) at ``u``, or None if a material update failed."""
     try:
-        f_int, k_list, trial = system.evaluate(u, u - u_conv, states, ELASTIC if use_k0 else CONSISTENT)
+        f_int, k_list, trial = system.evaluate(u, u - u_conv, states, None if use_k0 else CONSISTENT)
     except FloatingPointError:
         return None
     return f_int, k_list, trial, f_ext - f_int

@@ -32,6 +32,8 @@ import numpy as np
 
 ELASTIC = 0      # tangent flag: return the initial elastic stiffness K0 (modified Newton-Raphson)
 CONSISTENT = 1   # tangent flag: return the algorithmic (consistent) tangent (full Newton)
+NO_MATRIX = -1   # tangent flag: internal forces only; k_el may be None. Only groups whose attribute
+                 # ``forces_only`` is True receive it (the others get ELASTIC and their k_el is ignored)
 
 
 class ElementGroup(Protocol):

@@ -43,7 +43,7 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
 
     coords (n_el, 8, 2); du_el (n_el, 16); el_mat (n_el,) material index into kinds (n_mat,), params
     (n_mat, n_par); gp (n_ip, 2), gw (n_ip,); state_old/state_new (n_el, n_ip, N_SOIL_STATE);
-    f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten.
+    f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten (k_el is left alone when tangent < 0).
     """
     n_el = coords.shape[0]
     n_ip = gp.shape[0]
@@ -55,7 +55,8 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
     failures = 0
     for e in range(n_el):
         f_el[e, :] = 0.0
-        k_el[e, :, :] = 0.0
+        if tangent >= 0:
+            k_el[e, :, :] = 0.0
         m = el_mat[e]
         for q in range(n_ip):
             _, det = _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
@@ -74,7 +75,7 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
             deps[1] = ezz
             deps[2] = gxz
             status = soil_update(kinds[m], params[m], deps, state_old[e, q, :N_STRESS],
-                                 state_old[e, q, N_STRESS:], sig, hist, D, tangent)
+                                 state_old[e, q, N_STRESS:], sig, hist, D, max(tangent, 0))
             if status < 0:
                 failures += 1
             state_new[e, q, :N_STRESS] = sig
@@ -85,6 +86,8 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
                 # B_a^T sigma for rows (exx, ezz, gxz): u-row (bx, 0, bz), w-row (0, bz, bx)
                 f_el[e, 2 * a] += (bx * sig[0] + bz * sig[2]) * wdet
                 f_el[e, 2 * a + 1] += (bz * sig[1] + bx * sig[2]) * wdet
+                if tangent < 0:  # forces only (modified Newton: the matrix is K0, kept factorised)
+                    continue
                 # D B_b for both columns of node b, then B_a^T (D B_b)
                 for b in range(8):
                     cx = dndx[b, 0]
@@ -144,6 +147,7 @@ class SoilQ8:
     """
 
     name = "soil_q8"
+    forces_only = True  # accepts the NO_MATRIX flag
 
     def __init__(self, coords, edofs, el_mat, kinds, params, n_gauss=2, unit_weight=None,
                  initial_stress=None):
@@ -177,14 +181,14 @@ class SoilQ8:
 
     def evaluate(self, u_el, du_el, state_old, tangent):
         f_el = np.empty((self.n_el, 16))
-        k_el = np.empty((self.n_el, 16, 16))
+        k_el = np.empty((self.n_el, 16, 16) if tangent >= 0 else (1, 16, 16))
         state_new = np.empty_like(state_old)
         failures = q8_kernel(self.coords, np.ascontiguousarray(du_el), self.el_mat, self.kinds, self.params,
                              self.gp, self.gw, state_old, state_new, f_el, k_el, tangent)
         if failures:
             raise FloatingPointError(f"soil_q8: {failures} integration points failed (distorted element "
                                      "or a stress update that did not converge)")
-        return f_el, k_el, state_new
+        return f_el, (k_el if tangent >= 0 else None), state_new
 
     def elastic_stiffness(self):
         """K0 per element, from the dedicated elastic kernel (every soil law's params start with E, nu)."""
