@@ -29,11 +29,11 @@ notebooks: $(NOTEBOOKS)
 
 test: $(STAMP) notebooks
 	SSI_FAST=1 $(BIN)/python -m pytest tests
-	SSI_FAST=1 $(BIN)/python -m pytest -q --nbmake --nbmake-timeout=900 build/notebooks
+	SSI_FAST=1 $(BIN)/python -m pytest --nbmake --nbmake-timeout=900 build/notebooks
 
 reproduce: $(STAMP) notebooks
 	rm -rf figures/report.d
-	SSI_FAST=0 $(BIN)/python -m pytest -q --nbmake --nbmake-timeout=3600 --overwrite build/notebooks; \
+	SSI_FAST=0 $(BIN)/python -m pytest --nbmake --nbmake-timeout=3600 --overwrite build/notebooks; \
 	status=$$?; $(BIN)/python -m ssi.report; report=$$?; \
 	test $$status -eq 0 -a $$report -eq 0
 

@@ -16,13 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .elements.base import CONSISTENT
 from .elements.soil_q8 import SoilQ8
-from .linsolve import Factorization
 from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_params
 from .mesh import soil_block, structured_q8
-from .model import Model, System
-from .solver import NonConvergence, Result, Settings, run
+from .model import Model
+from .solver import NonConvergence, Settings, run
 
 
 def prandtl(c, phi_deg, q=0.0):

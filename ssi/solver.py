@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .elements.base import CONSISTENT, ELASTIC
+from .elements.base import CONSISTENT
 from .linsolve import Factorization
 from .model import Model, System
 

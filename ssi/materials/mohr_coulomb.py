@@ -124,7 +124,7 @@ def mc_constants(c, phi, psi):
 @njit(cache=True)
 def mc_yield(sig, c, phi):
     """Mohr–Coulomb yield function f(σ) = k s1 - s3 - 2c√k of a stress vector [xx, zz, xz, yy]."""
-    pa, pb, cc, ss = principal_inplane(sig[0], sig[1], sig[2])
+    pa, pb, _, _ = principal_inplane(sig[0], sig[1], sig[2])
     s1 = pa
     s3 = pb
     s1 = max(s1, sig[3])
@@ -254,7 +254,36 @@ def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H):
 # implicit scheme
 # ---------------------------------------------------------------------------------------------------------
 @njit(cache=True)
-def _elastic_fill(lam, mu, D):
+def sorted_principal(sig, sB, order):
+    """Principal stresses of ``sig`` [xx, zz, xz, yy] sorted into ``sB`` (sB[0] >= sB[1] >= sB[2]);
+    ``order[i]`` is where sB[i] came from (0, 1: the in-plane pair a, b; 2: the out-of-plane yy).
+    Returns (pa, pb, cos, sin) of the in-plane principal axes."""
+    pa, pb, cc, ss = principal_inplane(sig[0], sig[1], sig[2])
+    p = np.empty(3)
+    p[0] = pa
+    p[1] = pb
+    p[2] = sig[3]
+    order3(p, order)
+    for i in range(3):
+        sB[i] = p[order[i]]
+    return pa, pb, cc, ss
+
+
+@njit(cache=True)
+def stress_on_axes(s, order, cc, ss, sig, q, R):
+    """Inverse of :func:`sorted_principal`: the sorted principal values ``s`` back to their positions
+    ``q`` [a, b, yy] and to ``sig`` [xx, zz, xz, yy] on the same axes; ``R`` gets the rotation matrix."""
+    for i in range(3):
+        q[order[i]] = s[i]
+    rotation_matrix(cc, ss, R)
+    for i in range(3):
+        sig[i] = R[i, 0] * q[0] + R[i, 1] * q[1]
+    sig[3] = q[2]
+
+
+@njit(cache=True)
+def elastic_fill(lam, mu, D):
+    """Fill ``D`` (4, 4) with the isotropic elastic matrix of Lamé constants (lam, mu), order [xx, zz, xz, yy]."""
     D[:, :] = 0.0
     for i in (0, 1, 3):
         for j in (0, 1, 3):
@@ -303,16 +332,9 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     sB4[1] = sig_old[1] + lam * tr + 2.0 * mu * deps[1]
     sB4[2] = sig_old[2] + mu * deps[2]
     sB4[3] = sig_old[3] + lam * tr + 2.0 * mu * deps[3]
-    pa, pb, cc, ss = principal_inplane(sB4[0], sB4[1], sB4[2])
-    p = np.empty(3)
-    p[0] = pa
-    p[1] = pb
-    p[2] = sB4[3]
     order = np.empty(3, np.int64)
-    order3(p, order)
     sB = np.empty(3)
-    for i in range(3):
-        sB[i] = p[order[i]]
+    pa, pb, cc, ss = sorted_principal(sB4, sB, order)
     fB = k * sB[0] - sB[2] - kc
     scale = abs(sB[0]) + abs(sB[1]) + abs(sB[2]) + kc
     if fB <= 1e-12 * scale:
@@ -320,7 +342,7 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
             sig_new[i] = sB4[i]
         hist_new[0] = hist_old[0]
         hist_new[1] = B_ELASTIC
-        _elastic_fill(lam, mu, D)
+        elastic_fill(lam, mu, D)
         return ST_ELASTIC
     s = np.empty(3)
     H = np.empty((3, 3))
@@ -330,23 +352,19 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
             sig_new[i] = sB4[i]
         hist_new[0] = hist_old[0]
         hist_new[1] = -1.0
-        _elastic_fill(lam, mu, D)
+        elastic_fill(lam, mu, D)
         return ST_FAIL
     # back to [a, b, y] positions
     q = np.empty(3)
+    R = np.empty((4, 4))
+    stress_on_axes(s, order, cc, ss, sig_new, q, R)
     ds = np.empty(3)
     for i in range(3):
-        q[order[i]] = s[i]
         ds[i] = sB[i] - s[i]
-    R = np.empty((4, 4))
-    rotation_matrix(cc, ss, R)
-    for i in range(4):
-        sig_new[i] = R[i, 0] * q[0] + R[i, 1] * q[1]
-    sig_new[3] = q[2]
     hist_new[0] = hist_old[0] + _plastic_strain_norm(lam, mu, ds)
     hist_new[1] = branch
     if tangent == 0:
-        _elastic_fill(lam, mu, D)
+        elastic_fill(lam, mu, D)
         return ST_PLASTIC
     # C (ordered) = H Dp, then permute to [a, b, y]
     Cp = np.empty((3, 3))
@@ -429,19 +447,13 @@ def _continuum_dep(sig, lam, mu, k, m, kc, apex, deps, Dep, use_deps):
     active planes (0 = elastic). At the apex (all three equal to c cot φ) D_ep = 0 for loading.
     Dep (4, 4) is written in global components.
     """
-    pa, pb, cc, ss = principal_inplane(sig[0], sig[1], sig[2])
-    p = np.empty(3)
-    p[0] = pa
-    p[1] = pb
-    p[2] = sig[3]
     order = np.empty(3, np.int64)
-    order3(p, order)
-    s1 = p[order[0]]
-    s2 = p[order[1]]
-    s3 = p[order[2]]
+    sB = np.empty(3)
+    _, _, cc, ss = sorted_principal(sig, sB, order)
+    s1, s2, s3 = sB[0], sB[1], sB[2]
     scale = abs(s1) + abs(s2) + abs(s3) + kc + 1e-300
     etol = 1e-9 * scale
-    _elastic_fill(lam, mu, Dep)
+    elastic_fill(lam, mu, Dep)
     # global gradient basis of each ordered principal value: Voigt vectors (xz doubled)
     Nv = np.zeros((3, 4))   # rows: [a, b, y] directions
     Nv[0, 0] = cc * cc
@@ -545,7 +557,7 @@ def _elastic_increment(sig, lam, mu, deps, alpha, out):
 
 @njit(cache=True)
 def _yield_k(sig, k, kc):
-    pa, pb, cc, ss = principal_inplane(sig[0], sig[1], sig[2])
+    pa, pb, _, _ = principal_inplane(sig[0], sig[1], sig[2])
     s1 = pa
     s3 = pb
     s1 = max(s1, sig[3])
@@ -559,16 +571,9 @@ def mc_drift_correct(sig, lam, mu, k, m, kc, apex):
     (Potts & Gens' 'consistent' correction). For Mohr–Coulomb's planes this single correction is exactly the
     principal-space return of :func:`mc_return_principal` with the drifted stress as trial. In place; returns
     the branch code, 0 if no correction was needed."""
-    pa, pb, cc, ss = principal_inplane(sig[0], sig[1], sig[2])
-    p = np.empty(3)
-    p[0] = pa
-    p[1] = pb
-    p[2] = sig[3]
     order = np.empty(3, np.int64)
-    order3(p, order)
     sB = np.empty(3)
-    for i in range(3):
-        sB[i] = p[order[i]]
+    _, _, cc, ss = sorted_principal(sig, sB, order)
     fB = k * sB[0] - sB[2] - kc
     if fB <= 1e-12 * (abs(sB[0]) + abs(sB[1]) + abs(sB[2]) + kc):
         return 0
@@ -578,13 +583,8 @@ def mc_drift_correct(sig, lam, mu, k, m, kc, apex):
     if br < 0:
         return br
     q = np.empty(3)
-    for i in range(3):
-        q[order[i]] = s[i]
     R = np.empty((4, 4))
-    rotation_matrix(cc, ss, R)
-    for i in range(3):
-        sig[i] = R[i, 0] * q[0] + R[i, 1] * q[1]
-    sig[3] = q[2]
+    stress_on_axes(s, order, cc, ss, sig, q, R)
     return br
 
 
@@ -622,7 +622,7 @@ def mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         for i in range(4):
             sig_new[i] = st[i]
         hist_new[1] = B_ELASTIC
-        _elastic_fill(lam, mu, D)
+        elastic_fill(lam, mu, D)
         return ST_ELASTIC
     f0 = _yield_k(sig_old, k, kc)
     alpha = 0.0
@@ -690,7 +690,7 @@ def mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     hist_new[0] = hist_old[0] + ep
     hist_new[1] = branch
     if tangent == 0:
-        _elastic_fill(lam, mu, D)
+        elastic_fill(lam, mu, D)
     else:
         _continuum_dep(sig, lam, mu, k, m, kc, apex, dsub, D, True)
     return ST_PLASTIC
@@ -720,7 +720,7 @@ def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     sd[2] = st[2]
     sd[3] = st[3] - pm
     nrm = math.sqrt(sd[0] * sd[0] + sd[1] * sd[1] + sd[3] * sd[3] + 2.0 * sd[2] * sd[2])
-    _elastic_fill(lam, mu, D)
+    elastic_fill(lam, mu, D)
     hist_new[0] = hist_old[0]
     if nrm <= math.sqrt(2.0) * cu * (1.0 + 1e-12):
         for i in range(4):

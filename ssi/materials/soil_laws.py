@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .mohr_coulomb import mc_explicit, mc_implicit, vm_implicit
+from .mohr_coulomb import elastic_fill, lame, mc_explicit, mc_implicit, vm_implicit
 
 ELASTIC = 0
 MOHR_COULOMB = 1
@@ -41,14 +41,8 @@ KIND_NAMES = {ELASTIC: "elastic", MOHR_COULOMB: "mohr_coulomb", MOHR_COULOMB_EXP
 @njit(cache=True)
 def elastic_matrix(E, nu, D):
     """Fill ``D`` (4, 4) with the isotropic linear-elastic matrix in the [xx, zz, xz, yy] order."""
-    lam = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
-    mu = 0.5 * E / (1.0 + nu)
-    D[:, :] = 0.0
-    for i in (0, 1, 3):
-        for j in (0, 1, 3):
-            D[i, j] = lam
-        D[i, i] = lam + 2.0 * mu
-    D[2, 2] = mu
+    lam, mu = lame(E, nu)
+    elastic_fill(lam, mu, D)
 
 
 @njit(cache=True)
