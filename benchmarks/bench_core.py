@@ -152,38 +152,19 @@ def assembly_and_solve(label, model, group, factorise=True):
     if factorise:
         matrix = pattern.matrix(data)
         rhs = np.ones(pattern.n_free)
-        t_fac, fac = best_of(lambda: Factorization(matrix, True, "auto"), repeat=1)
+        t_fac, fac = best_of(lambda: Factorization(matrix, True, "auto", spd=True), repeat=1)
         t_sol, _ = best_of(lambda: fac.solve(rhs))
         emit(f"factorisation_{label}_dofs_s", t_fac)
         emit(f"solve_{label}_dofs_s", t_sol)
         emit(f"backend_{label}", fac.backend, "{}")
         if pardiso_available() and label == "1e5":
-            t_fac2, t_sol2 = pardiso_mmd(matrix, rhs)
-            emit("factorisation_1e5_dofs_pardiso_spd_mmd_s", t_fac2)
-            emit("solve_1e5_dofs_pardiso_spd_mmd_s", t_sol2)
+            # beside it: PARDISO in symmetric-indefinite mode with its default (METIS) ordering, what
+            # linsolve used for K0 before the SPD + minimum-degree setting
+            t_fac2, fac2 = best_of(lambda: Factorization(matrix, True, "pardiso"), repeat=1)
+            t_sol2, _ = best_of(lambda: fac2.solve(rhs))
+            emit("factorisation_1e5_dofs_pardiso_indefinite_s", t_fac2)
+            emit("solve_1e5_dofs_pardiso_indefinite_s", t_sol2)
     return t_asm
-
-
-def pardiso_mmd(matrix, rhs):
-    """A candidate setting for ssi.linsolve, measured beside it: PARDISO in SPD mode (mtype 2, right for K0)
-    with user iparm (iparm1 = 1) and the minimum-degree ordering (iparm2 = 0) instead of the defaults
-    (mtype -2 with METIS, scaling and matching). Returns (factorisation, one back-substitution) seconds."""
-    import pypardiso
-
-    solver = pypardiso.PyPardisoSolver(mtype=2)
-    solver.set_iparm(1, 1)
-    solver.set_iparm(2, 0)
-    a = sp.triu(matrix, format="csr")
-    a.sort_indices()
-    t0 = time.perf_counter()
-    solver.factorize(a)
-    t_fac = time.perf_counter() - t0
-    solver.set_phase(33)
-    t_sol, x = best_of(lambda: solver._call_pardiso(a, rhs))
-    if np.linalg.norm(matrix @ x - rhs) > 1e-8 * np.linalg.norm(rhs):
-        raise RuntimeError("PARDISO SPD/MMD solve inaccurate")
-    solver.free_memory(everything=True)
-    return t_fac, t_sol
 
 
 def skfem_assembly(nx, nz):
@@ -210,7 +191,6 @@ def elastic_block_total():
 
 def elastic_block_breakdown():
     """The steps of Model.solve_linear on the 1e5-DOF block, timed one by one (same calls, same order)."""
-    from ssi.elements.base import ELASTIC as K0_FLAG
     from ssi.model import System
 
     t = {}
@@ -223,13 +203,16 @@ def elastic_block_breakdown():
     u = system.apply_constraints(np.zeros(m.n_dof), 1.0)
     states = [g.initial_state() for g in m.groups]
     t0 = time.perf_counter()
-    f_int, k_el, _ = system.evaluate(u, u, states, K0_FLAG)
+    f_int, _, _ = system.evaluate(u, u, states, None)
+    t["initial_forces"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    k_el = [g.elastic_stiffness() for g in m.groups]
     t["element_matrices"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     data = system.pattern.assemble(k_el)
     t["scatter"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    fac = Factorization(system.pattern.matrix(data), True, "auto")
+    fac = Factorization(system.pattern.matrix(data), True, "auto", spd=True)
     t["factorisation"] = time.perf_counter() - t0
     f_ref, f_dead = m.load_vectors()
     t0 = time.perf_counter()
