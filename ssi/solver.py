@@ -44,7 +44,8 @@ class Settings:
     method: str = "modified"
     force_tol: float = 1e-5       # |r_f| <= force_tol * max(|F_ext|, |F_int|)
     energy_tol: float = 1e-8      # |du . r| <= energy_tol * max(|du_0 . r_0|, |u . F_int|)
-    max_iter: int = 300           # per increment
+    max_iter: int | None = None   # per increment; None: 300 for modified Newton, 30 for full Newton (more
+                                  # tangent factorisations than that cost more than the K0 retry below)
     max_cuts: int = 6             # halvings of a failing increment
     divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
     backend: str = "auto"
@@ -58,6 +59,8 @@ class Settings:
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
+        if self.max_iter is None:
+            self.max_iter = 300 if self.method == "modified" else 30
         for name in ("force_tol", "energy_tol"):
             if not 0.0 < getattr(self, name) < 1.0:
                 raise ValueError(f"{name} must be in (0, 1), got {getattr(self, name)}")
@@ -239,14 +242,23 @@ def _evaluate(system, u, u_conv, states, use_k0, f_ext):
     return f_int, k_list, trial, f_ext - f_int
 
 
+TANGENT_SOLVE_TOL = 1e-6  # |K_T du - r| / |r| above this: the factorisation of K_T is not to be trusted
+
+
 def _tangent_solve(system, settings, k_list, r_f, result):
-    """Newton correction with the consistent tangent, or None if the tangent cannot be factorised."""
+    """Newton correction with the consistent tangent, or None if the tangent cannot be factorised.
+
+    The correction is checked against the tangent (one sparse product): on a nearly singular tangent
+    (a plastic hinge, a fully softened band) SuperLU can return finite garbage after BLAS refused a call
+    ("On entry to DTRSV parameter number 6 had an illegal value"), and Newton would then wander."""
     try:
         kt = system.pattern.matrix(system.pattern.assemble(k_list))
         du = Factorization(kt, symmetric=settings.symmetric_tangent, backend=settings.backend).solve(r_f)
     except (FloatingPointError, RuntimeError):
         return None
     result.factorizations += 1
+    if np.linalg.norm(kt @ du - r_f) > TANGENT_SOLVE_TOL * np.linalg.norm(r_f):
+        return None
     return du
 
 

@@ -103,6 +103,41 @@ def test_tanh_spring_load_control_and_convergence_orders():
     assert abs(orders["modified"] - 1.0) < 0.05, orders
 
 
+def test_untrustworthy_tangent_solve_falls_back_to_k0(monkeypatch):
+    """A tangent factorisation whose correction does not satisfy K_T du = r (what SuperLU can return after
+    BLAS refused a call on a nearly singular matrix) is refused: the increment goes on with K0, linearly
+    convergent, to the same closed-form answer -- never on the garbage correction."""
+    import ssi.solver as solver_module
+
+    class Garbled(solver_module.Factorization):
+        """K0 (factorised with spd=True) solves correctly; every tangent solve is off."""
+
+        def __init__(self, matrix, symmetric=True, backend="auto", spd=False):
+            super().__init__(matrix, symmetric, backend, spd)
+            self.garble = not spd
+
+        def solve(self, rhs):
+            x = super().solve(rhs)
+            return 0.37 * x + 1e-3 if self.garble else x
+
+    model, _, nodes = spring_chain([TANH], [K0, FU, 0.0])
+    model.add_load(nodes[-1], "u", 0.9 * FU)
+    exact = np.arctanh(0.9) * FU / K0
+    calls = []
+    original = solver_module._tangent_solve
+
+    def spy(*args):
+        calls.append(original(*args))
+        return calls[-1]
+
+    monkeypatch.setattr(solver_module, "_tangent_solve", spy)
+    monkeypatch.setattr(solver_module, "Factorization", Garbled)
+    res = run(model, [1.0], Settings(method="full", force_tol=1e-10, energy_tol=1e-12, max_iter=400))
+    assert calls and all(c is None for c in calls)            # every tangent correction was refused
+    assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-8 * exact
+    assert abs(fitted_order(res.residuals[1])[0] - 1.0) < 0.05  # K0 iterations: linear, as modified Newton
+
+
 def test_displacement_control_and_committed_plastic_state():
     """Elastoplastic spring (k0, F_y, H) driven by a prescribed elongation d up to 3 d_y and back to 0: the
     reaction follows the bilinear law on loading and unloads with k0; the state is committed per step."""
