@@ -93,3 +93,23 @@ def test_layers_must_be_valid():
         strip_scene(layers=[SoilLayer(6.0, E=1e7, nu=0.5)]).build()
     with pytest.raises(ValueError, match="tile the depth"):
         strip_scene(layers=[SoilLayer(5.0, E=1e7, nu=0.3)]).build()
+
+
+def test_readme_scene_runs_as_written():
+    """The README's 'Your own scene' block, executed as written: it converges (a NonConvergence would raise)
+    and the column load is carried by the contact (equilibrium, independent of the solver's tolerance)."""
+    import pathlib
+    import re
+
+    readme = (pathlib.Path(__file__).resolve().parent.parent / "README.md").read_text()
+    code = re.search(r"```python\n(.*?)```", readme, re.S).group(1)
+    env = {}
+    exec(compile(code, "README.md", "exec"), env)
+    out, settlement = env["out"], env["settlement"]
+    assert out.solver_result.load_factor[-1] == 1.0
+    assert 0.0 < settlement.max() < 0.2
+    contact = out.contact()
+    weights = env["scene"].build().interface.ip_weights()
+    # the plate's own weight is not modelled (Foundation.self_weight = 0): the contact carries N alone
+    assert np.sum(contact["sig_n"] * weights) == pytest.approx(-400e3, rel=1e-3)
+    assert set(np.unique(contact["zone"])) <= {"stick", "slip", "open"}
