@@ -251,7 +251,7 @@ for rule in ("point", "spacing"):
 
 
 def reached(rule):
-    """The largest deflection [mm] every mesh of this band rule reached (42 mm, the data's last point, at most)."""
+    """The largest deflection [mm] every mesh of this band rule reached (at most 42 mm, the data's last)."""
     return min(42.0, min(mesh_runs[rule, n][0][-1] for n in MESHES))
 
 
@@ -266,8 +266,8 @@ def spread(rule):
 spread_spacing, spread_point = spread("spacing"), spread("point")
 SPREAD_BOUND = 1.0 / 37.0      # the data's reading uncertainty (1 kN m at the yield moment)
 print(f"spread of M over {len(MESHES)} meshes: band = crack spacing {spread_spacing:.2%} (delta 2-"
-      f"{reached('spacing'):.1f} mm), band = point length {spread_point:.2%} (delta 2-{reached('point'):.1f} mm); "
-      f"bound {SPREAD_BOUND:.1%}")
+      f"{reached('spacing'):.1f} mm), band = point length {spread_point:.2%} "
+      f"(delta 2-{reached('point'):.1f} mm); bound {SPREAD_BOUND:.1%}")
 
 # %% [markdown]
 # ## The trade: layers × elements × load steps against error and wall time
