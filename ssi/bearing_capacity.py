@@ -138,7 +138,7 @@ def push_footing(scene: FootingScene, n_steps=20, method="line_search", grading=
     lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
     if settings is None:
         if method == "line_search":
-            kw = {"backend": "superlu", "max_iter": 30, "max_cuts": 8, **kw}
+            kw = {"backend": "superlu", "max_cuts": 8, **kw}
             settings = Settings(method="full", line_search=True, **kw)
         else:
             settings = Settings(method=method, **kw)
