@@ -117,8 +117,14 @@ class Result:
         return self.states[-1]
 
 
-def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
+def run(model: Model, load_factors, settings: Settings | None = None, *, start: "Result | None" = None,
+        loads: tuple | None = None) -> Result:
     """Follow the load path ``load_factors`` (increasing or not; each entry a target lambda).
+
+    ``start``: continue from the last converged step of an earlier result of the same model (its u and
+    material state become step 0, at lambda = 0): the next phase of a phased analysis. ``loads``:
+    ``(f_ref, f_dead)`` global vectors [N] replacing the model's own (F_ext = lambda f_ref + f_dead), e.g. the
+    loads of the previous phase as dead load and the phase's change as reference load.
 
     Raises :class:`NonConvergence` if an increment fails after ``settings.max_cuts`` halvings.
     """
@@ -128,7 +134,7 @@ def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
     model.check()
     t_start = time.perf_counter()
-    system, f_ref, f_dead, states, u, result, fac_k0 = _start(model, settings)
+    system, f_ref, f_dead, states, u, result, fac_k0 = _start(model, settings, start, loads)
     free = system.free
     lam = 0.0
     for target in targets:
@@ -161,12 +167,19 @@ def run(model: Model, load_factors, settings: Settings | None = None) -> Result:
     return result
 
 
-def _start(model, settings):
+def _start(model, settings, start=None, loads=None):
     """Assembly machinery, loads, the initial state recorded as step 0, and the one factorisation of K0."""
     system = System(model)
-    f_ref, f_dead = model.load_vectors()
-    states = [g.initial_state() for g in model.groups]
-    u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
+    f_ref, f_dead = model.load_vectors() if loads is None else (np.asarray(v, np.float64) for v in loads)
+    if f_ref.shape != (model.n_dof,) or f_dead.shape != (model.n_dof,):
+        raise ValueError(f"loads must be two vectors of length n_dof = {model.n_dof}")
+    if start is None:
+        states = [g.initial_state() for g in model.groups]
+        u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
+    else:
+        if start.model is not model:
+            raise ValueError("start must be a Result of the same model")
+        states, u = start.final_state, start.u[-1].copy()
     f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
     result = Result(model=model)
     _record(result, 0.0, u, f_int0, states, 0, [], [], settings)

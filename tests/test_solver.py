@@ -103,6 +103,22 @@ def test_tanh_spring_load_control_and_convergence_orders():
     assert abs(orders["modified"] - 1.0) < 0.05, orders
 
 
+def test_phase_continuation_matches_one_path():
+    """A second phase that starts from the first one's converged state and carries the first phase's load as
+    dead load ends where one path to the total load ends (tanh spring: d = atanh(0.9) F_u / k0)."""
+    model, _, nodes = spring_chain([TANH], [K0, FU, 0.0])
+    model.add_load(nodes[-1], "u", 0.5 * FU)
+    first = run(model, [0.5, 1.0], Settings(method="full", force_tol=1e-10))
+    f_half, _ = model.load_vectors()
+    second = run(model, [0.5, 1.0], Settings(method="full", force_tol=1e-10), start=first,
+                 loads=(0.8 * f_half, f_half))                  # 0.5 F_u already on, 0.4 F_u added
+    exact = np.arctanh(0.9) * FU / K0
+    assert abs(second.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-8 * exact
+    assert np.array_equal(second.u[0], first.u[-1])             # step 0 of the phase is the previous end
+    with pytest.raises(ValueError, match="loads"):
+        run(model, [1.0], start=first, loads=(f_half[:-1], f_half))
+
+
 def test_untrustworthy_tangent_solve_falls_back_to_k0(monkeypatch):
     """A tangent factorisation whose correction does not satisfy K_T du = r (what SuperLU can return after
     BLAS refused a call on a nearly singular matrix) is refused: the increment goes on with K0, linearly
