@@ -71,13 +71,16 @@ class Foundation:
 
 @dataclass(frozen=True)
 class Contact:
-    """Foundation--soil interface (Coulomb). ``phi_deg=None``: bonded and elastic (never slips or opens)."""
+    """Foundation--soil interface (Coulomb). ``phi_deg=None``: bonded and elastic (never slips or opens).
+
+    ``psi_deg`` is the contact's dilation angle; the default 0 (slip without dilation) is the usual engineering
+    choice for a concrete--soil contact. ``psi_deg=None`` gives the paper's associated rule (psi = phi)."""
 
     kn: float
     kt: float
     phi_deg: float | None = None
     c: float = 0.0
-    psi_deg: float | None = None
+    psi_deg: float | None = 0.0
     sig_t: float | None = None
     rule: str = "newton_cotes"
 

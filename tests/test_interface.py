@@ -137,13 +137,17 @@ STATES = {
     "open (stays open)": ({}, [1e-4, -1e-4], [0.0, 0.0], 1e-3, OPEN),
     "re-close, stick": ({}, [1e-5, -1.2e-3], [0.0, 0.0], 1e-3, STICK),
     "re-close, slip": ({"psi_deg": 5.0}, [2e-3, -1.1e-3], [0.0, 0.0], 1e-3, SLIP),
+    # c = 0, associated: a trial in slight tension with large |tau| returns onto the slip line (the apex
+    # corner is split along De m), and a trial in the apex region opens
+    "c=0 assoc, tension trial slips": ({"c": 0.0}, [2e-3, 2e-5], [0.0, -1e2], None, SLIP),
+    "c=0 assoc, apex region opens": ({"c": 0.0}, [1e-5, 2e-4], [0.0, -1e2], None, OPEN),
 }
 
 
 @pytest.mark.parametrize("name", list(STATES))
 def test_fd_tangent_in_every_state(name):
     kw, dgap, t_old, open_gap, expected = STATES[name]
-    p = interface_params(KT, KN, PHI, C, **kw)
+    p = interface_params(KT, KN, PHI, **{"c": C, **kw})
     h_old = None if open_gap is None else _open_hist(p, open_gap)
     if h_old is not None:
         t_old = [0.0, 0.0]
@@ -153,6 +157,28 @@ def test_fd_tangent_in_every_state(name):
     np.testing.assert_allclose(D, fd_tangent(p, dgap, t_old, h_old), atol=1e-6 * KN)
     # the ELASTIC flag always returns De = diag(kt, kn) (K0 of modified Newton-Raphson)
     np.testing.assert_array_equal(update(p, dgap, t_old, h_old, tangent=ELASTIC)[3], np.diag([KT, KN]))
+
+
+@pytest.mark.parametrize("psi_deg", [0.0, 15.0, PHI])
+def test_cohesionless_traction_is_continuous_across_the_apex(psi_deg):
+    """c = 0: the traction is a continuous function of the gap at the apex (sig_n = 0), for any dilation.
+    Before the corner was split, a dilatant trial just past sig_n = 0 with large |tau| jumped from a slip
+    traction of order kt*dg_t to zero (open), and Newton cycled slip -> open -> stick at such a point."""
+    p = interface_params(KT, KN, PHI, 0.0, psi_deg=psi_deg)
+    t_old = [0.0, -1e3]
+    g_t = 2e-3                                               # |tau_tr| = 4e4 Pa >> friction 1e3 tan(phi)
+    for g_n in np.linspace(0.5e3 / KN, 2.0e3 / KN, 41):      # sig_n,trial from -0.5e3 to +1e3 Pa
+        eps = 1e-12
+        lo = update(p, [g_t, g_n - eps], t_old)[1]
+        hi = update(p, [g_t, g_n + eps], t_old)[1]
+        # tolerance: a Lipschitz map moves by at most max(kt, kn) * 2 eps ~ 1e-4 Pa
+        assert np.abs(hi - lo).max() < 1e-3, (g_n, lo, hi)
+    # the return of an associated slip lands on the line |tau| = -sig_n tan(phi) in compression
+    code, t, _, _ = update(p, [g_t, 1.5e3 / KN], t_old)
+    if psi_deg > 0.0:
+        assert code == SLIP and t[1] < 0.0 and abs(abs(t[0]) + t[1] * TAN) < 1e-9 * KN
+    else:
+        assert code == OPEN and np.all(t == 0.0)
 
 
 def test_tension_cutoff_opens_and_debonds():

@@ -14,7 +14,10 @@ The update (one call per integration point and iteration), in numbered steps
    trial t_tr = [kt * r * dg_t, kn * (g_o + dg_n)]; continue with step 3.
 2. **Closed point**: elastic predictor, eq. (6.2) in rate form: t_tr = t_old + De * dgap, De = diag(kt, kn).
    If sig_n,tr > sig_t (tension cut-off) the contact opens: t = 0, g_o = sig_n,tr / kn, D = 0, and the point
-   loses its cohesion and tensile strength for good (``broken`` = 1): a debonded contact has no glue left.
+   loses its cohesion and tensile strength for good (``broken`` = 1): a debonded contact has no glue left --
+   unless the dilatant slip return of step 4 lands on the closed side of the cut-off (sig_n <= sig_t): the
+   corner of the Coulomb line and the cut-off is then split along the return direction De m, which keeps
+   the traction a continuous function of the gap for c = 0 (no jump slip -> open at the apex).
 3. **Coulomb check**, eq. (6.7): f_tr = |tau_tr| + sig_n,tr * tan(phi) - c. f_tr <= 0: stick, t = t_tr.
 4. **Slip**: plastic potential g = |tau| + sig_n * tan(psi) (psi = phi is the paper's associated rule, psi = 0
    a slip without dilation). With m = dg/dt = [s, tan(psi)], n = df/dt = [s, tan(phi)], s = sign(tau_tr):
@@ -155,7 +158,7 @@ def interface_update(params, dgap, t_old, hist_old, t_new, hist_new, D, tangent)
         # step 2: elastic predictor, eq. (6.2)
         tau_tr = t_old[0] + kt * dgap[0]
         sig_tr = t_old[1] + kn * dgap[1]
-        if sig_tr > sig_t:
+        if sig_tr > sig_t and not _slip_lands_closed(tau_tr, sig_tr, kt, kn, c, tan_phi, tan_psi, sig_t):
             t_new[0] = 0.0
             t_new[1] = 0.0
             hist_new[H_OPEN] = sig_tr / kn
@@ -189,6 +192,22 @@ def interface_update(params, dgap, t_old, hist_old, t_new, hist_new, D, tangent)
                  a00 * j00 + a01 * j10, a00 * j01 + a01 * j11,
                  a10 * j00 + a11 * j10, a10 * j01 + a11 * j11)
     return SLIP
+
+
+@njit(cache=True)
+def _slip_lands_closed(tau_tr, sig_tr, kt, kn, c, tan_phi, tan_psi, sig_t):
+    """True if the Coulomb return of a trial beyond the tension cut-off lands on the closed side of it.
+
+    A dilatant return (psi > 0) moves sig_n by -dlam kn tan(psi), into compression: a trial with large |tau|
+    and small tension belongs to the slip line, not to the apex. Without this test the map from the gap
+    to the traction jumps at sig_tr = sig_t (slip on one side, open on the other) and Newton cycles
+    slip -> open -> stick at such a point; with it, the region that returns to the apex (open, t = 0) is
+    bounded by the return direction De m through the corner, as for any closest-point projection."""
+    f_tr = abs(tau_tr) + sig_tr * tan_phi - c
+    if not f_tr > 0.0 or tan_psi == 0.0:
+        return False
+    sig_return = sig_tr - f_tr / (kt + kn * tan_phi * tan_psi) * kn * tan_psi
+    return sig_return <= sig_t
 
 
 @njit(cache=True)
