@@ -137,11 +137,13 @@ def push_footing(scene: FootingScene, n_steps=20, method="line_search", grading=
     """
     lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
     if settings is None:
+        # the n_steps displacement increments are the study's variable: each is one increment (halved on
+        # failure), not subdivided by automatic stepping
         if method == "line_search":
-            kw = {"backend": "superlu", "max_cuts": 8, **kw}
+            kw = {"backend": "superlu", "max_cuts": 8, "stepping": "fixed", **kw}
             settings = Settings(method="full", line_search=True, **kw)
         else:
-            settings = Settings(method=method, **kw)
+            settings = Settings(**{"method": method, "stepping": "fixed", **kw})
     t0 = time.perf_counter()
     failure = None
     try:

@@ -212,14 +212,24 @@ class BuiltScene:
         contact_linear = self.scene.contact is None or self.scene.contact.phi_deg is None
         return soil_linear and plate_linear and contact_linear
 
-    def solve(self, n_steps=10, settings: Settings | None = None):
-        """Apply the loads in ``n_steps`` equal increments (one linear solve if the scene is linear)."""
+    def solve(self, n_steps: int | None = None, settings: Settings | None = None) -> "SceneResult":
+        """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear.
+
+        ``n_steps=None`` (default): automatic increments (``settings.stepping``, see :class:`Settings`);
+        an integer: the path passes through n equal load levels (each may be subdivided by automatic
+        stepping; ``Settings.paper()`` takes each as one increment). The result's ``status`` says
+        ``"completed"`` or ``"limit load reached"`` (the loads exceed what the scene can carry: the path up
+        to the limit is returned); a failure before either raises :class:`~ssi.solver.NonConvergence`."""
         if self.is_linear:
             lin = self.model.solve_linear(backend=(settings or Settings()).backend)
             return SceneResult(self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None)
-        if int(n_steps) < 1:
-            raise ValueError(f"n_steps must be >= 1, got {n_steps}")
-        res = run(self.model, np.linspace(0.0, 1.0, int(n_steps) + 1)[1:], settings)
+        if n_steps is None:
+            targets = [1.0]
+        elif isinstance(n_steps, (int, np.integer)) and not isinstance(n_steps, bool) and n_steps >= 1:
+            targets = np.linspace(0.0, 1.0, int(n_steps) + 1)[1:]
+        else:
+            raise ValueError(f"n_steps must be None (automatic) or an integer >= 1, got {n_steps!r}")
+        res = run(self.model, targets, settings)
         return SceneResult(self, res.load_factor, res.u, res.states, res)
 
 
@@ -232,6 +242,16 @@ class SceneResult:
     u: list
     states: list
     solver_result: object
+
+    @property
+    def status(self) -> str:
+        """"completed" (load factor 1 reached) or "limit load reached" (collapse detected before it)."""
+        return "completed" if self.solver_result is None else self.solver_result.status
+
+    @property
+    def limit_load_factor(self) -> float | None:
+        """Load factor of the detected collapse (fraction of the scene's loads), None if completed."""
+        return None if self.solver_result is None else self.solver_result.limit_load_factor
 
     def _group_state(self, group, k):
         return self.states[k][self.built.model.groups.index(group)]

@@ -2,27 +2,36 @@
 
 For each increment of the load factor lambda the solver iterates
 
-    K_T du = F_ext(lambda) - F_int(u),     u <- u + du
+    u <- u + s du,   du = H(u) (F_ext(lambda) - F_int(u)),
 
 until the residual is small, and only then commits the material state (the laws never see an unconverged
-state as history). ``method``:
+state as history). ``method`` chooses H:
 
-* ``"modified"`` (paper default): K_T = K0, the initial elastic stiffness, factorised **once** for the whole
-  analysis and reused for every iteration of every increment. Converges linearly; robust; symmetric even when
-  the material tangent is not (non-associated flow).
-* ``"full"``: K_T = the consistent tangent, refactorised every iteration (unsymmetric if the laws are).
-  Converges quadratically near the solution; if an increment diverges it is retried with K0 before the step
-  is cut.
+* ``"bfgs"`` (default): the inverse of K0, the initial elastic stiffness factorised **once**, updated with
+  the secant pairs of the increment's iterations (L-BFGS, Matthies & Strang 1979), with a line search on
+  du . r. Superlinear on smooth problems, one factorisation, symmetric and positive definite whatever the
+  material tangent (non-associated flow).
+* ``"modified"`` (the paper): H = K0^-1 for every iteration of every increment. Converges linearly.
+* ``"full"``: H = the consistent tangent's inverse, refactorised every iteration (unsymmetric if the laws
+  are). Converges quadratically near the solution.
+
+An increment that fails is retried with ``Settings.fallback`` (full Newton with a line search after BFGS,
+K0 after full Newton), then cut. ``stepping="auto"`` sizes the increments by the iteration count;
+``"fixed"`` takes each target as one increment (the paper's equal steps). When the increments cannot
+advance any more, the current stiffness of the path (load per loaded displacement, relative to the first
+step's) decides: below ``collapse_stiffness`` the result ends as ``"limit load reached"`` with the converged
+path; otherwise :class:`NonConvergence` is raised with what diverged, where and at which load.
 
 Load control scales the model's loads and prescribed displacements by lambda; displacement control is
 load control of a model whose "load" is a prescribed displacement (``Model.prescribe``), and the reaction at
 those DOFs is the load measure (``Result.reaction``).
 
-Convergence (both must hold): the residual-force norm relative to the larger of |F_ext| and |F_int| (which
-includes the reactions, so displacement control is covered), and the energy norm |du . r| relative to that of
-the increment's first iteration (or to the work |u . F_int| of the total state, if larger). A step that does not converge is halved (``max_cuts`` times); if it still
-fails, :class:`NonConvergence` is raised with what diverged, where and at which load -- no partial result is
-ever returned as if it were converged.
+Convergence (both must hold): the residual-force norm relative to the structural load -- the applied
+reference load and the change of internal force since the geostatic state (reactions included, so
+displacement control is covered) -- and the energy norm |du . r| relative to that of the increment's first
+iteration (or to the work of the structural load, if larger). The geostatic forces are left out of the
+reference on purpose: in a deep or heavy block they would make a small structural residual invisible
+(``convergence_reference="total"`` restores the old measure).
 """
 
 import time
@@ -34,43 +43,104 @@ from .elements.base import CONSISTENT
 from .linsolve import Factorization
 from .model import Model, System
 
-METHODS = ("modified", "full")
+METHODS = ("bfgs", "modified", "full")
+STEPPINGS = ("auto", "fixed")
+REFERENCES = ("structural", "total")
+COMPLETED = "completed"
+LIMIT_LOAD = "limit load reached"
+
+# per method: default iteration cap of an increment and the iteration count automatic stepping aims at
+_MAX_ITER = {"bfgs": 100, "modified": 300, "full": 30}
+_DESIRED_ITER = {"bfgs": 20, "modified": 60, "full": 8}
 
 
 @dataclass
 class Settings:
-    """Solver options; the defaults reproduce the paper (modified Newton--Raphson with K0)."""
+    """Solver options. The defaults solve ordinary nonlinear scenes; :meth:`paper` gives the paper's algorithm.
 
-    method: str = "modified"
-    force_tol: float = 1e-5       # |r_f| <= force_tol * max(|F_ext|, |F_int|)
-    energy_tol: float = 1e-8      # |du . r| <= energy_tol * max(|du_0 . r_0|, |u . F_int|)
-    max_iter: int | None = None   # per increment; None: 300 for modified Newton, 30 for full Newton (more
+    ``method``: ``"bfgs"`` (default) -- quasi-Newton (L-BFGS) updates of the one K0 factorisation with a line
+    search; ``"modified"`` -- the paper's modified Newton-Raphson (K0 for every iteration); ``"full"`` --
+    Newton with the consistent tangent, refactorised every iteration.
+
+    ``stepping``: ``"auto"`` (default) -- each target load factor is approached in increments that start at
+    ``first_step``, grow or shrink with the iteration count (aiming at ``desired_iterations``) and are halved
+    on failure down to ``min_step``; ``"fixed"`` -- each target is one increment, halved at most ``max_cuts``
+    times on failure (the paper's equal increments).
+
+    When an increment cannot advance, the path's current stiffness (load increment per loaded displacement,
+    relative to the first step's) tells a collapse from a numerical failure: below ``collapse_stiffness``
+    the result ends with ``status == "limit load reached"``; otherwise :class:`NonConvergence` is raised.
+    Step sizes are fractions of the largest target load factor; tolerances are relative (dimensionless).
+    """
+
+    method: str = "bfgs"
+    stepping: str = "auto"
+    force_tol: float = 1e-5       # |r| <= force_tol * (structural load; see convergence_reference)
+    energy_tol: float = 1e-8      # |du . r| <= energy_tol * max(|du_0 . r_0|, work of the structural load)
+    convergence_reference: str = "structural"  # "total": relative to max(|F_ext|, |F_int|) incl. geostatic
+    max_iter: int | None = None   # per increment; None: 100 (bfgs), 300 (modified), 30 (full Newton: more
                                   # tangent factorisations than that cost more than the K0 retry below)
-    max_cuts: int = 6             # halvings of a failing increment
+    first_step: float = 0.1       # auto stepping: first increment of the load factor
+    max_step: float = 0.25        # auto stepping: largest increment
+    min_step: float = 1e-3        # auto stepping: smallest increment tried before the path is judged stuck
+    desired_iterations: int | None = None  # auto stepping: None: 20 (bfgs), 60 (modified), 8 (full)
+    max_cuts: int = 6             # fixed stepping: halvings of a failing increment
+    collapse_stiffness: float = 0.05  # current stiffness / initial below which a stuck path is a collapse
     divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
     backend: str = "auto"
     symmetric_tangent: bool = False  # set True when every law's tangent is symmetric (associated flow)
     verbose: bool = False
     keep_states: bool = True      # keep the committed state of every step (False: only the last)
-    line_search: bool = False     # full Newton: halve a step until the residual norm decreases. It breaks
-                                  # the cycling of points that flip between elastic and plastic from one
-                                  # iterate to the next (the README's psi = 0 scene), but is no cure-all:
-                                  # chapter 11's finest mesh stops at 95 % of its load with it, not without
-    line_search_min: float = 1.0 / 64.0  # smallest step fraction the line search tries
-    fallback_iter: int = 300      # full Newton: iterations of the K0 retry of a failed increment (0: none)
+    line_search: bool | None = None  # None: on for bfgs, off for full Newton (on, it stopped chapter 11's
+                                  # finest mesh at 95 % of its load); never for modified Newton
+    line_search_min: float = 1.0 / 64.0  # full Newton: smallest step fraction the line search tries
+    bfgs_memory: int = 30         # L-BFGS pairs kept within an increment
+    fallback: str | None = "auto"  # method that retries a failed increment before it is cut; "auto": full
+                                  # Newton with line search for bfgs (points that flip between elastic and
+                                  # plastic stall the K0-based update), K0 (modified) for full Newton (an
+                                  # indefinite tangent can send Newton astray; K0 cannot); None: no retry
+    fallback_iter: int = 300      # iterations of the fallback retry
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
+        if self.stepping not in STEPPINGS:
+            raise ValueError(f"stepping must be one of {STEPPINGS}, got {self.stepping!r}")
+        if self.convergence_reference not in REFERENCES:
+            raise ValueError(f"convergence_reference must be one of {REFERENCES}, got "
+                             f"{self.convergence_reference!r}")
         if self.max_iter is None:
-            self.max_iter = 300 if self.method == "modified" else 30
+            self.max_iter = _MAX_ITER[self.method]
+        if self.desired_iterations is None:
+            self.desired_iterations = _DESIRED_ITER[self.method]
+        if self.line_search is None:
+            self.line_search = self.method == "bfgs"
+        if self.fallback == "auto":
+            self.fallback = {"bfgs": "full", "full": "modified", "modified": None}[self.method]
+        if self.fallback not in (None, *METHODS):
+            raise ValueError(f"fallback must be None, 'auto' or one of {METHODS}, got {self.fallback!r}")
         for name in ("force_tol", "energy_tol"):
             if not 0.0 < getattr(self, name) < 1.0:
                 raise ValueError(f"{name} must be in (0, 1), got {getattr(self, name)}")
-        if self.max_iter < 1 or self.max_cuts < 0 or self.fallback_iter < 0:
-            raise ValueError("max_iter must be >= 1, max_cuts >= 0 and fallback_iter >= 0")
+        if not 0.0 < self.min_step <= self.first_step and self.min_step <= self.max_step:
+            raise ValueError(f"steps must satisfy 0 < min_step <= first_step, max_step; got min_step="
+                             f"{self.min_step}, first_step={self.first_step}, max_step={self.max_step}")
+        if not 0.0 <= self.collapse_stiffness < 1.0:
+            raise ValueError(f"collapse_stiffness must be in [0, 1), got {self.collapse_stiffness}")
+        if self.max_iter < 1 or self.max_cuts < 0 or self.fallback_iter < 0 or self.desired_iterations < 1:
+            raise ValueError("max_iter and desired_iterations must be >= 1, max_cuts and fallback_iter >= 0")
+        if self.bfgs_memory < 0:
+            raise ValueError(f"bfgs_memory must be >= 0, got {self.bfgs_memory}")
         if not 0.0 < self.line_search_min <= 1.0:
             raise ValueError(f"line_search_min must be in (0, 1], got {self.line_search_min}")
+
+    @classmethod
+    def paper(cls, **overrides) -> "Settings":
+        """The paper's algorithm (§8): modified Newton--Raphson on K0 in the given, equal increments.
+
+        (The paper's explicit D_ep stress integration is a property of the soil law: ``scheme="explicit"``
+        on a ``SoilLayer`` or in ``mohr_coulomb_params``.)"""
+        return cls(**{"method": "modified", "stepping": "fixed", **overrides})
 
 
 class NonConvergence(RuntimeError):
@@ -85,7 +155,12 @@ class NonConvergence(RuntimeError):
 
 @dataclass
 class Result:
-    """Converged steps of an analysis. Row 0 is the initial state (lambda = 0)."""
+    """Converged steps of an analysis. Row 0 is the initial state (lambda = 0, or where ``start`` ended).
+
+    ``status`` is ``"completed"`` (every target reached) or ``"limit load reached"``: the path stopped rising
+    at ``limit_load_factor`` (the last converged step); its steps up to there are all converged.
+    ``stiffness`` holds the current stiffness parameter of each step (1 for the first, -> 0 at a limit).
+    """
 
     model: Model
     load_factor: list = field(default_factory=list)
@@ -95,13 +170,22 @@ class Result:
     iterations: list = field(default_factory=list)
     residuals: list = field(default_factory=list)   # per step: relative force norm of every iteration
     energies: list = field(default_factory=list)    # per step: relative energy norm of every iteration
+    stiffness: list = field(default_factory=list)   # per step: current stiffness parameter (step 0: nan)
     cuts: int = 0
     wall_time: float = 0.0
     factorizations: int = 0
+    status: str = COMPLETED
+    limit_load_factor: float | None = None
+    u_origin: np.ndarray | None = None      # displacement and internal force of the state the structural
+    f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
 
     @property
     def n_steps(self):
         return len(self.load_factor) - 1
+
+    @property
+    def collapsed(self) -> bool:
+        return self.status == LIMIT_LOAD
 
     def displacement(self, ids, comp):
         """(n_steps + 1, n_ids) history of a displacement component."""
@@ -116,17 +200,29 @@ class Result:
     def final_state(self):
         return self.states[-1]
 
+    @property
+    def message(self) -> str:
+        if self.collapsed:
+            return (f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
+                    f"current stiffness {self.stiffness[-1]:.3g} of the initial)")
+        return f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
 
-def run(model: Model, load_factors, settings: Settings | None = None, *, start: "Result | None" = None,
+
+def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, start: "Result | None" = None,
         loads: tuple | None = None) -> Result:
-    """Follow the load path ``load_factors`` (increasing or not; each entry a target lambda).
+    """Follow the load path through the targets ``load_factors`` (increasing or not) from lambda = 0.
+
+    With ``settings.stepping == "auto"`` the targets are waypoints, each reached by automatic increments;
+    with ``"fixed"`` each target is one increment (halved on failure).
 
     ``start``: continue from the last converged step of an earlier result of the same model (its u and
     material state become step 0, at lambda = 0): the next phase of a phased analysis. ``loads``:
     ``(f_ref, f_dead)`` global vectors [N] replacing the model's own (F_ext = lambda f_ref + f_dead), e.g. the
-    loads of the previous phase as dead load and the phase's change as reference load.
+    loads of the previous phase as dead load and the phase's change as reference load. Prescribed
+    displacements are absolute: fixed value + lambda * prescribed value.
 
-    Raises :class:`NonConvergence` if an increment fails after ``settings.max_cuts`` halvings.
+    Returns a :class:`Result` whose ``status`` says whether the targets were reached or a limit load was
+    detected. Raises :class:`NonConvergence` if an increment fails before either.
     """
     settings = settings or Settings()
     targets = np.atleast_1d(np.asarray(load_factors, np.float64))
@@ -134,37 +230,157 @@ def run(model: Model, load_factors, settings: Settings | None = None, *, start: 
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
     model.check()
     t_start = time.perf_counter()
-    system, f_ref, f_dead, states, u, result, fac_k0 = _start(model, settings, start, loads)
-    free = system.free
-    lam = 0.0
+    path = _Path(model, settings, start, loads)
+    path.scale = float(np.abs(targets).max()) or 1.0
+    path.step = settings.first_step * path.scale
     for target in targets:
+        path.follow(float(target))
+        if path.result.collapsed:
+            break
+    path.result.wall_time = time.perf_counter() - t_start
+    return path.result
+
+
+class _Path:
+    """The incremental-iterative state of one run: committed (u, states, lambda) and the machinery."""
+
+    def __init__(self, model, settings, start, loads):
+        self.model, self.settings = model, settings
+        self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, self.fac_k0 = _start(
+            model, settings, start, loads)
+        self.lam = 0.0
+        self.step = settings.first_step
+        self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
+
+    def follow(self, target):
+        """Advance the committed state to ``target``, or stop at a detected limit load."""
+        if self.settings.stepping == "auto":
+            self._follow_auto(target)
+        else:
+            self._follow_fixed(target)
+
+    def _follow_auto(self, target):
+        s = self.settings
+        direction = np.sign(target - self.lam)
+        while abs(target - self.lam) > 1e-12 * max(1.0, abs(target)):
+            remaining = abs(target - self.lam)
+            lam_next = target if self.step >= remaining else self.lam + direction * self.step
+            outcome = self._increment(lam_next)
+            if outcome["converged"]:
+                last = abs(lam_next - self.lam)
+                self._commit(lam_next, outcome)
+                self._adapt(last, outcome["iterations"])
+                continue
+            self.result.cuts += 1
+            self.step = 0.5 * abs(lam_next - self.lam)
+            if self.step < s.min_step * self.scale * (1.0 - 1e-9):
+                self._stuck(outcome, lam_next)
+                return
+
+    def _follow_fixed(self, target):
+        """The target in one increment; a failing increment is halved, at most ``max_cuts`` times."""
         pending = [target]
         cuts_here = 0
         while pending:
             lam_next = pending[-1]
-            outcome = _increment(system, settings, fac_k0, u, states, lam_next, f_ref, f_dead, result)
-            if not outcome["converged"] and settings.method == "full" and settings.fallback_iter:
-                # an indefinite or poor consistent tangent can send Newton astray; K0 cannot
-                outcome = _increment(system, settings, fac_k0, u, states, lam_next, f_ref, f_dead, result,
-                                     force_k0=True)
+            outcome = self._increment(lam_next)
             if outcome["converged"]:
-                u, states = outcome["u"], outcome["states"]
-                lam = lam_next
+                self._commit(lam_next, outcome)
                 pending.pop()
-                _record(result, lam, u, outcome["f_int"], states, outcome["iterations"],
-                        outcome["residuals"], outcome["energies"], settings)
-                if settings.verbose:
-                    print(f"step {result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}"
-                          f"  residual={outcome['residuals'][-1]:.2e}", flush=True)
                 continue
-            if cuts_here >= settings.max_cuts:
-                result.wall_time = time.perf_counter() - t_start
-                raise NonConvergence(_failure_report(model, free, outcome, lam, lam_next), result)
+            if cuts_here >= self.settings.max_cuts:
+                self._stuck(outcome, lam_next)
+                return
             cuts_here += 1
-            result.cuts += 1
-            pending.append(0.5 * (lam + lam_next))
-    result.wall_time = time.perf_counter() - t_start
-    return result
+            self.result.cuts += 1
+            pending.append(0.5 * (self.lam + lam_next))
+
+    def _increment(self, lam_next):
+        """One increment with the settings' method, retried with the fallback method before a step cut."""
+        s = self.settings
+        outcome = _increment(self.system, s, self.fac_k0, self.u, self.states, lam_next, self.f_ref,
+                             self.f_dead, self.result, s.method)
+        if not outcome["converged"] and s.fallback and s.fallback != s.method:
+            retry = _increment(self.system, s, self.fac_k0, self.u, self.states, lam_next, self.f_ref,
+                               self.f_dead, self.result, s.fallback)
+            retry["iterations"] += outcome["iterations"]
+            outcome = retry if retry["converged"] else outcome
+        return outcome
+
+    def _commit(self, lam, outcome):
+        self.u, self.states, self.lam = outcome["u"], outcome["states"], lam
+        _record(self.result, lam, self.u, outcome["f_int"], self.states, outcome["iterations"],
+                outcome["residuals"], outcome["energies"], self.settings)
+        self.result.stiffness.append(self.measure.stiffness())
+        if self.settings.verbose:
+            print(f"step {self.result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}"
+                  f"  residual={outcome['residuals'][-1]:.2e}  stiffness={self.result.stiffness[-1]:.3g}",
+                  flush=True)
+
+    def _adapt(self, last_step, iterations):
+        """Next increment from the last one: 1.5x after an easy increment (at most ``desired_iterations``),
+        0.7x after one that used three quarters of ``max_iter``, else the same. (The iteration count of a
+        K0-based update on a plastic scene hardly falls with the step, so shrinking on every slow increment
+        would only walk the step down to ``min_step``; failures halve it.)"""
+        s = self.settings
+        if iterations <= s.desired_iterations:
+            factor = 1.5
+        elif iterations > 0.75 * s.max_iter:
+            factor = 0.7
+        else:
+            factor = 1.0
+        self.step = self.scale * min(s.max_step, max(s.min_step, factor * max(last_step, self.step) / self.scale))
+
+    def _stuck(self, outcome, lam_next):
+        """The path cannot advance: a limit load if it had stopped rising, else NonConvergence."""
+        res = self.result
+        stiff = res.stiffness[-1] if res.n_steps >= 2 else np.nan
+        if np.isfinite(stiff) and stiff < self.settings.collapse_stiffness:
+            res.status, res.limit_load_factor = LIMIT_LOAD, float(self.lam)
+            return
+        report = _failure_report(self.model, self.system.free, outcome, self.lam, lam_next)
+        report["current_stiffness"] = float(stiff)
+        raise NonConvergence(report, res)
+
+
+class _LoadMeasure:
+    """Scalar load P and loaded displacement delta of each step, for the current stiffness parameter
+    S_k = (dP/d delta)_k / (dP/d delta)_1 (Bergan's idea, measured on the loaded DOFs only).
+
+    Load control: P = lambda |f_ref|, delta = u . f_ref / |f_ref|. Displacement control (no force load):
+    P = the reaction along the prescribed displacements, delta = their displacement along the same vector."""
+
+    def __init__(self, system, f_ref, result):
+        self.result = result
+        if np.any(f_ref[system.free]):
+            self.direction = f_ref / np.linalg.norm(f_ref)
+            self.force_controlled = True
+        else:
+            ref = np.zeros(system.model.n_dof)
+            ref[system.cons_dofs] = system.cons_ref
+            norm = np.linalg.norm(ref)
+            self.direction = ref / norm if norm > 0.0 else ref
+            self.force_controlled = False
+        self.first = None
+
+    def point(self, k):
+        r = self.result
+        delta = float((r.u[k] - r.u_origin) @ self.direction)
+        if self.force_controlled:
+            return r.load_factor[k], delta
+        return float((r.f_int[k] - r.f_int_origin) @ self.direction), delta
+
+    def stiffness(self):
+        """Current stiffness parameter of the last step (nan when it is not defined)."""
+        k = self.result.n_steps
+        (p1, d1), (p0, d0) = self.point(k), self.point(k - 1)
+        if d1 == d0:
+            return np.nan
+        slope = (p1 - p0) / (d1 - d0)
+        if self.first is None:
+            self.first = slope if slope != 0.0 else np.nan
+            return 1.0
+        return float(slope / self.first)
 
 
 def _start(model, settings, start=None, loads=None):
@@ -182,7 +398,12 @@ def _start(model, settings, start=None, loads=None):
         states, u = start.final_state, start.u[-1].copy()
     f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
     result = Result(model=model)
+    if start is None:
+        result.u_origin, result.f_int_origin = u.copy(), f_int0.copy()
+    else:
+        result.u_origin, result.f_int_origin = start.u_origin, start.f_int_origin
     _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
+    result.stiffness.append(np.nan)
     k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
     fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend, spd=True)
     result.factorizations = 1
@@ -202,30 +423,41 @@ def _record(result, lam, u, f_int, states, iterations, residuals, energies, sett
     result.energies.append(list(energies))
 
 
-def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, result, force_k0=False):
-    """Iterate one increment from the committed (u_conv, states) to load factor ``lam``.
+def _force_scale(settings, lam, f_ref, f_ext, f_int, result):
+    """The force the residual is compared with. "structural": the structural load -- the applied reference
+    load and the change of internal force (reactions included) since the geostatic state -- so that a large
+    geostatic state cannot hide it; "total": max(|F_ext|, |F_int|), geostatic forces included."""
+    if settings.convergence_reference == "total":
+        return max(np.linalg.norm(f_ext), np.linalg.norm(f_int), 1e-30)
+    structural = max(abs(lam) * np.linalg.norm(f_ref), np.linalg.norm(f_int - result.f_int_origin))
+    return max(structural, 1e-7 * np.linalg.norm(f_int), 1e-30)  # floor: round-off of the geostatic balance
 
-    ``force_k0`` iterates with K0 (modified Newton, ``settings.fallback_iter`` iterations) whatever the method.
-    """
+
+def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, result, method):
+    """Iterate one increment from the committed (u_conv, states) to load factor ``lam`` with ``method``
+    (the settings' own, or its fallback: then ``settings.fallback_iter`` iterations at most)."""
     free = system.free
     f_ext = lam * f_ref + f_dead
-    scale_ext = np.linalg.norm(f_ext)
-    use_k0 = force_k0 or settings.method != "full"
-    max_iter = settings.fallback_iter if force_k0 else settings.max_iter
+    use_k0 = method != "full"
+    fallback = method != settings.method
+    max_iter = min(settings.fallback_iter, _MAX_ITER[method]) if fallback else settings.max_iter
+    line_search = settings.line_search or (fallback and method == "full")
     residuals, energies = [], []
     energy0 = r_first = None
+    bfgs = _Lbfgs(fac_k0, settings.bfgs_memory) if method == "bfgs" else None
     outcome = {"converged": False, "residuals": residuals, "energies": energies, "iterations": 0}
     u = system.apply_constraints(u_conv.copy(), lam)
     evaluated = _evaluate(system, u, u_conv, states, use_k0, f_ext)
+    trial_prev = None
     for it in range(1, max_iter + 1):
         if evaluated is None:
             outcome.update(reason="material update failed", iterations=it)
             return outcome
         f_int, k_list, trial, r = evaluated
         r_f = r[free]
-        rel = np.linalg.norm(r_f) / max(scale_ext, np.linalg.norm(f_int), 1e-30)
+        rel = np.linalg.norm(r_f) / _force_scale(settings, lam, f_ref, f_ext, f_int, result)
         residuals.append(rel)
-        outcome.update(iterations=it, residual=r, u=u)
+        outcome.update(iterations=it, residual=r, u=u, trial=trial, trial_prev=trial_prev)
         if not np.isfinite(rel):
             outcome.update(reason="residual is not finite")
             return outcome
@@ -233,20 +465,123 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
         if it > 1 and rel > settings.divergence_ratio * max(r_first, settings.force_tol):
             outcome.update(reason=f"residual grew by more than {settings.divergence_ratio:g}")
             return outcome
-        du = None if use_k0 else _tangent_solve(system, settings, k_list, r_f, result)
-        if du is None:  # modified Newton, or a tangent that cannot be factorised: K0 for the rest of the
-            use_k0 = True  # increment (retrying a singular tangent every iteration measured slower)
-            du = fac_k0.solve(r_f)
+        if bfgs is not None and _stagnates(residuals):
+            outcome.update(reason="residual stagnates (no decrease over the last 15 iterations)")
+            return outcome
+        if bfgs is not None:
+            du = bfgs.direction(r_f)
+        else:
+            du = None if use_k0 else _tangent_solve(system, settings, k_list, r_f, result)
+            if du is None:  # modified Newton, or a tangent that cannot be factorised: K0 for the rest of the
+                use_k0 = True  # increment (retrying a singular tangent every iteration measured slower)
+                du = fac_k0.solve(r_f)
         energy = abs(float(du @ r_f))
         energy0 = energy if energy0 is None else energy0
-        rel_energy = energy / _energy_scale(energy0, u, f_int)
+        rel_energy = energy / _energy_scale(energy0, u, f_int, result)
         energies.append(rel_energy)
         if _converged(rel, rel_energy, it, settings) or rel <= 1e-14 * settings.force_tol or energy == 0.0:
             outcome.update(converged=True, u=u, f_int=f_int, states=trial)
             return outcome
-        u, evaluated = _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, np.linalg.norm(r_f))
-    outcome.update(reason=f"no convergence in {max_iter} iterations" + (" with K0" if force_k0 else ""))
+        trial_prev = trial
+        if bfgs is not None:
+            u_new, evaluated, step = _line_search_bfgs(system, u, du, r_f, u_conv, states, f_ext, line_search)
+            if evaluated is not None:
+                bfgs.update(step * du, r_f - evaluated[3][free])
+        else:
+            u_new, evaluated = _advance(system, settings, u, du, u_conv, states, use_k0, f_ext,
+                                        np.linalg.norm(r_f), line_search)
+        u = u_new
+    outcome.update(reason=f"no convergence in {max_iter} iterations" + (f" (fallback: {method})" if fallback
+                                                                         else ""))
     return outcome
+
+
+def _stagnates(residuals, window=30):
+    return len(residuals) > window and min(residuals[-window // 2:]) > 0.9 * min(residuals[-window:-window // 2])
+
+
+class _Lbfgs:
+    """Inverse-Hessian approximation H ~ K_T^-1 built on the one K0 factorisation (Matthies & Strang 1979;
+    the two-loop recursion of Nocedal 1980): H_0 = K0^-1, updated with the pairs (s, y) of the increment's
+    iterations, s = the displacement step taken and y = the change of internal force it caused.
+
+    A pair with y . s <= 0 (the path softens or the non-associated tangent is not positive along s) would
+    make H indefinite: the memory is cleared and the next direction is the plain K0 one."""
+
+    def __init__(self, fac_k0, memory):
+        self.fac, self.memory = fac_k0, memory
+        self.pairs = []
+
+    def direction(self, r):
+        q = r.copy()
+        alphas = []
+        for s, y, rho in reversed(self.pairs):
+            a = rho * (s @ q)
+            q -= a * y
+            alphas.append(a)
+        z = self.fac.solve(q)
+        for (s, y, rho), a in zip(self.pairs, reversed(alphas)):
+            z += (a - rho * (y @ z)) * s
+        return z
+
+    def update(self, s, y):
+        sy = float(s @ y)
+        if not sy > 1e-12 * np.linalg.norm(s) * np.linalg.norm(y):
+            self.pairs.clear()
+            return
+        if self.memory == 0:
+            return
+        self.pairs.append((s, y, 1.0 / sy))
+        if len(self.pairs) > self.memory:
+            self.pairs.pop(0)
+
+
+LINE_SEARCH_TOL = 0.5   # accept a step s once |du . r(s)| <= LINE_SEARCH_TOL |du . r(0)|
+LINE_SEARCH_MAX = 4     # extra residual evaluations per iteration at most
+LINE_SEARCH_RANGE = (0.05, 4.0)
+
+
+def _line_search_bfgs(system, u, du, r_f, u_conv, states, f_ext, line_search):
+    """Step s along du such that the residual is nearly orthogonal to du (Matthies & Strang's line search:
+    G(s) = du . r(u + s du) -> 0), by regula falsi once a sign change brackets the root, extrapolation
+    before. Returns (u_new, evaluated, s)."""
+    free = system.free
+    g0 = float(du @ r_f)
+
+    def trial(s):
+        u_new = u.copy()
+        u_new[free] += s * du
+        ev = _evaluate(system, u_new, u_conv, states, True, f_ext)
+        return u_new, ev, (np.inf if ev is None else float(du @ ev[3][free]))
+
+    s_lo, g_lo = 0.0, g0
+    s_hi = 1.0
+    u_new, ev, g_hi = trial(s_hi)
+    if not line_search or g0 <= 0.0:
+        return u_new, ev, s_hi
+    for _ in range(LINE_SEARCH_MAX):
+        if ev is not None and abs(g_hi) <= LINE_SEARCH_TOL * g0:
+            break
+        if ev is None or not np.isfinite(g_hi):
+            s_new = 0.5 * (s_lo + s_hi)
+        elif g_hi < 0.0:      # bracketed between s_lo (G > 0) and s_hi (G < 0): regula falsi
+            s_new = s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)
+        else:                  # still descending: secant extrapolation, at most doubling
+            s_new = min(2.0 * s_hi, s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)) if g_hi < g_lo else 2.0 * s_hi
+        s_new = min(max(s_new, LINE_SEARCH_RANGE[0]), LINE_SEARCH_RANGE[1])
+        if s_new == s_hi:
+            break
+        cand = trial(s_new)
+        if cand[1] is None:
+            s_hi = s_new
+            continue
+        if g_hi > 0.0 and ev is not None and s_new > s_hi:
+            s_lo, g_lo = s_hi, g_hi
+        elif cand[2] > 0.0:
+            s_lo, g_lo = s_new, cand[2]
+        u_new, ev, g_hi = cand
+        s_hi = s_new
+    return u_new, ev, s_hi
 
 
 def _evaluate(system, u, u_conv, states, use_k0, f_ext):
@@ -278,7 +613,7 @@ def _tangent_solve(system, settings, k_list, r_f, result):
     return du
 
 
-def _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, r_norm):
+def _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, r_norm, line_search):
     """u + s du with s = 1, or, with the line search in full Newton, the first s = 1, 1/2, ... whose residual
     norm is below ``r_norm`` (a full step near a corner of the yield surface can overshoot far)."""
     free = system.free
@@ -287,17 +622,19 @@ def _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, r_norm):
         u_new = u.copy()
         u_new[free] += step * du
         evaluated = _evaluate(system, u_new, u_conv, states, use_k0, f_ext)
-        if use_k0 or not settings.line_search or step <= settings.line_search_min:
+        if use_k0 or not line_search or step <= settings.line_search_min:
             return u_new, evaluated
         if evaluated is not None and np.linalg.norm(evaluated[3][free]) < r_norm:
             return u_new, evaluated
         step *= 0.5
 
 
-def _energy_scale(energy_first, u, f_int):
-    """Reference of the energy norm: the first iteration's |du . r|, or the work |u . F_int| of the total
-    state if larger -- a cut step's tiny first iteration must not make the test ever stricter."""
-    return max(energy_first, abs(float(u @ f_int)), 1e-300)
+def _energy_scale(energy_first, u, f_int, result):
+    """Reference of the energy norm: the first iteration's |du . r|, or the work of the structural load
+    |(u - u_0) . (F_int - F_int,0)| if larger -- a cut step's tiny first iteration must not make the test
+    ever stricter."""
+    work = abs(float((u - result.u_origin) @ (f_int - result.f_int_origin)))
+    return max(energy_first, work, 1e-300)
 
 
 def _converged(rel_force, rel_energy, iteration, settings):
@@ -305,6 +642,41 @@ def _converged(rel_force, rel_energy, iteration, settings):
     almost converged is meaningless)."""
     return rel_force <= settings.force_tol and (
         rel_energy <= settings.energy_tol or (iteration > 1 and rel_force <= 1e-3 * settings.force_tol))
+
+
+GROUP_ACTIVITY = {"interface": ("stick", "slip", "open"), "soil_q8": ("elastic", "plastic")}
+
+
+def _point_codes(group, state):
+    """Per-point state codes of a group (interface: stick/slip/open; soil: elastic/plastic), or None."""
+    status = getattr(group, "status", None)
+    if callable(status):
+        return np.asarray(status(state)).ravel(), GROUP_ACTIVITY["interface"]
+    if group.name == "soil_q8":
+        from .elements.soil_q8 import N_STRESS
+        return (state[..., N_STRESS + 1] > 0).astype(int).ravel(), GROUP_ACTIVITY["soil_q8"]
+    return None
+
+
+def _activity(model, outcome, worst_dof):
+    """Which groups hold the worst DOF, and how many of their points changed state between the last two
+    iterates (e.g. contact points flipping between slip and open)."""
+    lines = []
+    trial, prev = outcome.get("trial"), outcome.get("trial_prev")
+    for g, i in zip(model.groups, range(len(model.groups))):
+        if worst_dof not in g.edofs:
+            continue
+        text = g.name
+        if trial is not None and prev is not None:
+            now, before = _point_codes(g, trial[i]), _point_codes(g, prev[i])
+            if now is not None:
+                flipped = now[0] != before[0]
+                if flipped.any():
+                    names = now[1]
+                    pairs = {f"{names[a]}->{names[b]}" for a, b in zip(before[0][flipped], now[0][flipped])}
+                    text += f" ({int(flipped.sum())} points flipping: {', '.join(sorted(pairs))})"
+        lines.append(text)
+    return "; ".join(lines)
 
 
 def _failure_report(model, free, outcome, lam_from, lam_to):
@@ -318,6 +690,7 @@ def _failure_report(model, free, outcome, lam_from, lam_to):
         node = int(np.searchsorted(start, worst, side="right") - 1)
         report.update(worst_dof=worst, worst_node=node, worst_component=("u", "w", "alpha")[worst - start[node]],
                       node_xy=tuple(float(v) for v in model.coords[node]),
+                      worst_groups=_activity(model, outcome, worst),
                       last_residual=float(outcome["residuals"][-1]) if outcome["residuals"] else float("nan"))
     return report
 
@@ -352,7 +725,7 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
     arc0 = first_increment * np.linalg.norm(du_ref)
     arc, lam, direction = arc0, 0.0, None
     while result.n_steps < n_steps and lam < max_load_factor:
-        outcome = _arc_step(system, settings, fac, du_ref, u, states, lam, arc, direction, f_ref, f_dead)
+        outcome = _arc_step(system, settings, fac, du_ref, u, states, lam, arc, direction, f_ref, f_dead, result)
         if not outcome["converged"]:
             arc *= 0.5
             result.cuts += 1
@@ -364,6 +737,7 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
         u, states, lam = outcome["u"], outcome["states"], outcome["lam"]
         _record(result, lam, u, outcome["f_int"], states, outcome["iterations"], outcome["residuals"],
                 outcome["energies"], settings)
+        result.stiffness.append(np.nan)
         if settings.verbose:
             print(f"arc step {result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}",
                   flush=True)
@@ -373,7 +747,7 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
     return result
 
 
-def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, direction, f_ref, f_dead):
+def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, direction, f_ref, f_dead, result):
     free = system.free
     sign = 1.0 if direction is None or direction @ du_ref >= 0.0 else -1.0
     dlam = sign * arc / np.linalg.norm(du_ref)
@@ -391,8 +765,7 @@ def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, dire
             outcome.update(reason=f"material update failed: {err}", iterations=it)
             return outcome
         r = lam * f_ref + f_dead - f_int
-        scale = max(np.linalg.norm(lam * f_ref + f_dead), np.linalg.norm(f_int), 1e-30)
-        rel = np.linalg.norm(r[free]) / scale
+        rel = np.linalg.norm(r[free]) / _force_scale(settings, lam, f_ref, lam * f_ref + f_dead, f_int, result)
         residuals.append(rel)
         outcome.update(iterations=it, residual=r, u=u)
         if not np.isfinite(rel):
@@ -401,7 +774,7 @@ def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, dire
         du_r = fac.solve(r[free])
         energy = abs(float(du_r @ r[free]))
         energy0 = energy if energy0 is None else energy0
-        energies.append(energy / _energy_scale(energy0, u, f_int))
+        energies.append(energy / _energy_scale(energy0, u, f_int, result))
         if it > 1 and _converged(rel, energies[-1], it, settings):
             outcome.update(converged=True, u=u, f_int=f_int, states=trial, lam=lam)
             return outcome

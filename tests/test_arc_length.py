@@ -8,7 +8,7 @@ from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import elastic_params, von_mises_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
-from ssi.solver import NonConvergence, Settings, run, run_arc_length
+from ssi.solver import Settings, run, run_arc_length
 
 PRANDTL = 2.0 + np.pi  # q_u / c_u of a smooth strip footing on weightless Tresca soil
 
@@ -52,6 +52,8 @@ def test_arc_length_levels_off_at_the_tresca_limit_load():
     assert np.all(np.diff(lam) > 0.0)
     assert lam[-1] == pytest.approx(q_limit, rel=0.03)
     assert lam[-1] - lam[-2] < 0.01 * lam[-1]
-    # load control with the same steps cannot pass the limit: it stops with a report, not a result
-    with pytest.raises(NonConvergence, match="load_factor"):
-        run(model, [0.3, 0.6], Settings(max_iter=100, max_cuts=2))
+    # load control cannot pass the limit: with the default settings it stops there and says so, at the
+    # arc-length path's plateau (to the mesh's ~1 % spread between the two path-following schemes)
+    res_load = run(model, [0.3, 0.6])
+    assert res_load.collapsed
+    assert res_load.limit_load_factor == pytest.approx(lam[-1], rel=0.01)

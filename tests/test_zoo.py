@@ -1,0 +1,42 @@
+"""The zoo of ordinary scenes (``ssi.zoo``), each solved with the default ``Settings()``: every one must
+reach its full load or end as a detected collapse -- never stop with NonConvergence.
+
+The checks on each outcome can fail for a wrong answer, not only for a stopped run: a completed scene's
+contact must carry the column loads (vertical equilibrium of the strip, to the convergence tolerance), and
+the scenes loaded above their capacity must end as "limit load reached" below their load.
+"""
+
+import numpy as np
+import pytest
+
+from ssi.solver import LIMIT_LOAD, Settings
+from ssi.zoo import ordinary_scenes, solve_zoo
+
+SCENES = dict(ordinary_scenes())
+# known failure, reported in the closing note of the robust-solution issue: on the h = 0.125 m mesh the
+# psi = 0 clay's residual stagnates near 1e-4 around lambda = 0.93-0.98 for BFGS and full Newton alike
+KNOWN_FAILURES = {"h_fine=0.125"}
+
+
+@pytest.mark.parametrize("name", [n for n in SCENES if n not in KNOWN_FAILURES])
+def test_zoo_scene_reaches_its_load_or_a_detected_collapse(name):
+    scene = SCENES[name]
+    built = scene.build()
+    out = built.solve(settings=Settings())
+    if name.startswith("above capacity"):
+        assert out.status == LIMIT_LOAD and out.limit_load_factor < 1.0
+        return
+    assert out.status == "completed" and out.load_factor[-1] == 1.0
+    contact = out.contact()
+    weights = built.interface.ip_weights()
+    carried = -np.sum(contact["sig_n"] * weights)                # [N/m], compression positive
+    applied = sum(load.N for load in scene.loads) + scene.foundation.self_weight * (
+        scene.foundation.x1 - scene.foundation.x0)
+    # tolerance: force_tol 1e-5 of the structural load, plus the plate's own weight, which is not in N
+    assert carried == pytest.approx(applied, rel=1e-3), (carried, applied)
+
+
+@pytest.mark.xfail(strict=True, reason="psi = 0 clay on h = 0.125 m: residual stagnates near lambda 0.93")
+def test_zoo_known_failure_h0125():
+    outcome = solve_zoo([("h_fine=0.125", SCENES["h_fine=0.125"])])[0]
+    assert outcome.solved, outcome.message
