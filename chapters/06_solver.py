@@ -114,7 +114,7 @@ rec = Recorder(spring)
 model.groups[0] = rec
 model.add_load(nodes[-1], "u", FU)
 fig9_targets = [0.5, 0.85]
-res9 = run(model, fig9_targets, Settings(method="modified", force_tol=1e-4))
+res9 = run(model, fig9_targets, Settings.paper(force_tol=1e-4))
 r_it = np.array([c[0][0, 1] for c in rec.calls])   # spring 0: r of the loaded node
 f_it = np.array([c[1][0, 1] for c in rec.calls])   # and its force F_int
 print("iterations per increment:", res9.iterations[1:])
@@ -174,7 +174,7 @@ chain.add_load(chain_nodes[-1], "u", 0.8 * FU)
 tight = {"force_tol": 1e-12, "energy_tol": 1e-12, "max_iter": 500}
 histories, orders = {}, {}
 for method in ("full", "modified"):
-    res = run(chain, [1.0], Settings(method=method, **tight))
+    res = run(chain, [1.0], Settings(method=method, stepping="fixed", **tight))
     histories[method] = res.residuals[1]
     orders[method], n_pairs = fitted_order(histories[method])
     print(f"{method:8s}: {len(histories[method]):4d} iterations, fitted order {orders[method]:.2f} "
@@ -226,7 +226,7 @@ print(f"footing model: {footing.n_dof} DOFs")
 runs = {}
 for method in ("modified", "full"):
     t0 = time.perf_counter()
-    res = run(footing, np.linspace(1.0 / N_STEPS, 1.0, N_STEPS), Settings(method=method))
+    res = run(footing, np.linspace(1.0 / N_STEPS, 1.0, N_STEPS), Settings(method=method, stepping="fixed"))
     wall = time.perf_counter() - t0
     q = -res.reaction(under, "w") / 2.0
     runs[method] = {"res": res, "wall": wall, "q": q, "settle": -res.displacement(under[:1], "w")[:, 0]}
@@ -249,7 +249,8 @@ if not FAST:
     for method in ("full", "modified"):
         t0 = time.perf_counter()
         try:
-            res = run(fine_model, np.linspace(1.0 / N_STEPS, 1.0, N_STEPS), Settings(method=method))
+            res = run(fine_model, np.linspace(1.0 / N_STEPS, 1.0, N_STEPS),
+                      Settings(method=method, stepping="fixed"))
             q_fine = -res.reaction(fine_under, "w")[-1] / 2.0
             finer[method] = (time.perf_counter() - t0, sum(res.iterations), q_fine / Q_PRANDTL, None)
         except NonConvergence as err:
@@ -276,7 +277,7 @@ print("full Newton, fitted order per plastic step:", np.round(plastic_orders, 2)
 # %%
 cut_model, _, cut_nodes = spring_chain([TANH], [K0, FU, 0.0])
 cut_model.add_load(cut_nodes[-1], "u", 0.9 * FU)
-res_cut = run(cut_model, [1.0], Settings(method="modified", max_iter=30, max_cuts=10))
+res_cut = run(cut_model, [1.0], Settings.paper(max_iter=30, max_cuts=10))
 print(f"(a) {res_cut.cuts} cuts; accepted load factors {np.round(res_cut.load_factor, 4).tolist()}")
 print(f"    iterations per accepted step {res_cut.iterations[1:]}")
 u_cut = res_cut.displacement(cut_nodes[-1], "u")[-1, 0]
@@ -285,7 +286,7 @@ u_cut_exact = np.arctanh(0.9) * FU / K0
 over_model, _, over_nodes = spring_chain([TANH], [K0, FU, 0.0])
 over_model.add_load(over_nodes[-1], "u", 1.2 * FU)
 try:
-    run(over_model, [1.0], Settings(method="full", max_iter=30, max_cuts=4))
+    run(over_model, [1.0], Settings(method="full", stepping="fixed", max_iter=30, max_cuts=4))
     failure = None
 except NonConvergence as err:
     failure = err

@@ -91,7 +91,7 @@ KN = 1e3 * KT
 NAMED_MESH = 60                          # elements along the 60 cm contact (1 cm each)
 MESHES = [15, 30, 60] if paths.FAST else [15, 30, 60, 120]
 N_STEPS = 40 if paths.FAST else 80
-SETTINGS = Settings(method="modified", backend="superlu")   # the paper's K0 iteration
+SETTINGS = Settings.paper(backend="superlu")   # the paper's K0 iteration in equal increments
 
 
 def shear_box(n_x, n_z, H, E, nu, params, u_max, n_steps, sigma0=0.0):
