@@ -340,6 +340,44 @@ record("undrained_prandtl", f"q_u/(5.14 s_u) - 1, smooth strip, h = {h_fin} m (e
        und_err[h_fin], TOL_U, und_err[h_fin] < TOL_U and all(a > b for a, b in pairwise(u_errors)))
 
 # %% [markdown]
+# ### Undrained in effective stress ("undrained A") and ν_u
+#
+# The other route keeps the drained (effective) parameters E', ν', c', φ' and lets the pore water resist
+# volume change: an excess pore pressure p = −(K_w/n) ε_v, so the total stress is σ' − p·m and the soil state
+# stays the effective stress the strength acts on (`SoilLayer(..., drainage="undrained_A", nu_u=0.495)`).
+# K_w/n is chosen as K_u − K', with K_u the bulk modulus that the skeleton's shear modulus G has at the
+# undrained Poisson's ratio ν_u — the usual penalty of geotechnical codes. For an elastic skeleton this is
+# exactly an elastic soil with G and ν_u (E_u = 2G(1 + ν_u)), and a pressure q over the whole width of a
+# layer on a rigid base settles q H / M_u, M_u = K_u + 4G/3, with the pore water carrying
+# p = q (K_w/n) / M_u — nearly all of q as ν_u → 0.5. Both are closed forms; tolerance 1e-10 (round-off of
+# one linear solve).
+
+# %%
+E_SK, NU_SK, NU_U, Q_U1D = 20e6, 0.3, 0.495, 10e3
+G_SK = E_SK / (2 * (1 + NU_SK))
+K_U = 2 * G_SK * (1 + NU_U) / (3 * (1 - 2 * NU_U))
+M_U = K_U + 4 * G_SK / 3
+K_W = K_U - E_SK / (3 * (1 - 2 * NU_SK))
+UNDRAINED_A_TOL = 1e-10
+one_d = Scene(width=12.0, depth=H_LAYER, layers=[SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, drainage="undrained_A",
+                                                           nu_u=NU_U)],
+              loads=[SurfacePressure(-6.0, 6.0, Q_U1D)], mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5))
+one_d_built = one_d.build()
+one_d_out = one_d_built.solve()
+settle_err = np.abs(one_d_out.surface()[1] / (Q_U1D * H_LAYER / M_U) - 1).max()
+p_err = np.abs(one_d_built.excess_pore_pressure(one_d_out) / (Q_U1D * K_W / M_U) - 1).max()
+strip_a = Scene(width=12.0, depth=H_LAYER, layers=[SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, drainage="undrained_A",
+                                                             nu_u=NU_U)],
+                foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP), contact=Contact(kn=1e10, kt=1e9),
+                loads=[ColumnLoad(0.0, N=300e3)], mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5))
+strip_u = replace(strip_a, layers=[SoilLayer(H_LAYER, E=2 * G_SK * (1 + NU_U), nu=NU_U)])
+u_a, u_u = strip_a.build().solve().u[-1], strip_u.build().solve().u[-1]
+equiv_err = np.abs(u_a - u_u).max() / np.abs(u_u).max()
+print(f"1D: settlement / (qH/M_u) - 1 = {settle_err:.1e}, pore pressure / (q K_w/n / M_u) - 1 = {p_err:.1e} "
+      f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A vs elastic (G, nu_u) {equiv_err:.1e}")
+assert max(settle_err, p_err, equiv_err) < UNDRAINED_A_TOL
+
+# %% [markdown]
 # ## 5. Embedment: the depth term q = γD
 #
 # The strip's base lies D = 1 m below the ground in a trench; beside it is 1 m of backfill (γ = 18 kN/m³),

@@ -76,7 +76,10 @@ class SoilLayer:
     [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay) or
     None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient [-]
     on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
-    [N/m^3] below the water table (default ``unit_weight``).
+    [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
+    (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
+    modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
+    pressure is ``BuiltScene.excess_pore_pressure``).
     """
 
     thickness: float
@@ -89,6 +92,21 @@ class SoilLayer:
     K0: float | None = None
     scheme: str = "implicit"
     unit_weight_sat: float | None = None
+    drainage: str = "drained"
+    nu_u: float = 0.495
+
+    def k_water(self) -> float:
+        """K_w/n [Pa] of the pore water: 0 if drained; else K_u - K' with K_u the bulk modulus of the skeleton's
+        shear modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
+        if self.drainage == "drained":
+            return 0.0
+        if self.drainage != "undrained_A":
+            raise ValueError(f"drainage must be 'drained' or 'undrained_A', got {self.drainage!r}")
+        if not (self.nu < self.nu_u < 0.5):
+            raise ValueError(f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}")
+        shear = self.E / (2.0 * (1.0 + self.nu))
+        k_skeleton = self.E / (3.0 * (1.0 - 2.0 * self.nu))
+        return 2.0 * shear * (1.0 + self.nu_u) / (3.0 * (1.0 - 2.0 * self.nu_u)) - k_skeleton
 
     @classmethod
     def undrained(cls, thickness, E_u, s_u, unit_weight=0.0, nu_u=0.495, K0=None, unit_weight_sat=None):
@@ -273,8 +291,10 @@ class Scene:
         soil_ids = model.add_nodes(mesh.xy, ndof=2)
         kinds, params = material_table([lay.law() for _, lay, _ in mesh_layers])
         weights = np.array([gamma for _, _, gamma in mesh_layers])
+        k_water = np.array([lay.k_water() for _, lay, _ in mesh_layers])
         soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(soil_ids[mesh.conn]), mesh.el_layer, kinds, params,
-                      n_gauss=self.mesh.n_gauss, unit_weight=weights if weights.any() else None)
+                      n_gauss=self.mesh.n_gauss, unit_weight=weights if weights.any() else None,
+                      k_water=k_water if k_water.any() else None)
         if weights.any() or self.surcharge:
             soil.initial_stress = self._geostatic(soil.integration_points()[..., 1])
         model.add_group(soil)
@@ -590,6 +610,11 @@ class BuiltScene:
         the total stress is the state's effective stress minus it on the normal components."""
         z = self.soil.integration_points()[..., 1]
         return pore_pressure(z, self.scene.water_table, gamma_w=self.scene.gamma_w)
+
+    def excess_pore_pressure(self, out, k=-1) -> np.ndarray:
+        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's integration
+        points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers."""
+        return self.soil.excess_pore_pressure(out.u[k][self.soil.edofs])
 
     def contact_force(self, out) -> np.ndarray:
         """Vertical force [N/m] the strip presses on the soil (> 0 compression) at every step of ``out``:

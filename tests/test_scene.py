@@ -270,3 +270,21 @@ def test_units_warn_but_do_not_refuse():
 def test_bad_phases_and_loads_are_named(change, word):
     with pytest.raises(ValueError, match=word):
         strip_scene(**change).build().solve(n_steps=1)
+
+
+def test_undrained_A_elastic_is_elastic_with_nu_u():
+    """Effective-stress undrained with the water penalty = elastic soil with G and nu_u (closed form)."""
+    E, nu, nu_u = 20e6, 0.3, 0.495
+    G = E / (2 * (1 + nu))
+    a = strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=nu_u)]).build().solve()
+    b = strip_scene(layers=[SoilLayer(6.0, E=2 * G * (1 + nu_u), nu=nu_u)]).build().solve()
+    assert np.abs(a.u[-1] - b.u[-1]).max() < 1e-10 * np.abs(b.u[-1]).max()
+    k_u = 2 * G * (1 + nu_u) / (3 * (1 - 2 * nu_u))
+    built = strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=nu_u)], foundation=None,
+                        contact=None, loads=[SurfacePressure(-6.0, 6.0, 10e3)]).build()
+    out = built.solve()
+    m_u = k_u + 4 * G / 3
+    assert out.surface()[1] == pytest.approx(10e3 * 6.0 / m_u, rel=1e-10)
+    assert built.excess_pore_pressure(out) == pytest.approx(10e3 * (k_u - E / (3 * (1 - 2 * nu))) / m_u, rel=1e-10)
+    with pytest.raises(ValueError, match="nu_u"):
+        strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=0.2)]).build()
