@@ -327,11 +327,11 @@ class Scene:
                 out += [v for v in (load.x0, load.x1) if v is not None]
             elif isinstance(load, Settlement) and load.x is not None:
                 out += list(load.x)
+        bad = [x for x in out if not (-0.5 * self.width <= x <= 0.5 * self.width)]
+        if bad:
+            raise ValueError(f"loads: x={bad[0]} lies outside the block [{-0.5 * self.width}, "
+                             f"{0.5 * self.width}] m")
         if f is not None:
-            bad = [x for x in out if not (-0.5 * self.width <= x <= 0.5 * self.width)]
-            if bad:
-                raise ValueError(f"loads: x={bad[0]} lies outside the block [{-0.5 * self.width}, "
-                                 f"{0.5 * self.width}] m")
             out += [v for seg in _segments(self) for v in (seg.x0, seg.x1)]
         return out
 
@@ -626,7 +626,10 @@ class BuiltScene:
     # ---- solution --------------------------------------------------------------------------------------
     def solve(self, n_steps=10, settings: Settings | None = None):
         """Apply the loads in ``n_steps`` equal increments (one linear solve if the scene is linear and has no
-        phases); with ``scene.phases``: the geostatic phase, then each phase in turn."""
+        phases); with ``scene.phases``: the geostatic phase, then each phase in turn (``scene.loads``, if any,
+        as the first, named "loads"). Of a phased solve, ``out.load_factor`` is the phase time (phase i runs
+        from i - 1 to i; the geostatic phase is at 0), ``out.phases`` lists each phase's name, first and last
+        step index and solver result, and ``out.solver_result`` is the last phase's."""
         if int(n_steps) < 1:
             raise ValueError(f"n_steps must be >= 1, got {n_steps}")
         if self.scene.phases:

@@ -288,3 +288,13 @@ def test_undrained_A_elastic_is_elastic_with_nu_u():
     assert built.excess_pore_pressure(out) == pytest.approx(10e3 * (k_u - E / (3 * (1 - 2 * nu))) / m_u, rel=1e-10)
     with pytest.raises(ValueError, match="nu_u"):
         strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=0.2)]).build()
+
+
+def test_settlement_in_a_single_phase_scene():
+    """Without phases a Settlement is a prescribed displacement of the model (linear scene: one solve)."""
+    out = strip_scene(loads=[Settlement(w=0.02, x=(0.0,))]).build().solve()
+    x, s = out.settlement()
+    assert s[np.argmin(np.abs(x))] == pytest.approx(0.02, rel=1e-12)
+    assert out.solver_result is None
+    with pytest.raises(ValueError, match="outside the block"):
+        strip_scene(foundation=None, contact=None, loads=[SurfacePressure(5.0, 7.0, 1e4)]).build()
