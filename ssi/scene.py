@@ -34,7 +34,9 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
   the next, so unloading and reloading paths follow the materials' history.
 * **Groundwater**: hydrostatic pore pressure below ``water_table``; the soil state is the effective stress
   (the strength acts on it), the body force is the buoyant weight gamma_sat - gamma_w; an undrained clay in
-  total stress is ``SoilLayer.undrained`` (phi = 0, c = s_u, nu_u close to 0.5).
+  total stress is ``SoilLayer.undrained`` (phi = 0, c = s_u, nu_u close to 0.5); in effective stress it is
+  ``SoilLayer(..., drainage="undrained_A")`` (drained parameters plus a pore-water bulk modulus; give
+  psi_deg = 0, since a dilating soil sucks ever more negative pore pressure and never fails undrained).
 * **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
   the layer(s) above depth D (the backfill).
 * **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
