@@ -45,8 +45,10 @@ class SoilMesh:
 
     @property
     def surface(self):
-        """Node ids on z = 0, ordered by x."""
-        return self.grid[:, -1].copy()
+        """Node ids of the ground surface ordered by x: the top node of every grid column (z = 0, and the
+        trench bottom z = -embedment where the elements above were removed)."""
+        top = [col[col >= 0][-1] for col in self.grid]
+        return np.array(top, np.int64)
 
     @property
     def bottom(self):
@@ -98,7 +100,7 @@ def structured_q8(x_lines, z_lines, z_layer_tops=None):
 
 
 def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_fine=0.25, h_coarse=2.0,
-               growth=1.25, x_left=None):
+               growth=1.25, x_left=None, breaks=(), embedment=0.0):
     """The graded soil block of Fig. 1.
 
     Parameters
@@ -108,6 +110,11 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
         (default: one layer)
     foundation : (x0, x1) of the foundation; mesh lines fall on both ends, spacing ``h_fine`` between them
     h_fine, h_coarse, growth : element size under the foundation, the largest size, the growth ratio
+    breaks : x positions [m] that must be nodes of the surface (load ends, column positions, contact segment
+        ends): the nearest mesh line is moved there if that keeps every element at least half its size,
+        otherwise a line is added; a position that already is a node (a mid-side node) is left alone
+    embedment : depth D [m] of the foundation base below the ground (>= 0; must be a layer boundary): the
+        elements above it between the foundation ends are removed (the trench the strip sits in)
     """
     if width <= 0 or depth <= 0:
         raise ValueError(f"width and depth must be positive, got width={width}, depth={depth}")
@@ -125,7 +132,7 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
     h0 = (x1 - x0) / n_under
     left = graded_lines(x0, x_left, h0, h_coarse, growth)[::-1]
     right = graded_lines(x1, x_right, h0, h_coarse, growth)
-    x_lines = np.unique(np.concatenate([left, under, right]))
+    x_lines = _insert_breaks(np.unique(np.concatenate([left, under, right])), breaks, (x_left, x0, x1, x_right))
     z_parts = [np.array([0.0])]
     top, h = 0.0, h0
     for t in layers:
@@ -135,7 +142,69 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
         top -= t
     z_lines = np.concatenate(z_parts)[::-1]
     tops = -np.cumsum(layers)[:-1]
-    return structured_q8(x_lines, z_lines, tops)
+    mesh = structured_q8(x_lines, z_lines, tops)
+    if embedment:
+        if not (0.0 < embedment < depth) or np.min(np.abs(tops - (-embedment)), initial=np.inf) > 1e-9:
+            raise ValueError(f"embedment={embedment} m must be a layer boundary inside the block (layer tops "
+                             f"at depths {(-tops).tolist()} m): give the soil beside the strip as its own layer")
+        centre = mesh.xy[mesh.conn].mean(axis=1)
+        trench = (centre[:, 0] > x0) & (centre[:, 0] < x1) & (centre[:, 1] > -embedment)
+        mesh = remove_elements(mesh, ~trench)
+    return mesh
+
+
+def _insert_breaks(lines, breaks, protected):
+    """Make every x in ``breaks`` a node of the surface: move the nearest unprotected line there when both
+    neighbouring elements stay at least half their size, else insert a line."""
+    lines = np.array(lines, np.float64)
+    fixed = list(protected)
+    for b in sorted(float(v) for v in breaks):
+        if not (lines[0] <= b <= lines[-1]):
+            raise ValueError(f"break x={b} lies outside the block [{lines[0]}, {lines[-1]}]")
+        mids = 0.5 * (lines[:-1] + lines[1:])
+        scale = max(1.0, abs(b)) * 1e-9
+        if np.min(np.abs(lines - b)) < scale or np.min(np.abs(mids - b)) < scale:
+            fixed.append(b)
+            continue
+        i = int(np.argmin(np.abs(lines - b)))
+        movable = 0 < i < len(lines) - 1 and min(abs(lines[i] - f) for f in fixed) > scale
+        if movable:
+            left, right = lines[i] - lines[i - 1], lines[i + 1] - lines[i]
+            new_left, new_right = b - lines[i - 1], lines[i + 1] - b
+            movable = new_left >= 0.5 * left and new_right >= 0.5 * right
+        if movable:
+            lines[i] = b
+        else:
+            lines = np.sort(np.append(lines, b))
+        fixed.append(b)
+    return lines
+
+
+def remove_elements(mesh: SoilMesh, keep) -> SoilMesh:
+    """The mesh without the elements where ``keep`` (n_el,) is False; nodes no kept element uses are dropped
+    and the rest renumbered in their order (``grid`` holds -1 where a node was dropped)."""
+    keep = np.asarray(keep, bool)
+    conn = mesh.conn[keep]
+    used = np.zeros(len(mesh.xy), bool)
+    used[conn.ravel()] = True
+    new_id = np.full(len(mesh.xy), -1, np.int64)
+    new_id[used] = np.arange(np.count_nonzero(used))
+    grid = np.where(mesh.grid >= 0, new_id[np.maximum(mesh.grid, 0)], -1)
+    return SoilMesh(mesh.xy[used], new_id[conn], mesh.el_layer[keep], mesh.x_lines, mesh.z_lines, grid)
+
+
+def surface_pressure_forces(mesh: SoilMesh, x0, x1, z=0.0):
+    """(node ids, nodal force per unit pressure [m]) of a uniform pressure on the surface line z from x0 to
+    x1 (both mesh lines): the consistent forces L/6, 4L/6, L/6 of every quadratic edge in the range."""
+    nodes = mesh.nodes_between(x0, x1, z)
+    if len(nodes) < 3 or len(nodes) % 2 == 0:
+        raise ValueError(f"the pressure range ({x0}, {x1}) at z={z} must start and end on element edges")
+    xs = mesh.xy[nodes, 0]
+    f = np.zeros(len(nodes))
+    for i in range(0, len(nodes) - 2, 2):
+        L = xs[i + 2] - xs[i]
+        f[i:i + 3] += np.array([1.0, 4.0, 1.0]) * L / 6.0
+    return nodes, f
 
 
 @dataclass
@@ -148,14 +217,15 @@ class Contact:
     soil_conn: np.ndarray       # (n_el, 3) soil node ids of each interface element's lower side
 
 
-def foundation_contact(mesh: SoilMesh, x0, x1, thickness):
-    """Plate-strip nodes above the soil surface nodes between x0 and x1 (which must be mesh lines)."""
-    soil = mesh.nodes_between(x0, x1)
+def foundation_contact(mesh: SoilMesh, x0, x1, thickness, z=0.0):
+    """Plate-strip nodes above the soil nodes on the line z (the foundation base) between x0 and x1 (which
+    must be mesh lines)."""
+    soil = mesh.nodes_between(x0, x1, z)
     if len(soil) < 3 or len(soil) % 2 == 0:
         raise ValueError(f"the foundation ({x0}, {x1}) must start and end on soil element edges")
     if abs(mesh.xy[soil[0], 0] - x0) > 1e-9 or abs(mesh.xy[soil[-1], 0] - x1) > 1e-9:
         raise ValueError(f"the foundation ends x0={x0}, x1={x1} must be mesh lines of the soil block")
-    plate_xy = np.column_stack([mesh.xy[soil, 0], np.full(len(soil), 0.5 * thickness)])
+    plate_xy = np.column_stack([mesh.xy[soil, 0], np.full(len(soil), z + 0.5 * thickness)])
     local = np.arange(0, len(soil) - 2, 2)
     plate_conn = np.column_stack([local, local + 1, local + 2])
     return Contact(plate_xy, soil, plate_conn, soil[plate_conn])

@@ -16,13 +16,39 @@ equilibrated with its self-weight so the structural loads produce the displaceme
 fixed and its sides are on vertical rollers (the separated block of the paper's Fig. 1).
 
 Signs: z upwards; a column force ``N > 0`` pushes down, ``H > 0`` pushes in +x, ``M > 0`` is counter-clockwise
-(the direction of a positive rotation alpha). Settlements are reported positive downwards.
+(the direction of a positive rotation alpha). Settlements are reported positive downwards. Units: SI
+throughout (m, N, Pa, N/m^3); forces of the plane-strain scene are per metre of the strip's length.
+
+What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py``):
+
+* **Loads** (``Scene.loads`` and ``Phase.loads``): :class:`SurfacePressure` on the ground, with or without a
+  foundation; :class:`StripLoad` along the strip (uniform or linear); :class:`ColumnLoad` anywhere on the strip
+  (the mesh gets a node there); :class:`StripWeight` from the section depth; :class:`Settlement` of the strip
+  (push-over: rigid or at the columns, the contact force is the load).
+* **The geostatic state** is in equilibrium with everything that acts before the structural loads: the soil's
+  weight, the ``surcharge`` on the ground (a dead surface load, so nothing moves before the loads), the
+  overburden of an embedded strip (the strip starts carrying the geostatic vertical stress of its base level,
+  the trench walls the horizontal one) and the buoyant weight below a ``water_table``.
+* **Phases** (``Scene.phases``): geostatic first (zero displacement), then each phase adds loads and rescales
+  those of earlier phases (``factors``, 0 removes them); the state at the end of one phase is the start of
+  the next, so unloading and reloading paths follow the materials' history.
+* **Groundwater**: hydrostatic pore pressure below ``water_table``; the soil state is the effective stress
+  (the strength acts on it), the body force is the buoyant weight gamma_sat - gamma_w; an undrained clay in
+  total stress is ``SoilLayer.undrained`` (phi = 0, c = s_u, nu_u close to 0.5); in effective stress it is
+  ``SoilLayer(..., drainage="undrained_A")`` (drained parameters plus a pore-water bulk modulus; give
+  psi_deg = 0, since a dilating soil sucks ever more negative pore pressure and never fails undrained).
+* **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
+  the layer(s) above depth D (the backfill).
+* **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
 """
 
+import math
+import warnings
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from .assembly import scatter_vector
 from .elements.interface import V_SIG, V_TAU, Interface6, add_interface
 from .elements.plate import PlateStrip
 from .elements.soil_q8 import SoilQ8
@@ -30,8 +56,15 @@ from .materials.concrete import P_E0, P_FR
 from .materials.interface_law import interface_params
 from .materials.layer_laws import CONCRETE, P_LS, STEEL, layer_update
 from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
-from .materials.soil_laws import elastic_params, geostatic_stress, material_table, mohr_coulomb_params
-from .mesh import foundation_contact, soil_block
+from .materials.soil_laws import (
+    GAMMA_W,
+    elastic_params,
+    geostatic_stress,
+    material_table,
+    mohr_coulomb_params,
+    pore_pressure,
+)
+from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model
 from .section import Section
 from .solver import Settings, run
@@ -39,7 +72,17 @@ from .solver import Settings, run
 
 @dataclass(frozen=True)
 class SoilLayer:
-    """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi."""
+    """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi.
+
+    Fields: ``thickness`` [m]; ``E`` Young's modulus [Pa] (drained, or undrained E_u); ``nu`` Poisson's ratio
+    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay) or
+    None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient [-]
+    on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
+    [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
+    (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
+    modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
+    pressure is ``BuiltScene.excess_pore_pressure``).
+    """
 
     thickness: float
     E: float
@@ -50,6 +93,30 @@ class SoilLayer:
     psi_deg: float | None = None
     K0: float | None = None
     scheme: str = "implicit"
+    unit_weight_sat: float | None = None
+    drainage: str = "drained"
+    nu_u: float = 0.495
+
+    def k_water(self) -> float:
+        """K_w/n [Pa] of the pore water: 0 if drained; else K_u - K' with K_u the bulk modulus of the skeleton's
+        shear modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
+        if self.drainage == "drained":
+            return 0.0
+        if self.drainage != "undrained_A":
+            raise ValueError(f"drainage must be 'drained' or 'undrained_A', got {self.drainage!r}")
+        if not (self.nu < self.nu_u < 0.5):
+            raise ValueError(f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}")
+        shear = self.E / (2.0 * (1.0 + self.nu))
+        k_skeleton = self.E / (3.0 * (1.0 - 2.0 * self.nu))
+        return 2.0 * shear * (1.0 + self.nu_u) / (3.0 * (1.0 - 2.0 * self.nu_u)) - k_skeleton
+
+    @classmethod
+    def undrained(cls, thickness, E_u, s_u, unit_weight=0.0, nu_u=0.495, K0=None, unit_weight_sat=None):
+        """Total-stress undrained clay (Tresca: phi = 0, c = s_u [Pa]) with the undrained modulus E_u [Pa] and
+        nu_u close to 0.5 (nearly incompressible). phi = 0 makes the strength independent of the mean stress,
+        so the hydrostatic pore pressure the scene separates does not change it."""
+        return cls(thickness, E=E_u, nu=nu_u, unit_weight=unit_weight, c=s_u, phi_deg=0.0, K0=K0,
+                   unit_weight_sat=unit_weight_sat)
 
     def law(self):
         if self.c is None:
@@ -73,8 +140,11 @@ class Foundation:
 class Contact:
     """Foundation--soil interface (Coulomb). ``phi_deg=None``: bonded and elastic (never slips or opens).
 
-    ``psi_deg`` is the contact's dilation angle; the default 0 (slip without dilation) is the usual engineering
-    choice for a concrete--soil contact. ``psi_deg=None`` gives the paper's associated rule (psi = phi)."""
+    Fields: ``kn``, ``kt`` normal and tangential stiffness [Pa/m]; ``phi_deg`` interface friction angle [deg];
+    ``c`` adhesion [Pa]; ``psi_deg`` dilation angle [deg] -- the default 0 (slip without dilation) is the usual
+    engineering choice for a concrete--soil contact, ``None`` gives the paper's associated rule (psi = phi);
+    ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss".
+    """
 
     kn: float
     kt: float
@@ -86,13 +156,24 @@ class Contact:
 
     def params(self):
         if self.phi_deg is None:
-            return interface_params(self.kt, self.kn, 0.0, np.inf, None, np.inf)
-        return interface_params(self.kt, self.kn, self.phi_deg, self.c, self.psi_deg, self.sig_t)
+            return interface_params(kt=self.kt, kn=self.kn, phi_deg=0.0, c=np.inf, psi_deg=None, sig_t=np.inf)
+        return interface_params(kt=self.kt, kn=self.kn, phi_deg=self.phi_deg, c=self.c, psi_deg=self.psi_deg,
+                                sig_t=self.sig_t)
+
+
+@dataclass(frozen=True)
+class ContactSegment:
+    """The contact law ``contact`` on the part x0 <= x <= x1 [m] of the strip; segments tile the strip."""
+
+    x0: float
+    x1: float
+    contact: Contact
 
 
 @dataclass(frozen=True)
 class ColumnLoad:
-    """Column forces per unit length of the strip at a plate node (x must be a node of the strip)."""
+    """Column forces at ``x`` [m] on the strip (the plate mesh gets a node there): ``N`` [N/m] downwards,
+    ``H`` [N/m] in +x, ``M`` [N m/m] counter-clockwise, all per metre of the strip's length."""
 
     x: float
     N: float = 0.0
@@ -101,7 +182,63 @@ class ColumnLoad:
 
 
 @dataclass(frozen=True)
+class SurfacePressure:
+    """A pressure ``q`` [Pa] (> 0 downwards) on the ground surface from ``x0`` to ``x1`` [m] (both become mesh
+    lines); beside the foundation, not under it (a load on the strip is a :class:`StripLoad`)."""
+
+    x0: float
+    x1: float
+    q: float
+
+
+@dataclass(frozen=True)
+class StripLoad:
+    """A distributed load on the strip [N/m^2 = Pa], > 0 downwards: ``q`` at ``x0`` varying linearly to
+    ``q_end`` at ``x1`` (default: uniform ``q`` over the whole strip). x0, x1 [m] become plate nodes."""
+
+    q: float
+    q_end: float | None = None
+    x0: float | None = None
+    x1: float | None = None
+
+
+@dataclass(frozen=True)
+class StripWeight:
+    """Self-weight of the strip from its section: ``unit_weight`` [N/m^3] times the section depth [m], a
+    uniform downward load [Pa] applied in the phase that lists it (reinforced concrete: 25e3)."""
+
+    unit_weight: float = 25e3
+
+
+@dataclass(frozen=True)
+class Settlement:
+    """Push-over: a prescribed further settlement ``w`` [m] (> 0 downwards) during the phase that lists it.
+    ``x=None``: the rigid strip (every plate node settles by w, rotations held); else the plate nodes at the
+    positions ``x`` [m] (columns) settle by w. The reaction is the load: read it with
+    :meth:`BuiltScene.contact_force`. The settled nodes stay held in later phases."""
+
+    w: float
+    x: tuple | None = None
+
+
+@dataclass(frozen=True)
+class Phase:
+    """One stage of the analysis: ``loads`` added (at full value at the end of the phase), ``factors``
+    {name of an earlier phase: factor} rescaling that phase's loads (0 removes them, 1 restores them;
+    a Settlement's factor scales its settlement), ``n_steps`` equal increments (None: the ``n_steps`` given to
+    ``solve``)."""
+
+    name: str
+    loads: tuple = ()
+    factors: dict = field(default_factory=dict)
+    n_steps: int | None = None
+
+
+@dataclass(frozen=True)
 class MeshSize:
+    """Element size ``h_fine`` [m] under the foundation, ``h_coarse`` [m] far from it, ``growth`` [-] ratio of
+    neighbouring sizes, ``n_gauss`` 2 (reduced) or 3 (full) Gauss points per direction."""
+
     h_fine: float = 0.25
     h_coarse: float = 2.0
     growth: float = 1.25
@@ -110,72 +247,255 @@ class MeshSize:
 
 @dataclass
 class Scene:
+    """A strip foundation on layered subsoil: ``width``, ``depth`` [m] of the soil block; ``layers`` from the
+    ground surface down (thicknesses tile ``depth``); ``foundation`` and its ``contact`` (one
+    :class:`Contact` or a list of :class:`ContactSegment`); ``loads`` of the first phase after the geostatic
+    one; ``mesh``; ``surcharge`` [Pa] on the ground (a dead load of the geostatic state, beside the strip; the
+    strip carries it over its own width); ``phases`` after ``loads``; ``embedment`` D [m] of the strip's base
+    below the ground (a layer boundary); ``water_table`` [m] depth of the water table below the ground (None:
+    dry); ``gamma_w`` [N/m^3] unit weight of water.
+    """
+
     width: float
     depth: float
     layers: list
     foundation: Foundation | None = None
-    contact: Contact | None = None
+    contact: Contact | list | None = None
     loads: list = field(default_factory=list)
     mesh: MeshSize = field(default_factory=MeshSize)
     surcharge: float = 0.0  # uniform pressure on the ground surface in the geostatic state [Pa]
+    phases: list = field(default_factory=list)
+    embedment: float = 0.0
+    water_table: float | None = None
+    gamma_w: float = GAMMA_W
 
     def build(self) -> "BuiltScene":
-        """Mesh the block, add only the groups the scene needs, supports and loads."""
+        """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads."""
         if not self.layers:
             raise ValueError("layers: the scene needs at least one soil layer")
         if self.foundation is not None and self.contact is None:
             raise ValueError("contact: a foundation needs a Contact (interface) to rest on the soil")
-        if self.foundation is None and self.loads:
-            raise ValueError("loads: column loads need a foundation to act on")
+        strip_loads = [ld for ld in self._all_loads() if not isinstance(ld, SurfacePressure)]
+        if self.foundation is None and strip_loads:
+            raise ValueError(f"loads: {type(strip_loads[0]).__name__} needs a foundation to act on (a pressure on "
+                             "the ground without a foundation is a SurfacePressure)")
+        if self.embedment and self.foundation is None:
+            raise ValueError(f"embedment={self.embedment}: an embedded scene needs a foundation")
+        _check_phases(self)
+        _warn_implausible_units(self)
         f = self.foundation
         x0, x1 = (f.x0, f.x1) if f else (-0.25 * self.width, 0.25 * self.width)
-        mesh = soil_block(self.width, self.depth, [lay.thickness for lay in self.layers], (x0, x1),
-                          self.mesh.h_fine, self.mesh.h_coarse, self.mesh.growth)
+        mesh_layers = self._mesh_layers()
+        mesh = soil_block(self.width, self.depth, [t for t, _, _ in mesh_layers], (x0, x1),
+                          self.mesh.h_fine, self.mesh.h_coarse, self.mesh.growth, breaks=self._breaks(),
+                          embedment=self.embedment)
         model = Model()
         model.info["scene"] = _describe(self)
         soil_ids = model.add_nodes(mesh.xy, ndof=2)
-        kinds, params = material_table([lay.law() for lay in self.layers])
-        weights = np.array([lay.unit_weight for lay in self.layers])
+        kinds, params = material_table([lay.law() for _, lay, _ in mesh_layers])
+        weights = np.array([gamma for _, _, gamma in mesh_layers])
+        k_water = np.array([lay.k_water() for _, lay, _ in mesh_layers])
         soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(soil_ids[mesh.conn]), mesh.el_layer, kinds, params,
-                      n_gauss=self.mesh.n_gauss, unit_weight=weights if weights.any() else None)
+                      n_gauss=self.mesh.n_gauss, unit_weight=weights if weights.any() else None,
+                      k_water=k_water if k_water.any() else None)
         if weights.any() or self.surcharge:
-            soil.initial_stress = self._geostatic(soil)
+            soil.initial_stress = self._geostatic(soil.integration_points()[..., 1])
         model.add_group(soil)
         model.fix(mesh.bottom, "u")
         model.fix(mesh.bottom, "w")
         model.fix(mesh.left, "u")
         model.fix(mesh.right, "u")
         built = BuiltScene(self, model, mesh, soil)
+        built.geostatic_load = self._ground_loads(built)
         if f is not None:
             self._add_foundation(built)
+        model.add_element_load(np.arange(model.n_dof)[None], built.geostatic_load[None], dead=True)
+        for load in self.loads:
+            built._register(load)
         return built
 
-    def _geostatic(self, soil):
-        layers = [{"thickness": lay.thickness, "gamma": lay.unit_weight,
+    def _all_loads(self):
+        return list(self.loads) + [ld for ph in self.phases for ld in ph.loads]
+
+    def _breaks(self):
+        """x [m] that must be surface nodes: load ends, columns, settled columns, contact segment ends."""
+        out = []
+        f = self.foundation
+        for load in self._all_loads():
+            if isinstance(load, SurfacePressure):
+                out += [load.x0, load.x1]
+            elif isinstance(load, ColumnLoad):
+                out.append(load.x)
+            elif isinstance(load, StripLoad):
+                out += [v for v in (load.x0, load.x1) if v is not None]
+            elif isinstance(load, Settlement) and load.x is not None:
+                out += list(load.x)
+        bad = [x for x in out if not (-0.5 * self.width <= x <= 0.5 * self.width)]
+        if bad:
+            raise ValueError(f"loads: x={bad[0]} lies outside the block [{-0.5 * self.width}, "
+                             f"{0.5 * self.width}] m")
+        if f is not None:
+            out += [v for seg in _segments(self) for v in (seg.x0, seg.x1)]
+        return out
+
+    def _mesh_layers(self):
+        """[(thickness, layer, body-force unit weight)] with the layer that holds the water table split there:
+        gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective stress)."""
+        d_w = math.inf if self.water_table is None else float(self.water_table)
+        if self.water_table is not None and not (np.isfinite(d_w) and d_w >= 0.0):
+            raise ValueError(f"water_table must be a depth >= 0 below the ground [m] or None, got {self.water_table}")
+        out, top = [], 0.0
+        for lay in self.layers:
+            sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
+            wet = max(sat - self.gamma_w, 0.0) if self.water_table is not None else sat
+            bottom = top + lay.thickness
+            if top < d_w < bottom and min(d_w - top, bottom - d_w) > 1e-9 * lay.thickness:
+                out += [(d_w - top, lay, lay.unit_weight), (bottom - d_w, lay, wet)]
+            else:
+                out.append((lay.thickness, lay, lay.unit_weight if bottom <= d_w + 1e-12 else wet))
+            top = bottom
+        return out
+
+    def _geostatic(self, z):
+        """Effective geostatic stress (n, ..., 4) at the points z [m] (see ``geostatic_stress``)."""
+        layers = [{"thickness": lay.thickness, "gamma": lay.unit_weight, "gamma_sat": lay.unit_weight_sat,
                    **({"K0": lay.K0} if lay.K0 is not None else {"phi_deg": lay.phi_deg})} for lay in self.layers]
-        return geostatic_stress(soil.integration_points()[..., 1], layers, self.surcharge)
+        return geostatic_stress(z, layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w)
+
+    def _ground_loads(self, built):
+        """Dead loads that hold the geostatic state in place (without the soil's own weight, a body force of the
+        soil group): the surcharge on the ground beside the strip and the horizontal geostatic stress on the
+        walls of an embedded strip's trench."""
+        mesh, model = built.mesh, built.model
+        f_vec = np.zeros(model.n_dof)
+        half = 0.5 * self.width
+        if self.surcharge:
+            ranges = [(-half, half)] if self.foundation is None else [(-half, self.foundation.x0),
+                                                                       (self.foundation.x1, half)]
+            for a, b in ranges:
+                if b - a > 1e-12:
+                    nodes, f = surface_pressure_forces(mesh, a, b)
+                    np.add.at(f_vec, model.dof(nodes, "w"), -self.surcharge * f)
+        if self.embedment:
+            for x_wall, normal in ((self.foundation.x0, 1.0), (self.foundation.x1, -1.0)):
+                nodes, f = self._wall_forces(mesh, x_wall, normal)
+                np.add.at(f_vec, model.dof(nodes, "u"), f)
+        return f_vec
+
+    def _wall_forces(self, mesh, x_wall, normal):
+        """Nodal forces [N/m] of the traction sig_xx0 * n_x on a trench wall (3-point Gauss per edge)."""
+        on = np.flatnonzero((np.abs(mesh.xy[:, 0] - x_wall) < 1e-9) & (mesh.xy[:, 1] >= -self.embedment - 1e-9))
+        nodes = on[np.argsort(mesh.xy[on, 1])]
+        z = mesh.xy[nodes, 1]
+        f = np.zeros(len(nodes))
+        xi = np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
+        wt = np.array([5.0, 8.0, 5.0]) / 9.0
+        for i in range(0, len(nodes) - 2, 2):
+            za = z[i:i + 3]
+            for s, w in zip(xi, wt):
+                n = _lagrange_row(s)
+                sxx = self._geostatic(np.array([n @ za]))[0, 0]
+                f[i:i + 3] += n * sxx * normal * w * 0.5 * (za[2] - za[0])
+        return nodes, f
 
     def _add_foundation(self, built):
         f, model, mesh = self.foundation, built.model, built.mesh
-        contact = foundation_contact(mesh, f.x0, f.x1, f.section.thickness)
-        offset = -f.section.z_bottom  # plate nodes sit on the reference surface, this far above the soil
-        plate_xy = np.column_stack([contact.plate_xy[:, 0], np.full(len(contact.plate_xy), offset)])
+        z_base = -float(self.embedment)
+        contact = foundation_contact(mesh, f.x0, f.x1, f.section.thickness, z=z_base)
+        offset = -f.section.z_bottom  # plate nodes sit on the reference surface, this far above the base
+        plate_xy = np.column_stack([contact.plate_xy[:, 0], np.full(len(contact.plate_xy), z_base + offset)])
         ids = model.add_nodes(plate_xy, ndof=3)
+        built.geostatic_load = np.concatenate([built.geostatic_load, np.zeros(3 * len(ids))])
         conn = ids[contact.plate_conn]
         plate = PlateStrip(plate_xy[contact.plate_conn], model.element_dofs(conn), f.section, kappa=f.kappa,
                            integration=f.integration, self_weight=f.self_weight)
         model.add_group(plate)
-        iface = add_interface(model, conn, contact.soil_conn, self.contact.params(), offset=plate.bottom_offset,
-                              rule=self.contact.rule)
+        segments = _segments(self)
+        x_mid = plate_xy[contact.plate_conn[:, 1], 0]
+        params = np.array([_segment_at(segments, x).contact.params() for x in x_mid])
+        # the strip starts carrying the geostatic vertical stress of its base level (surcharge, overburden):
+        # contact traction and an equal dead load on the strip, so the initial state is in equilibrium
+        p0 = -float(self._geostatic(np.array([z_base]))[0, 1]) if self._has_geostatic_stress() else 0.0
+        iface = add_interface(model, conn, contact.soil_conn, params, offset=plate.bottom_offset,
+                              rule=segments[0].contact.rule,
+                              initial_traction=np.array([0.0, -p0]) if p0 else None)
         built.plate, built.interface, built.plate_nodes = plate, iface, ids
-        for load in self.loads:
-            node = built.plate_node_at(load.x)
-            if load.N:
-                model.add_load(node, "w", -load.N)
-            if load.H:
-                model.add_load(node, "u", load.H)
-            if load.M:
-                model.add_load(node, "alpha", load.M)
+        built.base_pressure = p0
+        if p0:
+            scatter_vector(plate.edofs, plate.distributed_load(-p0, comp="w"), built.geostatic_load)
+
+    def _has_geostatic_stress(self):
+        return bool(self.surcharge) or any(lay.unit_weight or lay.unit_weight_sat for lay in self.layers)
+
+
+def _segments(scene):
+    """The contact as a list of ContactSegment tiling the strip (checked)."""
+    f, c = scene.foundation, scene.contact
+    if isinstance(c, Contact):
+        return [ContactSegment(f.x0, f.x1, c)]
+    segs = sorted(c, key=lambda s: s.x0)
+    if not segs or not all(isinstance(s, ContactSegment) for s in segs):
+        raise TypeError("contact must be a Contact or a non-empty list of ContactSegment")
+    tol = 1e-9 * max(1.0, f.x1 - f.x0)
+    ends = [f.x0] + [v for s in segs for v in (s.x0, s.x1)] + [f.x1]
+    gaps = [abs(a - b) for a, b in zip(ends[0::2], ends[1::2])]
+    if max(gaps) > tol or any(s.x1 <= s.x0 for s in segs):
+        raise ValueError(f"contact segments {[(s.x0, s.x1) for s in segs]} must tile the strip [{f.x0}, {f.x1}] "
+                         "without gaps or overlaps")
+    if len({s.contact.rule for s in segs}) != 1:
+        raise ValueError("contact segments must share one integration rule")
+    return segs
+
+
+def _segment_at(segments, x):
+    for seg in segments:
+        if seg.x0 <= x <= seg.x1:
+            return seg
+    raise ValueError(f"x={x}: no contact segment covers this point of the strip")
+
+
+def _check_phases(scene):
+    names = (["loads"] if scene.loads else []) + [ph.name for ph in scene.phases]
+    if len(set(names)) != len(names) or "geostatic" in names:
+        raise ValueError(f"phase names {names} must be unique and not 'geostatic' (the first phase's name)")
+    for k, ph in enumerate(scene.phases):
+        earlier = names[:names.index(ph.name)]
+        unknown = [n for n in ph.factors if n not in earlier]
+        if unknown:
+            raise ValueError(f"phases[{k}] ({ph.name!r}): factors name {unknown}, which are not earlier phases "
+                             f"({earlier})")
+        if ph.n_steps is not None and int(ph.n_steps) < 1:
+            raise ValueError(f"phases[{k}] ({ph.name!r}): n_steps must be >= 1, got {ph.n_steps}")
+
+
+# values below these in SI look like they were given in kN, kPa or kN/m^3
+_PLAUSIBLE_MIN = {"E": 1e5, "unit_weight": 100.0, "c": 100.0, "pressure": 100.0, "force": 1e3, "kn": 1e5}
+
+
+def _warn_implausible_units(scene):
+    """Warn (never refuse) where a value looks like kN, kPa or kN/m^3 instead of N, Pa, N/m^3."""
+    def warn(what, value, unit, key):
+        size = abs(value) if key in ("force", "pressure") else value  # a negative modulus is the validator's
+        if 0.0 < size < _PLAUSIBLE_MIN[key]:
+            warnings.warn(f"{what} = {value:g} {unit} looks small for SI units (was it given in k{unit}?); "
+                          "the scene uses N, Pa, N/m^3", UserWarning, stacklevel=3)
+
+    for i, lay in enumerate(scene.layers):
+        warn(f"layers[{i}].E", lay.E, "Pa", "E")
+        warn(f"layers[{i}].unit_weight", lay.unit_weight, "N/m^3", "unit_weight")
+        if lay.c is not None:
+            warn(f"layers[{i}].c", lay.c, "Pa", "c")
+    warn("surcharge", scene.surcharge, "Pa", "pressure")
+    for c in ([scene.contact] if isinstance(scene.contact, Contact) else
+              [s.contact for s in scene.contact or []]):
+        warn("contact.kn", c.kn, "Pa/m", "kn")
+    for load in scene._all_loads():
+        if isinstance(load, ColumnLoad):
+            warn("ColumnLoad.N", load.N, "N/m", "force")
+        elif isinstance(load, (SurfacePressure, StripLoad)):
+            warn(f"{type(load).__name__}.q", load.q, "Pa", "pressure")
+        elif isinstance(load, StripWeight):
+            warn("StripWeight.unit_weight", load.unit_weight, "N/m^3", "unit_weight")
 
 
 def _describe(scene):
@@ -184,7 +504,37 @@ def _describe(scene):
         s = scene.foundation.section
         d["foundation"]["section"] = {"z_mid": s.z_mid.tolist(), "h": s.h.tolist(), "kind": s.kind.tolist(),
                                       "params": s.params.tolist(), "carries_shear": s.carries_shear.tolist()}
+    d["loads"] = [_describe_load(ld) for ld in scene.loads]
+    d["phases"] = [{"name": ph.name, "loads": [_describe_load(ld) for ld in ph.loads], "factors": dict(ph.factors),
+                    "n_steps": ph.n_steps} for ph in scene.phases]
     return d
+
+
+def _describe_load(load):
+    return {"type": type(load).__name__, **asdict(load)}
+
+
+def _load_levels(n_steps):
+    """Target load factors of one phase: [1] (automatic increments) for None, else n equal levels."""
+    if n_steps is None:
+        return [1.0]
+    if isinstance(n_steps, (int, np.integer)) and not isinstance(n_steps, bool) and n_steps >= 1:
+        return np.linspace(0.0, 1.0, int(n_steps) + 1)[1:]
+    raise ValueError(f"n_steps must be None (automatic) or an integer >= 1, got {n_steps!r}")
+
+
+def _run_phase(model, load_factors, settings, start=None, loads=None):
+    """The one place a phase is stepped: ``ssi.solver.run`` along ``load_factors`` from ``start`` (the last
+    converged state of the previous phase) with F_ext = lambda f_ref + f_dead (``loads``)."""
+    return run(model, load_factors, settings, start=start, loads=loads)
+
+
+def _hold(model, dofs, start, increment):
+    """Constrain ``dofs`` to start + lambda * increment during a phase (the model stores a DOF's fixed value
+    and its prescribed reference apart; both are set here)."""
+    for d, a, b in zip(dofs, start, increment):
+        model._fixed[int(d)] = float(a)
+        model._prescribed[int(d)] = float(b)
 
 
 @dataclass
@@ -196,41 +546,180 @@ class BuiltScene:
     plate: PlateStrip | None = None
     interface: Interface6 | None = None
     plate_nodes: np.ndarray | None = None
+    geostatic_load: np.ndarray | None = None   # (n_dof,) dead loads [N/m] holding the geostatic state
+    base_pressure: float = 0.0                 # geostatic vertical stress [Pa] the strip's base starts with
 
     def plate_node_at(self, x, tol=1e-6):
         xs = self.model.coords[self.plate_nodes, 0]
         i = int(np.argmin(np.abs(xs - x)))
         if abs(xs[i] - x) > tol * max(1.0, abs(x)):
-            raise ValueError(f"x={x}: column loads must act at a plate node; nearest is x={xs[i]:.6g} "
-                             "(refine or align the mesh)")
+            raise ValueError(f"x={x}: column loads must act on the strip; nearest plate node is x={xs[i]:.6g}")
         return self.plate_nodes[i]
 
     @property
     def is_linear(self) -> bool:
         soil_linear = all(lay.c is None for lay in self.scene.layers)
         plate_linear = self.plate is None or bool(np.all(self.plate.section.kind == LAYER_ELASTIC))
-        contact_linear = self.scene.contact is None or self.scene.contact.phi_deg is None
+        contact_linear = self.scene.contact is None or all(
+            seg.contact.phi_deg is None for seg in _segments(self.scene))
         return soil_linear and plate_linear and contact_linear
 
+    # ---- loads -----------------------------------------------------------------------------------------
+    def load_effect(self, load):
+        """(force vector (n_dof,) [N/m], {dof: prescribed displacement increment [m]}) of one load."""
+        model, f_vec, held = self.model, np.zeros(self.model.n_dof), {}
+        if isinstance(load, SurfacePressure):
+            f = self.scene.foundation
+            if f is not None and min(load.x1, f.x1) - max(load.x0, f.x0) > 1e-9:
+                raise ValueError(f"SurfacePressure ({load.x0}, {load.x1}) overlaps the strip ({f.x0}, {f.x1}): "
+                                 "a load on the strip is a StripLoad")
+            nodes, w = surface_pressure_forces(self.mesh, load.x0, load.x1)
+            np.add.at(f_vec, model.dof(nodes, "w"), -load.q * w)
+        elif isinstance(load, ColumnLoad):
+            node = self.plate_node_at(load.x)
+            for comp, value in (("w", -load.N), ("u", load.H), ("alpha", load.M)):
+                f_vec[model.dof(node, comp)] += value
+        elif isinstance(load, StripLoad):
+            scatter_vector(self.plate.edofs, self.plate.distributed_load(self._strip_profile(load), comp="w"),
+                           f_vec)
+        elif isinstance(load, StripWeight):
+            q = load.unit_weight * self.plate.section.thickness
+            scatter_vector(self.plate.edofs, self.plate.distributed_load(-q, comp="w"), f_vec)
+        elif isinstance(load, Settlement):
+            ids = self.plate_nodes if load.x is None else np.array([self.plate_node_at(x) for x in load.x])
+            held.update({int(d): -float(load.w) for d in model.dof(ids, "w")})
+            if load.x is None:  # rigid strip: rotations held
+                held.update({int(d): 0.0 for d in model.dof(ids, "alpha")})
+        else:
+            raise TypeError(f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or "
+                            "Settlement")
+        return f_vec, held
+
+    def _strip_profile(self, load):
+        a = self.scene.foundation.x0 if load.x0 is None else load.x0
+        b = self.scene.foundation.x1 if load.x1 is None else load.x1
+        if not (self.scene.foundation.x0 - 1e-9 <= a < b <= self.scene.foundation.x1 + 1e-9):
+            raise ValueError(f"StripLoad x0={a}, x1={b} must satisfy foundation.x0 <= x0 < x1 <= foundation.x1")
+        q_end = load.q if load.q_end is None else load.q_end
+
+        def q(x):
+            inside = (x >= a - 1e-12) & (x <= b + 1e-12)
+            return np.where(inside, -(load.q + (q_end - load.q) * (x - a) / (b - a)), 0.0)
+        return q
+
+    def _register(self, load):
+        """Add one load of the single-phase scene to the model (reference load, or prescribed settlement)."""
+        f_vec, held = self.load_effect(load)
+        nz = np.flatnonzero(f_vec)
+        if nz.size:
+            self.model.add_element_load(nz[None], f_vec[nz][None])
+        for d, v in held.items():
+            self.model._prescribed[d] = v
+            self.model._fixed.pop(d, None)
+
+    def pore_pressure(self) -> np.ndarray:
+        """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el, n_ip);
+        the total stress is the state's effective stress minus it on the normal components."""
+        z = self.soil.integration_points()[..., 1]
+        return pore_pressure(z, self.scene.water_table, gamma_w=self.scene.gamma_w)
+
+    def excess_pore_pressure(self, out, k=-1) -> np.ndarray:
+        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's integration
+        points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers."""
+        return self.soil.excess_pore_pressure(out.u[k][self.soil.edofs])
+
+    def contact_force(self, out) -> np.ndarray:
+        """Vertical force [N/m] the strip presses on the soil (> 0 compression) at every step of ``out``:
+        -integral of sig_n along the contact. Of a push-over it is the load."""
+        k = self.model.groups.index(self.interface)
+        w = self.interface.ip_weights()
+        return np.array([-np.sum(st[k][..., V_SIG] * w) for st in out.states])
+
+    # ---- solution --------------------------------------------------------------------------------------
     def solve(self, n_steps: int | None = None, settings: Settings | None = None) -> "SceneResult":
-        """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear.
+        """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear and
+        has no phases.
 
         ``n_steps=None`` (default): automatic increments (``settings.stepping``, see :class:`Settings`);
         an integer: the path passes through n equal load levels (each may be subdivided by automatic
         stepping; ``Settings.paper()`` takes each as one increment). The result's ``status`` says
         ``"completed"`` or ``"limit load reached"`` (the loads exceed what the scene can carry: the path up
-        to the limit is returned); a failure before either raises :class:`~ssi.solver.NonConvergence`."""
+        to the limit is returned); a failure before either raises :class:`~ssi.solver.NonConvergence`.
+
+        With ``scene.phases``: the geostatic phase, then each phase in turn (``scene.loads``, if any, as the
+        first, named "loads"); a phase that reaches a limit load ends the analysis. Of a phased solve,
+        ``out.load_factor`` is the phase time (phase i runs from i - 1 to i; the geostatic phase is at 0),
+        ``out.phases`` lists each phase's name, first and last step index and solver result, and
+        ``out.solver_result`` is the last phase's."""
+        _load_levels(n_steps)  # validates n_steps
+        if self.scene.phases:
+            return self._solve_phases(n_steps, settings)
         if self.is_linear:
             lin = self.model.solve_linear(backend=(settings or Settings()).backend)
             return SceneResult(self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None)
-        if n_steps is None:
-            targets = [1.0]
-        elif isinstance(n_steps, (int, np.integer)) and not isinstance(n_steps, bool) and n_steps >= 1:
-            targets = np.linspace(0.0, 1.0, int(n_steps) + 1)[1:]
-        else:
-            raise ValueError(f"n_steps must be None (automatic) or an integer >= 1, got {n_steps!r}")
-        res = run(self.model, targets, settings)
+        res = _run_phase(self.model, _load_levels(n_steps), settings)
         return SceneResult(self, res.load_factor, res.u, res.states, res)
+
+    def _solve_phases(self, n_steps, settings):
+        scene, model = self.scene, self.model
+        phases = ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
+        n = model.n_dof
+        body = np.zeros(n)
+        for g in model.groups:
+            if g is not self.plate and g.body_force() is not None:
+                scatter_vector(g.edofs, g.body_force(), body)
+        plate_weight = np.zeros(n)
+        if self.plate is not None and self.plate.body_force() is not None:
+            scatter_vector(self.plate.edofs, self.plate.body_force(), plate_weight)
+        f_geo = body + self.geostatic_load
+        saved = dict(model._fixed), dict(model._prescribed)
+        # the single-phase registration is not used here: phases set every load and constraint themselves
+        for d in list(model._prescribed):
+            model._fixed[d] = 0.0
+            model._prescribed.pop(d)
+        try:
+            res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_geo))
+            records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
+            lam, u, states = [0.0, 0.0], [res.u[0], res.u[-1]], [res.states[0], res.states[-1]]
+            effects, factors, held_from = {}, {}, {}
+            f_prev = np.zeros(n)
+            for i, ph in enumerate(phases):
+                parts = [self.load_effect(ld) for ld in ph.loads]
+                f_ph = sum((p[0] for p in parts), np.zeros(n)) + (plate_weight if i == 0 else 0.0)
+                held = {}
+                for p in parts:
+                    for d, v in p[1].items():
+                        held[d] = held.get(d, 0.0) + v
+                effects[ph.name] = (f_ph, held)
+                factors[ph.name] = 1.0
+                factors.update(ph.factors)
+                for d in held:
+                    held_from.setdefault(ph.name, {})[d] = float(res.u[-1][d])
+                f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
+                target = {}
+                for k, start in held_from.items():
+                    for d, u0 in start.items():
+                        target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
+                dofs = np.array(sorted(target), np.int64)
+                now = res.u[-1][dofs]
+                _hold(model, dofs, now, np.array([target[d] for d in dofs]) - now)
+                res = _run_phase(model, _load_levels(ph.n_steps or n_steps), settings, start=res,
+                                 loads=(f_end - f_prev, f_geo + f_prev))
+                _hold(model, dofs, np.array([target[d] for d in dofs]), np.zeros(len(dofs)))
+                f_prev = f_end
+                first = len(lam)
+                lam += [i + v for v in res.load_factor[1:]]
+                u += res.u[1:]
+                states += res.states[1:]
+                records.append({"name": ph.name, "first": first, "last": len(lam) - 1, "result": res})
+                if res.collapsed:
+                    break
+        finally:
+            model._fixed.clear()
+            model._fixed.update(saved[0])
+            model._prescribed.clear()
+            model._prescribed.update(saved[1])
+        return SceneResult(self, lam, u, states, res, phases=records)
 
 
 @dataclass
@@ -242,6 +731,7 @@ class SceneResult:
     u: list
     states: list
     solver_result: object
+    phases: list | None = None  # phased solve: [{"name", "first", "last" (step indices), "result"}]
 
     @property
     def status(self) -> str:

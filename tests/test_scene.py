@@ -79,7 +79,7 @@ def test_scene_result_roundtrip(tmp_path):
     (dict(layers=[]), "layers"),
     (dict(contact=None), "contact"),
     (dict(foundation=Foundation(x0=-7.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2))), "foundation"),
-    (dict(loads=[ColumnLoad(x=0.1, N=1.0)]), "x=0.1"),
+    (dict(loads=[ColumnLoad(x=3.0, N=300e3)]), "x=3.0"),  # off the strip
 ])
 def test_bad_scenes_are_named(change, word):
     with pytest.raises(ValueError, match=word):
@@ -113,3 +113,188 @@ def test_readme_scene_runs_as_written():
     # the plate's own weight is not modelled (Foundation.self_weight = 0): the contact carries N alone
     assert np.sum(contact["sig_n"] * weights) == pytest.approx(-400e3, rel=1e-3)
     assert set(np.unique(contact["zone"])) <= {"stick", "slip", "open"}
+
+
+# ---- issue 12: surcharge, loads, phases, groundwater, embedment, contact segments, units ----------------------
+from ssi.materials.soil_laws import geostatic_stress, pore_pressure  # noqa: E402
+from ssi.scene import ContactSegment, Phase, Settlement, StripLoad, StripWeight, SurfacePressure  # noqa: E402
+
+E_SOIL, NU_SOIL = 20e6, 0.3
+M_OED = E_SOIL * (1 - NU_SOIL) / ((1 + NU_SOIL) * (1 - 2 * NU_SOIL))
+
+
+@pytest.mark.parametrize("with_strip", [False, True])
+def test_surcharge_alone_does_not_heave(with_strip):
+    """The old scene heaved q H / M under the surcharge alone; now the geostatic state is in equilibrium."""
+    q, depth = 10e3, 6.0
+    scene = strip_scene(layers=[SoilLayer(depth, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)], surcharge=q, loads=[],
+                        phases=[Phase("nothing")],
+                        **({} if with_strip else dict(foundation=None, contact=None)))
+    built = scene.build()
+    out = built.solve(n_steps=1)
+    assert np.abs(out.surface()[1]).max() < 1e-8 * q * depth / M_OED
+    if with_strip:  # the strip carries the surcharge over its width from the start
+        assert built.contact_force(out)[-1] == pytest.approx(q * 2.0, rel=1e-12)
+
+
+def test_surcharge_default_path_is_also_in_equilibrium():
+    """Without phases (one proportional path) a tiny column load gives a tiny settlement, not a heave."""
+    scene = strip_scene(layers=[SoilLayer(6.0, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)], surcharge=10e3,
+                        loads=[ColumnLoad(0.0, N=1e3)])
+    out = scene.build().solve()
+    x, s = out.settlement()
+    assert np.all(s > 0.0) and s.max() < 0.05 * 10e3 * 6.0 / M_OED  # the old heave was -q H / M everywhere
+
+
+def test_column_anywhere_on_the_strip_gets_a_node():
+    built = strip_scene(loads=[ColumnLoad(x=0.1, N=300e3), ColumnLoad(x=-0.77, N=100e3)]).build()
+    assert built.model.coords[built.plate_node_at(0.1), 0] == pytest.approx(0.1, abs=1e-12)
+    assert built.model.coords[built.plate_node_at(-0.77), 0] == pytest.approx(-0.77, abs=1e-12)
+
+
+def phased_scene(**changes):
+    building = (ColumnLoad(-0.3, N=300e3, H=20e3), StripLoad(20e3, q_end=5e3, x0=-1.0, x1=0.5),
+                SurfacePressure(2.0, 4.0, 15e3))
+    kwargs = dict(phases=[Phase("weight", (StripWeight(25e3),)), Phase("building", building),
+                          Phase("unload", factors={"building": 0.0})], loads=[], surcharge=10e3, water_table=1.0)
+    kwargs.update(changes)
+    return strip_scene(**kwargs)
+
+
+def test_phases_carry_each_load_and_unload_elastically():
+    built = phased_scene().build()
+    out = built.solve(n_steps=2)
+    step = {r["name"]: r["last"] for r in out.phases}
+    force = built.contact_force(out)
+    weight = 25e3 * 0.5 * 2.0
+    strip = 0.5 * (20e3 + 5e3) * 1.5  # linear load over 1.5 m
+    assert force[step["geostatic"]] == pytest.approx(10e3 * 2.0, rel=1e-12)
+    assert force[step["weight"]] == pytest.approx(20e3 + weight, rel=1e-10)
+    assert force[step["building"]] == pytest.approx(20e3 + weight + 300e3 + strip, rel=1e-10)
+    u = np.array(out.u)
+    assert np.abs(u[step["geostatic"]]).max() < 1e-14
+    moved = np.abs(u[step["building"]] - u[step["weight"]]).max()
+    assert moved > 1e-3
+    assert np.abs(u[step["unload"]] - u[step["weight"]]).max() < 1e-8 * moved
+    kinds = [ld["type"] for ld in built.model.info["scene"]["phases"][1]["loads"]]
+    assert kinds == ["ColumnLoad", "StripLoad", "SurfacePressure"]
+
+
+def test_water_table_geostatic_state_against_hand_calculation():
+    """Effective stress with the buoyant weight below the table, K0 on effective stress, hydrostatic p."""
+    layers = [SoilLayer(2.0, E=2e7, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, phi_deg=30.0),
+              SoilLayer(4.0, E=6e7, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3, K0=0.6)]
+    built = strip_scene(layers=layers, water_table=1.5, loads=[], phases=[Phase("nothing")]).build()
+    out = built.solve(n_steps=1)
+    assert np.abs(out.u[-1]).max() < 1e-14  # buoyant body force and effective initial stress balance
+    d = -built.soil.integration_points()[..., 1]
+    gw = 9.81e3
+    sv = 18e3 * np.minimum(d, 1.5) + (20e3 - gw) * np.clip(d - 1.5, 0, 0.5) + (21e3 - gw) * np.maximum(d - 2, 0)
+    k0 = np.where(d < 2.0, 0.5, 0.6)
+    sig = built.soil.stress(out.states[-1][0])
+    assert np.allclose(-sig[..., 1], sv, rtol=1e-12)
+    assert np.allclose(-sig[..., 0], k0 * sv, rtol=1e-12)
+    assert np.allclose(built.pore_pressure(), gw * np.maximum(d - 1.5, 0.0), rtol=1e-12)
+    assert np.allclose(pore_pressure(np.array([-3.0]), 1.5), gw * 1.5)
+
+
+def test_geostatic_stress_water_table_function():
+    sig = geostatic_stress(np.array([-1.0, -3.0]), [{"thickness": 2.0, "gamma": 18e3, "gamma_sat": 20e3,
+                                                      "K0": 0.5}], water_table=1.0, gamma_w=10e3)
+    assert sig[:, 1] == pytest.approx([-18e3, -(18e3 + 2 * 10e3)])
+    with pytest.raises(ValueError, match="gamma_sat"):
+        geostatic_stress(np.array([-1.0]), [{"thickness": 1.0, "gamma": 18e3, "gamma_sat": 5e3, "K0": 0.5}],
+                         water_table=0.5)
+
+
+@pytest.mark.parametrize("water_table", [None, 0.5, 3.0])
+def test_embedded_strip_starts_in_equilibrium(water_table):
+    """Trench walls carry the horizontal, the strip's base the vertical geostatic stress: nothing moves."""
+    layers = [SoilLayer(1.0, E=1e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3),
+              SoilLayer(5.0, E=2e7, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3, phi_deg=30.0)]
+    built = strip_scene(layers=layers, embedment=1.0, water_table=water_table, surcharge=5e3, loads=[],
+                        phases=[Phase("nothing")]).build()
+    out = built.solve(n_steps=1)
+    assert np.abs(out.u[-1]).max() < 1e-14
+    sv_base = 5e3 + (18e3 if water_table != 0.5 else 18e3 * 0.5 + (20e3 - 9.81e3) * 0.5)
+    assert built.base_pressure == pytest.approx(sv_base, rel=1e-12)
+    assert built.model.coords[built.plate_nodes, 1] == pytest.approx(-1.0 + 0.25)
+
+
+def test_embedment_must_be_a_layer_boundary():
+    with pytest.raises(ValueError, match="layer boundary"):
+        strip_scene(embedment=1.0).build()
+
+
+def test_rigid_settlement_reaction_is_the_contact_force():
+    scene = strip_scene(loads=[], phases=[Phase("push", (Settlement(w=0.01),))])
+    built = scene.build()
+    out = built.solve(n_steps=2)
+    res = out.solver_result
+    w_dofs = built.model.dof(built.plate_nodes, "w")
+    reaction = -np.array(res.f_int)[-1, w_dofs].sum()  # weightless scene: all plate force is reaction
+    x, s = out.settlement()
+    assert s == pytest.approx(0.01, rel=1e-12)  # rigid: every plate node settled by w
+    assert built.contact_force(out)[-1] == pytest.approx(reaction, rel=1e-8)
+    assert reaction > 0.0
+
+
+def test_contact_segments_give_each_element_its_law():
+    segs = [ContactSegment(-1.0, 0.2, Contact(kn=1e10, kt=0.0)), ContactSegment(0.2, 1.0, Contact(kn=2e10, kt=1e9))]
+    built = strip_scene(contact=segs).build()
+    mid = built.interface.ip_coords()[:, 1, 0]
+    kt, kn = built.interface.params[:, 0], built.interface.params[:, 1]
+    assert np.all(kt[mid < 0.2] == 0.0) and np.all(kn[mid < 0.2] == 1e10)
+    assert np.all(kt[mid > 0.2] == 1e9) and np.all(kn[mid > 0.2] == 2e10)
+    with pytest.raises(ValueError, match="tile the strip"):
+        strip_scene(contact=segs[:1]).build()
+
+
+def test_units_warn_but_do_not_refuse():
+    with pytest.warns(UserWarning, match="kN/m\\^3"):
+        strip_scene(layers=[SoilLayer(6.0, E=2e7, nu=0.3, unit_weight=18.0)]).build()
+    with pytest.warns(UserWarning, match="kPa"):
+        strip_scene(layers=[SoilLayer(6.0, E=2e4, nu=0.3)]).build()
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        strip_scene().build()  # an SI scene warns about nothing
+
+
+@pytest.mark.parametrize("change, word", [
+    (dict(phases=[Phase("a", factors={"b": 0.0})]), "not earlier phases"),
+    (dict(loads=[SurfacePressure(0.0, 2.0, 10e3)]), "overlaps the strip"),
+    (dict(foundation=None, contact=None, loads=[StripLoad(1e4)]), "needs a foundation"),
+    (dict(phases=[Phase("geostatic")]), "unique"),
+])
+def test_bad_phases_and_loads_are_named(change, word):
+    with pytest.raises(ValueError, match=word):
+        strip_scene(**change).build().solve(n_steps=1)
+
+
+def test_undrained_A_elastic_is_elastic_with_nu_u():
+    """Effective-stress undrained with the water penalty = elastic soil with G and nu_u (closed form)."""
+    E, nu, nu_u = 20e6, 0.3, 0.495
+    G = E / (2 * (1 + nu))
+    a = strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=nu_u)]).build().solve()
+    b = strip_scene(layers=[SoilLayer(6.0, E=2 * G * (1 + nu_u), nu=nu_u)]).build().solve()
+    assert np.abs(a.u[-1] - b.u[-1]).max() < 1e-10 * np.abs(b.u[-1]).max()
+    k_u = 2 * G * (1 + nu_u) / (3 * (1 - 2 * nu_u))
+    built = strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=nu_u)], foundation=None,
+                        contact=None, loads=[SurfacePressure(-6.0, 6.0, 10e3)]).build()
+    out = built.solve()
+    m_u = k_u + 4 * G / 3
+    assert out.surface()[1] == pytest.approx(10e3 * 6.0 / m_u, rel=1e-10)
+    assert built.excess_pore_pressure(out) == pytest.approx(10e3 * (k_u - E / (3 * (1 - 2 * nu))) / m_u, rel=1e-10)
+    with pytest.raises(ValueError, match="nu_u"):
+        strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=0.2)]).build()
+
+
+def test_settlement_in_a_single_phase_scene():
+    """Without phases a Settlement is a prescribed displacement of the model (linear scene: one solve)."""
+    out = strip_scene(loads=[Settlement(w=0.02, x=(0.0,))]).build().solve()
+    x, s = out.settlement()
+    assert s[np.argmin(np.abs(x))] == pytest.approx(0.02, rel=1e-12)
+    assert out.solver_result is None
+    with pytest.raises(ValueError, match="outside the block"):
+        strip_scene(foundation=None, contact=None, loads=[SurfacePressure(5.0, 7.0, 1e4)]).build()

@@ -107,6 +107,46 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
 
 
 @njit(cache=True)
+def q8_pore_water(coords, u_el, el_mat, k_water, gp, gw, f_el, k_el, with_matrix):
+    """Add the pore water of an undrained ("undrained A") layer: excess pore pressure p = -K_w/n eps_v(u)
+    (compression positive) from the total volumetric strain since the start, so the total stress is
+    sig' - p m. ``f_el`` (n_el, 16) += int B^T m (K_w/n) eps_v, ``k_el`` (n_el, 16, 16) += int B^T m m^T B
+    (K_w/n) when ``with_matrix``; ``k_water`` (n_mat,) is K_w/n [Pa] (0: drained, nothing added)."""
+    dndx = np.empty((8, 2))
+    for e in range(coords.shape[0]):
+        kw = k_water[el_mat[e]]
+        if kw == 0.0:
+            continue
+        for q in range(gp.shape[0]):
+            _, det = _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            wdet = gw[q] * det * kw
+            ev = 0.0
+            for a in range(8):
+                ev += dndx[a, 0] * u_el[e, 2 * a] + dndx[a, 1] * u_el[e, 2 * a + 1]
+            for a in range(8):
+                f_el[e, 2 * a] += dndx[a, 0] * ev * wdet
+                f_el[e, 2 * a + 1] += dndx[a, 1] * ev * wdet
+                if with_matrix:
+                    for b in range(8):
+                        for i in range(2):
+                            for j in range(2):
+                                k_el[e, 2 * a + i, 2 * b + j] += dndx[a, i] * dndx[b, j] * wdet
+
+
+@njit(cache=True)
+def q8_volumetric_strain(coords, u_el, gp, out):
+    """Volumetric strain eps_v = exx + ezz (n_el, n_ip) at the integration points from total u_el."""
+    dndx = np.empty((8, 2))
+    for e in range(coords.shape[0]):
+        for q in range(gp.shape[0]):
+            _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            ev = 0.0
+            for a in range(8):
+                ev += dndx[a, 0] * u_el[e, 2 * a] + dndx[a, 1] * u_el[e, 2 * a + 1]
+            out[e, q] = ev
+
+
+@njit(cache=True)
 def q8_body_force(coords, el_mat, unit_weight, gp, gw, f_el):
     """Equivalent nodal forces of the self-weight (unit weight per material, acting in -z)."""
     dndx = np.empty((8, 2))
@@ -144,13 +184,15 @@ class SoilQ8:
     n_gauss : 2 (reduced, paper default) or 3 (full)
     unit_weight : (n_mat,) unit weight gamma [N/m^3] for the self-weight body force, or None
     initial_stress : (n_el, n_ip, 4) initial (e.g. geostatic) stress, or None for a stress-free start
+    k_water : (n_mat,) K_w/n [Pa] of undrained ("undrained A") materials, 0 for drained ones, or None: the
+        state holds the effective stress, the pore water adds p = -K_w/n eps_v (see :func:`q8_pore_water`)
     """
 
     name = "soil_q8"
     forces_only = True  # accepts the NO_MATRIX flag
 
     def __init__(self, coords, edofs, el_mat, kinds, params, n_gauss=2, unit_weight=None,
-                 initial_stress=None):
+                 initial_stress=None, k_water=None):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0]
@@ -167,6 +209,12 @@ class SoilQ8:
         self.gp, self.gw = gauss_2d(n_gauss)
         self.unit_weight = None if unit_weight is None else np.asarray(unit_weight, np.float64)
         self.initial_stress = initial_stress
+        self.k_water = None
+        if k_water is not None:
+            kw = np.ascontiguousarray(np.broadcast_to(np.asarray(k_water, np.float64), (len(self.kinds),)))
+            if np.any(~(kw >= 0.0)) or not np.all(np.isfinite(kw)):
+                raise ValueError(f"k_water must be finite and >= 0 (K_w/n, Pa), got {kw}")
+            self.k_water = kw if kw.any() else None
         self._k0 = None
 
     @property
@@ -188,6 +236,9 @@ class SoilQ8:
         if failures:
             raise FloatingPointError(f"soil_q8: {failures} integration points failed (distorted element "
                                      "or a stress update that did not converge)")
+        if self.k_water is not None:
+            q8_pore_water(self.coords, np.ascontiguousarray(u_el), self.el_mat, self.k_water, self.gp, self.gw,
+                          f_el, k_el, tangent >= 0)
         return f_el, (k_el if tangent >= 0 else None), state_new
 
     def elastic_stiffness(self):
@@ -196,7 +247,19 @@ class SoilQ8:
             E = self.params[self.el_mat, 0]
             nu = self.params[self.el_mat, 1]
             self._k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
+            if self.k_water is not None:
+                zero = np.zeros((self.n_el, 16))
+                q8_pore_water(self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(),
+                              self._k0, True)
         return self._k0
+
+    def excess_pore_pressure(self, u_el) -> np.ndarray:
+        """Excess pore pressure [Pa] (compression positive) at the integration points (n_el, n_ip) of the
+        undrained materials, -K_w/n eps_v from the total displacement ``u_el`` (n_el, 16); 0 where drained."""
+        ev = np.empty((self.n_el, len(self.gw)))
+        q8_volumetric_strain(self.coords, np.ascontiguousarray(u_el, np.float64), self.gp, ev)
+        kw = np.zeros(self.n_el) if self.k_water is None else self.k_water[self.el_mat]
+        return -kw[:, None] * ev
 
     def body_force(self):
         if self.unit_weight is None:

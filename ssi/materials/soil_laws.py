@@ -147,20 +147,28 @@ def k0_jaky(phi_deg):
     return 1.0 - math.sin(math.radians(phi_deg))
 
 
-def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0):
-    """Geostatic stress [sxx, szz, txz, syy] (tension positive) at depths ``z`` (any shape, z upwards).
+GAMMA_W = 9.81e3  # unit weight of water [N/m^3]
+
+
+def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, gamma_w=GAMMA_W):
+    """Geostatic (effective) stress [sxx, szz, txz, syy] (tension positive) at ``z`` (any shape, z upwards).
 
     Parameters
     ----------
     z : array of z coordinates of the points (e.g. ``SoilQ8.integration_points()[..., 1]``), <= z_surface
-    layers : list of dicts from the surface down, each with ``thickness`` [m], ``gamma`` [N/m^3] and either
-        ``K0`` or ``phi_deg`` (then K0 = 1 - sin φ); the last layer extends downwards without limit
+    layers : list of dicts from the surface down, each with ``thickness`` [m], ``gamma`` [N/m^3], optionally
+        ``gamma_sat`` [N/m^3] (unit weight below the water table; default ``gamma``) and either ``K0`` or
+        ``phi_deg`` (then K0 = 1 - sin φ); the last layer extends downwards without limit
     surcharge : uniform vertical pressure on the surface [Pa] (>= 0, compression)
-    z_surface : z of the ground surface
+    z_surface : z of the ground surface [m]
+    water_table : depth of the water table below the surface [m] (>= 0), or None (dry)
+    gamma_w : unit weight of water [N/m^3]
 
-    Returns an array of shape ``z.shape + (4,)``: szz = -(surcharge + Σ γ_i t_i) above the point,
-    sxx = syy = K0 szz of the point's layer, txz = 0. Equilibrium with the body force γ holds exactly for
-    piecewise-constant γ.
+    Returns an array of shape ``z.shape + (4,)``: szz = -(surcharge + ∫ γ' dz) above the point with the
+    effective unit weight γ' = γ above the table and γ_sat - γ_w below it, sxx = syy = K0 szz of the point's
+    layer (K0 acts on effective stress), txz = 0. With hydrostatic pore pressure p = γ_w (depth - d_w) (see
+    :func:`pore_pressure`) the total stress is sig - p [1, 1, 0, 1]. Equilibrium with the body force γ'
+    holds exactly for piecewise-constant γ'.
     """
     z = np.asarray(z, np.float64)
     if surcharge < 0.0:
@@ -169,14 +177,22 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0):
         raise ValueError("layers must list at least one layer")
     if np.any(z > z_surface + 1e-9):
         raise ValueError(f"all points must lie at or below the surface z = {z_surface}")
+    if water_table is not None and not (np.isfinite(water_table) and water_table >= 0.0):
+        raise ValueError(f"water_table must be a depth >= 0 below the surface [m] or None, got {water_table}")
+    d_w = math.inf if water_table is None else float(water_table)
     depth = z_surface - z
     szz = np.full(z.shape, -float(surcharge))
     k0 = np.zeros(z.shape)
     top = 0.0
     for i, lay in enumerate(layers):
         gamma = float(lay["gamma"])
-        if gamma < 0.0:
-            raise ValueError(f"layers[{i}]['gamma'] must be >= 0 (unit weight, N/m^3), got {gamma}")
+        gamma_sat = float(lay.get("gamma_sat") if lay.get("gamma_sat") is not None else gamma)
+        if gamma < 0.0 or gamma_sat < 0.0:
+            raise ValueError(f"layers[{i}] gamma and gamma_sat must be >= 0 (unit weights, N/m^3), got "
+                             f"{gamma}, {gamma_sat}")
+        if water_table is not None and gamma_sat < gamma_w:
+            raise ValueError(f"layers[{i}]['gamma_sat'] = {gamma_sat} N/m^3 is below the unit weight of water "
+                             f"{gamma_w}: the buoyant weight would be negative")
         K0 = lay.get("K0")
         if K0 is None:
             K0 = k0_jaky(lay["phi_deg"])
@@ -187,7 +203,10 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0):
         if not last and t <= 0.0:
             raise ValueError(f"layers[{i}]['thickness'] must be > 0, got {t}")
         inside = (depth >= top - 1e-12) & ((depth <= top + t) if last else (depth < top + t))
-        szz -= gamma * np.clip(depth - top, 0.0, t)
+        # dry part of the layer above the table, buoyant part below it
+        dry = np.clip(np.minimum(depth, d_w) - top, 0.0, t)
+        wet = np.clip(depth - top, 0.0, t) - dry
+        szz -= gamma * dry + (gamma_sat - gamma_w) * wet
         k0 = np.where(inside, K0, k0)
         top += t
     out = np.zeros(z.shape + (4,))
@@ -195,6 +214,15 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0):
     out[..., 0] = k0 * szz
     out[..., 3] = k0 * szz
     return out
+
+
+def pore_pressure(z, water_table=None, z_surface=0.0, gamma_w=GAMMA_W):
+    """Hydrostatic pore pressure [Pa] (compression positive) at ``z``: γ_w (depth - d_w) below the water table
+    at depth ``water_table`` [m] below ``z_surface``, zero above it (and everywhere if None)."""
+    z = np.asarray(z, np.float64)
+    if water_table is None:
+        return np.zeros(z.shape)
+    return gamma_w * np.maximum(z_surface - water_table - z, 0.0)
 
 
 # ---------------------------------------------------------------------------------------------------------
