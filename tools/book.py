@@ -26,7 +26,7 @@ import sys
 from pathlib import Path
 
 MATHJAX_URL = "https://cdnjs.cloudflare.com/ajax/libs/mathjax/2.7.7/latest.js?config=TeX-AMS_CHTML-full,Safe"
-_MATH = re.compile(r"\$\$(.+?)\$\$|(?<![\\$])\$(?!\$)(.+?)(?<![\\$])\$", re.S)
+_MATH = re.compile(r"\$\$(.+?)\$\$|(?<![\\$])\$(?!\$)(.+?)(?<![\\$])\$", re.DOTALL)
 _TAG = re.compile(r"<(/?)(em|strong|i|b|code|a|span)\b[^>]*>")
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f]")
 
@@ -96,9 +96,9 @@ def check_page(text: str) -> list[str]:
 
 def _body_text(text):
     """The page's rendered cells: code blocks and scripts removed (a '$' in code is not math)."""
-    text = re.sub(r"<script\b.*?</script>", "", text, flags=re.S)
-    text = re.sub(r"<style\b.*?</style>", "", text, flags=re.S)
-    return re.sub(r"<pre\b.*?</pre>", "", text, flags=re.S)
+    text = re.sub(r"<script\b.*?</script>", "", text, flags=re.DOTALL)
+    text = re.sub(r"<style\b.*?</style>", "", text, flags=re.DOTALL)
+    return re.sub(r"<pre\b.*?</pre>", "", text, flags=re.DOTALL)
 
 
 def check_html(site) -> dict:
