@@ -215,6 +215,19 @@ class StoredResult:
     f_int: np.ndarray | None = None
     iterations: np.ndarray | None = None
     info: dict = field(default_factory=dict)
+    group_names: list = field(default_factory=list)
+
+    def __getitem__(self, key):
+        """Mapping access with the keys of the earlier dict reader (``model``, ``u``, ``load_factor``,
+        ``coords``, ``node_ndof``, ``f_int``, ``iterations``, ``settings``, ``state``: {group: (n_kept, ...)}),
+        so scripts written against it keep working."""
+        if key == "state":
+            return {name: np.stack([s[i] for s in self.states]) for i, name in enumerate(self.group_names)}
+        if key == "settings":
+            return self.info["settings"]
+        if key in ("model", "u", "load_factor", "coords", "node_ndof", "f_int", "iterations"):
+            return getattr(self, key)
+        raise KeyError(key)
 
 
 def read_info(path) -> dict:
@@ -258,7 +271,8 @@ def read_result(path):
         return StoredResult(coords=coords, node_ndof=node_ndof, conn={k: v[0] for k, v in mesh.items()},
                             edofs={k: v[1] for k, v in mesh.items()}, load_factor=lam, u=u, states=states,
                             model=info["model"], f_int=None if solver is None else solver["f_int"],
-                            iterations=None if solver is None else solver["iterations"], info=info)
+                            iterations=None if solver is None else solver["iterations"], info=info,
+                            group_names=group_order)
     return _scene_result(info, lam, u, states, solver, coords)
 
 

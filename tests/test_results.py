@@ -224,3 +224,29 @@ def test_cli_runs_the_examples(name, tmp_path, capsys):
     assert main(["show", str(tmp_path / (scene_path.stem + ".h5")), "--json", "--no-plots"]) == 0
     shown = json.loads(capsys.readouterr().out.split("\n}")[0] + "\n}")
     assert shown["max_settlement"] == stored["max_settlement"]
+
+
+def test_compile_notice_only_on_an_empty_cache(tmp_path, monkeypatch):
+    import io
+
+    from ssi import progress
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(progress, "_announced", False)
+    stream = io.StringIO()
+    assert progress.announce_compilation(stream, estimate_s=60) is True
+    assert stream.getvalue().startswith("ssi: compiling kernels once, ~60 s")
+    assert progress.announce_compilation(stream) is False  # once per process
+    monkeypatch.setattr(progress, "_announced", False)
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "kernel-1.py311.nbi").write_bytes(b"")
+    assert progress.announce_compilation(io.StringIO()) is False  # kernels cached: silent
+
+
+def test_bare_model_file_keeps_mapping_access(nonlinear, tmp_path):
+    """A solver Result (no scene) reads back as StoredResult; the earlier dict keys still work."""
+    res = nonlinear.solver_result
+    back = read_result(write_result(tmp_path / "m.h5", res))
+    assert np.array_equal(back["u"], np.array(res.u)) and np.array_equal(back.f_int, np.array(res.f_int))
+    assert list(back["state"]) == ["soil_q8", "plate", "interface"]
+    assert np.array_equal(back["state"]["interface"][-1], res.states[-1][2])
+    assert np.array_equal(back.conn["soil_q8"], nonlinear.built.mesh.conn)
