@@ -250,3 +250,17 @@ def test_bare_model_file_keeps_mapping_access(nonlinear, tmp_path):
     assert list(back["state"]) == ["soil_q8", "plate", "interface"]
     assert np.array_equal(back["state"]["interface"][-1], res.states[-1][2])
     assert np.array_equal(back.conn["soil_q8"], nonlinear.built.mesh.conn)
+
+
+def test_rc_section_table_equals_the_python_section():
+    """examples/rc_strip.toml's `rc` section is chapter 11's rc_section built in Python, layer for layer."""
+    from ssi.materials.layer_laws import CONCRETE, STEEL
+    from ssi.materials.rc import concrete_params, designer_concrete, steel_params
+    from ssi.section import rc_section
+    d = designer_concrete(38e6)
+    concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
+    python = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)),
+                        n_concrete=9)
+    scene, _, settings = read_scene_file(os.path.join(EXAMPLES, "rc_strip.toml"))
+    assert scene_to_dict(scene)["foundation"]["section"] == scene_to_dict(Foundation(0, 1, python))["section"]
+    assert settings.method == "full" and len(scene.loads) == 2
