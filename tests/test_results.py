@@ -264,3 +264,17 @@ def test_rc_section_table_equals_the_python_section():
     scene, _, settings = read_scene_file(os.path.join(EXAMPLES, "rc_strip.toml"))
     assert scene_to_dict(scene)["foundation"]["section"] == scene_to_dict(Foundation(0, 1, python))["section"]
     assert settings.method == "full" and len(scene.loads) == 2
+
+
+def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
+    with open(os.path.join(EXAMPLES, "strip_mohr_coulomb.toml")) as fh:
+        text = fh.read().replace("N = 300e3", "N = 3e6").replace("n_steps = 4", "n_steps = 2\nmax_iter = 40\n"
+                                                                  "max_cuts = 1")
+    scene_path = tmp_path / "overload.toml"
+    scene_path.write_text(text)
+    assert main(["run", str(scene_path), "--no-plots"]) == 3
+    assert "INCOMPLETE" in capsys.readouterr().out
+    info = read_info(tmp_path / "overload.h5")
+    assert info["complete"] is False and info["stop"]["reason"]
+    s = json.loads((tmp_path / "overload_summary.json").read_text())
+    assert s["stopped_at_column_load"] < 3e6 and s["stop_reason"] == info["stop"]["reason"]
