@@ -19,6 +19,7 @@ for this version of the sources is still empty, i.e. the first run after an inst
 import contextlib
 import logging
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -67,7 +68,8 @@ def solver_progress(enabled: bool | None = None, total: float = 1.0, stream=None
     bar = None
     if progress_enabled(enabled, stream):
         from tqdm.auto import tqdm
-        bar = tqdm(total=float(total), unit="λ", file=stream or sys.stderr, leave=True, dynamic_ncols=True,
+        columns = shutil.get_terminal_size((100, 24)).columns  # a pseudo-terminal may report 0 columns
+        bar = tqdm(total=float(total), unit="λ", file=stream or sys.stderr, leave=True, ncols=min(columns, 120),
                    bar_format="{l_bar}{bar}| λ={n:.3f}/{total:.3g} [{elapsed}] {postfix}")
     try:
         yield SolverProgress(bar, total)
