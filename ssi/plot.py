@@ -66,8 +66,8 @@ def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
 
 
 def plastic_points(result, k=-1, ax=None, window=None):
-    """Soil integration points yielding at step ``k`` (red) on the mesh outline, coloured by nothing else:
-    where the soil has reached its Mohr--Coulomb strength."""
+    """Soil integration points yielding at step ``k`` (red) on the mesh outline: where the soil has reached
+    its Mohr--Coulomb strength in that step."""
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
@@ -89,7 +89,8 @@ def plastic_points(result, k=-1, ax=None, window=None):
 
 
 def contact(result, k=-1, ax=None):
-    """Contact pressure and shear stress under the foundation [kPa], points coloured by zone."""
+    """Contact pressure and shear stress under the foundation [kPa], points coloured by zone (stick, slip,
+    open). ``ax``: two axes (pressure, shear) or None."""
     fig, axes = _axes(ax, 2, figsize=(8, 5)) if ax is None else (ax[0].figure, ax)
     c = result.contact(k)
     x, zone = c["x"].ravel(), c["zone"].ravel()
@@ -129,7 +130,7 @@ def settlement(result, k=-1, ax=None):
 
 def strip_forces(result, k=-1, ax=None):
     """Bending moment M [kN m/m] (sagging positive, drawn on the tension side: downwards), shear force
-    Q [kN/m] and normal force N [kN/m] along the strip."""
+    Q [kN/m] and normal force N [kN/m] along the strip. ``ax``: three axes or None."""
     fig, axes = _axes(ax, 3, figsize=(8, 7)) if ax is None else (ax[0].figure, ax)
     f = result.strip_forces(k)
     for a, (xkey, key, label) in zip(axes, (("x_ax", "M", "M [kN m/m]"), ("x_sh", "Q", "Q [kN/m]"),
@@ -145,7 +146,7 @@ def strip_forces(result, k=-1, ax=None):
 
 def cracks_and_steel(result, k=-1, ax=None):
     """Cracked concrete layer points (red ticks at their height) and the steel layers' stress [MPa] with
-    yielded points marked (x)."""
+    yielded points marked (x). ``ax``: two axes or None."""
     fig, axes = _axes(ax, 2, figsize=(8, 5)) if ax is None else (ax[0].figure, ax)
     cm = result.crack_map(k)
     xs = cm["x"].ravel()

@@ -72,7 +72,13 @@ def atomic_path(path, overwrite=False):
             except FileExistsError:
                 raise FileExistsError(f"{path} appeared while writing; pass overwrite=True to replace it"
                                       ) from None
-            os.unlink(tmp)
+            except OSError:  # a file system without hard links: check, then rename
+                if path.exists():
+                    raise FileExistsError(f"{path} appeared while writing; pass overwrite=True to replace it"
+                                          ) from None
+                os.replace(tmp, path)
+            if os.path.exists(tmp):
+                os.unlink(tmp)
         _fsync_dir(path.parent)
     finally:
         if os.path.exists(tmp):
