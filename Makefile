@@ -1,6 +1,8 @@
 # make test       -- unit tests and every chapter in fast mode (what CI runs)
 # make reproduce  -- every chapter in full mode, the figures and figures/report.csv
 # make bench      -- benchmarks (installs the bench extras: scikit-fem, pypardiso)
+# make book       -- the executed notebooks of `make reproduce` as an HTML book in build/book (mkdocs +
+#                    mkdocs-jupyter, the book extra), with a check that every equation can render
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
@@ -13,7 +15,7 @@ export NUMBA_CACHE_DIR := $(CURDIR)/.numba_cache
 export OMP_WAIT_POLICY := PASSIVE
 export MPLBACKEND := Agg
 
-.PHONY: test reproduce bench notebooks clean
+.PHONY: test reproduce bench book notebooks clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -40,6 +42,10 @@ reproduce: $(STAMP) notebooks
 bench: $(STAMP)
 	$(BIN)/python -m pip install -q -e '.[test,bench,fast]'
 	@for f in $(sort $(wildcard benchmarks/bench_*.py)); do $(BIN)/python $$f || exit 1; done
+
+book: $(STAMP)
+	$(BIN)/python -m pip install -q -e '.[book]'
+	$(BIN)/python tools/book.py build/notebooks build/book
 
 clean:
 	rm -rf build figures results .pytest_cache

@@ -1,22 +1,39 @@
-"""Results to and from HDF5 (h5py).
+"""Result files (HDF5, h5py): write any result, read it back as an object that answers and replots.
 
-Layout of a result file::
+``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped), a
+solver :class:`ssi.solver.Result` or a :class:`ssi.model.LinearResult`. ``read_result(path)`` gives back a
+``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult`` method and every
+``ssi.plot`` function works without the original script) or, for a bare model, a :class:`StoredResult`.
 
-    /attrs                  model description (JSON in attribute ``model``), solver settings, ssi version
-    /mesh/coords            (n_nodes, 2)
-    /mesh/node_ndof         (n_nodes,)
-    /mesh/<group>/edofs     (n_el, n_edof) for each element group
-    /steps/load_factor      (n_steps + 1,)
-    /steps/u                (n_steps + 1, n_dof)
-    /steps/f_int            (n_steps + 1, n_dof)
-    /steps/iterations       (n_steps + 1,)
-    /steps/state/<group>    (n_kept, ...) committed integration-point states (stresses and history)
+Layout::
 
-A file is never overwritten unless ``overwrite=True`` is passed.
+    /attrs  format, ssi_version, kind ('scene' | 'model'), complete (bool), stop (JSON: why a run stopped),
+            scene (JSON, ssi.scene_file.scene_to_dict: every layer, load, section layer), model (JSON,
+            Model.describe), settings (JSON), extra (JSON: further scalar fields of the result object)
+    /mesh/coords                    (n_nodes, 2) node coordinates [m]
+    /mesh/node_ndof                 (n_nodes,)
+    /mesh/<group>/conn              (n_el, n_nodes_el) node ids of each element (soil Q8, plate, interface)
+    /mesh/<group>/edofs             (n_el, n_edof)
+    /mesh/<group>/ip_xy             (n_el, n_ip, 2) integration points (soil, interface) [m]
+    /mesh/<group>/ip_weights        (n_el, n_ip) interface point weights times Jacobian [m]
+    /steps/load_factor              (n_steps + 1,)
+    /steps/u                        (n_steps + 1, n_dof) [m, rad]
+    /steps/state/<group>            (n_kept, ...) committed integration-point states
+    /steps/state_step               (n_kept,) the step each kept state belongs to
+    /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts; attrs cuts, wall_time,
+            factorizations            (only when the result had a solver result)
+
+Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, then
+moved over the target), and an existing file is never replaced unless ``overwrite=True``. A run that stopped
+mid-path is written with ``complete=False``, its last converged step and the solver's report (``stop``).
 """
 
+import contextlib
+import dataclasses
 import json
-from dataclasses import asdict, is_dataclass
+import os
+import tempfile
+from dataclasses import asdict, dataclass, field, is_dataclass
 from pathlib import Path
 
 import h5py
@@ -24,8 +41,62 @@ import numpy as np
 
 from . import __version__
 
+FORMAT = "ssi-result-1"
+_SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result")
 
-def _group_names(model):
+
+# ---- atomic files ----------------------------------------------------------------------------------------
+@contextlib.contextmanager
+def atomic_path(path, overwrite=False):
+    """Yield a temporary path in ``path``'s folder; on success it is fsynced and moved to ``path``.
+
+    ``overwrite=False`` refuses an existing target (FileExistsError) before and, atomically (a hard link
+    that fails if the target appeared meanwhile), after writing. On an exception the temporary file is
+    removed and the target is untouched."""
+    path = Path(path)
+    if path.exists() and not overwrite:
+        raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        with open(tmp, "rb+") as fh:
+            fh.flush()
+            os.fsync(fh.fileno())
+        if overwrite:
+            os.replace(tmp, path)
+        else:
+            try:
+                os.link(tmp, path)
+            except FileExistsError:
+                raise FileExistsError(f"{path} appeared while writing; pass overwrite=True to replace it"
+                                      ) from None
+            except OSError:  # a file system without hard links: check, then rename
+                if path.exists():
+                    raise FileExistsError(f"{path} appeared while writing; pass overwrite=True to replace it"
+                                          ) from None
+                os.replace(tmp, path)
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+        _fsync_dir(path.parent)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _fsync_dir(folder):
+    with contextlib.suppress(OSError):
+        fd = os.open(folder, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+# ---- writing ---------------------------------------------------------------------------------------------
+def group_names(model):
+    """Unique name of every element group of ``model`` (a repeated name gets a suffix _2, _3, ...)."""
     names = []
     for g in model.groups:
         base, k = g.name, 1
@@ -35,56 +106,228 @@ def _group_names(model):
     return names
 
 
-def write_result(path, result, settings=None, overwrite=False):
-    """Write a :class:`ssi.solver.Result` (or a linear result) to ``path``."""
+def element_nodes(model, edofs):
+    """(n_el, n_nodes_el) node ids of elements from their DOF table: each node's first DOF marks it."""
+    start = np.concatenate([[0], np.cumsum(model.node_ndof)])
+    node_of_dof = np.repeat(np.arange(model.n_nodes), model.node_ndof)
+    nodes = node_of_dof[edofs]
+    first = edofs[0] == start[nodes[0]]
+    return np.ascontiguousarray(nodes[:, first])
+
+
+def write_result(path, result, settings=None, overwrite=False, complete=None, stop=None) -> Path:
+    """Write ``result`` (SceneResult, solver Result or LinearResult) to the HDF5 file ``path``, atomically.
+
+    ``complete``: whether the run reached the end of its load path; default: False if ``stop`` (the
+    solver's failure report, e.g. ``NonConvergence.report``) is given or the result's ``status`` field says
+    otherwise, else True. ``settings``: the solver Settings to record. Returns the path."""
     path = Path(path)
-    if path.exists() and not overwrite:
-        raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    model = result.model
-    names = _group_names(model)
-    with h5py.File(path, "w") as h5:
+    if complete is None:
+        status = getattr(result, "status", None)
+        complete = stop is None and (not isinstance(status, str) or status in ("complete", "converged"))
+    with atomic_path(path, overwrite) as tmp, h5py.File(tmp, "w") as h5:
+        h5.attrs["format"] = FORMAT
         h5.attrs["ssi_version"] = __version__
-        h5.attrs["model"] = json.dumps(model.describe(), default=_jsonable)
+        h5.attrs["complete"] = bool(complete)
+        h5.attrs["stop"] = json.dumps(stop, default=_jsonable)
         if settings is not None:
             h5.attrs["settings"] = json.dumps(asdict(settings) if is_dataclass(settings) else settings)
-        mesh = h5.create_group("mesh")
-        mesh["coords"] = model.coords
-        mesh["node_ndof"] = model.node_ndof
-        for name, g in zip(names, model.groups):
-            mesh.create_group(name)["edofs"] = g.edofs
-        steps = h5.create_group("steps")
-        if hasattr(result, "load_factor"):
-            steps["load_factor"] = np.asarray(result.load_factor)
-            steps["u"] = np.asarray(result.u)
-            steps["f_int"] = np.asarray(result.f_int)
-            steps["iterations"] = np.asarray(result.iterations)
-            states = result.states
-        else:  # linear result: one step at load factor 1
-            steps["load_factor"] = np.array([1.0])
-            steps["u"] = result.u[None]
-            steps["f_int"] = (result.reactions)[None]
-            steps["iterations"] = np.array([1])
-            states = [result.states]
-        st = steps.create_group("state")
-        for i, name in enumerate(names):
-            st[name] = np.stack([s[i] for s in states])
+        if hasattr(result, "built"):
+            _write_scene_result(h5, result)
+        else:
+            _write_model_result(h5, result)
     return path
 
 
-def read_result(path) -> dict:
-    """Read a result file back into plain arrays: {'model': dict, 'coords', 'u', 'load_factor', 'state': {...}}."""
+def _write_scene_result(h5, result):
+    from .scene_file import scene_to_dict
+    built = result.built
+    h5.attrs["kind"] = "scene"
+    h5.attrs["scene"] = json.dumps(scene_to_dict(built.scene))
+    extra = {f.name: getattr(result, f.name) for f in dataclasses.fields(result)
+             if f.name not in _SCENE_RESULT_FIELDS}
+    h5.attrs["extra"] = json.dumps(extra, default=_jsonable)
+    _write_mesh(h5, built.model)
+    _write_steps(h5, built.model, result.load_factor, result.u, result.states)
+    if result.solver_result is not None:
+        _write_solver(h5, result.solver_result)
+
+
+def _write_model_result(h5, result):
+    model = result.model
+    h5.attrs["kind"] = "model"
+    if hasattr(result, "load_factor"):
+        _write_mesh(h5, model)
+        _write_steps(h5, model, result.load_factor, result.u, result.states)
+        _write_solver(h5, result)
+    else:  # LinearResult: the unloaded state and the solution at load factor 1
+        _write_mesh(h5, model)
+        _write_steps(h5, model, [0.0, 1.0], [np.zeros_like(result.u), result.u], [result.states])
+        h5["solver/reactions"] = result.reactions
+
+
+def _write_mesh(h5, model):
+    h5.attrs["model"] = json.dumps(model.describe(), default=_jsonable)
+    mesh = h5.create_group("mesh")
+    mesh["coords"] = model.coords
+    mesh["node_ndof"] = model.node_ndof
+    for name, g in zip(group_names(model), model.groups):
+        grp = mesh.create_group(name)
+        grp["edofs"] = g.edofs
+        grp["conn"] = element_nodes(model, g.edofs)
+        if hasattr(g, "integration_points"):
+            grp["ip_xy"] = g.integration_points()
+        if hasattr(g, "ip_coords"):
+            grp["ip_xy"] = g.ip_coords()
+            grp["ip_weights"] = g.ip_weights()
+
+
+def _write_steps(h5, model, load_factor, u, states):
+    steps = h5.create_group("steps")
+    steps["load_factor"] = np.asarray(load_factor, np.float64)
+    steps["u"] = np.asarray(u, np.float64)
+    n_rows = len(load_factor)
+    steps["state_step"] = np.arange(n_rows - len(states), n_rows)  # keep_states=False keeps the last only
+    st = steps.create_group("state")
+    for i, name in enumerate(group_names(model)):
+        st[name] = np.stack([s[i] for s in states])
+
+
+def _write_solver(h5, res):
+    grp = h5.create_group("solver")
+    grp["f_int"] = np.asarray(res.f_int, np.float64)
+    grp["iterations"] = np.asarray(res.iterations, np.int64)
+    for key in ("residuals", "energies"):
+        rows = getattr(res, key)
+        grp[key] = np.array([v for row in rows for v in row], np.float64)
+        grp[f"{key}_counts"] = np.array([len(row) for row in rows], np.int64)
+    for key in ("cuts", "wall_time", "factorizations"):
+        grp.attrs[key] = getattr(res, key)
+
+
+# ---- reading ---------------------------------------------------------------------------------------------
+@dataclass
+class StoredResult:
+    """A result file of a bare model (no scene to rebuild): the arrays as stored, per step."""
+
+    coords: np.ndarray
+    node_ndof: np.ndarray
+    conn: dict
+    edofs: dict
+    load_factor: np.ndarray
+    u: np.ndarray
+    states: list                     # per kept step: one array per group, in group order
+    model: dict                      # Model.describe()
+    f_int: np.ndarray | None = None
+    iterations: np.ndarray | None = None
+    info: dict = field(default_factory=dict)
+    group_names: list = field(default_factory=list)
+
+    def __getitem__(self, key):
+        """Mapping access with the keys of the earlier dict reader (``model``, ``u``, ``load_factor``,
+        ``coords``, ``node_ndof``, ``f_int``, ``iterations``, ``settings``, ``state``: {group: (n_kept, ...)}),
+        so scripts written against it keep working."""
+        if key == "state":
+            return {name: np.stack([s[i] for s in self.states]) for i, name in enumerate(self.group_names)}
+        if key == "settings":
+            return self.info["settings"]
+        if key in ("model", "u", "load_factor", "coords", "node_ndof", "f_int", "iterations"):
+            return getattr(self, key)
+        raise KeyError(key)
+
+
+def read_info(path) -> dict:
+    """The file's description: format, ssi_version, kind, complete, stop, settings, scene, model, extra."""
     with h5py.File(path, "r") as h5:
-        out = {"model": json.loads(h5.attrs["model"]), "ssi_version": h5.attrs["ssi_version"]}
-        if "settings" in h5.attrs:
-            out["settings"] = json.loads(h5.attrs["settings"])
-        out["coords"] = h5["mesh/coords"][...]
-        out["node_ndof"] = h5["mesh/node_ndof"][...]
-        out["edofs"] = {k: h5[f"mesh/{k}/edofs"][...] for k in h5["mesh"] if isinstance(h5[f"mesh/{k}"], h5py.Group)}
-        for key in ("load_factor", "u", "f_int", "iterations"):
-            out[key] = h5[f"steps/{key}"][...]
-        out["state"] = {k: h5[f"steps/state/{k}"][...] for k in h5["steps/state"]}
+        return _info(h5)
+
+
+def _info(h5):
+    out = {}
+    for key, value in h5.attrs.items():
+        value = value.decode() if isinstance(value, bytes) else value
+        if key in ("stop", "settings", "scene", "model", "extra"):
+            value = json.loads(value)
+        elif isinstance(value, np.bool_ | np.generic):
+            value = value.item()
+        out[key] = value
     return out
+
+
+def read_result(path):
+    """Read a result file: a :class:`ssi.scene.SceneResult` (scene rebuilt from its description; its
+    ``solver_result`` a :class:`ssi.solver.Result` when one was written) or a :class:`StoredResult`."""
+    with h5py.File(path, "r") as h5:
+        info = _info(h5)
+        if info.get("format") != FORMAT:
+            raise ValueError(f"{path}: not an ssi result file of format {FORMAT} (found {info.get('format')})")
+        lam = h5["steps/load_factor"][...]
+        u = h5["steps/u"][...]
+        names = list(h5["steps/state"])
+        order = json.loads(h5.attrs["model"])["groups"]
+        stored = {k: h5[f"steps/state/{k}"][...] for k in names}
+        kept = len(h5["steps/state_step"])
+        solver = _read_solver(h5) if "solver/f_int" in h5 else None
+        mesh = {k: (h5[f"mesh/{k}/conn"][...], h5[f"mesh/{k}/edofs"][...]) for k in h5["mesh"]
+                if isinstance(h5[f"mesh/{k}"], h5py.Group)}
+        coords, node_ndof = h5["mesh/coords"][...], h5["mesh/node_ndof"][...]
+    group_order = _stored_group_order(order, names)
+    states = [[stored[name][i] for name in group_order] for i in range(kept)]
+    if info["kind"] != "scene":
+        return StoredResult(coords=coords, node_ndof=node_ndof, conn={k: v[0] for k, v in mesh.items()},
+                            edofs={k: v[1] for k, v in mesh.items()}, load_factor=lam, u=u, states=states,
+                            model=info["model"], f_int=None if solver is None else solver["f_int"],
+                            iterations=None if solver is None else solver["iterations"], info=info,
+                            group_names=group_order)
+    return _scene_result(info, lam, u, states, solver, coords)
+
+
+def _stored_group_order(described, names):
+    """Group names in the model's group order (h5py lists them alphabetically)."""
+    base = [g.get("name", "") for g in described]
+    ordered = []
+    for b in base:
+        k = 1
+        while (name := b if k == 1 else f"{b}_{k}") in ordered:
+            k += 1
+        ordered.append(name)
+    if sorted(ordered) != sorted(names):
+        raise ValueError(f"state groups {names} do not match the model's groups {ordered}")
+    return ordered
+
+
+def _read_solver(h5):
+    grp = h5["solver"]
+    out = {k: grp[k][...] for k in grp}
+    out.update({k: v.item() if isinstance(v, np.generic) else v for k, v in grp.attrs.items()})
+    return out
+
+
+def _scene_result(info, lam, u, states, solver, coords):
+    from .scene import SceneResult
+    from .scene_file import scene_from_dict
+    from .solver import Result
+    built = scene_from_dict(info["scene"]).build()
+    if built.model.coords.shape != coords.shape or not np.array_equal(built.model.coords, coords):
+        raise ValueError("the rebuilt scene's mesh differs from the stored one (file written by another "
+                         f"ssi version? this is {__version__}, the file {info.get('ssi_version')})")
+    u_rows = list(u)
+    solver_result = None
+    if solver is not None and "f_int" in solver:
+        solver_result = Result(model=built.model, load_factor=list(lam), u=u_rows, f_int=list(solver["f_int"]),
+                               states=states, iterations=solver["iterations"].tolist(),
+                               residuals=_split(solver["residuals"], solver["residuals_counts"]),
+                               energies=_split(solver["energies"], solver["energies_counts"]),
+                               cuts=int(solver["cuts"]), wall_time=float(solver["wall_time"]),
+                               factorizations=int(solver["factorizations"]))
+    extra = {k: v for k, v in info.get("extra", {}).items()
+             if k in {f.name for f in dataclasses.fields(SceneResult)}}
+    return SceneResult(built, list(lam), u_rows, states, solver_result, **extra)
+
+
+def _split(flat, counts):
+    ends = np.cumsum(counts)
+    return [flat[e - c:e].tolist() for e, c in zip(ends, counts)]
 
 
 def _jsonable(obj):
@@ -93,3 +336,54 @@ def _jsonable(obj):
     if isinstance(obj, np.generic):
         return obj.item()
     return str(obj)
+
+
+# ---- comparing results -----------------------------------------------------------------------------------
+def scene_quantities(result) -> dict:
+    """Every number a :class:`ssi.scene.SceneResult` answers, at every step it holds states for, as flat
+    arrays keyed by name: what a file must give back unchanged (``max_difference``)."""
+    out = {"load_factor": np.asarray(result.load_factor, np.float64), "u": np.asarray(result.u, np.float64),
+           "coords": result.built.model.coords}
+    for key, value in result.load_settlement().items():
+        out[f"load_settlement.{key}"] = value
+    n_rows = len(result.load_factor)
+    for k in range(n_rows - len(result.states), n_rows):
+        for i, state in enumerate(result.states[k - n_rows]):
+            out[f"state[{k}][{i}]"] = state
+        q = {"settlement": result.surface(k), "soil_stress": result.soil_stress(k),
+             "plastic_points": result.plastic_points(k), "plastic_strain": result.plastic_strain(k),
+             "max_settlement": result.max_settlement(k)}
+        if result.built.plate is not None:
+            q.update(plate_settlement=result.settlement(k), contact=result.contact(k),
+                     contact_resultant=result.contact_resultant(k), strip_forces=result.strip_forces(k),
+                     plate_layers=result.plate_layers(k), steel_stress=result.steel_stress(k),
+                     crack_map=result.crack_map(k))
+        for name, value in q.items():
+            if isinstance(value, dict):
+                items = value.items()
+            else:
+                items = enumerate(value) if isinstance(value, tuple) else [("", value)]
+            for sub, arr in items:
+                out[f"{name}[{k}].{sub}"] = np.asarray(arr)
+    return out
+
+
+def max_difference(a, b) -> tuple[float, str]:
+    """(largest absolute difference, the quantity where it occurs) between two SceneResults over
+    :func:`scene_quantities`; inf for a quantity missing on one side, of another shape, or a differing
+    non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity)."""
+    qa, qb = scene_quantities(a), scene_quantities(b)
+    worst, where = 0.0, ""
+    for name in sorted(set(qa) | set(qb)):
+        x, y = qa.get(name), qb.get(name)
+        if x is None or y is None or np.shape(x) != np.shape(y):
+            return float("inf"), name
+        if x.dtype.kind in "fc" and y.dtype.kind in "fc":
+            both_nan = np.isnan(x) & np.isnan(y)
+            diff = np.where(both_nan, 0.0, np.abs(x - y))
+            d = float(np.max(diff, initial=0.0)) if not np.any(np.isnan(diff)) else float("inf")
+        else:
+            d = 0.0 if np.array_equal(x, y) else float("inf")
+        if d > worst:
+            worst, where = d, name
+    return worst, where

@@ -795,6 +795,93 @@ class SceneResult:
         return {"x": x_pts[:, axial], "z": sec.z_mid, "eps": eps[:, axial], "sig": sig[:, axial],
                 "cracked": cracked[:, axial], "steel": sec.kind == STEEL}
 
+    # ---- what the engineer asks (issue 13); units in each docstring -------------------------------------
+    @property
+    def n_steps(self) -> int:
+        """Number of converged load steps after the initial state (row 0 is lambda = 0)."""
+        return len(self.load_factor) - 1
+
+    def max_settlement(self, k=-1):
+        """(x [m], settlement [m]) of the foundation node that settles most at step ``k`` (positive down);
+        the soil surface's if the scene has no foundation."""
+        x, s = self.settlement(k) if self.built.plate is not None else self.surface(k)
+        i = int(np.argmax(s))
+        return float(x[i]), float(s[i])
+
+    def contact_weights(self):
+        """(n_el, n_ip) integration weight of every contact point times the line Jacobian [m]: the contact
+        length each point represents (their sum is the foundation width)."""
+        return self.built.interface.ip_weights()
+
+    def contact_resultant(self, k=-1):
+        """Resultant of the contact tractions at step ``k`` per unit length of the strip: ``N`` [N/m]
+        (compression positive, = the vertical load the soil carries), ``H`` [N/m] (shear, +x), ``M``
+        [N m/m] (moment of the tractions about x = 0, counter-clockwise positive) and the foundation's
+        ``eccentricity`` M_p/N [m] of the pressure about x = 0."""
+        c = self.contact(k)
+        w = self.contact_weights()
+        pressure = -c["sig_n"]
+        N = float(np.sum(pressure * w))
+        H = float(np.sum(c["tau"] * w))
+        M = float(np.sum(pressure * w * c["x"]))
+        return {"N": N, "H": H, "M": M, "eccentricity": M / N if N else float("nan")}
+
+    def strip_forces(self, k=-1):
+        """Stress resultants of the foundation strip per unit width at step ``k``, from
+        ``PlateStrip.resultants``: ``x_ax`` (n_el, n_ax) [m] with normal force ``N`` [N/m] and bending moment
+        ``M`` [N m/m] (positive sagging: tension at the bottom), ``x_sh`` (n_el, n_sh) [m] with shear force
+        ``Q`` [N/m]."""
+        plate = self.built.plate
+        return plate.resultants(self.u[k][plate.edofs], self._group_state(plate, k))
+
+    def steel_stress(self, k=-1):
+        """Stress [Pa] in every steel layer at the strip's axial points at step ``k``: ``x`` (n_el, n_ax) [m],
+        ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
+        ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
+        from .materials.steel import S_FY
+        layers = self.plate_layers(k)
+        steel = layers["steel"]
+        sig = layers["sig"][..., steel]
+        params = self.built.plate.section.params
+        fy = params[steel, S_FY] if steel.any() else np.zeros(0)
+        return {"x": layers["x"], "z": layers["z"][steel], "sig": sig,
+                "yielded": np.abs(sig) >= fy * (1.0 - 1e-9)}
+
+    def crack_map(self, k=-1):
+        """Cracked concrete layer points at step ``k``: ``x`` (n_el, n_ax) [m], ``z`` (n_layer,) [m],
+        ``cracked`` (n_el, n_ax, n_layer) bool (largest tensile strain beyond fr/E0; see ``plate_layers``)."""
+        layers = self.plate_layers(k)
+        return {"x": layers["x"], "z": layers["z"], "cracked": layers["cracked"]}
+
+    def soil_points(self):
+        """(n_el, n_ip, 2) coordinates (x, z) [m] of the soil integration points."""
+        return self.built.soil.integration_points()
+
+    def soil_stress(self, k=-1):
+        """(n_el, n_ip, 4) soil stress [sxx, szz, txz, syy] [Pa] (tension positive; geostatic included)."""
+        return self.built.soil.stress(self._group_state(self.built.soil, k)).copy()
+
+    def plastic_points(self, k=-1):
+        """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
+        surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
+        from .elements.soil_q8 import N_STRESS
+        return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
+
+    def plastic_strain(self, k=-1):
+        """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
+        (history slot 0; zero for elastic layers)."""
+        from .elements.soil_q8 import N_STRESS
+        return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
+
+    def load_settlement(self):
+        """The load--settlement path over every converged step (also of a stopped run): ``load_factor``
+        (n_steps + 1,) [-], ``column_load`` (n_steps + 1,) [N/m] = lambda * sum of the column forces N,
+        ``settlement`` (n_steps + 1,) [m] the largest settlement at each step (positive down)."""
+        lam = np.asarray(self.load_factor, np.float64)
+        total_n = sum(load.N for load in self.built.scene.loads)
+        settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
+        return {"load_factor": lam, "column_load": lam * total_n, "settlement": settle}
+
 
 def _lagrange_row(xi):
     return np.array([0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)])

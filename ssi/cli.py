@@ -1,0 +1,159 @@
+"""The command line: ``ssi run scene.toml``, ``ssi show result.h5``, ``ssi schema``.
+
+``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene_file`) and writes, next to it unless told
+otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` + ``<name>_steps/*.vtu``
+(ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
+``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
+bending moment, the load where a run stopped, wall time). Nothing is overwritten without ``--overwrite``.
+A run that stops before the end of its load path still writes everything, marked incomplete, and the
+command exits with status 3. ``ssi show result.h5`` prints the summary of a result file and writes its plots.
+"""
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+EXIT_INCOMPLETE = 3
+
+
+def summary(result, wall_time=None, complete=True, stop=None) -> dict:
+    """The numbers ``ssi run`` prints, from a SceneResult: SI units (m, Pa, N/m, N m/m, s)."""
+    x_s, s_max = result.max_settlement()
+    out = {"complete": bool(complete), "steps": result.n_steps, "load_factor": float(result.load_factor[-1]),
+           "max_settlement": s_max, "x_max_settlement": x_s}
+    if result.built.plate is not None:
+        c = result.contact()
+        i = int(c["sig_n"].argmin())
+        out["max_contact_pressure"] = float(-c["sig_n"].ravel()[i])
+        out["x_max_contact_pressure"] = float(c["x"].ravel()[i])
+        out["contact_resultant"] = result.contact_resultant()["N"]
+        m = result.strip_forces()["M"]
+        j = int(abs(m).argmax())
+        out["max_abs_moment"] = float(abs(m).ravel()[j])
+        out["x_max_abs_moment"] = float(result.strip_forces()["x_ax"].ravel()[j])
+    total_n = sum(load.N for load in result.built.scene.loads)
+    out["column_load"] = float(result.load_factor[-1]) * total_n
+    out["stopped_at_column_load"] = None if complete else out["column_load"]
+    out["stop_reason"] = None if stop is None else stop.get("reason")
+    out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
+    return out
+
+
+def summary_text(s: dict) -> str:
+    state = ")" if s["complete"] else ", INCOMPLETE: the run stopped before the end of its load path)"
+    lines = [f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}",
+             f"max settlement   {1e3 * s['max_settlement']:.3f} mm at x = {s['x_max_settlement']:.3f} m"]
+    if "max_contact_pressure" in s:
+        lines += [(f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
+                   f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"),
+                  f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m"]
+    if s["stopped_at_column_load"] is not None:
+        lines.append(f"stopped at       {s['stopped_at_column_load'] / 1e3:.2f} kN/m of column load "
+                     f"(limit load reached or solver failure: {s['stop_reason']})")
+    if s.get("wall_time_s") is not None:
+        lines.append(f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})")
+    return "\n".join(lines)
+
+
+def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True):
+    """What ``ssi run`` does; returns (result, summary dict, written paths)."""
+    from .plot import save_standard_figures
+    from .progress import announce_compilation
+    from .results import atomic_path, write_result
+    from .scene import SceneResult
+    from .scene_file import read_scene_file
+    from .solver import NonConvergence
+    scene_path = Path(scene_path)
+    stem = scene_path.with_suffix("")
+    out = Path(out) if out else stem.with_suffix(".h5")
+    paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
+    plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
+    summary_path = stem.parent / (stem.name + "_summary.json")
+    scene, n_steps, settings = read_scene_file(scene_path)
+    for target in (out, paraview, summary_path):
+        if target.exists() and not overwrite:
+            raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
+    announce_compilation()
+    t0 = time.perf_counter()
+    built = scene.build()
+    stop = None
+    try:
+        result = built.solve(n_steps=n_steps, settings=settings)
+    except NonConvergence as err:
+        r = err.result
+        result = SceneResult(built, r.load_factor, r.u, r.states, r)
+        stop = err.report
+    wall = time.perf_counter() - t0
+    complete = stop is None
+    written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
+    from .export import export_series
+    written.append(export_series(result, paraview, overwrite=overwrite))
+    s = summary(result, wall, complete, stop)
+    with atomic_path(summary_path, overwrite) as tmp:
+        tmp.write_text(json.dumps(s, indent=1))
+    written.append(summary_path)
+    if figures:
+        written += save_standard_figures(result, plots, overwrite=overwrite)
+    return result, s, written
+
+
+def show_result_file(path, plots=None, overwrite=False, figures=True):
+    """What ``ssi show`` does; returns (result, summary dict, written paths)."""
+    from .plot import save_standard_figures
+    from .results import read_info, read_result
+    path = Path(path)
+    result = read_result(path)
+    info = read_info(path)
+    sr = getattr(result, "solver_result", None)
+    s = summary(result, None if sr is None else sr.wall_time, info["complete"], info["stop"])
+    s["wall_time_of"] = "the solver, as stored in the file"
+    written = []
+    if figures:
+        folder = Path(plots) if plots else path.parent / (path.stem + "_plots")
+        written = save_standard_figures(result, folder, overwrite=overwrite)
+    return result, s, written
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="ssi", description="2D soil-structure interaction of strip "
+                                     "foundations: solve a scene file, show a result file.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    run_p = sub.add_parser("run", help="solve a TOML scene file; write result, ParaView file, plots, summary")
+    run_p.add_argument("scene", type=Path)
+    run_p.add_argument("-o", "--out", type=Path, help="result file (default: <scene>.h5)")
+    run_p.add_argument("--plots", type=Path, help="folder for the figures (default: <scene>_plots)")
+    run_p.add_argument("--paraview", type=Path, help="ParaView series (default: <scene>.pvd, steps in <scene>_steps/)")
+    run_p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    run_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
+    run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    show_p = sub.add_parser("show", help="print the summary of a result file and write its plots")
+    show_p.add_argument("result", type=Path)
+    show_p.add_argument("--plots", type=Path, help="folder for the figures (default: <result>_plots)")
+    show_p.add_argument("--no-plots", action="store_true")
+    show_p.add_argument("--overwrite", action="store_true")
+    show_p.add_argument("--json", action="store_true")
+    sub.add_parser("schema", help="print the scene file's tables, keys and units")
+    args = parser.parse_args(argv)
+    if args.command == "schema":
+        from .scene_file import schema_text
+        print(schema_text())
+        return 0
+    try:
+        if args.command == "run":
+            _, s, written = run_scene_file(args.scene, args.out, args.plots, args.paraview, args.overwrite,
+                                           not args.no_plots)
+        else:
+            _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)
+    except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
+        print(f"ssi: error: {err}", file=sys.stderr)
+        return 2
+    print(json.dumps(s, indent=1) if args.json else summary_text(s))
+    for p in written:
+        print(f"wrote {p}")
+    return 0 if s["complete"] else EXIT_INCOMPLETE
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,203 @@
+"""Scene files: a TOML description that maps one-to-one onto the :mod:`ssi.scene` dataclasses.
+
+Every table is one dataclass and every key one of its fields, with the same name; a key the dataclass does
+not have is refused with its name and where it was found. SI units throughout (see :data:`UNITS`)::
+
+    width = 12.0                       # [m]  Scene.width
+    depth = 6.0                        # [m]  Scene.depth
+
+    [[layers]]                         # SoilLayer, listed from the surface down
+    thickness = 2.0                    # [m]
+    E = 20e6                           # [Pa]
+    nu = 0.3                           # [-]
+    unit_weight = 18e3                 # [N/m^3]
+    c = 10e3                           # [Pa]  (leave out: linear elastic)
+    phi_deg = 30.0                     # [deg]
+
+    [foundation]                       # Foundation
+    x0 = -1.0                          # [m]
+    x1 = 1.0                           # [m]
+    section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } }
+
+    [contact]                          # Contact
+    kn = 1e10                          # [Pa/m]
+    kt = 1e9                           # [Pa/m]
+
+    [[loads]]                          # ColumnLoad
+    x = 0.0                            # [m]
+    N = 300e3                          # [N/m]
+
+    [mesh]                             # MeshSize
+    h_fine = 0.5                       # [m]
+
+    [solve]                            # not part of the Scene: n_steps and ssi.solver.Settings fields
+    n_steps = 4
+    method = "full"
+
+The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
+:func:`ssi.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.section.rc_section` with ``bars = [[z, As],
+...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``, see
+:func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.section.Section` fields themselves (z_mid, h,
+kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files store.
+"""
+
+import dataclasses
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from . import section as section_mod
+from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from .section import Section
+from .solver import Settings
+
+UNITS = {
+    "Scene": {"width": "m", "depth": "m", "surcharge": "Pa"},
+    "SoilLayer": {"thickness": "m", "E": "Pa", "nu": "-", "unit_weight": "N/m^3", "c": "Pa", "phi_deg": "deg",
+                  "psi_deg": "deg", "K0": "-", "scheme": "'implicit' | 'explicit'"},
+    "Foundation": {"x0": "m", "x1": "m", "kappa": "-", "integration": "'selective' | 'full' | 'reduced'",
+                   "self_weight": "N/m^2"},
+    "Contact": {"kn": "Pa/m", "kt": "Pa/m", "phi_deg": "deg", "c": "Pa", "psi_deg": "deg", "sig_t": "Pa",
+                "rule": "'newton_cotes' | 'gauss'"},
+    "ColumnLoad": {"x": "m", "N": "N/m (down positive)", "H": "N/m (+x)", "M": "N m/m (counter-clockwise)"},
+    "MeshSize": {"h_fine": "m", "h_coarse": "m", "growth": "-", "n_gauss": "2 | 3"},
+    "homogeneous": {"thickness": "m", "E": "Pa", "nu": "-", "n_layers": "-"},
+    "rc": {"depth": "m", "bars": "[[z_bar m, As m^2/m], ...]", "n_concrete": "-",
+           "concrete": "{fc Pa, E0 Pa, eps_c, fr Pa, Gf N/m, ls m}", "steel": "{fy Pa, Es Pa, EH Pa}"},
+}
+
+# fields holding other dataclasses: (class, field) -> (element class, is a list)
+_NESTED = {(Scene, "layers"): (SoilLayer, True), (Scene, "foundation"): (Foundation, False),
+           (Scene, "contact"): (Contact, False), (Scene, "loads"): (ColumnLoad, True),
+           (Scene, "mesh"): (MeshSize, False)}
+_SECTION_FIELDS = [f.name for f in dataclasses.fields(Section)]
+
+
+# ---- Scene -> plain dict (what result files store) --------------------------------------------------------
+def scene_to_dict(scene: Scene) -> dict:
+    """Every field of the scene as plain Python values (lists, floats, None); the section in its exact
+    ``{"layers": {...}}`` form, so :func:`scene_from_dict` rebuilds an identical scene."""
+    return _to_plain(scene)
+
+
+def _to_plain(obj):
+    if isinstance(obj, Section):
+        return {"layers": {name: _to_plain(getattr(obj, name)) for name in _SECTION_FIELDS}}
+    if dataclasses.is_dataclass(obj):
+        return {f.name: _to_plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, list | tuple):
+        return [_to_plain(v) for v in obj]
+    return obj
+
+
+# ---- plain dict -> Scene -------------------------------------------------------------------------------
+def scene_from_dict(data: dict) -> Scene:
+    """The :class:`Scene` a dict (from TOML or a result file) describes; unknown keys raise ValueError."""
+    return _build(Scene, data, "scene")
+
+
+def _build(cls, data, where):
+    if not isinstance(data, dict):
+        raise TypeError(f"{where}: expected a table of {cls.__name__} fields, got {type(data).__name__}")
+    names = {f.name for f in dataclasses.fields(cls)}
+    unknown = sorted(set(data) - names)
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r} for {cls.__name__}; allowed: {sorted(names)}")
+    kwargs = {}
+    for key, value in data.items():
+        nested = _NESTED.get((cls, key))
+        if cls is Foundation and key == "section":
+            kwargs[key] = section_from_dict(value, f"{where}.section")
+        elif nested is not None and value is not None:
+            sub, is_list = nested
+            if is_list:
+                if not isinstance(value, list):
+                    raise TypeError(f"{where}.{key}: expected a list of {sub.__name__} tables")
+                kwargs[key] = [_build(sub, v, f"{where}.{key}[{i}]") for i, v in enumerate(value)]
+            else:
+                kwargs[key] = _build(sub, value, f"{where}.{key}")
+        else:
+            kwargs[key] = value
+    try:
+        return cls(**kwargs)
+    except TypeError as err:  # a required field missing
+        raise ValueError(f"{where}: {err}") from err
+
+
+def section_from_dict(data: dict, where: str = "section") -> Section:
+    """A :class:`Section` from ``{"homogeneous": {...}}``, ``{"rc": {...}}`` or ``{"layers": {...}}``."""
+    if not isinstance(data, dict) or len(data) != 1:
+        raise ValueError(f"{where}: give exactly one of 'homogeneous', 'rc', 'layers', got {data!r}")
+    (kind, args), = data.items()
+    if kind == "homogeneous":
+        _check_keys(args, {"thickness", "E", "nu", "n_layers", "z_ref"}, f"{where}.homogeneous")
+        return section_mod.homogeneous(**args)
+    if kind == "rc":
+        return rc_section_from(args, f"{where}.rc")
+    if kind == "layers":
+        _check_keys(args, set(_SECTION_FIELDS), f"{where}.layers")
+        arrays = {"z_mid": np.float64, "h": np.float64, "kind": np.int64, "params": np.float64,
+                  "carries_shear": bool}
+        kw = {k: (np.ascontiguousarray(np.asarray(v, arrays[k])) if k in arrays else v) for k, v in args.items()}
+        kw["labels"] = tuple(kw.get("labels", ()))
+        return Section(**kw)
+    raise ValueError(f"{where}: unknown key {kind!r}; allowed: 'homogeneous', 'rc', 'layers'")
+
+
+def rc_section_from(args: dict, where: str = "rc") -> Section:
+    """:func:`ssi.section.rc_section` from plain values: ``depth``, ``bars``, ``n_concrete``, ``concrete =
+    {fc, E0?, eps_c?, fr?, Gf?, ls}`` (missing ones from :func:`ssi.materials.rc.designer_concrete`) and
+    ``steel = {fy, Es?, EH?}``; the concrete's yield strain for shear retention is fy/Es."""
+    from .materials.layer_laws import CONCRETE, STEEL
+    from .materials.rc import concrete_params, designer_concrete, steel_params
+    _check_keys(args, {"depth", "bars", "concrete", "steel", "n_concrete", "z_ref"}, where)
+    conc = dict(args["concrete"])
+    steel = dict(args["steel"])
+    _check_keys(conc, {"fc", "E0", "eps_c", "fr", "Gf", "ls"}, f"{where}.concrete")
+    _check_keys(steel, {"fy", "Es", "EH"}, f"{where}.steel")
+    d = {**designer_concrete(conc["fc"]), **conc}
+    es = steel.get("Es", 200e9)
+    concrete = (CONCRETE, concrete_params(d["fc"], d["E0"], d["eps_c"], d["fr"], d["Gf"], d.get("ls", 0.1),
+                                          steel["fy"] / es))
+    return section_mod.rc_section(args["depth"], [tuple(b) for b in args["bars"]], concrete,
+                                  (STEEL, steel_params(steel["fy"], es, steel.get("EH", 0.0))),
+                                  n_concrete=args.get("n_concrete", 9), z_ref=args.get("z_ref"))
+
+
+def _check_keys(args, allowed, where):
+    if not isinstance(args, dict):
+        raise TypeError(f"{where}: expected a table, got {type(args).__name__}")
+    unknown = sorted(set(args) - allowed)
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r}; allowed: {sorted(allowed)}")
+
+
+# ---- files ---------------------------------------------------------------------------------------------
+def read_scene_file(path) -> tuple[Scene, int, Settings]:
+    """``(scene, n_steps, settings)`` from a TOML scene file; the optional ``[solve]`` table holds
+    ``n_steps`` (default 10) and any :class:`ssi.solver.Settings` field."""
+    path = Path(path)
+    with open(path, "rb") as fh:
+        try:
+            data = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as err:
+            raise ValueError(f"{path}: not valid TOML: {err}") from err
+    solve = dict(data.pop("solve", {}))
+    n_steps = int(solve.pop("n_steps", 10))
+    _check_keys(solve, {f.name for f in dataclasses.fields(Settings)}, f"{path.name}: solve")
+    scene = _build(Scene, data, path.name)
+    return scene, n_steps, Settings(**solve)
+
+
+def schema_text() -> str:
+    """The scene file's tables, their keys and units, as text (``ssi schema``)."""
+    lines = []
+    for table, units in UNITS.items():
+        lines.append(f"[{table}]")
+        lines += [f"  {key:12s} {unit}" for key, unit in units.items()]
+    return "\n".join(lines)

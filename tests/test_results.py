@@ -1,0 +1,280 @@
+"""Result files, ParaView export, scene files, plots, progress and the command line (issue 13).
+
+References are independent of the code under test where one exists: the in-memory result a file was written
+from (round trip, tolerance 0: HDF5 stores float64 bit for bit and JSON floats round-trip exactly), the
+applied loads (statics of the contact resultant), a hand-built Scene (the TOML mapping)."""
+
+import json
+import os
+
+import matplotlib
+import meshio
+import numpy as np
+import pytest
+
+from ssi import plot
+from ssi.cli import main, summary
+from ssi.export import export_series, export_vtu, read_series
+from ssi.progress import progress_enabled, solver_progress
+from ssi.results import atomic_path, max_difference, read_info, read_result, write_result
+from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SceneResult, SoilLayer
+from ssi.scene_file import UNITS, read_scene_file, scene_from_dict, scene_to_dict
+from ssi.section import homogeneous
+from ssi.solver import NonConvergence, Settings
+
+EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
+COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
+
+
+def mc_scene(N=300e3, H=50e3):
+    """The scene of examples/strip_mohr_coulomb.toml, written in Python."""
+    return Scene(width=12.0, depth=6.0,
+                 layers=[SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0),
+                         SoilLayer(4.0, E=60e6, nu=0.3, unit_weight=19e3)],
+                 foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+                 contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0), loads=[ColumnLoad(x=0.0, N=N, H=H)],
+                 mesh=COARSE)
+
+
+@pytest.fixture(scope="module")
+def nonlinear():
+    return mc_scene().build().solve(n_steps=4, settings=Settings(force_tol=1e-6))
+
+
+@pytest.fixture(scope="module")
+def linear():
+    scene = mc_scene()
+    scene.layers[0] = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3)
+    scene.contact = Contact(kn=1e10, kt=1e9)
+    return scene.build().solve()
+
+
+# ---- SceneResult answers -------------------------------------------------------------------------------
+def test_contact_resultant_balances_the_column(nonlinear):
+    """Statics of the strip: the contact carries N and H, and its moment about x = 0 is H times the lever
+    arm from the plate nodes (mid-depth, where H acts) down to the contact face (0.25 m)."""
+    r = nonlinear.contact_resultant()
+    assert r["N"] == pytest.approx(300e3, rel=1e-4)
+    assert r["H"] == pytest.approx(50e3, rel=1e-4)
+    assert r["M"] == pytest.approx(50e3 * 0.25, rel=1e-3)
+    assert np.sum(nonlinear.contact_weights()) == pytest.approx(2.0, rel=1e-12)  # foundation width
+
+
+def test_strip_forces_and_paths(nonlinear):
+    f = nonlinear.strip_forces()
+    # free ends: the moment falls towards zero at both ends of the strip (sampled at the Gauss points)
+    assert abs(f["M"][0, 0]) < 0.1 * np.abs(f["M"]).max() and abs(f["M"][-1, -1]) < 0.1 * np.abs(f["M"]).max()
+    path = nonlinear.load_settlement()
+    assert np.all(np.diff(path["settlement"]) > 0) and path["column_load"][-1] == pytest.approx(300e3)
+    assert nonlinear.plastic_points().any() and nonlinear.plastic_strain().max() > 0.0
+    _, s = nonlinear.max_settlement()
+    assert s == pytest.approx(nonlinear.settlement()[1].max())
+
+
+# ---- result files --------------------------------------------------------------------------------------
+@pytest.mark.parametrize("which", ["nonlinear", "linear"])
+def test_result_file_round_trip_is_exact(which, request, tmp_path):
+    result = request.getfixturevalue(which)
+    path = write_result(tmp_path / "r.h5", result, Settings())
+    back = read_result(path)
+    assert isinstance(back, SceneResult)
+    diff, where = max_difference(result, back)
+    assert diff == 0.0, where
+    assert read_info(path)["complete"] is True
+    assert os.listdir(tmp_path) == ["r.h5"]  # no temporary file left behind
+    if which == "nonlinear":
+        assert back.solver_result.iterations == result.solver_result.iterations
+        assert back.solver_result.residuals == result.solver_result.residuals
+
+
+def test_round_trip_detects_a_changed_number(nonlinear, tmp_path):
+    """The comparison can fail: one perturbed displacement is found."""
+    back = read_result(write_result(tmp_path / "r.h5", nonlinear))
+    back.u[-1] = back.u[-1].copy()
+    back.u[-1][5] += 1e-9
+    diff, where = max_difference(nonlinear, back)
+    assert diff >= 0.999e-9 and where
+
+
+def test_no_overwrite_and_atomic_failure(nonlinear, tmp_path):
+    path = write_result(tmp_path / "r.h5", nonlinear)
+    before = path.read_bytes()
+    with pytest.raises(FileExistsError):
+        write_result(path, nonlinear)
+    with pytest.raises(RuntimeError), atomic_path(path, overwrite=True) as tmp:
+        tmp.write_bytes(b"half a file")
+        raise RuntimeError("crash while writing")
+    assert path.read_bytes() == before and os.listdir(tmp_path) == ["r.h5"]
+
+
+def test_stopped_run_is_written_incomplete(tmp_path):
+    """Far beyond the bearing capacity with one step cut allowed: the solver stops; the file keeps the
+    converged steps and says so."""
+    built = mc_scene(N=3e6, H=0.0).build()
+    with pytest.raises(NonConvergence) as info:
+        built.solve(n_steps=2, settings=Settings(max_iter=40, max_cuts=1))
+    r = info.value.result
+    partial = SceneResult(built, r.load_factor, r.u, r.states, r)
+    path = write_result(tmp_path / "stop.h5", partial, stop=info.value.report)
+    meta = read_info(path)
+    assert meta["complete"] is False and meta["stop"]["reason"] == info.value.report["reason"]
+    back = read_result(path)
+    assert back.load_factor[-1] == r.load_factor[-1] < 1.0
+    assert max_difference(partial, back)[0] == 0.0
+
+
+# ---- scene files ---------------------------------------------------------------------------------------
+def test_toml_maps_onto_the_dataclasses():
+    scene, n_steps, settings = read_scene_file(os.path.join(EXAMPLES, "strip_mohr_coulomb.toml"))
+    assert scene_to_dict(scene) == scene_to_dict(mc_scene())
+    assert n_steps == 4 and settings.force_tol == 1e-6
+    assert scene_to_dict(scene_from_dict(scene_to_dict(scene))) == scene_to_dict(scene)
+
+
+@pytest.mark.parametrize("text, key", [
+    ("widht = 3.0\n", "widht"),
+    ("width = 12.0\ndepth = 6.0\n[[layers]]\nthickness = 2.0\nE = 1e7\nnu = 0.3\nphi = 30.0\n", "phi"),
+    ("width = 12.0\ndepth = 6.0\n[solve]\nmethd = 'full'\n", "methd"),
+])
+def test_unknown_keys_are_refused_by_name(tmp_path, text, key):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=repr(key)):
+        read_scene_file(path)
+
+
+def test_every_field_has_a_unit():
+    import dataclasses
+    for cls in (Scene, SoilLayer, Foundation, Contact, ColumnLoad, MeshSize):
+        nested = {"layers", "foundation", "contact", "loads", "mesh", "section"}
+        missing = {f.name for f in dataclasses.fields(cls)} - set(UNITS[cls.__name__]) - nested
+        assert not missing, (cls.__name__, missing)
+
+
+# ---- ParaView export -----------------------------------------------------------------------------------
+def test_vtu_reads_back(nonlinear, tmp_path):
+    path = export_vtu(nonlinear, tmp_path / "r.vtu")
+    mesh = meshio.read(path)
+    built = nonlinear.built
+    # meshio's VTU reader merges the adjacent line3 blocks: strip elements, then contact elements
+    assert [c.type for c in mesh.cells] == ["quad8", "line3"]
+    assert np.array_equal(mesh.cells[0].data, built.mesh.conn)
+    assert len(mesh.cells[1].data) == built.plate.n_el + built.interface.n_el
+    u = nonlinear.u[-1]
+    soil = np.arange(built.mesh.xy.shape[0])
+    assert np.max(np.abs(mesh.point_data["displacement"][soil, 1] - u[built.model.dof(soil, "w")])) <= 1e-12
+    sig = nonlinear.soil_stress().mean(axis=1)
+    assert np.max(np.abs(mesh.cell_data["szz"][0] - sig[:, 1])) <= 1e-12 * np.abs(sig).max()
+    m = nonlinear.strip_forces()["M"].mean(1)
+    assert np.max(np.abs(mesh.cell_data["M"][1][:len(m)] - m)) <= 1e-12 * np.abs(m).max()
+    p = -nonlinear.contact()["sig_n"].mean(1)
+    assert np.max(np.abs(mesh.cell_data["contact_pressure"][1][len(m):] - p)) <= 1e-12 * np.abs(p).max()
+    with pytest.raises(FileExistsError):
+        export_vtu(nonlinear, path)
+
+
+def test_series_every_step_reads_back(nonlinear, tmp_path):
+    path = export_series(nonlinear, tmp_path / "r.pvd")
+    assert sorted(os.listdir(tmp_path)) == ["r.pvd", "r_steps"]
+    series = read_series(path)
+    assert [t for t, _ in series] == list(nonlinear.load_factor)
+    soil = np.arange(nonlinear.built.mesh.xy.shape[0])
+    for k, (_, mesh) in enumerate(series):
+        w = nonlinear.u[k][nonlinear.built.model.dof(soil, "w")]
+        assert np.max(np.abs(mesh.point_data["displacement"][soil, 1] - w)) <= 1e-12
+
+
+# ---- plots, progress, command line ---------------------------------------------------------------------
+def test_every_plot_returns_a_figure(nonlinear, tmp_path):
+    back = read_result(write_result(tmp_path / "r.h5", nonlinear))  # replots without the script
+    figs = plot.standard_figures(back)
+    assert {"settlement", "contact", "strip_forces", "plastic_points", "load_settlement", "deformed_mesh"} <= set(figs)
+    for fig in figs.values():
+        assert isinstance(fig, matplotlib.figure.Figure) and fig.axes
+        matplotlib.pyplot.close(fig)
+
+
+def test_progress_is_quiet_in_tests_and_draws_when_asked(capsys):
+    import io
+    assert progress_enabled(None) is False  # PYTEST_CURRENT_TEST is set
+    stream = io.StringIO()
+    with solver_progress(True, total=1.0, stream=stream) as bar:
+        bar.update(1, 0.5, 3, 1e-7)
+        bar.update(2, 1.0, 2, 1e-8)
+    assert "step 2" in stream.getvalue() and "1.000" in stream.getvalue()
+    with solver_progress(None, total=1.0) as bar:
+        bar.update(1, 1.0, 1, 0.0)
+    assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("name", sorted(f for f in os.listdir(EXAMPLES) if f.endswith(".toml")))
+def test_cli_runs_the_examples(name, tmp_path, capsys):
+    scene_path = tmp_path / name
+    with open(os.path.join(EXAMPLES, name)) as fh:
+        scene_path.write_text(fh.read())
+    assert main(["run", str(scene_path), "--no-plots"]) == 0
+    printed = capsys.readouterr().out
+    assert "max settlement" in printed
+    stored = json.loads((tmp_path / (scene_path.stem + "_summary.json")).read_text())
+    scene, n_steps, settings = read_scene_file(scene_path)
+    direct = summary(scene.build().solve(n_steps=n_steps, settings=settings))  # the Python API
+    for key in ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete"):
+        assert stored[key] == direct[key], key
+    assert main(["run", str(scene_path), "--no-plots"]) == 2  # outputs exist: refused
+    assert main(["show", str(tmp_path / (scene_path.stem + ".h5")), "--json", "--no-plots"]) == 0
+    shown = json.loads(capsys.readouterr().out.split("\n}")[0] + "\n}")
+    assert shown["max_settlement"] == stored["max_settlement"]
+
+
+def test_compile_notice_only_on_an_empty_cache(tmp_path, monkeypatch):
+    import io
+
+    from ssi import progress
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(progress, "_announced", False)
+    stream = io.StringIO()
+    assert progress.announce_compilation(stream, estimate_s=60) is True
+    assert stream.getvalue().startswith("ssi: compiling kernels once, ~60 s")
+    assert progress.announce_compilation(stream) is False  # once per process
+    monkeypatch.setattr(progress, "_announced", False)
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "kernel-1.py311.nbi").write_bytes(b"")
+    assert progress.announce_compilation(io.StringIO()) is False  # kernels cached: silent
+
+
+def test_bare_model_file_keeps_mapping_access(nonlinear, tmp_path):
+    """A solver Result (no scene) reads back as StoredResult; the earlier dict keys still work."""
+    res = nonlinear.solver_result
+    back = read_result(write_result(tmp_path / "m.h5", res))
+    assert np.array_equal(back["u"], np.array(res.u)) and np.array_equal(back.f_int, np.array(res.f_int))
+    assert list(back["state"]) == ["soil_q8", "plate", "interface"]
+    assert np.array_equal(back["state"]["interface"][-1], res.states[-1][2])
+    assert np.array_equal(back.conn["soil_q8"], nonlinear.built.mesh.conn)
+
+
+def test_rc_section_table_equals_the_python_section():
+    """examples/rc_strip.toml's `rc` section is chapter 11's rc_section built in Python, layer for layer."""
+    from ssi.materials.layer_laws import CONCRETE, STEEL
+    from ssi.materials.rc import concrete_params, designer_concrete, steel_params
+    from ssi.section import rc_section
+    d = designer_concrete(38e6)
+    concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
+    python = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)),
+                        n_concrete=9)
+    scene, _, settings = read_scene_file(os.path.join(EXAMPLES, "rc_strip.toml"))
+    assert scene_to_dict(scene)["foundation"]["section"] == scene_to_dict(Foundation(0, 1, python))["section"]
+    assert settings.method == "full" and len(scene.loads) == 2
+
+
+def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
+    with open(os.path.join(EXAMPLES, "strip_mohr_coulomb.toml")) as fh:
+        text = fh.read().replace("N = 300e3", "N = 3e6").replace("n_steps = 4", "n_steps = 2\nmax_iter = 40\n"
+                                                                  "max_cuts = 1")
+    scene_path = tmp_path / "overload.toml"
+    scene_path.write_text(text)
+    assert main(["run", str(scene_path), "--no-plots"]) == 3
+    assert "INCOMPLETE" in capsys.readouterr().out
+    info = read_info(tmp_path / "overload.h5")
+    assert info["complete"] is False and info["stop"]["reason"]
+    s = json.loads((tmp_path / "overload_summary.json").read_text())
+    assert s["stopped_at_column_load"] < 3e6 and s["stop_reason"] == info["stop"]["reason"]
