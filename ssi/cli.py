@@ -36,6 +36,8 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     total_n = sum(load.N for load in result.built.scene.loads)
     out["column_load"] = float(result.load_factor[-1]) * total_n
     out["stopped_at_column_load"] = None if complete else out["column_load"]
+    out["status"] = result.status if complete else "stopped"
+    out["limit_load_factor"] = result.limit_load_factor if complete else None
     out["stop_reason"] = None if stop is None else stop.get("reason")
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
@@ -49,9 +51,12 @@ def summary_text(s: dict) -> str:
         lines += [(f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
                    f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"),
                   f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m"]
+    if s.get("limit_load_factor") is not None:
+        lines.append(f"limit load       reached at load factor {s['limit_load_factor']:.4g} "
+                     f"({s['column_load'] / 1e3:.2f} kN/m of column load): the scene cannot carry its loads")
     if s["stopped_at_column_load"] is not None:
         lines.append(f"stopped at       {s['stopped_at_column_load'] / 1e3:.2f} kN/m of column load "
-                     f"(limit load reached or solver failure: {s['stop_reason']})")
+                     f"(solver failure: {s['stop_reason']})")
     if s.get("wall_time_s") is not None:
         lines.append(f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})")
     return "\n".join(lines)

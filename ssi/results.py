@@ -123,8 +123,9 @@ def write_result(path, result, settings=None, overwrite=False, complete=None, st
     otherwise, else True. ``settings``: the solver Settings to record. Returns the path."""
     path = Path(path)
     if complete is None:
-        status = getattr(result, "status", None)
-        complete = stop is None and (not isinstance(status, str) or status in ("complete", "converged"))
+        # a run that ended at a detected limit load is complete: the collapse is its answer, and its status
+        # ("limit load reached") is stored with the solver's record
+        complete = stop is None
     with atomic_path(path, overwrite) as tmp, h5py.File(tmp, "w") as h5:
         h5.attrs["format"] = FORMAT
         h5.attrs["ssi_version"] = __version__
@@ -203,6 +204,9 @@ def _write_solver(h5, res):
         grp[f"{key}_counts"] = np.array([len(row) for row in rows], np.int64)
     for key in ("cuts", "wall_time", "factorizations"):
         grp.attrs[key] = getattr(res, key)
+    grp["stiffness"] = np.asarray(res.stiffness, np.float64)
+    grp.attrs["status"] = res.status
+    grp.attrs["limit_load_factor"] = np.nan if res.limit_load_factor is None else res.limit_load_factor
 
 
 # ---- reading ---------------------------------------------------------------------------------------------
@@ -303,6 +307,10 @@ def _read_solver(h5):
     return out
 
 
+def _optional_float(value):
+    return None if value is None or not np.isfinite(value) else float(value)
+
+
 def _scene_result(info, lam, u, states, solver, coords):
     from .scene import SceneResult
     from .scene_file import scene_from_dict
@@ -319,7 +327,10 @@ def _scene_result(info, lam, u, states, solver, coords):
                                residuals=_split(solver["residuals"], solver["residuals_counts"]),
                                energies=_split(solver["energies"], solver["energies_counts"]),
                                cuts=int(solver["cuts"]), wall_time=float(solver["wall_time"]),
-                               factorizations=int(solver["factorizations"]))
+                               factorizations=int(solver["factorizations"]),
+                               stiffness=list(solver.get("stiffness", [])),
+                               status=str(solver.get("status", "completed")),
+                               limit_load_factor=_optional_float(solver.get("limit_load_factor")))
     extra = {k: v for k, v in info.get("extra", {}).items()
              if k in {f.name for f in dataclasses.fields(SceneResult)}}
     return SceneResult(built, list(lam), u_rows, states, solver_result, **extra)

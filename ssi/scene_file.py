@@ -53,9 +53,12 @@ from .section import Section
 from .solver import Settings
 
 UNITS = {
-    "Scene": {"width": "m", "depth": "m", "surcharge": "Pa"},
+    "Scene": {"width": "m", "depth": "m", "surcharge": "Pa", "embedment": "m (depth of the strip's base)",
+              "water_table": "m (depth below the ground; leave out: dry)", "gamma_w": "N/m^3",
+              "phases": "list of Phase tables"},
     "SoilLayer": {"thickness": "m", "E": "Pa", "nu": "-", "unit_weight": "N/m^3", "c": "Pa", "phi_deg": "deg",
-                  "psi_deg": "deg", "K0": "-", "scheme": "'implicit' | 'explicit'"},
+                  "psi_deg": "deg", "K0": "-", "scheme": "'implicit' | 'explicit'",
+                  "unit_weight_sat": "N/m^3", "drainage": "'drained' | 'undrained_A'", "nu_u": "-"},
     "Foundation": {"x0": "m", "x1": "m", "kappa": "-", "integration": "'selective' | 'full' | 'reduced'",
                    "self_weight": "N/m^2"},
     "Contact": {"kn": "Pa/m", "kt": "Pa/m", "phi_deg": "deg", "c": "Pa", "psi_deg": "deg", "sig_t": "Pa",

@@ -42,6 +42,7 @@ import numpy as np
 from .elements.base import CONSISTENT
 from .linsolve import Factorization
 from .model import Model, System
+from .progress import SolverProgress, announce_compilation, log, solver_progress
 
 METHODS = ("bfgs", "modified", "full")
 STEPPINGS = ("auto", "fixed")
@@ -89,7 +90,8 @@ class Settings:
     divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
     backend: str = "auto"
     symmetric_tangent: bool = False  # set True when every law's tangent is symmetric (associated flow)
-    verbose: bool = False
+    verbose: bool = False         # log every converged step at INFO level (logger "ssi.solver")
+    progress: bool | None = None  # progress bar: None = only when stderr is a terminal and no test runs
     keep_states: bool = True      # keep the committed state of every step (False: only the last)
     line_search: bool | None = None  # None: on for bfgs, off for full Newton (on, it stopped chapter 11's
                                   # finest mesh at 95 % of its load); never for modified Newton
@@ -229,15 +231,20 @@ def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, 
     if targets.size == 0 or not np.all(np.isfinite(targets)):
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
     model.check()
+    announce_compilation()
     t_start = time.perf_counter()
     path = _Path(model, settings, start, loads)
     path.scale = float(np.abs(targets).max()) or 1.0
     path.step = settings.first_step * path.scale
-    for target in targets:
-        path.follow(float(target))
-        if path.result.collapsed:
-            break
-    path.result.wall_time = time.perf_counter() - t_start
+    try:
+        with solver_progress(settings.progress, total=path.scale) as path.bar:
+            for target in targets:
+                path.follow(float(target))
+                if path.result.collapsed:
+                    path.bar.note(path.result.message)
+                    break
+    finally:
+        path.result.wall_time = time.perf_counter() - t_start
     return path.result
 
 
@@ -249,6 +256,8 @@ class _Path:
         self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, self.fac_k0 = _start(
             model, settings, start, loads)
         self.lam = 0.0
+        self.scale = 1.0
+        self.bar = SolverProgress(None, 1.0)  # silent until run() opens the real one
         self.step = settings.first_step
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
 
@@ -272,6 +281,7 @@ class _Path:
                 self._adapt(last, outcome["iterations"])
                 continue
             self.result.cuts += 1
+            self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
             self.step = 0.5 * abs(lam_next - self.lam)
             if self.step < s.min_step * self.scale * (1.0 - 1e-9):
                 self._stuck(outcome, lam_next)
@@ -293,6 +303,7 @@ class _Path:
                 return
             cuts_here += 1
             self.result.cuts += 1
+            self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
             pending.append(0.5 * (self.lam + lam_next))
 
     def _increment(self, lam_next):
@@ -312,10 +323,11 @@ class _Path:
         _record(self.result, lam, self.u, outcome["f_int"], self.states, outcome["iterations"],
                 outcome["residuals"], outcome["energies"], self.settings)
         self.result.stiffness.append(self.measure.stiffness())
+        residual = outcome["residuals"][-1] if outcome["residuals"] else 0.0
+        self.bar.update(self.result.n_steps, lam, outcome["iterations"], residual)
         if self.settings.verbose:
-            print(f"step {self.result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}"
-                  f"  residual={outcome['residuals'][-1]:.2e}  stiffness={self.result.stiffness[-1]:.3g}",
-                  flush=True)
+            log.info("step %4d  lambda=%.6g  iterations=%3d  residual=%.2e  stiffness=%.3g", self.result.n_steps,
+                     lam, outcome["iterations"], residual, self.result.stiffness[-1])
 
     def _adapt(self, last_step, iterations):
         """Next increment from the last one: 1.5x after an easy increment (at most ``desired_iterations``),

@@ -108,11 +108,12 @@ def test_no_overwrite_and_atomic_failure(nonlinear, tmp_path):
 
 
 def test_stopped_run_is_written_incomplete(tmp_path):
-    """Far beyond the bearing capacity with one step cut allowed: the solver stops; the file keeps the
-    converged steps and says so."""
+    """Far beyond the bearing capacity, with the paper's equal steps and one step cut allowed, the solver
+    stops before the path has flattened (a failure, not a detected collapse); the file keeps the converged
+    steps and says so."""
     built = mc_scene(N=3e6, H=0.0).build()
     with pytest.raises(NonConvergence) as info:
-        built.solve(n_steps=2, settings=Settings(max_iter=40, max_cuts=1))
+        built.solve(n_steps=2, settings=Settings.paper(max_iter=40, max_cuts=1))
     r = info.value.result
     partial = SceneResult(built, r.load_factor, r.u, r.states, r)
     path = write_result(tmp_path / "stop.h5", partial, stop=info.value.report)
@@ -121,6 +122,18 @@ def test_stopped_run_is_written_incomplete(tmp_path):
     back = read_result(path)
     assert back.load_factor[-1] == r.load_factor[-1] < 1.0
     assert max_difference(partial, back)[0] == 0.0
+
+
+def test_collapsed_run_is_complete_and_keeps_its_limit_load(tmp_path):
+    """With the default settings the same overload ends as a detected limit load: a complete answer, whose
+    status and limit load factor come back from the file."""
+    out = mc_scene(N=3e6, H=0.0).build().solve()
+    assert out.status == "limit load reached"
+    path = write_result(tmp_path / "collapse.h5", out)
+    assert read_info(path)["complete"] is True
+    back = read_result(path)
+    assert back.status == out.status and back.limit_load_factor == out.limit_load_factor
+    assert max_difference(out, back)[0] == 0.0
 
 
 # ---- scene files ---------------------------------------------------------------------------------------
@@ -268,8 +281,8 @@ def test_rc_section_table_equals_the_python_section():
 
 def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     with open(os.path.join(EXAMPLES, "strip_mohr_coulomb.toml")) as fh:
-        text = fh.read().replace("N = 300e3", "N = 3e6").replace("n_steps = 4", "n_steps = 2\nmax_iter = 40\n"
-                                                                  "max_cuts = 1")
+        text = fh.read().replace("N = 300e3", "N = 3e6").replace(
+            "n_steps = 4", "n_steps = 2\nmax_iter = 40\nmax_cuts = 1\nmethod = 'modified'\nstepping = 'fixed'")
     scene_path = tmp_path / "overload.toml"
     scene_path.write_text(text)
     assert main(["run", str(scene_path), "--no-plots"]) == 3
