@@ -49,6 +49,7 @@ STEPPINGS = ("auto", "fixed")
 REFERENCES = ("structural", "total")
 COMPLETED = "completed"
 LIMIT_LOAD = "limit load reached"
+STOPPED = "stopped"  # the status of the partial result a NonConvergence carries
 
 # per method: default iteration cap of an increment and the iteration count automatic stepping aims at
 _MAX_ITER = {"bfgs": 100, "modified": 300, "full": 30}
@@ -97,6 +98,10 @@ class Settings:
                                   # finest mesh at 95 % of its load); never for modified Newton
     line_search_min: float = 1.0 / 64.0  # full Newton: smallest step fraction the line search tries
     bfgs_memory: int = 30         # L-BFGS pairs kept within an increment
+    viscosity: float = 0.0        # Duvaut-Lions regularisation tau = dt/eta per increment of the groups that
+                                  # have it (soil); > 0: the path is viscous and, after the last target, the
+                                  # load is held while tau grows (relaxation) until the state is the
+                                  # rate-independent one -- see :func:`relax`
     fallback: str | None = "auto"  # method that retries a failed increment before it is cut; "auto": full
                                   # Newton with line search for bfgs (points that flip between elastic and
                                   # plastic stall the K0-based update), K0 (modified) for full Newton (an
@@ -131,6 +136,8 @@ class Settings:
             raise ValueError(f"collapse_stiffness must be in [0, 1), got {self.collapse_stiffness}")
         if self.max_iter < 1 or self.max_cuts < 0 or self.fallback_iter < 0 or self.desired_iterations < 1:
             raise ValueError("max_iter and desired_iterations must be >= 1, max_cuts and fallback_iter >= 0")
+        if not (np.isfinite(self.viscosity) and self.viscosity >= 0.0):
+            raise ValueError(f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {self.viscosity}")
         if self.bfgs_memory < 0:
             raise ValueError(f"bfgs_memory must be >= 0, got {self.bfgs_memory}")
         if not 0.0 < self.line_search_min <= 1.0:
@@ -160,7 +167,8 @@ class Result:
     """Converged steps of an analysis. Row 0 is the initial state (lambda = 0, or where ``start`` ended).
 
     ``status`` is ``"completed"`` (every target reached) or ``"limit load reached"``: the path stopped rising
-    at ``limit_load_factor`` (the last converged step); its steps up to there are all converged.
+    at ``limit_load_factor`` (the last converged step); its steps up to there are all converged. The partial
+    result that a :class:`NonConvergence` carries says ``"stopped"``.
     ``stiffness`` holds the current stiffness parameter of each step (1 for the first, -> 0 at a limit).
     """
 
@@ -178,6 +186,7 @@ class Result:
     factorizations: int = 0
     status: str = COMPLETED
     limit_load_factor: float | None = None
+    relaxed_steps: int | None = None        # viscous path: relaxation increments after the last target
     u_origin: np.ndarray | None = None      # displacement and internal force of the state the structural
     f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
 
@@ -204,6 +213,8 @@ class Result:
 
     @property
     def message(self) -> str:
+        if self.status == STOPPED:
+            return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
         if self.collapsed:
             return (f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
                     f"current stiffness {self.stiffness[-1]:.3g} of the initial)")
@@ -233,6 +244,7 @@ def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, 
     model.check()
     announce_compilation()
     t_start = time.perf_counter()
+    _set_viscosity(model, settings.viscosity)
     path = _Path(model, settings, start, loads)
     path.scale = float(np.abs(targets).max()) or 1.0
     path.step = settings.first_step * path.scale
@@ -243,9 +255,46 @@ def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, 
                 if path.result.collapsed:
                     path.bar.note(path.result.message)
                     break
+        if settings.viscosity > 0.0 and not path.result.collapsed:
+            relax(path)
     finally:
+        _set_viscosity(model, 0.0)
         path.result.wall_time = time.perf_counter() - t_start
     return path.result
+
+
+def _set_viscosity(model, tau):
+    for g in model.groups:
+        if hasattr(g, "viscosity"):
+            g.viscosity = float(tau)
+
+
+RELAX_GROWTH = 10.0      # tau grows tenfold from one relaxation stage to the next ...
+RELAX_STAGES = 4         # ... over this many stages, then the last stage is rate independent (tau = 0)
+RELAX_STEPS = 8          # increments at most per stage
+RELAX_TOL = 1e-5         # a stage ends when the load measure changes by less than this (relative)
+
+
+def relax(path: "_Path") -> None:
+    """Hold the last target load of a viscous path while tau grows (10x per stage, then tau = 0): the
+    overstress of each increment decays by 1/(1 + tau), and the last stage is the rate-independent law, so
+    the final step is an equilibrium state of the inviscid problem (converged to the usual tolerances).
+    Its step count is ``RELAX_STEPS`` per stage at most; each stage ends once the load measure settles."""
+    lam, first = path.lam, path.result.n_steps
+    taus = [path.settings.viscosity * RELAX_GROWTH ** (k + 1) for k in range(RELAX_STAGES)] + [0.0]
+    for tau in taus:
+        _set_viscosity(path.model, tau)
+        for _ in range(RELAX_STEPS):
+            before = np.array(path.measure.point(path.result.n_steps))
+            outcome = path._increment(lam)
+            if not outcome["converged"]:
+                path._stuck(outcome, lam)
+                return
+            path._commit(lam, outcome)
+            after = np.array(path.measure.point(path.result.n_steps))
+            if np.all(np.abs(after - before) <= RELAX_TOL * np.maximum(np.abs(after), 1e-30)):
+                break
+    path.result.relaxed_steps = path.result.n_steps - first
 
 
 class _Path:
@@ -352,6 +401,7 @@ class _Path:
             return
         report = _failure_report(self.model, self.system.free, outcome, self.lam, lam_next)
         report["current_stiffness"] = float(stiff)
+        res.status = STOPPED
         raise NonConvergence(report, res)
 
 

@@ -227,7 +227,7 @@ def test_nonconvergence_raises_with_report():
     assert rep["worst_node"] == nodes[-1] and rep["worst_component"] == "u"
     assert "spring" in rep["worst_groups"]
     assert "did not converge" in str(info.value)
-    assert info.value.result.load_factor[-1] < 1.0
+    assert info.value.result.load_factor[-1] < 1.0 and info.value.result.status == "stopped"
 
 
 def test_settings_validation():

@@ -186,13 +186,19 @@ class SoilQ8:
     initial_stress : (n_el, n_ip, 4) initial (e.g. geostatic) stress, or None for a stress-free start
     k_water : (n_mat,) K_w/n [Pa] of undrained ("undrained A") materials, 0 for drained ones, or None: the
         state holds the effective stress, the pore water adds p = -K_w/n eps_v (see :func:`q8_pore_water`)
+    viscosity : Duvaut--Lions regularisation tau = dt / eta per increment (dimensionless; 0: rate
+        independent). The stress of an increment is (sigma_trial + tau sigma_inviscid) / (1 + tau), and so
+        are the forces and the tangent: the overstress of the elastic trial over the rate-independent return
+        decays by 1 / (1 + tau) per increment, so repeating an increment at fixed load (relaxation) recovers
+        the rate-independent state where one exists. It restores a solution to increments that have none
+        nearby without it (non-associated flow, psi < phi), at the price of a rate-dependent path.
     """
 
     name = "soil_q8"
     forces_only = True  # accepts the NO_MATRIX flag
 
     def __init__(self, coords, edofs, el_mat, kinds, params, n_gauss=2, unit_weight=None,
-                 initial_stress=None, k_water=None):
+                 initial_stress=None, k_water=None, viscosity=0.0):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0]
@@ -215,6 +221,9 @@ class SoilQ8:
             if np.any(~(kw >= 0.0)) or not np.all(np.isfinite(kw)):
                 raise ValueError(f"k_water must be finite and >= 0 (K_w/n, Pa), got {kw}")
             self.k_water = kw if kw.any() else None
+        if not (np.isfinite(viscosity) and viscosity >= 0.0):
+            raise ValueError(f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {viscosity}")
+        self.viscosity = float(viscosity)
         self._k0 = None
 
     @property
@@ -236,10 +245,26 @@ class SoilQ8:
         if failures:
             raise FloatingPointError(f"soil_q8: {failures} integration points failed (distorted element "
                                      "or a stress update that did not converge)")
+        if self.viscosity > 0.0:
+            self._blend_with_trial(du_el, state_old, state_new, f_el, k_el, tangent)
         if self.k_water is not None:
             q8_pore_water(self.coords, np.ascontiguousarray(u_el), self.el_mat, self.k_water, self.gp, self.gw,
                           f_el, k_el, tangent >= 0)
         return f_el, (k_el if tangent >= 0 else None), state_new
+
+    def _blend_with_trial(self, du_el, state_old, state_new, f_el, k_el, tangent):
+        """Duvaut--Lions: forces, tangent and stress become (trial + tau inviscid) / (1 + tau); the history
+        (plastic strain measure, branch) stays the inviscid return's."""
+        f_tr = np.empty_like(f_el)
+        k_tr = np.empty_like(k_el)
+        st_tr = np.empty_like(state_old)
+        q8_kernel(self.coords, np.ascontiguousarray(du_el), self.el_mat, np.zeros_like(self.kinds), self.params,
+                  self.gp, self.gw, state_old, st_tr, f_tr, k_tr, tangent)
+        tau = self.viscosity
+        f_el[...] = (f_tr + tau * f_el) / (1.0 + tau)
+        if tangent >= 0:
+            k_el[...] = (k_tr + tau * k_el) / (1.0 + tau)
+        state_new[..., :N_STRESS] = (st_tr[..., :N_STRESS] + tau * state_new[..., :N_STRESS]) / (1.0 + tau)
 
     def elastic_stiffness(self):
         """K0 per element, from the dedicated elastic kernel (every soil law's params start with E, nu)."""
