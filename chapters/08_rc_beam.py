@@ -184,7 +184,7 @@ print(f"section analysis: cracking M = {mc.M[np.argmax(np.diff(mc.S) < 0)] * KNM
 conv_meshes = (1, 2, 4) if FAST else (1, 2, 4, 8, 16)
 conv = {}
 for n in conv_meshes:
-    b_n = rb.build_four_point(conv_section, SPAN, A, n, n, crack_band=None)
+    b_n = rb.build_four_point(conv_section, SPAN, A, n, n, crack_band=None, self_bending="initial")
     out = rb.load_path(b_n, 0.009, 30 if FAST else 80, SETTINGS)
     ok = (out["M"] < M_Y) & (out["P"] > 0)
     ref = sa.four_point_deflection(mc, out["P"][ok], SPAN, A)

@@ -14,22 +14,31 @@ Section resultants (per unit width; M positive in sagging, i.e. tension at the b
 
 Virtual work: f = int (dEps0/du N + dKap/du M + dGam/du Q) dx, which reproduces the blocks of eq. (4.7b).
 
-Through the thickness: **rectangular (midpoint) rule with the exact self-bending term**. The law is called
-once per layer, at its mid-depth z_n; inside the layer the stress is taken as linear with the layer's
-*initial* modulus e0_n (the D1 of eq. 4.4 of that layer)::
+Through the thickness: **rectangular (midpoint) rule with a self-bending term**. The law is called once per
+layer, at its mid-depth z_n; inside the layer the stress is taken as linear with modulus e_n::
 
     N = sum h_n sig_n
-    M = -sum h_n z_n sig_n + sum e0_n h_n^3/12 kap
-    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e0_n h_n^2/12)
+    M = -sum h_n z_n sig_n + sum e_n h_n^3/12 kap
+    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e_n h_n^2/12)
 
-with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``: K0, constant) modulus. For a linear law
-the stress is exactly linear within a layer, so this *is* the integral: f_int = K0 u_el with K0 of eq.
-(4.7b), for any number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For a nonlinear law the
-self-bending term is an O(h_n^2) correction that keeps f continuous and the consistent tangent exact; its
-error vanishes as layers are refined, but it over-stiffens a *thick* cracked layer (chapter 02 measures
-1-3 % in M for the paper's 1+7+1 concrete layering). Option ``self_bending="tangent"`` uses the layer's tangent
-modulus there instead: 5-10x more accurate on coarse layerings, at the price of an O(h_n^3) jump of f when a
-layer's law changes branch (cracking, yielding) and a tangent that omits d e_t/d eps.
+with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``: K0, constant) modulus, and e_n the
+modulus of the layer's own bending (option ``self_bending``):
+
+* ``"tangent"`` (default): e_n = the layer's tangent modulus at its mid-depth strain. A cracked, yielded or
+  crushed layer loses its own bending stiffness with the rest of its stiffness.
+* ``"initial"``: e_n = the layer's initial modulus e0_n (the D1 of eq. 4.4): f is continuous when a layer's
+  law changes branch and the consistent tangent is exact, but a cracked or crushed layer keeps
+  e0 h_n^3/12 of bending stiffness.
+
+For a linear law the stress is exactly linear within a layer, so both *are* the integral: f_int = K0 u_el with
+K0 of eq. (4.7b), for any number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For nonlinear
+layers the choice matters. Measured in chapter 02 (row ``section_selfbending``) on the Janney beam section with
+the paper's 11 layers, N = 0, against the layer-free reference (``ssi.section_analysis.layer_free_moment_curvature``,
+adaptive quadrature of the continuous stress profile): ``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 /
++8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01 / 0.03 / 0.06 1/m (the error grows with the curvature, as more of
+the depth cracks and crushes); ``"tangent"`` stays within -0.2 ... +1.05 %, hence the default. Its price: f
+jumps by O(h_n^3) when a layer changes branch (cracking, yielding, crushing) and the tangent omits
+d e_t / d eps; neither has stopped the solver in chapters 08 and 11.
 
 Integration along the element (option ``integration``): ``"selective"`` (default, paper §10): membrane and
 bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in shear for thin strips);
@@ -286,10 +295,11 @@ class PlateStrip:
     crack_band : "point" (default): every CONCRETE layer's crack band width ls (eq. 5.4) is set, at each
         sampling point, to the length that point represents, w_p L_e / 2 (so a point cracking through
         dissipates Gf per unit crack area; checked against the snap-back limit); None: use ls as given
-    self_bending : modulus of each layer's own bending term e h_n^3/12 k: "initial" (default; f continuous,
-        consistent tangent exact) or "tangent" (more accurate for thick cracked layers, but f jumps by
-        O(h_n^3) when a layer's law changes branch and the tangent omits d e_t / d eps); both are exact for
-        linear layers (see the module docstring and chapter 02)
+    self_bending : modulus of each layer's own bending term e h_n^3/12 k: "tangent" (default: the layer's
+        tangent modulus; within about 1 % of the layer-free moment with 11 layers up to kap = 0.06 1/m) or
+        "initial" (e0: f continuous and the consistent tangent exact, but a cracked or crushed layer keeps its
+        elastic bending stiffness: +17 % in M at kap = 0.06 1/m with 11 layers); both are exact for linear
+        layers (see the module docstring and chapter 02)
     name : group name
 
     Notes
@@ -300,7 +310,7 @@ class PlateStrip:
     """
 
     def __init__(self, coords, edofs, section: Section, kappa: float = 5.0 / 6.0, integration="selective",
-                 self_weight: float = 0.0, crack_band="point", self_bending="initial", name: str = "plate"):
+                 self_weight: float = 0.0, crack_band="point", self_bending="tangent", name: str = "plate"):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0] if self.coords.ndim == 3 else -1
