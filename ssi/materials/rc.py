@@ -159,3 +159,29 @@ def drive(kind: int, params, eps_path, gam_path=None, tangent: int = 1):
         h_old[:] = h_new
         hist[i] = h_new
     return out[0], out[1], out[2], out[3], hist
+
+
+def crack_spacing_mc2010(c: float, phi: float, As: float, b: float, h: float, d: float, alpha_e: float) -> dict:
+    """Maximum crack spacing of stabilised cracking, *fib* Model Code 2010 §7.6.4.4, eq. (7.6-4):
+
+        s_r,max = 2 l_s,max,   l_s,max = k c + (1/4) (f_ctm / tau_bms) phi / rho_s,ef,
+
+    with k = 1 and the mean bond stress tau_bms = 1.8 f_ctm (short-term loading, Table 7.6-2), so
+    l_s,max = c + phi / (7.2 rho_s,ef). rho_s,ef = As / (b h_c,ef), h_c,ef = min(2.5 (h - d), (h - x)/3, h/2)
+    (MC2010 Fig. 7.6-4), x the neutral-axis depth of the cracked elastic section in pure bending,
+    x = d alpha_e rho (sqrt(1 + 2 / (alpha_e rho)) - 1), rho = As / (b d), alpha_e = Es / E0.
+
+    c: clear cover to the bar surface, phi: bar diameter, As: bar area over the width b, h: depth, d: effective
+    depth [m]. Returns a dict with ``s_r_max``, ``l_s_max``, ``h_c_ef``, ``rho_s_ef``, ``x``. Used as the crack
+    band width of a reinforced strip (one band per crack; chapter 08)."""
+    for name, v in (("c", c), ("phi", phi), ("As", As), ("b", b), ("h", h), ("d", d), ("alpha_e", alpha_e)):
+        _positive(name, v)
+    if not d < h:
+        raise ValueError(f"d must be below h = {h}, got {d}")
+    rho = As / (b * d)
+    ar = alpha_e * rho
+    x = d * ar * (math.sqrt(1.0 + 2.0 / ar) - 1.0)
+    h_c_ef = min(2.5 * (h - d), (h - x) / 3.0, 0.5 * h)
+    rho_ef = As / (b * h_c_ef)
+    l_s_max = c + phi / (7.2 * rho_ef)
+    return {"s_r_max": 2.0 * l_s_max, "l_s_max": l_s_max, "h_c_ef": h_c_ef, "rho_s_ef": rho_ef, "x": x}
