@@ -32,6 +32,8 @@ __all__ = [
     "JANNEY",
     "FourPointBeam",
     "build_four_point",
+    "janney_band_section",
+    "janney_crack_spacing",
     "janney_materials",
     "janney_section",
     "load_path",
@@ -160,6 +162,12 @@ def read_reference_csv(name):
 
 
 JANNEY_BAR_DIAMETER = 0.0159   # No. 5 bar [m]
+
+
+def janney_band_section(n_layers=11, tension_stiffening="all", **kw):
+    """The Janney section with the scene's crack band (MC2010 s_r,max, ``with_crack_spacing_band``) and the
+    chosen tension-stiffening rule ("all" concrete layers or the "effective_area" around the bars)."""
+    return with_crack_spacing_band(janney_section(n_layers, **kw), JANNEY_BAR_DIAMETER, tension_stiffening)[0]
 
 
 def janney_crack_spacing():

@@ -222,7 +222,9 @@ def _kink_strains(kind, prm):
     if kind == CONCRETE:
         eps_r = prm[P_FR] / prm[P_E0]
         eps_u = 2.0 * prm[P_GF] / (prm[P_FR] * prm[P_LS])
-        return [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU]] + _softening_meets_stiffening(prm)
+        from .materials.concrete import P_EPS_C, P_FC, P_GC, crushing_end
+        eps_cd = crushing_end(prm[P_E0], prm[P_FC], prm[P_EPS_C], prm[P_EPS_CU], prm[P_GC], prm[P_LS])[1]
+        return [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU], -eps_cd] + _softening_meets_stiffening(prm)
     if kind == STEEL:
         return [prm[2] / prm[0], -prm[2] / prm[0]]
     return []

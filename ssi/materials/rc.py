@@ -12,6 +12,9 @@ the *fib* Model Code 2010 (§5.1), with fc read as the mean cylinder strength fc
 * eps_c = 2 fc / E0: the peak strain that makes eq. (5.1) the curve whose secant at the peak is E0/2
   (a = E0 eps_c / fc = 2); smaller eps_c would bend the curve above its initial tangent (a < 2).
 * eps_cu = 0.0035 (MC2010/EC2 ultimate strain in bending).
+* Gc = 8.8 sqrt(fcm / MPa) N/mm: compressive fracture energy of Nakamura & Higai (2001), "Compressive fracture
+  energy and fracture zone length of concrete", JSCE/ASCE seminar on post-peak behavior of RC structures
+  (MC2010 gives none); it regularises crushing beyond eps_cu (``ssi.materials.concrete``).
 """
 
 import math
@@ -64,16 +67,19 @@ def designer_concrete(fc: float) -> dict:
         "Gf": 73.0 * fcm**0.18,
         "eps_c": 2.0 * fc / E0,
         "eps_cu": 0.0035,
+        "Gc": 8.8e3 * math.sqrt(fcm),
     }
 
 
 def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, alpha_ts=0.5,
-                    beta0=0.25, beta_floor=1e-4) -> np.ndarray:
+                    beta0=0.25, beta_floor=1e-4, Gc=None) -> np.ndarray:
     """Validated CONCRETE parameter vector (N_CONCRETE_PARAMS,), SI units (Pa, m, N/m).
 
     ``ls`` is the crack band width of eq. (5.4) (the length the integration point represents);
     ``eps_y`` the yield strain fy/Es of the reinforcement crossing the crack (tension stiffening and
-    shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off.
+    shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off. ``Gc``: compressive fracture
+    energy beyond eps_cu [N/m] (None: the designer value 8.8 sqrt(fc / MPa) N/mm of Nakamura & Higai; 0: the
+    stress cliff at eps_cu).
     """
     fc = _positive("fc", fc)
     E0 = _positive("E0", E0)
@@ -102,7 +108,10 @@ def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, 
         raise ValueError(f"beta0 must be in (0, 1], got {beta0!r}")
     if not 0.0 < beta_floor <= beta0:
         raise ValueError(f"beta_floor must be in (0, beta0 = {beta0}], got {beta_floor!r}")
-    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor])
+    Gc = 8.8e3 * math.sqrt(fc / MPA) if Gc is None else float(Gc)
+    if not (Gc >= 0.0 and math.isfinite(Gc)):
+        raise ValueError(f"Gc must be a finite number >= 0 N/m (0: no crushing energy), got {Gc!r}")
+    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor, Gc])
     assert p.size == N_CONCRETE_PARAMS
     return p
 
