@@ -63,9 +63,9 @@ class Foundation:
 
     Section options (passed to :class:`ssi.elements.plate.PlateStrip`; defaults from chapters 02 and 08):
     ``kappa`` shear factor (5/6); ``integration`` along the element ("selective", the paper's);
-    ``self_bending`` = "tangent" (each layer's own bending with its tangent modulus: within about 1 % of the
-    layer-free moment with 11 layers up to 0.06 1/m, where "initial" is +17 %; chapter 02, row
-    ``section_selfbending``); ``crack_band`` = "spacing" (every concrete layer's band width ls = the crack
+    ``self_bending`` = "chord" (each layer's own bending from the stresses at its faces: within about 1 % of
+    the layer-free moment with 11 layers up to 0.06 1/m, where "initial" is +17 %, and continuous, unlike
+    "tangent"; chapter 02, row ``section_selfbending``); ``crack_band`` = "spacing" (every concrete layer's band width ls = the crack
     spacing s_r,max of fib Model Code 2010 from the nearest bars, ``bar_diameter`` [m] and the cover:
     one band per crack, so the response does not depend on the element size; chapter 08, row
     ``fig12_mesh_spread``), "point" (the paper's rule: ls = the length each sampling point represents,
@@ -78,7 +78,7 @@ class Foundation:
     kappa: float = 5.0 / 6.0
     integration: str = "selective"
     self_weight: float = 0.0  # [N/m^2] of the strip's plan area, a dead load
-    self_bending: str = "tangent"
+    self_bending: str = "chord"
     crack_band: str | None = "spacing"
     bar_diameter: float = 0.016
 

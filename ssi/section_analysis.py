@@ -40,6 +40,9 @@ __all__ = [
     "MomentCurvature",
     "four_point_deflection",
     "four_point_deflection_elastic",
+    "layer_free_moment_curvature",
+    "layer_free_resultants",
+    "layer_free_state",
     "moment_curvature",
     "section_state",
 ]
@@ -52,23 +55,31 @@ def _params(section: Section, ls):
     return prm
 
 
-def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6.0, self_bending="tangent"):
+def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6.0, self_bending="chord"):
     """Resultants of the section at (eps0, kap) from the committed layer histories ``hist_old``.
 
-    ``self_bending``: modulus of each layer's own bending term h^3/12 kap -- "tangent" (the law's tangent, the
-    plate strip's default), "initial" (e0, the strip's other option) or "none" (pure midpoint rule).
+    ``self_bending``: each layer's own bending term, as the plate strip's option -- "chord" (h^2/12 times the
+    difference of the stresses at the layer's faces, the strip's default), "tangent" (e_t h^3/12 kap),
+    "initial" (e0 h^3/12 kap) or "none" (pure midpoint rule).
     Returns ``(N, M, A, S, hist_new)``: axial force, moment, dN/deps0, shear stiffness (per unit width),
     and the new histories (n_layer, N_LAYER_HIST)."""
     e0, _ = section.initial_moduli()
     hist_new = np.empty_like(hist_old)
+    scratch = np.empty(hist_old.shape[1])
     N = M = A = S = 0.0
     for n in range(section.n_layer):
         z, h = section.z_mid[n], section.h[n]
         sig, _, e_t, g_t = layer_update(section.kind[n], params[n], eps0 - z * kap, 0.0, hist_old[n],
                                         hist_new[n], 1)
-        e_self = e0[n] if self_bending == "initial" else (e_t if self_bending == "tangent" else 0.0)
         N += h * sig
-        M += -h * z * sig + e_self * h**3 / 12.0 * kap
+        M += -h * z * sig
+        if self_bending == "chord":
+            s_b = layer_update(section.kind[n], params[n], eps0 - (z - h / 2) * kap, 0.0, hist_old[n], scratch, 1)[0]
+            s_t = layer_update(section.kind[n], params[n], eps0 - (z + h / 2) * kap, 0.0, hist_old[n], scratch, 1)[0]
+            M += h * h / 12.0 * (s_b - s_t)
+        else:
+            e_self = e0[n] if self_bending == "initial" else (e_t if self_bending == "tangent" else 0.0)
+            M += e_self * h**3 / 12.0 * kap
         A += h * e_t
         if section.carries_shear[n]:
             S += kappa_s * h * g_t
@@ -132,13 +143,13 @@ class MomentCurvature:
 
 
 def moment_curvature(section: Section, kap_max: float, n_steps: int = 2000, ls=None, kappa_s=5.0 / 6.0,
-                     self_bending="tangent"):
+                     self_bending="chord"):
     """Trace M(kap) of ``section`` for kap = 0 .. kap_max in ``n_steps`` equal steps (N = 0).
 
     ``ls``: crack band width given to every CONCRETE layer (None: as in the section's params);
     ``self_bending``: as in :func:`section_state` (match the strip's option)."""
-    if self_bending not in ("initial", "tangent", "none"):
-        raise ValueError(f"self_bending must be 'initial', 'tangent' or 'none', got {self_bending!r}")
+    if self_bending not in ("initial", "tangent", "chord", "none"):
+        raise ValueError(f"self_bending must be 'initial', 'tangent', 'chord' or 'none', got {self_bending!r}")
     if not kap_max > 0.0 or int(n_steps) < 2:
         raise ValueError(f"need kap_max > 0 and n_steps >= 2, got {kap_max}, {n_steps}")
     params = _params(section, ls)
@@ -267,8 +278,28 @@ def _fibre_shear_modulus(z, kind, prm, eps0, kap):
     return _envelope(kind, prm, eps0 - z * kap)[1]
 
 
-def _axial_force(eps0, section, kap, ls, kappa_s):
-    return layer_free_resultants(section, eps0, kap, ls, kappa_s, 1e-9)[0]
+def _axial_force(eps0, section, kap, ls, kappa_s, N_target):
+    return layer_free_resultants(section, eps0, kap, ls, kappa_s, 1e-9)[0] - N_target
+
+
+def layer_free_state(section: Section, kap: float, N: float = 0.0, ls=None, kappa_s=5.0 / 6.0):
+    """The layer-free section at curvature ``kap`` (either sign) carrying the axial force ``N`` (per unit width):
+    Brent's method on N(eps0) between the all-compressed and the all-tensile strain planes, then
+    :func:`layer_free_resultants`. Returns ``(eps0, M, S)``; raises ValueError if the section cannot carry N."""
+    from scipy.optimize import brentq
+    if kap == 0.0:
+        raise ValueError("kap must be non-zero for layer_free_state (at kap = 0 the strain plane is uniform)")
+    ends = (kap * section.z_bottom, kap * section.z_top)
+    lo, hi = min(ends) - 1e-7, max(ends) + 1e-7
+    f_lo = _axial_force(lo, section, kap, ls, kappa_s, N)
+    f_hi = _axial_force(hi, section, kap, ls, kappa_s, N)
+    if f_lo > 0.0 or f_hi < 0.0:
+        raise ValueError(f"N = {N!r} N/m is outside what the section carries at kap = {kap!r} 1/m "
+                         f"([{f_lo + N:.6g}, {f_hi + N:.6g}] between the all-compressed and all-tensile planes)")
+    eps0 = brentq(_axial_force, lo, hi, args=(section, kap, ls, kappa_s, N), xtol=1e-15 + 1e-13 * (hi - lo),
+                  rtol=1e-12, maxiter=200)
+    _, M, S = layer_free_resultants(section, eps0, kap, ls, kappa_s)
+    return eps0, M, S
 
 
 def layer_free_resultants(section: Section, eps0: float, kap: float, ls=None, kappa_s=5.0 / 6.0,
@@ -309,8 +340,6 @@ def layer_free_moment_curvature(section: Section, kaps, ls=None, kappa_s=5.0 / 6
     unload slightly from small compression, which the history-following analysis (:func:`moment_curvature`)
     keeps and this one does not (measured in chapter 02: below 1e-3 of M). ``first_yield``: first row with a
     steel fibre past fy/Es."""
-    from scipy.optimize import brentq
-
     from .materials.layer_laws import STEEL
     kaps = np.asarray(kaps, np.float64)
     if kaps.ndim != 1 or kaps.size < 2 or np.any(np.diff(kaps) <= 0.0) or kaps[0] < 0.0:
@@ -327,10 +356,7 @@ def layer_free_moment_curvature(section: Section, kaps, ls=None, kappa_s=5.0 / 6
         if k == 0.0:
             M[i], S[i] = 0.0, layer_free_resultants(section, 0.0, 0.0, ls, kappa_s)[2]
             continue
-        lo = k * section.z_bottom - 1e-7
-        hi = k * section.z_top + 1e-7
-        eps0[i] = brentq(_axial_force, lo, hi, args=(section, k, ls, kappa_s), xtol=1e-15 + 1e-13 * abs(hi - lo), rtol=1e-12, maxiter=200)
-        _, M[i], S[i] = layer_free_resultants(section, eps0[i], k, ls, kappa_s)
+        eps0[i], M[i], S[i] = layer_free_state(section, k, 0.0, ls, kappa_s)
         if first_yield is None and steel.any() and np.any(np.abs(eps0[i] - faces * k) >= np.tile(eps_y, 2)):
             first_yield = i
     rising = np.diff(M) > 0.0

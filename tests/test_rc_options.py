@@ -61,7 +61,7 @@ def _scene(**options):
 
 def test_foundation_options_reach_the_strip():
     plate = _scene().build().plate
-    assert plate.self_bending == "tangent" and plate.crack_band is None
+    assert plate.self_bending == "chord" and plate.crack_band is None
     ls = plate.section.params[plate.section.kind == CONCRETE, P_LS]
     expected = with_crack_spacing_band(_rc(), 0.016)[0].params[plate.section.kind == CONCRETE, P_LS]
     assert np.array_equal(ls, expected) and not np.any(ls == 0.1)
