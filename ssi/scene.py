@@ -69,7 +69,9 @@ class Foundation:
     spacing s_r,max of fib Model Code 2010 from the nearest bars, ``bar_diameter`` [m] and the cover:
     one band per crack, so the response does not depend on the element size; chapter 08, row
     ``fig12_mesh_spread``), "point" (the paper's rule: ls = the length each sampling point represents,
-    mesh-dependent for a reinforced strip) or None (the ls already in the section's parameters).
+    mesh-dependent for a reinforced strip) or None (the ls already in the section's parameters);
+    ``plane_strain`` = True: the concrete layers use E0 / (1 - nu^2) like the elastic layers (eq. 4.4), so the
+    strip is consistently plane strain (False: keep the section's own setting, e.g. a plane-stress beam).
     """
 
     x0: float
@@ -81,15 +83,27 @@ class Foundation:
     self_bending: str = "chord"
     crack_band: str | None = "spacing"
     bar_diameter: float = 0.016
+    plane_strain: bool = True
 
     def strip_section(self) -> Section:
         """The section the strip is built with (concrete bands set to the crack spacing for "spacing")."""
         if self.crack_band not in ("spacing", "point", None):
             raise ValueError(f"crack_band must be 'spacing', 'point' or None, got {self.crack_band!r}")
-        if self.crack_band != "spacing" or not np.any(self.section.kind == CONCRETE):
-            return self.section
+        from dataclasses import replace
+
+        from .materials.rc import with_plane_strain
         from .section import with_crack_spacing_band
-        return with_crack_spacing_band(self.section, self.bar_diameter)[0]
+        sec = self.section
+        if not np.any(sec.kind == CONCRETE):
+            return sec
+        if self.crack_band == "spacing":
+            sec = with_crack_spacing_band(sec, self.bar_diameter)[0]
+        if self.plane_strain:
+            params = sec.params.copy()
+            for n in np.flatnonzero(sec.kind == CONCRETE):
+                params[n] = with_plane_strain(params[n])
+            sec = replace(sec, params=params)
+        return sec
 
     def strip_options(self) -> dict:
         """Keyword arguments of :class:`ssi.elements.plate.PlateStrip` for this foundation."""

@@ -231,20 +231,22 @@ def _kink_strains(kind, prm):
     from .materials.concrete import P_E0, P_EPS_CU, P_EPS_Y, P_FR, P_GF
     from .materials.layer_laws import STEEL
     if kind == CONCRETE:
-        eps_r = prm[P_FR] / prm[P_E0]
+        from .materials.concrete import P_NU, P_PLANE
+        e0 = prm[P_E0] / (1.0 - prm[P_NU] ** 2) if prm[P_PLANE] != 0.0 else prm[P_E0]
+        eps_r = prm[P_FR] / e0
         eps_u = 2.0 * prm[P_GF] / (prm[P_FR] * prm[P_LS])
         from .materials.concrete import P_EPS_C, P_FC, P_GC, crushing_end
-        eps_cd = crushing_end(prm[P_E0], prm[P_FC], prm[P_EPS_C], prm[P_EPS_CU], prm[P_GC], prm[P_LS])[1]
-        return [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU], -eps_cd] + _softening_meets_stiffening(prm)
+        eps_cd = crushing_end(e0, prm[P_FC], prm[P_EPS_C], prm[P_EPS_CU], prm[P_GC], prm[P_LS])[1]
+        return [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU], -eps_cd] + _softening_meets_stiffening(prm, eps_r)
     if kind == STEEL:
         return [prm[2] / prm[0], -prm[2] / prm[0]]
     return []
 
 
-def _softening_meets_stiffening(prm):
+def _softening_meets_stiffening(prm, eps_r):
     """Strain where the softening line (eq. 5.4) meets the tension-stiffening line (the kink of their max)."""
-    from .materials.concrete import P_ALPHA_TS, P_E0, P_EPS_Y, P_FR, P_GF
-    fr, eps_r, eps_y, alpha = prm[P_FR], prm[P_FR] / prm[P_E0], prm[P_EPS_Y], prm[P_ALPHA_TS]
+    from .materials.concrete import P_ALPHA_TS, P_EPS_Y, P_FR, P_GF
+    fr, eps_y, alpha = prm[P_FR], prm[P_EPS_Y], prm[P_ALPHA_TS]
     eps_u = 2.0 * prm[P_GF] / (fr * prm[P_LS])
     # fr (eps_u - e)/(eps_u - eps_r) = alpha fr (eps_y - e)/(eps_y - eps_r)
     a1, a2 = 1.0 / (eps_u - eps_r), alpha / (eps_y - eps_r)

@@ -258,3 +258,18 @@ def test_crushing_regularised_by_energy():
     assert back[1] < 0.0 and back[2] == 0.0
     with pytest.raises(ValueError, match="Gc"):
         concrete(Gc=-1.0)
+
+
+def test_plane_strain_concrete():
+    """Plane strain: the axial law's modulus is E0/(1 - nu^2) (the D1 of eq. 4.4, as for an ELASTIC layer), the
+    strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
+    nu = 0.2
+    ps = concrete(plane_strain=True, nu=nu)
+    sig, tau, e_t, g_t = call(CONCRETE, ps, 1e-5, 1e-4)
+    assert e_t == pytest.approx(E0 / (1 - nu**2), rel=1e-12) and sig == pytest.approx(e_t * 1e-5, rel=1e-12)
+    assert g_t == pytest.approx(E0 / (2 * (1 + nu)), rel=1e-12)
+    assert call(CONCRETE, ps, 0.0, 0.0, tangent=0)[2] == pytest.approx(E0 / (1 - nu**2), rel=1e-12)
+    assert call(CONCRETE, ps, -EPS_C)[0] == pytest.approx(-FC, rel=1e-12)          # peak unchanged
+    assert call(CONCRETE, concrete(nu=nu), 1e-5)[2] == E0                            # default: uniaxial
+    elastic = call(ELASTIC, rc.elastic_params(E0, nu), 1e-5)[2]
+    assert elastic == pytest.approx(e_t, rel=1e-12)                                  # consistent with ELASTIC

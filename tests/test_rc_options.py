@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from ssi.materials.concrete import P_LS
+from ssi.materials.concrete import P_LS, P_PLANE
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.rc import concrete_params, crack_spacing_mc2010, designer_concrete, steel_params
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
@@ -70,5 +70,10 @@ def test_foundation_options_reach_the_strip():
     assert paper.kappa == 1.0 and paper.integration == "full"
     own = _scene(crack_band=None).build().plate
     assert np.all(own.section.params[own.section.kind == CONCRETE, P_LS] == 0.1)
+    # plane strain by default (eq. 4.4, like the elastic layers); plane_strain=False keeps the section's own
+    conc = plate.section.kind == CONCRETE
+    assert np.all(plate.section.params[conc, P_PLANE] == 1.0)
+    stress = _scene(plane_strain=False).build().plate
+    assert np.all(stress.section.params[conc, P_PLANE] == 0.0)
     with pytest.raises(ValueError, match="crack_band"):
         _scene(crack_band="element").build()

@@ -21,6 +21,8 @@ idx   name        meaning
 10    beta0       shear retention just after cracking (open, default 0.25)
 11    beta_floor  smallest shear retention (open, default 1e-4: keeps the matrix non-singular)
 12    Gc          compressive (crushing) fracture energy beyond eps_cu [N/m]; 0: the cliff (stress 0 at eps_cu)
+13    plane       1: plane strain (a strip of a long foundation): the axial law uses E0 / (1 - nu^2), the D1
+                  of eq. (4.4), in place of E0; 0: uniaxial (plane stress, a beam). G = E0 / (2 (1 + nu))
 ====  ==========  =============================================================================
 
 Crushing, regularised like cracking: eq. (5.1) is followed to eps_cu, where it still carries f_cu = f(eps_cu)
@@ -30,7 +32,9 @@ of width ls dissipates Gc per unit area beyond eps_cu whatever the element size 
 eq. 5.4). Unloading from the crushing branch follows E0 from the irreversible strain, in compression only (a
 crushed point carries no tension). Gc = 0 restores the cliff.
 
-The axial law is the *uniaxial* law of §5 (no plane-strain factor 1/(1-nu^2)); nu enters only G.
+The axial law is the *uniaxial* law of §5 unless ``plane`` = 1: then its modulus is E0 / (1 - nu^2), as for
+an elastic layer of a plane-strain strip (eq. 4.4), while the strengths fc, fr and the strain eps_c stay; nu
+enters G and that factor only.
 
 History (``hist``, first ``N_CONCRETE_HIST`` entries of the layer history)
 --------------------------------------------------------------------------
@@ -62,8 +66,8 @@ import math
 from numba import njit
 
 (P_E0, P_NU, P_FC, P_EPS_C, P_EPS_CU, P_FR, P_GF, P_LS, P_ALPHA_TS, P_EPS_Y, P_BETA0, P_BETA_FLOOR,
- P_GC) = range(13)
-N_CONCRETE_PARAMS = 13
+ P_GC, P_PLANE) = range(14)
+N_CONCRETE_PARAMS = 14
 N_CONCRETE_HIST = 2
 H_XMAX, H_EMAX = 0, 1
 
@@ -189,6 +193,8 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     """
     E0 = params[P_E0]
     G = 0.5 * E0 / (1.0 + params[P_NU])
+    if params[P_PLANE] != 0.0:
+        E0 = E0 / (1.0 - params[P_NU] * params[P_NU])      # plane strain: D1 of eq. (4.4)
     fc = params[P_FC]
     eps_c = params[P_EPS_C]
     eps_cu = params[P_EPS_CU]

@@ -72,14 +72,15 @@ def designer_concrete(fc: float) -> dict:
 
 
 def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, alpha_ts=0.5,
-                    beta0=0.25, beta_floor=1e-4, Gc=None) -> np.ndarray:
+                    beta0=0.25, beta_floor=1e-4, Gc=None, plane_strain=False) -> np.ndarray:
     """Validated CONCRETE parameter vector (N_CONCRETE_PARAMS,), SI units (Pa, m, N/m).
 
     ``ls`` is the crack band width of eq. (5.4) (the length the integration point represents);
     ``eps_y`` the yield strain fy/Es of the reinforcement crossing the crack (tension stiffening and
     shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off. ``Gc``: compressive fracture
     energy beyond eps_cu [N/m] (None: the designer value 8.8 sqrt(fc / MPa) N/mm of Nakamura & Higai; 0: the
-    stress cliff at eps_cu).
+    stress cliff at eps_cu). ``plane_strain``: the axial law uses E0 / (1 - nu^2) (a layer of a plane-strain
+    strip, eq. 4.4); False: uniaxial (a beam). Scenes set it for their foundation (``Foundation.plane_strain``).
     """
     fc = _positive("fc", fc)
     E0 = _positive("E0", E0)
@@ -111,7 +112,8 @@ def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, 
     Gc = 8.8e3 * math.sqrt(fc / MPA) if Gc is None else float(Gc)
     if not (Gc >= 0.0 and math.isfinite(Gc)):
         raise ValueError(f"Gc must be a finite number >= 0 N/m (0: no crushing energy), got {Gc!r}")
-    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor, Gc])
+    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor, Gc,
+                  1.0 if plane_strain else 0.0])
     assert p.size == N_CONCRETE_PARAMS
     return p
 
@@ -135,6 +137,14 @@ def elastic_params(E, nu) -> np.ndarray:
     if not -1.0 < nu < 0.5:
         raise ValueError(f"nu must be in (-1, 0.5), got {nu!r}")
     return np.array([E, float(nu)])
+
+
+def with_plane_strain(params, plane_strain: bool = True) -> np.ndarray:
+    """Copy of a CONCRETE vector with the plane-strain flag set (True) or cleared (False)."""
+    from .concrete import P_PLANE
+    p = np.array(params, dtype=np.float64)
+    p[P_PLANE] = 1.0 if plane_strain else 0.0
+    return p
 
 
 def with_crack_band(params, ls) -> np.ndarray:
