@@ -265,7 +265,7 @@ def test_plane_strain_concrete():
     strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
     nu = 0.2
     ps = concrete(plane_strain=True, nu=nu)
-    sig, tau, e_t, g_t = call(CONCRETE, ps, 1e-5, 1e-4)
+    sig, _, e_t, g_t = call(CONCRETE, ps, 1e-5, 1e-4)
     assert e_t == pytest.approx(E0 / (1 - nu**2), rel=1e-12) and sig == pytest.approx(e_t * 1e-5, rel=1e-12)
     assert g_t == pytest.approx(E0 / (2 * (1 + nu)), rel=1e-12)
     assert call(CONCRETE, ps, 0.0, 0.0, tangent=0)[2] == pytest.approx(E0 / (1 - nu**2), rel=1e-12)
