@@ -410,13 +410,16 @@ assert all(e2 < e1 for e1, e2 in itertools.pairwise(err_ci)), err_ci
 assert -rate > 1.5, rate
 assert err_ci[-1] <= TOL_CI, err_ci
 # against the layer-free reference the FE error is the mesh error above plus the layer rule's (41 layers,
-# chord self-bending: ~1e-3 of M, item (iii)); same tolerance
+# chord self-bending: <= 1.8e-3 of M, row fig12_layer_count) plus the linear interpolation of kap(M) between
+# the reference's curvatures: budget 5e-3 in both modes (measured in full mode: 2.8e-3 with 8 + 8 elements,
+# 2.6e-3 with 16 + 16, the plateau being the layer and table error)
+TOL_LF = 5e-3
 err_lf = float(err_free.max())
 report.record("fig12_curvature_integral",
               f"max relative deflection error of the FE ({N_LAYERS} layers, {2 * conv_meshes[-1]} elements) vs the "
               f"layer-free curvature integral, up to first yield (vs the same discrete section, 21 layers: "
-              f"{err_ci[-1]:.2e}, fitted rate {-rate:.2f})", err_lf, TOL_CI, err_lf <= TOL_CI)
-assert err_lf <= TOL_CI, err_lf
+              f"{err_ci[-1]:.2e}, fitted rate {-rate:.2f})", err_lf, TOL_LF, err_lf <= TOL_LF)
+assert err_lf <= TOL_LF, err_lf
 TOL_LAYERS = 5e-3          # an order below the data's reading uncertainty (2.7 % at the yield moment)
 report.record("fig12_layer_count", f"max |M/M_ref - 1| of the {N_LAYERS}-layer section (chord self-bending) vs "
               f"the layer-free reference, kap 1e-3..0.06 1/m (11 layers: {layer_count_err[11]:.4f}, 21: "
