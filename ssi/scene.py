@@ -65,13 +65,16 @@ class Foundation:
     ``kappa`` shear factor (5/6); ``integration`` along the element ("selective", the paper's);
     ``self_bending`` = "chord" (each layer's own bending from the stresses at its faces: within about 1 % of
     the layer-free moment with 11 layers up to 0.06 1/m, where "initial" is +17 %, and continuous, unlike
-    "tangent"; chapter 02, row ``section_selfbending``); ``crack_band`` = "spacing" (every concrete layer's band width ls = the crack
-    spacing s_r,max of fib Model Code 2010 from the nearest bars, ``bar_diameter`` [m] and the cover:
+    "tangent"; chapter 02, row ``section_selfbending``); ``crack_band`` = "spacing" (every concrete layer's
+    band width ls = the crack spacing s_r,max of fib Model Code 2010 from the nearest bars, ``bar_diameter``
+    [m] and the cover:
     one band per crack, so the response does not depend on the element size; chapter 08, row
     ``fig12_mesh_spread``), "point" (the paper's rule: ls = the length each sampling point represents,
     mesh-dependent for a reinforced strip) or None (the ls already in the section's parameters);
     ``plane_strain`` = True: the concrete layers use E0 / (1 - nu^2) like the elastic layers (eq. 4.4), so the
-    strip is consistently plane strain (False: keep the section's own setting, e.g. a plane-stress beam).
+    strip is consistently plane strain (False: keep the section's own setting, e.g. a plane-stress beam);
+    ``tension_stiffening`` (with ``crack_band="spacing"``): "all" cracked concrete layers (chapter 03's rule)
+    or only the "effective_area" h_c,ef around the bars (chapters 03 and 08 score both).
     """
 
     x0: float
@@ -84,6 +87,7 @@ class Foundation:
     crack_band: str | None = "spacing"
     bar_diameter: float = 0.016
     plane_strain: bool = True
+    tension_stiffening: str = "all"
 
     def strip_section(self) -> Section:
         """The section the strip is built with (concrete bands set to the crack spacing for "spacing")."""
@@ -97,7 +101,7 @@ class Foundation:
         if not np.any(sec.kind == CONCRETE):
             return sec
         if self.crack_band == "spacing":
-            sec = with_crack_spacing_band(sec, self.bar_diameter)[0]
+            sec = with_crack_spacing_band(sec, self.bar_diameter, self.tension_stiffening)[0]
         if self.plane_strain:
             params = sec.params.copy()
             for n in np.flatnonzero(sec.kind == CONCRETE):

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from ssi.materials.concrete import P_LS, P_PLANE
+from ssi.materials.concrete import P_ALPHA_TS, P_LS, P_PLANE
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.rc import concrete_params, crack_spacing_mc2010, designer_concrete, steel_params
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
@@ -75,5 +75,10 @@ def test_foundation_options_reach_the_strip():
     assert np.all(plate.section.params[conc, P_PLANE] == 1.0)
     stress = _scene(plane_strain=False).build().plate
     assert np.all(stress.section.params[conc, P_PLANE] == 0.0)
+    # tension stiffening only within h_c,ef of a face with bars
+    area = _scene(tension_stiffening="effective_area").build().plate.section
+    expected = with_crack_spacing_band(_rc(), 0.016, "effective_area")[0]
+    assert np.array_equal(area.params[conc, P_ALPHA_TS], expected.params[conc, P_ALPHA_TS])
+    assert np.any(area.params[conc, P_ALPHA_TS] == 0.0) and np.any(area.params[conc, P_ALPHA_TS] == 0.5)
     with pytest.raises(ValueError, match="crack_band"):
         _scene(crack_band="element").build()
