@@ -48,9 +48,18 @@
 # integration point the natural reading is the length the point represents, $w_p L_e/2$
 # (`PlateStrip(crack_band="point")`). A reinforced beam, however, does not crack in one band: the bars
 # force a crack every $s_{rm}$ along the span, and below yield the section's $M(\kappa)$ keeps rising, so
-# nothing localises. Then the energy a band dissipates per unit length should be $G_f/s_{rm}$, not $G_f/L_e$.
-# We measure both rules below; the model used for the comparisons takes the designer's mean crack spacing
-# (EC2 eq. 7.11, `ssi.rc_beam.janney_crack_spacing`) as $l_s$.
+# nothing localises. Then the energy a band dissipates per unit length should be $G_f/s_r$, not $G_f/L_e$.
+# We measure both rules below; the model used for the comparisons — and the default of every scene's
+# `Foundation` — takes the maximum crack spacing of stabilised cracking of the *fib* Model Code 2010
+# (§7.6.4.4, eq. 7.6-4 with $k$ = 1 and $\tau_{bms}$ = 1.8 $f_{ctm}$ for short-term loading) as $l_s$:
+#
+# $$s_{r,max}=2\Bigl(c+\frac{\phi}{7.2\,\rho_{s,ef}}\Bigr),\qquad \rho_{s,ef}=\frac{A_s}{b\,h_{c,ef}},\qquad
+#   h_{c,ef}=\min\bigl(2.5(h-d),\ (h-x)/3,\ h/2\bigr),$$
+#
+# $c$ the clear cover, $\phi$ the bar diameter, $x$ the cracked elastic neutral-axis depth
+# (`ssi.materials.rc.crack_spacing_mc2010`, `ssi.section.with_crack_spacing_band`). The same band width
+# regularises crushing (compressive fracture energy $G_c$, chapter 03). For this beam $h_{c,ef}$ = 75 mm
+# ($(h-x)/3$ governs) and $s_{r,max}$ = 0.256 m.
 #
 # **Curvature-integral reference.** For a statically determinate beam, virtual work gives the mid-span
 # deflection without any element:
@@ -85,7 +94,7 @@ FAST = paths.FAST
 G = rb.JANNEY
 B, SPAN, A = G["b"], G["span"], G["a"]
 KNM = B / 1e3                 # per-width N m/m  ->  kN m per beam
-S_RM = rb.janney_crack_spacing()
+S_RM = rb.janney_crack_spacing()            # MC2010 s_r,max, the scene default band
 _, _, DES = rb.janney_materials()
 print({k: f"{v:.4g}" for k, v in DES.items()}, f"s_rm = {S_RM:.3f} m")
 
@@ -94,7 +103,7 @@ mon_notes, _, MON = rb.read_reference_csv("monnier1970_fig12.csv")
 
 # discretisations (fast mode: coarse, for CI)
 N_LAYERS = 41                                  # main model; the trade study below justifies it
-SELF = "tangent"                               # PlateStrip self-bending option of the main model (see trade)
+SELF = "chord"                                 # the strip's default self-bending (chapter 02, Fig. 2.6)
 N_EL = 2 if FAST else 4                        # elements per region (shear span, half middle third)
 N_STEPS = 40 if FAST else 100
 W_LOAD = 0.036                                 # load-point travel [m]: mid-span deflection passes 42 mm
@@ -104,7 +113,7 @@ SETTINGS = Settings(max_iter=3000)             # modified Newton (paper): slow b
 # ## The model actually run (Fig. 11)
 
 # %%
-section = rb.janney_section(N_LAYERS, ls=S_RM)
+section = rb.janney_band_section(N_LAYERS)
 beam = rb.build_four_point(section, SPAN, A, N_EL, N_EL, crack_band=None, self_bending=SELF)
 print(f"{section.n_layer} layers (steel layer(s) {list(np.flatnonzero(section.kind == STEEL) + 1)} "
       f"from the bottom), {beam.group.n_el} elements in the half beam, {beam.model.n_dof} DOFs")
@@ -165,7 +174,7 @@ c_fe = rb.linear_compliance(lin_beam)
 c_exact = sa.four_point_deflection_elastic(1.0, SPAN, A, k_el["D_na"], k_el["S"])
 err_linear = abs(c_fe / c_exact - 1)
 # the K0 model of the nonlinear section is the same linear beam (initial moduli E0, G; Es, no bar shear)
-c_k0 = rb.linear_compliance(rb.build_four_point(rb.janney_section(N_LAYERS, ls=S_RM), SPAN, A, N_EL, N_EL,
+c_k0 = rb.linear_compliance(rb.build_four_point(rb.janney_band_section(N_LAYERS), SPAN, A, N_EL, N_EL,
                                                 crack_band=None))
 print(f"linear FE {c_fe:.9e} m per N/m, Timoshenko {c_exact:.9e}, relative error {err_linear:.1e}")
 
@@ -173,9 +182,11 @@ print(f"linear FE {c_fe:.9e} m per N/m, Timoshenko {c_exact:.9e}, relative error
 # ## The independent reference: section analysis and curvature integral
 
 # %%
-# the convergence study uses the paper's 11 layers and the strip's default self-bending; the section
-# analysis mirrors both (it is the same discrete section, integrated exactly along the span)
-conv_section = rb.janney_section(11, ls=S_RM)
+# (i) element convergence: the FE against the curvature integral of the *same discrete section* (21 layers,
+# initial-modulus self-bending: its M(kap) rises monotonically up to yield, which the integral needs; with the
+# paper's 11 layers the cracking of the 28 mm cover layer makes M dip at 0.0014 1/m and kap(M) is not
+# single-valued)
+conv_section = rb.janney_band_section(21)
 mc = sa.moment_curvature(conv_section, 0.02, 1000 if FAST else 3000, self_bending="initial")
 M_Y = mc.M[mc.first_yield - 1]
 print(f"section analysis: cracking M = {mc.M[np.argmax(np.diff(mc.S) < 0)] * KNM:.2f} kN m, "
@@ -184,7 +195,7 @@ print(f"section analysis: cracking M = {mc.M[np.argmax(np.diff(mc.S) < 0)] * KNM
 conv_meshes = (1, 2, 4) if FAST else (1, 2, 4, 8, 16)
 conv = {}
 for n in conv_meshes:
-    b_n = rb.build_four_point(conv_section, SPAN, A, n, n, crack_band=None)
+    b_n = rb.build_four_point(conv_section, SPAN, A, n, n, crack_band=None, self_bending="initial")
     out = rb.load_path(b_n, 0.009, 30 if FAST else 80, SETTINGS)
     ok = (out["M"] < M_Y) & (out["P"] > 0)
     ref = sa.four_point_deflection(mc, out["P"][ok], SPAN, A)
@@ -193,6 +204,30 @@ for n in conv_meshes:
 err_ci = [conv[n]["err"].max() for n in conv_meshes]
 rate = np.polyfit(np.log(conv_meshes), np.log(err_ci), 1)[0]
 print(f"observed convergence rate in the element count: {-rate:.2f}")
+
+# (ii) the layer-free reference: kap(M) from adaptive quadrature of the continuous stress profile (no layers,
+# no self-bending term; chapter 02), integrated along the span, against the main model's discretisation
+# (N_LAYERS layers, default self-bending) on the finest convergence mesh
+LF_KAPS = np.concatenate([[0.0], np.geomspace(2e-5, 0.016, 70 if FAST else 200)])
+mc_free = sa.layer_free_moment_curvature(section, LF_KAPS)
+M_Y_FREE = mc_free.M[mc_free.first_yield - 1]
+assert mc_free.monotone == len(LF_KAPS), "the layer-free M(kap) must rise up to 0.016 1/m"
+b_free = rb.build_four_point(section, SPAN, A, conv_meshes[-1], conv_meshes[-1], crack_band=None)
+out_free = rb.load_path(b_free, 0.009, 30 if FAST else 80, SETTINGS)
+ok = (out_free["M"] < M_Y_FREE) & (out_free["P"] > 0)
+err_free = np.abs(out_free["delta"][ok] / sa.four_point_deflection(mc_free, out_free["P"][ok], SPAN, A) - 1)
+print(f"{N_LAYERS} layers, {2 * conv_meshes[-1]} elements vs the layer-free curvature integral: max relative "
+      f"deflection error before yield {err_free.max():.2e}")
+
+# (iii) the layer count: M of the discrete section (default self-bending) against the layer-free M, from
+# cracking to four times the yield curvature
+LC_KAPS = np.geomspace(1e-3, 0.06, 12)
+lc_ref = sa.layer_free_moment_curvature(section, np.concatenate([[0.0], LC_KAPS])).M[1:]
+layer_count_err = {}
+for n_lay in (11, 21, 41):
+    mc_n = sa.moment_curvature(rb.janney_band_section(n_lay), 0.06, 2000)
+    layer_count_err[n_lay] = float(np.max(np.abs(np.interp(LC_KAPS, mc_n.kap, mc_n.M) / lc_ref - 1)))
+print("max |M/M_ref - 1| for kap 1e-3..0.06 by layers:", {k: f"{v:.2e}" for k, v in layer_count_err.items()})
 
 # %% [markdown]
 # ## The nonlinear beam against the measurements
@@ -203,9 +238,12 @@ d_fe, m_fe = main["delta"] * 1e3, main["M"] * KNM
 print(f"main run: {N_STEPS} steps, {main['iterations'].sum()} iterations, {main['wall_time']:.1f} s")
 
 # the paper's rule: band = the length each point represents, on the same mesh
-paper_rule = rb.load_path(rb.build_four_point(rb.janney_section(N_LAYERS, ls=S_RM), SPAN, A, N_EL, N_EL,
-                                              crack_band="point", self_bending=SELF), W_LOAD, N_STEPS,
-                          Settings(max_iter=3000, max_cuts=2), allow_partial=True)
+paper_rule = rb.load_path(rb.build_four_point(rb.janney_band_section(N_LAYERS), SPAN, A, N_EL, N_EL,
+                                              crack_band="point"), W_LOAD, N_STEPS,
+                          SETTINGS, allow_partial=True)
+# tension stiffening only in the effective tension area around the bars (chapter 03), same model otherwise
+ts_area = rb.load_path(rb.build_four_point(rb.janney_band_section(N_LAYERS, "effective_area"), SPAN, A, N_EL,
+                                           N_EL, crack_band=None), W_LOAD, N_STEPS, SETTINGS)
 
 
 def moment_at(d_mm, delta_mm, m_knm):
@@ -219,31 +257,74 @@ def reading_tolerance(i):
     return (JAN[i, 3] + JAN[i, 2] * max(slopes)) / JAN[i, 1]
 
 
-i_y = int(np.flatnonzero(JAN[:, 0] == 11.5)[0])
-i_last = len(JAN) - 1
-err_y = abs(moment_at(JAN[i_y, 0], d_fe, m_fe) / JAN[i_y, 1] - 1)
-err_last = abs(moment_at(JAN[i_last, 0], d_fe, m_fe) / JAN[i_last, 1] - 1)
-tol_y, tol_last = reading_tolerance(i_y), reading_tolerance(i_last)
-print(f"yield (11.5 mm): FE {moment_at(11.5, d_fe, m_fe):.2f} vs {JAN[i_y, 1]} kN m, error {err_y:.1%} "
-      f"(tolerance {tol_y:.1%}); last (42 mm): FE {moment_at(42, d_fe, m_fe):.2f} vs {JAN[i_last, 1]}, "
-      f"error {err_last:.1%} (tolerance {tol_last:.1%})")
+POINTS = np.arange(1, len(JAN))                 # the ten measured points (row 0 is the origin)
+TOL_POINTS = np.array([reading_tolerance(i) for i in POINTS])
+
+
+def point_errors(out):
+    """Signed relative moment error M_FE / M_measured - 1 at each measured deflection (NaN beyond the run)."""
+    d, m = out["delta"] * 1e3, out["M"] * KNM
+    return np.where(JAN[POINTS, 0] <= d[-1], moment_at(JAN[POINTS, 0], d, m) / JAN[POINTS, 1] - 1, np.nan)
+
+
+err_all = point_errors(main)
+err_area = point_errors(ts_area)
+print(" delta [mm]   measured   tolerance   error (TS all layers)   error (TS effective area)")
+for k, i in enumerate(POINTS):
+    print(f"{JAN[i, 0]:8.1f} {JAN[i, 1]:10.1f} {TOL_POINTS[k]:10.1%} {err_all[k]:+16.1%} {err_area[k]:+22.1%}")
+worst_k = int(np.nanargmax(np.abs(err_all) / TOL_POINTS))
+worst_area_k = int(np.nanargmax(np.abs(err_area) / TOL_POINTS))
 d_pr, m_pr = paper_rule["delta"] * 1e3, paper_rule["M"] * KNM
+post = d_pr > 11.5
 print(f"paper's band rule on the same mesh: {moment_at(11.5, d_pr, m_pr):.2f} kN m at 11.5 mm; run reached "
       f"{d_pr[-1]:.1f} mm" + ("" if paper_rule["failure"] is None else
-                              f" and stopped ({paper_rule['failure']['reason']})"))
+                              f" and stopped ({paper_rule['failure']['reason']})")
+      + f"; smallest moment after yield {m_pr[post].min():.2f} kN m" if post.any() else "")
 
 # %% [markdown]
+# **Every measured point, and what the model lacks.** The table scores all ten points (full mode, 41 layers,
+# 8 elements, 100 steps; the printout above is the current mode's run). Tension stiffening on every cracked
+# layer: +75, +31, +13, +6.2, +6.6, +1.8, +0.3, −1.7, −4.7, −7.5 % at 1, 2.5, 5, 7.5, 10, 11.5, 15, 20, 30 and
+# 42 mm (before this chapter's defaults changed: +77, +32, +13, +6, +7, +1.8, +0.3, −1.7, −4.8, −7.6 %). Four points fall outside their reading tolerance, in two groups with two different causes:
+#
+# * *Cracking, 1–2.5 mm* (+75 % against 67 %, +31 % against 24 %). At 1 mm the measured beam carries 6 kN m,
+#   40 % of what the uncracked beam would (15 kN m); it is already cracked at a moment well below the model's
+#   cracking moment (7.8 kN m, from the MC2010 $f_{ctm}$ = 2.78 MPa). What the model lacks here is whatever
+#   lowered the tensile capacity of the real beam before and during the test — shrinkage restraint by the bars
+#   and drying microcracks — and the bond slip that lets the bars pull out of the concrete between cracks.
+#   Limiting tension stiffening to the effective tension area around the bars (chapter 03) is the
+#   one change the codes support: it brings 2.5 mm from +31 to +26 % and 5 mm from +13 to +7 %, but not
+#   within 24 % at 2.5 mm; it is shown beside the default and not adopted (both are scored in the row's text).
+# * *After yield, 30–42 mm* (−4.7 % against 2.7 %, −7.5 % against 2.5 %). With $E_H$ = 0 (the data's summary
+#   calls the bars non-hardening) the model's moment rises only by the growing lever arm, 37.7 → 38.3 kN m
+#   (+2 %) from 11.5 to 42 mm, while the measurement rises 37 → 41.5 kN m (+12 %). The missing mechanism is
+#   strain hardening of the bars past their yield plateau (and any confinement of the crushing zone); we do
+#   not invent a hardening modulus to close it.
+#
+# **The paper's band rule.** With the band equal to the length each point represents (≈ 0.11 m on the full
+# mesh), a point cracks with about twice the energy per unit volume of the spacing band, so the cracked
+# branch is stiffer still (+64 % at 2.5 mm). Its collapse after 17 mm in the former version (from ≈ 40 to
+# ≈ 5 kN m) came from crushing: at $\varepsilon_{cu}$ the top layers dropped from 0.9 $f_c$ to zero at once,
+# the compression zone of the one element at mid-span lost its resultant, and deformation localised there.
+# With crushing regularised (chapter 03) the curve stays on the plateau (smallest moment after yield
+# 38.5 kN m, full mode); it stops at 41 mm when modified Newton exhausts its 3000 iterations in one step,
+# which the figure shows as the end of the curve.
+#
 # ## Mesh sensitivity: the band tied to the element, or to the crack spacing
 
 # %%
 MESHES = (2, 3, 4, 6) if FAST else (2, 4, 8, 16)
 N_MESH_LAYERS = 11         # the layer error (~1 %, trade study) is common to all meshes; the spread is not
+# the solver is given explicitly (the paper's modified Newton with a high iteration cap and the default step
+# cuts), so the study does not depend on the solver's defaults
+MESH_SETTINGS = SETTINGS
 mesh_runs = {}
 for rule in ("point", "spacing"):
     for n in MESHES:
-        b_n = rb.build_four_point(rb.janney_section(N_MESH_LAYERS, ls=S_RM), SPAN, A, n, n,
-                                  crack_band="point" if rule == "point" else None, self_bending=SELF)
-        out = rb.load_path(b_n, W_LOAD, 30 if FAST else 60, Settings(max_iter=3000, max_cuts=2), allow_partial=True)
+        # the scene defaults: Foundation(crack_band="spacing", self_bending="chord"), 11 layers
+        b_n = rb.build_four_point(rb.janney_band_section(N_MESH_LAYERS), SPAN, A, n, n,
+                                  crack_band="point" if rule == "point" else None)
+        out = rb.load_path(b_n, W_LOAD, 30 if FAST else 60, MESH_SETTINGS, allow_partial=True)
         mesh_runs[rule, n] = (out["delta"] * 1e3, out["M"] * KNM, out["wall_time"])
         if out["failure"] is not None:
             print(f"band = {rule}, {2 * n} elements: stopped at delta = {out['delta'][-1] * 1e3:.1f} mm "
@@ -264,7 +345,7 @@ def spread(rule):
 
 
 spread_spacing, spread_point = spread("spacing"), spread("point")
-SPREAD_BOUND = 1.0 / 37.0      # the data's reading uncertainty (1 kN m at the yield moment)
+SPREAD_BOUND = 0.03            # the issue's bar, about the data's reading uncertainty (1 kN m at 37 kN m)
 print(f"spread of M over {len(MESHES)} meshes: band = crack spacing {spread_spacing:.2%} (delta 2-"
       f"{reached('spacing'):.1f} mm), band = point length {spread_point:.2%} "
       f"(delta 2-{reached('point'):.1f} mm); bound {SPREAD_BOUND:.1%}")
@@ -275,8 +356,8 @@ print(f"spread of M over {len(MESHES)} meshes: band = crack spacing {spread_spac
 # %%
 # one factor at a time around a base: layers with the base mesh and steps; elements and steps with the
 # reference's 41 layers (so that the layer error does not hide theirs)
-base = {"layers": 11, "n_el": 2 if FAST else 4, "steps": 30 if FAST else 60, "self": "tangent"}
-ref_cfg = {"layers": 41, "n_el": 4 if FAST else 8, "steps": 60 if FAST else 120, "self": "tangent"}
+base = {"layers": 11, "n_el": 2 if FAST else 4, "steps": 30 if FAST else 60, "self": SELF}
+ref_cfg = {"layers": 41, "n_el": 4 if FAST else 8, "steps": 60 if FAST else 120, "self": SELF}
 LAYER_SET = (11, 41) if FAST else (5, 11, 21, 41)
 variants = ([("layers", v) for v in LAYER_SET]
             + [("layers, self-bending e0", v) for v in LAYER_SET]
@@ -285,9 +366,9 @@ variants = ([("layers", v) for v in LAYER_SET]
 
 
 def run_cfg(cfg):
-    b_n = rb.build_four_point(rb.janney_section(cfg["layers"], ls=S_RM), SPAN, A, cfg["n_el"], cfg["n_el"],
+    b_n = rb.build_four_point(rb.janney_band_section(cfg["layers"]), SPAN, A, cfg["n_el"], cfg["n_el"],
                               crack_band=None, self_bending=cfg["self"])
-    out = rb.load_path(b_n, W_LOAD, cfg["steps"], SETTINGS)
+    out = rb.load_path(b_n, W_LOAD, cfg["steps"], MESH_SETTINGS)
     return moment_at(np.array([11.5, 42.0]), out["delta"] * 1e3, out["M"] * KNM), out["wall_time"]
 
 
@@ -295,7 +376,7 @@ m_ref, t_ref = run_cfg(ref_cfg)
 trade = []
 for key, value in variants:
     if key.startswith("layers"):
-        cfg = dict(base, layers=value, self="initial" if key.startswith("layers,") else "tangent")
+        cfg = dict(base, layers=value, self="initial" if key.startswith("layers,") else SELF)
     else:
         cfg = dict(base, layers=41, **{key: value})
     m_v, t_v = run_cfg(cfg)
@@ -305,13 +386,14 @@ print(f"reference (41 layers, {2 * ref_cfg['n_el']} elements, {ref_cfg['steps']}
 
 # %% [markdown]
 # **What the trade shows.** Through-thickness layering dominates the error, and how each layer's own bending
-# term $e\,h_n^3/12\,\kappa$ is evaluated matters more than anything else: with the strip's default (the layer's
+# term $e\,h_n^3/12\,\kappa$ is evaluated matters more than anything else: with the strip's former default (the layer's
 # *initial* modulus, exact for elastic layers) a cracked or crushed layer keeps its full elastic bending
 # stiffness, an error that grows with the curvature — about 20 % of the moment at 42 mm with the paper's 11
-# layers, still about 1 % with 41. With the layer's *tangent* modulus (`self_bending="tangent"`) 11 layers
-# are within about 1 % and 41 within 0.02 %. Elements and load steps matter far less once a node sits at the
+# layers, still about 1 % with 41. With the chord through the stresses at each layer's faces (the default
+# `self_bending="chord"`, chapter 02) 11 layers are within about 1 % and 41 within 0.1 % of the layer-free
+# section (row `fig12_layer_count`). Elements and load steps matter far less once a node sits at the
 # load point (the moment is piecewise linear and the strip integrates it well). Hence the main model:
-# 41 layers, tangent self-bending.
+# 41 layers, chord self-bending.
 #
 # ## Verification
 
@@ -327,16 +409,32 @@ report.record("fig12_linear", "relative error of the linear FE mid-span deflecti
 assert all(e2 < e1 for e1, e2 in itertools.pairwise(err_ci)), err_ci
 assert -rate > 1.5, rate
 assert err_ci[-1] <= TOL_CI, err_ci
+# against the layer-free reference the FE error is the mesh error above plus the layer rule's (41 layers,
+# chord self-bending: <= 1.8e-3 of M, row fig12_layer_count) plus the linear interpolation of kap(M) between
+# the reference's curvatures: budget 5e-3 in both modes (measured in full mode: 2.8e-3 with 8 + 8 elements,
+# 2.6e-3 with 16 + 16, the plateau being the layer and table error)
+TOL_LF = 5e-3
+err_lf = float(err_free.max())
 report.record("fig12_curvature_integral",
-              f"max relative deflection error of the FE ({2 * conv_meshes[-1]} elements) vs the curvature "
-              "integral, up to first yield", err_ci[-1], TOL_CI, err_ci[-1] <= TOL_CI)
+              f"max relative deflection error of the FE ({N_LAYERS} layers, {2 * conv_meshes[-1]} elements) vs the "
+              f"layer-free curvature integral, up to first yield (vs the same discrete section, 21 layers: "
+              f"{err_ci[-1]:.2e}, fitted rate {-rate:.2f})", err_lf, TOL_LF, err_lf <= TOL_LF)
+assert err_lf <= TOL_LF, err_lf
+TOL_LAYERS = 5e-3          # an order below the data's reading uncertainty (2.7 % at the yield moment)
+report.record("fig12_layer_count", f"max |M/M_ref - 1| of the {N_LAYERS}-layer section (chord self-bending) vs "
+              f"the layer-free reference, kap 1e-3..0.06 1/m (11 layers: {layer_count_err[11]:.4f}, 21: "
+              f"{layer_count_err[21]:.4f})", layer_count_err[N_LAYERS], TOL_LAYERS,
+              layer_count_err[N_LAYERS] <= TOL_LAYERS)
+assert layer_count_err[N_LAYERS] <= TOL_LAYERS and layer_count_err[N_LAYERS] < layer_count_err[11]
 
-passed_sub = err_y <= tol_y and err_last <= tol_last
-worst = max((err_y, tol_y), (err_last, tol_last), key=lambda p: p[0] / p[1])
+# every measured point with its reading tolerance; the row carries the point with the largest error/tolerance
+passed_sub = bool(np.all(np.abs(err_all) <= TOL_POINTS))
 report.record("fig12_substitute_beam",
-              f"relative moment error vs Janney et al. 1956 (C): at yield {err_y:.4f} (tol {tol_y:.4f}), "
-              f"at the last point {err_last:.4f} (tol {tol_last:.4f}); value/tolerance = the worse of the two",
-              worst[0], worst[1], passed_sub)
+              "relative moment error vs Janney et al. 1956 (C) at all ten points, worst by error/tolerance at "
+              f"{JAN[POINTS[worst_k], 0]:g} mm; errors " + " ".join(f"{e:+.3f}" for e in err_all)
+              + f"; tension stiffening in the effective area only: worst {err_area[worst_area_k]:+.3f} at "
+              f"{JAN[POINTS[worst_area_k], 0]:g} mm", abs(err_all[worst_k]), TOL_POINTS[worst_k], passed_sub)
+assert np.all(np.isfinite(err_all)), "the main run must reach the last measured point"
 
 report.record("fig12_mesh_spread",
               f"max relative spread of M over meshes {MESHES} elements per region, band = crack spacing, "
@@ -350,7 +448,7 @@ if len(MON):
                         "still missing from the chapter, so no comparison yet")
 else:
     report.record_empty("fig12_monnier", "Monnier (1970) measurements: empty slot reference_data/monnier1970_fig12.csv")
-print("linear", err_linear, "| curvature integral", err_ci, "| substitute", err_y, err_last, "| spread",
+print("linear", err_linear, "| curvature integral", err_ci, err_lf, "| substitute", err_all, "| spread",
       spread_spacing, spread_point)
 
 # %% [markdown]
@@ -364,9 +462,11 @@ d_lin = np.array([0.0, 12.0])
 ax.plot(d_lin, d_lin / 1e3 / (c_k0 * 1.0) * A * KNM, "k:", label="linear FE (K0)")
 ax.plot(d_fe, m_fe, "C0-", lw=2, label=f"nonlinear FE, band = crack spacing {S_RM:.2f} m")
 ax.plot(d_pr, m_pr, "C1--", label="nonlinear FE, band = point length (paper's rule)")
-p_ref = np.linspace(0, M_Y * 0.999, 60) / A
-ax.plot(sa.four_point_deflection(mc, p_ref, SPAN, A) * 1e3, p_ref * A * KNM, "C2-.", lw=1.5,
-        label="curvature integral (to first yield)")
+ax.plot(ts_area["delta"] * 1e3, ts_area["M"] * KNM, "C4-", lw=1, label="nonlinear FE, tension stiffening in "
+        r"$h_{c,ef}$ only")
+p_free = np.linspace(0, M_Y_FREE * 0.999, 60) / A
+ax.plot(sa.four_point_deflection(mc_free, p_free, SPAN, A) * 1e3, p_free * A * KNM, "C2-.", lw=1.5,
+        label="layer-free curvature integral (to first yield)")
 if len(MON):
     ax.plot(MON[:, 0], MON[:, 1], "rs", label="Monnier 1970 (load in kN)")
 else:
@@ -383,7 +483,7 @@ plt.show()
 # crack-band rules, and the independent curvature-integral reference up to first yield.
 
 # %%
-fig, ax = plt.subplots(1, 3, figsize=(15, 4))
+fig, ax = plt.subplots(1, 4, figsize=(20, 4))
 for n in conv_meshes:
     ax[0].semilogy(conv[n]["delta"][1:] * 1e3, conv[n]["err"][1:], label=f"{2 * n} elements")
 ax[0].set(xlabel="mid-span deflection [mm]", ylabel="|FE / curvature integral - 1|",
@@ -404,6 +504,13 @@ for key, mk in (("layers", "o"), ("layers, self-bending e0", "x"), ("n_el", "s")
 ax[2].set(xlabel="wall time [s]", ylabel="max relative error of M at 11.5 and 42 mm",
           title="(c) trade vs 41 layers, fine mesh, fine steps")
 ax[2].legend(fontsize=8)
+ax[3].fill_between(JAN[POINTS, 0], -100 * TOL_POINTS, 100 * TOL_POINTS, color="0.85", label="reading tolerance")
+ax[3].plot(JAN[POINTS, 0], 100 * err_all, "C0o-", label="tension stiffening, all layers")
+ax[3].plot(JAN[POINTS, 0], 100 * err_area, "C4s-", label=r"tension stiffening in $h_{c,ef}$ only")
+ax[3].axhline(0, color="k", lw=0.5)
+ax[3].set(xlabel="mid-span deflection [mm]", ylabel="M_FE / M_measured − 1 [%]", ylim=(-30, 90),
+          title="(d) error at every measured point")
+ax[3].legend(fontsize=8)
 fig.tight_layout()
 report.save_figure(fig, "fig12_rc_beam_errors")
 plt.show()
@@ -413,19 +520,26 @@ plt.show()
 # curvature integral up to first yield, for increasing meshes. (b) Load–deflection over four meshes with
 # the band tied to the crack spacing (solid) and to the length each point represents (dashed). (c) Error
 # against wall time when one of layers / elements per region / load steps is varied around the base model
-# (labels: the varied value).
+# (labels: the varied value). (d) Relative moment error of the main model at each of the ten measured points,
+# with the two tension-stiffening rules, against the reading tolerance of each point (±1 kN m plus ±0.5 mm
+# times the local slope).
 #
 # ## Summary
 #
 # * Linear range: the layered strip reproduces the Timoshenko deflection to round-off (row `fig12_linear`).
-# * Before yield the strip converges to the independent curvature integral (row `fig12_curvature_integral`).
-# * Against the substitute beam (designer values only) see row `fig12_substitute_beam`: the strip is a
-#   little stiffer than the measurement in the cracked range, meets the moment at yield within the reading
-#   uncertainty, but stays flat after yield ($E_H$ = 0, as the data's summary reports the bars) while the
-#   measured moment keeps rising to 41.5 kN m at 42 mm — a gap (about 8 %) the model cannot close without
-#   inventing a hardening modulus, which we do not do.
+# * Before yield the strip converges to the curvature integral of its own discrete section (fitted rate ≈ 2)
+#   and, with 41 layers, to the layer-free curvature integral (row `fig12_curvature_integral`); the layer
+#   count is set by the layer-free section error (row `fig12_layer_count`: 41 layers 0.1 %, 11 layers 1.2 %).
+# * Against the substitute beam (designer values only) every measured point is scored (row
+#   `fig12_substitute_beam`, Fig. 8.3d). The row fails: the cracked branch is too stiff at 1–2.5 mm (+75 %,
+#   +31 %; shrinkage/pre-cracking and bond slip are missing), the moment at yield is met (+1.8 %), and after
+#   yield the model stays flat while the bars of the real beam harden (−4.7 % at 30 mm, −7.5 % at 42 mm).
+#   Tension stiffening only in the effective tension area helps in the cracked range (+26 % at 2.5 mm) and
+#   changes nothing after yield; no parameter was fitted to the beam.
 # * A band tied to the element makes the *reinforced* beam mesh-dependent (distributed cracking does not
-#   localise before yield); a band equal to the crack spacing removes that (row `fig12_mesh_spread`).
+#   localise before yield); a band equal to the MC2010 crack spacing — the scene default — removes that
+#   (row `fig12_mesh_spread`: 0.55 % over 2–32 elements per half beam from 2 to 42 mm in full mode, 0.5 % in
+#   fast mode, against 21.5 % with the point band, up to the 37 mm every mesh reached).
 # * Monnier's measurements remain an empty slot (row `fig12_monnier`).
 
 # %%

@@ -21,8 +21,11 @@
 # - describe a scene with `ssi.scene` (soil layers, a foundation section, a contact law, column loads) and see
 #   that only the element groups the scene needs are built;
 # - solve it with the paper's modified Newton–Raphson and with full Newton, and measure the trade;
-# - read the results, check them against global equilibrium and symmetry, and store them in HDF5;
-# - refine the mesh and measure what accuracy costs in wall time.
+# - read the results and store them in HDF5;
+# - check them where a check can fail: the steel stress against an independent, layer-free section calculation
+#   at the same curvature and axial force, and the settlement and the moment against mesh refinement, with the
+#   order of convergence fitted over three meshes;
+# - measure what accuracy costs in wall time.
 #
 # ## The scene
 #
@@ -33,12 +36,21 @@
 # | layer 2 | 8 m sand: E = 80 MPa, ν = 0.3, γ = 20 kN/m³, c = 1 kPa, φ = 35°, ψ = 5° | `SoilLayer` |
 # | foundation | 6 m long, 0.4 m deep RC strip, fc = 38 MPa, As = 1.5·10⁻³ m²/m (15 cm²/m) top and bottom at 5 cm cover, fy = 500 MPa | `Foundation`, `rc_section` |
 # | contact | kn = 4·10⁹ Pa/m, kt = 4·10⁸ Pa/m, φ_i = 25°, c_i = 0 (no tension: the beam may lift off) | `Contact` |
-# | loads | two columns at x = ±2.5 m, N = 450 kN/m each; self-weight of beam and soil | `ColumnLoad` |
+# | loads | two columns at x = ±2.5 m, N = 400 kN/m each; self-weight of beam and soil | `ColumnLoad` |
 #
 # The soil starts from its geostatic stress (K0 = 1 − sin φ) in equilibrium with its weight, so the
 # displacements are those caused by the foundation. The concrete parameters E0, fr, Gf, εc come from fc by
-# the designer formulas of chapter 03 (`designer_concrete`); the crack band width is each sampling point's
-# length (chapter 03), so the cracking is mesh-objective.
+# the designer formulas of chapter 03 (`designer_concrete`). The strip takes the `Foundation` defaults, which
+# chapters 02 and 08 chose from evidence: each layer's own bending term
+# from the stresses at its faces (`self_bending="chord"`), and a crack band equal to the *fib* Model Code 2010 crack spacing s_r,max of the
+# nearest bars (`crack_band="spacing"`, `bar_diameter` = 16 mm here), which makes the cracked response
+# independent of the element size (chapter 08: 0.55 % spread over four meshes, against 21.5 % for the paper's
+# per-point band); the concrete layers are plane strain like the elastic ones (`plane_strain=True`, eq. 4.4). The band width 0.1 m given to `concrete_params` below is therefore replaced.
+#
+# The column load is 400 kN/m. (With the former defaults — initial-modulus self-bending and a 0.1 m band — the
+# chapter used 450 kN/m; the corrected strip is softer, and at 450 kN/m its top bars reach 497 of 500 MPa,
+# where the finer meshes of the refinement study stop converging. The chapter studies the cracked, elastic
+# service state; the yield of this beam is a different study.)
 
 # %%
 import time
@@ -47,7 +59,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths
-from ssi.materials.layer_laws import CONCRETE, STEEL
+from ssi import section_analysis as sa
+from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
 from ssi.materials.rc import concrete_params, designer_concrete, steel_params
 from ssi.report import record, save_figure
 from ssi.results import read_result, write_result
@@ -63,12 +76,15 @@ steel = (STEEL, steel_params(fy, Es))
 section = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, steel, n_concrete=9)
 
 
-def foundation_scene(h_fine, N=450e3, H=0.0):
+N_COLUMN = 400e3    # [N/m] per column
+
+
+def foundation_scene(h_fine, N=N_COLUMN, H=0.0):
     return Scene(
         width=30.0, depth=10.0,
         layers=[SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
                 SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
-        foundation=Foundation(x0=-3.0, x1=3.0, section=section, self_weight=25e3 * 0.4),
+        foundation=Foundation(x0=-3.0, x1=3.0, section=section, self_weight=25e3 * 0.4, bar_diameter=0.016),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=N, H=H), ColumnLoad(x=2.5, N=N)],
         mesh=MeshSize(h_fine=h_fine, h_coarse=2.0, growth=1.3))
@@ -78,6 +94,9 @@ H_FINE = 0.5 if FAST else 0.25
 built = foundation_scene(H_FINE).build()
 print("groups:", [g.name for g in built.model.groups], "| DOFs:", built.model.n_dof,
       "| linear scene:", built.is_linear)
+print("crack band of the concrete layers (MC2010 s_r,max, bottom / top bars):",
+      sorted({f"{v:.3f} m" for v in built.plate.section.params[built.plate.section.kind == CONCRETE, 7]}),
+      "| self-bending:", built.plate.self_bending)
 
 # %% [markdown]
 # ## Solving: the paper's modified Newton–Raphson and full Newton
@@ -145,38 +164,60 @@ save_figure(fig, "ch11_foundation_scene")
 
 # %% [markdown]
 # ## Checks
-# - **Global equilibrium**: the contact resultant carries the column loads plus the beam's weight (to the
-#   solver's force tolerance 1e-5 of the largest force).
-# - **Symmetry**: the scene is symmetric, so settlements, pressures and cracks are too.
-# - **Modified vs full Newton** agree to the solver tolerance.
-# - **Cracks and steel**: the soil pushes the beam up between the columns, so the hogging moment is largest at
-#   mid-span and the top face cracks there; at this load the bars are still elastic (|σs| < fy).
+# - **Modified vs full Newton** agree to the solver tolerance (two different iterations, one answer).
+# - **Steel against an independent section calculation.** At the point where the bars are most stressed, the
+#   strip's curvature κ and axial force N are read off; the layer-free section analysis of chapter 02
+#   (`ssi.section_analysis.layer_free_state`: adaptive quadrature of the continuous stress profile, no
+#   layers, Brent's method for the strain plane carrying N at κ) gives the bar strain and stress there. The
+#   difference is the strip's layer rule (11 layers; about 1 % in M in chapter 02) and the history of the
+#   fibres; the tolerance is 3 % of the stress.
+# - **Cracks**: the soil pushes the beam up between the columns, so the hogging moment is largest near
+#   mid-span and the top face cracks there.
+# - Equilibrium of the contact resultant with the loads is printed as a consistency figure only: every
+#   iterate that passes the solver's force test satisfies it.
 
 # %%
 w = out.built.interface.ip_weights()
-applied = 2 * 450e3 + 25e3 * 0.4 * 6.0
+applied = 2 * N_COLUMN + 25e3 * 0.4 * 6.0
 contact_resultant = -np.sum(contact["sig_n"] * w)
 equilibrium_error = abs(contact_resultant - applied) / applied
-symmetry_error = np.max(np.abs(settle - settle[::-1])) / settle.max()
 method_gap = np.max(np.abs(runs["modified"][0].settlement()[1] - settle)) / settle.max()
 mid = np.argmin(np.abs(layers["x"].ravel()))
 top_concrete = int(np.flatnonzero(~layers["steel"])[-1])
 print(f"contact resultant {contact_resultant / 1e3:.2f} kN/m vs applied {applied / 1e3:.2f} kN/m "
-      f"(relative error {equilibrium_error:.2e})")
-print(f"symmetry error {symmetry_error:.2e}, modified vs full Newton {method_gap:.2e}")
-print(f"cracked points {layers['cracked'].sum()}, max steel stress {np.abs(steel_sig).max() / 1e6:.1f} MPa")
+      f"(relative error {equilibrium_error:.2e}); modified vs full Newton {method_gap:.2e}")
 
-EQUILIBRIUM_TOL = 1e-4     # 10 x the solver's force tolerance: the residual is relative to all forces
-SYMMETRY_TOL = 1e-6        # the mesh is symmetric; only the iteration error breaks it
+# the strip's section state at the most stressed bar point
+plate = out.built.plate
+sec_p = plate.section
+st_plate = out.states[-1][out.built.model.groups.index(plate)]
+u_plate = out.u[-1][plate.edofs]
+eps_l, _ = plate.layer_strains(u_plate)
+axial = plate.ax.astype(bool)
+eps_ax = eps_l[:, axial]
+kap_pts = (eps_ax[..., 0] - eps_ax[..., -1]) / (sec_p.z_mid[-1] - sec_p.z_mid[0])
+N_pts = plate.resultants(u_plate, st_plate)["N"]
+e_s, q_s, j_s = np.unravel_index(np.argmax(np.abs(steel_sig)), steel_sig.shape)
+bar = int(np.flatnonzero(layers["steel"])[j_s])
+eps0_free, m_free, _ = sa.layer_free_state(sec_p, kap_pts[e_s, q_s], N_pts[e_s, q_s])
+h0, h1 = np.zeros(N_LAYER_HIST), np.zeros(N_LAYER_HIST)
+sig_free = layer_update(STEEL, sec_p.params[bar], eps0_free - sec_p.z_mid[bar] * kap_pts[e_s, q_s], 0.0, h0, h1,
+                        1)[0]
+steel_gap = abs(steel_sig[e_s, q_s, j_s] / sig_free - 1)
+print(f"most stressed bar point x = {layers['x'][e_s, q_s]:.3f} m: kap = {kap_pts[e_s, q_s]:.3e} 1/m, "
+      f"N = {N_pts[e_s, q_s] / 1e3:.1f} kN/m; steel stress strip {steel_sig[e_s, q_s, j_s] / 1e6:.1f} MPa, "
+      f"layer-free section {sig_free / 1e6:.1f} MPa (relative difference {steel_gap:.1e})")
+print(f"cracked points {layers['cracked'].sum()}, max steel stress {np.abs(steel_sig).max() / 1e6:.1f} MPa "
+      f"(fy = {fy / 1e6:.0f} MPa)")
+
 METHOD_TOL = 1e-3          # both methods converge to 1e-5 in force; settlements agree to ~1e-4
-assert equilibrium_error < EQUILIBRIUM_TOL
-assert symmetry_error < SYMMETRY_TOL
+STEEL_TOL = 0.03           # the 11-layer rule against the layer-free section (chapter 02: ~1 % in M)
 assert method_gap < METHOD_TOL
+assert steel_gap < STEEL_TOL, steel_gap
 assert layers["cracked"].any()
 assert layers["cracked"][:, :, top_concrete].ravel()[mid]  # the top face is cracked at mid-span
-assert np.abs(steel_sig).max() < fy
-record("scene_equilibrium", "relative error of the contact resultant vs applied loads", equilibrium_error,
-       EQUILIBRIUM_TOL, equilibrium_error < EQUILIBRIUM_TOL)
+record("scene_equilibrium", "relative error of the contact resultant vs applied loads (consistency only)",
+       equilibrium_error, 1e-4, equilibrium_error < 1e-4)
 
 # %% [markdown]
 # ## Results are kept: HDF5
@@ -192,40 +233,91 @@ assert np.array_equal(back["u"][-1], out.u[-1])
 print("stored:", path.name, "| groups:", list(back["state"]), "| steps:", len(back["load_factor"]) - 1)
 
 # %% [markdown]
-# ## What accuracy costs: mesh refinement vs wall time
-# The element size under the foundation is halved; the maximum settlement and the mid-span steel stress
-# converge, and the wall time grows. Assert that the change shrinks under refinement.
+# ## What accuracy costs: mesh refinement, fitted order and wall time
+# The element size under the foundation is halved three times. Two quantities an engineer designs with are
+# followed: the settlement under a column (x = 2.5 m, a node on every mesh) and the hogging moment at
+# mid-span (x = 0, an element end on every mesh; the strip's Gauss-point moments of the two elements there
+# are extrapolated to it with their quadratic and averaged). With successive changes d_i = |q_i − q_{i+1}|
+# the order p is the slope of log d against log h (Richardson); it must be positive, i.e. the changes must
+# shrink, for the finest answer to mean anything, and d_last / (2^p − 1) estimates the finest mesh's error.
+# What order to expect: the strip's edges on the soil are the corners of a stiff punch, where the elastic
+# contact pressure is singular like r^(−1/2); that limits the convergence of energy-type quantities to
+# about h^(1/2), whatever the elements' degree (Strang & Fix, ch. 8). The row's tolerance is that 0.5.
+# The wall time is measured beside it.
 
 # %%
-sizes = [0.5, 0.25] if FAST else [0.5, 0.25, 0.125]
+# both modes: h = 0.125 m stopped at 55 % of the load with full Newton and its K0 retry (measured),
+# so three meshes, the least a fitted order needs
+sizes = [1.0, 0.5, 0.25]
+
+
+def midspan_moment(o):
+    """Hogging moment at x = 0 [N m/m]: the quadratic through each adjacent element's three Gauss-point moments,
+    evaluated at the shared end, averaged over the two elements."""
+    p = o.built.plate
+    r = p.resultants(o.u[-1][p.edofs], o.states[-1][o.built.model.groups.index(p)])
+    ends = p._x[:, [0, 2]]
+    vals = []
+    for e in (int(np.flatnonzero(np.isclose(ends[:, 1], 0.0))[0]), int(np.flatnonzero(np.isclose(ends[:, 0], 0.0))[0])):
+        vals.append(np.polyval(np.polyfit(r["x_ax"][e], r["M"][e], 2), 0.0))
+    return float(np.mean(vals))
+
+
 study = []
 for h in sizes:
     b = foundation_scene(h).build()
     t0 = time.perf_counter()
     o = b.solve(n_steps=10, settings=Settings(method="full"))
     wall = time.perf_counter() - t0
-    study.append((h, b.model.n_dof, 1e3 * o.settlement()[1].max(), wall))
-    print(f"h = {h:5.3f} m: {b.model.n_dof:6d} DOFs, max settlement {study[-1][2]:.3f} mm, {wall:.2f} s")
+    x_pl, s_pl = o.settlement()
+    study.append((h, b.model.n_dof, 1e3 * float(s_pl[np.argmin(np.abs(x_pl - 2.5))]), midspan_moment(o) / 1e3, wall))
+    print(f"h = {h:5.3f} m: {b.model.n_dof:6d} DOFs, settlement at the column {study[-1][2]:.4f} mm, "
+          f"mid-span moment {study[-1][3]:.3f} kN m/m, {wall:.2f} s")
 study = np.array(study)
-changes = np.abs(np.diff(study[:, 2]))
-fig, ax = plt.subplots(1, 2, figsize=(9, 3.5))
+
+
+def fitted_order(q):
+    d = np.abs(np.diff(q))
+    return float(np.polyfit(np.log(study[:-1, 0]), np.log(d), 1)[0])
+
+
+order_w, order_m = fitted_order(study[:, 2]), fitted_order(study[:, 3])
+est_w = abs(study[-1, 2] - study[-2, 2]) / (2**order_w - 1) / abs(study[-1, 2])
+est_m = abs(study[-1, 3] - study[-2, 3]) / (2**order_m - 1) / abs(study[-1, 3])
+print(f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson estimate of the finest "
+      f"mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}")
+fig, ax = plt.subplots(1, 3, figsize=(13, 3.5))
 ax[0].plot(study[:, 1], study[:, 2], "o-")
-ax[0].set_xscale("log")
-ax[0].set_xlabel("DOFs")
-ax[0].set_ylabel("max settlement [mm]")
-ax[1].loglog(study[:, 1], study[:, 3], "o-")
-ax[1].set_xlabel("DOFs")
-ax[1].set_ylabel("wall time [s]")
+ax[0].set(xscale="log", xlabel="DOFs", ylabel="settlement at the column [mm]")
+ax[1].loglog(study[:-1, 0], np.abs(np.diff(study[:, 2])) / abs(study[-1, 2]), "o-", label=f"settlement (p = {order_w:.2f})")
+ax[1].loglog(study[:-1, 0], np.abs(np.diff(study[:, 3])) / abs(study[-1, 3]), "s-", label=f"moment (p = {order_m:.2f})")
+ax[1].set(xlabel="h of the coarser mesh [m]", ylabel="relative change on halving h")
+ax[1].legend(fontsize=8)
+ax[2].loglog(study[:, 1], study[:, 4], "o-")
+ax[2].set(xlabel="DOFs", ylabel="wall time [s]")
 fig.suptitle("Fig. 11.2 — accuracy vs cost under mesh refinement")
+fig.tight_layout()
 save_figure(fig, "ch11_mesh_trade")
-if len(changes) > 1:
-    assert np.all(changes[1:] < changes[:-1])
+ORDER_MIN = 0.5    # the punch-edge singularity's h^(1/2) (see above)
+order_min = min(order_w, order_m)
+record("ch11_mesh_order", f"fitted order of convergence over {len(sizes)} meshes h = {sizes} m: settlement at the "
+       f"column {order_w:.2f}, mid-span moment {order_m:.2f} (value: the smaller; pass: >= {ORDER_MIN}); "
+       f"Richardson error of the finest mesh: settlement {est_w:.3f}, moment {est_m:.3f}",
+       order_min, ORDER_MIN, order_min >= ORDER_MIN)
+assert order_min > 0.0, (order_w, order_m)      # the changes shrink: the sequence converges
 
 # %% [markdown]
 # ## Summary
 # A scene is a handful of components; `build()` makes only the groups it needs, `solve()` returns
-# settlements, contact pressures and zones, cracks and steel stresses, checked here against equilibrium and
-# symmetry. Full Newton and the paper's modified Newton–Raphson give the same answer; the measured iteration
-# counts and wall times above are the trade between them. Beyond steel yield this particular beam forms a
+# settlements, contact pressures and zones, cracks and steel stresses; the steel stress is checked against an
+# independent layer-free section calculation (0.9 %), and settlement and moment converge under mesh refinement,
+# but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and the Richardson estimate
+# of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls below the h^(1/2) that the
+# punch-edge singularity alone would allow (row `ch11_mesh_order` fails). A likely cause, not isolated here:
+# the soil yields under the strip's edges and the contact slips and opens there, so the contact pressure that
+# bends the strip keeps changing with the mesh. A design moment from this scene needs a finer mesh than this
+# chapter can afford; the h = 0.125 m mesh stopped at 55 % of the load with full Newton (measured before the
+# plane-strain change). Full Newton and the paper's modified Newton–Raphson give the same answer; the measured
+# iteration counts and wall times above are the trade between them. Beyond steel yield this particular beam forms a
 # plastic hinge at mid-span; load control then stops with a `NonConvergence` report naming the node — use
 # `run_arc_length` or displacement control (chapter 06) to follow the path further.

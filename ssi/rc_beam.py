@@ -25,13 +25,15 @@ from .elements.plate import add_plate_strip
 from .materials import rc
 from .materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from .model import Model
-from .section import rc_section
+from .section import rc_section, with_crack_spacing_band
 from .solver import NonConvergence, Settings, run
 
 __all__ = [
     "JANNEY",
     "FourPointBeam",
     "build_four_point",
+    "janney_band_section",
+    "janney_crack_spacing",
     "janney_materials",
     "janney_section",
     "load_path",
@@ -159,25 +161,16 @@ def read_reference_csv(name):
     return comments, names, data
 
 
-def mean_crack_spacing_ec2(c, phi, As, b, h, d, k1=0.8, k2=0.5):
-    """Designer estimate of the mean crack spacing s_rm = s_r,max / 1.7 (EN 1992-1-1 eq. 7.11, 7.14):
-    s_r,max = 3.4 c + 0.425 k1 k2 phi / rho_eff, rho_eff = As / (b h_c,eff), h_c,eff = min(2.5 (h - d), h/2)
-    (the (h - x)/3 cap of EC2 is not used: it would exclude the bars of the substitute beam).
-    c: clear cover to the bar surface, phi: bar diameter [m]."""
-    for name, v in (("c", c), ("phi", phi), ("As", As), ("b", b), ("h", h), ("d", d)):
-        rc._positive(name, v)
-    if not d < h:
-        raise ValueError(f"d must be below h = {h}, got {d}")
-    h_eff = min(2.5 * (h - d), 0.5 * h)
-    rho = As / (b * h_eff)
-    return (3.4 * c + 0.425 * k1 * k2 * phi / rho) / 1.7
-
-
 JANNEY_BAR_DIAMETER = 0.0159   # No. 5 bar [m]
 
 
+def janney_band_section(n_layers=11, tension_stiffening="all", **kw):
+    """The Janney section with the scene's crack band (MC2010 s_r,max, ``with_crack_spacing_band``) and the
+    chosen tension-stiffening rule ("all" concrete layers or the "effective_area" around the bars)."""
+    return with_crack_spacing_band(janney_section(n_layers, **kw), JANNEY_BAR_DIAMETER, tension_stiffening)[0]
+
+
 def janney_crack_spacing():
-    """s_rm of the substitute beam (bars at d, clear bottom cover h - d - phi/2)."""
-    g = JANNEY
-    phi = JANNEY_BAR_DIAMETER
-    return mean_crack_spacing_ec2(g["h"] - g["d"] - 0.5 * phi, phi, g["As"], g["b"], g["h"], g["d"])
+    """Crack band width of the substitute beam: s_r,max of *fib* Model Code 2010 for its bars (the scene
+    default, ``ssi.section.with_crack_spacing_band``; the No. 5 bars' diameter)."""
+    return float(with_crack_spacing_band(janney_section(11), JANNEY_BAR_DIAMETER)[1][0]["s_r_max"])

@@ -27,7 +27,7 @@ import numpy as np
 from .materials.layer_laws import ELASTIC, N_LAYER_HIST, layer_update
 from .quadrature import layer_rule
 
-__all__ = ["Section", "homogeneous", "layered", "paper_rc_section", "rc_section"]
+__all__ = ["Section", "homogeneous", "layered", "paper_rc_section", "rc_section", "with_crack_spacing_band"]
 
 
 @dataclass(frozen=True)
@@ -227,3 +227,54 @@ def paper_rc_section(depth: float, cover: float, as_bottom: float, as_top: float
     with the default 9 concrete layers (1 + 7 + 1) there are 11 layers, steel in layers 2 and 10."""
     return rc_section(depth, [(cover, as_bottom), (depth - cover, as_top)], concrete, steel,
                       n_concrete=[1, n_concrete - 2, 1] if n_concrete >= 3 else n_concrete)
+
+
+def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiffening: str = "all"
+                            ) -> tuple[Section, list]:
+    """Copy of an RC ``section`` whose concrete layers get the crack band width ls = s_r,max of *fib* Model Code
+    2010 (``ssi.materials.rc.crack_spacing_mc2010``): one band per crack, so that a band dissipates Gf per crack
+    whatever the element size (chapter 08).
+
+    The bars nearest each face set that face's spacing: concrete layers below mid-depth take the spacing of the
+    lowest bar layer, layers above that of the topmost one; a face with no bar layer in its half of the depth
+    takes the other face's spacing. Per face: c = clear cover to the bar surface, d = depth to the bar centroid
+    from the opposite face, As = the bar layer's equivalent thickness (per unit width), alpha_e = Es / E0.
+    ``tension_stiffening``: "all" keeps every concrete layer's alpha_ts (the rule of chapter 03: every cracked
+    layer stiffened); "effective_area" keeps it only in the layers whose mid-depth lies within the effective
+    tension depth h_c,ef (the same MC2010 / EC2 7.3.2 value, min(2.5 (h - d), (h - x)/3, h/2)) of a face that
+    has its own bars, where bond transfers stress from the bars into the concrete between cracks; the other
+    concrete layers soften to zero as plain concrete (alpha_ts = 0).
+    Returns ``(section, spacings)`` with one ``crack_spacing_mc2010`` dict per face used (bottom, top)."""
+    from .materials.concrete import P_E0
+    from .materials.layer_laws import CONCRETE, STEEL
+    from .materials.rc import _positive, crack_spacing_mc2010, with_crack_band
+    phi = _positive("bar_diameter", bar_diameter)
+    bars = np.flatnonzero(section.kind == STEEL)
+    conc = np.flatnonzero(section.kind == CONCRETE)
+    if bars.size == 0 or conc.size == 0:
+        raise ValueError("with_crack_spacing_band: the section needs STEEL and CONCRETE layers")
+    h = section.thickness
+    z_mid_sec = 0.5 * (section.z_bottom + section.z_top)
+
+    def spacing(bar, from_bottom):
+        cover = (section.z_mid[bar] - section.z_bottom) if from_bottom else (section.z_top - section.z_mid[bar])
+        alpha_e = section.params[bar, 0] / section.params[conc[0], P_E0]
+        return crack_spacing_mc2010(cover - 0.5 * phi, phi, float(section.h[bar]), 1.0, h, h - cover, alpha_e)
+
+    bottom = spacing(bars[0], True) if section.z_mid[bars[0]] < z_mid_sec else None
+    top = spacing(bars[-1], False) if section.z_mid[bars[-1]] >= z_mid_sec else None
+    faces = [bottom or top, top or bottom]
+    if tension_stiffening not in ("all", "effective_area"):
+        raise ValueError(f"tension_stiffening must be 'all' or 'effective_area', got {tension_stiffening!r}")
+    from .materials.concrete import P_ALPHA_TS
+    params = section.params.copy()
+    for n in conc:
+        face = faces[0] if section.z_mid[n] < z_mid_sec else faces[1]
+        params[n, : len(section.params[n])] = with_crack_band(section.params[n], face["s_r_max"])
+        if tension_stiffening == "effective_area":
+            near_bottom = bottom is not None and section.z_mid[n] - section.z_bottom <= bottom["h_c_ef"]
+            near_top = top is not None and section.z_top - section.z_mid[n] <= top["h_c_ef"]
+            if not (near_bottom or near_top):
+                params[n, P_ALPHA_TS] = 0.0
+    from dataclasses import replace
+    return replace(section, params=params), faces

@@ -183,7 +183,8 @@ CONCRETE_BRANCHES = [
     ("tension stiffening", 1.5e-3, hist(0.0, 1.2e-3)),
     ("secant unloading", 1e-4, hist(0.0, 4e-4)),
     ("fully cracked", 4e-3, hist(0.0, 3e-3)),
-    ("crushed", -0.001, hist(0.004, 0.0)),
+    ("unloading from crushing", -0.001, hist(0.004, 0.0)),
+    ("crushing branch", -0.005, hist(0.0045, 0.0)),
 ]
 
 
@@ -234,3 +235,41 @@ def test_designer_values_mc2010():
     assert d["E0"] == pytest.approx(33.6e9, rel=2e-3)
     assert d["fr"] == pytest.approx(2.9e6, rel=5e-3)
     assert d["E0"] * d["eps_c"] / 38e6 == pytest.approx(2.0, rel=1e-14)
+
+
+def test_crushing_regularised_by_energy():
+    """Beyond eps_cu the stress falls linearly from f(eps_cu) to zero (no cliff); the energy dissipated past
+    eps_cu per unit volume is Gc / ls (trapezoid rule on a piecewise-linear curve: exact up to round-off and the
+    one step that straddles eps_cd, 1e-3 with 20 000 steps); Gc = 0 is the cliff; a crushed point carries no
+    tension on reloading."""
+    Gc = 20e3
+    p = concrete(Gc=Gc)
+    f_cu = compression_envelope(0.0035 * (1 - 1e-12), E0, FC, EPS_C, 0.0035)[0]
+    eps_cd = 0.0035 + 2 * Gc / (f_cu * LS)
+    path = -np.linspace(0.0035, eps_cd * 1.05, 20001)
+    sig = rc.drive(CONCRETE, p, path)[0]
+    assert abs(sig[0] + f_cu) <= 1e-6 * FC                             # continuous at eps_cu
+    assert np.all(np.diff(-sig) <= 1e-9 * FC) and sig[-1] == 0.0        # falls to zero, then stays there
+    energy = np.trapezoid(-sig, -path)
+    assert energy == pytest.approx(Gc / LS, rel=1e-3)
+    cliff = rc.drive(CONCRETE, concrete(Gc=0.0), -np.array([0.0034, 0.0035]))[0]
+    assert cliff[-1] == 0.0 and cliff[0] < -0.5 * FC
+    back = rc.drive(CONCRETE, p, np.array([-0.004, -0.0038, 0.001]))[0]   # eps_p = 0.004 - f/E0 ~ 0.0032
+    assert back[1] < 0.0 and back[2] == 0.0
+    with pytest.raises(ValueError, match="Gc"):
+        concrete(Gc=-1.0)
+
+
+def test_plane_strain_concrete():
+    """Plane strain: the axial law's modulus is E0/(1 - nu^2) (the D1 of eq. 4.4, as for an ELASTIC layer), the
+    strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
+    nu = 0.2
+    ps = concrete(plane_strain=True, nu=nu)
+    sig, _, e_t, g_t = call(CONCRETE, ps, 1e-5, 1e-4)
+    assert e_t == pytest.approx(E0 / (1 - nu**2), rel=1e-12) and sig == pytest.approx(e_t * 1e-5, rel=1e-12)
+    assert g_t == pytest.approx(E0 / (2 * (1 + nu)), rel=1e-12)
+    assert call(CONCRETE, ps, 0.0, 0.0, tangent=0)[2] == pytest.approx(E0 / (1 - nu**2), rel=1e-12)
+    assert call(CONCRETE, ps, -EPS_C)[0] == pytest.approx(-FC, rel=1e-12)          # peak unchanged
+    assert call(CONCRETE, concrete(nu=nu), 1e-5)[2] == E0                            # default: uniaxial
+    elastic = call(ELASTIC, rc.elastic_params(E0, nu), 1e-5)[2]
+    assert elastic == pytest.approx(e_t, rel=1e-12)                                  # consistent with ELASTIC

@@ -87,7 +87,7 @@ def test_rigid_body_modes_selective(n_el):
 def test_internal_force_equals_K0_u_for_elastic_layers(n_layers):
     """Mid-depth sampling + the exact self-bending term reproduces eq. (4.7b): f_int = K0 u."""
     rng = np.random.default_rng(n_layers)
-    for self_bending in ("initial", "tangent"):
+    for self_bending in ("initial", "tangent", "chord"):
         g = one_element(homogeneous(H, E, NU, n_layers), x=(0.0, 1.1, 2.0), self_bending=self_bending)
         u = rng.standard_normal((1, 9)) * 1e-3
         f, k, _ = g.evaluate(u, u, g.initial_state(), CONSISTENT)
@@ -125,18 +125,24 @@ def test_layer_rule_exact_and_composite():
     assert abs(w_tip / exact - 1.0) <= ROUND
 
 
+@pytest.mark.parametrize("self_bending", ["initial", "chord"])
 @pytest.mark.parametrize("integration", ["selective", "full", "reduced"])
-def test_tangent_matches_finite_differences(integration):
+def test_tangent_matches_finite_differences(integration, self_bending):
     """Consistent tangent vs central differences of f_int, elastic and in a nonlinear RC state (cracked
     bottom, yielding steel, compressed top). Nonlinear states are pure bending on a straight element with a
     centred mid node, where gamma = 0 exactly, so the cross term d tau / d eps of cracked concrete that the
     layer interface does not return (layer_laws docstring) cannot enter; the elastic state uses an
-    off-centre mid node (variable Jacobian)."""
+    off-centre mid node (variable Jacobian).
+
+    The tangent is exact for ``self_bending="initial"`` and ``"chord"`` (non-symmetric for the chord:
+    dM/deps0 != dN/dkap once a layer is nonlinear); ``"tangent"`` omits d e_t/d eps of the
+    self-bending term (plate docstring), so there only the elastic state is exact and is checked in
+    :func:`test_tangent_self_bending_exact_while_elastic`."""
     sec = rc_test_section()
     eps0 = 2.0e-5          # well below the cracking strain fr/E0 = 1e-4 (a kink of the law)
     # elastic; cracked bottom; bottom steel (z = -0.2) strained 0.2 * 0.02 = 4e-3 > fy/Es = 2.5e-3
     for x_mid, kap in ((0.55, 1e-5), (0.5, 0.004), (0.5, 0.02)):
-        g = one_element(sec, integration, x=(0.0, x_mid, 1.0))
+        g = one_element(sec, integration, x=(0.0, x_mid, 1.0), self_bending=self_bending)
         # pure bending with curvature kap: alpha = kap x, w = kap x^2 / 2, plus a small stretch
         x = g.coords[0, :, 0]
         u = np.zeros((1, 9))
@@ -157,6 +163,27 @@ def test_tangent_matches_finite_differences(integration):
         assert np.abs(k_fd - k[0]).max() <= 1e-6 * np.abs(k[0]).max(), kap
 
 
+def test_tangent_self_bending_exact_while_elastic():
+    """Self-bending "tangent": central differences of f_int equal the consistent tangent in the elastic state
+    (off-centre mid node), where no layer's modulus depends on its strain."""
+    assert one_element(rc_test_section(), x=(0.0, 0.5, 1.0)).self_bending == "chord"   # the default
+    g = one_element(rc_test_section(), "selective", x=(0.0, 0.55, 1.0), self_bending="tangent")
+    x = g.coords[0, :, 0]
+    u = np.zeros((1, 9))
+    u[0, 0::3] = 2.0e-5 * x
+    u[0, 1::3] = 0.5e-5 * x ** 2
+    u[0, 2::3] = 1e-5 * x
+    k = g.evaluate(u, u, g.initial_state(), CONSISTENT)[1][0]
+    k_fd = np.empty((9, 9))
+    for j in range(9):
+        up, um = u.copy(), u.copy()
+        up[0, j] += 1e-9
+        um[0, j] -= 1e-9
+        k_fd[:, j] = (g.evaluate(up, up, g.initial_state(), CONSISTENT)[0][0]
+                      - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]) / 2e-9
+    assert np.abs(k_fd - k).max() <= 1e-6 * np.abs(k).max()
+
+
 def test_force_independent_of_tangent_flag_and_K0_constant():
     """Modified Newton needs f(u) whatever matrix is requested, and the ELASTIC matrix must be K0 in any state
     (cracked, yielding): checked in a strongly nonlinear bending state with shear."""
@@ -175,9 +202,9 @@ def test_force_independent_of_tangent_flag_and_K0_constant():
 
 def test_layer_stresses_integrate_to_resultants():
     """Layer stresses recovered for plotting integrate (with the self-bending term) to N and M of the element,
-    and vanish in steel layers' shear."""
+    and vanish in steel layers' shear (self-bending with the initial moduli, which the sum below uses)."""
     sec = rc_test_section()
-    g = one_element(sec, x=(0.0, 0.5, 1.0))
+    g = one_element(sec, x=(0.0, 0.5, 1.0), self_bending="initial")
     x = g.coords[0, :, 0]
     u = np.zeros((1, 9))
     u[0, 0::3] = 2e-4 * x

@@ -20,9 +20,21 @@ idx   name        meaning
 9     eps_y       yield strain of the reinforcement crossing the crack (fy / Es of the section)
 10    beta0       shear retention just after cracking (open, default 0.25)
 11    beta_floor  smallest shear retention (open, default 1e-4: keeps the matrix non-singular)
+12    Gc          compressive (crushing) fracture energy beyond eps_cu [N/m]; 0: the cliff (stress 0 at eps_cu)
+13    plane       1: plane strain (a strip of a long foundation): the axial law uses E0 / (1 - nu^2), the D1
+                  of eq. (4.4), in place of E0; 0: uniaxial (plane stress, a beam). G = E0 / (2 (1 + nu))
 ====  ==========  =============================================================================
 
-The axial law is the *uniaxial* law of §5 (no plane-strain factor 1/(1-nu^2)); nu enters only G.
+Crushing, regularised like cracking: eq. (5.1) is followed to eps_cu, where it still carries f_cu = f(eps_cu)
+(about 0.9 fc for a = 2). Instead of dropping to zero there (a stress cliff: the paper leaves the post-eps_cu
+behaviour open), the stress falls linearly from f_cu to zero at eps_cd = eps_cu + 2 Gc / (f_cu ls), so a band
+of width ls dissipates Gc per unit area beyond eps_cu whatever the element size (the compressive analogue of
+eq. 5.4). Unloading from the crushing branch follows E0 from the irreversible strain, in compression only (a
+crushed point carries no tension). Gc = 0 restores the cliff.
+
+The axial law is the *uniaxial* law of §5 unless ``plane`` = 1: then its modulus is E0 / (1 - nu^2), as for
+an elastic layer of a plane-strain strip (eq. 4.4), while the strengths fc, fr and the strain eps_c stay; nu
+enters G and that factor only.
 
 History (``hist``, first ``N_CONCRETE_HIST`` entries of the layer history)
 --------------------------------------------------------------------------
@@ -31,8 +43,9 @@ History (``hist``, first ``N_CONCRETE_HIST`` entries of the layer history)
 
 Algorithm of :func:`concrete_update` (one call, total formulation)
 -------------------------------------------------------------------
-1. Crushed (``max(x_max, x) >= eps_cu``): sig = 0 (shear retention beta_floor from the next increment).
-2. Compression loading (``x > x_max``): sig = -f(x) on the envelope eq. (5.1), x_max <- x.
+1. Crushed through (``max(x_max, x) >= eps_cd``): sig = 0 (shear retention beta_floor from the next increment).
+2. Compression loading (``x > x_max``): sig = -f(x) on the envelope: eq. (5.1) up to eps_cu, then the
+   regularised crushing branch (below), x_max <- x.
 3. Otherwise shift by the irreversible strain eps_p = x_max - f(x_max)/E0 (eq. 5.3):
    e = eps + eps_p. e <= 0: unloading/reloading along E0 (sig = E0 e).
 4. e > 0: tension. Uncracked (max(e, e_max) <= eps_r = fr/E0): sig = E0 e. Loading on the cracked
@@ -52,8 +65,9 @@ import math
 
 from numba import njit
 
-P_E0, P_NU, P_FC, P_EPS_C, P_EPS_CU, P_FR, P_GF, P_LS, P_ALPHA_TS, P_EPS_Y, P_BETA0, P_BETA_FLOOR = range(12)
-N_CONCRETE_PARAMS = 12
+(P_E0, P_NU, P_FC, P_EPS_C, P_EPS_CU, P_FR, P_GF, P_LS, P_ALPHA_TS, P_EPS_Y, P_BETA0, P_BETA_FLOOR,
+ P_GC, P_PLANE) = range(14)
+N_CONCRETE_PARAMS = 14
 N_CONCRETE_HIST = 2
 H_XMAX, H_EMAX = 0, 1
 
@@ -71,6 +85,33 @@ def compression_envelope(x, E0, fc, eps_c, eps_cu):
     r = x / eps_c
     den = 1.0 + (a - 2.0) * r + r * r
     return E0 * x / den, E0 * (1.0 - r * r) / (den * den)
+
+
+@njit(cache=True)
+def crushing_end(E0, fc, eps_c, eps_cu, Gc, ls):
+    """Return ``(f_cu, eps_cd)``: the stress of eq. (5.1) at eps_cu and the strain where the regularised crushing
+    branch reaches zero, eps_cu + 2 Gc / (f_cu ls) (eps_cd = eps_cu for Gc = 0: the cliff)."""
+    a = E0 * eps_c / fc
+    r = eps_cu / eps_c
+    f_cu = E0 * eps_cu / (1.0 + (a - 2.0) * r + r * r)
+    if Gc <= 0.0:
+        return f_cu, eps_cu
+    return f_cu, eps_cu + 2.0 * Gc / (f_cu * ls)
+
+
+@njit(cache=True)
+def crushing_envelope(x, E0, fc, eps_c, eps_cu, Gc, ls):
+    """Compression envelope with regularised crushing, in magnitudes: return ``(f, df/dx)``.
+
+    Eq. (5.1) below eps_cu; then f_cu (eps_cd - x) / (eps_cd - eps_cu) down to zero at eps_cd (``crushing_end``);
+    zero beyond. With Gc = 0 it is :func:`compression_envelope` (zero at and beyond eps_cu)."""
+    if x < eps_cu:
+        return compression_envelope(x, E0, fc, eps_c, eps_cu)
+    f_cu, eps_cd = crushing_end(E0, fc, eps_c, eps_cu, Gc, ls)
+    if x >= eps_cd:
+        return 0.0, 0.0
+    slope = -f_cu / (eps_cd - eps_cu)
+    return f_cu + slope * (x - eps_cu), slope
 
 
 @njit(cache=True)
@@ -152,6 +193,8 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     """
     E0 = params[P_E0]
     G = 0.5 * E0 / (1.0 + params[P_NU])
+    if params[P_PLANE] != 0.0:
+        E0 = E0 / (1.0 - params[P_NU] * params[P_NU])      # plane strain: D1 of eq. (4.4)
     fc = params[P_FC]
     eps_c = params[P_EPS_C]
     eps_cu = params[P_EPS_CU]
@@ -168,15 +211,25 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     x = -eps
     sig = 0.0
     e_t = 0.0
-    if x_max >= eps_cu or x >= eps_cu:
-        # 1. crushed: no stress from now on
+    Gc = params[P_GC]
+    ls = params[P_LS]
+    _, eps_cd = crushing_end(E0, fc, eps_c, eps_cu, Gc, ls)
+    if x_max >= eps_cd or x >= eps_cd:
+        # 1. crushed through: no stress from now on
         x_max = max(x_max, x)
     elif x > x_max:
-        # 2. compression loading on the envelope, eq. (5.1)
-        f, df = compression_envelope(x, E0, fc, eps_c, eps_cu)
+        # 2. compression loading on the envelope, eq. (5.1), then the regularised crushing branch
+        f, df = crushing_envelope(x, E0, fc, eps_c, eps_cu, Gc, ls)
         sig = -f
         e_t = df
         x_max = x
+    elif x_max >= eps_cu:
+        # 3. unloading from the crushing branch: E0 from the irreversible strain, compression only
+        f_m, _ = crushing_envelope(x_max, E0, fc, eps_c, eps_cu, Gc, ls)
+        e = eps + x_max - f_m / E0
+        if e < 0.0:
+            sig = E0 * e
+            e_t = E0
     else:
         # 3. shift by the irreversible strain, eq. (5.3)
         e = eps + irreversible_strain(x_max, E0, fc, eps_c, eps_cu)
@@ -185,11 +238,11 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
             e_t = E0
         elif e >= e_max:
             # 4. loading on the cracked envelope
-            sig, e_t = tension_envelope(e, E0, fr, params[P_GF], params[P_LS], params[P_ALPHA_TS], eps_y)
+            sig, e_t = tension_envelope(e, E0, fr, params[P_GF], ls, params[P_ALPHA_TS], eps_y)
             e_max = e
         else:
             # 4. unloading of a cracked point: secant towards the origin
-            s_env, _ = tension_envelope(e_max, E0, fr, params[P_GF], params[P_LS], params[P_ALPHA_TS], eps_y)
+            s_env, _ = tension_envelope(e_max, E0, fr, params[P_GF], ls, params[P_ALPHA_TS], eps_y)
             e_t = s_env / e_max
             sig = e_t * e
         e_max = max(e_max, e)

@@ -6,7 +6,7 @@ Law kinds (``kind``) and their parameter vectors ``params`` (length <= N_LAYER_P
 * ``ELASTIC`` (0): [E, nu]; sig = E/(1-nu^2) eps (cylindrical bending), tau = E/(2(1+nu)) gam.
 * ``CONCRETE`` (1): [E0, nu, fc, eps_c, eps_cu, fr, Gf, ls, alpha_ts, eps_y, beta0, beta_floor] --
   eq. (5.1) in compression with irreversible strain (5.3), crack-band softening (5.4), tension
-  stiffening and cracked shear retention (Figs. 5-6). Uniaxial: no 1/(1-nu^2). See ``concrete``.
+  stiffening and cracked shear retention (Figs. 5-6). Uniaxial unless its plane-strain flag (index 13) is set. See ``concrete``.
 * ``STEEL`` (2): [Es, 0, fy, EH] -- bilinear with hardening EH, unloading Es, no shear. See ``steel``.
 
 Build the vectors with ``ssi.materials.rc.concrete_params`` / ``steel_params`` (they validate).

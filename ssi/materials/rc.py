@@ -12,6 +12,9 @@ the *fib* Model Code 2010 (§5.1), with fc read as the mean cylinder strength fc
 * eps_c = 2 fc / E0: the peak strain that makes eq. (5.1) the curve whose secant at the peak is E0/2
   (a = E0 eps_c / fc = 2); smaller eps_c would bend the curve above its initial tangent (a < 2).
 * eps_cu = 0.0035 (MC2010/EC2 ultimate strain in bending).
+* Gc = 8.8 sqrt(fcm / MPa) N/mm: compressive fracture energy of Nakamura & Higai (2001), "Compressive fracture
+  energy and fracture zone length of concrete", JSCE/ASCE seminar on post-peak behavior of RC structures
+  (MC2010 gives none); it regularises crushing beyond eps_cu (``ssi.materials.concrete``).
 """
 
 import math
@@ -64,16 +67,20 @@ def designer_concrete(fc: float) -> dict:
         "Gf": 73.0 * fcm**0.18,
         "eps_c": 2.0 * fc / E0,
         "eps_cu": 0.0035,
+        "Gc": 8.8e3 * math.sqrt(fcm),
     }
 
 
 def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, alpha_ts=0.5,
-                    beta0=0.25, beta_floor=1e-4) -> np.ndarray:
+                    beta0=0.25, beta_floor=1e-4, Gc=None, plane_strain=False) -> np.ndarray:
     """Validated CONCRETE parameter vector (N_CONCRETE_PARAMS,), SI units (Pa, m, N/m).
 
     ``ls`` is the crack band width of eq. (5.4) (the length the integration point represents);
     ``eps_y`` the yield strain fy/Es of the reinforcement crossing the crack (tension stiffening and
-    shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off.
+    shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off. ``Gc``: compressive fracture
+    energy beyond eps_cu [N/m] (None: the designer value 8.8 sqrt(fc / MPa) N/mm of Nakamura & Higai; 0: the
+    stress cliff at eps_cu). ``plane_strain``: the axial law uses E0 / (1 - nu^2) (a layer of a plane-strain
+    strip, eq. 4.4); False: uniaxial (a beam). Scenes set it for their foundation (``Foundation.plane_strain``).
     """
     fc = _positive("fc", fc)
     E0 = _positive("E0", E0)
@@ -102,7 +109,11 @@ def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, 
         raise ValueError(f"beta0 must be in (0, 1], got {beta0!r}")
     if not 0.0 < beta_floor <= beta0:
         raise ValueError(f"beta_floor must be in (0, beta0 = {beta0}], got {beta_floor!r}")
-    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor])
+    Gc = 8.8e3 * math.sqrt(fc / MPA) if Gc is None else float(Gc)
+    if not (Gc >= 0.0 and math.isfinite(Gc)):
+        raise ValueError(f"Gc must be a finite number >= 0 N/m (0: no crushing energy), got {Gc!r}")
+    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor, Gc,
+                  1.0 if plane_strain else 0.0])
     assert p.size == N_CONCRETE_PARAMS
     return p
 
@@ -126,6 +137,14 @@ def elastic_params(E, nu) -> np.ndarray:
     if not -1.0 < nu < 0.5:
         raise ValueError(f"nu must be in (-1, 0.5), got {nu!r}")
     return np.array([E, float(nu)])
+
+
+def with_plane_strain(params, plane_strain: bool = True) -> np.ndarray:
+    """Copy of a CONCRETE vector with the plane-strain flag set (True) or cleared (False)."""
+    from .concrete import P_PLANE
+    p = np.array(params, dtype=np.float64)
+    p[P_PLANE] = 1.0 if plane_strain else 0.0
+    return p
 
 
 def with_crack_band(params, ls) -> np.ndarray:
@@ -159,3 +178,29 @@ def drive(kind: int, params, eps_path, gam_path=None, tangent: int = 1):
         h_old[:] = h_new
         hist[i] = h_new
     return out[0], out[1], out[2], out[3], hist
+
+
+def crack_spacing_mc2010(c: float, phi: float, As: float, b: float, h: float, d: float, alpha_e: float) -> dict:
+    """Maximum crack spacing of stabilised cracking, *fib* Model Code 2010 §7.6.4.4, eq. (7.6-4):
+
+        s_r,max = 2 l_s,max,   l_s,max = k c + (1/4) (f_ctm / tau_bms) phi / rho_s,ef,
+
+    with k = 1 and the mean bond stress tau_bms = 1.8 f_ctm (short-term loading, Table 7.6-2), so
+    l_s,max = c + phi / (7.2 rho_s,ef). rho_s,ef = As / (b h_c,ef), h_c,ef = min(2.5 (h - d), (h - x)/3, h/2)
+    (MC2010 Fig. 7.6-4), x the neutral-axis depth of the cracked elastic section in pure bending,
+    x = d alpha_e rho (sqrt(1 + 2 / (alpha_e rho)) - 1), rho = As / (b d), alpha_e = Es / E0.
+
+    c: clear cover to the bar surface, phi: bar diameter, As: bar area over the width b, h: depth, d: effective
+    depth [m]. Returns a dict with ``s_r_max``, ``l_s_max``, ``h_c_ef``, ``rho_s_ef``, ``x``. Used as the crack
+    band width of a reinforced strip (one band per crack; chapter 08)."""
+    for name, v in (("c", c), ("phi", phi), ("As", As), ("b", b), ("h", h), ("d", d), ("alpha_e", alpha_e)):
+        _positive(name, v)
+    if not d < h:
+        raise ValueError(f"d must be below h = {h}, got {d}")
+    rho = As / (b * d)
+    ar = alpha_e * rho
+    x = d * ar * (math.sqrt(1.0 + 2.0 / ar) - 1.0)
+    h_c_ef = min(2.5 * (h - d), (h - x) / 3.0, 0.5 * h)
+    rho_ef = As / (b * h_c_ef)
+    l_s_max = c + phi / (7.2 * rho_ef)
+    return {"s_r_max": 2.0 * l_s_max, "l_s_max": l_s_max, "h_c_ef": h_c_ef, "rho_s_ef": rho_ef, "x": x}
