@@ -14,7 +14,8 @@ import numpy as np
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
 from .elements.base import ELASTIC, NO_MATRIX
-from .linsolve import Factorization
+from .linsolve import Factorization, SingularMatrix
+from .validate import check_array, check_real
 
 COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
 
@@ -24,6 +25,15 @@ def _component(comp):
     if c not in (0, 1, 2):
         raise ValueError(f"comp must be one of 'u', 'w', 'alpha' or 0, 1, 2; got {comp!r}")
     return c
+
+
+def _nodal_values(name, value, shape):
+    """A finite scalar or array broadcast to ``shape``."""
+    arr = check_array(name, value)
+    try:
+        return np.broadcast_to(arr, shape).copy()
+    except ValueError as err:
+        raise ValueError(f"{name} must be a scalar or have shape {shape}, got shape {arr.shape}") from err
 
 
 class Model:
@@ -118,31 +128,37 @@ class Model:
 
     def fix(self, ids, comp, value=0.0):
         """Hold component ``comp`` of nodes ``ids`` at ``value`` (not scaled by the load factor)."""
+        value = check_real("fix value", value, unit="m or rad")
         for d in self.dof(ids, comp):
-            self._fixed[int(d)] = float(value)
+            self._fixed[int(d)] = value
             self._prescribed.pop(int(d), None)
 
     def prescribe(self, ids, comp, value):
         """Prescribe displacement ``value`` of ``comp`` at ``ids``, scaled by the load factor
         (displacement control: the reaction there is the load measure)."""
+        value = check_real("prescribed value", value, unit="m or rad")
         for d in self.dof(ids, comp):
-            self._prescribed[int(d)] = float(value)
+            self._prescribed[int(d)] = value
             self._fixed.pop(int(d), None)
 
     def add_load(self, ids, comp, value):
         """Nodal force (or moment for 'alpha') per node, scaled by the load factor."""
         d = self.dof(ids, comp)
-        self._loads.append((d, np.broadcast_to(np.asarray(value, np.float64), d.shape).copy()))
+        self._loads.append((d, _nodal_values("load value", value, d.shape)))
 
     def add_dead_load(self, ids, comp, value):
         """Nodal force applied in full at every step (e.g. weight already carried by the initial stress)."""
         d = self.dof(ids, comp)
-        self._dead_loads.append((d, np.broadcast_to(np.asarray(value, np.float64), d.shape).copy()))
+        self._dead_loads.append((d, _nodal_values("dead load value", value, d.shape)))
 
     def add_element_load(self, edofs, f_el, dead=False):
         """Equivalent nodal forces of distributed loads, given per element (n_el, n_edof)."""
         target = self._dead_loads if dead else self._loads
-        target.append((np.asarray(edofs).ravel(), np.asarray(f_el, np.float64).ravel()))
+        edofs = np.asarray(edofs).ravel()
+        f_el = check_array("element load f_el", f_el).ravel()
+        if f_el.shape != edofs.shape:
+            raise ValueError(f"element load f_el must have the shape of edofs {np.shape(edofs)}, got {f_el.shape}")
+        target.append((edofs, f_el))
 
     # ---- what the solver needs ------------------------------------------------------------------------
     def constrained(self):
@@ -168,6 +184,9 @@ class Model:
         for g in self.groups:
             body = g.body_force()
             if body is not None:
+                if not np.all(np.isfinite(body)):
+                    raise ValueError(f"group {g.name!r}: its body force (unit weight or self weight) is not "
+                                     "finite; give finite unit weights [N/m^3]")
                 scatter_vector(g.edofs, body, f_dead)
         return f_ref, f_dead
 
@@ -200,8 +219,12 @@ class Model:
         f_int, _, _ = system.evaluate(u, u, states, None)
         residual = (f_ref + f_dead - f_int)[system.free]
         k0 = system.pattern.assemble([g.elastic_stiffness() for g in self.groups])
-        fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
-        u[system.free] += fac.solve(residual)
+        try:
+            fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
+            u[system.free] += fac.solve(residual)
+        except SingularMatrix as err:
+            raise ValueError(f"supports: the stiffness matrix is singular (a rigid-body mode is not held); "
+                             f"{system.describe_dofs(err.rows)}") from err
         f_int, _, states = system.evaluate(u, u, states, None)
         return LinearResult(u=u, reactions=f_int - f_ref - f_dead, states=states, model=self)
 
@@ -226,6 +249,16 @@ class System:
         self.free_dofs = np.flatnonzero(self.free)
         self.cons_dofs, self.cons_fixed, self.cons_ref = model.constrained()
         self.pattern = SparsePattern([g.edofs for g in model.groups], self.free)
+
+    def describe_dofs(self, rows, limit=8) -> str:
+        """Name the free DOFs at matrix rows ``rows`` (indices into the free DOFs): node, component, x, z."""
+        dofs = self.free_dofs[np.asarray(rows, np.int64)[:limit]]
+        _, _, start = self.model._arrays
+        nodes = np.searchsorted(start, dofs, side="right") - 1
+        names = [f"node {n} ({('u', 'w', 'alpha')[d - start[n]]}) at ({self.model.coords[n, 0]:.4g}, "
+                 f"{self.model.coords[n, 1]:.4g})" for n, d in zip(nodes, dofs)]
+        more = f" and {len(rows) - limit} more" if len(rows) > limit else ""
+        return "unsupported DOFs: " + ", ".join(names) + more
 
     def apply_constraints(self, u, load_factor):
         """Write the fixed and prescribed values (at ``load_factor``) into ``u`` (in place)."""

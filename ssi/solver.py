@@ -60,17 +60,22 @@ class Settings:
     fallback_iter: int = 300      # full Newton: iterations of the K0 retry of a failed increment (0: none)
 
     def __post_init__(self):
-        if self.method not in METHODS:
-            raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
+        from .linsolve import BACKENDS
+        from .validate import check_bool, check_choice, check_int, check_real
+
+        check_choice("Settings.method", self.method, METHODS)
         if self.max_iter is None:
             self.max_iter = 300 if self.method == "modified" else 30
-        for name in ("force_tol", "energy_tol"):
-            if not 0.0 < getattr(self, name) < 1.0:
-                raise ValueError(f"{name} must be in (0, 1), got {getattr(self, name)}")
-        if self.max_iter < 1 or self.max_cuts < 0 or self.fallback_iter < 0:
-            raise ValueError("max_iter must be >= 1, max_cuts >= 0 and fallback_iter >= 0")
-        if not 0.0 < self.line_search_min <= 1.0:
-            raise ValueError(f"line_search_min must be in (0, 1], got {self.line_search_min}")
+        check_real("Settings.force_tol", self.force_tol, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+        check_real("Settings.energy_tol", self.energy_tol, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+        check_int("Settings.max_iter", self.max_iter, lo=1)
+        check_int("Settings.max_cuts", self.max_cuts, lo=0)
+        check_real("Settings.divergence_ratio", self.divergence_ratio, lo=1.0, lo_open=True)
+        check_choice("Settings.backend", self.backend, BACKENDS)
+        for name in ("symmetric_tangent", "verbose", "keep_states", "line_search"):
+            check_bool(f"Settings.{name}", getattr(self, name))
+        check_real("Settings.line_search_min", self.line_search_min, lo=0.0, hi=1.0, lo_open=True)
+        check_int("Settings.fallback_iter", self.fallback_iter, lo=0)
 
 
 class NonConvergence(RuntimeError):
