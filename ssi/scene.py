@@ -171,9 +171,12 @@ class Scene:
         depth = check_real("Scene.depth", self.depth, lo=0.0, lo_open=True, unit="m")
         check_real("Scene.surcharge", self.surcharge, lo=0.0, unit="Pa")
         _check_list("Scene.layers", self.layers, SoilLayer, min_len=1)
-        _check_list("Scene.loads", self.loads, ColumnLoad)
+        _check_list("Scene.loads", self.loads, LOAD_TYPES)
         check_instance("Scene.foundation", self.foundation, Foundation, optional=True)
-        check_instance("Scene.contact", self.contact, Contact, optional=True)
+        if isinstance(self.contact, list | tuple) and CONTACT_SEGMENT_TYPES:
+            _check_list("Scene.contact", self.contact, CONTACT_SEGMENT_TYPES, min_len=1)
+        else:
+            check_instance("Scene.contact", self.contact, Contact, optional=True)
         check_instance("Scene.mesh", self.mesh, MeshSize)
         total = sum(lay.thickness for lay in self.layers)
         if abs(total - depth) > 1e-9 * depth:
@@ -188,7 +191,7 @@ class Scene:
             raise ValueError(f"MeshSize.h_fine={self.mesh.h_fine!r} must be <= the foundation width x1 - x0 = "
                              f"{x1 - x0:g} m (at least one element under the foundation)")
         for i, load in enumerate(self.loads):
-            if f is not None and not x0 <= load.x <= x1:
+            if isinstance(load, ColumnLoad) and f is not None and not x0 <= load.x <= x1:
                 raise ValueError(f"loads[{i}].x={load.x!r} must lie on the foundation [x0, x1] = [{x0:g}, {x1:g}]")
 
     def build(self) -> "BuiltScene":
@@ -250,12 +253,18 @@ class Scene:
                 model.add_load(node, "alpha", load.M)
 
 
+# what Scene.loads may hold, and the per-segment contact type allowed as a list in Scene.contact (none yet)
+LOAD_TYPES = (ColumnLoad,)
+CONTACT_SEGMENT_TYPES = ()
+
+
 def _check_list(name, value, cls, min_len=0):
-    """A list or tuple of ``cls`` objects, at least ``min_len`` of them."""
+    """A list or tuple of ``cls`` objects (a class or a tuple of classes), at least ``min_len`` of them."""
+    kinds = " or ".join(c.__name__ for c in (cls if isinstance(cls, tuple) else (cls,)))
     if not isinstance(value, list | tuple):
-        raise TypeError(f"{name} must be a list of {cls.__name__}, got {value!r} ({type(value).__name__})")
+        raise TypeError(f"{name} must be a list of {kinds}, got {value!r} ({type(value).__name__})")
     if len(value) < min_len:
-        raise ValueError(f"{name} must hold at least {min_len} {cls.__name__}, got {value!r}")
+        raise ValueError(f"{name} must hold at least {min_len} {kinds}, got {value!r}")
     for i, item in enumerate(value):
         check_instance(f"{name}[{i}]", item, cls)
 

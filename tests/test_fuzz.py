@@ -94,7 +94,7 @@ def test_soft_but_valid_si_input_is_accepted():
     scene = Scene(width=8.0, depth=4.0, layers=[SoilLayer(0.001, E=1e4, nu=0.0), SoilLayer(3.999, E=1e4, nu=0.49)],
                   foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), contact=Contact(kn=1e10, kt=1e9),
                   loads=[ColumnLoad(x=0.0, N=1e9)], mesh=MeshSize(h_fine=0.5, h_coarse=4.0, growth=2.0))
-    x, w = scene.build().solve(n_steps=1).settlement()
+    _, w = scene.build().solve(n_steps=1).settlement()
     assert np.all(np.isfinite(w)) and w.max() > 0.0
 
 
