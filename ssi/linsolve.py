@@ -210,6 +210,9 @@ def _superlu_factor(matrix, check_pivots=False):
             raise SingularMatrix(f"the matrix is singular: smallest pivot {pivots.min():.3g} against largest "
                                  f"{pivots.max():.3g} (ratio below {SINGULAR_PIVOT_RATIO:g})", a)
 
+    if check_pivots:  # a factor whose pivots passed the check has consistent supernodes: BLAS will not refuse
+        return lu.solve  # (and modified Newton's hundreds of K0 solves skip the trap's ~20-100 us each)
+
     def solve(b):
         x, text = _trap_c_output(lu.solve, b)
         if "illegal value" in text:
