@@ -35,10 +35,6 @@ import scipy.sparse.linalg as spla
 BACKENDS = ("auto", "superlu", "pardiso")
 # below this size SuperLU factorises in well under 0.3 s and has no per-call setup cost (PARDISO: ~50 ms)
 AUTO_PARDISO_MIN_DOFS = 50_000
-# smallest/largest SuperLU pivot of K0 below this: singular. Measured: 1.4e-15 for a soil block free to slide
-# (round-off of an exact zero), 2.7e-9 for the stiffest-softest supported scene tried (E = 10 kPa soil under a
-# 200 GPa, 5 cm plate on a 1e12 Pa/m contact, 6 cm elements); 1e-12 leaves three decades to either side.
-SINGULAR_PIVOT_RATIO = 1e-12
 
 
 class SingularMatrix(FloatingPointError):
@@ -169,7 +165,7 @@ class Factorization:
         if self.n == 0:
             self._solve = lambda b: np.zeros(0)
         elif backend == "superlu":
-            self._solve = _superlu_factor(matrix, check_pivots=spd)
+            self._solve = _superlu_factor(matrix, trap_solves=not spd)
         else:
             self._solve = _pardiso_factor(matrix, symmetric, spd and symmetric, self)
 
@@ -188,13 +184,14 @@ class Factorization:
         return x
 
 
-def _superlu_factor(matrix, check_pivots=False):
+def _superlu_factor(matrix, trap_solves=True):
     """SuperLU factor of ``matrix`` and its solve, with BLAS's refusal on a broken-down (numerically singular)
     factorisation turned into :class:`SingularMatrix` instead of a message on the terminal.
 
-    ``check_pivots`` (K0, which must be positive definite once the scene is supported): a pivot below
-    ``SINGULAR_PIVOT_RATIO`` times the largest is a rigid-body mode left free, even when the solve happens to
-    stay finite (a load orthogonal to that mode)."""
+    ``trap_solves=False`` (K0, positive definite once the model's supports hold every rigid-body mode, which
+    ``Model.check`` verifies): the factorisation is trapped, the solves are not -- modified Newton makes
+    hundreds of K0 solves and the trap costs ~20-100 us each; a broken K0 would still end in a named
+    non-finite-solution error."""
     a = sp.csc_matrix(matrix)
     try:
         lu, text = _trap_c_output(spla.splu, a, permc_spec="MMD_AT_PLUS_A")
@@ -204,14 +201,9 @@ def _superlu_factor(matrix, check_pivots=False):
     if "illegal value" in text:
         raise SingularMatrix(f"the factorisation broke down on a numerically singular matrix (BLAS: "
                              f"{text.strip().splitlines()[0].strip(' *')})", a)
-    if check_pivots:
-        pivots = np.abs(lu.U.diagonal())
-        if pivots.size and not pivots.min() > SINGULAR_PIVOT_RATIO * pivots.max():
-            raise SingularMatrix(f"the matrix is singular: smallest pivot {pivots.min():.3g} against largest "
-                                 f"{pivots.max():.3g} (ratio below {SINGULAR_PIVOT_RATIO:g})", a)
 
-    if check_pivots:  # a factor whose pivots passed the check has consistent supernodes: BLAS will not refuse
-        return lu.solve  # (and modified Newton's hundreds of K0 solves skip the trap's ~20-100 us each)
+    if not trap_solves:
+        return lu.solve
 
     def solve(b):
         x, text = _trap_c_output(lu.solve, b)

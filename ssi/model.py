@@ -11,6 +11,8 @@ nonlinear laws is solved by :meth:`Model.solve_linear` -- one factorisation, one
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
 from .elements.base import ELASTIC, NO_MATRIX
@@ -25,6 +27,38 @@ def _component(comp):
     if c not in (0, 1, 2):
         raise ValueError(f"comp must be one of 'u', 'w', 'alpha' or 0, 1, 2; got {comp!r}")
     return c
+
+
+def _free_rigid_motion(coords, start, nodes, dofs):
+    """Description of a rigid motion of ``nodes`` that moves none of the constrained ``dofs``, or None."""
+    centre = coords[nodes].mean(axis=0)
+    size = float(np.ptp(coords[nodes], axis=0).max())
+    point_like = size == 0.0  # nodes at one point: no rotation to hold (an alpha DOF is a DOF of its own)
+    size = size or 1.0
+    if dofs.size == 0:
+        return "a translation in x (unsupported DOFs: every node's u and w)"
+    dof_node = np.searchsorted(start, dofs, side="right") - 1
+    comp = dofs - start[dof_node]
+    x, z = ((coords[dof_node] - centre) / size).T
+    m = np.zeros((len(dofs), 3))
+    m[comp == 0, 0] = 1.0
+    m[comp == 1, 1] = 1.0
+    m[:, 2] = np.where(comp == 0, -z, np.where(comp == 1, x, 1.0 / size))
+    if point_like:
+        m = m[:, :2]
+    _, sv, vt = np.linalg.svd(m, full_matrices=True)
+    sv = np.concatenate([sv, np.zeros(m.shape[1] - len(sv))])
+    if sv[-1] > 1e-10 * sv[0]:
+        return None
+    a, b, c = np.append(vt[-1], 0.0)[:3]
+    if abs(c) < 1e-9:
+        if abs(b) < 1e-9:
+            return "a translation in x (unsupported DOFs: every node's u)"
+        if abs(a) < 1e-9:
+            return "a translation in z (unsupported DOFs: every node's w)"
+        return f"a translation along ({a:.3g}, {b:.3g}) (unsupported DOFs: u and w of every node)"
+    px, pz = centre + size * np.array([-b / c, a / c])  # where a - c z = 0 and b + c x = 0
+    return f"a rotation about the point ({px:.4g}, {pz:.4g}) (unsupported DOFs: u and w of every node off it)"
 
 
 def _nodal_values(name, value, shape):
@@ -203,6 +237,35 @@ class Model:
         if unconnected.any():
             raise ValueError(f"{np.count_nonzero(unconnected)} free DOFs belong to no element (unconnected "
                              "nodes): connect them or fix them")
+        self._check_rigid_body_modes()
+
+    def _check_rigid_body_modes(self):
+        """Every connected part of the model (nodes joined by elements) must have its rigid-body motions held
+        (the elements are taken to be plane ones, which resist no rigid motion of the plane).
+
+        A motion of the plane combines translations in x and z and a rotation (u = -z theta, w = x theta,
+        alpha = theta). On a part's constrained DOFs these three modes span the columns of M (n, 3); a
+        combination that moves none of them (M of rank < 3) is a zero-energy motion: K0 is singular. Exact up
+        to round-off, with no pivot threshold (an ill-conditioned but supported model, a very slender strip,
+        passes). Mechanisms inside one connected part (a hinge of elements) are not detected here."""
+        coords, ndof, start = self._arrays
+        n_nodes = self.n_nodes
+        el_nodes = [np.searchsorted(start, g.edofs, side="right") - 1 for g in self.groups if g.edofs.size]
+        rows = np.concatenate([np.repeat(e[:, :1], e.shape[1] - 1, axis=1).ravel() for e in el_nodes])
+        cols = np.concatenate([e[:, 1:].ravel() for e in el_nodes])
+        graph = sp.coo_matrix((np.ones(rows.size), (rows, cols)), shape=(n_nodes, n_nodes))
+        n_parts, node_part = connected_components(graph, directed=False)
+        constrained = np.array(sorted(set(self._fixed) | set(self._prescribed)), np.int64)
+        constrained_part = node_part[np.searchsorted(start, constrained, side="right") - 1]
+        for part in range(n_parts):
+            nodes_here = np.flatnonzero(node_part == part)
+            dofs = constrained[constrained_part == part]
+            free = _free_rigid_motion(coords, start, nodes_here, dofs)
+            if free is not None:
+                where = "" if n_parts == 1 else (f" of the part with nodes {nodes_here[:4].tolist()}"
+                                                 f"{'...' if nodes_here.size > 4 else ''}")
+                raise ValueError(f"supports: the stiffness matrix is singular: {free}{where} moves no fixed or "
+                                 "prescribed DOF; fix or prescribe a DOF that this motion moves")
 
     def describe(self) -> dict:
         return {"n_nodes": self.n_nodes, "n_dof": self.n_dof,

@@ -125,17 +125,40 @@ def test_non_finite_loads_and_prescribed_values_are_named_before_assembly():
 
 
 def test_singular_matrix_message_names_the_unsupported_dofs():
-    """Only the bottom's w is fixed: the block can slide sideways. The message says singular and names the
-    u DOFs of that rigid-body mode (every node's u, as a null vector of horizontal translation is)."""
+    """Only the bottom's w is fixed: the block can slide sideways (every u is unsupported). With one u and one
+    w held the block can still turn about the point where the two supports' lines cross. Both are found
+    exactly from the supports, before any factorisation; a fully supported block solves."""
     model, mesh = _soil_model(support_u=False)
     model.add_load(mesh.surface, "w", -1e3)
-    with pytest.raises(ValueError, match=r"supports: the stiffness matrix is singular") as info:
+    with pytest.raises(ValueError, match=r"supports: the stiffness matrix is singular: a translation in x "
+                                         r"\(unsupported DOFs: every node's u\)"):
         model.solve_linear(backend="superlu")
-    named = str(info.value).split("unsupported DOFs: ")[1]
-    assert "(u)" in named and "(w)" not in named
+    turning, _ = _soil_model(support_u=False)
+    turning._fixed.clear()
+    turning.fix(mesh.bottom[:1], "u")
+    turning.fix(mesh.bottom[2:3], "w")
+    x_w, z_u = mesh.xy[mesh.bottom[2], 0], mesh.xy[mesh.bottom[0], 1]
+    with pytest.raises(ValueError, match=rf"a rotation about the point \({x_w:.4g}, {z_u:.4g}\)"):
+        turning.check()
     supported, _ = _soil_model(support_u=True)
     supported.add_load(mesh.surface, "w", -1e3)
     assert np.all(np.isfinite(supported.solve_linear(backend="superlu").u))
+
+
+def test_a_mechanism_the_supports_cannot_see_is_still_called_singular():
+    """A second soil block beside the first, joined to it by no element and held nowhere: the whole model's
+    motions are held by the first block's supports, but the second floats. The check works per connected
+    part and names that part."""
+    model, mesh = _soil_model(support_u=True)
+    far = model.add_nodes(mesh.xy + [10.0, 0.0], ndof=2)
+    kinds, params = material_table([(0, elastic_params(1e7, 0.3))])
+    model.add_group(SoilQ8((mesh.xy + [10.0, 0.0])[mesh.conn], model.element_dofs(far[mesh.conn]), mesh.el_layer,
+                           kinds, params))
+    model.add_load(far[mesh.surface], "w", -1e3)
+    with pytest.raises(ValueError, match=r"singular: a translation in x .* of the part with nodes \[(\d+)") as info:
+        model.solve_linear(backend="superlu")
+    first = int(str(info.value).split("of the part with nodes [")[1].split(",")[0])
+    assert first >= len(mesh.xy)  # a node of the floating block
 
 
 def test_nan_right_hand_side_is_not_called_singular():
