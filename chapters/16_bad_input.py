@@ -67,7 +67,8 @@
 # | type / finiteness / range checks | `ssi.validate.check_real`, `check_int`, `check_bool`, `check_choice`, `check_instance`, `check_array` |
 # | where they are called | `__post_init__` of `SoilLayer`, `Foundation`, `Contact`, `ColumnLoad`, `MeshSize`, `Scene`, `Section`, `Settings`; `BuiltScene.solve`; `soil_block`; `Model` loads/supports; footing builders; `ssi.analytical` |
 # | allowed sets, strategies, classifier, driver | `ssi.fuzz` (`invalid_cases`, `valid_scenes`, `classify_invalid`, `classify_valid`, `study`) |
-# | a singular stiffness | `ssi.linsolve.SingularMatrix` (names the rows of the null space), re-raised by `Model.solve_linear` as a `ValueError` naming the unsupported nodes and components |
+# | supports that leave a rigid motion free | `Model.check` (rank of the rigid motions on the constrained DOFs, per connected part) |
+# | a singular matrix otherwise | `ssi.linsolve.SingularMatrix` (names the rows of the null space), re-raised by `Model.solve_linear` as a `ValueError` naming the nodes and components |
 
 # %%
 import matplotlib.pyplot as plt
@@ -173,9 +174,13 @@ save_figure(fig, "16_bad_input")
 # - **Non-finite loads and unit weights** are refused where they enter (`Model.add_load`, `prescribe`,
 #   `fix`, the scene dataclasses, a group's body force in `Model.load_vectors`), so the factorisation never
 #   sees a NaN right-hand side; and a NaN right-hand side, should one reach `Factorization.solve`, is reported
-#   as such — the word "singular" is kept for singular matrices. A singular K0 (a rigid-body mode left free)
-#   is detected by its pivot ratio (round-off 1e-15 against ≥ 1e-9 for the stiffest–softest supported scene
-#   tried) and reported with the unsupported nodes and components.
+#   as such — the word "singular" is kept for singular matrices. Supports that leave a rigid-body motion
+#   free (a translation, or a rotation about the point where the supports' lines cross) are found exactly
+#   before any factorisation — for each part of the model joined by elements, the three plane rigid motions
+#   restricted to the constrained DOFs must have rank 3 — and the message names the free motion and its
+#   DOFs. A pivot-ratio test was tried and dropped: a very slender but supported strip (chapter 02) has a
+#   pivot ratio of 4e-15, as small as the round-off of a truly free block (1.4e-15). A matrix that is still
+#   singular (a mechanism inside one part) raises `SingularMatrix`, whose rows come from one shifted solve.
 # - **BLAS's "On entry to DGEMV/DTRSV parameter number N had an illegal value"** came from SuperLU
 #   factorising a numerically singular consistent tangent: NaN arises inside the elimination, a supernode's
 #   dimension becomes inconsistent, BLAS refuses the call and prints from C (on file descriptor 1 with

@@ -207,3 +207,13 @@ def test_other_c_output_during_a_solve_is_passed_on(capfd):
     out, trapped = linsolve._trap_c_output(lambda: os.write(2, text))
     assert out == len(text) and trapped == ""
     assert capfd.readouterr().err == text.decode()
+
+
+def test_singular_matrix_names_the_rows_of_its_null_space():
+    """A free spring pair (rows 0, 1: null vector (1, 1, 0)) beside a supported DOF (row 2)."""
+    import scipy.sparse as sp
+
+    k = sp.csc_matrix(np.array([[1.0, -1.0, 0.0], [-1.0, 1.0, 0.0], [0.0, 0.0, 2.0]]))
+    with pytest.raises(SingularMatrix, match="singular") as info:
+        Factorization(k, True, "superlu").solve(np.ones(3))
+    assert info.value.rows.tolist() == [0, 1]
