@@ -15,6 +15,8 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
+from .validate import check_array, check_real
+
 __all__ = [
     "hetenyi_deflection",
     "hetenyi_moment",
@@ -31,18 +33,20 @@ __all__ = [
 def sadowsky_pressure(x, a, P):
     """Contact pressure p(x) = P / (pi sqrt(a^2 - x^2)) (compression positive) under a rigid smooth punch of
     half-width ``a`` pressed by ``P`` per unit length into an elastic half-plane; nan for |x| >= a."""
-    x = np.asarray(x, dtype=np.float64)
-    if not (a > 0.0):
-        raise ValueError(f"a must be > 0, got {a}")
+    x = check_array("x", x)
+    check_real("a", a, lo=0.0, lo_open=True, unit="m")
+    check_real("P", P, unit="N/m")
     with np.errstate(invalid="ignore", divide="ignore"):
         p = P / (math.pi * np.sqrt(a * a - x * x))
     return np.where(np.abs(x) < a, p, np.nan)
 
 
 # ---- Hetenyi ---------------------------------------------------------------------------------------------------
-def _hetenyi_lambda(k, EI):
-    if not (k > 0.0 and EI > 0.0):
-        raise ValueError(f"k and EI must be > 0, got k={k}, EI={EI}")
+def _hetenyi_lambda(k, EI, P, x):
+    check_real("k", k, lo=0.0, lo_open=True, unit="N/m^2")
+    check_real("EI", EI, lo=0.0, lo_open=True, unit="N m^2")
+    check_real("P", P, unit="N")
+    check_array("x", x)
     return (k / (4.0 * EI)) ** 0.25
 
 
@@ -50,14 +54,14 @@ def hetenyi_deflection(x, P, k, EI):
     """Settlement (downward positive) of an infinite Euler--Bernoulli beam on a Winkler bed of modulus ``k``
     [N/m per m of beam] under a point load ``P`` at x = 0:
     w(x) = P lam / (2k) exp(-lam|x|) (cos lam x + sin lam|x|), lam = (k / 4EI)^(1/4) (Hetenyi 1946)."""
-    lam = _hetenyi_lambda(k, EI)
+    lam = _hetenyi_lambda(k, EI, P, x)
     r = lam * np.abs(np.asarray(x, dtype=np.float64))
     return P * lam / (2.0 * k) * np.exp(-r) * (np.cos(r) + np.sin(r))
 
 
 def hetenyi_moment(x, P, k, EI):
     """Bending moment (sagging positive) M(x) = P/(4 lam) exp(-lam|x|) (cos lam x - sin lam|x|)."""
-    lam = _hetenyi_lambda(k, EI)
+    lam = _hetenyi_lambda(k, EI, P, x)
     r = lam * np.abs(np.asarray(x, dtype=np.float64))
     return P / (4.0 * lam) * np.exp(-r) * (np.cos(r) - np.sin(r))
 
@@ -68,8 +72,8 @@ def hetenyi_moment(x, P, k, EI):
 # Elastic zone: u = A cosh(lam (L - x)), lam = sqrt(kt / EA). Slip zone 0 <= x <= s: tau = tau_f, so the axial
 # force falls linearly, N(x) = F - tau_f x, and u(s) = tau_f / kt marks the slip front.
 def _check_bar(EA, kt, L, tau_f):
-    if not (EA > 0 and kt > 0 and L > 0 and tau_f > 0):
-        raise ValueError(f"EA, kt, L, tau_f must all be > 0, got {EA}, {kt}, {L}, {tau_f}")
+    for name, value in (("EA", EA), ("kt", kt), ("L", L), ("tau_f", tau_f)):
+        check_real(name, value, lo=0.0, lo_open=True)
     return math.sqrt(kt / EA)
 
 
@@ -86,9 +90,7 @@ def shear_lag_from_slip(s, EA, kt, L, tau_f):
 
     F = tau_f s + tau_f tanh(lam (L - s)) / lam,   u0 = tau_f / kt + (F s - tau_f s^2 / 2) / EA."""
     lam = _check_bar(EA, kt, L, tau_f)
-    s = np.asarray(s, dtype=np.float64)
-    if np.any((s < 0) | (s > L)):
-        raise ValueError(f"s must lie in [0, L] = [0, {L}]")
+    s = check_array("s", s, lo=0.0, hi=L)
     F = tau_f * s + tau_f * np.tanh(lam * (L - s)) / lam
     u0 = tau_f / kt + (F * s - 0.5 * tau_f * s * s) / EA
     return F / L, u0
@@ -98,9 +100,7 @@ def shear_lag_slip_length(tau_bar, EA, kt, L, tau_f):
     """Slip length s(tau_bar): 0 below the onset, the root of (F - tau_f s) lam coth(lam (L - s)) = tau_f
     above it, L at tau_bar = tau_f (full sliding). Raises ValueError for tau_bar > tau_f."""
     _check_bar(EA, kt, L, tau_f)
-    tb = np.atleast_1d(np.asarray(tau_bar, dtype=np.float64))
-    if np.any(tb > tau_f * (1 + 1e-12)) or np.any(tb < 0):
-        raise ValueError(f"tau_bar must lie in [0, tau_f] = [0, {tau_f}] (no static solution beyond)")
+    tb = np.atleast_1d(check_array("tau_bar", tau_bar, lo=0.0, hi=tau_f * (1 + 1e-12)))
     onset = shear_lag_onset(EA, kt, L, tau_f)
     out = np.zeros_like(tb)
     for i, t in enumerate(tb):
@@ -117,7 +117,8 @@ def shear_lag_slip_length(tau_bar, EA, kt, L, tau_f):
 def shear_lag_displacement(x, tau_bar, EA, kt, L, tau_f):
     """Bar displacement u(x) at mean shear stress ``tau_bar`` (elastic and partial-slip regimes)."""
     lam = _check_bar(EA, kt, L, tau_f)
-    x = np.asarray(x, dtype=np.float64)
+    x = check_array("x", x)
+    tau_bar = check_real("tau_bar", tau_bar, lo=0.0, hi=tau_f, unit="Pa (a scalar here)")
     F = tau_bar * L
     s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
     if s >= L:
@@ -128,9 +129,14 @@ def shear_lag_displacement(x, tau_bar, EA, kt, L, tau_f):
     return np.where(x < s, u_sl, u_el)
 
 
+def _is_positive_number(v) -> bool:
+    return isinstance(v, int | float | np.floating | np.integer) and v > 0
+
+
 def shear_lag_state(tau_bar, EA, kt, L, tau_f):
     """Dict with the slip length ``s``, edge displacement ``u0`` and edge shear stress ``tau0`` at
     ``tau_bar``."""
+    check_real("tau_bar", tau_bar, lo=0.0, hi=tau_f if _is_positive_number(tau_f) else None, unit="Pa")
     s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
     u0 = float(shear_lag_displacement(0.0, tau_bar, EA, kt, L, tau_f)) if s < L else math.inf
     return {"s": s, "u0": u0, "tau0": min(kt * u0, tau_f)}

@@ -21,6 +21,7 @@ from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_
 from .mesh import soil_block, structured_q8
 from .model import Model
 from .solver import NonConvergence, Settings, run
+from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 
 
 def prandtl(c, phi_deg, q=0.0):
@@ -28,8 +29,9 @@ def prandtl(c, phi_deg, q=0.0):
 
     Nq = exp(π tan φ) tan²(45° + φ/2), Nc = (Nq - 1) cot φ (Nc = 2 + π for φ = 0), q_u = c Nc + q Nq.
     """
-    if not 0.0 <= phi_deg < 90.0:
-        raise ValueError(f"phi_deg must lie in [0, 90), got {phi_deg}")
+    c = check_real("c", c, lo=0.0, unit="Pa")
+    phi_deg = check_real("phi_deg", phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
+    q = check_real("q", q, lo=0.0, unit="Pa")
     if phi_deg == 0.0:
         nq, nc = 1.0, 2.0 + math.pi
     else:
@@ -59,11 +61,20 @@ def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rou
     ``layers``: optional list of (thickness, E, c, phi_deg, psi_deg) from the surface down, overriding the
     single material (for the stiffness-contrast extreme).
     """
-    if B <= 0 or half_width <= B / 2 or depth <= 0:
-        raise ValueError(f"need B > 0, half_width > B/2 and depth > 0; got B={B}, half_width={half_width}, "
-                         f"depth={depth}")
-    if settle <= 0:
-        raise ValueError(f"settle must be > 0 (footing settlement at load factor 1, m), got {settle}")
+    B = check_real("B", B, lo=0.0, lo_open=True, unit="m")
+    half_width = check_real("half_width", half_width, lo=0.0, lo_open=True, unit="m")
+    depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
+    if half_width <= B / 2:
+        raise ValueError(f"half_width must be > B/2 = {B / 2:g} m (the block must extend beyond the footing), "
+                         f"got half_width={half_width!r}")
+    check_real("settle", settle, lo=0.0, lo_open=True, unit="m (footing settlement at load factor 1)")
+    check_real("surcharge", surcharge, lo=0.0, unit="Pa")
+    for name, value in (("c", c), ("E", E), ("nu", nu), ("phi_deg", phi_deg)):
+        check_real(name, value)  # types and finiteness; the law's parameter check gives the ranges
+    check_optional_real("psi_deg", psi_deg)
+    check_bool("rough", rough)
+    check_bool("drift", drift)
+    check_choice("n_gauss", n_gauss, (2, 3))
     thick = None if layers is None else [lay[0] for lay in layers]
     mesh = soil_block(half_width, depth, thick, foundation=(0.0, 0.5 * B), h_fine=h_fine, h_coarse=h_coarse,
                       growth=growth, x_left=0.0)
@@ -78,8 +89,6 @@ def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rou
     soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params,
                   n_gauss=n_gauss)
     if surcharge:
-        if surcharge < 0:
-            raise ValueError(f"surcharge must be >= 0 (Pa), got {surcharge}")
         s0 = np.zeros((soil.n_el, len(soil.gw), 4))
         s0[..., [0, 1, 3]] = -surcharge
         soil.initial_stress = s0
@@ -135,6 +144,12 @@ def push_footing(scene: FootingScene, n_steps=20, method="line_search", grading=
     thousand DOFs PARDISO's set-up costs 0.3–0.5 s per factorisation against SuperLU's 0.01–0.03 s.
     Other methods ("full", "modified") or an explicit ``settings`` are passed to ``ssi.solver.run``.
     """
+    check_instance("scene", scene, FootingScene)
+    n_steps = check_int("n_steps", n_steps, lo=1)
+    grading = check_real("grading", grading, lo=0.0, lo_open=True)
+    check_instance("settings", settings, Settings, optional=True)
+    if settings is None:
+        check_choice("method", method, ("line_search", "full", "modified"))
     lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
     if settings is None:
         # the n_steps displacement increments are the study's variable: each is one increment (halved on
@@ -170,6 +185,11 @@ def sg61_scene(law="von_mises", E=1e5 * 1e3, nu=0.3, cu=100e3, n_gauss=2, refine
     half width 2 m): x = 0 and x = 12 m on rollers (u = 0), base fixed. ``law``: "von_mises" (the peer's
     sqrt(J2) = cu) or "tresca" (Mohr–Coulomb with φ = 0). Load factor = footing pressure in kPa.
     ``refine`` splits every element into refine × refine."""
+    check_choice("law", law, ("von_mises", "tresca"))
+    refine = check_int("refine", refine, lo=1, hi=64)
+    check_real("E", E)
+    check_real("nu", nu)
+    check_real("cu", cu)
     x = _refine_lines(SG61_X, refine)
     z = _refine_lines(SG61_Z, refine)
     mesh = structured_q8(x, z)

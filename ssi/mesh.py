@@ -11,15 +11,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .validate import check_array, check_real
+
+MAX_LINES = 100_000  # mesh lines per direction: more is a unit slip (mm for m), not a mesh
+
 
 def graded_lines(start, stop, h_start, h_max, growth=1.2):
     """Mesh-line positions from ``start`` to ``stop`` with sizes growing from ``h_start`` by ``growth`` up to
     ``h_max``; the sizes are scaled slightly so the last line falls exactly on ``stop``."""
+    start = check_real("start", start, unit="m")
+    stop = check_real("stop", stop, unit="m")
+    h_start = check_real("h_start", h_start, lo=0.0, lo_open=True, unit="m")
+    h_max = check_real("h_max", h_max, lo=h_start, unit="m (>= h_start)")
+    growth = check_real("growth", growth, lo=1.0)
     length = abs(stop - start)
     if length == 0.0:
         return np.array([start])
-    if h_start <= 0 or h_max < h_start or growth < 1.0:
-        raise ValueError("need 0 < h_start <= h_max and growth >= 1")
+    if length / h_max > MAX_LINES:
+        raise ValueError(f"h_max={h_max!r} gives more than {MAX_LINES} mesh lines over the length {length:g} m")
     sizes = []
     h = h_start
     while sum(sizes) < length - 1e-9 * length:
@@ -72,8 +81,8 @@ class SoilMesh:
 def structured_q8(x_lines, z_lines, z_layer_tops=None):
     """Q8 mesh on the tensor grid of element edges ``x_lines`` (nx+1,) and ``z_lines`` (nz+1,), both
     increasing. ``z_layer_tops`` (descending tops of layers 2, 3, ...) assigns ``el_layer``."""
-    x_lines = np.asarray(x_lines, np.float64)
-    z_lines = np.asarray(z_lines, np.float64)
+    x_lines = check_array("x_lines", x_lines, ndim=1, min_size=2)
+    z_lines = check_array("z_lines", z_lines, ndim=1, min_size=2)
     if np.any(np.diff(x_lines) <= 0) or np.any(np.diff(z_lines) <= 0):
         raise ValueError("x_lines and z_lines must be strictly increasing")
     nx, nz = len(x_lines) - 1, len(z_lines) - 1
@@ -116,17 +125,31 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
     embedment : depth D [m] of the foundation base below the ground (>= 0; must be a layer boundary): the
         elements above it between the foundation ends are removed (the trench the strip sits in)
     """
-    if width <= 0 or depth <= 0:
-        raise ValueError(f"width and depth must be positive, got width={width}, depth={depth}")
-    x_left = -0.5 * width if x_left is None else x_left
+    width = check_real("width", width, lo=0.0, lo_open=True, unit="m")
+    depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
+    x_left = -0.5 * width if x_left is None else check_real("x_left", x_left, unit="m")
     x_right = x_left + width
-    x0, x1 = foundation
+    if len(foundation) != 2:
+        raise ValueError(f"foundation must be a pair (x0, x1), got {foundation!r}")
+    x0 = check_real("foundation x0", foundation[0], unit="m")
+    x1 = check_real("foundation x1", foundation[1], unit="m")
     if not (x_left <= x0 < x1 <= x_right):
-        raise ValueError(f"foundation {foundation} must lie within the block [{x_left}, {x_right}] "
+        raise ValueError(f"foundation (x0, x1) = {foundation} must lie within the block [{x_left}, {x_right}] "
                          "and have x0 < x1")
     layers = [depth] if layer_thicknesses is None else list(layer_thicknesses)
-    if any(t <= 0 for t in layers) or abs(sum(layers) - depth) > 1e-9 * depth:
-        raise ValueError(f"layer_thicknesses {layers} must be positive and tile the depth {depth}")
+    for i, t in enumerate(layers):
+        check_real(f"layer_thicknesses[{i}]", t, lo=0.0, lo_open=True, unit="m")
+    if abs(sum(layers) - depth) > 1e-9 * depth:
+        raise ValueError(f"layer_thicknesses {layers} must tile the depth {depth} (their sum is {sum(layers):g})")
+    h_fine = check_real("h_fine", h_fine, lo=0.0, lo_open=True, unit="m")
+    if h_fine > x1 - x0:
+        raise ValueError(f"h_fine={h_fine!r} must be <= the foundation width x1 - x0 = {x1 - x0:g} m (at least one "
+                         "element under the foundation)")
+    h_coarse = check_real("h_coarse", h_coarse, lo=h_fine, unit="m (>= h_fine)")
+    check_real("growth", growth, lo=1.0)
+    if (x1 - x0) / h_fine > MAX_LINES or max(width, depth) / h_coarse > MAX_LINES:
+        raise ValueError(f"h_fine={h_fine!r}, h_coarse={h_coarse!r} give more than {MAX_LINES} mesh lines "
+                         f"in one direction (block {width:g} m x {depth:g} m): check the units")
     n_under = max(1, round((x1 - x0) / h_fine))
     under = np.linspace(x0, x1, n_under + 1)
     h0 = (x1 - x0) / n_under

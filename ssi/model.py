@@ -11,10 +11,13 @@ nonlinear laws is solved by :meth:`Model.solve_linear` -- one factorisation, one
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
 from .elements.base import ELASTIC, NO_MATRIX
-from .linsolve import Factorization
+from .linsolve import Factorization, SingularMatrix
+from .validate import check_array, check_real
 
 COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
 
@@ -24,6 +27,47 @@ def _component(comp):
     if c not in (0, 1, 2):
         raise ValueError(f"comp must be one of 'u', 'w', 'alpha' or 0, 1, 2; got {comp!r}")
     return c
+
+
+def _free_rigid_motion(coords, start, nodes, dofs):
+    """Description of a rigid motion of ``nodes`` that moves none of the constrained ``dofs``, or None."""
+    centre = coords[nodes].mean(axis=0)
+    size = float(np.ptp(coords[nodes], axis=0).max())
+    point_like = size == 0.0  # nodes at one point: no rotation to hold (an alpha DOF is a DOF of its own)
+    size = size or 1.0
+    if dofs.size == 0:
+        return "a translation in x (unsupported DOFs: every node's u and w)"
+    dof_node = np.searchsorted(start, dofs, side="right") - 1
+    comp = dofs - start[dof_node]
+    x, z = ((coords[dof_node] - centre) / size).T
+    m = np.zeros((len(dofs), 3))
+    m[comp == 0, 0] = 1.0
+    m[comp == 1, 1] = 1.0
+    m[:, 2] = np.where(comp == 0, -z, np.where(comp == 1, x, 1.0 / size))
+    if point_like:
+        m = m[:, :2]
+    _, sv, vt = np.linalg.svd(m, full_matrices=True)
+    sv = np.concatenate([sv, np.zeros(m.shape[1] - len(sv))])
+    if sv[-1] > 1e-10 * sv[0]:
+        return None
+    a, b, c = np.append(vt[-1], 0.0)[:3]
+    if abs(c) < 1e-9:
+        if abs(b) < 1e-9:
+            return "a translation in x (unsupported DOFs: every node's u)"
+        if abs(a) < 1e-9:
+            return "a translation in z (unsupported DOFs: every node's w)"
+        return f"a translation along ({a:.3g}, {b:.3g}) (unsupported DOFs: u and w of every node)"
+    px, pz = centre + size * np.array([-b / c, a / c])  # where a - c z = 0 and b + c x = 0
+    return f"a rotation about the point ({px:.4g}, {pz:.4g}) (unsupported DOFs: u and w of every node off it)"
+
+
+def _nodal_values(name, value, shape):
+    """A finite scalar or array broadcast to ``shape``."""
+    arr = check_array(name, value)
+    try:
+        return np.broadcast_to(arr, shape).copy()
+    except ValueError as err:
+        raise ValueError(f"{name} must be a scalar or have shape {shape}, got shape {arr.shape}") from err
 
 
 class Model:
@@ -118,31 +162,37 @@ class Model:
 
     def fix(self, ids, comp, value=0.0):
         """Hold component ``comp`` of nodes ``ids`` at ``value`` (not scaled by the load factor)."""
+        value = check_real("fix value", value, unit="m or rad")
         for d in self.dof(ids, comp):
-            self._fixed[int(d)] = float(value)
+            self._fixed[int(d)] = value
             self._prescribed.pop(int(d), None)
 
     def prescribe(self, ids, comp, value):
         """Prescribe displacement ``value`` of ``comp`` at ``ids``, scaled by the load factor
         (displacement control: the reaction there is the load measure)."""
+        value = check_real("prescribed value", value, unit="m or rad")
         for d in self.dof(ids, comp):
-            self._prescribed[int(d)] = float(value)
+            self._prescribed[int(d)] = value
             self._fixed.pop(int(d), None)
 
     def add_load(self, ids, comp, value):
         """Nodal force (or moment for 'alpha') per node, scaled by the load factor."""
         d = self.dof(ids, comp)
-        self._loads.append((d, np.broadcast_to(np.asarray(value, np.float64), d.shape).copy()))
+        self._loads.append((d, _nodal_values("load value", value, d.shape)))
 
     def add_dead_load(self, ids, comp, value):
         """Nodal force applied in full at every step (e.g. weight already carried by the initial stress)."""
         d = self.dof(ids, comp)
-        self._dead_loads.append((d, np.broadcast_to(np.asarray(value, np.float64), d.shape).copy()))
+        self._dead_loads.append((d, _nodal_values("dead load value", value, d.shape)))
 
     def add_element_load(self, edofs, f_el, dead=False):
         """Equivalent nodal forces of distributed loads, given per element (n_el, n_edof)."""
         target = self._dead_loads if dead else self._loads
-        target.append((np.asarray(edofs).ravel(), np.asarray(f_el, np.float64).ravel()))
+        edofs = np.asarray(edofs).ravel()
+        f_el = check_array("element load f_el", f_el).ravel()
+        if f_el.shape != edofs.shape:
+            raise ValueError(f"element load f_el must have the shape of edofs {np.shape(edofs)}, got {f_el.shape}")
+        target.append((edofs, f_el))
 
     # ---- what the solver needs ------------------------------------------------------------------------
     def constrained(self):
@@ -168,6 +218,9 @@ class Model:
         for g in self.groups:
             body = g.body_force()
             if body is not None:
+                if not np.all(np.isfinite(body)):
+                    raise ValueError(f"group {g.name!r}: its body force (unit weight or self weight) is not "
+                                     "finite; give finite unit weights [N/m^3]")
                 scatter_vector(g.edofs, body, f_dead)
         return f_ref, f_dead
 
@@ -184,6 +237,35 @@ class Model:
         if unconnected.any():
             raise ValueError(f"{np.count_nonzero(unconnected)} free DOFs belong to no element (unconnected "
                              "nodes): connect them or fix them")
+        self._check_rigid_body_modes()
+
+    def _check_rigid_body_modes(self):
+        """Every connected part of the model (nodes joined by elements) must have its rigid-body motions held
+        (the elements are taken to be plane ones, which resist no rigid motion of the plane).
+
+        A motion of the plane combines translations in x and z and a rotation (u = -z theta, w = x theta,
+        alpha = theta). On a part's constrained DOFs these three modes span the columns of M (n, 3); a
+        combination that moves none of them (M of rank < 3) is a zero-energy motion: K0 is singular. Exact up
+        to round-off, with no pivot threshold (an ill-conditioned but supported model, a very slender strip,
+        passes). Mechanisms inside one connected part (a hinge of elements) are not detected here."""
+        coords, ndof, start = self._arrays
+        n_nodes = self.n_nodes
+        el_nodes = [np.searchsorted(start, g.edofs, side="right") - 1 for g in self.groups if g.edofs.size]
+        rows = np.concatenate([np.repeat(e[:, :1], e.shape[1] - 1, axis=1).ravel() for e in el_nodes])
+        cols = np.concatenate([e[:, 1:].ravel() for e in el_nodes])
+        graph = sp.coo_matrix((np.ones(rows.size), (rows, cols)), shape=(n_nodes, n_nodes))
+        n_parts, node_part = connected_components(graph, directed=False)
+        constrained = np.array(sorted(set(self._fixed) | set(self._prescribed)), np.int64)
+        constrained_part = node_part[np.searchsorted(start, constrained, side="right") - 1]
+        for part in range(n_parts):
+            nodes_here = np.flatnonzero(node_part == part)
+            dofs = constrained[constrained_part == part]
+            free = _free_rigid_motion(coords, start, nodes_here, dofs)
+            if free is not None:
+                where = "" if n_parts == 1 else (f" of the part with nodes {nodes_here[:4].tolist()}"
+                                                 f"{'...' if nodes_here.size > 4 else ''}")
+                raise ValueError(f"supports: the stiffness matrix is singular: {free}{where} moves no fixed or "
+                                 "prescribed DOF; fix or prescribe a DOF that this motion moves")
 
     def describe(self) -> dict:
         return {"n_nodes": self.n_nodes, "n_dof": self.n_dof,
@@ -200,8 +282,12 @@ class Model:
         f_int, _, _ = system.evaluate(u, u, states, None)
         residual = (f_ref + f_dead - f_int)[system.free]
         k0 = system.pattern.assemble([g.elastic_stiffness() for g in self.groups])
-        fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
-        u[system.free] += fac.solve(residual)
+        try:
+            fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
+            u[system.free] += fac.solve(residual)
+        except SingularMatrix as err:
+            raise ValueError(f"supports: the stiffness matrix is singular (a rigid-body mode is not held); "
+                             f"{system.describe_dofs(err.rows)}") from err
         f_int, _, states = system.evaluate(u, u, states, None)
         return LinearResult(u=u, reactions=f_int - f_ref - f_dead, states=states, model=self)
 
@@ -226,6 +312,16 @@ class System:
         self.free_dofs = np.flatnonzero(self.free)
         self.cons_dofs, self.cons_fixed, self.cons_ref = model.constrained()
         self.pattern = SparsePattern([g.edofs for g in model.groups], self.free)
+
+    def describe_dofs(self, rows, limit=8) -> str:
+        """Name the free DOFs at matrix rows ``rows`` (indices into the free DOFs): node, component, x, z."""
+        dofs = self.free_dofs[np.asarray(rows, np.int64)[:limit]]
+        _, _, start = self.model._arrays
+        nodes = np.searchsorted(start, dofs, side="right") - 1
+        names = [f"node {n} ({('u', 'w', 'alpha')[d - start[n]]}) at ({self.model.coords[n, 0]:.4g}, "
+                 f"{self.model.coords[n, 1]:.4g})" for n, d in zip(nodes, dofs)]
+        more = f" and {len(rows) - limit} more" if len(rows) > limit else ""
+        return "unsupported DOFs: " + ", ".join(names) + more
 
     def apply_constraints(self, u, load_factor):
         """Write the fixed and prescribed values (at ``load_factor``) into ``u`` (in place)."""

@@ -50,7 +50,7 @@ import numpy as np
 
 from .assembly import scatter_vector
 from .elements.interface import V_SIG, V_TAU, Interface6, add_interface
-from .elements.plate import PlateStrip
+from .elements.plate import INTEGRATIONS, PlateStrip
 from .elements.soil_q8 import SoilQ8
 from .materials.concrete import P_E0, P_FR
 from .materials.interface_law import interface_params
@@ -68,6 +68,7 @@ from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model
 from .section import Section
 from .solver import Settings, run
+from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
 
 
 @dataclass(frozen=True)
@@ -117,6 +118,23 @@ class SoilLayer:
         so the hydrostatic pore pressure the scene separates does not change it."""
         return cls(thickness, E=E_u, nu=nu_u, unit_weight=unit_weight, c=s_u, phi_deg=0.0, K0=K0,
                    unit_weight_sat=unit_weight_sat)
+
+    def __post_init__(self):
+        check_real("SoilLayer.thickness", self.thickness, lo=0.0, lo_open=True, unit="m")
+        check_real("SoilLayer.E", self.E, lo=0.0, lo_open=True, unit="Pa")
+        check_real("SoilLayer.nu", self.nu, lo=-1.0, hi=0.5, lo_open=True, hi_open=True)
+        check_real("SoilLayer.unit_weight", self.unit_weight, lo=0.0, unit="N/m^3")
+        check_optional_real("SoilLayer.c", self.c, lo=0.0, unit="Pa")
+        check_real("SoilLayer.phi_deg", self.phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
+        check_optional_real("SoilLayer.psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="degrees (<= phi_deg)")
+        check_optional_real("SoilLayer.K0", self.K0, lo=0.0, hi=10.0, hi_open=True)
+        check_choice("SoilLayer.scheme", self.scheme, ("implicit", "explicit"))
+        check_optional_real("SoilLayer.unit_weight_sat", self.unit_weight_sat, lo=0.0, unit="N/m^3")
+        check_choice("SoilLayer.drainage", self.drainage, DRAINAGE)
+        check_real("SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, hi_open=True, unit="(nu <= nu_u < 0.5)")
+        if self.c == 0.0 and self.phi_deg == 0.0:
+            raise ValueError("SoilLayer: c=0 and phi_deg=0 give a soil without strength; need c > 0 or "
+                             "phi_deg > 0 (or c=None for an elastic layer)")
 
     def law(self):
         if self.c is None:
@@ -181,6 +199,16 @@ class Foundation:
         return {"kappa": self.kappa, "integration": self.integration, "self_weight": self.self_weight,
                 "self_bending": self.self_bending, "crack_band": "point" if self.crack_band == "point" else None}
 
+    def __post_init__(self):
+        x0 = check_real("Foundation.x0", self.x0, unit="m")
+        x1 = check_real("Foundation.x1", self.x1, unit="m")
+        if not x0 < x1:
+            raise ValueError(f"Foundation.x0 must be < x1, got x0={self.x0!r}, x1={self.x1!r}")
+        check_instance("Foundation.section", self.section, Section)
+        check_real("Foundation.kappa", self.kappa, lo=0.0, hi=1.0, lo_open=True)
+        _check_integration("Foundation.integration", self.integration)
+        check_real("Foundation.self_weight", self.self_weight, lo=0.0, unit="N/m^2")
+
 
 @dataclass(frozen=True)
 class Contact:
@@ -199,6 +227,18 @@ class Contact:
     psi_deg: float | None = 0.0
     sig_t: float | None = None
     rule: str = "newton_cotes"
+
+    def __post_init__(self):
+        check_real("Contact.kn", self.kn, lo=0.0, lo_open=True, unit="Pa/m")
+        check_real("Contact.kt", self.kt, lo=0.0, unit="Pa/m")
+        check_optional_real("Contact.phi_deg", self.phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
+        check_real("Contact.c", self.c, lo=0.0, allow_inf=True, unit="Pa")
+        psi_max = 90.0 if self.phi_deg is None else self.phi_deg
+        check_optional_real("Contact.psi_deg", self.psi_deg, lo=0.0, hi=psi_max, hi_open=self.phi_deg is None,
+                            unit="degrees (<= phi_deg)")
+        check_optional_real("Contact.sig_t", self.sig_t, lo=0.0, unit="Pa")
+        check_choice("Contact.rule", self.rule, ("newton_cotes", "gauss"))
+        self.params()  # the interface law's own checks of the combination (sig_t below the apex)
 
     def params(self):
         if self.phi_deg is None:
@@ -225,6 +265,12 @@ class ColumnLoad:
     N: float = 0.0
     H: float = 0.0
     M: float = 0.0
+
+    def __post_init__(self):
+        check_real("ColumnLoad.x", self.x, unit="m")
+        check_real("ColumnLoad.N", self.N, unit="N/m")
+        check_real("ColumnLoad.H", self.H, unit="N/m")
+        check_real("ColumnLoad.M", self.M, unit="N m/m")
 
 
 @dataclass(frozen=True)
@@ -279,6 +325,18 @@ class Phase:
     factors: dict = field(default_factory=dict)
     n_steps: int | None = None
 
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"Phase.name must be a non-empty string, got {self.name!r}")
+        _check_list(f"Phase({self.name!r}).loads", list(self.loads), LOAD_TYPES)
+        if not isinstance(self.factors, dict):
+            raise TypeError(f"Phase({self.name!r}).factors must be a dict {{phase name: factor}}, got "
+                            f"{type(self.factors).__name__}")
+        for key, value in self.factors.items():
+            check_real(f"Phase({self.name!r}).factors[{key!r}]", value)
+        if self.n_steps is not None:
+            check_int(f"Phase({self.name!r}).n_steps", self.n_steps, lo=1)
+
 
 @dataclass(frozen=True)
 class MeshSize:
@@ -289,6 +347,13 @@ class MeshSize:
     h_coarse: float = 2.0
     growth: float = 1.25
     n_gauss: int = 2
+
+    def __post_init__(self):
+        h_fine = check_real("MeshSize.h_fine", self.h_fine, lo=0.0, lo_open=True, unit="m")
+        if check_real("MeshSize.h_coarse", self.h_coarse, lo=0.0, lo_open=True, unit="m") < h_fine:
+            raise ValueError(f"MeshSize.h_coarse must be >= h_fine = {self.h_fine!r}, got {self.h_coarse!r}")
+        check_real("MeshSize.growth", self.growth, lo=1.0)
+        check_choice("MeshSize.n_gauss", self.n_gauss, (2, 3))
 
 
 @dataclass
@@ -314,6 +379,38 @@ class Scene:
     embedment: float = 0.0
     water_table: float | None = None
     gamma_w: float = GAMMA_W
+
+    def __post_init__(self):
+        width = check_real("Scene.width", self.width, lo=0.0, lo_open=True, unit="m")
+        depth = check_real("Scene.depth", self.depth, lo=0.0, lo_open=True, unit="m")
+        check_real("Scene.surcharge", self.surcharge, lo=0.0, unit="Pa")
+        _check_list("Scene.layers", self.layers, SoilLayer, min_len=1)
+        _check_list("Scene.loads", self.loads, LOAD_TYPES)
+        check_instance("Scene.foundation", self.foundation, Foundation, optional=True)
+        if isinstance(self.contact, list | tuple) and CONTACT_SEGMENT_TYPES:
+            _check_list("Scene.contact", self.contact, CONTACT_SEGMENT_TYPES, min_len=1)
+        else:
+            check_instance("Scene.contact", self.contact, Contact, optional=True)
+        check_instance("Scene.mesh", self.mesh, MeshSize)
+        _check_list("Scene.phases", self.phases, Phase)
+        check_real("Scene.embedment", self.embedment, lo=0.0, hi=depth, hi_open=True, unit="m")
+        check_optional_real("Scene.water_table", self.water_table, lo=0.0, unit="m")
+        check_real("Scene.gamma_w", self.gamma_w, lo=0.0, lo_open=True, unit="N/m^3")
+        total = sum(lay.thickness for lay in self.layers)
+        if abs(total - depth) > 1e-9 * depth:
+            raise ValueError(f"Scene.depth={self.depth!r}: the layer thicknesses "
+                             f"{[lay.thickness for lay in self.layers]} must tile the depth (their sum is {total:g})")
+        f = self.foundation
+        x0, x1 = (f.x0, f.x1) if f else (-0.25 * width, 0.25 * width)
+        if f is not None and not (-0.5 * width <= x0 and x1 <= 0.5 * width):
+            raise ValueError(f"Scene.foundation (x0={f.x0!r}, x1={f.x1!r}) must lie within the block "
+                             f"[-width/2, width/2] = [{-0.5 * width:g}, {0.5 * width:g}] (Scene.width={self.width!r})")
+        if self.mesh.h_fine > x1 - x0:
+            raise ValueError(f"MeshSize.h_fine={self.mesh.h_fine!r} must be <= the foundation width x1 - x0 = "
+                             f"{x1 - x0:g} m (at least one element under the foundation)")
+        for i, load in enumerate(self.loads):
+            if isinstance(load, ColumnLoad) and f is not None and not x0 <= load.x <= x1:
+                raise ValueError(f"loads[{i}].x={load.x!r} must lie on the foundation [x0, x1] = [{x0:g}, {x1:g}]")
 
     def build(self) -> "BuiltScene":
         """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads."""
@@ -544,6 +641,35 @@ def _warn_implausible_units(scene):
             warn("StripWeight.unit_weight", load.unit_weight, "N/m^3", "unit_weight")
 
 
+DRAINAGE = ("drained", "undrained_A")
+
+# what Scene.loads (and a Phase's loads) may hold, and the per-segment contact type of a list Scene.contact
+LOAD_TYPES = (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)
+CONTACT_SEGMENT_TYPES = (ContactSegment,)
+
+
+def _check_list(name, value, cls, min_len=0):
+    """A list or tuple of ``cls`` objects (a class or a tuple of classes), at least ``min_len`` of them."""
+    kinds = " or ".join(c.__name__ for c in (cls if isinstance(cls, tuple) else (cls,)))
+    if not isinstance(value, list | tuple):
+        raise TypeError(f"{name} must be a list of {kinds}, got {value!r} ({type(value).__name__})")
+    if len(value) < min_len:
+        raise ValueError(f"{name} must hold at least {min_len} {kinds}, got {value!r}")
+    for i, item in enumerate(value):
+        check_instance(f"{name}[{i}]", item, cls)
+
+
+def _check_integration(name, value):
+    """A named rule of the plate strip or a pair (n_axial, n_shear) of point counts in 1..3."""
+    if isinstance(value, str):
+        check_choice(name, value, tuple(INTEGRATIONS))
+        return
+    if not (isinstance(value, list | tuple) and len(value) == 2):
+        raise TypeError(f"{name} must be one of {tuple(INTEGRATIONS)} or a pair (n_axial, n_shear), got {value!r}")
+    for v in value:
+        check_int(f"{name} point count", v, lo=1, hi=3)
+
+
 def _describe(scene):
     d = asdict(scene)
     if scene.foundation is not None:
@@ -697,7 +823,9 @@ class BuiltScene:
         ``out.load_factor`` is the phase time (phase i runs from i - 1 to i; the geostatic phase is at 0),
         ``out.phases`` lists each phase's name, first and last step index and solver result, and
         ``out.solver_result`` is the last phase's."""
-        _load_levels(n_steps)  # validates n_steps
+        if n_steps is not None:
+            check_int("n_steps", n_steps, lo=1)
+        check_instance("settings", settings, Settings, optional=True)
         if self.scene.phases:
             return self._solve_phases(n_steps, settings)
         if self.is_linear:

@@ -24,10 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .materials.layer_laws import ELASTIC, N_LAYER_HIST, layer_update
+from .materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
 from .quadrature import layer_rule
+from .validate import check_array, check_int, check_real
 
 __all__ = ["Section", "homogeneous", "layered", "paper_rc_section", "rc_section", "with_crack_spacing_band"]
+
+LAYER_KINDS = (ELASTIC, CONCRETE, STEEL)
 
 
 @dataclass(frozen=True)
@@ -47,6 +50,57 @@ class Section:
     z_bottom: float
     z_top: float
     labels: tuple = ()
+
+    def __post_init__(self):
+        """Check the arrays against each other (the layers must stack from z_bottom to z_top without gaps) and
+        store them as contiguous float64 / int64 / bool arrays."""
+        h = check_array("Section.h", self.h, ndim=1, lo=0.0, lo_open=True, min_size=1)
+        n = h.size
+        z_mid = check_array("Section.z_mid", self.z_mid, shape=(n,))
+        kind = check_array("Section.kind", self.kind, shape=(n,), dtype=np.int64)
+        if not np.all(np.isin(kind, LAYER_KINDS)):
+            bad = kind[~np.isin(kind, LAYER_KINDS)][0]
+            raise ValueError(f"Section.kind must hold layer law kinds {LAYER_KINDS} (ELASTIC, CONCRETE, STEEL), "
+                             f"got {bad}")
+        params = check_array("Section.params", self.params, ndim=2)
+        if params.shape[0] != n or params.shape[1] < 2:
+            raise ValueError(f"Section.params must have shape ({n}, n_par >= 2), one row per layer, got "
+                             f"{params.shape}")
+        if not params[:, 0].min() > 0.0:
+            raise ValueError(f"Section.params[:, 0] (each layer's initial modulus) must be > 0, got "
+                             f"{params[:, 0].min()!r}")
+        elastic = kind == ELASTIC
+        if np.any(elastic & ~((params[:, 1] > -1.0) & (params[:, 1] < 0.5))):
+            bad = params[elastic, 1][~((params[elastic, 1] > -1.0) & (params[elastic, 1] < 0.5))][0]
+            raise ValueError(f"Section.params[:, 1] (nu of an ELASTIC layer) must lie in (-1, 0.5), got {bad!r}")
+        shear = self.carries_shear
+        if isinstance(shear, str) or np.asarray(shear).dtype != bool:
+            raise TypeError(f"Section.carries_shear must be a boolean array of shape ({n},), got {shear!r}")
+        shear = np.ascontiguousarray(shear, bool)
+        if shear.shape != (n,):
+            raise ValueError(f"Section.carries_shear must have shape ({n},), got {shear.shape}")
+        if not shear.any():
+            raise ValueError("Section.carries_shear is all False: at least one layer must carry shear")
+        z_bottom = check_real("Section.z_bottom", self.z_bottom, unit="m")
+        z_top = check_real("Section.z_top", self.z_top, unit="m")
+        if not z_bottom < z_top:
+            raise ValueError(f"Section.z_bottom must be < z_top, got z_bottom={self.z_bottom!r}, "
+                             f"z_top={self.z_top!r}")
+        tol = 1e-9 * (z_top - z_bottom)
+        if abs(h.sum() - (z_top - z_bottom)) > tol:
+            raise ValueError(f"Section.h must add up to the depth z_top - z_bottom = {z_top - z_bottom:g} m "
+                             f"(stacked layers), got sum(h) = {h.sum():g}")
+        stacked = z_bottom + np.cumsum(h) - 0.5 * h
+        if np.max(np.abs(z_mid - stacked)) > tol:
+            raise ValueError(f"Section.z_mid must be the mid-depths of the layers stacked upwards from z_bottom "
+                             f"({stacked.tolist()}), got {z_mid.tolist()}")
+        labels = self.labels
+        if not isinstance(labels, tuple | list) or not all(isinstance(t, str) for t in labels) \
+                or len(labels) not in (0, n):
+            raise TypeError(f"Section.labels must be a tuple of {n} strings (or empty), got {labels!r}")
+        for name, value in (("z_mid", z_mid), ("h", h), ("kind", kind), ("params", params),
+                            ("carries_shear", shear), ("labels", tuple(labels))):
+            object.__setattr__(self, name, value)
 
     @property
     def n_layer(self) -> int:
@@ -138,13 +192,10 @@ def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=(
 
 def homogeneous(thickness: float, E: float, nu: float, n_layers: int = 1, z_ref=None) -> Section:
     """A linear-elastic homogeneous section split into ``n_layers`` equal layers."""
-    if not thickness > 0.0:
-        raise ValueError(f"thickness must be > 0, got {thickness}")
-    if not (E > 0.0 and -1.0 < nu < 0.5):
-        raise ValueError(f"need E > 0 and -1 < nu < 0.5, got E={E}, nu={nu}")
-    if int(n_layers) < 1:
-        raise ValueError(f"n_layers must be >= 1, got {n_layers}")
-    n = int(n_layers)
+    thickness = check_real("thickness", thickness, lo=0.0, lo_open=True, unit="m")
+    check_real("E", E, lo=0.0, lo_open=True, unit="Pa")
+    check_real("nu", nu, lo=-1.0, hi=0.5, lo_open=True, hi_open=True)
+    n = check_int("n_layers", n_layers, lo=1)
     return layered(np.full(n, thickness / n), ELASTIC, [E, nu], z_ref=z_ref, labels=("concrete",) * n)
 
 

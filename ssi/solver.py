@@ -40,9 +40,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .elements.base import CONSISTENT
-from .linsolve import Factorization
+from .linsolve import BACKENDS, Factorization
 from .model import Model, System
 from .progress import SolverProgress, announce_compilation, log, solver_progress
+from .validate import check_bool, check_choice, check_int, check_real
 
 METHODS = ("bfgs", "modified", "full")
 STEPPINGS = ("auto", "fixed")
@@ -84,7 +85,7 @@ class Settings:
                                   # tangent factorisations than that cost more than the K0 retry below)
     first_step: float = 0.1       # auto stepping: first increment of the load factor
     max_step: float = 0.25        # auto stepping: largest increment
-    min_step: float = 1e-3        # auto stepping: smallest increment tried before the path is judged stuck
+    min_step: float = 1e-4        # auto stepping: smallest increment tried before the path is judged stuck
     desired_iterations: int | None = None  # auto stepping: None: 20 (bfgs), 60 (modified), 8 (full)
     max_cuts: int = 6             # fixed stepping: halvings of a failing increment
     collapse_stiffness: float = 0.05  # current stiffness / initial below which a stuck path is a collapse
@@ -109,13 +110,9 @@ class Settings:
     fallback_iter: int = 300      # iterations of the fallback retry
 
     def __post_init__(self):
-        if self.method not in METHODS:
-            raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
-        if self.stepping not in STEPPINGS:
-            raise ValueError(f"stepping must be one of {STEPPINGS}, got {self.stepping!r}")
-        if self.convergence_reference not in REFERENCES:
-            raise ValueError(f"convergence_reference must be one of {REFERENCES}, got "
-                             f"{self.convergence_reference!r}")
+        check_choice("Settings.method", self.method, METHODS)
+        check_choice("Settings.stepping", self.stepping, STEPPINGS)
+        check_choice("Settings.convergence_reference", self.convergence_reference, REFERENCES)
         if self.max_iter is None:
             self.max_iter = _MAX_ITER[self.method]
         if self.desired_iterations is None:
@@ -124,24 +121,27 @@ class Settings:
             self.line_search = self.method == "bfgs"
         if self.fallback == "auto":
             self.fallback = {"bfgs": "full", "full": "modified", "modified": None}[self.method]
-        if self.fallback not in (None, *METHODS):
-            raise ValueError(f"fallback must be None, 'auto' or one of {METHODS}, got {self.fallback!r}")
-        for name in ("force_tol", "energy_tol"):
-            if not 0.0 < getattr(self, name) < 1.0:
-                raise ValueError(f"{name} must be in (0, 1), got {getattr(self, name)}")
-        if not 0.0 < self.min_step <= self.first_step and self.min_step <= self.max_step:
-            raise ValueError(f"steps must satisfy 0 < min_step <= first_step, max_step; got min_step="
-                             f"{self.min_step}, first_step={self.first_step}, max_step={self.max_step}")
-        if not 0.0 <= self.collapse_stiffness < 1.0:
-            raise ValueError(f"collapse_stiffness must be in [0, 1), got {self.collapse_stiffness}")
-        if self.max_iter < 1 or self.max_cuts < 0 or self.fallback_iter < 0 or self.desired_iterations < 1:
-            raise ValueError("max_iter and desired_iterations must be >= 1, max_cuts and fallback_iter >= 0")
-        if not (np.isfinite(self.viscosity) and self.viscosity >= 0.0):
-            raise ValueError(f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {self.viscosity}")
-        if self.bfgs_memory < 0:
-            raise ValueError(f"bfgs_memory must be >= 0, got {self.bfgs_memory}")
-        if not 0.0 < self.line_search_min <= 1.0:
-            raise ValueError(f"line_search_min must be in (0, 1], got {self.line_search_min}")
+        if self.fallback is not None:
+            check_choice("Settings.fallback", self.fallback, METHODS)
+        check_real("Settings.force_tol", self.force_tol, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+        check_real("Settings.energy_tol", self.energy_tol, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+        check_int("Settings.max_iter", self.max_iter, lo=1)
+        check_int("Settings.max_cuts", self.max_cuts, lo=0)
+        check_int("Settings.desired_iterations", self.desired_iterations, lo=1)
+        check_int("Settings.fallback_iter", self.fallback_iter, lo=0)
+        check_int("Settings.bfgs_memory", self.bfgs_memory, lo=0)
+        check_real("Settings.max_step", self.max_step, lo=0.0, hi=1.0, lo_open=True)
+        check_real("Settings.first_step", self.first_step, lo=0.0, hi=self.max_step, lo_open=True)
+        check_real("Settings.min_step", self.min_step, lo=0.0, hi=self.first_step, lo_open=True)
+        check_real("Settings.collapse_stiffness", self.collapse_stiffness, lo=0.0, hi=1.0, hi_open=True)
+        check_real("Settings.viscosity", self.viscosity, lo=0.0, unit="(tau = dt/eta per increment)")
+        check_real("Settings.divergence_ratio", self.divergence_ratio, lo=1.0, lo_open=True)
+        check_choice("Settings.backend", self.backend, BACKENDS)
+        for name in ("symmetric_tangent", "verbose", "keep_states", "line_search"):
+            check_bool(f"Settings.{name}", getattr(self, name))
+        if self.progress is not None:
+            check_bool("Settings.progress", self.progress)
+        check_real("Settings.line_search_min", self.line_search_min, lo=0.0, hi=1.0, lo_open=True)
 
     @classmethod
     def paper(cls, **overrides) -> "Settings":

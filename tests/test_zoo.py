@@ -10,15 +10,12 @@ import numpy as np
 import pytest
 
 from ssi.solver import LIMIT_LOAD, Settings
-from ssi.zoo import ordinary_scenes, solve_zoo
+from ssi.zoo import ordinary_scenes
 
 SCENES = dict(ordinary_scenes())
-# known failure, reported in the closing note of the robust-solution issue: on the h = 0.125 m mesh the
-# psi = 0 clay's residual stagnates near 1e-4 around lambda = 0.93-0.98 for BFGS and full Newton alike
-KNOWN_FAILURES = {"h_fine=0.125"}
 
 
-@pytest.mark.parametrize("name", [n for n in SCENES if n not in KNOWN_FAILURES])
+@pytest.mark.parametrize("name", list(SCENES))
 def test_zoo_scene_reaches_its_load_or_a_detected_collapse(name):
     scene = SCENES[name]
     built = scene.build()
@@ -36,8 +33,3 @@ def test_zoo_scene_reaches_its_load_or_a_detected_collapse(name):
     # tolerance: the convergence tolerance (force_tol 1e-5 of the structural load) with ample room
     assert carried == pytest.approx(applied, rel=1e-3), (carried, applied)
 
-
-@pytest.mark.xfail(strict=True, reason="psi = 0 clay on h = 0.125 m: residual stagnates near lambda 0.93")
-def test_zoo_known_failure_h0125():
-    outcome = solve_zoo([("h_fine=0.125", SCENES["h_fine=0.125"])])[0]
-    assert outcome.solved, outcome.message
