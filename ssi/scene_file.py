@@ -279,7 +279,7 @@ def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
     solve = dict(data.pop("solve", {}))
     n_steps = solve.pop("n_steps", None)
     if n_steps is not None and (isinstance(n_steps, bool) or not isinstance(n_steps, int) or n_steps < 1):
-        raise ValueError(f"{path.name}: solve.n_steps must be an integer >= 1 (leave it out for automatic "
+        raise ValueError(f"{path.name}: solve: 'n_steps' must be an integer >= 1 (leave it out for automatic "
                          f"stepping), got {n_steps!r}")
     _check_keys(solve, {f.name for f in dataclasses.fields(Settings)}, f"{path.name}: solve")
     scene = _build(Scene, data, path.name)
