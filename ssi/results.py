@@ -475,13 +475,16 @@ def _number(value):
     return np.asarray(np.nan if value is None else value, np.float64)
 
 
-def max_difference(a, b) -> tuple[float, str]:
+def max_difference(a, b, skip=()) -> tuple[float, str]:
     """(largest absolute difference, the quantity where it occurs) between two SceneResults over
     :func:`scene_quantities`; inf for a quantity missing on one side, of another shape, or a differing
-    non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity)."""
+    non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity). ``skip``: parts
+    of names to leave out (``("wall_time",)`` to compare two runs of the same scene)."""
     qa, qb = scene_quantities(a), scene_quantities(b)
     worst, where = 0.0, ""
     for name in sorted(set(qa) | set(qb)):
+        if any(part in name for part in skip):
+            continue
         x, y = qa.get(name), qb.get(name)
         if x is None or y is None or np.shape(x) != np.shape(y):
             return float("inf"), name

@@ -291,6 +291,6 @@ def schema_text() -> str:
     lines = []
     for table, units in UNITS.items():
         lines.append(f"[{table}]" + ("  (a load table: type = \"" + table + "\")" if table in LOAD_TYPES else ""))
-        lines += [f"  {key:12s} {unit}" for key, unit in units.items()]
+        lines += [f"  {key:16s} {unit}" for key, unit in units.items()]
     lines.append("[solve]  n_steps (leave out: automatic stepping) and any ssi.solver.Settings field")
     return "\n".join(lines)
