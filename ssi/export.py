@@ -9,7 +9,9 @@ Point data: ``displacement`` (n_nodes, 3) = (u, w, 0) [m] (Warp By Vector shows 
 ``rotation`` (n_nodes,) [rad] (plate nodes; 0 elsewhere). Cell data (NaN on blocks it does not apply to):
 ``sxx``, ``szz``, ``txz``, ``syy`` (soil stress [Pa], tension positive, the mean over each element's
 integration points),
-``plastic_fraction`` (share of yielding points), ``plastic_strain`` (largest accumulated norm), ``N``, ``M``,
+``plastic_fraction`` (share of yielding points), ``plastic_strain`` (largest accumulated norm),
+``pore_pressure`` (hydrostatic below the water table plus the excess of undrained_A layers [Pa], compression
+positive, the element mean; the stresses are effective), ``N``, ``M``,
 ``Q`` (strip forces, means over the element's points [N/m, N m/m]), ``contact_pressure``, ``contact_shear``
 (means over the interface element's points [Pa]) and ``contact_open`` (share of open points).
 """
@@ -22,8 +24,8 @@ import numpy as np
 from .results import atomic_path
 
 STRESS_NAMES = ("sxx", "szz", "txz", "syy")
-CELL_FIELDS = (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "N", "M", "Q", "contact_pressure",
-               "contact_shear", "contact_open")
+CELL_FIELDS = (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "pore_pressure", "N", "M", "Q",
+               "contact_pressure", "contact_shear", "contact_open")
 
 
 def mesh_cells(result) -> list:
@@ -73,6 +75,7 @@ def cell_data(result, k=-1) -> dict:
         data[name][0] = sig[:, i]
     data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
     data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
+    data["pore_pressure"][0] = (built.pore_pressure() + built.excess_pore_pressure(result, k)).mean(axis=1)
     if n_plate:
         f = result.strip_forces(k)
         data["N"][1], data["M"][1], data["Q"][1] = f["N"].mean(1), f["M"].mean(1), f["Q"].mean(1)

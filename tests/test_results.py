@@ -361,6 +361,18 @@ def test_vtu_reads_back(nonlinear, tmp_path):
         export_vtu(nonlinear, path)
 
 
+def test_vtu_pore_pressure_of_a_water_table(phased, tmp_path):
+    """The exported pore pressure of the phased scene (drained, water table 2 m deep) is the hydrostatic
+    gamma_w (depth - 2 m) averaged over each element's points, by hand from the stored point depths."""
+    mesh = meshio.read(export_vtu(phased, tmp_path / "p.vtu"))
+    depth = -phased.soil_points()[..., 1]
+    by_hand = (9.81e3 * np.maximum(depth - 2.0, 0.0)).mean(axis=1)
+    exported = mesh.cell_data["pore_pressure"][0]
+    assert by_hand.max() > 9.81e3 * 2.0  # the lowest elements' points lie more than 4 m deep on average
+    assert np.all(exported[(depth <= 2.0).all(axis=1)] == 0.0)  # dry above the table
+    assert np.max(np.abs(exported - by_hand)) <= 1e-12 * by_hand.max()
+
+
 def test_series_every_step_reads_back(nonlinear, tmp_path):
     path = export_series(nonlinear, tmp_path / "r.pvd")
     assert sorted(os.listdir(tmp_path)) == ["r.pvd", "r_steps"]
