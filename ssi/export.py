@@ -106,7 +106,9 @@ def export_vtu(result, path, k=-1, overwrite=False) -> Path:
 def export_series(result, path, overwrite=False) -> Path:
     """Every converged step as a ParaView time series: ``path`` (.pvd, the collection, load factor as
     time) and one VTU per step in the folder ``<stem>_steps`` beside it. Each file is written atomically,
-    the .pvd last, so a reader never sees a collection pointing at missing steps.
+    the .pvd last, so a reader never sees a collection pointing at missing steps. ParaView shows one data
+    set per time value, so where the load factors do not strictly increase (a phased result: its initial
+    and geostatic states are both at phase time 0) the step number is the time instead.
 
     (XDMF + HDF5 through meshio was tried first: meshio writes the mixed quad8/line3 grid as an XDMF
     "Mixed" topology that its own reader cannot read back, so the export could not be checked.)"""
@@ -117,7 +119,10 @@ def export_series(result, path, overwrite=False) -> Path:
         raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
     folder = path.parent / f"{path.stem}_steps"
     entries = []
-    for k, lam in enumerate(result.load_factor):
+    times = np.asarray(result.load_factor, np.float64)
+    if np.any(np.diff(times) <= 0.0):
+        times = np.arange(len(times), dtype=np.float64)
+    for k, lam in enumerate(times):
         step_file = folder / f"{path.stem}_{k:04d}.vtu"
         export_vtu(result, step_file, k=k, overwrite=overwrite)
         entries.append(f'    <DataSet timestep="{float(lam)!r}" part="0" file="{folder.name}/{step_file.name}"/>')
@@ -129,7 +134,7 @@ def export_series(result, path, overwrite=False) -> Path:
 
 
 def read_series(path) -> list:
-    """[(load factor, meshio.Mesh)] of a .pvd series written by :func:`export_series`."""
+    """[(time: load factor or step number, meshio.Mesh)] of a .pvd series written by :func:`export_series`."""
     import xml.etree.ElementTree as ET
     path = Path(path)
     root = ET.parse(path).getroot()

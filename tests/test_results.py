@@ -373,6 +373,15 @@ def test_vtu_pore_pressure_of_a_water_table(phased, tmp_path):
     assert np.max(np.abs(exported - by_hand)) <= 1e-12 * by_hand.max()
 
 
+def test_phased_series_is_numbered_by_step(phased, tmp_path):
+    """The phased result's first two states share phase time 0: the series counts steps instead, and its
+    last data set is the last step."""
+    series = read_series(export_series(phased, tmp_path / "p.pvd"))
+    assert [t for t, _ in series] == list(range(len(phased.load_factor)))
+    w = phased.u[-1][phased.built.model.dof(phased.built.plate_nodes, "w")]
+    assert np.max(np.abs(series[-1][1].point_data["displacement"][phased.built.plate_nodes, 1] - w)) <= 1e-12
+
+
 def test_series_every_step_reads_back(nonlinear, tmp_path):
     path = export_series(nonlinear, tmp_path / "r.pvd")
     assert sorted(os.listdir(tmp_path)) == ["r.pvd", "r_steps"]
