@@ -73,6 +73,19 @@ scene_path = EXAMPLES / "rc_strip.toml"
 print(scene_path.read_text())
 
 # %% [markdown]
+# Everything chapter 12 adds to a scene is in the file too, one table per dataclass: a load table names its
+# class with `type` (a table without it is a `ColumnLoad`, so the files above need none), phases are
+# `[[phases]]` tables with their own `[[phases.loads]]` and `factors` rescaling earlier phases, and
+# `embedment`, `water_table`, undrained layers (`drainage = "undrained_A"`) and contact segments
+# (`[[contact]]` with `x0`, `x1` and a `contact` table) are keys like any other. Leaving `n_steps` out of
+# `[solve]` lets the solver choose its increments (automatic stepping, the default of `Settings`). This
+# example is an embedded strip below a water table, loaded in three phases:
+
+# %%
+phased_path = EXAMPLES / "phased_embedded.toml"
+print(phased_path.read_text())
+
+# %% [markdown]
 # ## One command: `ssi run`
 #
 # Each example file is run through the command line in a fresh process (`python -m ssi.cli run`, what the
@@ -80,10 +93,14 @@ print(scene_path.read_text())
 # summary. The same file is then solved in this notebook through the Python API (`read_scene_file`,
 # `Scene.build`, `BuiltScene.solve`) and the summaries are compared. They are the same computation, so they
 # must agree exactly (tolerance 0): any difference would mean the command line solves something else than
-# the file says.
+# the file says. The summary's status tells three endings apart: "completed", "limit load reached" (the
+# solver detected a collapse; the path up to it is the answer and the load factor the scene carries is
+# printed; exit status 0) and "stopped" (the solver failed before either; the file is marked incomplete and
+# the command exits with status 3).
 
 # %%
-KEYS = ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete", "steps")
+KEYS = ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete", "steps",
+        "status", "phase", "phase_load_factor", "limit_load_factor")
 cli_ok = {}
 for example in sorted(EXAMPLES.glob("*.toml")):
     work = OUT / example.name
@@ -106,28 +123,43 @@ for example in sorted(EXAMPLES.glob("*.toml")):
 # `read_result` gives back a `SceneResult`. `ssi.results.max_difference` walks every quantity a
 # `SceneResult` answers — displacements, states of every group at every step, settlements, contact stresses,
 # zones, weights and resultant, strip forces, layer strains and stresses, steel stress and yield, crack map,
-# soil stress, plastic points and strain, the load–settlement path — and returns the largest absolute
-# difference. HDF5 stores float64 bit for bit and the scene description is JSON, whose floats round-trip
-# exactly, so the tolerance is 0.
+# soil stress, plastic points and strain, the load–settlement path, the status and limit load, and every
+# field of the solver's record (internal forces, iterations, residual histories, current stiffness, cuts,
+# wall time) — of a phased result for every phase, with its name and step range — and returns the largest
+# absolute difference. HDF5 stores float64 bit for bit and the scene description is JSON, whose floats
+# round-trip exactly, so the tolerance is 0.
+#
+# The test case is the phased, embedded strip below the water table. Its geostatic phase takes several
+# automatic increments of which the scene result keeps only the first and last state; the file stores those
+# intermediate steps with the phase's record (the other rows of a phase are the scene result's own and are
+# stored once), so they come back too.
 
 # %%
-stem = OUT / "rc_strip"
-back = read_result(stem.with_suffix(".h5"))
-scene, n_steps, settings = read_scene_file(scene_path)
+phased_back = read_result((OUT / "phased_embedded").with_suffix(".h5"))
+scene, n_steps, settings = read_scene_file(phased_path)
 live = scene.build().solve(n_steps=n_steps, settings=settings)
-roundtrip_live, where = max_difference(live, back)
+# two runs of the same file: everything equal but the time each took
+roundtrip_live, where = max_difference(live, phased_back, skip=("wall_time",))
 print(f"file written by `ssi run` vs a fresh solve: max difference {roundtrip_live:.3g} ({where or 'none'})")
 
-path = write_result(OUT / "rc_strip_api.h5", live, settings, overwrite=True)
-roundtrip, where = max_difference(live, read_result(path))
+path = write_result(OUT / "phased_embedded_api.h5", live, settings, overwrite=True)
+back_api = read_result(path)
+roundtrip, where = max_difference(live, back_api)
 print(f"write -> read: max difference {roundtrip:.3g} over every SceneResult quantity ({where or 'none'})")
+print("phases:", [(r["name"], r["first"], r["last"], r["result"].n_steps) for r in back_api.phases])
 print("file info:", {k: v for k, v in read_info(path).items() if k in ("kind", "complete", "ssi_version")})
 
 RESULT_ROUNDTRIP_TOL = 0.0
+assert back_api.phases is not None and len(back_api.phases) == 4
+assert back_api.built.scene.embedment == 1.0 and back_api.built.scene.water_table == 2.0
 assert roundtrip <= RESULT_ROUNDTRIP_TOL
 assert roundtrip_live <= RESULT_ROUNDTRIP_TOL  # the solve is deterministic: the CLI's file equals it too
-record("result_roundtrip", "max |difference| of every SceneResult quantity after write -> read", roundtrip,
-       RESULT_ROUNDTRIP_TOL, roundtrip <= RESULT_ROUNDTRIP_TOL)
+record("result_roundtrip", "max |difference| of every SceneResult quantity after write -> read (phased, "
+       "embedded scene with a water table)", roundtrip, RESULT_ROUNDTRIP_TOL, roundtrip <= RESULT_ROUNDTRIP_TOL)
+
+# the RC strip of the ParaView section below, from the file `ssi run` wrote
+stem = OUT / "rc_strip"
+back = read_result(stem.with_suffix(".h5"))
 
 # %% [markdown]
 # ## ParaView: every step, read back
@@ -184,6 +216,13 @@ plot.cracks_and_steel(back, ax=ax2[3:])
 fig2.suptitle("Fig. 15.2 — bending moment, shear and normal force; cracks and steel stress")
 save_figure(fig2, "ch15_strip_figures")
 
+fig3, ax3 = plt.subplots(1, 2, figsize=(12, 4), layout="constrained")
+plot.load_settlement(phased_back, ax=ax3[0])
+plot.settlement(phased_back, ax=ax3[1])
+fig3.suptitle("Fig. 15.3 — examples/phased_embedded.toml from its result file: settlement through the phases "
+              "(phase time: phase i runs from i - 1 to i) and the strip's settlement at the end")
+save_figure(fig3, "ch15_phased_figures")
+
 # %% [markdown]
 # ## The command line's verdict
 
@@ -196,12 +235,16 @@ record("cli_example", "every example scene file runs through `ssi run` and its s
 # %% [markdown]
 # ## Summary
 #
-# - A TOML scene file maps key for key onto the `Scene` dataclasses; unknown keys are refused by name.
+# - A TOML scene file maps key for key onto the `Scene` dataclasses — loads of every type, phases, contact
+#   segments, water table, embedment, undrained layers; unknown keys and load types are refused by name.
 # - `ssi run scene.toml` writes the result, a ParaView series, the figures and a summary; its numbers equal the
 #   Python API's for every example (`cli_example`).
-# - `read_result` gives back a `SceneResult` whose every quantity equals the original exactly
-#   (`result_roundtrip`, tolerance 0), so figures can be redrawn without the script.
+# - `read_result` gives back a `SceneResult` whose every quantity equals the original exactly, phases and
+#   their solver records included (`result_roundtrip`, tolerance 0), so figures can be redrawn without the
+#   script.
 # - The ParaView export reads back with meshio to the last bit of its float64 data (`vtk_roundtrip`).
 #
-# Not shown here: a run that stops before the end of its load path (a limit load) is written too, marked
-# `complete = False` with its last converged step and the solver's report (`tests/test_results.py`).
+# Not shown here (`tests/test_results.py`): a run that ends at a detected limit load is written as a complete
+# result with its status and limit load factor, and `ssi show` reports the limit load; a run the solver
+# stops before the end of its load path is written too, marked `complete = False` with its last converged
+# step and the solver's report, and `ssi run` exits with status 3.

@@ -18,7 +18,7 @@ import numpy as np
 
 from .elements.soil_q8 import SoilQ8
 from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_params
-from .mesh import soil_block, structured_q8
+from .mesh import soil_block, structured_q8, surface_pressure_forces
 from .model import Model
 from .solver import NonConvergence, Settings, run
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
@@ -110,15 +110,9 @@ def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rou
 
 
 def _surface_pressure(model, mesh, x0, x1, p, dead=False):
-    """Consistent nodal forces (L/6, 4L/6, L/6 per quadratic edge) of a pressure p on the surface x0..x1."""
-    nodes = mesh.nodes_between(x0, x1)
-    xs = mesh.xy[nodes, 0]
-    f = np.zeros(len(nodes))
-    for i in range(0, len(nodes) - 2, 2):
-        L = xs[i + 2] - xs[i]
-        f[i] += L / 6.0
-        f[i + 1] += 4.0 * L / 6.0
-        f[i + 2] += L / 6.0
+    """Load the surface x0..x1 with a pressure p [Pa] (down positive): the consistent nodal forces of
+    :func:`ssi.mesh.surface_pressure_forces`, as a dead or a reference load."""
+    nodes, f = surface_pressure_forces(mesh, x0, x1)
     if dead:
         model.add_dead_load(nodes, "w", -p * f)
     else:

@@ -4,9 +4,11 @@
 otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` + ``<name>_steps/*.vtu``
 (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
 ``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
-bending moment, the load where a run stopped, wall time). Nothing is overwritten without ``--overwrite``.
-A run that stops before the end of its load path still writes everything, marked incomplete, and the
-command exits with status 3. ``ssi show result.h5`` prints the summary of a result file and writes its plots.
+bending moment, the status, wall time). Nothing is overwritten without ``--overwrite``.
+A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
+factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
+:class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
+status 3. ``ssi show result.h5`` prints the summary of a result file and writes its plots.
 """
 
 import argparse
@@ -19,7 +21,15 @@ EXIT_INCOMPLETE = 3
 
 
 def summary(result, wall_time=None, complete=True, stop=None) -> dict:
-    """The numbers ``ssi run`` prints, from a SceneResult: SI units (m, Pa, N/m, N m/m, s)."""
+    """The numbers ``ssi run`` prints, from a SceneResult: SI units (m, Pa, N/m, N m/m, s).
+
+    ``status``: "completed" (the whole load path), "limit load reached" (the solver detected a collapse: the
+    path up to the limit is the answer, ``limit_load_factor`` the fraction of the loads -- of a phased scene,
+    of the last phase's loads -- that the scene carries) or "stopped" (the solver failed before either;
+    ``stop_reason``). ``phase``: of a phased scene, the name of the last phase reached; ``phase_load_factor``
+    the load factor reached in it. ``column_load`` [N/m]: of a single-phase scene, load factor times the sum
+    of the column forces N (None for a phased scene: its phase, load factor and contact resultant say it)."""
+    from .scene import ColumnLoad
     x_s, s_max = result.max_settlement()
     out = {"complete": bool(complete), "steps": result.n_steps, "load_factor": float(result.load_factor[-1]),
            "max_settlement": s_max, "x_max_settlement": x_s}
@@ -33,30 +43,40 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
         j = int(abs(m).argmax())
         out["max_abs_moment"] = float(abs(m).ravel()[j])
         out["x_max_abs_moment"] = float(result.strip_forces()["x_ax"].ravel()[j])
-    total_n = sum(load.N for load in result.built.scene.loads)
-    out["column_load"] = float(result.load_factor[-1]) * total_n
-    out["stopped_at_column_load"] = None if complete else out["column_load"]
+    last = result.phases[-1] if result.phases else None
+    out["phase"] = None if last is None else last["name"]
+    out["phase_load_factor"] = out["load_factor"] if last is None else float(last["result"].load_factor[-1])
+    total_n = sum(load.N for load in result.built.scene.loads if isinstance(load, ColumnLoad))
+    out["column_load"] = None if result.built.scene.phases else out["load_factor"] * total_n
     out["status"] = result.status if complete else "stopped"
     out["limit_load_factor"] = result.limit_load_factor if complete else None
+    out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
 
 
 def summary_text(s: dict) -> str:
-    state = ")" if s["complete"] else ", INCOMPLETE: the run stopped before the end of its load path)"
-    lines = [f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}",
-             f"max settlement   {1e3 * s['max_settlement']:.3f} mm at x = {s['x_max_settlement']:.3f} m"]
+    """The summary as the lines ``ssi run`` and ``ssi show`` print (kN, kPa, mm)."""
+    state = {"completed": ")", "limit load reached": ", the limit load)",
+             "stopped": ", INCOMPLETE: the run stopped before the end of its load path)"}[s["status"]]
+    lines = [f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}"]
+    if s.get("phase") is not None:
+        lines.append(f"last phase       {s['phase']!r} at load factor {s['phase_load_factor']:.4g} of its loads")
+    lines.append(f"max settlement   {1e3 * s['max_settlement']:.3f} mm at x = {s['x_max_settlement']:.3f} m")
     if "max_contact_pressure" in s:
         lines += [(f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
                    f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"),
                   f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m"]
-    if s.get("limit_load_factor") is not None:
-        lines.append(f"limit load       reached at load factor {s['limit_load_factor']:.4g} "
-                     f"({s['column_load'] / 1e3:.2f} kN/m of column load): the scene cannot carry its loads")
-    if s["stopped_at_column_load"] is not None:
-        lines.append(f"stopped at       {s['stopped_at_column_load'] / 1e3:.2f} kN/m of column load "
-                     f"(solver failure: {s['stop_reason']})")
+    load = "" if s.get("column_load") is None else f", {s['column_load'] / 1e3:.2f} kN/m of column load"
+    if s["status"] == "limit load reached":
+        where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
+        lines.append(f"limit load       reached at load factor {s['limit_load_factor']:.4g}{where}{load}: "
+                     "the scene cannot carry its full loads (the path up to the limit is the answer)")
+    elif s["status"] == "stopped":
+        where = "" if s.get("phase") is None else f" in phase {s['phase']!r}"
+        lines.append(f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
+                     f"(solver failure, not a detected limit load: {s['stop_reason']})")
     if s.get("wall_time_s") is not None:
         lines.append(f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})")
     return "\n".join(lines)
@@ -87,6 +107,8 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     try:
         result = built.solve(n_steps=n_steps, settings=settings)
     except NonConvergence as err:
+        # the converged steps before the failure (of a phased scene: those of the failing phase only, which
+        # is all NonConvergence carries)
         r = err.result
         result = SceneResult(built, r.load_factor, r.u, r.states, r)
         stop = err.report
@@ -111,8 +133,11 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     path = Path(path)
     result = read_result(path)
     info = read_info(path)
-    sr = getattr(result, "solver_result", None)
-    s = summary(result, None if sr is None else sr.wall_time, info["complete"], info["stop"])
+    if result.phases:
+        wall = sum(record["result"].wall_time for record in result.phases)
+    else:
+        wall = None if result.solver_result is None else result.solver_result.wall_time
+    s = summary(result, wall, info["complete"], info["stop"])
     s["wall_time_of"] = "the solver, as stored in the file"
     written = []
     if figures:

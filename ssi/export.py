@@ -9,7 +9,9 @@ Point data: ``displacement`` (n_nodes, 3) = (u, w, 0) [m] (Warp By Vector shows 
 ``rotation`` (n_nodes,) [rad] (plate nodes; 0 elsewhere). Cell data (NaN on blocks it does not apply to):
 ``sxx``, ``szz``, ``txz``, ``syy`` (soil stress [Pa], tension positive, the mean over each element's
 integration points),
-``plastic_fraction`` (share of yielding points), ``plastic_strain`` (largest accumulated norm), ``N``, ``M``,
+``plastic_fraction`` (share of yielding points), ``plastic_strain`` (largest accumulated norm),
+``pore_pressure`` (hydrostatic below the water table plus the excess of undrained_A layers [Pa], compression
+positive, the element mean; the stresses are effective), ``N``, ``M``,
 ``Q`` (strip forces, means over the element's points [N/m, N m/m]), ``contact_pressure``, ``contact_shear``
 (means over the interface element's points [Pa]) and ``contact_open`` (share of open points).
 """
@@ -22,8 +24,8 @@ import numpy as np
 from .results import atomic_path
 
 STRESS_NAMES = ("sxx", "szz", "txz", "syy")
-CELL_FIELDS = (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "N", "M", "Q", "contact_pressure",
-               "contact_shear", "contact_open")
+CELL_FIELDS = (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "pore_pressure", "N", "M", "Q",
+               "contact_pressure", "contact_shear", "contact_open")
 
 
 def mesh_cells(result) -> list:
@@ -73,6 +75,7 @@ def cell_data(result, k=-1) -> dict:
         data[name][0] = sig[:, i]
     data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
     data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
+    data["pore_pressure"][0] = (built.pore_pressure() + built.excess_pore_pressure(result, k)).mean(axis=1)
     if n_plate:
         f = result.strip_forces(k)
         data["N"][1], data["M"][1], data["Q"][1] = f["N"].mean(1), f["M"].mean(1), f["Q"].mean(1)
@@ -103,7 +106,9 @@ def export_vtu(result, path, k=-1, overwrite=False) -> Path:
 def export_series(result, path, overwrite=False) -> Path:
     """Every converged step as a ParaView time series: ``path`` (.pvd, the collection, load factor as
     time) and one VTU per step in the folder ``<stem>_steps`` beside it. Each file is written atomically,
-    the .pvd last, so a reader never sees a collection pointing at missing steps.
+    the .pvd last, so a reader never sees a collection pointing at missing steps. ParaView shows one data
+    set per time value, so where the load factors do not strictly increase (a phased result: its initial
+    and geostatic states are both at phase time 0) the step number is the time instead.
 
     (XDMF + HDF5 through meshio was tried first: meshio writes the mixed quad8/line3 grid as an XDMF
     "Mixed" topology that its own reader cannot read back, so the export could not be checked.)"""
@@ -114,7 +119,10 @@ def export_series(result, path, overwrite=False) -> Path:
         raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
     folder = path.parent / f"{path.stem}_steps"
     entries = []
-    for k, lam in enumerate(result.load_factor):
+    times = np.asarray(result.load_factor, np.float64)
+    if np.any(np.diff(times) <= 0.0):
+        times = np.arange(len(times), dtype=np.float64)
+    for k, lam in enumerate(times):
         step_file = folder / f"{path.stem}_{k:04d}.vtu"
         export_vtu(result, step_file, k=k, overwrite=overwrite)
         entries.append(f'    <DataSet timestep="{float(lam)!r}" part="0" file="{folder.name}/{step_file.name}"/>')
@@ -126,7 +134,7 @@ def export_series(result, path, overwrite=False) -> Path:
 
 
 def read_series(path) -> list:
-    """[(load factor, meshio.Mesh)] of a .pvd series written by :func:`export_series`."""
+    """[(time: load factor or step number, meshio.Mesh)] of a .pvd series written by :func:`export_series`."""
     import xml.etree.ElementTree as ET
     path = Path(path)
     root = ET.parse(path).getroot()

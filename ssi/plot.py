@@ -170,12 +170,21 @@ def cracks_and_steel(result, k=-1, ax=None):
 
 
 def load_settlement(result, ax=None):
-    """Total column load [kN/m] against the largest settlement [mm], every converged step."""
+    """Total column load [kN/m] against the largest settlement [mm], every converged step; of a phased
+    result the phase time (phase i runs from i - 1 to i) against the settlement, each phase named."""
     fig, ax = _axes(ax, figsize=(5, 4))
     path = result.load_settlement()
-    ax.plot(1e3 * path["settlement"], path["column_load"] / 1e3, "o-")
+    if result.phases:
+        ax.plot(1e3 * path["settlement"], path["load_factor"], "o-", ms=3)
+        for i, record in enumerate(result.phases):
+            ax.axhline(i, color="0.8", lw=0.8, zorder=0)
+            ax.annotate(record["name"], (0.02, i - 0.5 if i else 0.0), xycoords=("axes fraction", "data"),
+                        fontsize=8, va="center")
+        ax.set_ylabel("phase time [-]")
+    else:
+        ax.plot(1e3 * path["settlement"], path["column_load"] / 1e3, "o-")
+        ax.set_ylabel("column load [kN/m]")
     ax.set_xlabel("largest settlement [mm]")
-    ax.set_ylabel("column load [kN/m]")
     ax.set_title("load-settlement path")
     return fig
 

@@ -20,8 +20,14 @@ Layout::
     /steps/u                        (n_steps + 1, n_dof) [m, rad]
     /steps/state/<group>            (n_kept, ...) committed integration-point states
     /steps/state_step               (n_kept,) the step each kept state belongs to
-    /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts; attrs cuts, wall_time,
-            factorizations            (only when the result had a solver result)
+    /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
+            load_factor, u_origin, f_int_origin; attrs cuts, wall_time, factorizations, status,
+            limit_load_factor            (only when the result had a solver result)
+    /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
+                                    /steps/state) they are, or -1 for a row of its own in u_own / state_own
+    /phases/<i>                     a phased SceneResult's phase i: attrs name, first, last (step indices);
+                                    its solver result laid out as /solver (attrs solver_phase of the file:
+                                    the phase whose result is the SceneResult's solver_result)
 
 Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, then
 moved over the target), and an existing file is never replaced unless ``overwrite=True``. A run that stopped
@@ -42,7 +48,7 @@ import numpy as np
 from . import __version__
 
 FORMAT = "ssi-result-1"
-_SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result")
+_SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result", "phases")
 
 
 # ---- atomic files ----------------------------------------------------------------------------------------
@@ -150,8 +156,20 @@ def _write_scene_result(h5, result):
     h5.attrs["extra"] = json.dumps(extra, default=_jsonable)
     _write_mesh(h5, built.model)
     _write_steps(h5, built.model, result.load_factor, result.u, result.states)
-    if result.solver_result is not None:
-        _write_solver(h5, result.solver_result)
+    names = group_names(built.model)
+    own = None
+    for i, record in enumerate(result.phases or []):
+        grp = h5.create_group(f"phases/{i}")
+        for key, value in record.items():
+            if key != "result":
+                grp.attrs[key] = json.dumps(value, default=_jsonable)
+        _write_solver(grp, record["result"], result.u, result.states, names)
+        if record["result"] is result.solver_result:
+            own = i
+    if own is not None:
+        h5.attrs["solver_phase"] = own
+    elif result.solver_result is not None:
+        _write_solver(h5.create_group("solver"), result.solver_result, result.u, result.states, names)
 
 
 def _write_model_result(h5, result):
@@ -160,7 +178,7 @@ def _write_model_result(h5, result):
     if hasattr(result, "load_factor"):
         _write_mesh(h5, model)
         _write_steps(h5, model, result.load_factor, result.u, result.states)
-        _write_solver(h5, result)
+        _write_solver(h5.create_group("solver"), result, result.u, result.states, group_names(model))
     else:  # LinearResult: the unloaded state and the solution at load factor 1
         _write_mesh(h5, model)
         _write_steps(h5, model, [0.0, 1.0], [np.zeros_like(result.u), result.u], [result.states])
@@ -194,8 +212,11 @@ def _write_steps(h5, model, load_factor, u, states):
         st[name] = np.stack([s[i] for s in states])
 
 
-def _write_solver(h5, res):
-    grp = h5.create_group("solver")
+def _write_solver(grp, res, u, states, names):
+    """The solver Result ``res`` in ``grp``: its rows of u and states by reference to the rows ``u`` and
+    ``states`` written in /steps where they are the same arrays (a phase's rows are the scene result's),
+    stored in ``u_own``/``state_own`` where not (the first row of a phase, a phase's intermediate steps)."""
+    grp["load_factor"] = np.asarray(res.load_factor, np.float64)
     grp["f_int"] = np.asarray(res.f_int, np.float64)
     grp["iterations"] = np.asarray(res.iterations, np.int64)
     for key in ("residuals", "energies"):
@@ -207,6 +228,20 @@ def _write_solver(h5, res):
     grp["stiffness"] = np.asarray(res.stiffness, np.float64)
     grp.attrs["status"] = res.status
     grp.attrs["limit_load_factor"] = np.nan if res.limit_load_factor is None else res.limit_load_factor
+    for key in ("u_origin", "f_int_origin"):
+        if getattr(res, key, None) is not None:
+            grp[key] = np.asarray(getattr(res, key), np.float64)
+    u_at = {id(row): r for r, row in enumerate(u)}
+    u_rows = np.array([u_at.get(id(row), -1) for row in res.u], np.int64)
+    grp["u_rows"] = u_rows
+    if (u_rows < 0).any():
+        grp["u_own"] = np.asarray([row for row, r in zip(res.u, u_rows) if r < 0], np.float64)
+    state_at = {id(row): r for r, row in enumerate(states)}
+    state_rows = np.array([state_at.get(id(row), -1) for row in res.states], np.int64)
+    grp["state_rows"] = state_rows
+    own = [row for row, r in zip(res.states, state_rows) if r < 0]
+    for i, name in enumerate(names if own else []):
+        grp[f"state_own/{name}"] = np.stack([row[i] for row in own])
 
 
 # ---- reading ---------------------------------------------------------------------------------------------
@@ -271,19 +306,29 @@ def read_result(path):
         order = json.loads(h5.attrs["model"])["groups"]
         stored = {k: h5[f"steps/state/{k}"][...] for k in names}
         kept = len(h5["steps/state_step"])
-        solver = _read_solver(h5) if "solver/f_int" in h5 else None
+        solver = _read_solver(h5["solver"]) if "solver/f_int" in h5 else None
+        phases = [(_read_solver(h5[f"phases/{i}"]), {k: json.loads(v) for k, v in h5[f"phases/{i}"].attrs.items()
+                                                      if k in ("name", "first", "last")})
+                  for i in range(len(h5["phases"]))] if "phases" in h5 else []
         mesh = {k: (h5[f"mesh/{k}/conn"][...], h5[f"mesh/{k}/edofs"][...]) for k in h5["mesh"]
                 if isinstance(h5[f"mesh/{k}"], h5py.Group)}
         coords, node_ndof = h5["mesh/coords"][...], h5["mesh/node_ndof"][...]
     group_order = _stored_group_order(order, names)
     states = [[stored[name][i] for name in group_order] for i in range(kept)]
+    for record, _ in phases:
+        if "state_own" in record:
+            record["state_own"] = [[record["state_own"][name][i] for name in group_order]
+                                   for i in range(len(record["state_own"][group_order[0]]))]
+    if solver is not None and "state_own" in solver:
+        solver["state_own"] = [[solver["state_own"][name][i] for name in group_order]
+                               for i in range(len(solver["state_own"][group_order[0]]))]
     if info["kind"] != "scene":
         return StoredResult(coords=coords, node_ndof=node_ndof, conn={k: v[0] for k, v in mesh.items()},
                             edofs={k: v[1] for k, v in mesh.items()}, load_factor=lam, u=u, states=states,
                             model=info["model"], f_int=None if solver is None else solver["f_int"],
                             iterations=None if solver is None else solver["iterations"], info=info,
                             group_names=group_order)
-    return _scene_result(info, lam, u, states, solver, coords)
+    return _scene_result(info, lam, u, states, solver, phases, coords)
 
 
 def _stored_group_order(described, names):
@@ -300,9 +345,10 @@ def _stored_group_order(described, names):
     return ordered
 
 
-def _read_solver(h5):
-    grp = h5["solver"]
-    out = {k: grp[k][...] for k in grp}
+def _read_solver(grp):
+    out = {k: grp[k][...] for k in grp if isinstance(grp[k], h5py.Dataset)}
+    if "state_own" in grp:
+        out["state_own"] = {k: grp[f"state_own/{k}"][...] for k in grp["state_own"]}
     out.update({k: v.item() if isinstance(v, np.generic) else v for k, v in grp.attrs.items()})
     return out
 
@@ -311,29 +357,43 @@ def _optional_float(value):
     return None if value is None or not np.isfinite(value) else float(value)
 
 
-def _scene_result(info, lam, u, states, solver, coords):
+def _scene_result(info, lam, u, states, solver, phases, coords):
     from .scene import SceneResult
     from .scene_file import scene_from_dict
-    from .solver import Result
     built = scene_from_dict(info["scene"]).build()
     if built.model.coords.shape != coords.shape or not np.array_equal(built.model.coords, coords):
         raise ValueError("the rebuilt scene's mesh differs from the stored one (file written by another "
                          f"ssi version? this is {__version__}, the file {info.get('ssi_version')})")
     u_rows = list(u)
-    solver_result = None
-    if solver is not None and "f_int" in solver:
-        solver_result = Result(model=built.model, load_factor=list(lam), u=u_rows, f_int=list(solver["f_int"]),
-                               states=states, iterations=solver["iterations"].tolist(),
-                               residuals=_split(solver["residuals"], solver["residuals_counts"]),
-                               energies=_split(solver["energies"], solver["energies_counts"]),
-                               cuts=int(solver["cuts"]), wall_time=float(solver["wall_time"]),
-                               factorizations=int(solver["factorizations"]),
-                               stiffness=list(solver.get("stiffness", [])),
-                               status=str(solver.get("status", "completed")),
-                               limit_load_factor=_optional_float(solver.get("limit_load_factor")))
+    records = [{**meta, "result": _solver_result(built.model, rec, lam, u_rows, states)} for rec, meta in phases]
+    if "solver_phase" in info:
+        solver_result = records[int(info["solver_phase"])]["result"]
+    else:
+        solver_result = None if solver is None else _solver_result(built.model, solver, lam, u_rows, states)
     extra = {k: v for k, v in info.get("extra", {}).items()
              if k in {f.name for f in dataclasses.fields(SceneResult)}}
-    return SceneResult(built, list(lam), u_rows, states, solver_result, **extra)
+    return SceneResult(built, list(lam), u_rows, states, solver_result, phases=records or None, **extra)
+
+
+def _solver_result(model, rec, lam, u, states):
+    """A :class:`ssi.solver.Result` from its stored record; its u and state rows are the scene result's
+    where the file says so (files without the row tables: the scene result's rows themselves)."""
+    from .solver import Result
+    u_rows = rec.get("u_rows", np.arange(len(lam)))
+    state_rows = rec.get("state_rows", np.arange(len(states)))
+    own_u = iter(rec.get("u_own", ()))
+    own_states = iter(rec.get("state_own", ()))
+    return Result(model=model, load_factor=list(rec.get("load_factor", lam)),
+                  u=[u[r] if r >= 0 else next(own_u) for r in u_rows], f_int=list(rec["f_int"]),
+                  states=[states[r] if r >= 0 else next(own_states) for r in state_rows],
+                  iterations=rec["iterations"].tolist(),
+                  residuals=_split(rec["residuals"], rec["residuals_counts"]),
+                  energies=_split(rec["energies"], rec["energies_counts"]),
+                  stiffness=list(rec.get("stiffness", [])), cuts=int(rec["cuts"]),
+                  wall_time=float(rec["wall_time"]), factorizations=int(rec["factorizations"]),
+                  status=str(rec.get("status", "completed")),
+                  limit_load_factor=_optional_float(rec.get("limit_load_factor")),
+                  u_origin=rec.get("u_origin"), f_int_origin=rec.get("f_int_origin"))
 
 
 def _split(flat, counts):
@@ -352,9 +412,21 @@ def _jsonable(obj):
 # ---- comparing results -----------------------------------------------------------------------------------
 def scene_quantities(result) -> dict:
     """Every number a :class:`ssi.scene.SceneResult` answers, at every step it holds states for, as flat
-    arrays keyed by name: what a file must give back unchanged (``max_difference``)."""
+    arrays keyed by name: what a file must give back unchanged (``max_difference``). With the status and
+    limit load, the solver result (``solver.*``) and of a phased result every phase's name, step range and
+    solver result (``phases[i].*``)."""
     out = {"load_factor": np.asarray(result.load_factor, np.float64), "u": np.asarray(result.u, np.float64),
-           "coords": result.built.model.coords}
+           "coords": result.built.model.coords, "status": np.asarray(result.status),
+           "limit_load_factor": _number(result.limit_load_factor),
+           "n_phases": np.asarray(-1 if result.phases is None else len(result.phases))}
+    if result.solver_result is not None:
+        out.update(solver_quantities(result.solver_result, "solver."))
+    for i, record in enumerate(result.phases or []):
+        for key, value in record.items():
+            if key == "result":
+                out.update(solver_quantities(value, f"phases[{i}].solver."))
+            else:
+                out[f"phases[{i}].{key}"] = np.asarray(value)
     for key, value in result.load_settlement().items():
         out[f"load_settlement.{key}"] = value
     n_rows = len(result.load_factor)
@@ -379,13 +451,40 @@ def scene_quantities(result) -> dict:
     return out
 
 
-def max_difference(a, b) -> tuple[float, str]:
+def solver_quantities(res, prefix="") -> dict:
+    """Every field of a :class:`ssi.solver.Result` as arrays keyed ``prefix + name`` (rows of ragged
+    histories concatenated, with their lengths); None as NaN."""
+    out = {}
+    for f in dataclasses.fields(res):
+        value = getattr(res, f.name)
+        if f.name == "model":
+            continue
+        if f.name == "states":
+            for k, row in enumerate(value):
+                for i, state in enumerate(row):
+                    out[f"{prefix}states[{k}][{i}]"] = np.asarray(state)
+        elif f.name in ("residuals", "energies"):
+            out[f"{prefix}{f.name}"] = np.array([v for row in value for v in row], np.float64)
+            out[f"{prefix}{f.name}_counts"] = np.array([len(row) for row in value], np.int64)
+        else:
+            out[prefix + f.name] = _number(value) if value is None else np.asarray(value)
+    return out
+
+
+def _number(value):
+    return np.asarray(np.nan if value is None else value, np.float64)
+
+
+def max_difference(a, b, skip=()) -> tuple[float, str]:
     """(largest absolute difference, the quantity where it occurs) between two SceneResults over
     :func:`scene_quantities`; inf for a quantity missing on one side, of another shape, or a differing
-    non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity)."""
+    non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity). ``skip``: parts
+    of names to leave out (``("wall_time",)`` to compare two runs of the same scene)."""
     qa, qb = scene_quantities(a), scene_quantities(b)
     worst, where = 0.0, ""
     for name in sorted(set(qa) | set(qb)):
+        if any(part in name for part in skip):
+            continue
         x, y = qa.get(name), qb.get(name)
         if x is None or y is None or np.shape(x) != np.shape(y):
             return float("inf"), name

@@ -44,7 +44,7 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 
 import math
 import warnings
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -671,19 +671,10 @@ def _check_integration(name, value):
 
 
 def _describe(scene):
-    d = asdict(scene)
-    if scene.foundation is not None:
-        s = scene.foundation.section
-        d["foundation"]["section"] = {"z_mid": s.z_mid.tolist(), "h": s.h.tolist(), "kind": s.kind.tolist(),
-                                      "params": s.params.tolist(), "carries_shear": s.carries_shear.tolist()}
-    d["loads"] = [_describe_load(ld) for ld in scene.loads]
-    d["phases"] = [{"name": ph.name, "loads": [_describe_load(ld) for ld in ph.loads], "factors": dict(ph.factors),
-                    "n_steps": ph.n_steps} for ph in scene.phases]
-    return d
-
-
-def _describe_load(load):
-    return {"type": type(load).__name__, **asdict(load)}
+    """The scene record of ``model.info["scene"]``: :func:`ssi.scene_file.scene_to_dict` (one home for the
+    plain form of a scene; every load tagged with its class name under ``type``)."""
+    from .scene_file import scene_to_dict
+    return scene_to_dict(scene)
 
 
 def _load_levels(n_steps):
@@ -1052,7 +1043,7 @@ class SceneResult:
         (n_steps + 1,) [-], ``column_load`` (n_steps + 1,) [N/m] = lambda * sum of the column forces N,
         ``settlement`` (n_steps + 1,) [m] the largest settlement at each step (positive down)."""
         lam = np.asarray(self.load_factor, np.float64)
-        total_n = sum(load.N for load in self.built.scene.loads)
+        total_n = sum(load.N for load in self.built.scene.loads if isinstance(load, ColumnLoad))
         settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
         return {"load_factor": lam, "column_load": lam * total_n, "settlement": settle}
 

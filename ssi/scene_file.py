@@ -23,16 +23,34 @@ not have is refused with its name and where it was found. SI units throughout (s
     kn = 1e10                          # [Pa/m]
     kt = 1e9                           # [Pa/m]
 
-    [[loads]]                          # ColumnLoad
+    [[loads]]                          # ColumnLoad (type = "ColumnLoad" is the default)
     x = 0.0                            # [m]
     N = 300e3                          # [N/m]
+
+    [[loads]]
+    type = "SurfacePressure"           # any load class of ssi.scene, by its name
+    x0 = 2.0                           # [m]
+    x1 = 4.0                           # [m]
+    q = 20e3                           # [Pa]
 
     [mesh]                             # MeshSize
     h_fine = 0.5                       # [m]
 
     [solve]                            # not part of the Scene: n_steps and ssi.solver.Settings fields
-    n_steps = 4
+    n_steps = 4                        # leave out: automatic load stepping
     method = "full"
+
+A load table names its class with ``type`` (:data:`LOAD_TYPES`: ``ColumnLoad`` -- the default, so a table
+without ``type`` is a column --, ``SurfacePressure``, ``StripLoad``, ``StripWeight``, ``Settlement``); its
+other keys are that class's fields. Phases are ``[[phases]]`` tables (``name``, ``factors = {earlier = 0.0}``,
+``n_steps``) with their loads in ``[[phases.loads]]``; ``embedment``, ``water_table`` and ``gamma_w`` are
+top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of
+:class:`ssi.scene.ContactSegment` tables (``x0``, ``x1`` and a ``[contact.contact]`` table)::
+
+    [[contact]]
+    x0 = -1.0
+    x1 = 0.0
+    contact = { kn = 1e10, kt = 0.0 }
 
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.section.rc_section` with ``bars = [[z, As],
@@ -48,34 +66,65 @@ from pathlib import Path
 import numpy as np
 
 from . import section as section_mod
-from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from .scene import (
+    ColumnLoad,
+    Contact,
+    ContactSegment,
+    Foundation,
+    MeshSize,
+    Phase,
+    Scene,
+    Settlement,
+    SoilLayer,
+    StripLoad,
+    StripWeight,
+    SurfacePressure,
+)
 from .section import Section
 from .solver import Settings
 
 UNITS = {
-    "Scene": {"width": "m", "depth": "m", "surcharge": "Pa", "embedment": "m (depth of the strip's base)",
-              "water_table": "m (depth below the ground; leave out: dry)", "gamma_w": "N/m^3",
-              "phases": "list of Phase tables"},
+    "Scene": {"width": "m", "depth": "m", "layers": "list of SoilLayer tables, from the surface down",
+              "foundation": "Foundation table (leave out: no foundation)",
+              "contact": "Contact table, or a list of ContactSegment tables tiling the strip",
+              "loads": "list of load tables (type = ...) of the first phase", "mesh": "MeshSize table",
+              "surcharge": "Pa", "phases": "list of Phase tables", "embedment": "m (depth of the strip's base)",
+              "water_table": "m (depth below the ground; leave out: dry)", "gamma_w": "N/m^3"},
     "SoilLayer": {"thickness": "m", "E": "Pa", "nu": "-", "unit_weight": "N/m^3", "c": "Pa", "phi_deg": "deg",
                   "psi_deg": "deg", "K0": "-", "scheme": "'implicit' | 'explicit'",
                   "unit_weight_sat": "N/m^3", "drainage": "'drained' | 'undrained_A'", "nu_u": "-"},
-    "Foundation": {"x0": "m", "x1": "m", "kappa": "-", "integration": "'selective' | 'full' | 'reduced'",
-                   "self_weight": "N/m^2", "self_bending": "'chord' | 'tangent' | 'initial' | 'none'",
+    "Foundation": {"x0": "m", "x1": "m", "section": "{homogeneous | rc | layers} table", "kappa": "-",
+                   "integration": "'selective' | 'full' | 'reduced'", "self_weight": "N/m^2",
+                   "self_bending": "'chord' | 'tangent' | 'initial' | 'none'",
                    "crack_band": "'spacing' | 'point' | none", "bar_diameter": "m", "plane_strain": "bool",
-                   "tension_stiffening": "'all' | 'effective_area' | 'none'"},
+                   "tension_stiffening": "'all' | 'effective_area'"},
     "Contact": {"kn": "Pa/m", "kt": "Pa/m", "phi_deg": "deg", "c": "Pa", "psi_deg": "deg", "sig_t": "Pa",
                 "rule": "'newton_cotes' | 'gauss'"},
+    "ContactSegment": {"x0": "m", "x1": "m", "contact": "Contact table"},
     "ColumnLoad": {"x": "m", "N": "N/m (down positive)", "H": "N/m (+x)", "M": "N m/m (counter-clockwise)"},
+    "SurfacePressure": {"x0": "m", "x1": "m", "q": "Pa (down positive)"},
+    "StripLoad": {"q": "Pa (down positive) at x0", "q_end": "Pa at x1 (leave out: uniform)",
+                  "x0": "m (leave out: the strip's x0)", "x1": "m (leave out: the strip's x1)"},
+    "StripWeight": {"unit_weight": "N/m^3"},
+    "Settlement": {"w": "m (down positive)", "x": "[m, ...] settled columns (leave out: the rigid strip)"},
+    "Phase": {"name": "text", "loads": "list of load tables (type = ...)",
+              "factors": "{earlier phase name = factor -}", "n_steps": "- (leave out: [solve] n_steps)"},
     "MeshSize": {"h_fine": "m", "h_coarse": "m", "growth": "-", "n_gauss": "2 | 3"},
     "homogeneous": {"thickness": "m", "E": "Pa", "nu": "-", "n_layers": "-"},
     "rc": {"depth": "m", "bars": "[[z_bar m, As m^2/m], ...]", "n_concrete": "-",
            "concrete": "{fc Pa, E0 Pa, eps_c, fr Pa, Gf N/m, ls m}", "steel": "{fy Pa, Es Pa, EH Pa}"},
 }
 
-# fields holding other dataclasses: (class, field) -> (element class, is a list)
-_NESTED = {(Scene, "layers"): (SoilLayer, True), (Scene, "foundation"): (Foundation, False),
-           (Scene, "contact"): (Contact, False), (Scene, "loads"): (ColumnLoad, True),
-           (Scene, "mesh"): (MeshSize, False)}
+# the load classes a load table may name with its ``type`` key (the class name; ColumnLoad if left out)
+LOAD_TYPES = {cls.__name__: cls for cls in (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)}
+_LOAD = "load"  # marks a field holding load tables
+# fields holding other dataclasses: (class, field) -> (element class, container: "one" | "list" | "tuple")
+_NESTED = {(Scene, "layers"): (SoilLayer, "list"), (Scene, "foundation"): (Foundation, "one"),
+           (Scene, "loads"): (_LOAD, "list"), (Scene, "mesh"): (MeshSize, "one"),
+           (Scene, "phases"): (Phase, "list"), (Phase, "loads"): (_LOAD, "tuple"),
+           (ContactSegment, "contact"): (Contact, "one")}
+# plain lists that the dataclass holds as tuples
+_TUPLES = {(Settlement, "x")}
 _SECTION_FIELDS = [f.name for f in dataclasses.fields(Section)]
 
 
@@ -90,7 +139,10 @@ def _to_plain(obj):
     if isinstance(obj, Section):
         return {"layers": {name: _to_plain(getattr(obj, name)) for name in _SECTION_FIELDS}}
     if dataclasses.is_dataclass(obj):
-        return {f.name: _to_plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+        plain = {f.name: _to_plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+        return {"type": type(obj).__name__, **plain} if type(obj) in LOAD_TYPES.values() else plain
+    if isinstance(obj, dict):
+        return {str(k): _to_plain(v) for k, v in obj.items()}
     if isinstance(obj, np.ndarray):
         return obj.tolist()
     if isinstance(obj, np.generic):
@@ -118,20 +170,54 @@ def _build(cls, data, where):
         nested = _NESTED.get((cls, key))
         if cls is Foundation and key == "section":
             kwargs[key] = section_from_dict(value, f"{where}.section")
+        elif cls is Scene and key == "contact" and value is not None:
+            kwargs[key] = _contact(value, f"{where}.contact")
         elif nested is not None and value is not None:
-            sub, is_list = nested
-            if is_list:
-                if not isinstance(value, list):
-                    raise TypeError(f"{where}.{key}: expected a list of {sub.__name__} tables")
-                kwargs[key] = [_build(sub, v, f"{where}.{key}[{i}]") for i, v in enumerate(value)]
-            else:
+            sub, container = nested
+            if container == "one":
                 kwargs[key] = _build(sub, value, f"{where}.{key}")
+                continue
+            name = "load" if sub is _LOAD else sub.__name__
+            if not isinstance(value, list | tuple):
+                raise TypeError(f"{where}.{key}: expected a list of {name} tables, got {type(value).__name__}")
+            items = [_load(v, f"{where}.{key}[{i}]") if sub is _LOAD else _build(sub, v, f"{where}.{key}[{i}]")
+                     for i, v in enumerate(value)]
+            kwargs[key] = tuple(items) if container == "tuple" else items
+        elif (cls, key) in _TUPLES and isinstance(value, list | tuple):
+            kwargs[key] = tuple(value)
+        elif cls is Phase and key == "factors":
+            _check_table(value, f"{where}.factors")
+            kwargs[key] = dict(value)
         else:
             kwargs[key] = value
     try:
         return cls(**kwargs)
     except TypeError as err:  # a required field missing
         raise ValueError(f"{where}: {err}") from err
+
+
+def _load(data, where):
+    """One load table: its ``type`` names the class (default ColumnLoad), the other keys are its fields."""
+    _check_table(data, where)
+    fields = dict(data)
+    kind = fields.pop("type", "ColumnLoad")
+    if kind not in LOAD_TYPES:
+        raise ValueError(f"{where}: unknown load type {kind!r}; allowed: {sorted(LOAD_TYPES)}")
+    return _build(LOAD_TYPES[kind], fields, where)
+
+
+def _contact(value, where):
+    """``contact``: one Contact table, or a list of ContactSegment tables."""
+    if isinstance(value, list | tuple):
+        if not value:
+            raise ValueError(f"{where}: a list of contact segments must not be empty")
+        return [_build(ContactSegment, v, f"{where}[{i}]") for i, v in enumerate(value)]
+    return _build(Contact, value, where)
+
+
+def _check_table(data, where):
+    if not isinstance(data, dict):
+        raise TypeError(f"{where}: expected a table, got {type(data).__name__}")
 
 
 def section_from_dict(data: dict, where: str = "section") -> Section:
@@ -183,9 +269,10 @@ def _check_keys(args, allowed, where):
 
 
 # ---- files ---------------------------------------------------------------------------------------------
-def read_scene_file(path) -> tuple[Scene, int, Settings]:
+def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
     """``(scene, n_steps, settings)`` from a TOML scene file; the optional ``[solve]`` table holds
-    ``n_steps`` (default 10) and any :class:`ssi.solver.Settings` field."""
+    ``n_steps`` (an integer >= 1: that many equal load levels; left out: None, automatic stepping) and any
+    :class:`ssi.solver.Settings` field."""
     path = Path(path)
     with open(path, "rb") as fh:
         try:
@@ -193,7 +280,10 @@ def read_scene_file(path) -> tuple[Scene, int, Settings]:
         except tomllib.TOMLDecodeError as err:
             raise ValueError(f"{path}: not valid TOML: {err}") from err
     solve = dict(data.pop("solve", {}))
-    n_steps = int(solve.pop("n_steps", 10))
+    n_steps = solve.pop("n_steps", None)
+    if n_steps is not None and (isinstance(n_steps, bool) or not isinstance(n_steps, int) or n_steps < 1):
+        raise ValueError(f"{path.name}: solve: 'n_steps' must be an integer >= 1 (leave it out for automatic "
+                         f"stepping), got {n_steps!r}")
     _check_keys(solve, {f.name for f in dataclasses.fields(Settings)}, f"{path.name}: solve")
     scene = _build(Scene, data, path.name)
     return scene, n_steps, Settings(**solve)
@@ -203,6 +293,7 @@ def schema_text() -> str:
     """The scene file's tables, their keys and units, as text (``ssi schema``)."""
     lines = []
     for table, units in UNITS.items():
-        lines.append(f"[{table}]")
-        lines += [f"  {key:12s} {unit}" for key, unit in units.items()]
+        lines.append(f"[{table}]" + ("  (a load table: type = \"" + table + "\")" if table in LOAD_TYPES else ""))
+        lines += [f"  {key:16s} {unit}" for key, unit in units.items()]
+    lines.append("[solve]  n_steps (leave out: automatic stepping) and any ssi.solver.Settings field")
     return "\n".join(lines)

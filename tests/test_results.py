@@ -17,8 +17,22 @@ from ssi.cli import main, summary
 from ssi.export import export_series, export_vtu, read_series
 from ssi.progress import progress_enabled, solver_progress
 from ssi.results import atomic_path, max_difference, read_info, read_result, write_result
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SceneResult, SoilLayer
-from ssi.scene_file import UNITS, read_scene_file, scene_from_dict, scene_to_dict
+from ssi.scene import (
+    ColumnLoad,
+    Contact,
+    ContactSegment,
+    Foundation,
+    MeshSize,
+    Phase,
+    Scene,
+    SceneResult,
+    Settlement,
+    SoilLayer,
+    StripLoad,
+    StripWeight,
+    SurfacePressure,
+)
+from ssi.scene_file import LOAD_TYPES, UNITS, read_scene_file, scene_from_dict, scene_to_dict
 from ssi.section import homogeneous
 from ssi.solver import NonConvergence, Settings
 
@@ -34,6 +48,32 @@ def mc_scene(N=300e3, H=50e3):
                  foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
                  contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0), loads=[ColumnLoad(x=0.0, N=N, H=H)],
                  mesh=COARSE)
+
+
+def phased_scene():
+    """The scene of examples/phased_embedded.toml, written in Python: an embedded strip below a water table,
+    loaded in phases (weight, building, half the building taken off)."""
+    layers = [SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3),
+              SoilLayer(5.0, E=50e6, nu=0.3, unit_weight=19e3, unit_weight_sat=20e3, c=2e3, phi_deg=32.0,
+                        psi_deg=0.0)]
+    phases = [Phase("weight", (StripWeight(25e3),)),
+              Phase("building", (ColumnLoad(0.0, N=250e3, H=20e3), SurfacePressure(3.0, 5.0, 20e3))),
+              Phase("half_unload", factors={"building": 0.5})]
+    return Scene(width=12.0, depth=6.0, layers=layers,
+                 foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+                 contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0), phases=phases, embedment=1.0, water_table=2.0,
+                 gamma_w=9.81e3, mesh=COARSE)
+
+
+@pytest.fixture(scope="module")
+def phased():
+    return phased_scene().build().solve()
+
+
+@pytest.fixture(scope="module")
+def collapsed():
+    """Ten times the bearing capacity with the default settings: a detected limit load."""
+    return mc_scene(N=3e6, H=0.0).build().solve()
 
 
 @pytest.fixture(scope="module")
@@ -72,7 +112,7 @@ def test_strip_forces_and_paths(nonlinear):
 
 
 # ---- result files --------------------------------------------------------------------------------------
-@pytest.mark.parametrize("which", ["nonlinear", "linear"])
+@pytest.mark.parametrize("which", ["nonlinear", "linear", "phased"])
 def test_result_file_round_trip_is_exact(which, request, tmp_path):
     result = request.getfixturevalue(which)
     path = write_result(tmp_path / "r.h5", result, Settings())
@@ -85,6 +125,36 @@ def test_result_file_round_trip_is_exact(which, request, tmp_path):
     if which == "nonlinear":
         assert back.solver_result.iterations == result.solver_result.iterations
         assert back.solver_result.residuals == result.solver_result.residuals
+    if which == "phased":
+        assert [r["name"] for r in back.phases] == ["geostatic", "weight", "building", "half_unload"]
+        assert back.solver_result is back.phases[-1]["result"]
+        # the geostatic phase's intermediate steps are not SceneResult rows: they came back from the file
+        assert back.phases[0]["result"].n_steps == result.phases[0]["result"].n_steps > 1
+
+
+def test_phased_file_keeps_the_phase_loads(phased, tmp_path):
+    """Independent of the file: the contact carries, at the end of each phase, the loads applied by then
+    (the strip's overburden of its base level 1 m x 18 kN/m^3 over 2 m, its weight 25 kN/m^3 x 0.5 m x 2 m,
+    the column, half the column); the rebuilt scene of the file gives the same, and a changed number in a
+    phase's own rows is found."""
+    back = read_result(write_result(tmp_path / "p.h5", phased))
+    expected = {"geostatic": 36e3, "weight": 36e3 + 25e3, "building": 61e3 + 250e3, "half_unload": 61e3 + 125e3}
+    for result in (phased, back):
+        force = result.built.contact_force(result)
+        for record in result.phases:
+            assert force[record["last"]] == pytest.approx(expected[record["name"]], rel=1e-4), record["name"]
+    res = back.phases[0]["result"]
+    res.u[2] = res.u[2] + 1e-10
+    assert max_difference(phased, back)[1] == "phases[0].solver.u"
+
+
+def test_round_trip_of_a_single_phase_strip_load(tmp_path):
+    scene = mc_scene()
+    scene.layers[0] = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3)
+    scene.contact = Contact(kn=1e10, kt=1e9)
+    scene.loads.append(StripLoad(10e3))
+    result = scene.build().solve()
+    assert max_difference(result, read_result(write_result(tmp_path / "s.h5", result)))[0] == 0.0
 
 
 def test_round_trip_detects_a_changed_number(nonlinear, tmp_path):
@@ -124,16 +194,24 @@ def test_stopped_run_is_written_incomplete(tmp_path):
     assert max_difference(partial, back)[0] == 0.0
 
 
-def test_collapsed_run_is_complete_and_keeps_its_limit_load(tmp_path):
+def test_collapsed_run_is_complete_and_keeps_its_limit_load(collapsed, tmp_path, capsys):
     """With the default settings the same overload ends as a detected limit load: a complete answer, whose
-    status and limit load factor come back from the file."""
-    out = mc_scene(N=3e6, H=0.0).build().solve()
+    status and limit load factor come back from the file; ``ssi show`` reports it as a limit load (exit 0),
+    not as a stopped run."""
+    out = collapsed
     assert out.status == "limit load reached"
     path = write_result(tmp_path / "collapse.h5", out)
     assert read_info(path)["complete"] is True
     back = read_result(path)
     assert back.status == out.status and back.limit_load_factor == out.limit_load_factor
     assert max_difference(out, back)[0] == 0.0
+    assert main(["show", str(path), "--no-plots"]) == 0
+    text = capsys.readouterr().out
+    assert f"limit load       reached at load factor {out.limit_load_factor:.4g}" in text
+    assert "INCOMPLETE" not in text and "stopped" not in text
+    s = summary(back)
+    assert s["status"] == "limit load reached" and s["limit_load_factor"] == out.limit_load_factor < 1.0
+    assert s["column_load"] == pytest.approx(3e6 * out.load_factor[-1]) and s["stopped_at_column_load"] is None
 
 
 # ---- scene files ---------------------------------------------------------------------------------------
@@ -142,10 +220,108 @@ def test_toml_maps_onto_the_dataclasses():
     assert scene_to_dict(scene) == scene_to_dict(mc_scene())
     assert n_steps == 4 and settings.force_tol == 1e-6
     assert scene_to_dict(scene_from_dict(scene_to_dict(scene))) == scene_to_dict(scene)
+    scene, n_steps, _ = read_scene_file(os.path.join(EXAMPLES, "phased_embedded.toml"))
+    assert scene_to_dict(scene) == scene_to_dict(phased_scene()) and n_steps is None  # automatic stepping
+    assert scene.phases == phased_scene().phases and scene.layers == phased_scene().layers
+
+
+def every_feature_scene():
+    """A scene using every field the scene file knows: each load type, phases with factors and n_steps,
+    contact segments, a water table, embedment, an undrained-A layer and a total-stress undrained one."""
+    return Scene(width=12.0, depth=6.0,
+                 layers=[SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3, K0=0.6, scheme="explicit"),
+                         SoilLayer(2.0, E=30e6, nu=0.3, unit_weight=19e3, unit_weight_sat=20e3, c=5e3,
+                                   phi_deg=25.0, psi_deg=0.0, drainage="undrained_A", nu_u=0.49),
+                         SoilLayer.undrained(3.0, E_u=20e6, s_u=30e3, unit_weight=18e3, unit_weight_sat=19e3)],
+                 foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2), self_weight=1e3),
+                 contact=[ContactSegment(-1.0, 0.25, Contact(kn=1e10, kt=0.0)),
+                          ContactSegment(0.25, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=0.0))],
+                 loads=[ColumnLoad(0.0, N=100e3, M=5e3)], surcharge=5e3, embedment=1.0, water_table=1.5,
+                 gamma_w=10e3, mesh=MeshSize(0.5, 2.0, 1.5, 3),
+                 phases=[Phase("weight", (StripWeight(24e3), StripLoad(10e3, q_end=2e3, x0=-0.5, x1=0.75)),
+                               n_steps=2),
+                         Phase("beside", (SurfacePressure(3.0, 5.0, 15e3), Settlement(0.01, x=(0.0,)))),
+                         Phase("push", (Settlement(0.02),), factors={"loads": 0.0, "beside": 0.5})])
+
+
+SEGMENTS_TOML = """
+width = 12.0
+depth = 6.0
+embedment = 1.0
+water_table = 1.5
+[[layers]]
+thickness = 1.0
+E = 10e6
+nu = 0.3
+[[layers]]
+thickness = 5.0
+E = 30e6
+nu = 0.3
+drainage = "undrained_A"
+nu_u = 0.49
+[foundation]
+x0 = -1.0
+x1 = 1.0
+section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } }
+[[contact]]
+x0 = -1.0
+x1 = 0.25
+contact = { kn = 1e10, kt = 0.0 }
+[[contact]]
+x0 = 0.25
+x1 = 1.0
+[contact.contact]
+kn = 1e10
+kt = 1e9
+phi_deg = 25.0
+[[loads]]
+x = 0.0
+N = 100e3
+[[phases]]
+name = "push"
+factors = { loads = 0.0 }
+n_steps = 3
+[[phases.loads]]
+type = "Settlement"
+w = 0.01
+x = [0.0]
+[solve]
+n_steps = 2
+"""
+
+
+def test_every_feature_survives_dict_and_json():
+    """scene -> plain dict -> JSON (what result files store) -> scene gives the same dataclasses back."""
+    scene = every_feature_scene()
+    back = scene_from_dict(json.loads(json.dumps(scene_to_dict(scene))))
+    for name in ("layers", "contact", "loads", "phases", "mesh", "surcharge", "embedment", "water_table",
+                 "gamma_w", "width", "depth"):
+        assert getattr(back, name) == getattr(scene, name), name
+    assert scene_to_dict(back) == scene_to_dict(scene)
+    assert [ld["type"] for ld in scene_to_dict(scene)["phases"][1]["loads"]] == ["SurfacePressure", "Settlement"]
+    assert scene.build().model.info["scene"] == scene_to_dict(scene)  # the scene record is the same dict
+
+
+def test_toml_contact_segments_phases_and_settlement(tmp_path):
+    path = tmp_path / "segments.toml"
+    path.write_text(SEGMENTS_TOML)
+    scene, n_steps, _ = read_scene_file(path)
+    assert n_steps == 2
+    assert scene.contact == [ContactSegment(-1.0, 0.25, Contact(kn=1e10, kt=0.0)),
+                             ContactSegment(0.25, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0))]
+    assert scene.phases == [Phase("push", (Settlement(0.01, x=(0.0,)),), factors={"loads": 0.0}, n_steps=3)]
+    assert scene.loads == [ColumnLoad(0.0, N=100e3)] and scene.embedment == 1.0 and scene.water_table == 1.5
+    assert scene.layers[1] == SoilLayer(5.0, E=30e6, nu=0.3, drainage="undrained_A", nu_u=0.49)
 
 
 @pytest.mark.parametrize("text, key", [
     ("widht = 3.0\n", "widht"),
+    ("width = 12.0\ndepth = 6.0\n[[loads]]\ntype = 'Column'\nx = 0.0\n", "Column"),
+    ("width = 12.0\ndepth = 6.0\n[[loads]]\ntype = 'SurfacePressure'\nx0 = 1.0\nx1 = 2.0\nN = 1e3\n", "N"),
+    ("width = 12.0\ndepth = 6.0\n[[phases]]\nname = 'a'\n[[phases.loads]]\ntype = 'StripWeight'\ngamma = 1.0\n",
+     "gamma"),
+    ("width = 12.0\ndepth = 6.0\n[[contact]]\nx0 = 0.0\nx1 = 1.0\nkn = 1e10\n", "kn"),
+    ("width = 12.0\ndepth = 6.0\n[solve]\nn_steps = 0\n", "n_steps"),
     ("width = 12.0\ndepth = 6.0\n[[layers]]\nthickness = 2.0\nE = 1e7\nnu = 0.3\nphi = 30.0\n", "phi"),
     ("width = 12.0\ndepth = 6.0\n[solve]\nmethd = 'full'\n", "methd"),
 ])
@@ -157,11 +333,19 @@ def test_unknown_keys_are_refused_by_name(tmp_path, text, key):
 
 
 def test_every_field_has_a_unit():
+    """Every field of every dataclass a scene is made of -- found in ssi.scene, so a new one is caught -- has
+    an entry in UNITS, and UNITS names no field that does not exist."""
     import dataclasses
-    for cls in (Scene, SoilLayer, Foundation, Contact, ColumnLoad, MeshSize):
-        nested = {"layers", "foundation", "contact", "loads", "mesh", "section"}
-        missing = {f.name for f in dataclasses.fields(cls)} - set(UNITS[cls.__name__]) - nested
-        assert not missing, (cls.__name__, missing)
+    import inspect
+
+    from ssi import scene as scene_module
+    runtime = {"BuiltScene", "SceneResult"}  # built from a scene, not written in a scene file
+    classes = [c for _, c in inspect.getmembers(scene_module, inspect.isclass)
+               if dataclasses.is_dataclass(c) and c.__module__ == "ssi.scene" and c.__name__ not in runtime]
+    assert {"Scene", "Phase", "ContactSegment", "Settlement", "SurfacePressure"} <= {c.__name__ for c in classes}
+    for cls in classes:
+        assert set(UNITS[cls.__name__]) == {f.name for f in dataclasses.fields(cls)}, cls.__name__
+    assert set(LOAD_TYPES) == {"ColumnLoad", "SurfacePressure", "StripLoad", "StripWeight", "Settlement"}
 
 
 # ---- ParaView export -----------------------------------------------------------------------------------
@@ -184,6 +368,27 @@ def test_vtu_reads_back(nonlinear, tmp_path):
     assert np.max(np.abs(mesh.cell_data["contact_pressure"][1][len(m):] - p)) <= 1e-12 * np.abs(p).max()
     with pytest.raises(FileExistsError):
         export_vtu(nonlinear, path)
+
+
+def test_vtu_pore_pressure_of_a_water_table(phased, tmp_path):
+    """The exported pore pressure of the phased scene (drained, water table 2 m deep) is the hydrostatic
+    gamma_w (depth - 2 m) averaged over each element's points, by hand from the stored point depths."""
+    mesh = meshio.read(export_vtu(phased, tmp_path / "p.vtu"))
+    depth = -phased.soil_points()[..., 1]
+    by_hand = (9.81e3 * np.maximum(depth - 2.0, 0.0)).mean(axis=1)
+    exported = mesh.cell_data["pore_pressure"][0]
+    assert by_hand.max() > 9.81e3 * 2.0  # the lowest elements' points lie more than 4 m deep on average
+    assert np.all(exported[(depth <= 2.0).all(axis=1)] == 0.0)  # dry above the table
+    assert np.max(np.abs(exported - by_hand)) <= 1e-12 * by_hand.max()
+
+
+def test_phased_series_is_numbered_by_step(phased, tmp_path):
+    """The phased result's first two states share phase time 0: the series counts steps instead, and its
+    last data set is the last step."""
+    series = read_series(export_series(phased, tmp_path / "p.pvd"))
+    assert [t for t, _ in series] == list(range(len(phased.load_factor)))
+    w = phased.u[-1][phased.built.model.dof(phased.built.plate_nodes, "w")]
+    assert np.max(np.abs(series[-1][1].point_data["displacement"][phased.built.plate_nodes, 1] - w)) <= 1e-12
 
 
 def test_series_every_step_reads_back(nonlinear, tmp_path):
@@ -231,7 +436,8 @@ def test_cli_runs_the_examples(name, tmp_path, capsys):
     stored = json.loads((tmp_path / (scene_path.stem + "_summary.json")).read_text())
     scene, n_steps, settings = read_scene_file(scene_path)
     direct = summary(scene.build().solve(n_steps=n_steps, settings=settings))  # the Python API
-    for key in ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete"):
+    for key in ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete",
+                "status", "phase", "phase_load_factor", "column_load"):
         assert stored[key] == direct[key], key
     assert main(["run", str(scene_path), "--no-plots"]) == 2  # outputs exist: refused
     assert main(["show", str(tmp_path / (scene_path.stem + ".h5")), "--json", "--no-plots"]) == 0
