@@ -18,14 +18,15 @@ added (a bound when the contributions do not cancel). Where d1 and d2 differ in 
 silently used. A refinement that changes nothing (the load steps of a linear scene, the layers of an elastic
 homogeneous strip) contributes zero error.
 
-:func:`solve_to_target` refines the scene, one halving of the worst dimension at a time, until the estimated
-relative error of the asked quantities is below ``target_error``, and stops with a message when the observed
-order is not asymptotic. Solves are cached by refinement level, so re-estimating after a refinement reuses
-the levels already solved.
+:func:`solve_to_target` fits each refinement's error C h^p from that estimate, picks the cheapest number of
+halvings per refinement predicted to bring the asked quantities below ``target_error``, solves it and returns
+it with the predicted error; it stops with a message when an observed order is not asymptotic. Solves are
+cached by refinement level, so a level already solved for the estimate is not solved again.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 import warnings
@@ -220,8 +221,9 @@ def _keys(base, name):
     return [tuple(b + (j if n == i else 0) for n, b in enumerate(base)) for j in range(3)]
 
 
-class _Solver:
-    """Solves refined copies of one scene, cached by (mesh, steps, layers) halvings."""
+class RefinedSolver:
+    """Solves refined copies of one scene, cached by ``key`` = (mesh, steps, layers) halvings:
+    ``solver(key)`` returns the :class:`Level`; ``solver.cache`` holds every level solved."""
 
     def __init__(self, scene, n_steps, settings):
         self.scene, self.n_steps, self.settings = scene, n_steps, settings
@@ -271,7 +273,7 @@ def estimate(scene, n_steps: int | None = None, settings: Settings | None = None
     solves (h/2 and h/4: the mesh ones cost about 4 and 16 times the base solve in 2D). ``n_steps`` and
     ``settings`` are those of ``BuiltScene.solve``. A quantity reached at some levels only (a limit load
     found on one mesh but not another) is left out."""
-    return _estimate(_Solver(scene, n_steps, settings), (0, 0, 0), _check_refine(refine, scene))
+    return _estimate(RefinedSolver(scene, n_steps, settings), (0, 0, 0), _check_refine(refine, scene))
 
 
 def solve_with_error(scene, n_steps: int | None = None, settings: Settings | None = None,
@@ -285,16 +287,16 @@ def solve_with_error(scene, n_steps: int | None = None, settings: Settings | Non
 @dataclass
 class TargetResult:
     """Outcome of :func:`solve_to_target`: ``status`` "target met", "not asymptotic" or "limit of
-    refinements"; ``message``; ``result`` the SceneResult of the last accepted scene; ``estimate`` its
-    ErrorEstimate; ``key`` its (mesh, steps, layers) halvings; ``history`` [(key, {quantity: relative
-    error})] per round; ``wall_time`` [s] of every solve."""
+    refinements"; ``message``; ``result`` the SceneResult delivered; ``key`` its (mesh, steps, layers)
+    halvings; ``predicted`` {quantity: estimated relative error of ``result``}; ``estimate`` the
+    ErrorEstimate of the scene as given it rests on; ``wall_time`` [s] of every solve made."""
 
     status: str
     message: str
     result: object
-    estimate: ErrorEstimate
     key: tuple
-    history: list
+    predicted: dict
+    estimate: ErrorEstimate
     wall_time: float
 
     @property
@@ -302,53 +304,82 @@ class TargetResult:
         return self.status == "target met"
 
 
+def _error_at(r: Richardson, j: int) -> float:
+    """|estimated error| after j halvings from the base, from the base's fitted power law C h^p."""
+    if r.error_base == 0.0:
+        return 0.0
+    if not math.isfinite(r.order):          # resolved to the noise: refining does not shrink the bound
+        return abs(r.error_base) if j == 0 else abs(r.error_fine)
+    return abs(r.error_base) * 2.0 ** (-r.order * j)
+
+
 def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settlement",), n_steps=None,
                     settings: Settings | None = None, refine=REFINEMENTS, max_halvings: int = 3) -> TargetResult:
-    """Refine ``scene`` until the estimated relative error of every quantity in ``quantities`` is at most
-    ``target_error``.
+    """Solve ``scene`` refined just enough that the estimated relative error of every quantity in
+    ``quantities`` is at most ``target_error``.
 
-    Each round estimates the error of the current scene; if it is too large, the refinement with the largest
-    error is halved once (at most ``max_halvings`` times per refinement) and the round repeats. The loop
-    stops with status "not asymptotic" (and a warning naming the quantity and order) when a refinement the
-    decision depends on has no observed order in [ORDER_MIN, ORDER_MAX]: its estimate cannot be trusted, and
-    more refinement would be a guess."""
+    1. :func:`estimate` the scene as given (levels h, h/2, h/4 of every refinement in ``refine``);
+    2. stop with status "not asymptotic" (and a warning naming the refinement, quantity and order) if a
+       refinement that contributes error to an asked quantity has no observed order in [ORDER_MIN,
+       ORDER_MAX]: its estimate cannot be extrapolated, more refinement would be a guess;
+    3. each refinement's error after j halvings is its fitted C h^p; the errors of the refinements add.
+       Of the combinations of at most ``max_halvings`` halvings per refinement that meet the target, take
+       the cheapest (cost per halving: the measured wall-time ratio of the levels solved) -- status
+       "limit of refinements" if none does;
+    4. solve it (or reuse the level already solved) and return it with its predicted errors."""
     if not 0.0 < target_error < 1.0:
         raise ValueError(f"target_error must be a relative error in (0, 1), got {target_error}")
     if int(max_halvings) != max_halvings or max_halvings < 0:
         raise ValueError(f"max_halvings must be an integer >= 0, got {max_halvings}")
     refine = _check_refine(refine, scene)
-    solver = _Solver(scene, n_steps, settings)
-    key, history = (0, 0, 0), []
-    while True:
-        est = _estimate(solver, key, refine)
-        missing = [q for q in quantities if q not in est.value]
-        if missing:
-            raise ValueError(f"quantities {missing} are not answered by this scene (it answers "
-                             f"{list(est.value)})")
-        rel = {q: est.relative[q] for q in quantities}
-        history.append((key, rel))
-        wall = sum(lv.wall_time for lv in solver.cache.values())
-        result = est.levels[key].result
-        if all(r <= target_error for r in rel.values()):
-            return TargetResult("target met", f"estimated relative errors {_fmt(rel)} <= {target_error:g} at "
-                                f"halvings {dict(zip(REFINEMENTS, key))}", result, est, key, history, wall)
-        worst = est.worst_refinement(quantities)
-        bad = [(q, r) for r in refine for q in quantities if not est.parts[r][q].asymptotic]
-        if bad:
-            q, r = bad[0]
-            msg = (f"stopped: the {r} refinement of {q} is not in the asymptotic range (answers "
-                   f"{est.parts[r][q].values}, observed order {est.parts[r][q].order:.2f}, outside "
-                   f"[{ORDER_MIN}, {ORDER_MAX}]); the error estimate {_fmt(rel)} cannot be trusted -- start "
-                   "from a finer scene or check the model")
-            warnings.warn(msg, RuntimeWarning, stacklevel=2)
-            return TargetResult("not asymptotic", msg, result, est, key, history, wall)
-        i = REFINEMENTS.index(worst)
-        if key[i] >= max_halvings:
-            msg = (f"stopped: {worst} already halved {max_halvings} times (max_halvings); estimated relative "
-                   f"errors {_fmt(rel)} > {target_error:g}")
-            warnings.warn(msg, RuntimeWarning, stacklevel=2)
-            return TargetResult("limit of refinements", msg, result, est, key, history, wall)
-        key = tuple(k + (1 if n == i else 0) for n, k in enumerate(key))
+    solver = RefinedSolver(scene, n_steps, settings)
+    est = _estimate(solver, (0, 0, 0), refine)
+    missing = [q for q in quantities if q not in est.value]
+    if missing:
+        raise ValueError(f"quantities {missing} are not answered by this scene (it answers {list(est.value)})")
+
+    def wall():
+        return sum(lv.wall_time for lv in solver.cache.values())
+
+    base = est.levels[(0, 0, 0)]
+    rel0 = {q: est.relative[q] for q in quantities}
+    if all(r <= target_error for r in rel0.values()):
+        return TargetResult("target met", f"the scene as given meets the target: {_fmt(rel0)}", base.result,
+                            (0, 0, 0), rel0, est, wall())
+    bad = [(r, q) for r in est.parts for q in quantities
+           if not est.parts[r][q].asymptotic and abs(est.parts[r][q].error_base) > 0.0]
+    if bad:
+        r, q = bad[0]
+        part = est.parts[r][q]
+        msg = (f"stopped: the {r} refinement of {q} is not in the asymptotic range (answers at h, h/2, h/4: "
+               f"{', '.join(f'{v:.6g}' for v in part.values)}; observed order {part.order:.2f}, outside "
+               f"[{ORDER_MIN}, {ORDER_MAX}]): its error cannot be extrapolated; estimated errors of the scene "
+               f"as given {_fmt(rel0)}. Start from a finer scene, or check the model")
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+        return TargetResult("not asymptotic", msg, base.result, (0, 0, 0), rel0, est, wall())
+    names = list(est.parts)
+    growth = {}
+    for r in names:
+        t = [est.levels[k].wall_time for k in _keys((0, 0, 0), r)]
+        growth[r] = max(math.sqrt(t[2] / t[0]), 1.0) if t[0] > 0 else 2.0
+    best = None
+    for combo in itertools.product(range(int(max_halvings) + 1), repeat=len(names)):
+        pred = {q: sum(_error_at(est.parts[r][q], j) for r, j in zip(names, combo)) / abs(est.value[q])
+                for q in quantities}
+        if all(v <= target_error for v in pred.values()):
+            cost = math.prod(growth[r] ** j for r, j in zip(names, combo))
+            if best is None or cost < best[0]:
+                best = (cost, combo, pred)
+    if best is None:
+        msg = (f"stopped: no combination of at most {max_halvings} halvings of {names} is predicted to meet "
+               f"{target_error:g} (scene as given: {_fmt(rel0)}); raise max_halvings or start finer")
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+        return TargetResult("limit of refinements", msg, base.result, (0, 0, 0), rel0, est, wall())
+    _, combo, pred = best
+    key = tuple(combo[names.index(r)] if r in names else 0 for r in REFINEMENTS)
+    level = solver(key)
+    return TargetResult("target met", f"halvings {dict(zip(REFINEMENTS, key))}: predicted errors {_fmt(pred)} "
+                        f"<= {target_error:g}", level.result, key, pred, est, wall())
 
 
 def _fmt(rel):
