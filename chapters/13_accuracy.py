@@ -52,9 +52,9 @@
 # | $I = \hat e / e$ | efficiency index (estimated / true error) | — |
 
 # %%
+import itertools
 import math
 import time
-from dataclasses import replace
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -162,8 +162,8 @@ def winkler_deflection(n_el):
 
 
 C_MC = 10e3
-FOOTING = dict(B=2.0, c=C_MC, phi_deg=0.0, E=20e6, nu=0.3, rough=False, settle=0.04, half_width=6.0, depth=5.0,
-               h_coarse=1.0, growth=1.25)
+FOOTING = {"B": 2.0, "c": C_MC, "phi_deg": 0.0, "E": 20e6, "nu": 0.3, "rough": False, "settle": 0.04, "half_width": 6.0, "depth": 5.0,
+               "h_coarse": 1.0, "growth": 1.25}
 
 
 def footing_capacity(h, n_steps=30, method="line_search"):
@@ -256,26 +256,35 @@ print(f"estimate: {time.perf_counter() - t0:.1f} s")
 # halvings predicted to reach the target is solved. Fast mode asks for 10 %, full mode for the 2 %.
 # The delivered settlement is then compared with a reference one halving finer than it in every refinement
 # — an independent solve the driver never saw (with full Newton: the default BFGS on K0 stalls on that copy
-# at 97 % of the load, where the beam's cracking spreads).
+# at 97 % of the load, where the beam's cracking spreads). If no setting within three halvings per refinement
+# is predicted to reach the target, the driver says so and the row records a FAIL of the claim.
 
 # %%
 TARGET = 0.10 if FAST else 0.02
 t0 = time.perf_counter()
 target = solve_to_target(scene11, target_error=TARGET, quantities=("max_settlement",))
 print(target.status, "|", target.message, f"| {time.perf_counter() - t0:.1f} s")
-ref_key = tuple(k + 1 for k in target.key)
-# full Newton for the reference: BFGS on K0 stalls at 97 % of the load on this finer copy (the plate cracks)
-reference = RefinedSolver(scene11, None, Settings(method="full"))(ref_key)
-delivered = target.result.max_settlement()[1]
-true_target_error = abs(delivered - reference.values["max_settlement"]) / abs(reference.values["max_settlement"])
-print(f"delivered at halvings {target.key}: {1e3 * delivered:.3f} mm; reference at {ref_key} "
-      f"({reference.n_dof} DOFs, {reference.wall_time:.1f} s): {1e3 * reference.values['max_settlement']:.3f} mm; "
-      f"true error {true_target_error:.2%} (predicted {target.predicted['max_settlement']:.2%})")
-assert target.met, target.message
-record("target_error_met", f"|s_max - s_ref|/s_ref of the chapter-11 scene solved to target_error={TARGET} "
-       f"(reference: one more halving of mesh, steps and layers, {reference.n_dof} DOFs)", true_target_error,
-       TARGET, true_target_error <= TARGET)
-assert true_target_error <= TARGET
+if target.met:
+    ref_key = tuple(k + 1 for k in target.key)
+    # full Newton for the reference: BFGS on K0 stalls at 97 % of the load on the finer copy (the plate cracks)
+    reference = RefinedSolver(scene11, None, Settings(method="full"))(ref_key)
+    delivered = target.result.max_settlement()[1]
+    s_ref = reference.values["max_settlement"]
+    true_target_error = abs(delivered - s_ref) / abs(s_ref)
+    print(f"delivered at halvings {target.key}: {1e3 * delivered:.3f} mm; reference at {ref_key} "
+          f"({reference.n_dof} DOFs, {reference.wall_time:.1f} s): {1e3 * s_ref:.3f} mm; "
+          f"true error {true_target_error:.2%} (predicted {target.predicted['max_settlement']:.2%})")
+    record("target_error_met", f"|s_max - s_ref|/s_ref of the chapter-11 scene solved to target_error={TARGET} "
+           f"(reference: one more halving of mesh, steps and layers, {reference.n_dof} DOFs)", true_target_error,
+           TARGET, true_target_error <= TARGET)
+    assert true_target_error <= TARGET
+else:
+    # an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash)
+    record("target_error_met", f"chapter-11 scene, target_error={TARGET}: {target.status} (estimated error of "
+           "the scene as given)", target.predicted["max_settlement"], TARGET, False)
+    reference = max(est11.levels.values(), key=lambda lv: lv.n_dof)
+    s_ref = reference.values["max_settlement"]
+assert FAST <= target.met   # fast mode's 10 % must be met
 
 # %% [markdown]
 # ## 3. The speed/accuracy trade: Pareto fronts
@@ -290,7 +299,6 @@ mesh_levels = [0, 1] if FAST else [0, 1, 2]
 solvers = {"bfgs": RefinedSolver(scene11, None, Settings(method="bfgs")),
            "full": RefinedSolver(scene11, None, Settings(method="full"))}
 solvers["bfgs"].cache.update(est11.levels)       # the estimate's solves used the default settings (BFGS)
-s_ref = reference.values["max_settlement"]
 trade11 = []
 for method, solver in solvers.items():
     for m in mesh_levels:
@@ -366,9 +374,9 @@ for title, rows in (("chapter-11 foundation", trade11), ("MC footing", trade_mc)
 # %%
 for rows in (trade11, trade_mc):
     front = pareto(rows)
-    assert all(a["error"] > b["error"] for a, b in zip(front, front[1:]))
-coarse = [r for r in trade11 if r["setting"].startswith("h/1 steps x1 layers x1 bfgs")][0]
-finest = [r for r in trade11 if r["setting"].startswith(f"h/{2 ** mesh_levels[-1]} steps x1 layers x1 bfgs")][0]
+    assert all(a["error"] > b["error"] for a, b in itertools.pairwise(front))
+coarse = next(r for r in trade11 if r["setting"].startswith("h/1 steps x1 layers x1 bfgs"))
+finest = next(r for r in trade11 if r["setting"].startswith(f"h/{2 ** mesh_levels[-1]} steps x1 layers x1 bfgs"))
 assert finest["error"] < coarse["error"]
 true_base = abs(est11.value["max_settlement"] - s_ref) / abs(s_ref)
 est_base = est11.relative["max_settlement"]

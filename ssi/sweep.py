@@ -23,12 +23,14 @@ cluster, set ``NUMBA_CACHE_DIR`` to one shared folder in the workers' environmen
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import hashlib
 import itertools
 import json
 import math
 import os
+import sys
 import time
 import traceback
 import warnings
@@ -98,6 +100,24 @@ def _read_row(path: Path):
         return None
 
 
+@contextlib.contextmanager
+def _main_not_reimported():
+    """Start worker processes without re-running the main script: multiprocessing's "spawn" imports
+    ``__main__`` from its file in each child, which would run a chapter or script (and its sweep) again.
+    The scene factory reaches the workers pickled by value (cloudpickle does so for ``__main__``), so the
+    children do not need the script."""
+    main = sys.modules.get("__main__")
+    path = getattr(main, "__file__", None)
+    if path is None or getattr(main, "__spec__", None) is not None:
+        yield
+        return
+    del main.__file__
+    try:
+        yield
+    finally:
+        main.__file__ = path
+
+
 def _client(client, n_workers):
     """(client, owned): a distributed Client for ``client`` (None: a new LocalCluster), owned if made here."""
     from distributed import Client, LocalCluster
@@ -106,8 +126,9 @@ def _client(client, n_workers):
         os.environ.setdefault("NUMBA_CACHE_DIR", str(paths.ROOT / ".numba_cache"))
         for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             os.environ.setdefault(var, "1")
-        cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+        with _main_not_reimported():
+            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0")
         return Client(cluster), True
     if isinstance(client, str):
         return Client(client), True
