@@ -320,8 +320,8 @@ def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settleme
 
     1. :func:`estimate` the scene as given (levels h, h/2, h/4 of every refinement in ``refine``);
     2. stop with status "not asymptotic" (and a warning naming the refinement, quantity and order) if a
-       refinement that contributes error to an asked quantity has no observed order in [ORDER_MIN,
-       ORDER_MAX]: its estimate cannot be extrapolated, more refinement would be a guess;
+       refinement whose answers change an asked quantity by more than a tenth of the target has no observed
+       order in [ORDER_MIN, ORDER_MAX]: its estimate cannot be extrapolated, more refinement would be a guess;
     3. each refinement's error after j halvings is its fitted C h^p; the errors of the refinements add.
        Of the combinations of at most ``max_halvings`` halvings per refinement that meet the target, take
        the cheapest (cost per halving: the measured wall-time ratio of the levels solved) -- status
@@ -346,8 +346,9 @@ def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settleme
     if all(r <= target_error for r in rel0.values()):
         return TargetResult("target met", f"the scene as given meets the target: {_fmt(rel0)}", base.result,
                             (0, 0, 0), rel0, est, wall())
-    bad = [(r, q) for r in est.parts for q in quantities
-           if not est.parts[r][q].asymptotic and abs(est.parts[r][q].error_base) > 0.0]
+    # a non-asymptotic refinement whose whole change is below a tenth of the target cannot decide it
+    bad = [(r, q) for r in est.parts for q in quantities if not est.parts[r][q].asymptotic
+           and abs(est.parts[r][q].error_base) > 0.1 * target_error * abs(est.value[q])]
     if bad:
         r, q = bad[0]
         part = est.parts[r][q]

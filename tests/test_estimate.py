@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 
 from ssi.estimate import (
+    Level,
+    RefinedSolver,
     estimate,
     refined_scene,
     refined_steps,
@@ -122,3 +124,30 @@ def test_solve_to_target_rejects_bad_input():
     with pytest.raises(ValueError, match="quantities"):
         solve_to_target(replace(linear_scene(), foundation=None, contact=None, loads=[]),
                         quantities=("max_moment",), refine=("mesh",))
+
+
+def _synthetic(monkeypatch, value_at_mesh_level):
+    """Replace the solves by answers q(mesh level) with a wall time growing 4x per halving (no FE solve)."""
+    def call(self, key):
+        if key not in self.cache:
+            self.cache[key] = Level(key, {"max_settlement": value_at_mesh_level(key[0])}, 4.0 ** key[0], 10,
+                                    "completed", None)
+        return self.cache[key]
+    monkeypatch.setattr(RefinedSolver, "__call__", call)
+
+
+def test_solve_to_target_refuses_an_oscillating_sequence(monkeypatch):
+    _synthetic(monkeypatch, lambda m: [1.0, 1.1, 1.05, 1.07, 1.06][m])
+    with pytest.warns(RuntimeWarning, match="not in the asymptotic range"):
+        res = solve_to_target(linear_scene(), target_error=0.02, refine=("mesh",))
+    assert res.status == "not asymptotic" and not res.met and res.key == (0, 0, 0)
+
+
+def test_solve_to_target_picks_the_halvings_a_power_law_needs(monkeypatch):
+    # q = 1 + 0.4 (h/h0)^1: the relative error of level j is 0.4 2^-j / 1.4, below 2 % from j = 4 on
+    _synthetic(monkeypatch, lambda m: 1.0 + 0.4 * 2.0 ** -m)
+    with pytest.warns(RuntimeWarning, match="max_halvings"):
+        assert solve_to_target(linear_scene(), 0.02, refine=("mesh",)).status == "limit of refinements"
+    res = solve_to_target(linear_scene(), 0.02, refine=("mesh",), max_halvings=5)
+    assert res.met and res.key == (4, 0, 0)
+    assert res.predicted["max_settlement"] == pytest.approx(0.4 / 16 / 1.4, rel=1e-9)
