@@ -76,7 +76,7 @@ from ssi.model import Model
 from ssi.report import record, save_figure
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
 from ssi.section import homogeneous, rc_section
-from ssi.solver import Settings
+from ssi.solver import NonConvergence, Settings
 
 FAST = paths.FAST
 print("fast mode" if FAST else "full mode")
@@ -174,6 +174,11 @@ def footing_capacity(h, n_steps=30, method="line_search"):
     return out["q_u"], out["wall_time"]
 
 
+# relative error of each closed form as a model of the discrete problem (not a discretisation error): the
+# strip's window has exact tractions (quadrature error ~1e-10); the Mindlin strip's shear flexibility
+# EI lambda^2 / (kappa G h) (chapter 07); Prandtl's block size and finite settlement (< 0.5 %, chapter 10)
+SHEAR_FLEXIBILITY = EI_PLATE * LAM**2 / (5.0 / 6.0 * E_PLATE / (2 * 1.2) * H_PLATE)
+MODEL_ERROR = {"strip load w(0,0)-w(0,-2b)": 1e-10, "Hetenyi w(0)": SHEAR_FLEXIBILITY, "Prandtl q_u": 0.005}
 t0 = time.perf_counter()
 cases = {
     "strip load w(0,0)-w(0,-2b)": ([1, 2, 4] if FAST else [1, 2, 4, 8], strip_compression,
@@ -189,25 +194,31 @@ for name, (levels, solve, exact) in cases.items():
     for i in range(len(levels) - 2):
         r = richardson(*values[i:i + 3], noise=0.0)   # linear solves / the footing's converged plateau
         true_base, true_fine = values[i] - exact, values[i + 2] - exact
-        index = r.error_base / true_base
-        efficiency.append((name, levels[i], r.order, r.error_base / exact, true_base / exact, index,
-                           r.error_fine / true_fine, r.asymptotic))
-print(f"closed-form studies: {time.perf_counter() - t0:.1f} s")
+        # a true error within 3x the closed form's model error measures the model, not the discretisation
+        judged = abs(true_base / exact) >= 3.0 * MODEL_ERROR[name]
+        efficiency.append({"case": name, "level": levels[i], "order": r.order, "est": r.error_base / exact,
+                           "true": true_base / exact, "index": r.error_base / true_base,
+                           "index_fine": r.error_fine / true_fine, "asymptotic": r.asymptotic, "judged": judged})
+print(f"closed-form studies: {time.perf_counter() - t0:.1f} s; Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}")
 print(f"{'case':28s} {'level':>7s} {'p':>6s} {'est. err':>10s} {'true err':>10s} {'index':>7s} "
       f"{'index (finest)':>15s}")
-for name, lv, p, est_rel, true_rel, idx, idx_fine, asym in efficiency:
-    print(f"{name:28s} {lv:7g} {p:6.2f} {est_rel:10.2e} {true_rel:10.2e} {idx:7.3f} {idx_fine:15.3f}"
-          + ("" if asym else "  (order outside [0.5, 5]: flagged)"))
+for row in efficiency:
+    print(f"{row['case']:28s} {row['level']:7g} {row['order']:6.2f} {row['est']:10.2e} {row['true']:10.2e} "
+          f"{row['index']:7.3f} {row['index_fine']:15.3f}"
+          + ("" if row["asymptotic"] else "  (order outside [0.5, 5]: flagged)")
+          + ("" if row["judged"] else "  (true error within 3x the model error: not judged)"))
 
 # %% [markdown]
 # The index of the scene *as given* (the coarsest of each triple: what a user solving that mesh is told) is
-# the claim; the finest level's index is printed too — it is less reliable, since there the power law is
+# the claim, for every triple whose true error is at least three times the closed form's own model error
+# (the finest Hetényi triple of full mode is below it: there the reference measures the Mindlin strip's shear
+# flexibility, not the mesh); the finest level's index is printed too — it is less reliable, since there the power law is
 # extrapolated furthest and the other error sources (the Hetényi model error, the solver's tolerance) are
 # relatively largest.
 
 # %%
 EFFICIENCY_RANGE = (0.5, 2.0)   # the issue's band: an estimate within a factor 2 of the true error
-indices = np.array([row[5] for row in efficiency])
+indices = np.array([row["index"] for row in efficiency if row["judged"]])
 print(f"efficiency indices of the scene as given: {np.round(indices, 3).tolist()}")
 assert np.all(indices > 0.0)            # the estimate has the sign of the true error: it brackets q*
 efficiency_ok = bool(np.all((indices >= EFFICIENCY_RANGE[0]) & (indices <= EFFICIENCY_RANGE[1])))
@@ -257,34 +268,46 @@ print(f"estimate: {time.perf_counter() - t0:.1f} s")
 # The delivered settlement is then compared with a reference one halving finer than it in every refinement
 # — an independent solve the driver never saw (with full Newton: the default BFGS on K0 stalls on that copy
 # at 97 % of the load, where the beam's cracking spreads). If no setting within three halvings per refinement
-# is predicted to reach the target, the driver says so and the row records a FAIL of the claim.
+# is predicted to reach the target, the driver says so, the row records a FAIL of the claim, and the driver
+# is checked on 5 % instead.
 
 # %%
 TARGET = 0.10 if FAST else 0.02
-t0 = time.perf_counter()
-target = solve_to_target(scene11, target_error=TARGET, quantities=("max_settlement",))
-print(target.status, "|", target.message, f"| {time.perf_counter() - t0:.1f} s")
+
+
+def solve_and_check(target_error):
+    """(TargetResult, true relative error of its settlement or None, reference Level or None)."""
+    t0 = time.perf_counter()
+    res = solve_to_target(scene11, target_error=target_error, quantities=("max_settlement",))
+    print(f"target {target_error:.0%}: {res.status} | {res.message} | {time.perf_counter() - t0:.1f} s")
+    if not res.met:
+        return res, None, None
+    ref_key = tuple(k + 1 for k in res.key)
+    # full Newton for the reference: BFGS on K0 stalls near 97 % of the load on finer copies (the plate cracks)
+    ref = RefinedSolver(scene11, None, Settings(method="full"))(ref_key)
+    got, want = res.result.max_settlement()[1], ref.values["max_settlement"]
+    err = abs(got - want) / abs(want)
+    print(f"  delivered at halvings {res.key}: {1e3 * got:.3f} mm; reference at {ref_key} ({ref.n_dof} DOFs, "
+          f"{ref.wall_time:.1f} s): {1e3 * want:.3f} mm; true error {err:.2%} (predicted "
+          f"{res.predicted['max_settlement']:.2%})")
+    return res, err, ref
+
+
+target, true_target_error, reference = solve_and_check(TARGET)
 if target.met:
-    ref_key = tuple(k + 1 for k in target.key)
-    # full Newton for the reference: BFGS on K0 stalls at 97 % of the load on the finer copy (the plate cracks)
-    reference = RefinedSolver(scene11, None, Settings(method="full"))(ref_key)
-    delivered = target.result.max_settlement()[1]
-    s_ref = reference.values["max_settlement"]
-    true_target_error = abs(delivered - s_ref) / abs(s_ref)
-    print(f"delivered at halvings {target.key}: {1e3 * delivered:.3f} mm; reference at {ref_key} "
-          f"({reference.n_dof} DOFs, {reference.wall_time:.1f} s): {1e3 * s_ref:.3f} mm; "
-          f"true error {true_target_error:.2%} (predicted {target.predicted['max_settlement']:.2%})")
     record("target_error_met", f"|s_max - s_ref|/s_ref of the chapter-11 scene solved to target_error={TARGET} "
            f"(reference: one more halving of mesh, steps and layers, {reference.n_dof} DOFs)", true_target_error,
            TARGET, true_target_error <= TARGET)
     assert true_target_error <= TARGET
 else:
-    # an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash)
-    record("target_error_met", f"chapter-11 scene, target_error={TARGET}: {target.status} (estimated error of "
-           "the scene as given)", target.predicted["max_settlement"], TARGET, False)
-    reference = max(est11.levels.values(), key=lambda lv: lv.n_dof)
-    s_ref = reference.values["max_settlement"]
-assert FAST <= target.met   # fast mode's 10 % must be met
+    # an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash);
+    # the driver is then shown on the loosest target it can reach here
+    record("target_error_met", f"chapter-11 scene, target_error={TARGET}: {target.status} (value: estimated "
+           "error of the scene as given)", target.predicted["max_settlement"], TARGET, False)
+    assert not FAST, "fast mode's 10 % must be reachable"
+    looser, looser_error, reference = solve_and_check(0.05)
+    assert looser.met and looser_error <= 0.05
+s_ref = reference.values["max_settlement"]
 
 # %% [markdown]
 # ## 3. The speed/accuracy trade: Pareto fronts
@@ -304,7 +327,11 @@ for method, solver in solvers.items():
     for m in mesh_levels:
         for s in (0, 1):
             for lay in (0, 1):
-                lv = solver((m, s, lay))
+                try:
+                    lv = solver((m, s, lay))
+                except NonConvergence as err:   # a setting that fails is not on any front: say so
+                    print(f"h/{2 ** m} steps x{2 ** s} layers x{2 ** lay} {method}: failed ({err.report['reason']})")
+                    continue
                 trade11.append({"setting": f"h/{2 ** m} steps x{2 ** s} layers x{2 ** lay} {method}",
                                 "error": abs(lv.values["max_settlement"] - s_ref) / abs(s_ref),
                                 "wall": lv.wall_time, "n_dof": lv.n_dof})

@@ -152,8 +152,9 @@ print(f"settlement: mean {1e3 * settle.mean():.2f} mm, CoV {settle.std(ddof=1) /
 print(f"P(s > {1e3 * S_LIMIT:.0f} mm) = {p_exceed:.3f}, 95 % CI [{ci[0]:.3f}, {ci[1]:.3f}] ({n_valid} samples)")
 
 fig, ax = plt.subplots(1, 3, figsize=(12, 3.4))
-for a, (vals, label, scale) in zip(ax, ((settle, "max settlement [mm]", 1e3), (diff, "differential settlement "
-                                        "[mm]", 1e3), (moment, "max |M| [kNm/m]", 1e-3))):
+panels = ((settle, "max settlement [mm]", 1e3), (diff, "differential settlement [mm]", 1e3),
+          (moment, "max |M| [kNm/m]", 1e-3))
+for a, (vals, label, scale) in zip(ax, panels):
     a.hist(scale * vals, bins=max(5, int(np.sqrt(len(vals)))), color="C0", alpha=0.8)
     a.set_xlabel(label)
 ax[0].axvline(1e3 * S_LIMIT, color="r", ls="--", label="limit 50 mm")
@@ -176,9 +177,9 @@ save_figure(fig, "ch14_distributions")
 # %%
 sigma = {k: COV[k] * MEAN[k] for k in MEAN}
 points = [dict(MEAN)]
-for k in MEAN:
+for k, mu in MEAN.items():
     for sign in (-1.0, 1.0):
-        points.append({**MEAN, k: MEAN[k] + sign * 0.5 * sigma[k]})
+        points.append({**MEAN, k: mu + sign * 0.5 * sigma[k]})
 fosm_rows = sweep(foundation_on, points, out_dir=out_dir / "fosm", n_workers=2, keep_files=False)
 assert all(r["status"] == "completed" for r in fosm_rows), [r.get("error") for r in fosm_rows]
 s_mean = fosm_rows[0]["max_settlement"]
