@@ -1,0 +1,387 @@
+"""Error estimates of a scene's answers: re-solve on systematically refined copies, Richardson extrapolation.
+
+    from ssi.estimate import estimate
+    est = estimate(scene)                 # mesh h/2, h/4; steps x2, x4; plate layers x2, x4
+    print(est)                            # value, estimated error, observed order and cost per quantity
+
+A discretisation parameter ``h`` (element size, load increment, plate layer thickness) is halved twice, giving
+three answers q0 (the scene as given), q1 (h/2), q2 (h/4) of every headline quantity. If the error behaves as
+``C h^p`` (the asymptotic range), the differences d1 = q1 - q0 and d2 = q2 - q1 shrink by 2^p, so
+
+    p = log2(d1 / d2)                                  (observed order)
+    q0 - q_exact ~ d1 * 2^p / (2^p - 1)                (error of the scene as given)
+    q2 - q_exact ~ d2 / (2^p - 1)                      (error of the finest copy)
+
+The three refinements are estimated one at a time from the same base solve and their error estimates are
+added (a bound when the contributions do not cancel). Where d1 and d2 differ in sign, or p lies outside
+[``ORDER_MIN``, ``ORDER_MAX``], the sequence is not in the asymptotic range and the estimate is flagged, never
+silently used. A refinement that changes nothing (the load steps of a linear scene, the layers of an elastic
+homogeneous strip) contributes zero error.
+
+:func:`solve_to_target` fits each refinement's error C h^p from that estimate, picks the cheapest number of
+halvings per refinement predicted to bring the asked quantities below ``target_error``, solves it and returns
+it with the predicted error; it stops with a message when an observed order is not asymptotic. Solves are
+cached by refinement level, so a level already solved for the estimate is not solved again.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+import warnings
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .section import Section, layered
+from .solver import Settings
+
+REFINEMENTS = ("mesh", "steps", "layers")
+QUANTITIES = ("max_settlement", "differential_settlement", "max_contact_pressure", "max_moment",
+              "limit_load_factor")
+UNITS = {"max_settlement": "m", "differential_settlement": "m", "max_contact_pressure": "Pa",
+         "max_moment": "N m/m", "limit_load_factor": "-"}
+ORDER_MIN = 0.5   # below: the differences hardly shrink -- far from the asymptotic range
+ORDER_MAX = 5.0   # above: the second difference collapsed by accident (cancellation), not convergence
+ROUND_OFF = 1e-9  # relative differences below this are the solver's round-off: the refinement is exact
+NOISE = 1e-3      # relative differences below this are the iteration error of a nonlinear solve (force_tol
+                  # 1e-5 moves chapter 11's settlements by ~1e-4 between solvers): no order can be observed,
+                  # the error is bounded by the differences themselves
+
+
+# ---- Richardson on a sequence of halvings ----------------------------------------------------------------
+@dataclass(frozen=True)
+class Richardson:
+    """Richardson analysis of three answers q0, q1, q2 at h, h/2, h/4 of one quantity.
+
+    ``order`` observed p [-] (nan when the refinement changed nothing); ``error_base`` estimated q0 - q_exact
+    and ``error_fine`` estimated q2 - q_exact (units of q); ``extrapolated`` q_exact estimate; ``asymptotic``
+    whether d1, d2 have one sign and ORDER_MIN <= p <= ORDER_MAX (or both vanish)."""
+
+    values: tuple
+    order: float
+    error_base: float
+    error_fine: float
+    extrapolated: float
+    asymptotic: bool
+
+
+def richardson(q0: float, q1: float, q2: float, ratio: float = 2.0, noise: float = NOISE) -> Richardson:
+    """Observed order and error estimates from answers at h, h/ratio, h/ratio^2 (see the module docstring).
+
+    Differences below ``noise`` (relative to the answers) carry no order: the error of q0 is then taken as
+    q0 - q2 and the refinement counts as resolved (pass ``noise=0`` for answers free of iteration error,
+    e.g. linear solves)."""
+    if not ratio > 1.0:
+        raise ValueError(f"ratio must be > 1 (refinement factor of h), got {ratio}")
+    if not 0.0 <= noise < 1.0:
+        raise ValueError(f"noise must be a relative size in [0, 1), got {noise}")
+    q0, q1, q2 = float(q0), float(q1), float(q2)
+    if not all(math.isfinite(v) for v in (q0, q1, q2)):
+        raise ValueError(f"answers must be finite, got {(q0, q1, q2)}")
+    scale = max(abs(q0), abs(q1), abs(q2), 1e-300)
+    d1, d2 = q1 - q0, q2 - q1
+    if abs(d1) <= ROUND_OFF * scale and abs(d2) <= ROUND_OFF * scale:
+        return Richardson((q0, q1, q2), math.nan, 0.0, 0.0, q2, True)
+    if abs(d1) <= noise * scale and abs(d2) <= noise * scale:
+        return Richardson((q0, q1, q2), math.nan, -(d1 + d2), abs(d2), q2, True)
+    if abs(d2) <= ROUND_OFF * scale or d1 * d2 <= 0.0:
+        # converged at h/2 (or oscillating): no order; the error of q0 is at least |d1|, q2's is unknown
+        return Richardson((q0, q1, q2), math.inf if d1 * d2 > 0 else math.nan, -(d1 + d2), abs(d2), q2, False)
+    p = math.log(abs(d1 / d2)) / math.log(ratio)
+    growth = ratio ** p
+    asymptotic = ORDER_MIN <= p <= ORDER_MAX
+    return Richardson((q0, q1, q2), p, -d1 * growth / (growth - 1.0), -d2 / (growth - 1.0),
+                      q2 + d2 / (growth - 1.0), asymptotic)
+
+
+# ---- refined copies of a scene ---------------------------------------------------------------------------
+def split_section(section: Section, factor: int = 2) -> Section:
+    """The ``section`` with every layer split into ``factor`` equal layers (same faces, kinds, parameters)."""
+    if int(factor) != factor or factor < 1:
+        raise ValueError(f"factor must be an integer >= 1, got {factor}")
+    f = int(factor)
+    order = np.argsort(section.z_mid)
+    rep = np.repeat(order, f)
+    labels = tuple(section.labels[i] for i in rep) if section.labels else ()
+    return layered(section.h[rep] / f, section.kind[rep], list(section.params[rep]),
+                   carries_shear=section.carries_shear[rep], z_ref=-section.z_bottom, labels=labels)
+
+
+def refined_scene(scene, mesh: int = 0, layers: int = 0):
+    """A copy of ``scene`` with the element sizes halved ``mesh`` times (h_fine and h_coarse) and every plate
+    layer split in 2^``layers``; the scene itself is not changed."""
+    if mesh < 0 or layers < 0:
+        raise ValueError(f"refinement levels must be >= 0, got mesh={mesh}, layers={layers}")
+    out = replace(scene, mesh=replace(scene.mesh, h_fine=scene.mesh.h_fine / 2 ** mesh,
+                                      h_coarse=scene.mesh.h_coarse / 2 ** mesh))
+    if layers and scene.foundation is not None:
+        out = replace(out, foundation=replace(scene.foundation,
+                                              section=split_section(scene.foundation.section, 2 ** layers)))
+    return out
+
+
+def refined_steps(n_steps: int | None, settings: Settings | None, level: int):
+    """(n_steps, settings) with the load increments halved ``level`` times: 2^level times the equal load
+    levels, and the automatic stepping's first, largest and smallest increments divided by 2^level."""
+    s = settings or Settings()
+    f = 2 ** level
+    n = None if n_steps is None else int(n_steps) * f
+    return n, replace(s, first_step=s.first_step / f, max_step=s.max_step / f, min_step=s.min_step / f)
+
+
+# ---- headline quantities ---------------------------------------------------------------------------------
+def headline(result) -> dict:
+    """The headline quantities of a :class:`~ssi.scene.SceneResult` at its last step: ``max_settlement``
+    [m], ``differential_settlement`` [m] (largest minus smallest settlement along the strip),
+    ``max_contact_pressure`` [Pa], ``max_moment`` [N m/m] (largest |M| in the strip) and
+    ``limit_load_factor`` [-] (only when a limit load was reached). A scene without foundation has only
+    the surface's ``max_settlement``."""
+    out = {"max_settlement": result.max_settlement()[1]}
+    if result.built.plate is not None:
+        s = result.settlement()[1]
+        out["differential_settlement"] = float(s.max() - s.min())
+        out["max_contact_pressure"] = float(np.nanmax(-result.contact()["sig_n"]))
+        out["max_moment"] = float(np.max(np.abs(result.strip_forces()["M"])))
+    if result.limit_load_factor is not None:
+        out["limit_load_factor"] = float(result.limit_load_factor)
+    return out
+
+
+# ---- the estimate ----------------------------------------------------------------------------------------
+@dataclass
+class Level:
+    """One solve: refinement ``key`` (mesh, steps, layers halvings), ``values`` headline quantities,
+    ``wall_time`` [s], ``n_dof``, ``status``, and the SceneResult ``result``."""
+
+    key: tuple
+    values: dict
+    wall_time: float
+    n_dof: int
+    status: str
+    result: object = field(repr=False, default=None)
+
+
+@dataclass
+class ErrorEstimate:
+    """Error estimate of a scene's headline quantities.
+
+    ``value`` {quantity: value of the scene as given}; ``parts`` {refinement: {quantity: Richardson}};
+    ``error`` {quantity: summed |estimated error| of the scene as given}; ``relative`` {quantity: error /
+    |value|}; ``cost`` {refinement: wall time [s] of its two refined solves}; ``levels`` every solve;
+    ``asymptotic`` {quantity: every refinement asymptotic}."""
+
+    value: dict
+    parts: dict
+    levels: dict
+    base_key: tuple = (0, 0, 0)
+
+    @property
+    def error(self) -> dict:
+        return {q: sum(abs(p[q].error_base) for p in self.parts.values() if q in p) for q in self.value}
+
+    @property
+    def relative(self) -> dict:
+        return {q: self.error[q] / abs(v) if v else math.inf for q, v in self.value.items()}
+
+    @property
+    def asymptotic(self) -> dict:
+        return {q: all(p[q].asymptotic for p in self.parts.values() if q in p) for q in self.value}
+
+    @property
+    def cost(self) -> dict:
+        return {name: sum(self.levels[k].wall_time for k in _keys(self.base_key, name)[1:])
+                for name in self.parts}
+
+    @property
+    def base_wall_time(self) -> float:
+        return self.levels[self.base_key].wall_time
+
+    def worst_refinement(self, quantities) -> str:
+        """The refinement whose estimated error (relative, summed over ``quantities``) is largest."""
+        return max(self.parts, key=lambda r: sum(abs(self.parts[r][q].error_base) / abs(self.value[q])
+                                                 for q in quantities if q in self.parts[r] and self.value[q]))
+
+    def __str__(self) -> str:
+        lines = [f"{'quantity':24s} {'value':>12s} {'error':>10s} {'rel':>8s}  "
+                 + "  ".join(f"{r + ' (p)':>14s}" for r in self.parts)]
+        for q, v in self.value.items():
+            orders = "  ".join(f"{self.parts[r][q].order:14.2f}" if q in self.parts[r] else f"{'-':>14s}"
+                               for r in self.parts)
+            flag = "" if self.asymptotic[q] else "  (not asymptotic)"
+            lines.append(f"{q:24s} {v:12.5g} {self.error[q]:10.3g} {self.relative[q]:8.2%}  {orders}{flag}")
+        lines.append(f"cost [s]: base {self.base_wall_time:.2f}, "
+                     + ", ".join(f"{r} {c:.2f}" for r, c in self.cost.items()))
+        return "\n".join(lines)
+
+
+def _keys(base, name):
+    i = REFINEMENTS.index(name)
+    return [tuple(b + (j if n == i else 0) for n, b in enumerate(base)) for j in range(3)]
+
+
+class RefinedSolver:
+    """Solves refined copies of one scene, cached by ``key`` = (mesh, steps, layers) halvings:
+    ``solver(key)`` returns the :class:`Level`; ``solver.cache`` holds every level solved."""
+
+    def __init__(self, scene, n_steps, settings):
+        self.scene, self.n_steps, self.settings = scene, n_steps, settings
+        self.cache: dict[tuple, Level] = {}
+        self.linear = True  # every solve so far was a linear one: differences carry no iteration error
+
+    def __call__(self, key) -> Level:
+        if key not in self.cache:
+            m, s, lay = key
+            n, settings = refined_steps(self.n_steps, self.settings, s)
+            built = refined_scene(self.scene, mesh=m, layers=lay).build()
+            self.linear &= bool(built.is_linear and not self.scene.phases)
+            t0 = time.perf_counter()
+            out = built.solve(n_steps=n, settings=settings)
+            self.cache[key] = Level(key, headline(out), time.perf_counter() - t0, built.model.n_dof,
+                                    out.status, out)
+        return self.cache[key]
+
+
+def _check_refine(refine, scene):
+    refine = tuple(refine)
+    bad = [r for r in refine if r not in REFINEMENTS]
+    if bad or not refine:
+        raise ValueError(f"refine must be a non-empty subset of {REFINEMENTS}, got {refine}")
+    if scene.foundation is None:
+        refine = tuple(r for r in refine if r != "layers")
+    return refine
+
+
+def _estimate(solver, base, refine) -> ErrorEstimate:
+    base_level = solver(base)
+    parts = {}
+    for name in refine:
+        levels = [solver(k) for k in _keys(base, name)]
+        common = [q for q in base_level.values if all(q in lv.values for lv in levels)]
+        noise = ROUND_OFF if solver.linear else NOISE
+        parts[name] = {q: richardson(*(lv.values[q] for lv in levels), noise=noise) for q in common}
+    value = {q: v for q, v in base_level.values.items() if all(q in p for p in parts.values())}
+    return ErrorEstimate(value, parts, dict(solver.cache), base)
+
+
+def estimate(scene, n_steps: int | None = None, settings: Settings | None = None,
+             refine=REFINEMENTS) -> ErrorEstimate:
+    """Estimate the discretisation error of ``scene``'s headline quantities (see the module docstring).
+
+    ``refine``: the refinements to estimate, a subset of ("mesh", "steps", "layers"); each costs two more
+    solves (h/2 and h/4: the mesh ones cost about 4 and 16 times the base solve in 2D). ``n_steps`` and
+    ``settings`` are those of ``BuiltScene.solve``. A quantity reached at some levels only (a limit load
+    found on one mesh but not another) is left out."""
+    return _estimate(RefinedSolver(scene, n_steps, settings), (0, 0, 0), _check_refine(refine, scene))
+
+
+def solve_with_error(scene, n_steps: int | None = None, settings: Settings | None = None,
+                     refine=REFINEMENTS):
+    """(SceneResult of the scene as given, its ErrorEstimate): what ``Scene.solve(estimate_error=True)``
+    would return."""
+    est = estimate(scene, n_steps, settings, refine)
+    return est.levels[est.base_key].result, est
+
+
+@dataclass
+class TargetResult:
+    """Outcome of :func:`solve_to_target`: ``status`` "target met", "not asymptotic" or "limit of
+    refinements"; ``message``; ``result`` the SceneResult delivered; ``key`` its (mesh, steps, layers)
+    halvings; ``predicted`` {quantity: estimated relative error of ``result``}; ``estimate`` the
+    ErrorEstimate of the scene as given it rests on; ``wall_time`` [s] of every solve made."""
+
+    status: str
+    message: str
+    result: object
+    key: tuple
+    predicted: dict
+    estimate: ErrorEstimate
+    wall_time: float
+
+    @property
+    def met(self) -> bool:
+        return self.status == "target met"
+
+
+def _error_at(r: Richardson, j: int) -> float:
+    """|estimated error| after j halvings from the base, from the base's fitted power law C h^p."""
+    if r.error_base == 0.0:
+        return 0.0
+    if not math.isfinite(r.order):          # resolved to the noise: refining does not shrink the bound
+        return abs(r.error_base) if j == 0 else abs(r.error_fine)
+    return abs(r.error_base) * 2.0 ** (-r.order * j)
+
+
+def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settlement",), n_steps=None,
+                    settings: Settings | None = None, refine=REFINEMENTS, max_halvings: int = 3) -> TargetResult:
+    """Solve ``scene`` refined just enough that the estimated relative error of every quantity in
+    ``quantities`` is at most ``target_error``.
+
+    1. :func:`estimate` the scene as given (levels h, h/2, h/4 of every refinement in ``refine``);
+    2. stop with status "not asymptotic" (and a warning naming the refinement, quantity and order) if a
+       refinement whose answers change an asked quantity by more than a tenth of the target has no observed
+       order in [ORDER_MIN, ORDER_MAX]: its estimate cannot be extrapolated, more refinement would be a guess;
+    3. each refinement's error after j halvings is its fitted C h^p; the errors of the refinements add.
+       Of the combinations of at most ``max_halvings`` halvings per refinement that meet the target, take
+       the cheapest (cost per halving: the measured wall-time ratio of the levels solved) -- status
+       "limit of refinements" if none does;
+    4. solve it (or reuse the level already solved) and return it with its predicted errors."""
+    if not 0.0 < target_error < 1.0:
+        raise ValueError(f"target_error must be a relative error in (0, 1), got {target_error}")
+    if int(max_halvings) != max_halvings or max_halvings < 0:
+        raise ValueError(f"max_halvings must be an integer >= 0, got {max_halvings}")
+    refine = _check_refine(refine, scene)
+    solver = RefinedSolver(scene, n_steps, settings)
+    est = _estimate(solver, (0, 0, 0), refine)
+    missing = [q for q in quantities if q not in est.value]
+    if missing:
+        raise ValueError(f"quantities {missing} are not answered by this scene (it answers {list(est.value)})")
+
+    def wall():
+        return sum(lv.wall_time for lv in solver.cache.values())
+
+    base = est.levels[(0, 0, 0)]
+    rel0 = {q: est.relative[q] for q in quantities}
+    if all(r <= target_error for r in rel0.values()):
+        return TargetResult("target met", f"the scene as given meets the target: {_fmt(rel0)}", base.result,
+                            (0, 0, 0), rel0, est, wall())
+    # a non-asymptotic refinement whose whole change is below a tenth of the target cannot decide it
+    bad = [(r, q) for r in est.parts for q in quantities if not est.parts[r][q].asymptotic
+           and abs(est.parts[r][q].error_base) > 0.1 * target_error * abs(est.value[q])]
+    if bad:
+        r, q = bad[0]
+        part = est.parts[r][q]
+        msg = (f"stopped: the {r} refinement of {q} is not in the asymptotic range (answers at h, h/2, h/4: "
+               f"{', '.join(f'{v:.6g}' for v in part.values)}; observed order {part.order:.2f}, outside "
+               f"[{ORDER_MIN}, {ORDER_MAX}]): its error cannot be extrapolated; estimated errors of the scene "
+               f"as given {_fmt(rel0)}. Start from a finer scene, or check the model")
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+        return TargetResult("not asymptotic", msg, base.result, (0, 0, 0), rel0, est, wall())
+    names = list(est.parts)
+    growth = {}
+    for r in names:
+        t = [est.levels[k].wall_time for k in _keys((0, 0, 0), r)]
+        growth[r] = max(math.sqrt(t[2] / t[0]), 1.0) if t[0] > 0 else 2.0
+    best = None
+    for combo in itertools.product(range(int(max_halvings) + 1), repeat=len(names)):
+        pred = {q: sum(_error_at(est.parts[r][q], j) for r, j in zip(names, combo)) / abs(est.value[q])
+                for q in quantities}
+        if all(v <= target_error for v in pred.values()):
+            cost = math.prod(growth[r] ** j for r, j in zip(names, combo))
+            if best is None or cost < best[0]:
+                best = (cost, combo, pred)
+    if best is None:
+        msg = (f"stopped: no combination of at most {max_halvings} halvings of {names} is predicted to meet "
+               f"{target_error:g} (scene as given: {_fmt(rel0)}); raise max_halvings or start finer")
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+        return TargetResult("limit of refinements", msg, base.result, (0, 0, 0), rel0, est, wall())
+    _, combo, pred = best
+    key = tuple(combo[names.index(r)] if r in names else 0 for r in REFINEMENTS)
+    level = solver(key)
+    return TargetResult("target met", f"halvings {dict(zip(REFINEMENTS, key))}: predicted errors {_fmt(pred)} "
+                        f"<= {target_error:g}", level.result, key, pred, est, wall())
+
+
+def _fmt(rel):
+    return "{" + ", ".join(f"{q}: {r:.2%}" for q, r in rel.items()) + "}"
