@@ -799,7 +799,8 @@ class BuiltScene:
         return np.array([-np.sum(st[k][..., V_SIG] * w) for st in out.states])
 
     # ---- solution --------------------------------------------------------------------------------------
-    def solve(self, n_steps: int | None = None, settings: Settings | None = None) -> "SceneResult":
+    def solve(self, n_steps: int | None = None, settings: Settings | None = None, *, estimate_error: bool = False,
+              target_error: float | None = None, quantities=("max_settlement",)):
         """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear and
         has no phases.
 
@@ -813,10 +814,25 @@ class BuiltScene:
         first, named "loads"); a phase that reaches a limit load ends the analysis. Of a phased solve,
         ``out.load_factor`` is the phase time (phase i runs from i - 1 to i; the geostatic phase is at 0),
         ``out.phases`` lists each phase's name, first and last step index and solver result, and
-        ``out.solver_result`` is the last phase's."""
+        ``out.solver_result`` is the last phase's.
+
+        ``estimate_error=True``: also re-solve systematically refined copies (mesh h/2, steps x2, layers x2)
+        and attach a Richardson estimate of each headline quantity's error as ``out.error_estimate``
+        (:func:`ssi.estimate.solve_with_error`). ``target_error`` (relative): refine until the estimated
+        error of ``quantities`` is below it and return that :class:`ssi.estimate.TargetResult`
+        (:func:`ssi.estimate.solve_to_target`; it says so when the refinements are not asymptotic)."""
         if n_steps is not None:
             check_int("n_steps", n_steps, lo=1)
         check_instance("settings", settings, Settings, optional=True)
+        if target_error is not None:
+            from .estimate import solve_to_target
+            return solve_to_target(self.scene, check_real("target_error", target_error, lo=0.0, hi=1.0,
+                                                          lo_open=True), quantities, n_steps, settings)
+        if estimate_error:
+            from .estimate import solve_with_error
+            out, estimate = solve_with_error(self.scene, n_steps, settings)
+            out.error_estimate = estimate
+            return out
         if self.scene.phases:
             return self._solve_phases(n_steps, settings)
         if self.is_linear:

@@ -99,6 +99,8 @@ class Settings:
                                   # finest mesh at 95 % of its load); never for modified Newton
     line_search_min: float = 1.0 / 64.0  # full Newton: smallest step fraction the line search tries
     bfgs_memory: int = 30         # L-BFGS pairs kept within an increment
+    viscous_fallback: bool = True  # a stuck path that has not stopped rising goes on viscous (tau = 1) and is
+                                  # relaxed to the rate-independent state at its end (see ``viscosity``)
     viscosity: float = 0.0        # Duvaut-Lions regularisation tau = dt/eta per increment of the groups that
                                   # have it (soil); > 0: the path is viscous and, after the last target, the
                                   # load is held while tau grows (relaxation) until the state is the
@@ -137,7 +139,7 @@ class Settings:
         check_real("Settings.viscosity", self.viscosity, lo=0.0, unit="(tau = dt/eta per increment)")
         check_real("Settings.divergence_ratio", self.divergence_ratio, lo=1.0, lo_open=True)
         check_choice("Settings.backend", self.backend, BACKENDS)
-        for name in ("symmetric_tangent", "verbose", "keep_states", "line_search"):
+        for name in ("symmetric_tangent", "verbose", "keep_states", "line_search", "viscous_fallback"):
             check_bool(f"Settings.{name}", getattr(self, name))
         if self.progress is not None:
             check_bool("Settings.progress", self.progress)
@@ -187,6 +189,8 @@ class Result:
     status: str = COMPLETED
     limit_load_factor: float | None = None
     relaxed_steps: int | None = None        # viscous path: relaxation increments after the last target
+    viscous_from: int | None = None         # viscous fallback: the steps from here to the relaxation are
+                                            # viscous (rate-dependent) states; the last step is relaxed
     u_origin: np.ndarray | None = None      # displacement and internal force of the state the structural
     f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
 
@@ -218,7 +222,11 @@ class Result:
         if self.collapsed:
             return (f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
                     f"current stiffness {self.stiffness[-1]:.3g} of the initial)")
-        return f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
+        text = f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
+        if self.viscous_from is not None:
+            text += (f" (viscous fallback from step {self.viscous_from}, relaxed to the rate-independent state "
+                     f"in the last {self.relaxed_steps} steps)")
+        return text
 
 
 def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, start: "Result | None" = None,
@@ -255,12 +263,16 @@ def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, 
                 if path.result.collapsed:
                     path.bar.note(path.result.message)
                     break
-        if settings.viscosity > 0.0 and not path.result.collapsed:
+        if path.tau > 0.0 and not path.result.collapsed:
             relax(path)
     finally:
         _set_viscosity(model, 0.0)
         path.result.wall_time = time.perf_counter() - t_start
     return path.result
+
+
+def _has_viscosity(model) -> bool:
+    return any(hasattr(g, "viscosity") for g in model.groups)
 
 
 def _set_viscosity(model, tau):
@@ -275,26 +287,32 @@ RELAX_STEPS = 8          # increments at most per stage
 RELAX_TOL = 1e-5         # a stage ends when the load measure changes by less than this (relative)
 
 
-def relax(path: "_Path") -> None:
+def relax(path: "_Path") -> bool:
     """Hold the last target load of a viscous path while tau grows (10x per stage, then tau = 0): the
     overstress of each increment decays by 1/(1 + tau), and the last stage is the rate-independent law, so
     the final step is an equilibrium state of the inviscid problem (converged to the usual tolerances).
     Its step count is ``RELAX_STEPS`` per stage at most; each stage ends once the load measure settles."""
     lam, first = path.lam, path.result.n_steps
-    taus = [path.settings.viscosity * RELAX_GROWTH ** (k + 1) for k in range(RELAX_STAGES)] + [0.0]
+    taus = [path.tau * RELAX_GROWTH ** (k + 1) for k in range(RELAX_STAGES)] + [0.0]
     for tau in taus:
         _set_viscosity(path.model, tau)
         for _ in range(RELAX_STEPS):
             before = np.array(path.measure.point(path.result.n_steps))
             outcome = path._increment(lam)
             if not outcome["converged"]:
-                path._stuck(outcome, lam)
-                return
+                path.tau = 0.0  # no second fallback: a state that does not relax is a failure
+                _set_viscosity(path.model, 0.0)
+                report = _failure_report(path.model, path.system.free, outcome, lam, lam)
+                report["reason"] = f"relaxation of the viscous path failed at tau={tau:g}: {report['reason']}"
+                path.result.status = STOPPED
+                raise NonConvergence(report, path.result)
             path._commit(lam, outcome)
             after = np.array(path.measure.point(path.result.n_steps))
             if np.all(np.abs(after - before) <= RELAX_TOL * np.maximum(np.abs(after), 1e-30)):
                 break
     path.result.relaxed_steps = path.result.n_steps - first
+    path.tau = 0.0
+    return True
 
 
 class _Path:
@@ -305,6 +323,7 @@ class _Path:
         self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, self.fac_k0 = _start(
             model, settings, start, loads)
         self.lam = 0.0
+        self.tau = settings.viscosity  # the viscosity in force (the viscous fallback may switch it on)
         self.scale = 1.0
         self.bar = SolverProgress(None, 1.0)  # silent until run() opens the real one
         self.step = settings.first_step
@@ -333,8 +352,9 @@ class _Path:
             self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
             self.step = 0.5 * abs(lam_next - self.lam)
             if self.step < s.min_step * self.scale * (1.0 - 1e-9):
-                self._stuck(outcome, lam_next)
-                return
+                if not self._stuck(outcome, lam_next):
+                    return
+                self.step = s.first_step * self.scale
 
     def _follow_fixed(self, target):
         """The target in one increment; a failing increment is halved, at most ``max_cuts`` times."""
@@ -348,8 +368,10 @@ class _Path:
                 pending.pop()
                 continue
             if cuts_here >= self.settings.max_cuts:
-                self._stuck(outcome, lam_next)
-                return
+                if not self._stuck(outcome, lam_next):
+                    return
+                cuts_here = 0
+                continue
             cuts_here += 1
             self.result.cuts += 1
             self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
@@ -392,17 +414,33 @@ class _Path:
             factor = 1.0
         self.step = self.scale * min(s.max_step, max(s.min_step, factor * max(last_step, self.step) / self.scale))
 
-    def _stuck(self, outcome, lam_next):
-        """The path cannot advance: a limit load if it had stopped rising, else NonConvergence."""
+    def _stuck(self, outcome, lam_next) -> bool:
+        """The path cannot advance. A limit load if it had stopped rising (returns False: the path ends);
+        else, once, the viscous fallback (returns True: go on viscous); else NonConvergence."""
         res = self.result
         stiff = res.stiffness[-1] if res.n_steps >= 2 else np.nan
         if np.isfinite(stiff) and stiff < self.settings.collapse_stiffness:
+            if self.tau > 0.0:
+                relax(self)  # a viscous state must first relax to a rate-independent one (raises if not)
             res.status, res.limit_load_factor = LIMIT_LOAD, float(self.lam)
-            return
+            return False
+        if self.settings.viscous_fallback and self.tau == 0.0 and _has_viscosity(self.model):
+            # the rate-independent increment may have no solution near the state (non-associated flow):
+            # a viscous path has one; the end of the path is relaxed back to the rate-independent law
+            self.tau = VISCOUS_FALLBACK_TAU
+            _set_viscosity(self.model, self.tau)
+            res.viscous_from = res.n_steps
+            self.bar.note(f"viscous fallback from lambda={self.lam:.6g}")
+            return True
         report = _failure_report(self.model, self.system.free, outcome, self.lam, lam_next)
         report["current_stiffness"] = float(stiff)
+        if res.viscous_from is not None:
+            report["viscous_from_step"] = res.viscous_from
         res.status = STOPPED
         raise NonConvergence(report, res)
+
+
+VISCOUS_FALLBACK_TAU = 1.0  # tau of the viscous fallback: the value chapter 10's psi = 0 study uses
 
 
 class _LoadMeasure:
