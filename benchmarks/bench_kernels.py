@@ -14,10 +14,10 @@ and of one transcendental call, both measured in the same run by small numba loo
 import math
 import time
 
-import ssi  # noqa: F401  (first: it keys numba's cache on the package sources before numba is imported)
 import numpy as np
 from numba import njit
 
+import ssi  # noqa: F401  (first: it keys numba's cache on the package sources before numba is imported)
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import material_table, mohr_coulomb_params
 

@@ -9,7 +9,6 @@ must agree bit for bit; the comparison allows 1e-14 relative in case a compiler 
 
 import numpy as np
 import pytest
-
 from kernel_regression_case import DATA, outputs
 
 TOL = 1e-14
