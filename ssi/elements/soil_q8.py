@@ -247,7 +247,6 @@ class SoilQ8:
             if np.any(~(kw >= 0.0)) or not np.all(np.isfinite(kw)):
                 raise ValueError(f"k_water must be finite and >= 0 (K_w/n, Pa), got {kw}")
             self.k_water = kw if kw.any() else None
-        self._k0 = None
 
     @property
     def n_el(self):
@@ -274,16 +273,16 @@ class SoilQ8:
         return f_el, (k_el if tangent >= 0 else None), state_new
 
     def elastic_stiffness(self):
-        """K0 per element, from the dedicated elastic kernel (every soil law's params start with E, nu)."""
-        if self._k0 is None:
-            E = self.params[self.el_mat, 0]
-            nu = self.params[self.el_mat, 1]
-            self._k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
-            if self.k_water is not None:
-                zero = np.zeros((self.n_el, 16))
-                q8_pore_water(self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(),
-                              self._k0, True)
-        return self._k0
+        """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start with
+        E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and keeping
+        it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
+        E = self.params[self.el_mat, 0]
+        nu = self.params[self.el_mat, 1]
+        k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
+        if self.k_water is not None:
+            zero = np.zeros((self.n_el, 16))
+            q8_pore_water(self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(), k0, True)
+        return k0
 
     def excess_pore_pressure(self, u_el) -> np.ndarray:
         """Excess pore pressure [Pa] (compression positive) at the integration points (n_el, n_ip) of the
