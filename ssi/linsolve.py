@@ -9,8 +9,8 @@ thing this module must do well is keep a factorisation. Backends:
   phase is called on the kept factorisation directly, because ``pypardiso.spsolve``
   re-hashes the matrix on every call.
 
-``backend="auto"`` takes PARDISO for matrices of at least ``AUTO_PARDISO_MIN_DOFS`` rows when it is
-installed, else SuperLU.
+``backend="auto"`` takes PARDISO, when it is installed, for K0 (``spd``) of at least ``AUTO_PARDISO_MIN_DOFS``
+rows and for other matrices of at least ``AUTO_PARDISO_MIN_DOFS_REFACTORISED`` rows, else SuperLU.
 """
 
 import ctypes
@@ -22,8 +22,15 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 BACKENDS = ("auto", "superlu", "pardiso")
-# below this size SuperLU factorises in well under 0.3 s and has no per-call setup cost (PARDISO: ~50 ms)
-AUTO_PARDISO_MIN_DOFS = 50_000
+# "auto" picks PARDISO (when installed) by the measured cost of the use, set-up included (MKL looked up once per
+# process, the symbolic analysis of a pattern kept across refactorisations). Same process, best of 3 / 10,
+# loaded 2-core machine (issue 16), factorisation + one back-substitution:
+#   K0 (spd, then many solves):   5.8e3 DOFs SuperLU 105 ms + 1.01 ms/solve, PARDISO 145 ms + 0.30 ms/solve;
+#                                 2.0e4 DOFs SuperLU 453 ms + 13.4 ms/solve, PARDISO 408 ms + 2.45 ms/solve
+#   K_T (refactorised each iteration, one solve): 3.1e3 DOFs SuperLU 67 + 0.3 ms, PARDISO 12 + 12 ms;
+#                                 5.8e3 DOFs 80 + 0.7 ms against 24 + 17 ms; 2.0e4 DOFs 455 + 15 against 177 + 51
+AUTO_PARDISO_MIN_DOFS = 5_000  # K0: from here the faster back-substitutions repay PARDISO's slower set-up
+AUTO_PARDISO_MIN_DOFS_REFACTORISED = 3_000  # other matrices: analysis kept, numeric phase only
 
 
 @functools.cache
@@ -51,8 +58,8 @@ class Factorization:
         if backend not in BACKENDS:
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         if backend == "auto":
-            big = matrix.shape[0] >= AUTO_PARDISO_MIN_DOFS
-            backend = "pardiso" if big and pardiso_available() else "superlu"
+            limit = AUTO_PARDISO_MIN_DOFS if spd else AUTO_PARDISO_MIN_DOFS_REFACTORISED
+            backend = "pardiso" if matrix.shape[0] >= limit and pardiso_available() else "superlu"
         if backend == "pardiso" and not pardiso_available():
             raise ValueError("backend 'pardiso' needs pypardiso: pip install 'ssi[fast]'")
         self.backend = backend
