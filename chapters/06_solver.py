@@ -394,7 +394,7 @@ except NonConvergence as err:
     contact_ok = False
     print("(c) associated c_i = 0 contact STOPPED:", err)
 
-zoo = solve_zoo(random_scenes(6 if FAST else 100, seed=1))
+zoo = solve_zoo(random_scenes(3 if FAST else 100, seed=1))
 solved = sum(o.solved for o in zoo) / len(zoo)
 print(f"(d) random zoo: {sum(o.solved for o in zoo)}/{len(zoo)} solved "
       f"({sum(o.status == 'limit load reached' for o in zoo)} ended at a detected limit load), "

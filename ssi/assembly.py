@@ -82,9 +82,10 @@ def _pattern(edofs, free_of, n_free, inc_ptr, inc_el):
 
 
 @njit(cache=True)
-def _scatter_map(edofs, free_of, indptr, indices):
+def _scatter_map(edofs, free_of, indptr, indices, smap):
+    """Fill ``smap`` (n_el, n_edof * n_edof), int32 or int64, with CSR data positions (-1: constrained)."""
     n_el, n_edof = edofs.shape
-    smap = np.full((n_el, n_edof * n_edof), -1, np.int64)
+    smap[:, :] = -1
     for e in range(n_el):
         for a in range(n_edof):
             row = free_of[edofs[e, a]]
@@ -103,7 +104,6 @@ def _scatter_map(edofs, free_of, indptr, indices):
                     else:
                         hi = mid
                 smap[e, a * n_edof + b] = lo
-    return smap
 
 
 @njit(cache=True)
@@ -158,12 +158,20 @@ class SparsePattern:
             ptr, col = self._group_pattern(np.ascontiguousarray(edofs, np.int64))
             ptrs.append(ptr)
             cols.append(col)
-        self.indptr, self.indices = self._merge(ptrs, cols)
-        self.nnz = int(self.indptr[-1])
-        self.scatter_maps = [
-            _scatter_map(np.ascontiguousarray(ed, np.int64), self.free_of, self.indptr, self.indices)
-            for ed in edofs_list
-        ]
+        indptr, self.indices = self._merge(ptrs, cols)
+        self.nnz = int(indptr[-1])
+        # int32 row pointers and scatter maps where the entries fit (half the memory of int64; the CSR
+        # matrices built on this pattern then share its index arrays instead of casting a copy each time)
+        index_dtype = np.int32 if self.nnz < np.iinfo(np.int32).max else np.int64
+        self.indptr = indptr.astype(index_dtype)
+        if index_dtype == np.int64:
+            self.indices = self.indices.astype(np.int64)
+        self.scatter_maps = []
+        for ed in edofs_list:
+            ed = np.ascontiguousarray(ed, np.int64)
+            smap = np.empty((ed.shape[0], ed.shape[1] ** 2), index_dtype)
+            _scatter_map(ed, self.free_of, indptr, self.indices, smap)
+            self.scatter_maps.append(smap)
 
     def _group_pattern(self, edofs):
         inc_ptr, inc_el = _dof_to_elements(edofs, self.free_of, self.n_free)
@@ -182,8 +190,14 @@ class SparsePattern:
         return np.zeros(self.nnz)
 
     def matrix(self, data):
-        """scipy CSR matrix K_ff sharing ``data``."""
-        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n_free, self.n_free))
+        """scipy CSR matrix K_ff sharing ``data`` and this pattern's index arrays (no copies: a solver can
+        recognise the pattern by their identity and keep its symbolic analysis)."""
+        if data.shape != (self.nnz,) or data.dtype != np.float64:
+            raise ValueError(f"data must be float64 of shape ({self.nnz},), got {data.dtype} {data.shape}")
+        m = sp.csr_matrix((self.n_free, self.n_free))  # scipy's constructor would copy the index arrays
+        m.data, m.indices, m.indptr = data, self.indices, self.indptr
+        m.has_sorted_indices = True  # sorted by construction
+        return m
 
     def assemble(self, k_el_list, data=None):
         """Assemble the element matrices of every group into ``data`` (reused if given)."""

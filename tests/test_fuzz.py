@@ -195,7 +195,7 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     drain = linsolve._drain_scratch
     monkeypatch.setattr(linsolve, "_drain_scratch", lambda: trapped.append(drain()) or trapped[-1])
     with pytest.raises(NonConvergence):
-        _readme_scene().build().solve(n_steps=10, settings=Settings(method="full", stepping="fixed",
+        _readme_scene().build().solve(n_steps=10, settings=Settings(method="full", stepping="fixed", viscous_fallback=False,
                                                                     backend="superlu"))
     ctypes.CDLL(None).fflush(None)  # C's stdout is block-buffered: anything printed must reach capfd now
     out, err = capfd.readouterr()

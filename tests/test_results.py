@@ -488,7 +488,8 @@ def test_rc_section_table_equals_the_python_section():
 def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     with open(os.path.join(EXAMPLES, "strip_mohr_coulomb.toml")) as fh:
         text = fh.read().replace("N = 300e3", "N = 3e6").replace(
-            "n_steps = 4", "n_steps = 2\nmax_iter = 40\nmax_cuts = 1\nmethod = 'modified'\nstepping = 'fixed'")
+            "n_steps = 4", "n_steps = 2\nmax_iter = 40\nmax_cuts = 1\nmethod = 'modified'\nstepping = 'fixed'\n"
+            "viscous_fallback = false")
     scene_path = tmp_path / "overload.toml"
     scene_path.write_text(text)
     assert main(["run", str(scene_path), "--no-plots"]) == 3

@@ -21,9 +21,19 @@ N_SOIL_STATE = N_STRESS + N_SOIL_HIST
 
 
 @njit(cache=True)
-def _shape_gradients(xy, xi, eta, dndx):
-    """Fill dndx (8, 2) with physical shape-function gradients; return N (8,) and det J."""
-    n, dn = serendipity8(xi, eta)
+def _reference_derivatives(gp):
+    """dN/d(xi, eta) (n_ip, 8, 2) at the points ``gp`` (n_ip, 2): computed once per call, not per element."""
+    dn_ref = np.empty((gp.shape[0], 8, 2))
+    for q in range(gp.shape[0]):
+        _, dn = serendipity8(gp[q, 0], gp[q, 1])
+        dn_ref[q] = dn
+    return dn_ref
+
+
+@njit(cache=True)
+def _physical_gradients(xy, dn, dndx):
+    """Fill dndx (8, 2) with physical shape-function gradients from the reference ones ``dn`` (8, 2);
+    return det J."""
     j00 = j01 = j10 = j11 = 0.0
     for a in range(8):
         j00 += dn[a, 0] * xy[a, 0]
@@ -34,7 +44,14 @@ def _shape_gradients(xy, xi, eta, dndx):
     for a in range(8):
         dndx[a, 0] = (j11 * dn[a, 0] - j01 * dn[a, 1]) / det
         dndx[a, 1] = (-j10 * dn[a, 0] + j00 * dn[a, 1]) / det
-    return n, det
+    return det
+
+
+@njit(cache=True)
+def _shape_gradients(xy, xi, eta, dndx):
+    """Fill dndx (8, 2) with physical shape-function gradients at (xi, eta); return N (8,) and det J."""
+    n, dn = serendipity8(xi, eta)
+    return n, _physical_gradients(xy, dn, dndx)
 
 
 @njit(cache=True)
@@ -52,14 +69,22 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
     sig = np.empty(4)
     hist = np.empty(N_SOIL_HIST)
     D = np.empty((4, 4))
+    sig_old = np.empty(4)  # the point's committed state, copied into scratch (no views built per point)
+    hist_old = np.empty(N_SOIL_HIST)
+    xy = np.empty((8, 2))
+    dn_ref = _reference_derivatives(gp)
     failures = 0
     for e in range(n_el):
-        f_el[e, :] = 0.0
+        for i in range(16):
+            f_el[e, i] = 0.0
         if tangent >= 0:
             k_el[e, :, :] = 0.0
         m = el_mat[e]
+        for a in range(8):
+            xy[a, 0] = coords[e, a, 0]
+            xy[a, 1] = coords[e, a, 1]
         for q in range(n_ip):
-            _, det = _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            det = _physical_gradients(xy, dn_ref[q], dndx)
             if det <= 0.0:
                 failures += 1
                 continue
@@ -74,12 +99,17 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
             deps[0] = exx
             deps[1] = ezz
             deps[2] = gxz
-            status = soil_update(kinds[m], params[m], deps, state_old[e, q, :N_STRESS],
-                                 state_old[e, q, N_STRESS:], sig, hist, D, max(tangent, 0))
+            for i in range(N_STRESS):
+                sig_old[i] = state_old[e, q, i]
+            for i in range(N_SOIL_HIST):
+                hist_old[i] = state_old[e, q, N_STRESS + i]
+            status = soil_update(kinds[m], params[m], deps, sig_old, hist_old, sig, hist, D, max(tangent, 0))
             if status < 0:
                 failures += 1
-            state_new[e, q, :N_STRESS] = sig
-            state_new[e, q, N_STRESS:] = hist
+            for i in range(N_STRESS):
+                state_new[e, q, i] = sig[i]
+            for i in range(N_SOIL_HIST):
+                state_new[e, q, N_STRESS + i] = hist[i]
             for a in range(8):
                 bx = dndx[a, 0]
                 bz = dndx[a, 1]
@@ -113,12 +143,13 @@ def q8_pore_water(coords, u_el, el_mat, k_water, gp, gw, f_el, k_el, with_matrix
     sig' - p m. ``f_el`` (n_el, 16) += int B^T m (K_w/n) eps_v, ``k_el`` (n_el, 16, 16) += int B^T m m^T B
     (K_w/n) when ``with_matrix``; ``k_water`` (n_mat,) is K_w/n [Pa] (0: drained, nothing added)."""
     dndx = np.empty((8, 2))
+    dn_ref = _reference_derivatives(gp)
     for e in range(coords.shape[0]):
         kw = k_water[el_mat[e]]
         if kw == 0.0:
             continue
         for q in range(gp.shape[0]):
-            _, det = _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            det = _physical_gradients(coords[e], dn_ref[q], dndx)
             wdet = gw[q] * det * kw
             ev = 0.0
             for a in range(8):
@@ -137,9 +168,10 @@ def q8_pore_water(coords, u_el, el_mat, k_water, gp, gw, f_el, k_el, with_matrix
 def q8_volumetric_strain(coords, u_el, gp, out):
     """Volumetric strain eps_v = exx + ezz (n_el, n_ip) at the integration points from total u_el."""
     dndx = np.empty((8, 2))
+    dn_ref = _reference_derivatives(gp)
     for e in range(coords.shape[0]):
         for q in range(gp.shape[0]):
-            _shape_gradients(coords[e], gp[q, 0], gp[q, 1], dndx)
+            _physical_gradients(coords[e], dn_ref[q], dndx)
             ev = 0.0
             for a in range(8):
                 ev += dndx[a, 0] * u_el[e, 2 * a] + dndx[a, 1] * u_el[e, 2 * a + 1]
@@ -224,7 +256,6 @@ class SoilQ8:
         if not (np.isfinite(viscosity) and viscosity >= 0.0):
             raise ValueError(f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {viscosity}")
         self.viscosity = float(viscosity)
-        self._k0 = None
 
     @property
     def n_el(self):
@@ -267,16 +298,16 @@ class SoilQ8:
         state_new[..., :N_STRESS] = (st_tr[..., :N_STRESS] + tau * state_new[..., :N_STRESS]) / (1.0 + tau)
 
     def elastic_stiffness(self):
-        """K0 per element, from the dedicated elastic kernel (every soil law's params start with E, nu)."""
-        if self._k0 is None:
-            E = self.params[self.el_mat, 0]
-            nu = self.params[self.el_mat, 1]
-            self._k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
-            if self.k_water is not None:
-                zero = np.zeros((self.n_el, 16))
-                q8_pore_water(self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(),
-                              self._k0, True)
-        return self._k0
+        """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start with
+        E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and keeping
+        it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
+        E = self.params[self.el_mat, 0]
+        nu = self.params[self.el_mat, 1]
+        k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
+        if self.k_water is not None:
+            zero = np.zeros((self.n_el, 16))
+            q8_pore_water(self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(), k0, True)
+        return k0
 
     def excess_pore_pressure(self, u_el) -> np.ndarray:
         """Excess pore pressure [Pa] (compression positive) at the integration points (n_el, n_ip) of the

@@ -90,6 +90,29 @@ def order3(p, order):
 
 
 @njit(cache=True)
+def _pick3(i, p0, p1, p2):
+    """p_i of three scalars (the array-free form of ``p[i]``)."""
+    if i == 0:
+        return p0
+    if i == 1:
+        return p1
+    return p2
+
+
+@njit(cache=True)
+def order3_scalars(p0, p1, p2):
+    """The index triple of :func:`order3` for three scalars, without an array (same compares)."""
+    i0, i1, i2 = 0, 1, 2
+    if _pick3(i0, p0, p1, p2) < _pick3(i1, p0, p1, p2):
+        i0, i1 = i1, i0
+    if _pick3(i1, p0, p1, p2) < _pick3(i2, p0, p1, p2):
+        i1, i2 = i2, i1
+    if _pick3(i0, p0, p1, p2) < _pick3(i1, p0, p1, p2):
+        i0, i1 = i1, i0
+    return i0, i1, i2
+
+
+@njit(cache=True)
 def rotation_matrix(c, s, R):
     """Fill ``R`` (4, 4): sig_global = R sig_principal_frame, components [aa, bb, ab, yy] → [xx, zz, xz, yy].
 
@@ -180,12 +203,13 @@ def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H):
             (i.e. it lies on the edge below the apex).
     Step 3 (apex): sig = apex (φ > 0 only); H = 0.
     """
-    a0 = np.empty(3)
-    b0 = np.empty(3)
-    a1 = np.empty(3)
-    b1 = np.empty(3)
-    r0 = np.empty(3)
-    r1 = np.empty(3)
+    vec = np.empty((6, 3))  # one allocation for the six gradient vectors
+    a0 = vec[0]
+    b0 = vec[1]
+    a1 = vec[2]
+    b1 = vec[3]
+    r0 = vec[4]
+    r1 = vec[5]
     fB = k * sB[0] - sB[2] - kc
     # --- plane
     _surface_vectors(0, k, m, a0, b0)
@@ -259,13 +283,10 @@ def sorted_principal(sig, sB, order):
     ``order[i]`` is where sB[i] came from (0, 1: the in-plane pair a, b; 2: the out-of-plane yy).
     Returns (pa, pb, cos, sin) of the in-plane principal axes."""
     pa, pb, cc, ss = principal_inplane(sig[0], sig[1], sig[2])
-    p = np.empty(3)
-    p[0] = pa
-    p[1] = pb
-    p[2] = sig[3]
-    order3(p, order)
+    py = sig[3]
+    order[0], order[1], order[2] = order3_scalars(pa, pb, py)
     for i in range(3):
-        sB[i] = p[order[i]]
+        sB[i] = _pick3(order[i], pa, pb, py)
     return pa, pb, cc, ss
 
 
@@ -326,39 +347,59 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     psi = params[4]
     lam, mu = lame(E, nu)
     k, m, kc, apex = mc_constants(c, phi, psi)
-    sB4 = np.empty(4)
+    # trial stress and its ordered principal values as scalars: an elastic point allocates nothing
     tr = deps[0] + deps[1] + deps[3]
-    sB4[0] = sig_old[0] + lam * tr + 2.0 * mu * deps[0]
-    sB4[1] = sig_old[1] + lam * tr + 2.0 * mu * deps[1]
-    sB4[2] = sig_old[2] + mu * deps[2]
-    sB4[3] = sig_old[3] + lam * tr + 2.0 * mu * deps[3]
-    order = np.empty(3, np.int64)
-    sB = np.empty(3)
-    pa, pb, cc, ss = sorted_principal(sB4, sB, order)
-    fB = k * sB[0] - sB[2] - kc
-    scale = abs(sB[0]) + abs(sB[1]) + abs(sB[2]) + kc
+    t0 = sig_old[0] + lam * tr + 2.0 * mu * deps[0]
+    t1 = sig_old[1] + lam * tr + 2.0 * mu * deps[1]
+    t2 = sig_old[2] + mu * deps[2]
+    t3 = sig_old[3] + lam * tr + 2.0 * mu * deps[3]
+    pa, pb, cc, ss = principal_inplane(t0, t1, t2)
+    o0, o1, o2 = order3_scalars(pa, pb, t3)
+    sB0 = _pick3(o0, pa, pb, t3)
+    sB1 = _pick3(o1, pa, pb, t3)
+    sB2 = _pick3(o2, pa, pb, t3)
+    fB = k * sB0 - sB2 - kc
+    scale = abs(sB0) + abs(sB1) + abs(sB2) + kc
     if fB <= 1e-12 * scale:
-        for i in range(4):
-            sig_new[i] = sB4[i]
+        sig_new[0] = t0
+        sig_new[1] = t1
+        sig_new[2] = t2
+        sig_new[3] = t3
         hist_new[0] = hist_old[0]
         hist_new[1] = B_ELASTIC
         elastic_fill(lam, mu, D)
         return ST_ELASTIC
-    s = np.empty(3)
-    H = np.empty((3, 3))
+    # plastic: one block of vectors, one of small matrices, one index triple
+    vec = np.empty((4, 3))
+    sB = vec[0]
+    s = vec[1]
+    q = vec[2]
+    ds = vec[3]
+    mats = np.empty((5, 4, 4))
+    H = mats[0]
+    R = mats[1]
+    Cp = mats[2]
+    C4 = mats[3]
+    T = mats[4]
+    order = np.empty(3, np.int64)
+    order[0] = o0
+    order[1] = o1
+    order[2] = o2
+    sB[0] = sB0
+    sB[1] = sB1
+    sB[2] = sB2
     branch = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H)
     if branch < 0:
-        for i in range(4):
-            sig_new[i] = sB4[i]
+        sig_new[0] = t0
+        sig_new[1] = t1
+        sig_new[2] = t2
+        sig_new[3] = t3
         hist_new[0] = hist_old[0]
         hist_new[1] = -1.0
         elastic_fill(lam, mu, D)
         return ST_FAIL
     # back to [a, b, y] positions
-    q = np.empty(3)
-    R = np.empty((4, 4))
     stress_on_axes(s, order, cc, ss, sig_new, q, R)
-    ds = np.empty(3)
     for i in range(3):
         ds[i] = sB[i] - s[i]
     hist_new[0] = hist_old[0] + _plastic_strain_norm(lam, mu, ds)
@@ -367,18 +408,14 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         elastic_fill(lam, mu, D)
         return ST_PLASTIC
     # C (ordered) = H Dp, then permute to [a, b, y]
-    Cp = np.empty((3, 3))
     for i in range(3):
         for j in range(3):
             v = 0.0
             for l in range(3):
                 v += H[i, l] * (lam + (2.0 * mu if l == j else 0.0))
             Cp[order[i], order[j]] = v
-    C4 = np.zeros((4, 4))
-    idx = np.empty(3, np.int64)
-    idx[0] = 0
-    idx[1] = 1
-    idx[2] = 3
+    C4[:, :] = 0.0
+    idx = (0, 1, 3)
     for i in range(3):
         for j in range(3):
             C4[idx[i], idx[j]] = Cp[i, j]
@@ -388,7 +425,6 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     else:
         C4[2, 2] = 0.5 * (Cp[0, 0] - Cp[0, 1])
     # D = R C4 R^T
-    T = np.empty((4, 4))
     for i in range(4):
         for j in range(4):
             v = 0.0

@@ -1,0 +1,120 @@
+"""Benchmark of issue 16, item 4: the Mohr–Coulomb soil kernel per Gauss point against its arithmetic.
+
+``soil_mc_ns_per_gp``: wall time of the forces-only Q8 kernel (modified Newton's residual) per Gauss point
+on 50 000 elements of an implicit Mohr–Coulomb soil (phi = 20 deg, c = 10 kPa), with the stress states of a
+loaded soil (a mix of elastic and plastic points, measured and printed), best of 5 in one process after JIT.
+``soil_mc_consistent_ns_per_gp``: the same with the consistent tangent (element matrices filled).
+
+``soil_mc_arithmetic_ns_per_gp``: what the arithmetic alone would cost on this machine: the operation count
+of one point (counted by hand from the kernel, below) times the time of one scalar floating-point operation
+and of one transcendental call, both measured in the same run by small numba loops. Goal: the kernel within
+3x of it.
+"""
+
+import math
+import time
+
+import numpy as np
+from numba import njit
+
+import ssi  # noqa: F401  (first: it keys numba's cache on the package sources before numba is imported)
+from ssi.elements.soil_q8 import SoilQ8
+from ssi.materials.soil_laws import material_table, mohr_coulomb_params
+
+N_EL = 50_000
+# Operation count of one 2x2-rule point of the forces-only kernel (additions and multiplications):
+#   Jacobian 8 nodes x 4 entries x 2 = 64; det 3; physical gradients 8 x 2 x 3 + 2 divisions = 50;
+#   strain increment 8 x 6 = 48; trial stress 18; in-plane principal values 10 + ordering 3 compares;
+#   yield check 6; forces 8 x 2 x 4 = 64; weight 1  -> about 267 operations,
+#   plus 4 transcendentals (sqrt, atan2, cos, sin) in the principal axes.
+# A plastic point adds the plane/edge return (~60), stress back on the axes (~20) and the plastic strain
+# norm (~15 + 1 sqrt): counted for the plastic fraction measured below.
+FLOPS_ELASTIC, TRANS_ELASTIC = 267, 4
+FLOPS_PLASTIC_EXTRA, TRANS_PLASTIC_EXTRA = 95, 1
+
+
+@njit(cache=True)
+def _flop_loop(n, x):
+    # 8 independent multiply-add chains: what a scalar kernel with some instruction-level parallelism gets
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
+    for i in range(n):
+        a0 = a0 * x + 1.0
+        a1 = a1 * x + 2.0
+        a2 = a2 * x + 3.0
+        a3 = a3 * x + 4.0
+        a4 = a4 * x + 5.0
+        a5 = a5 * x + 6.0
+        a6 = a6 * x + 7.0
+        a7 = a7 * x + 8.0
+    return a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7  # 16 operations per iteration
+
+
+@njit(cache=True)
+def _trans_loop(n, x):
+    s = 0.0
+    for i in range(n):
+        t = x + 1e-9 * i
+        s += math.sqrt(t) + math.atan2(t, 1.0 + t) + math.cos(t) + math.sin(t)
+    return s  # 4 transcendentals per iteration
+
+
+def best(fn, repeat=5):
+    out = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        out.append(time.perf_counter() - t0)
+    return min(out)
+
+
+def machine_rates():
+    """(ns per scalar operation, ns per transcendental), each best of 5."""
+    n = 20_000_000
+    _flop_loop(10, 0.5)
+    _trans_loop(10, 0.5)
+    t_flop = best(lambda: _flop_loop(n, 0.999999)) / (16 * n) * 1e9
+    t_trans = best(lambda: _trans_loop(n // 10, 0.5)) / (4 * n // 10) * 1e9
+    return t_flop, t_trans
+
+
+def loaded_group():
+    """50 000 distorted Q8 elements of one MC soil with stresses around yield and a strain increment."""
+    rng = np.random.default_rng(0)
+    ref = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1], [0, -1], [1, 0], [0, 1], [-1, 0]], float)
+    corners = ref[:4] + rng.uniform(-0.2, 0.2, (N_EL, 4, 2))
+    mids = 0.5 * (corners + np.roll(corners, -1, axis=1))
+    coords = np.concatenate([corners, mids], axis=1) * 0.25
+    kinds, params = material_table([mohr_coulomb_params(20e6, 0.3, 10e3, 20.0)])
+    group = SoilQ8(coords, np.arange(N_EL * 16).reshape(N_EL, 16), 0, kinds, params)
+    state = group.initial_state()
+    p = rng.uniform(-150e3, -10e3, (N_EL, 4))
+    state[:, :, 0] = p + rng.normal(0, 25e3, p.shape)
+    state[:, :, 1] = p + rng.normal(0, 25e3, p.shape)
+    state[:, :, 2] = rng.normal(0, 15e3, p.shape)
+    state[:, :, 3] = p
+    du = rng.normal(0.0, 2e-4, (N_EL, 16))
+    return group, du, state
+
+
+def main():
+    group, du, state = loaded_group()
+    n_gp = group.n_el * len(group.gw)
+    _, _, new = group.evaluate(du, du, state, -1)
+    plastic = float(np.mean(new[:, :, 5] > 0))
+    t_forces = best(lambda: group.evaluate(du, du, state, -1)) / n_gp * 1e9
+    group.evaluate(du, du, state, 1)
+    t_consistent = best(lambda: group.evaluate(du, du, state, 1)) / n_gp * 1e9
+    t_flop, t_trans = machine_rates()
+    arith = (FLOPS_ELASTIC * t_flop + TRANS_ELASTIC * t_trans
+             + plastic * (FLOPS_PLASTIC_EXTRA * t_flop + TRANS_PLASTIC_EXTRA * t_trans))
+    print(f"soil_mc_plastic_fraction: {plastic:.3f}")
+    print(f"machine_ns_per_flop: {t_flop:.3f}")
+    print(f"machine_ns_per_transcendental: {t_trans:.2f}")
+    print(f"soil_mc_arithmetic_ns_per_gp: {arith:.1f}")
+    print(f"soil_mc_ns_per_gp: {t_forces:.1f}   (goal <= 3 x arithmetic = {3 * arith:.0f}; "
+          f"ratio {t_forces / arith:.2f} -> {'MET' if t_forces <= 3 * arith else 'MISSED'})")
+    print(f"soil_mc_consistent_ns_per_gp: {t_consistent:.1f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,124 @@
+"""Benchmark of issue 16, item 5: nonlinear throughput of two scenes a user runs, with the time split.
+
+* ``ch11_h0125_s``: chapter 11's foundation scene (RC strip on two Mohr–Coulomb layers with contact) at
+  h = 0.125 m under the foundation, 10 load steps, the solver's default settings (what ``scene.solve`` runs).
+  The scene is taken from the chapter's own source (its definitions up to the first solve), not retyped.
+  Goal <= 3 s.
+* ``footing_mc_psi0_h0125_s``: chapter 10's rigid rough strip footing on Mohr–Coulomb soil (c = 10 kPa,
+  phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement steps, ``push_footing``'s default method.
+
+Each is the wall time of the solve in this process after a JIT warm-up on a coarse mesh, best of 3
+(``SSI_BENCH_REPEAT``), with the split of that best run, measured by timers around the solver's calls
+(material update = ``System.evaluate``, assembly = ``SparsePattern.assemble``, factorisation =
+``Factorization.__init__``, back-substitution = ``Factorization.solve``, Python = the rest), the number of
+iterations, and the cost of one iteration against one residual evaluation plus one back-substitution.
+"""
+
+import os
+import re
+import sys
+import time
+from pathlib import Path
+from typing import ClassVar
+
+import ssi  # noqa: F401  (first: keys numba's cache before numba is imported)
+from ssi import assembly, linsolve, model
+from ssi.bearing_capacity import push_footing, rigid_footing
+
+ROOT = Path(__file__).resolve().parent.parent
+REPEAT = int(os.environ.get("SSI_BENCH_REPEAT", "3"))
+GOALS = {"ch11_h0125_s": 3.0}
+
+
+def chapter11_scene():
+    """``foundation_scene`` as chapter 11 defines it (its source up to ``H_FINE = ``, executed)."""
+    src = (ROOT / "chapters" / "11_foundation_scene.py").read_text()
+    head = src[:src.index("\nH_FINE = ")]
+    head = re.sub(r"^(%matplotlib.*|get_ipython.*)$", "", head, flags=re.MULTILINE)
+    namespace = {"__name__": "ch11_scene"}
+    exec(compile(head, "chapters/11_foundation_scene.py", "exec"), namespace)  # noqa: S102
+    return namespace["foundation_scene"]
+
+
+class Split:
+    """Wall time spent in the solver's heavy calls, by wrapping them (restored on exit)."""
+
+    TARGETS: ClassVar = {"material_update": (model.System, "evaluate"),
+                         "assembly": (assembly.SparsePattern, "assemble"),
+                         "factorisation": (linsolve.Factorization, "__init__"),
+                         "back_substitution": (linsolve.Factorization, "solve")}
+
+    def __enter__(self):
+        self.t = dict.fromkeys(self.TARGETS, 0.0)
+        self.n = dict.fromkeys(self.TARGETS, 0)
+        self.saved = {}
+        for key, (cls, name) in self.TARGETS.items():
+            original = getattr(cls, name)
+            self.saved[key] = original
+
+            def timed(*a, _f=original, _k=key, **kw):
+                t0 = time.perf_counter()
+                try:
+                    return _f(*a, **kw)
+                finally:
+                    self.t[_k] += time.perf_counter() - t0
+                    self.n[_k] += 1
+
+            setattr(cls, name, timed)
+        return self
+
+    def __exit__(self, *exc):
+        for key, (cls, name) in self.TARGETS.items():
+            setattr(cls, name, self.saved[key])
+
+
+def report(key, solve, n_iterations):
+    """Best of REPEAT runs (the split timers cost microseconds per call); the split is the best run's."""
+    runs = []
+    for _ in range(REPEAT):
+        with Split() as split:
+            t0 = time.perf_counter()
+            out = solve()
+            runs.append((time.perf_counter() - t0, split, out))
+    total, split, out = min(runs, key=lambda r: r[0])
+    walls = [r[0] for r in runs]
+    wall = min(walls)
+    goal = GOALS.get(key)
+    print(f"{key}: {wall:.3f}" + (f"   (goal <= {goal:g} s -> {'MET' if wall <= goal else 'MISSED'})"
+                                   if goal else ""), flush=True)
+    heavy = sum(split.t.values())
+    for part, t in split.t.items():
+        print(f"{key}_{part}_s: {t:.3f}   ({split.n[part]} calls)")
+    print(f"{key}_python_s: {total - heavy:.3f}")
+    iters = n_iterations(out)
+    residual = split.t["material_update"] / max(split.n["material_update"], 1)
+    back = split.t["back_substitution"] / max(split.n["back_substitution"], 1)
+    print(f"{key}_iterations: {iters}")
+    print(f"{key}_factorisations: {split.n['factorisation']}")
+    if iters:
+        per_iter = total / iters
+        print(f"{key}_ms_per_iteration: {1e3 * per_iter:.2f}   (one residual + one back-substitution: "
+              f"{1e3 * (residual + back):.2f} ms; ratio {per_iter / (residual + back):.2f})")
+
+
+def main():
+    scene_of = chapter11_scene()
+    scene_of(0.5).build().solve(n_steps=2)  # JIT warm-up on the coarse mesh
+
+    def ch11():
+        return scene_of(0.125).build().solve(n_steps=10)
+
+    report("ch11_h0125_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
+
+    def footing(h):
+        scene = rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=0.0, E=20e6, nu=0.3, rough=True,
+                              half_width=10.0, depth=10.0, h_fine=h, h_coarse=2.0, growth=1.25, settle=0.08)
+        return push_footing(scene, n_steps=12)
+
+    footing(0.5)
+    report("footing_mc_psi0_h0125_s", lambda: footing(0.125), lambda out: int(out["n_iterations"]))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
