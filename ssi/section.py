@@ -307,13 +307,27 @@ def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiff
     h = section.thickness
     z_mid_sec = 0.5 * (section.z_bottom + section.z_top)
 
-    def spacing(bar, from_bottom):
-        cover = (section.z_mid[bar] - section.z_bottom) if from_bottom else (section.z_top - section.z_mid[bar])
-        alpha_e = section.params[bar, 0] / section.params[conc[0], P_E0]
-        return crack_spacing_mc2010(cover - 0.5 * phi, phi, float(section.h[bar]), 1.0, h, h - cover, alpha_e)
+    def bar_layer(side):
+        """The bar layer of one half of the depth: the steel layers stacked next to the one nearest that face
+        (a bar layer split into thinner layers, e.g. by a layer-count refinement, counts as one), as
+        (area per width As [m], centroid height)."""
+        order = bars if side == "bottom" else bars[::-1]
+        group = [order[0]]
+        for b in order[1:]:
+            if abs(section.z_mid[b] - section.z_mid[group[-1]]) > 0.5 * (section.h[b] + section.h[group[-1]]) + 1e-12:
+                break
+            group.append(b)
+        area = float(section.h[group].sum())
+        return area, float(np.dot(section.h[group], section.z_mid[group]) / area), group[0]
 
-    bottom = spacing(bars[0], True) if section.z_mid[bars[0]] < z_mid_sec else None
-    top = spacing(bars[-1], False) if section.z_mid[bars[-1]] >= z_mid_sec else None
+    def spacing(side):
+        area, z_bar, bar = bar_layer(side)
+        cover = (z_bar - section.z_bottom) if side == "bottom" else (section.z_top - z_bar)
+        alpha_e = section.params[bar, 0] / section.params[conc[0], P_E0]
+        return crack_spacing_mc2010(cover - 0.5 * phi, phi, area, 1.0, h, h - cover, alpha_e)
+
+    bottom = spacing("bottom") if section.z_mid[bars[0]] < z_mid_sec else None
+    top = spacing("top") if section.z_mid[bars[-1]] >= z_mid_sec else None
     faces = [bottom or top, top or bottom]
     if tension_stiffening not in ("all", "effective_area"):
         raise ValueError(f"tension_stiffening must be 'all' or 'effective_area', got {tension_stiffening!r}")

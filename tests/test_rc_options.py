@@ -82,3 +82,22 @@ def test_foundation_options_reach_the_strip():
     assert np.any(area.params[conc, P_ALPHA_TS] == 0.0) and np.any(area.params[conc, P_ALPHA_TS] == 0.5)
     with pytest.raises(ValueError, match="crack_band"):
         _scene(crack_band="element").build()
+
+
+def test_crack_spacing_does_not_depend_on_how_a_bar_layer_is_split():
+    """A layer-count refinement (ssi.estimate.split_section) splits each bar layer into thinner steel layers;
+    the MC2010 spacing must still see one bar layer of the same area and centroid (before, each half-layer
+    counted as a bar of half the area, and the band grew past the snap-back limit)."""
+    from ssi.estimate import split_section
+    from ssi.materials.layer_laws import CONCRETE, STEEL
+    from ssi.materials.rc import concrete_params, designer_concrete, steel_params
+    from ssi.section import rc_section, with_crack_spacing_band
+
+    d = designer_concrete(38e6)
+    concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
+    sec = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)),
+                     n_concrete=9)
+    base = [f["s_r_max"] for f in with_crack_spacing_band(sec, 0.016)[1]]
+    for factor in (2, 4):
+        split = [f["s_r_max"] for f in with_crack_spacing_band(split_section(sec, factor), 0.016)[1]]
+        assert split == pytest.approx(base, rel=1e-12)

@@ -250,7 +250,7 @@ def foundation_scene(h_fine=1.0):
                 SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
         foundation=Foundation(x0=-3.0, x1=3.0, section=SECTION, self_weight=25e3 * 0.4),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
-        loads=[ColumnLoad(x=-2.5, N=450e3), ColumnLoad(x=2.5, N=450e3)],
+        loads=[ColumnLoad(x=-2.5, N=400e3), ColumnLoad(x=2.5, N=400e3)],
         mesh=MeshSize(h_fine=h_fine, h_coarse=H_COARSE, growth=1.3))
 
 
