@@ -254,9 +254,7 @@ def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, 
     announce_compilation()
     t_start = time.perf_counter()
     _set_viscosity(model, settings.viscosity)
-    path = _Path(model, settings, start, loads)
-    path.scale = float(np.abs(targets).max()) or 1.0
-    path.step = settings.first_step * path.scale
+    path = _Path(model, settings, start, loads, scale=float(np.abs(targets).max()) or 1.0)
     try:
         with solver_progress(settings.progress, total=path.scale) as path.bar:
             for target in targets:
@@ -319,15 +317,16 @@ def relax(path: "_Path") -> bool:
 class _Path:
     """The incremental-iterative state of one run: committed (u, states, lambda) and the machinery."""
 
-    def __init__(self, model, settings, start, loads):
+    def __init__(self, model, settings, start, loads, scale=1.0):
+        """``scale``: the largest target |lambda|; step sizes are fractions of it."""
         self.model, self.settings = model, settings
         self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, self.fac_k0 = _start(
             model, settings, start, loads)
         self.lam = 0.0
         self.tau = settings.viscosity  # the viscosity in force (the viscous fallback may switch it on)
-        self.scale = 1.0
+        self.scale = scale
         self.bar = SolverProgress(None, 1.0)  # silent until run() opens the real one
-        self.step = settings.first_step
+        self.step = settings.first_step * scale
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
 
     def follow(self, target):
