@@ -22,8 +22,21 @@ Q_PRANDTL = prandtl(10e3, 20.0)[0]
 
 
 def footing(psi_deg, n_steps=12, h_fine=0.25):
-    scene = rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=psi_deg, E=20e6, nu=0.3, rough=True,
-                          half_width=10.0, depth=10.0, h_fine=h_fine, h_coarse=2.0, growth=1.25, settle=0.08)
+    scene = rigid_footing(
+        B=2.0,
+        c=10e3,
+        phi_deg=20.0,
+        psi_deg=psi_deg,
+        E=20e6,
+        nu=0.3,
+        rough=True,
+        half_width=10.0,
+        depth=10.0,
+        h_fine=h_fine,
+        h_coarse=2.0,
+        growth=1.25,
+        settle=0.08,
+    )
     t0 = time.perf_counter()
     out = push_footing(scene, n_steps=n_steps, method="line_search")
     return time.perf_counter() - t0, out, scene
@@ -37,8 +50,11 @@ def main():
         wall, out, scene = footing(psi)
         print(f"{key}_s: {wall:.3f}")
         print(f"{key}_ratio: {out['q_u'] / Q_PRANDTL:.4f}")
-        print(f"# {key}: {scene.info['n_dof']} DOFs, {out['n_iterations']} iterations, {out['cuts']} cuts, "
-              f"{out['factorizations']} factorisations, stopped: {out['failure']}", file=sys.stderr)
+        print(
+            f"# {key}: {scene.info['n_dof']} DOFs, {out['n_iterations']} iterations, {out['cuts']} cuts, "
+            f"{out['factorizations']} factorisations, stopped: {out['failure']}",
+            file=sys.stderr,
+        )
         if psi == 20.0:
             q_coarse = out["q_u"]
             wall_fine, fine, scene_fine = footing(psi, n_steps=12, h_fine=0.125)
@@ -46,8 +62,11 @@ def main():
             q_extra = 2.0 * fine["q_u"] - q_coarse
             print(f"{key}_extrapolated_s: {wall + wall_fine:.3f}")
             print(f"{key}_extrapolated_ratio: {q_extra / Q_PRANDTL:.4f}")
-            print(f"# h = 0.125 m: {scene_fine.info['n_dof']} DOFs, q_u/Prandtl = {fine['q_u'] / Q_PRANDTL:.4f}, "
-                  f"{wall_fine:.2f} s", file=sys.stderr)
+            print(
+                f"# h = 0.125 m: {scene_fine.info['n_dof']} DOFs, q_u/Prandtl = {fine['q_u'] / Q_PRANDTL:.4f}, "
+                f"{wall_fine:.2f} s",
+                file=sys.stderr,
+            )
     return 0
 
 

@@ -105,14 +105,19 @@ def main():
     group.evaluate(du, du, state, 1)
     t_consistent = best(lambda: group.evaluate(du, du, state, 1)) / n_gp * 1e9
     t_flop, t_trans = machine_rates()
-    arith = (FLOPS_ELASTIC * t_flop + TRANS_ELASTIC * t_trans
-             + plastic * (FLOPS_PLASTIC_EXTRA * t_flop + TRANS_PLASTIC_EXTRA * t_trans))
+    arith = (
+        FLOPS_ELASTIC * t_flop
+        + TRANS_ELASTIC * t_trans
+        + plastic * (FLOPS_PLASTIC_EXTRA * t_flop + TRANS_PLASTIC_EXTRA * t_trans)
+    )
     print(f"soil_mc_plastic_fraction: {plastic:.3f}")
     print(f"machine_ns_per_flop: {t_flop:.3f}")
     print(f"machine_ns_per_transcendental: {t_trans:.2f}")
     print(f"soil_mc_arithmetic_ns_per_gp: {arith:.1f}")
-    print(f"soil_mc_ns_per_gp: {t_forces:.1f}   (goal <= 3 x arithmetic = {3 * arith:.0f}; "
-          f"ratio {t_forces / arith:.2f} -> {'MET' if t_forces <= 3 * arith else 'MISSED'})")
+    print(
+        f"soil_mc_ns_per_gp: {t_forces:.1f}   (goal <= 3 x arithmetic = {3 * arith:.0f}; "
+        f"ratio {t_forces / arith:.2f} -> {'MET' if t_forces <= 3 * arith else 'MISSED'})"
+    )
     print(f"soil_mc_consistent_ns_per_gp: {t_consistent:.1f}")
 
 

@@ -33,7 +33,7 @@ GOALS = {"ch11_h0125_s": 3.0}
 def chapter11_scene():
     """``foundation_scene`` as chapter 11 defines it (its source up to ``H_FINE = ``, executed)."""
     src = (ROOT / "chapters" / "11_foundation_scene.py").read_text()
-    head = src[:src.index("\nH_FINE = ")]
+    head = src[: src.index("\nH_FINE = ")]
     head = re.sub(r"^(%matplotlib.*|get_ipython.*)$", "", head, flags=re.MULTILINE)
     namespace = {"__name__": "ch11_scene"}
     exec(compile(head, "chapters/11_foundation_scene.py", "exec"), namespace)  # noqa: S102
@@ -43,10 +43,12 @@ def chapter11_scene():
 class Split:
     """Wall time spent in the solver's heavy calls, by wrapping them (restored on exit)."""
 
-    TARGETS: ClassVar = {"material_update": (model.System, "evaluate"),
-                         "assembly": (assembly.SparsePattern, "assemble"),
-                         "factorisation": (linsolve.Factorization, "__init__"),
-                         "back_substitution": (linsolve.Factorization, "solve")}
+    TARGETS: ClassVar = {
+        "material_update": (model.System, "evaluate"),
+        "assembly": (assembly.SparsePattern, "assemble"),
+        "factorisation": (linsolve.Factorization, "__init__"),
+        "back_substitution": (linsolve.Factorization, "solve"),
+    }
 
     def __enter__(self):
         self.t = dict.fromkeys(self.TARGETS, 0.0)
@@ -84,8 +86,11 @@ def report(key, solve, n_iterations):
     walls = [r[0] for r in runs]
     wall = min(walls)
     goal = GOALS.get(key)
-    print(f"{key}: {wall:.3f}" + (f"   (goal <= {goal:g} s -> {'MET' if wall <= goal else 'MISSED'})"
-                                   if goal else ""), flush=True)
+    print(
+        f"{key}: {wall:.3f}"
+        + (f"   (goal <= {goal:g} s -> {'MET' if wall <= goal else 'MISSED'})" if goal else ""),
+        flush=True,
+    )
     heavy = sum(split.t.values())
     for part, t in split.t.items():
         print(f"{key}_{part}_s: {t:.3f}   ({split.n[part]} calls)")
@@ -97,8 +102,10 @@ def report(key, solve, n_iterations):
     print(f"{key}_factorisations: {split.n['factorisation']}")
     if iters:
         per_iter = total / iters
-        print(f"{key}_ms_per_iteration: {1e3 * per_iter:.2f}   (one residual + one back-substitution: "
-              f"{1e3 * (residual + back):.2f} ms; ratio {per_iter / (residual + back):.2f})")
+        print(
+            f"{key}_ms_per_iteration: {1e3 * per_iter:.2f}   (one residual + one back-substitution: "
+            f"{1e3 * (residual + back):.2f} ms; ratio {per_iter / (residual + back):.2f})"
+        )
 
 
 def main():
@@ -111,8 +118,21 @@ def main():
     report("ch11_h0125_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
 
     def footing(h):
-        scene = rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=0.0, E=20e6, nu=0.3, rough=True,
-                              half_width=10.0, depth=10.0, h_fine=h, h_coarse=2.0, growth=1.25, settle=0.08)
+        scene = rigid_footing(
+            B=2.0,
+            c=10e3,
+            phi_deg=20.0,
+            psi_deg=0.0,
+            E=20e6,
+            nu=0.3,
+            rough=True,
+            half_width=10.0,
+            depth=10.0,
+            h_fine=h,
+            h_coarse=2.0,
+            growth=1.25,
+            settle=0.08,
+        )
         return push_footing(scene, n_steps=12)
 
     footing(0.5)

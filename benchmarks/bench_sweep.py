@@ -30,37 +30,51 @@ N_SCENES = 24
 def foundation_on(E, c, tan_phi):
     """The chapter-11 foundation, coarse, with the clay's E [Pa], c [Pa], tan(phi) [-]."""
     return Scene(
-        width=30.0, depth=10.0,
-        layers=[SoilLayer(2.0, E=E, nu=0.3, unit_weight=18e3, c=c, phi_deg=math.degrees(math.atan(tan_phi)),
-                          psi_deg=0.0),
-                SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
-        foundation=Foundation(x0=-3.0, x1=3.0, section=rc_strip(0.4, fc=38e6, area=1.5e-3),
-                              self_weight=25e3 * 0.4),
+        width=30.0,
+        depth=10.0,
+        layers=[
+            SoilLayer(
+                2.0, E=E, nu=0.3, unit_weight=18e3, c=c, phi_deg=math.degrees(math.atan(tan_phi)), psi_deg=0.0
+            ),
+            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ],
+        foundation=Foundation(
+            x0=-3.0, x1=3.0, section=rc_strip(0.4, fc=38e6, area=1.5e-3), self_weight=25e3 * 0.4
+        ),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=450e3), ColumnLoad(x=2.5, N=450e3)],
-        mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.3))
+        mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.3),
+    )
 
 
 def parameters(offset):
     rng = np.random.default_rng(15 + offset)
-    return [{"E": float(e), "c": float(c), "tan_phi": float(t)}
-            for e, c, t in zip(rng.uniform(7e6, 14e6, N_SCENES), rng.uniform(14e3, 28e3, N_SCENES),
-                               rng.uniform(0.33, 0.40, N_SCENES))]
+    return [
+        {"E": float(e), "c": float(c), "tan_phi": float(t)}
+        for e, c, t in zip(
+            rng.uniform(7e6, 14e6, N_SCENES),
+            rng.uniform(14e3, 28e3, N_SCENES),
+            rng.uniform(0.33, 0.40, N_SCENES),
+        )
+    ]
 
 
 def worker_memory_mb(client):
     def rss():
         import resource
-        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0   # kB on Linux
+
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
+
     return max(client.run(rss).values())
 
 
 def main():
-    foundation_on(10e6, 20e3, 0.364).build().solve()          # JIT cache warm in this process
+    foundation_on(10e6, 20e3, 0.364).build().solve()  # JIT cache warm in this process
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        serial = sweep(foundation_on, parameters(0), client="serial", out_dir=Path(tmp) / "serial",
-                       keep_files=False)
+        serial = sweep(
+            foundation_on, parameters(0), client="serial", out_dir=Path(tmp) / "serial", keep_files=False
+        )
         serial_wall = time.perf_counter() - t0
         solve_per_scene = float(np.mean([r["wall_time"] for r in serial]))
         print(f"# serial: {serial_wall:.2f} s, solve {solve_per_scene:.3f} s per scene", file=sys.stderr)
@@ -69,11 +83,17 @@ def main():
             t0 = time.perf_counter()
             client, _ = _client(None, n)
             start = time.perf_counter() - t0
-            sweep(foundation_on, parameters(100 + n)[:2], client=client, out_dir=Path(tmp) / f"warm{n}",
-                  keep_files=False)                              # each worker loads its numba cache
+            sweep(
+                foundation_on,
+                parameters(100 + n)[:2],
+                client=client,
+                out_dir=Path(tmp) / f"warm{n}",
+                keep_files=False,
+            )  # each worker loads its numba cache
             t0 = time.perf_counter()
-            rows = sweep(foundation_on, parameters(n), client=client, out_dir=Path(tmp) / f"w{n}",
-                         keep_files=False)
+            rows = sweep(
+                foundation_on, parameters(n), client=client, out_dir=Path(tmp) / f"w{n}", keep_files=False
+            )
             wall = time.perf_counter() - t0
             memory[n] = worker_memory_mb(client)
             cluster = client.cluster
@@ -81,8 +101,11 @@ def main():
             cluster.close()
             failed = sum(r["status"] == "failed" for r in rows)
             rates[n] = (60.0 * N_SCENES / wall, wall, start, failed)
-            print(f"# {n} worker(s): {wall:.2f} s for {N_SCENES} scenes, start {start:.2f} s, {failed} failed, "
-                  f"worker memory {memory[n]:.0f} MB", file=sys.stderr)
+            print(
+                f"# {n} worker(s): {wall:.2f} s for {N_SCENES} scenes, start {start:.2f} s, {failed} failed, "
+                f"worker memory {memory[n]:.0f} MB",
+                file=sys.stderr,
+            )
         print(f"sweep_scenes_per_min_1w: {rates[1][0]:.1f}")
         print(f"sweep_scenes_per_min_2w: {rates[2][0]:.1f}")
         print(f"sweep_overhead_per_task_s: {rates[1][1] / N_SCENES - solve_per_scene:.3f}")

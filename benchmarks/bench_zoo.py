@@ -20,7 +20,9 @@ def main():
     outcomes = solve_zoo(scenes)
     total = time.perf_counter() - t0
     for o in outcomes:
-        print(f"# {o.name:40s} {o.status:20s} lambda={o.load_factor:.3f} {o.wall_time:6.2f} s", file=sys.stderr)
+        print(
+            f"# {o.name:40s} {o.status:20s} lambda={o.load_factor:.3f} {o.wall_time:6.2f} s", file=sys.stderr
+        )
     print(f"zoo_total_s: {total:.2f}")
     print(f"zoo_solved_fraction: {sum(o.solved for o in outcomes) / len(outcomes):.4f}")
     return 0

@@ -91,11 +91,11 @@ from ssi.model import Model
 
 # %%
 L, H1, H2 = 1.0, 2.0, 1.0
-E1, NU1, G1_W = 40e6, 0.3, 20e3    # lower block: E [Pa], nu, unit weight [N/m^3]
-E2, NU2, G2_W = 10e6, 0.25, 18e3   # upper block
-KN, KT = 2e8, 5e7                  # interface normal / tangential stiffness [Pa/m]
-P_TOP, TAU_TOP = 50e3, 20e3        # surface pressure and shear traction [Pa]
-NX, NZ1, NZ2 = 2, 2, 2             # elements across, in the lower and in the upper block
+E1, NU1, G1_W = 40e6, 0.3, 20e3  # lower block: E [Pa], nu, unit weight [N/m^3]
+E2, NU2, G2_W = 10e6, 0.25, 18e3  # upper block
+KN, KT = 2e8, 5e7  # interface normal / tangential stiffness [Pa/m]
+P_TOP, TAU_TOP = 50e3, 20e3  # surface pressure and shear traction [Pa]
+NX, NZ1, NZ2 = 2, 2, 2  # elements across, in the lower and in the upper block
 
 
 def constrained_modulus(E, nu):
@@ -115,10 +115,26 @@ def build(case):
     low_ids = model.add_nodes(low.xy, 2)
     up_ids = model.add_nodes(up.xy, 2)
     weight = case == "A"
-    soil_low = model.add_group(SoilQ8(low.xy[low.conn], model.element_dofs(low_ids[low.conn]), 0, [ELASTIC],
-                                      [elastic_params(E1, NU1)], unit_weight=[G1_W] if weight else None))
-    soil_up = model.add_group(SoilQ8(up.xy[up.conn], model.element_dofs(up_ids[up.conn]), 0, [ELASTIC],
-                                     [elastic_params(E2, NU2)], unit_weight=[G2_W] if weight else None))
+    soil_low = model.add_group(
+        SoilQ8(
+            low.xy[low.conn],
+            model.element_dofs(low_ids[low.conn]),
+            0,
+            [ELASTIC],
+            [elastic_params(E1, NU1)],
+            unit_weight=[G1_W] if weight else None,
+        )
+    )
+    soil_up = model.add_group(
+        SoilQ8(
+            up.xy[up.conn],
+            model.element_dofs(up_ids[up.conn]),
+            0,
+            [ELASTIC],
+            [elastic_params(E2, NU2)],
+            unit_weight=[G2_W] if weight else None,
+        )
+    )
     # term (b): the interface joins the upper block's bottom nodes to the lower block's top nodes
     bottom_of_up, top_of_low = up_ids[up.bottom], low_ids[low.surface]
     pairs = np.arange(0, len(top_of_low) - 2, 2)
@@ -136,12 +152,16 @@ def build(case):
     model.fix(low_ids[low.bottom], "w")
     if case == "A":
         traction_on(top, lambda x, z: (0.0 * x, -P_TOP + 0.0 * x))
-        model.fix(np.concatenate([low_ids[low.left], low_ids[low.right], up_ids[up.left], up_ids[up.right]]),
-                  "u")
+        model.fix(
+            np.concatenate([low_ids[low.left], low_ids[low.right], up_ids[up.left], up_ids[up.right]]), "u"
+        )
     else:
         traction_on(top, lambda x, z: (TAU_TOP + 0.0 * x, 0.0 * x))
-        for ids_left, ids_right in ((low_ids[low.left], low_ids[low.right]), (up_ids[up.left], up_ids[up.right])):
-            traction_on(ids_right, lambda x, z: (0.0 * x, TAU_TOP + 0.0 * x))    # sigma . (+1, 0)
+        for ids_left, ids_right in (
+            (low_ids[low.left], low_ids[low.right]),
+            (up_ids[up.left], up_ids[up.right]),
+        ):
+            traction_on(ids_right, lambda x, z: (0.0 * x, TAU_TOP + 0.0 * x))  # sigma . (+1, 0)
             traction_on(ids_left[::-1], lambda x, z: (0.0 * x, -TAU_TOP + 0.0 * x))  # sigma . (-1, 0)
     return model, (soil_low, soil_up, contact), low_ids, up_ids
 
@@ -158,18 +178,24 @@ model_a, (soil_low, soil_up, contact), low_ids, up_ids = build("A")
 k_if = contact.elastic_stiffness()[0]
 le = L / NX
 print("interface element: 12 DOFs = 3 upper nodes (u, w) then 3 lower nodes (u, w)")
-print("diagonal of K_c / (k * element length):",
-      np.round(np.diag(k_if) / (le * np.tile([KT, KN], 6)), 4).tolist())
+print(
+    "diagonal of K_c / (k * element length):",
+    np.round(np.diag(k_if) / (le * np.tile([KT, KN], 6)), 4).tolist(),
+)
 coupling = k_if[:6, 6:]
 print("upper-lower coupling block / (k * length):")
 print(np.round(coupling / (le * np.array([KT, KN] * 3)[None, :]), 4))
 k_soil = soil_low.elastic_stiffness()[0]
-print(f"soil element K_V: 16 x 16, max asymmetry / max entry "
-      f"{np.abs(k_soil - k_soil.T).max() / np.abs(k_soil).max():.1e}, "
-      f"zero-energy modes: {int(np.sum(np.linalg.eigvalsh(k_soil) < 1e-9 * np.abs(k_soil).max()))}")
+print(
+    f"soil element K_V: 16 x 16, max asymmetry / max entry "
+    f"{np.abs(k_soil - k_soil.T).max() / np.abs(k_soil).max():.1e}, "
+    f"zero-energy modes: {int(np.sum(np.linalg.eigvalsh(k_soil) < 1e-9 * np.abs(k_soil).max()))}"
+)
 f_body = soil_up.body_force()
-print(f"body force of one upper element: sum of vertical nodal forces = {f_body[0, 1::2].sum():.1f} N "
-      f"(= -gamma * area = {-G2_W * (L / NX) * (H2 / NZ2):.1f} N)")
+print(
+    f"body force of one upper element: sum of vertical nodal forces = {f_body[0, 1::2].sum():.1f} N "
+    f"(= -gamma * area = {-G2_W * (L / NX) * (H2 / NZ2):.1f} N)"
+)
 
 # %% [markdown]
 # ## Solving through `ssi` and by hand
@@ -197,13 +223,13 @@ def hand_case_a(z, upper):
     s1 = P_TOP + G2_W * H2 + G1_W * H1
 
     def w_low(zz):
-        return -(s1 * zz - 0.5 * G1_W * zz ** 2) / M1
+        return -(s1 * zz - 0.5 * G1_W * zz**2) / M1
 
     if not upper:
         return w_low(z)
     sig_n = -(P_TOP + G2_W * H2)
     top = P_TOP + G2_W * (H1 + H2)
-    return w_low(H1) + sig_n / KN - (top * (z - H1) - 0.5 * G2_W * (z ** 2 - H1 ** 2)) / M2
+    return w_low(H1) + sig_n / KN - (top * (z - H1) - 0.5 * G2_W * (z**2 - H1**2)) / M2
 
 
 def hand_case_b(z, upper):
@@ -234,11 +260,21 @@ for case in ("A", "B"):
         work[name] = w
     f_ref, f_dead = model.load_vectors()
     work["loads"] = d @ (f_ref + f_dead)
-    results[case] = {"fe": fe, "hand": hand, "other": other, "work": work, "z": np.concatenate([z_low, z_up]),
-                     "n_low": len(lids), "res": res, "model": model}
+    results[case] = {
+        "fe": fe,
+        "hand": hand,
+        "other": other,
+        "work": work,
+        "z": np.concatenate([z_low, z_up]),
+        "n_low": len(lids),
+        "res": res,
+        "model": model,
+    }
     err = np.abs(fe - hand).max() / np.abs(hand).max()
-    print(f"case {case}: max |FE - hand| / max|hand| = {err:.2e}; work: blocks {work['blocks']:.6e}, "
-          f"interface {work['interface']:.6e}, loads {work['loads']:.6e} [J/m]")
+    print(
+        f"case {case}: max |FE - hand| / max|hand| = {err:.2e}; work: blocks {work['blocks']:.6e}, "
+        f"interface {work['interface']:.6e}, loads {work['loads']:.6e} [J/m]"
+    )
 
 # hand values of the two internal-work terms of case A: integral of sigma^2 / M over each block, and
 # sigma_n^2 / k_n over the contact (times the width L)
@@ -246,7 +282,7 @@ zz1 = np.linspace(0, H1, 2001)
 zz2 = np.linspace(H1, H1 + H2, 2001)
 sig1 = -(P_TOP + G2_W * H2 + G1_W * (H1 - zz1))
 sig2 = -(P_TOP + G2_W * (H1 + H2 - zz2))
-work_blocks_hand = L * (np.trapezoid(sig1 ** 2, zz1) / M1 + np.trapezoid(sig2 ** 2, zz2) / M2)
+work_blocks_hand = L * (np.trapezoid(sig1**2, zz1) / M1 + np.trapezoid(sig2**2, zz2) / M2)
 work_if_hand = L * (P_TOP + G2_W * H2) ** 2 / KN
 print(f"case A by hand: blocks {work_blocks_hand:.6e}, interface {work_if_hand:.6e} [J/m]")
 
@@ -293,8 +329,10 @@ for ax, case, label in ((axes[0], "A", "w [mm] (pressed, with weight)"), (axes[1
     ax.set_xlabel(label)
 axes[0].set_ylabel("z [m]")
 axes[0].legend(fontsize=8)
-fig.suptitle("Figure 1.1 — two blocks joined by an interface: every term of eq. (3.1) assembled by ssi "
-             "equals the hand solution")
+fig.suptitle(
+    "Figure 1.1 — two blocks joined by an interface: every term of eq. (3.1) assembled by ssi "
+    "equals the hand solution"
+)
 report.save_figure(fig, "ch01_two_blocks")
 
 # %% [markdown]

@@ -96,10 +96,10 @@ from ssi.materials import concrete, rc
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
 
 t_start = time.perf_counter()
-FC, FY = 36.2e6, 333.0e6            # the substitute beam of chapter 08
-des = rc.designer_concrete(FC)      # fib MC2010 designer values from fc alone
+FC, FY = 36.2e6, 333.0e6  # the substitute beam of chapter 08
+des = rc.designer_concrete(FC)  # fib MC2010 designer values from fc alone
 EPS_Y = FY / 200e9
-LS = 0.15                           # a crack band width of a coarse strip mesh [m]
+LS = 0.15  # a crack band width of a coarse strip mesh [m]
 p_c = rc.concrete_params(FC, des["E0"], des["eps_c"], des["fr"], des["Gf"], LS, EPS_Y)
 p_plain = rc.concrete_params(FC, des["E0"], des["eps_c"], des["fr"], des["Gf"], LS, EPS_Y, alpha_ts=0.0)
 p_s = rc.steel_params(FY, 200e9, 2e9)
@@ -118,9 +118,15 @@ print(inspect.getsource(concrete.concrete_update.py_func))
 
 # %%
 ec, ecu = des["eps_c"], des["eps_cu"]
-path_c = np.concatenate([np.linspace(0, -0.6 * ec, 40), np.linspace(-0.6 * ec, -0.1 * ec, 20),
-                         np.linspace(-0.1 * ec, -1.3 * ec, 60), np.linspace(-1.3 * ec, 0.0, 40),
-                         np.linspace(0.0, -1.5 * ecu, 80)])
+path_c = np.concatenate(
+    [
+        np.linspace(0, -0.6 * ec, 40),
+        np.linspace(-0.6 * ec, -0.1 * ec, 20),
+        np.linspace(-0.1 * ec, -1.3 * ec, 60),
+        np.linspace(-1.3 * ec, 0.0, 40),
+        np.linspace(0.0, -1.5 * ecu, 80),
+    ]
+)
 sig_c = rc.drive(CONCRETE, p_c, path_c)[0]
 
 eps_r = FR / E0
@@ -128,7 +134,9 @@ eps_u = 2 * GF / (FR * LS)
 path_t = np.unique(np.concatenate([np.linspace(0.0, 1.2 * EPS_Y, 1500), [eps_r, eps_u, EPS_Y]]))
 sig_soft = rc.drive(CONCRETE, p_plain, path_t)[0]
 sig_ts = rc.drive(CONCRETE, p_c, path_t)[0]
-cyc = np.concatenate([np.linspace(0, 3 * eps_r, 30), np.linspace(3 * eps_r, 0, 20), np.linspace(0, 6 * eps_r, 40)])
+cyc = np.concatenate(
+    [np.linspace(0, 3 * eps_r, 30), np.linspace(3 * eps_r, 0, 20), np.linspace(0, 6 * eps_r, 40)]
+)
 sig_cyc = rc.drive(CONCRETE, p_c, cyc)[0]
 
 # shear retention from the committed crack strain: drive eps, then read g_t for the next increment
@@ -141,17 +149,22 @@ for i, e in enumerate(path_t):
     beta[i] = layer_update(CONCRETE, p_c, e, 1e-6, h_old, h_new, 1)[3] / (E0 / (2 * 1.2))
 
 ey_s = FY / 200e9
-path_s = np.concatenate([np.linspace(0, 5 * ey_s, 50), np.linspace(5 * ey_s, -4 * ey_s, 90),
-                         np.linspace(-4 * ey_s, 6 * ey_s, 100)])
+path_s = np.concatenate(
+    [
+        np.linspace(0, 5 * ey_s, 50),
+        np.linspace(5 * ey_s, -4 * ey_s, 90),
+        np.linspace(-4 * ey_s, 6 * ey_s, 100),
+    ]
+)
 sig_s = rc.drive(STEEL, p_s, path_s)[0]
 
 # %% [markdown]
 # ## Verification
 
 # %%
-TOL_EXACT = 1e-12      # identities of rational / piecewise-linear functions: round-off only
-TOL_ROOT = 1e-9        # the quadratic-root form of (5.3) loses digits near the peak (double root)
-TOL_FD = 1e-6          # central differences, h = 1e-9: truncation and round-off both below 1e-6 of the tangent
+TOL_EXACT = 1e-12  # identities of rational / piecewise-linear functions: round-off only
+TOL_ROOT = 1e-9  # the quadratic-root form of (5.3) loses digits near the peak (double root)
+TOL_FD = 1e-6  # central differences, h = 1e-9: truncation and round-off both below 1e-6 of the tangent
 
 f, df0 = concrete.compression_envelope(0.0, E0, FC, ec, ecu)
 assert abs(df0 - E0) <= TOL_EXACT * E0
@@ -173,8 +186,13 @@ assert abs((sig_c[i_unl + 1] - sig_c[i_unl]) / (path_c[i_unl + 1] - path_c[i_unl
 energy = np.sum(0.5 * (sig_soft[1:] + sig_soft[:-1]) * np.diff(path_t))
 crack_band_energy = abs(energy - GF / LS) / (GF / LS)
 assert crack_band_energy <= 1e-10, crack_band_energy
-report.record("crack_band_energy", "relative error of the dissipated energy vs Gf/ls (material point)",
-              crack_band_energy, 1e-10, crack_band_energy <= 1e-10)
+report.record(
+    "crack_band_energy",
+    "relative error of the dissipated energy vs Gf/ls (material point)",
+    crack_band_energy,
+    1e-10,
+    crack_band_energy <= 1e-10,
+)
 
 # crushing: no cliff at eps_cu, and Gc / ls dissipated beyond it (the path is piecewise linear there; the one
 # step straddling eps_cd limits the trapezoid sum to ~1/n_steps)
@@ -182,7 +200,9 @@ f_cu, eps_cd = concrete.crushing_end(E0, FC, ec, ecu, p_c[concrete.P_GC], LS)
 path_cr = -np.linspace(ecu, 1.05 * eps_cd, 20001)
 sig_cr = rc.drive(CONCRETE, p_c, path_cr)[0]
 crush_energy = abs(np.trapezoid(-sig_cr, -path_cr) / (p_c[concrete.P_GC] / LS) - 1)
-print(f"crushing: f(eps_cu) = {f_cu / FC:.3f} fc, stress reaches zero at {eps_cd:.4f}; energy error {crush_energy:.1e}")
+print(
+    f"crushing: f(eps_cu) = {f_cu / FC:.3f} fc, stress reaches zero at {eps_cd:.4f}; energy error {crush_energy:.1e}"
+)
 assert abs(sig_cr[0] + f_cu) <= 1e-6 * FC and crush_energy <= 1e-3, crush_energy
 
 try:
@@ -208,10 +228,14 @@ def fd_error(kind, params, eps, hist):
     h1 = np.zeros(N_LAYER_HIST)
     _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, 1)
     d = 1e-9
-    e_fd = (layer_update(kind, params, eps + d, 1e-4, h0, h1, 1)[0]
-            - layer_update(kind, params, eps - d, 1e-4, h0, h1, 1)[0]) / (2 * d)
-    g_fd = (layer_update(kind, params, eps, 1e-4 + d, h0, h1, 1)[1]
-            - layer_update(kind, params, eps, 1e-4 - d, h0, h1, 1)[1]) / (2 * d)
+    e_fd = (
+        layer_update(kind, params, eps + d, 1e-4, h0, h1, 1)[0]
+        - layer_update(kind, params, eps - d, 1e-4, h0, h1, 1)[0]
+    ) / (2 * d)
+    g_fd = (
+        layer_update(kind, params, eps, 1e-4 + d, h0, h1, 1)[1]
+        - layer_update(kind, params, eps, 1e-4 - d, h0, h1, 1)[1]
+    ) / (2 * d)
     return max(abs(e_fd - e_t) / max(abs(e_t), 1e-3 * E0), abs(g_fd - g_t) / max(abs(g_t), 1e-6 * E0))
 
 
@@ -241,8 +265,11 @@ print(f"both forms of (5.3) agree to {worst_53:.1e} eps_c; energy error {crack_b
 fig, ax = plt.subplots(1, 3, figsize=(14, 4))
 ax[0].plot(-path_c * 1e3, -sig_c / 1e6, "k-")
 ax[0].axhline(FC / 1e6, ls=":", c="grey")
-ax[0].set(xlabel="compressive strain [‰]", ylabel="compressive stress [MPa]",
-          title="compression (5.1), unloading along $E_0$")
+ax[0].set(
+    xlabel="compressive strain [‰]",
+    ylabel="compressive stress [MPa]",
+    title="compression (5.1), unloading along $E_0$",
+)
 ax[1].plot(path_t * 1e3, sig_soft / 1e6, label=f"crack band, $l_s$ = {LS} m")
 ax[1].plot(path_t * 1e3, sig_ts / 1e6, "--", label=r"with tension stiffening $\alpha_{ts}$ = 0.5")
 ax[1].plot(cyc * 1e3, sig_cyc / 1e6, ":", c="k", lw=1, label="unloading: secant")
@@ -266,8 +293,12 @@ plt.show()
 # %%
 fig, ax = plt.subplots(figsize=(5, 3.5))
 ax.plot(path_t * 1e3, beta, "k-")
-ax.set(xlabel="largest tensile strain [‰]", ylabel=r"$\beta = G_c/G$", yscale="log",
-       title="cracked shear modulus (Fig. 6)")
+ax.set(
+    xlabel="largest tensile strain [‰]",
+    ylabel=r"$\beta = G_c/G$",
+    yscale="log",
+    title="cracked shear modulus (Fig. 6)",
+)
 ax.axvline(EPS_Y * 1e3, c="grey", lw=0.8)
 report.save_figure(fig, "fig06_shear_retention")
 plt.show()

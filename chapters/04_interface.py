@@ -122,7 +122,9 @@ t_chapter = time.perf_counter()
 # committed history: it writes the new traction, history and tangent into output arrays.
 
 # %%
-print(inspect.getsource(interface_update.py_func if hasattr(interface_update, "py_func") else interface_update))
+print(
+    inspect.getsource(interface_update.py_func if hasattr(interface_update, "py_func") else interface_update)
+)
 
 # %% [markdown]
 # ## A material point driven along a gap path
@@ -136,19 +138,23 @@ print(inspect.getsource(interface_update.py_func if hasattr(interface_update, "p
 KT, KN, C, PHI = 20e6, 50e6, 8e3, 30.0
 TAN = math.tan(math.radians(PHI))
 g_slide = np.r_[np.linspace(0, 3e-3, 31), np.linspace(3e-3, -3e-3, 61)[1:], np.linspace(-3e-3, 0, 31)[1:]]
-path = np.vstack([
-    np.column_stack([np.zeros(11), np.linspace(0, -1e-3, 11)]),          # press
-    np.column_stack([g_slide, np.full_like(g_slide, -1e-3)]),            # slide forth and back
-    np.column_stack([np.zeros(31), np.linspace(-1e-3, 2e-3, 31)]),       # pull open
-    np.column_stack([np.zeros(31), np.linspace(2e-3, -1e-3, 31)]),       # press shut again
-])
+path = np.vstack(
+    [
+        np.column_stack([np.zeros(11), np.linspace(0, -1e-3, 11)]),  # press
+        np.column_stack([g_slide, np.full_like(g_slide, -1e-3)]),  # slide forth and back
+        np.column_stack([np.zeros(31), np.linspace(-1e-3, 2e-3, 31)]),  # pull open
+        np.column_stack([np.zeros(31), np.linspace(2e-3, -1e-3, 31)]),  # press shut again
+    ]
+)
 runs = {}
 for label, psi in (("ψᵢ = φ (paper, associated)", PHI), ("ψᵢ = 0 (no dilation)", 0.0)):
     prm = interface_params(KT, KN, PHI, C, psi_deg=psi)
     runs[label] = (prm, *drive_point(prm, path))
 for label, (prm, t, st, D, hist) in runs.items():
-    print(f"{label:28s} states visited: {sorted({STATE_NAMES[int(s)] for s in st})}, "
-          f"final sig_n = {t[-1, 1] / 1e3:.1f} kPa, slip = {hist[-1, 3] * 1e3:.2f} mm")
+    print(
+        f"{label:28s} states visited: {sorted({STATE_NAMES[int(s)] for s in st})}, "
+        f"final sig_n = {t[-1, 1] / 1e3:.1f} kPa, slip = {hist[-1, 3] * 1e3:.2f} mm"
+    )
 
 # %% [markdown]
 # ### Finite-difference check of the tangent in every state
@@ -157,11 +163,13 @@ for label, (prm, t, st, D, hist) in runs.items():
 # the kernel's D. The law is piecewise linear (rational only on a re-closing step), so away from a state
 # boundary the difference quotient is exact up to round-off, ε·|t|/h ≈ 10⁻⁷·k_n for h = 10⁻⁹ m.
 
+
 # %%
 def point(prm, dgap, t_old, h_old, tangent=CONSISTENT):
     t_new, h_new, D = np.zeros(2), np.zeros(N_HIST), np.zeros((2, 2))
-    code = interface_update(prm, np.asarray(dgap, float), np.asarray(t_old, float), h_old, t_new, h_new, D,
-                            tangent)
+    code = interface_update(
+        prm, np.asarray(dgap, float), np.asarray(t_old, float), h_old, t_new, h_new, D, tangent
+    )
     return code, t_new, D
 
 
@@ -170,8 +178,13 @@ def fd_tangent(prm, dgap, t_old, h_old, h=1e-9):
     for j in range(2):
         e = np.zeros(2)
         e[j] = h
-        cols.append((point(prm, np.asarray(dgap) + e, t_old, h_old)[1]
-                     - point(prm, np.asarray(dgap) - e, t_old, h_old)[1]) / (2 * h))
+        cols.append(
+            (
+                point(prm, np.asarray(dgap) + e, t_old, h_old)[1]
+                - point(prm, np.asarray(dgap) - e, t_old, h_old)[1]
+            )
+            / (2 * h)
+        )
     return np.column_stack(cols)
 
 
@@ -192,7 +205,7 @@ cases = [  # (name, params, dgap, t_old, hist_old, expected state)
     ("re-closes, stick", p_assoc, [1e-5, -2.2e-3], [0.0, 0.0], opened, STICK),
     ("re-closes, slip", p_assoc, [5e-3, -2.1e-3], [0.0, 0.0], opened, SLIP),
 ]
-FD_TOL = 1e-6 * KN          # round-off of the central difference (see above), with a 10x margin
+FD_TOL = 1e-6 * KN  # round-off of the central difference (see above), with a 10x margin
 print(f"{'state':18s} {'max |D - D_fd|':>15s}   D")
 for name, prm, dgap, t_old, h_old, expected in cases:
     code, _, D = point(prm, dgap, t_old, h_old)
@@ -212,7 +225,7 @@ for name, prm, dgap, t_old, h_old, expected in cases:
 # - an open point carries nothing, and the contact presses again from the same closure position.
 
 # %%
-COULOMB_TOL = 1e-9          # relative; the return is exact for a straight yield line (round-off only)
+COULOMB_TOL = 1e-9  # relative; the return is exact for a straight yield line (round-off only)
 for label, (prm, t, st, D, hist) in runs.items():
     slip = st == SLIP
     assert slip.sum() > 10 and (st == OPEN).sum() > 5 and (st == STICK).sum() > 10
@@ -287,7 +300,7 @@ u = np.zeros((1, 15))
 for k in range(3):
     u[0, 3 * k], u[0, 3 * k + 1], u[0, 3 * k + 2] = a0 - theta * h_pl / 2, b0 + theta * xs[k], theta
     u[0, 9 + 2 * k], u[0, 9 + 2 * k + 1] = a0, b0 + theta * xs[k]
-RIGID_TOL = 1e-12 * KN * 1e-3 * L_el     # round-off against the force of a 1 mm gap
+RIGID_TOL = 1e-12 * KN * 1e-3 * L_el  # round-off against the force of a 1 mm gap
 for rule in ("newton_cotes", "gauss"):
     g = Interface6(coords, edofs, prm_el, offset=h_pl / 2, rule=rule)
     f, _, _ = g.evaluate(u, u, g.initial_state(), CONSISTENT)
@@ -299,8 +312,9 @@ w_up = [1, 4, 7]
 print("Newton-Cotes  (w, w) block / (k L / 30):\n", (K_nc[np.ix_(w_up, w_up)] / (KN * L_el / 30)).round(6))
 print("Gauss 3-point (w, w) block / (k L / 30):\n", (K_g[np.ix_(w_up, w_up)] / (KN * L_el / 30)).round(6))
 assert np.allclose(K_nc[np.ix_(w_up, w_up)], KN * L_el / 6 * np.diag([1, 4, 1]), rtol=1e-13)
-assert np.allclose(K_g[np.ix_(w_up, w_up)], KN * L_el / 30 * np.array([[4, 2, -1], [2, 16, 2], [-1, 2, 4]]),
-                   rtol=1e-13)
+assert np.allclose(
+    K_g[np.ix_(w_up, w_up)], KN * L_el / 30 * np.array([[4, 2, -1], [2, 16, 2], [-1, 2, 4]]), rtol=1e-13
+)
 
 # %% [markdown]
 # ### Eigenvalue view
@@ -318,6 +332,7 @@ assert np.allclose(K_g[np.ix_(w_up, w_up)], KN * L_el / 30 * np.array([[4, 2, -1
 # components of f by up to 1/λ_min — so any rough or singular pressure (a punch edge) comes back with
 # overshoots that ring into the neighbours. Below we feed both rules the exact consistent nodal forces of
 # Sadowsky's pressure p = P/(π√(a² − x²)) and look at the tractions they report.
+
 
 # %%
 def row_matrices(n, length=2.0):
@@ -341,8 +356,11 @@ def row_matrices(n, length=2.0):
     return xn, crd, edf, out
 
 
-lam1 = np.sort(np.linalg.eigvals(np.linalg.solve(np.diag([1.0, 4.0, 1.0]) / 6,
-                                                 np.array([[4, 2, -1], [2, 16, 2], [-1, 2, 4]]) / 30)).real)
+lam1 = np.sort(
+    np.linalg.eigvals(
+        np.linalg.solve(np.diag([1.0, 4.0, 1.0]) / 6, np.array([[4, 2, -1], [2, 16, 2], [-1, 2, 4]]) / 30)
+    ).real
+)
 xn_row, crd_row, edf_row, mats = row_matrices(8)
 wdofs = np.arange(1, 2 * len(xn_row), 2)
 Kg = mats["gauss"][0][np.ix_(wdofs, wdofs)]
@@ -364,11 +382,11 @@ def recovered_tractions(n, a=1.0, P=1.0):
     f = np.zeros(4 * nn)
     for e in range(n):
         x0, x1 = xn[2 * e], xn[2 * e + 2]
-        t0, t1 = math.asin(x0 / a), math.asin(x1 / a)      # x = a sin(theta) removes the edge singularity
+        t0, t1 = math.asin(x0 / a), math.asin(x1 / a)  # x = a sin(theta) removes the edge singularity
         T, W = 0.5 * (t1 - t0) * th + 0.5 * (t1 + t0), 0.5 * (t1 - t0) * wt
         xi = 2 * (a * np.sin(T) - x0) / (x1 - x0) - 1
         for i, Ni in enumerate((0.5 * xi * (xi - 1), 1 - xi**2, 0.5 * xi * (xi + 1))):
-            f[2 * (2 * e + i) + 1] -= (Ni * P / math.pi * W).sum()     # p dx = (P / pi) dtheta, pushing down
+            f[2 * (2 * e + i) + 1] -= (Ni * P / math.pi * W).sum()  # p dx = (P / pi) dtheta, pushing down
     res = {}
     free = np.arange(2 * nn)
     for rule, (K, grp) in out.items():
@@ -386,7 +404,7 @@ def recovered_tractions(n, a=1.0, P=1.0):
 rec = recovered_tractions(8)
 tv = {rule: np.abs(np.diff(d)).sum() for rule, (_, _, d) in rec.items()}
 print("total variation of the relative deviation:", {k: round(v, 3) for k, v in tv.items()})
-OSC_MARGIN = 2.0   # Gauss must ring at least twice as much as Newton-Cotes (measured ~4x on this row)
+OSC_MARGIN = 2.0  # Gauss must ring at least twice as much as Newton-Cotes (measured ~4x on this row)
 assert tv["gauss"] > OSC_MARGIN * tv["newton_cotes"]
 
 # %%
@@ -397,15 +415,19 @@ ax_in = ax[0].inset_axes([0.45, 0.12, 0.5, 0.4])
 ax_in.plot(xn_row, vec_row[:, 0] / np.abs(vec_row[:, 0]).max(), "o-", ms=3)
 ax_in.set_title("eigenvector of λ_min", fontsize=8)
 ax_in.tick_params(labelsize=7)
-ax[0].set(xlabel="mode number", ylabel="λ of K_NC⁻¹ K_G",
-          title="(a) Gauss relative to Newton–Cotes, row of 8 elements")
+ax[0].set(
+    xlabel="mode number",
+    ylabel="λ of K_NC⁻¹ K_G",
+    title="(a) Gauss relative to Newton–Cotes, row of 8 elements",
+)
 xx = np.linspace(-0.995, 0.995, 400)
-ax[1].plot(xx, sadowsky_pressure(xx, 1.0, 1.0) / 0.5, "k-", lw=1, label="exact p/p_m")   # p_m = P/(2a)
+ax[1].plot(xx, sadowsky_pressure(xx, 1.0, 1.0) / 0.5, "k-", lw=1, label="exact p/p_m")  # p_m = P/(2a)
 for rule, mk in (("newton_cotes", "s-"), ("gauss", "o-")):
     xq, pq, _ = rec[rule]
     ax[1].plot(xq, pq / 0.5, mk, ms=4, label=f"{rule.replace('_', '–')} (TV = {tv[rule]:.2f})")
-ax[1].set(ylim=(0, 3), xlabel="x / a", ylabel="p / p_m",
-          title="(b) tractions reported by a rigid interface row")
+ax[1].set(
+    ylim=(0, 3), xlabel="x / a", ylabel="p / p_m", title="(b) tractions reported by a rigid interface row"
+)
 ax[1].legend(fontsize=8)
 fig.tight_layout()
 report.save_figure(fig, "fig04_interface_coupling")

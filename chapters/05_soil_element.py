@@ -108,8 +108,9 @@ def q8_model(xy, conn, n_gauss, nu=NU):
     """A model with the nodes ``xy`` and one Q8 group on ``conn``; returns (model, group)."""
     model = Model()
     model.add_nodes(xy, 2)
-    group = model.add_group(SoilQ8(xy[conn], model.element_dofs(conn), 0, [ELASTIC], [elastic_params(E, nu)],
-                                   n_gauss=n_gauss))
+    group = model.add_group(
+        SoilQ8(xy[conn], model.element_dofs(conn), 0, [ELASTIC], [elastic_params(E, nu)], n_gauss=n_gauss)
+    )
     return model, group
 
 
@@ -183,14 +184,19 @@ a_lin = np.array([1e-3, 2e-3, -1.5e-3, 0.5e-3, 3e-3, -1e-3])
 
 
 def linear_field(p):
-    return np.column_stack([a_lin[0] + a_lin[1] * p[:, 0] + a_lin[2] * p[:, 1],
-                            a_lin[3] + a_lin[4] * p[:, 0] + a_lin[5] * p[:, 1]])
+    return np.column_stack(
+        [
+            a_lin[0] + a_lin[1] * p[:, 0] + a_lin[2] * p[:, 1],
+            a_lin[3] + a_lin[4] * p[:, 0] + a_lin[5] * p[:, 1],
+        ]
+    )
 
 
 lam_, mu_ = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
 exx, ezz, gxz = a_lin[1], a_lin[5], a_lin[2] + a_lin[4]
-sig_exact = np.array([lam_ * (exx + ezz) + 2 * mu_ * exx, lam_ * (exx + ezz) + 2 * mu_ * ezz, mu_ * gxz,
-                      lam_ * (exx + ezz)])
+sig_exact = np.array(
+    [lam_ * (exx + ezz) + 2 * mu_ * exx, lam_ * (exx + ezz) + 2 * mu_ * ezz, mu_ * gxz, lam_ * (exx + ezz)]
+)
 patch = {}
 for ng in (2, 3):
     model, group = q8_model(xy3, mesh3.conn, ng)
@@ -205,7 +211,9 @@ for ng in (2, 3):
     node_err = np.abs(u - linear_field(xy3)).max() / np.abs(linear_field(xy3)).max()
     stress_err = np.abs(group.stress(res.states[0]) - sig_exact).max() / np.abs(sig_exact).max()
     patch[ng] = (node_err, stress_err)
-    print(f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, max stress error / max |sig| = {stress_err:.2e}")
+    print(
+        f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, max stress error / max |sig| = {stress_err:.2e}"
+    )
 
 # %% [markdown]
 # ## 3. Elastic strip load against the closed form
@@ -248,11 +256,11 @@ def strip_window(n, n_gauss, nu=NU, backend=BACKEND):
 
     def right(x, z):
         sxx, _, txz = strip_load_stresses(x, z, Q, B_HALF)
-        return sxx, txz                       # sigma . (1, 0)
+        return sxx, txz  # sigma . (1, 0)
 
     def bottom(x, z):
         _, szz, txz = strip_load_stresses(x, z, Q, B_HALF)
-        return -txz, -szz                     # sigma . (0, -1)
+        return -txz, -szz  # sigma . (0, -1)
 
     load_edges(m.right, right)
     load_edges(m.bottom, bottom)
@@ -312,7 +320,7 @@ def thick_cylinder(nr, nt, nu, n_gauss):
     r, t = m.xy[:, 0], m.xy[:, 1]
     xy = np.column_stack([r * np.cos(t), r * np.sin(t)])
     model, _ = q8_model(xy, m.conn, n_gauss, nu)
-    model.fix(m.grid[:, 0][m.grid[:, 0] >= 0], "w")    # theta = 0 edge: on the x axis, w = 0
+    model.fix(m.grid[:, 0][m.grid[:, 0] >= 0], "w")  # theta = 0 edge: on the x axis, w = 0
     model.fix(m.grid[:, -1][m.grid[:, -1] >= 0], "u")  # theta = 90 deg edge: on the z axis, u = 0
     inner = m.grid[0, :]
     edges = np.stack([inner[0:-2:2], inner[1:-1:2], inner[2::2]], axis=1)
@@ -322,7 +330,9 @@ def thick_cylinder(nr, nt, nu, n_gauss):
     return res.at(inner[0], "u")[0] / float(lame_cylinder_displacement(A_IN, A_IN, B_OUT, P_IN, E, nu))
 
 
-locking = {(ng, mesh): [thick_cylinder(*mesh, nu, ng) for nu in NUS] for ng in (2, 3) for mesh in ((2, 4), (4, 8))}
+locking = {
+    (ng, mesh): [thick_cylinder(*mesh, nu, ng) for nu in NUS] for ng in (2, 3) for mesh in ((2, 4), (4, 8))
+}
 print("u_r(a) FE / exact")
 print("nu        " + "".join(f"{ng}x{ng} {mr}x{mt}   " for (ng, (mr, mt)) in locking))
 for i, nu in enumerate(NUS):
@@ -371,8 +381,11 @@ for (ng, nu), (ep, ed) in strip_nu.items():
 # %%
 MC_E, MC_NU, MC_C, MC_PHI = 20e6, 0.3, 10e3, 30.0
 SIG0 = np.array([-100e3, -100e3, 0.0, -100e3])
-PATHS = {"in-plane shear": [1.0, -1.0, 0.0, 0.0], "vertical extension": [0.0, 1.0, 0.0, 0.0],
-         "biaxial extension": [1.0, 1.0, 0.0, 0.0]}
+PATHS = {
+    "in-plane shear": [1.0, -1.0, 0.0, 0.0],
+    "vertical extension": [0.0, 1.0, 0.0, 0.0],
+    "biaxial extension": [1.0, 1.0, 0.0, 0.0],
+}
 BRANCH_NAMES = {B_PLANE: "plane", B_EDGE12: "edge s1=s2", B_EDGE23: "edge s2=s3", B_APEX: "apex"}
 D_el = np.empty((4, 4))
 elastic_matrix(MC_E, MC_NU, D_el)
@@ -402,24 +415,43 @@ for psi in (0.0, 10.0, 30.0):
         plastic = np.flatnonzero(status > 0)
         f_max = max(abs(mc_yield(sig[i + 1], MC_C, math.radians(MC_PHI))) for i in plastic) / MC_C
         for branch in sorted(set(hist[plastic + 1, 1].astype(int))):
-            i = plastic[hist[plastic + 1, 1] == branch][-1]      # the last step returned to this branch
+            i = plastic[hist[plastic + 1, 1] == branch][-1]  # the last step returned to this branch
             D_fd = fd_tangent(kind, prm, deps, sig[i])
             fd_err = np.abs(D_alg[i] - D_fd).max() / np.abs(D_el).max()
             asym = np.abs(D_alg[i] - D_alg[i].T).max() / np.abs(D_el).max()
-            deps_p = deps - C_el @ (sig[i + 1] - sig[i])          # plastic strain of that step
+            deps_p = deps - C_el @ (sig[i + 1] - sig[i])  # plastic strain of that step
             gamma_p = math.hypot(deps_p[0] - deps_p[1], deps_p[2])
             ratio = (deps_p[0] + deps_p[1] + deps_p[3]) / gamma_p if gamma_p > 0 else float("nan")
-            mc_rows.append({"psi": psi, "path": name, "branch": int(branch), "f_max": f_max, "fd_err": fd_err,
-                            "asym": asym, "dilatancy": ratio, "eyy_p": deps_p[3], "sig": sig[i + 1]})
+            mc_rows.append(
+                {
+                    "psi": psi,
+                    "path": name,
+                    "branch": int(branch),
+                    "f_max": f_max,
+                    "fd_err": fd_err,
+                    "asym": asym,
+                    "dilatancy": ratio,
+                    "eyy_p": deps_p[3],
+                    "sig": sig[i + 1],
+                }
+            )
 print(" psi  path                 branch        max|f|/c   |D - D_FD|   asymmetry   dev_p/gam_p  (sin psi)")
 for r in mc_rows:
-    print(f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} {r['f_max']:9.1e}   {r['fd_err']:9.1e}"
-          f"   {r['asym']:9.1e}   " + (f"{r['dilatancy']:8.4f}    ({math.sin(math.radians(r['psi'])):.4f})"
-                                        if r["branch"] == B_PLANE else "   (plane branch only)"))
+    print(
+        f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} {r['f_max']:9.1e}   {r['fd_err']:9.1e}"
+        f"   {r['asym']:9.1e}   "
+        + (
+            f"{r['dilatancy']:8.4f}    ({math.sin(math.radians(r['psi'])):.4f})"
+            if r["branch"] == B_PLANE
+            else "   (plane branch only)"
+        )
+    )
 apex = MC_C / math.tan(math.radians(MC_PHI))
 apex_rows = [r for r in mc_rows if r["branch"] == B_APEX]
-print(f"apex c cot(phi) = {apex / 1e3:.3f} kPa; apex stresses reached:",
-      [np.round(r["sig"] / 1e3, 3).tolist() for r in apex_rows])
+print(
+    f"apex c cot(phi) = {apex / 1e3:.3f} kPa; apex stresses reached:",
+    [np.round(r["sig"] / 1e3, 3).tolist() for r in apex_rows],
+)
 
 # %% [markdown]
 # ## Verification
@@ -447,18 +479,18 @@ TOL_PATCH = 1e-10
 TOL_STRIP = 1e-3
 patch_err = max(p[0] for p in patch.values())
 assert zero_single[3] == 3, zero_single
-assert zero_single[2] == 4, zero_single            # 3 rigid + 1 spurious mode
-assert zero_mesh == 3, zero_mesh                   # the spurious mode does not survive in a mesh
-assert abs(energy_spurious) < 1e-10 * E            # it really costs no energy
+assert zero_single[2] == 4, zero_single  # 3 rigid + 1 spurious mode
+assert zero_mesh == 3, zero_mesh  # the spurious mode does not survive in a mesh
+assert abs(energy_spurious) < 1e-10 * E  # it really costs no energy
 assert patch_err < TOL_PATCH, patch
 assert max(p[1] for p in patch.values()) < TOL_PATCH, patch
 errs2 = [c[2] for c in conv[2]]
-assert all(e1 < e0 for e0, e1 in itertools.pairwise(errs2)), errs2   # monotone decrease under refinement
+assert all(e1 < e0 for e0, e1 in itertools.pairwise(errs2)), errs2  # monotone decrease under refinement
 assert rates[2] >= 2.5 and rates[3] >= 1.5, rates
-assert conv[2][-1][2] < conv[3][-1][2]             # at equal DOFs the reduced rule is more accurate here
+assert conv[2][-1][2] < conv[3][-1][2]  # at equal DOFs the reduced rule is more accurate here
 assert finest_err < TOL_STRIP, finest_err
 assert all(abs(v - 1.0) < 1e-3 for v in locking[(2, (4, 8))]), locking[(2, (4, 8))]
-assert locking[(3, (2, 4))][-1] < 0.8, locking[(3, (2, 4))]    # full integration locks
+assert locking[(3, (2, 4))][-1] < 0.8, locking[(3, (2, 4))]  # full integration locks
 assert strip_nu[3, 0.4999][0] > 3 * strip_nu[2, 0.4999][0], strip_nu  # full: pressure locked
 assert strip_nu[2, 0.4999][1] < 1e-2 < strip_nu[3, 0.4999][1], strip_nu  # deviator: reduced fine, full not
 branches_seen = {r["branch"] for r in mc_rows}
@@ -472,20 +504,37 @@ for r in mc_rows:
         assert (r["asym"] < 1e-9) if r["psi"] == MC_PHI else (r["asym"] > 1e-3), r
 for r in apex_rows:
     assert np.abs(r["sig"] - apex * np.array([1.0, 1.0, 0.0, 1.0])).max() < 1e-9 * apex, r
-report.record("patch_test", "max nodal error / max |u|, distorted 3x3 Q8 mesh, 2x2 and 3x3 Gauss",
-              patch_err, TOL_PATCH, patch_err < TOL_PATCH)
-report.record("strip_load", f"max |sig_FE - sig_exact| / q at Gauss points 0.5b<=depth<=2.5b, x<=2b, 2x2 Gauss, "
-              f"h = b/{levels[-1]} (fitted rate {rates[2]:.2f})", finest_err, TOL_STRIP, finest_err < TOL_STRIP)
+report.record(
+    "patch_test",
+    "max nodal error / max |u|, distorted 3x3 Q8 mesh, 2x2 and 3x3 Gauss",
+    patch_err,
+    TOL_PATCH,
+    patch_err < TOL_PATCH,
+)
+report.record(
+    "strip_load",
+    f"max |sig_FE - sig_exact| / q at Gauss points 0.5b<=depth<=2.5b, x<=2b, 2x2 Gauss, "
+    f"h = b/{levels[-1]} (fitted rate {rates[2]:.2f})",
+    finest_err,
+    TOL_STRIP,
+    finest_err < TOL_STRIP,
+)
 print("all checks passed")
 
 # %% [markdown]
 # ## Figures
 
+
 # %%
 def draw_q8(ax, xy8, **kw):
     """Draw a Q8 element's four quadratic edges."""
     s = np.linspace(-1, 1, 21)
-    for xi, eta in ((s, -np.ones_like(s)), (np.ones_like(s), s), (-s, np.ones_like(s)), (-np.ones_like(s), -s)):
+    for xi, eta in (
+        (s, -np.ones_like(s)),
+        (np.ones_like(s), s),
+        (-s, np.ones_like(s)),
+        (-np.ones_like(s), -s),
+    ):
         pts = np.array([serendipity8(a, b)[0] @ xy8 for a, b in zip(xi, eta)])
         ax.plot(pts[:, 0], pts[:, 1], **kw)
 
@@ -497,9 +546,24 @@ axes[0].plot(*(one_xy + 0.25 * spurious.reshape(8, 2)).T, "o", color="C3")
 axes[0].set_aspect("equal")
 axes[0].set_title("spurious zero-energy mode, one element, 2×2")
 n_show = 12
-axes[1].semilogy(np.arange(1, n_show + 1), np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 2))))[:n_show] + 1e-3, "o-", label="one element, 2×2")
-axes[1].semilogy(np.arange(1, n_show + 1), np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 3))))[:n_show] + 1e-3, "s-", label="one element, 3×3")
-axes[1].semilogy(np.arange(1, n_show + 1), np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(xy3, mesh3.conn, 2))))[:n_show] + 1e-3, "^-", label="3×3 mesh, 2×2")
+axes[1].semilogy(
+    np.arange(1, n_show + 1),
+    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 2))))[:n_show] + 1e-3,
+    "o-",
+    label="one element, 2×2",
+)
+axes[1].semilogy(
+    np.arange(1, n_show + 1),
+    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 3))))[:n_show] + 1e-3,
+    "s-",
+    label="one element, 3×3",
+)
+axes[1].semilogy(
+    np.arange(1, n_show + 1),
+    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(xy3, mesh3.conn, 2))))[:n_show] + 1e-3,
+    "^-",
+    label="3×3 mesh, 2×2",
+)
 axes[1].set_xlabel("eigenvalue index")
 axes[1].set_ylabel("|eigenvalue| + 1e-3 [N/m]")
 axes[1].legend()
@@ -536,7 +600,9 @@ report.save_figure(fig, "ch05_strip_load")
 fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
 x_nu = 1.0 - 2.0 * np.array(NUS)
 for (ng, mesh), vals in locking.items():
-    axes[0].semilogx(x_nu, vals, ("o-" if ng == 2 else "s--"), label=f"{ng}×{ng}, {mesh[0]}×{mesh[1]} elements")
+    axes[0].semilogx(
+        x_nu, vals, ("o-" if ng == 2 else "s--"), label=f"{ng}×{ng}, {mesh[0]}×{mesh[1]} elements"
+    )
 axes[0].invert_xaxis()
 axes[0].set_xlabel("1 − 2ν")
 axes[0].set_ylabel("u_r(a) FE / Lamé")
@@ -557,8 +623,13 @@ report.save_figure(fig, "ch05_locking_and_trade")
 # %%
 fig, ax = plt.subplots(figsize=(7, 4.5))
 pp = np.linspace(-200e3, apex, 50)
-ax.plot(-pp / 1e3, (MC_C * math.cos(math.radians(MC_PHI)) - pp * math.sin(math.radians(MC_PHI))) / 1e3, "k-",
-        lw=2, label="Mohr–Coulomb: t = c cos φ − s sin φ")
+ax.plot(
+    -pp / 1e3,
+    (MC_C * math.cos(math.radians(MC_PHI)) - pp * math.sin(math.radians(MC_PHI))) / 1e3,
+    "k-",
+    lw=2,
+    label="Mohr–Coulomb: t = c cos φ − s sin φ",
+)
 for (psi, name), sig in mc_paths.items():
     if psi not in (0.0, 30.0):
         continue

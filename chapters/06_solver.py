@@ -115,8 +115,8 @@ model.groups[0] = rec
 model.add_load(nodes[-1], "u", FU)
 fig9_targets = [0.5, 0.85]
 res9 = run(model, fig9_targets, Settings.paper(force_tol=1e-4))
-r_it = np.array([c[0][0, 1] for c in rec.calls])   # spring 0: r of the loaded node
-f_it = np.array([c[1][0, 1] for c in rec.calls])   # and its force F_int
+r_it = np.array([c[0][0, 1] for c in rec.calls])  # spring 0: r of the loaded node
+f_it = np.array([c[1][0, 1] for c in rec.calls])  # and its force F_int
 print("iterations per increment:", res9.iterations[1:])
 print("iterates r [mm]:", np.round(1e3 * r_it, 4).tolist())
 r_exact = np.arctanh(np.array(fig9_targets)) * FU / K0
@@ -177,8 +177,10 @@ for method in ("full", "modified"):
     res = run(chain, [1.0], Settings(method=method, stepping="fixed", **tight))
     histories[method] = res.residuals[1]
     orders[method], n_pairs = fitted_order(histories[method])
-    print(f"{method:8s}: {len(histories[method]):4d} iterations, fitted order {orders[method]:.2f} "
-          f"over {n_pairs} pairs")
+    print(
+        f"{method:8s}: {len(histories[method]):4d} iterations, fitted order {orders[method]:.2f} "
+        f"over {n_pairs} pairs"
+    )
 # the elongation of each spring is atanh(F / F_u) F_u / k0 -- the chain's end displacement is their sum
 u_end_exact = sum(np.arctanh(0.8 * FU / fu) * fu / k for k, fu, _ in CHAIN)
 u_end = res.displacement(chain_nodes[-1], "u")[-1, 0]
@@ -216,8 +218,8 @@ def footing_model(h):
     m.fix(mesh.left, "u")
     m.fix(mesh.right, "u")
     under = mesh.nodes_between(-1.0, 1.0)
-    m.fix(under, "u")                # rough
-    m.prescribe(under, "w", -0.05)   # 50 mm settlement at load factor 1
+    m.fix(under, "u")  # rough
+    m.prescribe(under, "w", -0.05)  # 50 mm settlement at load factor 1
     return m, under
 
 
@@ -230,13 +232,18 @@ for method in ("modified", "full"):
     wall = time.perf_counter() - t0
     q = -res.reaction(under, "w") / 2.0
     runs[method] = {"res": res, "wall": wall, "q": q, "settle": -res.displacement(under[:1], "w")[:, 0]}
-    print(f"{method:8s}: wall {wall:6.2f} s, {sum(res.iterations):5d} iterations, {res.factorizations:4d} "
-          f"factorisations, {res.cuts} cuts, final q / Prandtl = {q[-1] / Q_PRANDTL:.4f}")
+    print(
+        f"{method:8s}: wall {wall:6.2f} s, {sum(res.iterations):5d} iterations, {res.factorizations:4d} "
+        f"factorisations, {res.cuts} cuts, final q / Prandtl = {q[-1] / Q_PRANDTL:.4f}"
+    )
 # compare the two load-settlement curves at the load factors both visited (cuts add extra steps)
 lam_m = np.array(runs["modified"]["res"].load_factor)
 lam_f = np.array(runs["full"]["res"].load_factor)
-common = [(np.flatnonzero(np.isclose(lam_m, lam))[0], j) for j, lam in enumerate(lam_f)
-          if np.any(np.isclose(lam_m, lam))]
+common = [
+    (np.flatnonzero(np.isclose(lam_m, lam))[0], j)
+    for j, lam in enumerate(lam_f)
+    if np.any(np.isclose(lam_m, lam))
+]
 curve_diff = max(abs(runs["modified"]["q"][i] - runs["full"]["q"][j]) for i, j in common) / Q_PRANDTL
 print(f"largest difference between the two curves: {curve_diff:.2e} of q_Prandtl")
 speedup = runs["modified"]["wall"] / runs["full"]["wall"]
@@ -249,21 +256,33 @@ if not FAST:
     for method in ("full", "modified"):
         t0 = time.perf_counter()
         try:
-            res = run(fine_model, np.linspace(1.0 / N_STEPS, 1.0, N_STEPS),
-                      Settings(method=method, stepping="fixed"))
+            res = run(
+                fine_model,
+                np.linspace(1.0 / N_STEPS, 1.0, N_STEPS),
+                Settings(method=method, stepping="fixed"),
+            )
             q_fine = -res.reaction(fine_under, "w")[-1] / 2.0
             finer[method] = (time.perf_counter() - t0, sum(res.iterations), q_fine / Q_PRANDTL, None)
         except NonConvergence as err:
             finer[method] = (time.perf_counter() - t0, None, None, err.report)
     print(f"h = 0.25 m ({fine_model.n_dof} DOFs):")
     for method, (wall, its, ratio, rep) in finer.items():
-        print(f"  {method:8s}: {wall:6.1f} s, " + (f"{its} iterations, q / Prandtl = {ratio:.4f}" if rep is None
-              else f"stopped: {rep['reason']} between load factors {rep['load_factor_from']:.4f} and "
-                   f"{rep['load_factor_to']:.4f} (worst DOF: node {rep['worst_node']}, {rep['worst_component']})"))
+        print(
+            f"  {method:8s}: {wall:6.1f} s, "
+            + (
+                f"{its} iterations, q / Prandtl = {ratio:.4f}"
+                if rep is None
+                else f"stopped: {rep['reason']} between load factors {rep['load_factor_from']:.4f} and "
+                f"{rep['load_factor_to']:.4f} (worst DOF: node {rep['worst_node']}, {rep['worst_component']})"
+            )
+        )
 
 # full Newton's order on the plastic problem, over the steps with enough iterations to fit
-plastic_orders = [fitted_order(r, lo=1e-12, hi=1e-1)[0] for r in runs["full"]["res"].residuals[1:]
-                  if sum(1e-12 < x < 1e-1 for x in r) >= 4]
+plastic_orders = [
+    fitted_order(r, lo=1e-12, hi=1e-1)[0]
+    for r in runs["full"]["res"].residuals[1:]
+    if sum(1e-12 < x < 1e-1 for x in r) >= 4
+]
 print("full Newton, fitted order per plastic step:", np.round(plastic_orders, 2).tolist())
 
 # %% [markdown]
@@ -291,8 +310,9 @@ try:
 except NonConvergence as err:
     failure = err
     print("(b)", err)
-    print("    converged steps kept for inspection, load factors:",
-          np.round(err.result.load_factor, 4).tolist())
+    print(
+        "    converged steps kept for inspection, load factors:", np.round(err.result.load_factor, 4).tolist()
+    )
 
 # %% [markdown]
 # ## Verification
@@ -311,23 +331,28 @@ except NonConvergence as err:
 # %%
 TOL_R = 1e-3
 assert np.all(np.abs(r_solver - r_exact) < TOL_R * r_exact), (r_solver, r_exact)
-assert all(n > 2 for n in res9.iterations[1:])            # modified NR iterates visibly (Fig. 9)
+assert all(n > 2 for n in res9.iterations[1:])  # modified NR iterates visibly (Fig. 9)
 assert orders["full"] >= 1.8, orders
 assert abs(orders["modified"] - 1.0) < 0.1, orders
 assert abs(u_end - u_end_exact) < 1e-9 * u_end_exact
 assert len(histories["full"]) < len(histories["modified"]) / 5
 assert curve_diff < 1e-3, curve_diff
 assert 1.0 < runs["full"]["q"][-1] / Q_PRANDTL < 1.10
-assert runs["modified"]["res"].factorizations == 1       # K0 factorised once for the whole analysis
+assert runs["modified"]["res"].factorizations == 1  # K0 factorised once for the whole analysis
 if finer:
     assert finer["full"][3] is None and 1.0 < finer["full"][2] < runs["full"]["q"][-1] / Q_PRANDTL
 assert res_cut.cuts > 0 and abs(u_cut - u_cut_exact) < 1e-4 * u_cut_exact
 assert failure is not None and failure.report["worst_component"] == "u"
 assert failure.report["worst_node"] == over_nodes[-1]
 newton_ok = orders["full"] >= 1.8 and abs(orders["modified"] - 1.0) < 0.1
-report.record("newton_rates", f"fitted convergence order: full Newton {orders['full']:.2f} (value, expect 2), "
-              f"modified Newton {orders['modified']:.2f} (expect 1); 3-spring tanh chain",
-              orders["full"], 1.8, newton_ok)
+report.record(
+    "newton_rates",
+    f"fitted convergence order: full Newton {orders['full']:.2f} (value, expect 2), "
+    f"modified Newton {orders['modified']:.2f} (expect 1); 3-spring tanh chain",
+    orders["full"],
+    1.8,
+    newton_ok,
+)
 print("all checks passed")
 
 # %% [markdown]
@@ -361,44 +386,72 @@ from ssi.scene import ColumnLoad, Contact, Foundation, Scene, SoilLayer  # noqa:
 from ssi.section import homogeneous  # noqa: E402
 from ssi.zoo import random_scenes, solve_zoo  # noqa: E402
 
-over = run(over_model, [1.0])                                   # (a) default settings
+over = run(over_model, [1.0])  # (a) default settings
 print(f"(a) {over.message}; F / F_u at the limit = {1.2 * over.limit_load_factor:.4f}")
 
 H_PSI0 = 0.25 if FAST else 0.125
-strategies = {"modified (paper)": dict(method="modified"), "full Newton + line search": dict(method="full",
-              line_search=True), "BFGS (default)": dict(), "BFGS + viscosity 1": dict(viscosity=1.0)}
+strategies = {
+    "modified (paper)": dict(method="modified"),
+    "full Newton + line search": dict(method="full", line_search=True),
+    "BFGS (default)": dict(),
+    "BFGS + viscosity 1": dict(viscosity=1.0),
+}
 psi0_runs = {}
 for name, kw in strategies.items():
-    scene = rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=0.0, E=20e6, nu=0.3, rough=True, h_fine=H_PSI0,
-                          settle=0.06, half_width=6.0, depth=5.0, h_coarse=1.0, growth=1.25)
+    scene = rigid_footing(
+        B=2.0,
+        c=10e3,
+        phi_deg=20.0,
+        psi_deg=0.0,
+        E=20e6,
+        nu=0.3,
+        rough=True,
+        h_fine=H_PSI0,
+        settle=0.06,
+        half_width=6.0,
+        depth=5.0,
+        h_coarse=1.0,
+        growth=1.25,
+    )
     out = push_footing(scene, n_steps=20, settings=Settings(stepping="fixed", backend="superlu", **kw))
     psi0_runs[name] = out
     stop = "" if out["failure"] is None else f"  STOPPED: {out['failure']['reason']}"
-    print(f"(b) {name:26s} q_end/Prandtl={out['q'][-1] / prandtl(10e3, 20.0)[0]:.4f}  "
-          f"iterations={out['n_iterations']:5d}  factorisations={out['factorizations']:4d}  "
-          f"time={out['wall_time']:5.1f} s{stop}")
+    print(
+        f"(b) {name:26s} q_end/Prandtl={out['q'][-1] / prandtl(10e3, 20.0)[0]:.4f}  "
+        f"iterations={out['n_iterations']:5d}  factorisations={out['factorizations']:4d}  "
+        f"time={out['wall_time']:5.1f} s{stop}"
+    )
 
-contact_scene = Scene(width=20.0, depth=10.0,
-                      layers=[SoilLayer(3.0, E=20e6, nu=0.49, unit_weight=18e3, c=5e3, phi_deg=30.0, psi_deg=0.0),
-                              SoilLayer(7.0, E=60e6, nu=0.49, unit_weight=19e3)],
-                      foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-                      contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, psi_deg=None),
-                      loads=[ColumnLoad(x=0.0, N=400e3, H=60e3)])
+contact_scene = Scene(
+    width=20.0,
+    depth=10.0,
+    layers=[
+        SoilLayer(3.0, E=20e6, nu=0.49, unit_weight=18e3, c=5e3, phi_deg=30.0, psi_deg=0.0),
+        SoilLayer(7.0, E=60e6, nu=0.49, unit_weight=19e3),
+    ],
+    foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+    contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, psi_deg=None),
+    loads=[ColumnLoad(x=0.0, N=400e3, H=60e3)],
+)
 try:
     contact_out = contact_scene.build().solve()
     zones = contact_out.contact()["zone"]
     contact_ok = contact_out.status == "completed" and bool(np.any(zones == "slip"))
-    print(f"(c) associated c_i = 0 contact: {contact_out.solver_result.message}; "
-          f"{int(np.sum(zones == 'slip'))} slipping, {int(np.sum(zones == 'open'))} open points")
+    print(
+        f"(c) associated c_i = 0 contact: {contact_out.solver_result.message}; "
+        f"{int(np.sum(zones == 'slip'))} slipping, {int(np.sum(zones == 'open'))} open points"
+    )
 except NonConvergence as err:
     contact_ok = False
     print("(c) associated c_i = 0 contact STOPPED:", err)
 
 zoo = solve_zoo(random_scenes(3 if FAST else 100, seed=1))
 solved = sum(o.solved for o in zoo) / len(zoo)
-print(f"(d) random zoo: {sum(o.solved for o in zoo)}/{len(zoo)} solved "
-      f"({sum(o.status == 'limit load reached' for o in zoo)} ended at a detected limit load), "
-      f"{sum(o.wall_time for o in zoo):.1f} s")
+print(
+    f"(d) random zoo: {sum(o.solved for o in zoo)}/{len(zoo)} solved "
+    f"({sum(o.status == 'limit load reached' for o in zoo)} ended at a detected limit load), "
+    f"{sum(o.wall_time for o in zoo):.1f} s"
+)
 for o in zoo:
     if not o.solved:
         print(f"    {o.name}: {o.message[:160]}")
@@ -414,11 +467,22 @@ assert over.collapsed and 0.99 < 1.2 * over.limit_load_factor <= 1.0
 viscous = psi0_runs["BFGS + viscosity 1"]
 assert viscous["failure"] is None and 0.9 < viscous["q"][-1] / prandtl(10e3, 20.0)[0] < 1.1
 assert viscous["factorizations"] == 1
-report.record("contact_associated_c0", "associated cohesionless contact (psi_i = phi_i = 25, c_i = 0) with "
-              "slipping edges, nu = 0.49, N = 400 kN/m, H = 60 kN/m: PASS when lambda = 1 is reached",
-              1.0 if contact_ok else 0.0, 1.0, contact_ok)
-report.record("zoo_solved", f"fraction of {len(zoo)} random ordinary scenes (seed 1) reaching lambda = 1 or a "
-              "detected limit load with Settings()", solved, 1.0, solved == 1.0)
+report.record(
+    "contact_associated_c0",
+    "associated cohesionless contact (psi_i = phi_i = 25, c_i = 0) with "
+    "slipping edges, nu = 0.49, N = 400 kN/m, H = 60 kN/m: PASS when lambda = 1 is reached",
+    1.0 if contact_ok else 0.0,
+    1.0,
+    contact_ok,
+)
+report.record(
+    "zoo_solved",
+    f"fraction of {len(zoo)} random ordinary scenes (seed 1) reaching lambda = 1 or a "
+    "detected limit load with Settings()",
+    solved,
+    1.0,
+    solved == 1.0,
+)
 assert contact_ok
 
 # %% [markdown]
@@ -427,8 +491,12 @@ assert contact_ok
 # %%
 fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
 for method, mk in (("full", "o-"), ("modified", ".-")):
-    axes[0].semilogy(np.arange(1, len(histories[method]) + 1), histories[method], mk,
-                     label=f"{method} Newton (fitted order {orders[method]:.2f})")
+    axes[0].semilogy(
+        np.arange(1, len(histories[method]) + 1),
+        histories[method],
+        mk,
+        label=f"{method} Newton (fitted order {orders[method]:.2f})",
+    )
 axes[0].set_xlabel("iteration")
 axes[0].set_ylabel("relative residual force")
 axes[0].set_xlim(0, 60)
@@ -436,8 +504,13 @@ axes[0].legend()
 axes[0].set_title("three-spring tanh chain, one increment")
 for method, mk in (("full", "o-"), ("modified", "s--")):
     r = runs[method]
-    axes[1].plot(1e3 * r["settle"], r["q"] / 1e3, mk, ms=3,
-                 label=f"{method}: {r['wall']:.1f} s, {sum(r['res'].iterations)} iterations")
+    axes[1].plot(
+        1e3 * r["settle"],
+        r["q"] / 1e3,
+        mk,
+        ms=3,
+        label=f"{method}: {r['wall']:.1f} s, {sum(r['res'].iterations)} iterations",
+    )
 axes[1].axhline(Q_PRANDTL / 1e3, color="k", ls=":", label="Prandtl 148.35 kPa")
 axes[1].set_xlabel("settlement [mm]")
 axes[1].set_ylabel("mean footing pressure [kPa]")
@@ -451,8 +524,13 @@ fig, ax = plt.subplots(figsize=(9, 4))
 for k, (method, color) in enumerate((("modified", "C1"), ("full", "C0"))):
     res = runs[method]["res"]
     lam = np.array(res.load_factor[1:])
-    ax.bar(np.arange(len(lam)) + (k * 0.4 - 0.2), res.iterations[1:], width=0.4,
-           color=color, label=f"{method} Newton ({len(lam)} steps, {res.cuts} cuts)")
+    ax.bar(
+        np.arange(len(lam)) + (k * 0.4 - 0.2),
+        res.iterations[1:],
+        width=0.4,
+        color=color,
+        label=f"{method} Newton ({len(lam)} steps, {res.cuts} cuts)",
+    )
 ax.set_yscale("log")
 ax.set_xlabel("accepted step (cut steps add bars)")
 ax.set_ylabel("iterations")

@@ -90,7 +90,7 @@ E_SOIL, NU_SOIL = 10e6, 0.3
 WIDTH, DEPTH = 20 * A, 10 * A
 H_PLATE, E_PLATE = 0.5 * A, 1e5 * E_SOIL
 KN_RATIO = 1e6
-NAMED_MESH = 32                    # elements under the punch (h = a/16) at which the 5 % claim is made
+NAMED_MESH = 32  # elements under the punch (h = a/16) at which the 5 % claim is made
 MESHES = [8, 16, 32] if paths.FAST else [8, 16, 32, 64]
 SWEEP = [1.0, 1e1, 1e2, 1e3, 1e4, 1e6, 1e8]
 SWEEP_MESH = 16 if paths.FAST else NAMED_MESH
@@ -101,19 +101,32 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
     mesh = soil_block(WIDTH, DEPTH, foundation=(-A, A), h_fine=2 * A / n_under, h_coarse=2.0 * A, growth=1.3)
     m = Model()
     soil_ids = m.add_nodes(mesh.xy, 2)
-    m.add_group(SoilQ8(mesh.xy[mesh.conn], m.element_dofs(soil_ids[mesh.conn]), 0, [ELASTIC],
-                       [elastic_params(E_SOIL, NU_SOIL)]))
+    m.add_group(
+        SoilQ8(
+            mesh.xy[mesh.conn],
+            m.element_dofs(soil_ids[mesh.conn]),
+            0,
+            [ELASTIC],
+            [elastic_params(E_SOIL, NU_SOIL)],
+        )
+    )
     contact = foundation_contact(mesh, -A, A, H_PLATE)
-    plate, pids, pconn = add_plate_strip(m, contact.plate_xy[0::2, 0], homogeneous(H_PLATE, E_PLATE, 0.2),
-                                         z=H_PLATE / 2)
-    itf = add_interface(m, pconn, soil_ids[contact.soil_conn],
-                        interface_params(0.0, kn_ratio * E_SOIL / A, c=math.inf),
-                        offset=plate.bottom_offset, rule=rule)
+    plate, pids, pconn = add_plate_strip(
+        m, contact.plate_xy[0::2, 0], homogeneous(H_PLATE, E_PLATE, 0.2), z=H_PLATE / 2
+    )
+    itf = add_interface(
+        m,
+        pconn,
+        soil_ids[contact.soil_conn],
+        interface_params(0.0, kn_ratio * E_SOIL / A, c=math.inf),
+        offset=plate.bottom_offset,
+        rule=rule,
+    )
     for side in (mesh.bottom, mesh.left, mesh.right):
         m.fix(soil_ids[side], "u")
     m.fix(soil_ids[mesh.bottom], "w")
     mid = pids[len(pids) // 2]
-    m.fix([mid], "u")                       # k_t = 0: nothing else holds the punch sideways
+    m.fix([mid], "u")  # k_t = 0: nothing else holds the punch sideways
     m.add_load([mid], "w", -P)
     t0 = time.perf_counter()
     res = m.solve_linear(backend="superlu")
@@ -122,9 +135,16 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
     xq = itf.ip_coords()[..., 0].ravel()
     p = -st[..., 1].ravel()
     o = np.argsort(xq, kind="stable")
-    gap = st[..., 4].ravel()[o]             # normal gap g_n (< 0: the punch has entered the interface)
-    return {"x": xq[o], "p": p[o], "gap": gap, "w_punch": -res.at([mid], "w")[0], "n_dof": m.n_dof,
-            "wall": wall, "force": float((itf.ip_weights().ravel() * p).sum())}
+    gap = st[..., 4].ravel()[o]  # normal gap g_n (< 0: the punch has entered the interface)
+    return {
+        "x": xq[o],
+        "p": p[o],
+        "gap": gap,
+        "w_punch": -res.at([mid], "w")[0],
+        "n_dof": m.n_dof,
+        "wall": wall,
+        "force": float((itf.ip_weights().ravel() * p).sum()),
+    }
 
 
 def measures(r):
@@ -147,8 +167,10 @@ for n in MESHES:
         runs[(n, rule)] = r
         err, tv = measures(r)
         rows.append((n, rule, r["n_dof"], err, tv, r["wall"], r["force"] / P))
-print(f"{'n_under':>7s} {'rule':>13s} {'DOF':>6s} {'max err |x|<=0.8a':>18s} {'TV':>7s} {'solve [s]':>9s} "
-      f"{'sum p ds / P':>12s}")
+print(
+    f"{'n_under':>7s} {'rule':>13s} {'DOF':>6s} {'max err |x|<=0.8a':>18s} {'TV':>7s} {'solve [s]':>9s} "
+    f"{'sum p ds / P':>12s}"
+)
 for n, rule, ndof, err, tv, wall, fr in rows:
     print(f"{n:7d} {rule:>13s} {ndof:6d} {err:18.4f} {tv:7.3f} {wall:9.2f} {fr:12.9f}")
 
@@ -168,7 +190,9 @@ for kr in SWEEP:
         penetration = float(-r["gap"][np.abs(r["x"]) <= 0.5 * A].mean()) / r["w_punch"]
         sweep[(kr, rule)] = (err, tv, penetration, r["w_punch"])
 print(f"mesh n_under = {SWEEP_MESH}")
-print(f"{'kn a/E':>8s} {'rule':>13s} {'max err':>8s} {'TV':>7s} {'gap/settlement':>15s} {'settlement [mm]':>16s}")
+print(
+    f"{'kn a/E':>8s} {'rule':>13s} {'max err':>8s} {'TV':>7s} {'gap/settlement':>15s} {'settlement [mm]':>16s}"
+)
 for (kr, rule), (err, tv, pen, w) in sweep.items():
     print(f"{kr:8.0e} {rule:>13s} {err:8.4f} {tv:7.3f} {pen:15.2e} {w * 1e3:16.4f}")
 
@@ -179,8 +203,8 @@ for (kr, rule), (err, tv, pen, w) in sweep.items():
 H_B, E_B, NU_B, K_BED, P_B = 0.05, 30e9, 0.2, 5e6, 10e3
 EI_B = E_B * H_B**3 / (12 * (1 - NU_B**2))
 LAM_B = (K_BED / (4 * EI_B)) ** 0.25
-L_B = 2 * 3 * math.pi / LAM_B            # e^(-lam L/2) = 8e-5: the ends do not matter
-N_B = 100                                # named mesh: 100 elements, 16 per wavelength 2 pi / lam
+L_B = 2 * 3 * math.pi / LAM_B  # e^(-lam L/2) = 8e-5: the ends do not matter
+N_B = 100  # named mesh: 100 elements, 16 per wavelength 2 pi / lam
 
 
 def winkler_beam(n_el, h=H_B):
@@ -188,11 +212,13 @@ def winkler_beam(n_el, h=H_B):
     lam = (K_BED / (4 * ei)) ** 0.25
     length = 2 * 3 * math.pi / lam
     m = Model()
-    plate, pids, pconn = add_plate_strip(m, np.linspace(-length / 2, length / 2, n_el + 1),
-                                         homogeneous(h, E_B, NU_B), z=h / 2)
+    plate, pids, pconn = add_plate_strip(
+        m, np.linspace(-length / 2, length / 2, n_el + 1), homogeneous(h, E_B, NU_B), z=h / 2
+    )
     low = m.add_nodes(m.coords[pids] - [0.0, h / 2], 2)
-    add_interface(m, pconn, low[pconn - pids[0]], interface_params(0.0, K_BED, c=math.inf),
-                  offset=plate.bottom_offset)
+    add_interface(
+        m, pconn, low[pconn - pids[0]], interface_params(0.0, K_BED, c=math.inf), offset=plate.bottom_offset
+    )
     m.fix(low, "u")
     m.fix(low, "w")
     mid = pids[len(pids) // 2]
@@ -213,18 +239,20 @@ for h_try in (0.2, 0.05, 0.02):
     het_thin.append((h_try, e_try, ei_try * lam_try**2 / (5 / 6 * E_B / (2 * (1 + NU_B)) * h_try)))
 print(f"lambda = {LAM_B:.3f} 1/m, beam length {L_B:.1f} m, {N_B} elements")
 print("max |w - w_H| / w_H(0) vs elements:", [(n, round(e, 5)) for n, e in het_conv])
-print("with 200 elements vs strip depth h: (h, error, shear estimate EI lam^2/(kappa G h))",
-      [(h, round(e, 5), round(s, 5)) for h, e, s in het_thin])
+print(
+    "with 200 elements vs strip depth h: (h, error, shear estimate EI lam^2/(kappa G h))",
+    [(h, round(e, 5), round(s, 5)) for h, e, s in het_thin],
+)
 
 # %% [markdown]
 # ## Verification
 
 # %%
-PRESSURE_TOL = 0.05      # the issue's claim: within 5 % of exact for |x| <= 0.8a at the named mesh
-OSC_MARGIN = 3.0         # "larger by a clear margin": Gauss TV at least 3x Newton-Cotes (measured ~10x)
-RATE_MIN = 1.0           # fitted convergence rate of the NC pressure error in h (measured ~1.3-1.5)
-HETENYI_TOL = 0.005      # shear flexibility ~1.2e-3 (estimate above) + discretisation < 1e-4 at 100 elements
-EQUILIBRIUM_TOL = 1e-6   # sum of interface tractions = P (linear solve; round-off of a stiff system)
+PRESSURE_TOL = 0.05  # the issue's claim: within 5 % of exact for |x| <= 0.8a at the named mesh
+OSC_MARGIN = 3.0  # "larger by a clear margin": Gauss TV at least 3x Newton-Cotes (measured ~10x)
+RATE_MIN = 1.0  # fitted convergence rate of the NC pressure error in h (measured ~1.3-1.5)
+HETENYI_TOL = 0.005  # shear flexibility ~1.2e-3 (estimate above) + discretisation < 1e-4 at 100 elements
+EQUILIBRIUM_TOL = 1e-6  # sum of interface tractions = P (linear solve; round-off of a stiff system)
 
 err_nc = {n: measures(runs[(n, "newton_cotes")])[0] for n in MESHES}
 tv_nc = measures(runs[(NAMED_MESH, "newton_cotes")])[1]
@@ -239,22 +267,37 @@ print(f"Hetenyi max relative deflection error ({N_B} elements): {het_err:.2e} (t
 for key, r in runs.items():
     assert abs(r["force"] / P - 1) < EQUILIBRIUM_TOL, key
 assert err_nc[NAMED_MESH] <= PRESSURE_TOL
-assert all(np.diff([err_nc[n] for n in MESHES]) < 0)                            # monotone convergence
+assert all(np.diff([err_nc[n] for n in MESHES]) < 0)  # monotone convergence
 assert rate >= RATE_MIN
 assert osc_ratio >= OSC_MARGIN
-for n in MESHES:                                                                 # at every mesh, not just one
+for n in MESHES:  # at every mesh, not just one
     assert measures(runs[(n, "gauss")])[1] > OSC_MARGIN * measures(runs[(n, "newton_cotes")])[1]
 # penalty: soft interfaces let the punch sink in (gap a large part of the settlement), stiff ones converge
 assert sweep[(1.0, "newton_cotes")][2] > 0.2
 assert sweep[(1e8, "newton_cotes")][2] < 1e-6
 assert abs(sweep[(1e8, "newton_cotes")][0] - sweep[(1e6, "newton_cotes")][0]) < 1e-3
 assert het_err <= HETENYI_TOL
-report.record("fig10_newton_cotes", f"max |p/p_exact-1| for |x|<=0.8a, Newton-Cotes, {NAMED_MESH} elements "
-              "under the punch, kn a/E=1e6", err_nc[NAMED_MESH], PRESSURE_TOL, err_nc[NAMED_MESH] <= PRESSURE_TOL)
-report.record("fig10_gauss_oscillation", f"TV(p/p_exact-1) Gauss / Newton-Cotes, {NAMED_MESH} elements "
-              "(pass if >= tolerance)", osc_ratio, OSC_MARGIN, osc_ratio >= OSC_MARGIN)
-report.record("hetenyi", f"max |w-w_Hetenyi|/w_Hetenyi(0), plate strip on interface bed, {N_B} elements",
-              het_err, HETENYI_TOL, het_err <= HETENYI_TOL)
+report.record(
+    "fig10_newton_cotes",
+    f"max |p/p_exact-1| for |x|<=0.8a, Newton-Cotes, {NAMED_MESH} elements under the punch, kn a/E=1e6",
+    err_nc[NAMED_MESH],
+    PRESSURE_TOL,
+    err_nc[NAMED_MESH] <= PRESSURE_TOL,
+)
+report.record(
+    "fig10_gauss_oscillation",
+    f"TV(p/p_exact-1) Gauss / Newton-Cotes, {NAMED_MESH} elements (pass if >= tolerance)",
+    osc_ratio,
+    OSC_MARGIN,
+    osc_ratio >= OSC_MARGIN,
+)
+report.record(
+    "hetenyi",
+    f"max |w-w_Hetenyi|/w_Hetenyi(0), plate strip on interface bed, {N_B} elements",
+    het_err,
+    HETENYI_TOL,
+    het_err <= HETENYI_TOL,
+)
 print("all checks passed")
 
 # %% [markdown]
@@ -269,8 +312,14 @@ for k, (n, lims) in enumerate(((NAMED_MESH, (0, 3)), (8, (0, 3)))):
     for rule, mk in (("gauss", "o-"), ("newton_cotes", "s-")):
         r = runs[(n, rule)]
         inside = np.abs(r["x"]) < A * (1 - 1e-9)
-        ax[k].plot(r["x"][inside] / A, r["p"][inside] / pm, mk, ms=3, lw=0.8,
-                   label=f"{'full Gauss' if rule == 'gauss' else 'Newton–Cotes'} (TV = {measures(r)[1]:.2f})")
+        ax[k].plot(
+            r["x"][inside] / A,
+            r["p"][inside] / pm,
+            mk,
+            ms=3,
+            lw=0.8,
+            label=f"{'full Gauss' if rule == 'gauss' else 'Newton–Cotes'} (TV = {measures(r)[1]:.2f})",
+        )
     ax[k].set(ylim=lims, xlabel="x / a", ylabel="p / p_m", title=f"({'ab'[k]}) {n} elements under the punch")
     ax[k].axvspan(-0.8, 0.8, color="0.93", zorder=0)
     ax[k].legend(fontsize=8, loc="upper center")
@@ -289,15 +338,25 @@ fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
 ax[0].loglog(h / A, [err_nc[n] for n in MESHES], "s-", label="Newton–Cotes")
 ax[0].loglog(h / A, [measures(runs[(n, "gauss")])[0] for n in MESHES], "o-", label="full Gauss")
 ax[0].axhline(PRESSURE_TOL, color="k", ls=":", lw=0.8)
-ax[0].set(xlabel="element length / a", ylabel="max |p/p_exact − 1|, |x| ≤ 0.8a",
-          title=f"(a) convergence (NC rate {rate:.2f})")
+ax[0].set(
+    xlabel="element length / a",
+    ylabel="max |p/p_exact − 1|, |x| ≤ 0.8a",
+    title=f"(a) convergence (NC rate {rate:.2f})",
+)
 ax[0].legend(fontsize=8)
 krs = np.array(SWEEP)
 for rule, mk, col in (("newton_cotes", "s-", "tab:blue"), ("gauss", "o-", "tab:orange")):
-    ax[1].loglog(krs, [sweep[(k, rule)][0] for k in SWEEP], mk, color=col,
-                 label=f"{rule.replace('_', '–')}: max error")
-    ax[1].loglog(krs, [sweep[(k, rule)][1] for k in SWEEP], mk[0] + "--", mfc="none", color=col,
-                 label=f"{rule.replace('_', '–')}: TV")
+    ax[1].loglog(
+        krs, [sweep[(k, rule)][0] for k in SWEEP], mk, color=col, label=f"{rule.replace('_', '–')}: max error"
+    )
+    ax[1].loglog(
+        krs,
+        [sweep[(k, rule)][1] for k in SWEEP],
+        mk[0] + "--",
+        mfc="none",
+        color=col,
+        label=f"{rule.replace('_', '–')}: TV",
+    )
 ax[1].loglog(krs, [sweep[(k, "newton_cotes")][2] for k in SWEEP], "k^-", ms=4, label="gap / settlement")
 ax[1].set(xlabel="k_n a / E", title=f"(b) penalty sweep ({SWEEP_MESH} elements)")
 ax[1].legend(fontsize=7)

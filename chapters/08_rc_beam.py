@@ -93,8 +93,8 @@ t_start = time.perf_counter()
 FAST = paths.FAST
 G = rb.JANNEY
 B, SPAN, A = G["b"], G["span"], G["a"]
-KNM = B / 1e3                 # per-width N m/m  ->  kN m per beam
-S_RM = rb.janney_crack_spacing()            # MC2010 s_r,max, the scene default band
+KNM = B / 1e3  # per-width N m/m  ->  kN m per beam
+S_RM = rb.janney_crack_spacing()  # MC2010 s_r,max, the scene default band
 _, _, DES = rb.janney_materials()
 print({k: f"{v:.4g}" for k, v in DES.items()}, f"s_rm = {S_RM:.3f} m")
 
@@ -102,12 +102,12 @@ ref_notes, _, JAN = rb.read_reference_csv("janney1956_beam.csv")
 mon_notes, _, MON = rb.read_reference_csv("monnier1970_fig12.csv")
 
 # discretisations (fast mode: coarse, for CI)
-N_LAYERS = 41                                  # main model; the trade study below justifies it
-SELF = "chord"                                 # the strip's default self-bending (chapter 02, Fig. 2.6)
-N_EL = 2 if FAST else 4                        # elements per region (shear span, half middle third)
+N_LAYERS = 41  # main model; the trade study below justifies it
+SELF = "chord"  # the strip's default self-bending (chapter 02, Fig. 2.6)
+N_EL = 2 if FAST else 4  # elements per region (shear span, half middle third)
 N_STEPS = 40 if FAST else 100
-W_LOAD = 0.036                                 # load-point travel [m]: mid-span deflection passes 42 mm
-SETTINGS = Settings(max_iter=3000)             # modified Newton (paper): slow but sure past yield
+W_LOAD = 0.036  # load-point travel [m]: mid-span deflection passes 42 mm
+SETTINGS = Settings(max_iter=3000)  # modified Newton (paper): slow but sure past yield
 
 # %% [markdown]
 # ## The model actually run (Fig. 11)
@@ -115,8 +115,10 @@ SETTINGS = Settings(max_iter=3000)             # modified Newton (paper): slow b
 # %%
 section = rb.janney_band_section(N_LAYERS)
 beam = rb.build_four_point(section, SPAN, A, N_EL, N_EL, crack_band=None, self_bending=SELF)
-print(f"{section.n_layer} layers (steel layer(s) {list(np.flatnonzero(section.kind == STEEL) + 1)} "
-      f"from the bottom), {beam.group.n_el} elements in the half beam, {beam.model.n_dof} DOFs")
+print(
+    f"{section.n_layer} layers (steel layer(s) {list(np.flatnonzero(section.kind == STEEL) + 1)} "
+    f"from the bottom), {beam.group.n_el} elements in the half beam, {beam.model.n_dof} DOFs"
+)
 
 fig, ax = plt.subplots(1, 3, figsize=(15, 3.6), gridspec_kw={"width_ratios": [2.2, 2.2, 1]})
 a0 = ax[0]
@@ -127,8 +129,14 @@ for x in (0, SPAN):
 for x in (A, SPAN - A):
     a0.annotate("", (x, G["h"]), (x, G["h"] + 0.25), arrowprops={"arrowstyle": "->", "lw": 2})
     a0.text(x, G["h"] + 0.27, "P", ha="center")
-a0.set(xlim=(-0.2, SPAN + 0.2), ylim=(-0.2, 0.7), aspect="equal", xlabel="x [m]", ylabel="z [m]",
-       title="(A) geometry: span 2.743 m, loads at the third points")
+a0.set(
+    xlim=(-0.2, SPAN + 0.2),
+    ylim=(-0.2, 0.7),
+    aspect="equal",
+    xlabel="x [m]",
+    ylabel="z [m]",
+    title="(A) geometry: span 2.743 m, loads at the third points",
+)
 a0.legend(loc="lower center", fontsize=8, bbox_to_anchor=(0.5, -0.02))
 a1 = ax[1]
 xe = beam.x_ends
@@ -138,21 +146,39 @@ a1.plot([0], [0], "k^", ms=10, label="support: w = 0")
 a1.plot([SPAN / 2], [0], "ks", ms=8, mfc="none", label=r"symmetry: u = $\alpha$ = 0")
 a1.annotate("", (A, 0.02), (A, 0.3), arrowprops={"arrowstyle": "->", "lw": 2, "color": "C3"})
 a1.text(A, 0.32, "prescribed w (displacement control)", ha="center", color="C3", fontsize=8)
-a1.set(xlim=(-0.1, SPAN / 2 + 0.1), ylim=(-0.3, 0.45), xlabel="x [m]", yticks=[],
-       title=f"(B) half model: {beam.group.n_el} three-node strip elements")
+a1.set(
+    xlim=(-0.1, SPAN / 2 + 0.1),
+    ylim=(-0.3, 0.45),
+    xlabel="x [m]",
+    yticks=[],
+    title=f"(B) half model: {beam.group.n_el} three-node strip elements",
+)
 a1.legend(loc="lower center", fontsize=7, ncol=3)
 a2 = ax[2]
 zb = section.z_bottom
 bottoms = np.concatenate([[0.0], np.cumsum(section.h)[:-1]])
 for n in range(section.n_layer):
     steel = section.kind[n] == STEEL
-    a2.add_patch(plt.Rectangle((0, bottoms[n]), B, section.h[n], fc="C3" if steel else "0.85", ec="k",
-                               lw=0.6))
+    a2.add_patch(
+        plt.Rectangle((0, bottoms[n]), B, section.h[n], fc="C3" if steel else "0.85", ec="k", lw=0.6)
+    )
     if steel or section.n_layer <= 15 or (n + 1) % 5 == 0 or n == 0:
-        a2.text(B * 1.05, bottoms[n] + section.h[n] / 2, f"{n + 1}" + (" (steel)" if steel else ""),
-                va="center", fontsize=7, color="C3" if steel else "k")
-a2.set(xlim=(-0.02, 0.3), ylim=(-0.01, G["h"] + 0.01), aspect="equal", xlabel="width [m]",
-       ylabel="height above the bottom face [m]", title="(C) layers (bars smeared, As/b)")
+        a2.text(
+            B * 1.05,
+            bottoms[n] + section.h[n] / 2,
+            f"{n + 1}" + (" (steel)" if steel else ""),
+            va="center",
+            fontsize=7,
+            color="C3" if steel else "k",
+        )
+a2.set(
+    xlim=(-0.02, 0.3),
+    ylim=(-0.01, G["h"] + 0.01),
+    aspect="equal",
+    xlabel="width [m]",
+    ylabel="height above the bottom face [m]",
+    title="(C) layers (bars smeared, As/b)",
+)
 fig.tight_layout()
 report.save_figure(fig, "fig11_rc_beam_model")
 plt.show()
@@ -174,8 +200,9 @@ c_fe = rb.linear_compliance(lin_beam)
 c_exact = sa.four_point_deflection_elastic(1.0, SPAN, A, k_el["D_na"], k_el["S"])
 err_linear = abs(c_fe / c_exact - 1)
 # the K0 model of the nonlinear section is the same linear beam (initial moduli E0, G; Es, no bar shear)
-c_k0 = rb.linear_compliance(rb.build_four_point(rb.janney_band_section(N_LAYERS), SPAN, A, N_EL, N_EL,
-                                                crack_band=None))
+c_k0 = rb.linear_compliance(
+    rb.build_four_point(rb.janney_band_section(N_LAYERS), SPAN, A, N_EL, N_EL, crack_band=None)
+)
 print(f"linear FE {c_fe:.9e} m per N/m, Timoshenko {c_exact:.9e}, relative error {err_linear:.1e}")
 
 # %% [markdown]
@@ -189,8 +216,10 @@ print(f"linear FE {c_fe:.9e} m per N/m, Timoshenko {c_exact:.9e}, relative error
 conv_section = rb.janney_band_section(21)
 mc = sa.moment_curvature(conv_section, 0.02, 1000 if FAST else 3000, self_bending="initial")
 M_Y = mc.M[mc.first_yield - 1]
-print(f"section analysis: cracking M = {mc.M[np.argmax(np.diff(mc.S) < 0)] * KNM:.2f} kN m, "
-      f"first yield M_y = {M_Y * KNM:.2f} kN m per beam")
+print(
+    f"section analysis: cracking M = {mc.M[np.argmax(np.diff(mc.S) < 0)] * KNM:.2f} kN m, "
+    f"first yield M_y = {M_Y * KNM:.2f} kN m per beam"
+)
 
 conv_meshes = (1, 2, 4) if FAST else (1, 2, 4, 8, 16)
 conv = {}
@@ -216,8 +245,10 @@ b_free = rb.build_four_point(section, SPAN, A, conv_meshes[-1], conv_meshes[-1],
 out_free = rb.load_path(b_free, 0.009, 30 if FAST else 80, SETTINGS)
 ok = (out_free["M"] < M_Y_FREE) & (out_free["P"] > 0)
 err_free = np.abs(out_free["delta"][ok] / sa.four_point_deflection(mc_free, out_free["P"][ok], SPAN, A) - 1)
-print(f"{N_LAYERS} layers, {2 * conv_meshes[-1]} elements vs the layer-free curvature integral: max relative "
-      f"deflection error before yield {err_free.max():.2e}")
+print(
+    f"{N_LAYERS} layers, {2 * conv_meshes[-1]} elements vs the layer-free curvature integral: max relative "
+    f"deflection error before yield {err_free.max():.2e}"
+)
 
 # (iii) the layer count: M of the discrete section (default self-bending) against the layer-free M, from
 # cracking to four times the yield curvature
@@ -238,12 +269,22 @@ d_fe, m_fe = main["delta"] * 1e3, main["M"] * KNM
 print(f"main run: {N_STEPS} steps, {main['iterations'].sum()} iterations, {main['wall_time']:.1f} s")
 
 # the paper's rule: band = the length each point represents, on the same mesh
-paper_rule = rb.load_path(rb.build_four_point(rb.janney_band_section(N_LAYERS), SPAN, A, N_EL, N_EL,
-                                              crack_band="point"), W_LOAD, N_STEPS,
-                          SETTINGS, allow_partial=True)
+paper_rule = rb.load_path(
+    rb.build_four_point(rb.janney_band_section(N_LAYERS), SPAN, A, N_EL, N_EL, crack_band="point"),
+    W_LOAD,
+    N_STEPS,
+    SETTINGS,
+    allow_partial=True,
+)
 # tension stiffening only in the effective tension area around the bars (chapter 03), same model otherwise
-ts_area = rb.load_path(rb.build_four_point(rb.janney_band_section(N_LAYERS, "effective_area"), SPAN, A, N_EL,
-                                           N_EL, crack_band=None), W_LOAD, N_STEPS, SETTINGS)
+ts_area = rb.load_path(
+    rb.build_four_point(
+        rb.janney_band_section(N_LAYERS, "effective_area"), SPAN, A, N_EL, N_EL, crack_band=None
+    ),
+    W_LOAD,
+    N_STEPS,
+    SETTINGS,
+)
 
 
 def moment_at(d_mm, delta_mm, m_knm):
@@ -252,12 +293,15 @@ def moment_at(d_mm, delta_mm, m_knm):
 
 def reading_tolerance(i):
     """Relative moment tolerance of data row i: +-1 kN m plus +-0.5 mm times the steeper adjacent slope."""
-    slopes = [abs((JAN[j + 1, 1] - JAN[j, 1]) / (JAN[j + 1, 0] - JAN[j, 0])) for j in (i - 1, i)
-              if 0 <= j < len(JAN) - 1]
+    slopes = [
+        abs((JAN[j + 1, 1] - JAN[j, 1]) / (JAN[j + 1, 0] - JAN[j, 0]))
+        for j in (i - 1, i)
+        if 0 <= j < len(JAN) - 1
+    ]
     return (JAN[i, 3] + JAN[i, 2] * max(slopes)) / JAN[i, 1]
 
 
-POINTS = np.arange(1, len(JAN))                 # the ten measured points (row 0 is the origin)
+POINTS = np.arange(1, len(JAN))  # the ten measured points (row 0 is the origin)
 TOL_POINTS = np.array([reading_tolerance(i) for i in POINTS])
 
 
@@ -271,15 +315,21 @@ err_all = point_errors(main)
 err_area = point_errors(ts_area)
 print(" delta [mm]   measured   tolerance   error (TS all layers)   error (TS effective area)")
 for k, i in enumerate(POINTS):
-    print(f"{JAN[i, 0]:8.1f} {JAN[i, 1]:10.1f} {TOL_POINTS[k]:10.1%} {err_all[k]:+16.1%} {err_area[k]:+22.1%}")
+    print(
+        f"{JAN[i, 0]:8.1f} {JAN[i, 1]:10.1f} {TOL_POINTS[k]:10.1%} {err_all[k]:+16.1%} {err_area[k]:+22.1%}"
+    )
 worst_k = int(np.nanargmax(np.abs(err_all) / TOL_POINTS))
 worst_area_k = int(np.nanargmax(np.abs(err_area) / TOL_POINTS))
 d_pr, m_pr = paper_rule["delta"] * 1e3, paper_rule["M"] * KNM
 post = d_pr > 11.5
-print(f"paper's band rule on the same mesh: {moment_at(11.5, d_pr, m_pr):.2f} kN m at 11.5 mm; run reached "
-      f"{d_pr[-1]:.1f} mm" + ("" if paper_rule["failure"] is None else
-                              f" and stopped ({paper_rule['failure']['reason']})")
-      + f"; smallest moment after yield {m_pr[post].min():.2f} kN m" if post.any() else "")
+print(
+    f"paper's band rule on the same mesh: {moment_at(11.5, d_pr, m_pr):.2f} kN m at 11.5 mm; run reached "
+    f"{d_pr[-1]:.1f} mm"
+    + ("" if paper_rule["failure"] is None else f" and stopped ({paper_rule['failure']['reason']})")
+    + f"; smallest moment after yield {m_pr[post].min():.2f} kN m"
+    if post.any()
+    else ""
+)
 
 # %% [markdown]
 # **Every measured point, and what the model lacks.** The table scores all ten points (full mode, 41 layers,
@@ -314,7 +364,7 @@ print(f"paper's band rule on the same mesh: {moment_at(11.5, d_pr, m_pr):.2f} kN
 
 # %%
 MESHES = (2, 3, 4, 6) if FAST else (2, 4, 8, 16)
-N_MESH_LAYERS = 11         # the layer error (~1 %, trade study) is common to all meshes; the spread is not
+N_MESH_LAYERS = 11  # the layer error (~1 %, trade study) is common to all meshes; the spread is not
 # the solver is given explicitly (the paper's modified Newton with a high iteration cap and the default step
 # cuts), so the study does not depend on the solver's defaults
 MESH_SETTINGS = SETTINGS
@@ -322,13 +372,21 @@ mesh_runs = {}
 for rule in ("point", "spacing"):
     for n in MESHES:
         # the scene defaults: Foundation(crack_band="spacing", self_bending="chord"), 11 layers
-        b_n = rb.build_four_point(rb.janney_band_section(N_MESH_LAYERS), SPAN, A, n, n,
-                                  crack_band="point" if rule == "point" else None)
+        b_n = rb.build_four_point(
+            rb.janney_band_section(N_MESH_LAYERS),
+            SPAN,
+            A,
+            n,
+            n,
+            crack_band="point" if rule == "point" else None,
+        )
         out = rb.load_path(b_n, W_LOAD, 30 if FAST else 60, MESH_SETTINGS, allow_partial=True)
         mesh_runs[rule, n] = (out["delta"] * 1e3, out["M"] * KNM, out["wall_time"])
         if out["failure"] is not None:
-            print(f"band = {rule}, {2 * n} elements: stopped at delta = {out['delta'][-1] * 1e3:.1f} mm "
-                  f"({out['failure']['reason']})")
+            print(
+                f"band = {rule}, {2 * n} elements: stopped at delta = {out['delta'][-1] * 1e3:.1f} mm "
+                f"({out['failure']['reason']})"
+            )
 
 
 def reached(rule):
@@ -345,10 +403,12 @@ def spread(rule):
 
 
 spread_spacing, spread_point = spread("spacing"), spread("point")
-SPREAD_BOUND = 0.03            # the issue's bar, about the data's reading uncertainty (1 kN m at 37 kN m)
-print(f"spread of M over {len(MESHES)} meshes: band = crack spacing {spread_spacing:.2%} (delta 2-"
-      f"{reached('spacing'):.1f} mm), band = point length {spread_point:.2%} "
-      f"(delta 2-{reached('point'):.1f} mm); bound {SPREAD_BOUND:.1%}")
+SPREAD_BOUND = 0.03  # the issue's bar, about the data's reading uncertainty (1 kN m at 37 kN m)
+print(
+    f"spread of M over {len(MESHES)} meshes: band = crack spacing {spread_spacing:.2%} (delta 2-"
+    f"{reached('spacing'):.1f} mm), band = point length {spread_point:.2%} "
+    f"(delta 2-{reached('point'):.1f} mm); bound {SPREAD_BOUND:.1%}"
+)
 
 # %% [markdown]
 # ## The trade: layers × elements × load steps against error and wall time
@@ -359,15 +419,24 @@ print(f"spread of M over {len(MESHES)} meshes: band = crack spacing {spread_spac
 base = {"layers": 11, "n_el": 2 if FAST else 4, "steps": 30 if FAST else 60, "self": SELF}
 ref_cfg = {"layers": 41, "n_el": 4 if FAST else 8, "steps": 60 if FAST else 120, "self": SELF}
 LAYER_SET = (11, 41) if FAST else (5, 11, 21, 41)
-variants = ([("layers", v) for v in LAYER_SET]
-            + [("layers, self-bending e0", v) for v in LAYER_SET]
-            + [("n_el", v) for v in ((1,) if FAST else (1, 2, 4))]
-            + [("steps", v) for v in ((15,) if FAST else (30, 60, 120))])
+variants = (
+    [("layers", v) for v in LAYER_SET]
+    + [("layers, self-bending e0", v) for v in LAYER_SET]
+    + [("n_el", v) for v in ((1,) if FAST else (1, 2, 4))]
+    + [("steps", v) for v in ((15,) if FAST else (30, 60, 120))]
+)
 
 
 def run_cfg(cfg):
-    b_n = rb.build_four_point(rb.janney_band_section(cfg["layers"]), SPAN, A, cfg["n_el"], cfg["n_el"],
-                              crack_band=None, self_bending=cfg["self"])
+    b_n = rb.build_four_point(
+        rb.janney_band_section(cfg["layers"]),
+        SPAN,
+        A,
+        cfg["n_el"],
+        cfg["n_el"],
+        crack_band=None,
+        self_bending=cfg["self"],
+    )
     out = rb.load_path(b_n, W_LOAD, cfg["steps"], MESH_SETTINGS)
     return moment_at(np.array([11.5, 42.0]), out["delta"] * 1e3, out["M"] * KNM), out["wall_time"]
 
@@ -398,13 +467,18 @@ print(f"reference (41 layers, {2 * ref_cfg['n_el']} elements, {ref_cfg['steps']}
 # ## Verification
 
 # %%
-TOL_LINEAR = 1e-6         # the strip is exact for this load case; only round-off of the solve remains
-TOL_CI = 5e-3 if FAST else 2e-3   # discretisation error of the finest mesh (8 / 32 elements), rate ~2 measured
+TOL_LINEAR = 1e-6  # the strip is exact for this load case; only round-off of the solve remains
+TOL_CI = 5e-3 if FAST else 2e-3  # discretisation error of the finest mesh (8 / 32 elements), rate ~2 measured
 
 assert err_linear <= TOL_LINEAR, err_linear
-assert abs(c_k0 / c_exact - 1) < 0.05          # the K0 model is the same beam up to the concrete's nu = 0.2 in G
-report.record("fig12_linear", "relative error of the linear FE mid-span deflection vs Timoshenko",
-              err_linear, TOL_LINEAR, err_linear <= TOL_LINEAR)
+assert abs(c_k0 / c_exact - 1) < 0.05  # the K0 model is the same beam up to the concrete's nu = 0.2 in G
+report.record(
+    "fig12_linear",
+    "relative error of the linear FE mid-span deflection vs Timoshenko",
+    err_linear,
+    TOL_LINEAR,
+    err_linear <= TOL_LINEAR,
+)
 
 assert all(e2 < e1 for e1, e2 in itertools.pairwise(err_ci)), err_ci
 assert -rate > 1.5, rate
@@ -415,64 +489,125 @@ assert err_ci[-1] <= TOL_CI, err_ci
 # 2.6e-3 with 16 + 16, the plateau being the layer and table error)
 TOL_LF = 5e-3
 err_lf = float(err_free.max())
-report.record("fig12_curvature_integral",
-              f"max relative deflection error of the FE ({N_LAYERS} layers, {2 * conv_meshes[-1]} elements) vs the "
-              f"layer-free curvature integral, up to first yield (vs the same discrete section, 21 layers: "
-              f"{err_ci[-1]:.2e}, fitted rate {-rate:.2f})", err_lf, TOL_LF, err_lf <= TOL_LF)
+report.record(
+    "fig12_curvature_integral",
+    f"max relative deflection error of the FE ({N_LAYERS} layers, {2 * conv_meshes[-1]} elements) vs the "
+    f"layer-free curvature integral, up to first yield (vs the same discrete section, 21 layers: "
+    f"{err_ci[-1]:.2e}, fitted rate {-rate:.2f})",
+    err_lf,
+    TOL_LF,
+    err_lf <= TOL_LF,
+)
 assert err_lf <= TOL_LF, err_lf
-TOL_LAYERS = 5e-3          # an order below the data's reading uncertainty (2.7 % at the yield moment)
-report.record("fig12_layer_count", f"max |M/M_ref - 1| of the {N_LAYERS}-layer section (chord self-bending) vs "
-              f"the layer-free reference, kap 1e-3..0.06 1/m (11 layers: {layer_count_err[11]:.4f}, 21: "
-              f"{layer_count_err[21]:.4f})", layer_count_err[N_LAYERS], TOL_LAYERS,
-              layer_count_err[N_LAYERS] <= TOL_LAYERS)
+TOL_LAYERS = 5e-3  # an order below the data's reading uncertainty (2.7 % at the yield moment)
+report.record(
+    "fig12_layer_count",
+    f"max |M/M_ref - 1| of the {N_LAYERS}-layer section (chord self-bending) vs "
+    f"the layer-free reference, kap 1e-3..0.06 1/m (11 layers: {layer_count_err[11]:.4f}, 21: "
+    f"{layer_count_err[21]:.4f})",
+    layer_count_err[N_LAYERS],
+    TOL_LAYERS,
+    layer_count_err[N_LAYERS] <= TOL_LAYERS,
+)
 assert layer_count_err[N_LAYERS] <= TOL_LAYERS and layer_count_err[N_LAYERS] < layer_count_err[11]
 
 # every measured point with its reading tolerance; the row carries the point with the largest error/tolerance
 passed_sub = bool(np.all(np.abs(err_all) <= TOL_POINTS))
-report.record("fig12_substitute_beam",
-              "relative moment error vs Janney et al. 1956 (C) at all ten points, worst by error/tolerance at "
-              f"{JAN[POINTS[worst_k], 0]:g} mm; errors " + " ".join(f"{e:+.3f}" for e in err_all)
-              + f"; tension stiffening in the effective area only: worst {err_area[worst_area_k]:+.3f} at "
-              f"{JAN[POINTS[worst_area_k], 0]:g} mm", abs(err_all[worst_k]), TOL_POINTS[worst_k], passed_sub)
+report.record(
+    "fig12_substitute_beam",
+    "relative moment error vs Janney et al. 1956 (C) at all ten points, worst by error/tolerance at "
+    f"{JAN[POINTS[worst_k], 0]:g} mm; errors "
+    + " ".join(f"{e:+.3f}" for e in err_all)
+    + f"; tension stiffening in the effective area only: worst {err_area[worst_area_k]:+.3f} at "
+    f"{JAN[POINTS[worst_area_k], 0]:g} mm",
+    abs(err_all[worst_k]),
+    TOL_POINTS[worst_k],
+    passed_sub,
+)
 assert np.all(np.isfinite(err_all)), "the main run must reach the last measured point"
 
-report.record("fig12_mesh_spread",
-              f"max relative spread of M over meshes {MESHES} elements per region, band = crack spacing, "
-              f"delta 2-{reached('spacing'):.1f} mm (every mesh reached it; band = point length: "
-              f"{spread_point:.4f} up to {reached('point'):.1f} mm)", spread_spacing, SPREAD_BOUND,
-              spread_spacing <= SPREAD_BOUND)
+report.record(
+    "fig12_mesh_spread",
+    f"max relative spread of M over meshes {MESHES} elements per region, band = crack spacing, "
+    f"delta 2-{reached('spacing'):.1f} mm (every mesh reached it; band = point length: "
+    f"{spread_point:.4f} up to {reached('point'):.1f} mm)",
+    spread_spacing,
+    SPREAD_BOUND,
+    spread_spacing <= SPREAD_BOUND,
+)
 assert spread_spacing <= SPREAD_BOUND
 
 if len(MON):
-    report.record_empty("fig12_monnier", f"{len(MON)} measured points present; Monnier's geometry and materials "
-                        "still missing from the chapter, so no comparison yet")
+    report.record_empty(
+        "fig12_monnier",
+        f"{len(MON)} measured points present; Monnier's geometry and materials "
+        "still missing from the chapter, so no comparison yet",
+    )
 else:
-    report.record_empty("fig12_monnier", "Monnier (1970) measurements: empty slot reference_data/monnier1970_fig12.csv")
-print("linear", err_linear, "| curvature integral", err_ci, err_lf, "| substitute", err_all, "| spread",
-      spread_spacing, spread_point)
+    report.record_empty(
+        "fig12_monnier", "Monnier (1970) measurements: empty slot reference_data/monnier1970_fig12.csv"
+    )
+print(
+    "linear",
+    err_linear,
+    "| curvature integral",
+    err_ci,
+    err_lf,
+    "| substitute",
+    err_all,
+    "| spread",
+    spread_spacing,
+    spread_point,
+)
 
 # %% [markdown]
 # ## Fig. 12 and its error figures
 
 # %%
 fig, ax = plt.subplots(figsize=(7.5, 5))
-ax.errorbar(JAN[:, 0], JAN[:, 1], xerr=JAN[:, 2], yerr=JAN[:, 3], fmt="ko", ms=4, capsize=2,
-            label="measured, Janney et al. 1956 (C)")
+ax.errorbar(
+    JAN[:, 0],
+    JAN[:, 1],
+    xerr=JAN[:, 2],
+    yerr=JAN[:, 3],
+    fmt="ko",
+    ms=4,
+    capsize=2,
+    label="measured, Janney et al. 1956 (C)",
+)
 d_lin = np.array([0.0, 12.0])
 ax.plot(d_lin, d_lin / 1e3 / (c_k0 * 1.0) * A * KNM, "k:", label="linear FE (K0)")
 ax.plot(d_fe, m_fe, "C0-", lw=2, label=f"nonlinear FE, band = crack spacing {S_RM:.2f} m")
 ax.plot(d_pr, m_pr, "C1--", label="nonlinear FE, band = point length (paper's rule)")
-ax.plot(ts_area["delta"] * 1e3, ts_area["M"] * KNM, "C4-", lw=1, label="nonlinear FE, tension stiffening in "
-        r"$h_{c,ef}$ only")
+ax.plot(
+    ts_area["delta"] * 1e3,
+    ts_area["M"] * KNM,
+    "C4-",
+    lw=1,
+    label="nonlinear FE, tension stiffening in "
+    r"$h_{c,ef}$ only",
+)
 p_free = np.linspace(0, M_Y_FREE * 0.999, 60) / A
-ax.plot(sa.four_point_deflection(mc_free, p_free, SPAN, A) * 1e3, p_free * A * KNM, "C2-.", lw=1.5,
-        label="layer-free curvature integral (to first yield)")
+ax.plot(
+    sa.four_point_deflection(mc_free, p_free, SPAN, A) * 1e3,
+    p_free * A * KNM,
+    "C2-.",
+    lw=1.5,
+    label="layer-free curvature integral (to first yield)",
+)
 if len(MON):
     ax.plot(MON[:, 0], MON[:, 1], "rs", label="Monnier 1970 (load in kN)")
 else:
-    ax.text(20, 8, "Monnier (1970) measurements: empty slot\nreference_data/monnier1970_fig12.csv",
-            fontsize=8, color="0.4")
-ax.set(xlabel="mid-span deflection [mm]", ylabel="mid-span moment per beam [kN m]", xlim=(0, 45), ylim=(0, 55))
+    ax.text(
+        20,
+        8,
+        "Monnier (1970) measurements: empty slot\nreference_data/monnier1970_fig12.csv",
+        fontsize=8,
+        color="0.4",
+    )
+ax.set(
+    xlabel="mid-span deflection [mm]", ylabel="mid-span moment per beam [kN m]", xlim=(0, 45), ylim=(0, 55)
+)
 ax.legend(fontsize=8, loc="upper left")
 report.save_figure(fig, "fig12_rc_beam")
 plt.show()
@@ -486,30 +621,43 @@ plt.show()
 fig, ax = plt.subplots(1, 4, figsize=(20, 4))
 for n in conv_meshes:
     ax[0].semilogy(conv[n]["delta"][1:] * 1e3, conv[n]["err"][1:], label=f"{2 * n} elements")
-ax[0].set(xlabel="mid-span deflection [mm]", ylabel="|FE / curvature integral - 1|",
-          title="(a) FE vs curvature integral, before yield")
+ax[0].set(
+    xlabel="mid-span deflection [mm]",
+    ylabel="|FE / curvature integral - 1|",
+    title="(a) FE vs curvature integral, before yield",
+)
 ax[0].legend(fontsize=8)
 for n in MESHES:
     ax[1].plot(*mesh_runs["spacing", n][:2], "-", label=f"{2 * n} el., band = spacing")
     ax[1].plot(*mesh_runs["point", n][:2], "--", label=f"{2 * n} el., band = point length")
 ax[1].errorbar(JAN[:, 0], JAN[:, 1], yerr=JAN[:, 3], fmt="ko", ms=3)
-ax[1].set(xlabel="mid-span deflection [mm]", ylabel="M per beam [kN m]", xlim=(0, 45),
-          title="(b) mesh sensitivity")
+ax[1].set(
+    xlabel="mid-span deflection [mm]", ylabel="M per beam [kN m]", xlim=(0, 45), title="(b) mesh sensitivity"
+)
 ax[1].legend(fontsize=6, ncol=2)
 for key, mk in (("layers", "o"), ("layers, self-bending e0", "x"), ("n_el", "s"), ("steps", "^")):
     rows = [r for r in trade if r[0] == key]
     ax[2].loglog([r[3] for r in rows], [max(r[2], 1e-6) for r in rows], mk + "-", label=key)
     for r in rows:
         ax[2].annotate(str(r[1]), (r[3], max(r[2], 1e-6)), fontsize=7)
-ax[2].set(xlabel="wall time [s]", ylabel="max relative error of M at 11.5 and 42 mm",
-          title="(c) trade vs 41 layers, fine mesh, fine steps")
+ax[2].set(
+    xlabel="wall time [s]",
+    ylabel="max relative error of M at 11.5 and 42 mm",
+    title="(c) trade vs 41 layers, fine mesh, fine steps",
+)
 ax[2].legend(fontsize=8)
-ax[3].fill_between(JAN[POINTS, 0], -100 * TOL_POINTS, 100 * TOL_POINTS, color="0.85", label="reading tolerance")
+ax[3].fill_between(
+    JAN[POINTS, 0], -100 * TOL_POINTS, 100 * TOL_POINTS, color="0.85", label="reading tolerance"
+)
 ax[3].plot(JAN[POINTS, 0], 100 * err_all, "C0o-", label="tension stiffening, all layers")
 ax[3].plot(JAN[POINTS, 0], 100 * err_area, "C4s-", label=r"tension stiffening in $h_{c,ef}$ only")
 ax[3].axhline(0, color="k", lw=0.5)
-ax[3].set(xlabel="mid-span deflection [mm]", ylabel="M_FE / M_measured − 1 [%]", ylim=(-30, 90),
-          title="(d) error at every measured point")
+ax[3].set(
+    xlabel="mid-span deflection [mm]",
+    ylabel="M_FE / M_measured − 1 [%]",
+    ylim=(-30, 90),
+    title="(d) error at every measured point",
+)
 ax[3].legend(fontsize=8)
 fig.tight_layout()
 report.save_figure(fig, "fig12_rc_beam_errors")

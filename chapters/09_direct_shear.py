@@ -88,10 +88,10 @@ from ssi.solver import Settings, run
 t_chapter = time.perf_counter()
 EA, KT, L, TAU_F = 4000e3, 2e7, 0.6, 50e3
 KN = 1e3 * KT
-NAMED_MESH = 60                          # elements along the 60 cm contact (1 cm each)
+NAMED_MESH = 60  # elements along the 60 cm contact (1 cm each)
 MESHES = [15, 30, 60] if paths.FAST else [15, 30, 60, 120]
 N_STEPS = 40 if paths.FAST else 80
-SETTINGS = Settings.paper(backend="superlu")   # the paper's K0 iteration in equal increments
+SETTINGS = Settings.paper(backend="superlu")  # the paper's K0 iteration in equal increments
 
 
 def shear_box(n_x, n_z, H, E, nu, params, u_max, n_steps, sigma0=0.0):
@@ -105,12 +105,21 @@ def shear_box(n_x, n_z, H, E, nu, params, u_max, n_steps, sigma0=0.0):
     # initial state (soil szz = interface sig_n = -sigma0) that the dead load on the top equilibrates exactly
     s0 = np.zeros((len(mesh.conn), 4, 4))
     s0[..., 1] = -sigma0
-    m.add_group(SoilQ8(mesh.xy[mesh.conn], m.element_dofs(ids[mesh.conn]), 0, [ELASTIC],
-                       [elastic_params(E, nu)], initial_stress=s0))
-    soil_bottom = ids[mesh.bottom]                       # ordered by x: the soil side of the contact
-    plate = m.add_nodes(mesh.xy[mesh.bottom], 2)         # the concrete plate's nodes, fixed
-    tri = np.column_stack([np.arange(0, len(plate) - 2, 2), np.arange(1, len(plate) - 1, 2),
-                           np.arange(2, len(plate), 2)])
+    m.add_group(
+        SoilQ8(
+            mesh.xy[mesh.conn],
+            m.element_dofs(ids[mesh.conn]),
+            0,
+            [ELASTIC],
+            [elastic_params(E, nu)],
+            initial_stress=s0,
+        )
+    )
+    soil_bottom = ids[mesh.bottom]  # ordered by x: the soil side of the contact
+    plate = m.add_nodes(mesh.xy[mesh.bottom], 2)  # the concrete plate's nodes, fixed
+    tri = np.column_stack(
+        [np.arange(0, len(plate) - 2, 2), np.arange(1, len(plate) - 1, 2), np.arange(2, len(plate), 2)]
+    )
     # lower nodes along +x with the soil above (on the left of the walking direction): normal points up
     itf = add_interface(m, soil_bottom[tri], plate[tri], params, initial_traction=(0.0, -sigma0))
     m.fix(plate, "u")
@@ -121,19 +130,28 @@ def shear_box(n_x, n_z, H, E, nu, params, u_max, n_steps, sigma0=0.0):
         top = ids[mesh.surface]
         xt = mesh.xy[mesh.surface, 0]
         f = np.zeros(len(top))
-        for e in range(n_x):                              # consistent nodal forces of a uniform pressure
+        for e in range(n_x):  # consistent nodal forces of a uniform pressure
             le = xt[2 * e + 2] - xt[2 * e]
-            f[2 * e:2 * e + 3] += -sigma0 * le * np.array([1.0, 4.0, 1.0]) / 6.0
+            f[2 * e : 2 * e + 3] += -sigma0 * le * np.array([1.0, 4.0, 1.0]) / 6.0
         m.add_dead_load(top, "w", f)
-    targets = np.linspace(0.0, 1.0, n_steps + 1) ** 2     # lambda = 0 first (dead load alone); finer early
+    targets = np.linspace(0.0, 1.0, n_steps + 1) ** 2  # lambda = 0 first (dead load alone); finer early
     t0 = time.perf_counter()
     res = run(m, targets, SETTINGS)
     wall = time.perf_counter() - t0
     tau_bar = res.reaction(left, "u") / L
     u_edge = np.array(res.load_factor) * u_max
-    return {"model": m, "result": res, "itf": itf, "left": left, "soil_bottom": soil_bottom,
-            "tau_bar": tau_bar, "u_edge": u_edge, "wall": wall, "mesh": mesh,
-            "iterations": int(sum(res.iterations))}
+    return {
+        "model": m,
+        "result": res,
+        "itf": itf,
+        "left": left,
+        "soil_bottom": soil_bottom,
+        "tau_bar": tau_bar,
+        "u_edge": u_edge,
+        "wall": wall,
+        "mesh": mesh,
+        "iterations": int(sum(res.iterations)),
+    }
 
 
 def slip_length(itf, state, g_slip):
@@ -152,19 +170,19 @@ def slip_length(itf, state, g_slip):
     return float(xq[i - 1] + (g[i - 1] - g_slip) / (g[i - 1] - g[i]) * (xq[i] - xq[i - 1]))
 
 
-S_MIN = 0.05            # slip lengths below 5 cm (tau_bar < 36.3 kPa) are compared in absolute terms only
-S_TOP = 0.515           # push until the slip zone covers 86 % of L (tau_bar = 49.9 kPa)
+S_MIN = 0.05  # slip lengths below 5 cm (tau_bar < 36.3 kPa) are compared in absolute terms only
+S_TOP = 0.515  # push until the slip zone covers 86 % of L (tau_bar = 49.9 kPa)
 
 
 def exact_check(n_x, H=0.01, n_steps=N_STEPS):
     """Run the thin-layer model and compare with the bar solution at every converged step."""
-    params = interface_params(KT, KN, 0.0, TAU_F)            # Tresca-like: tau_f independent of sig_n
+    params = interface_params(KT, KN, 0.0, TAU_F)  # Tresca-like: tau_f independent of sig_n
     u_max = float(shear_lag_from_slip(S_TOP, EA, KT, L, TAU_F)[1])
     out = shear_box(n_x, 1, H, EA / H, 0.0, params, u_max, n_steps)
     res, itf = out["result"], out["itf"]
     onset = shear_lag_onset(EA, KT, L, TAU_F)
     rows = []
-    for k in range(2, res.n_steps + 1):                       # step 1 is lambda = 0 (no push yet)
+    for k in range(2, res.n_steps + 1):  # step 1 is lambda = 0 (no push yet)
         tb, ue = float(out["tau_bar"][k]), float(out["u_edge"][k])
         s_fe = slip_length(itf, res.states[k][1], TAU_F / KT)
         if tb <= onset:
@@ -190,16 +208,20 @@ def exact_check(n_x, H=0.01, n_steps=N_STEPS):
 
 # %%
 checks = {}
-print(f"{'n_x':>4s} {'H [m]':>6s} {'beta':>7s} {'err s (s>=5cm)':>15s} {'err u(0)':>9s} {'|ds|/L (s<5cm)':>15s} "
-      f"{'iter':>5s} {'time [s]':>8s}")
+print(
+    f"{'n_x':>4s} {'H [m]':>6s} {'beta':>7s} {'err s (s>=5cm)':>15s} {'err u(0)':>9s} {'|ds|/L (s<5cm)':>15s} "
+    f"{'iter':>5s} {'time [s]':>8s}"
+)
 for n_x in MESHES:
     checks[(n_x, 0.01)] = exact_check(n_x)
 for H in (0.2, 0.05):
     checks[(NAMED_MESH, H)] = exact_check(NAMED_MESH, H)
 for (n_x, H), c in sorted(checks.items(), key=lambda kv: (-kv[0][1], kv[0][0])):
     beta = KT * H / (EA / H / 2)
-    print(f"{n_x:4d} {H:6.2f} {beta:7.3f} {c['err_s']:15.2e} {c['err_u']:9.2e} {c['err_s_abs']:15.2e} "
-          f"{c['iterations']:5d} {c['wall']:8.2f}")
+    print(
+        f"{n_x:4d} {H:6.2f} {beta:7.3f} {c['err_s']:15.2e} {c['err_u']:9.2e} {c['err_s_abs']:15.2e} "
+        f"{c['iterations']:5d} {c['wall']:8.2f}"
+    )
 
 # %% [markdown]
 # ## The paper's scene (assumed parameters)
@@ -215,70 +237,98 @@ for (n_x, H), c in sorted(checks.items(), key=lambda kv: (-kv[0][1], kv[0][0])):
 SC = {"H": 0.2, "E": 10e6, "nu": 0.3, "sigma0": 100e3, "phi": 30.0, "kt": 2e7, "kn": 1e9, "u_max": 30e-3}
 SC_MESH = (30, 4) if paths.FAST else (60, 8)
 tau_f_scene = SC["sigma0"] * math.tan(math.radians(SC["phi"]))
-scene = shear_box(*SC_MESH, SC["H"], SC["E"], SC["nu"],
-                  interface_params(SC["kt"], SC["kn"], SC["phi"], 0.0, psi_deg=0.0), SC["u_max"],
-                  N_STEPS, sigma0=SC["sigma0"])
-x_points = {f"point{k}": 0.05 + 0.10 * (6 - k) for k in range(1, 7)}      # point 6 nearest the loaded edge
+scene = shear_box(
+    *SC_MESH,
+    SC["H"],
+    SC["E"],
+    SC["nu"],
+    interface_params(SC["kt"], SC["kn"], SC["phi"], 0.0, psi_deg=0.0),
+    SC["u_max"],
+    N_STEPS,
+    sigma0=SC["sigma0"],
+)
+x_points = {f"point{k}": 0.05 + 0.10 * (6 - k) for k in range(1, 7)}  # point 6 nearest the loaded edge
 xy_m = scene["model"].coords
-point_ids = {name: scene["soil_bottom"][np.argmin(np.abs(xy_m[scene["soil_bottom"], 0] - x))]
-             for name, x in x_points.items()}
+point_ids = {
+    name: scene["soil_bottom"][np.argmin(np.abs(xy_m[scene["soil_bottom"], 0] - x))]
+    for name, x in x_points.items()
+}
 res_sc = scene["result"]
 # displacements relative to the plate; the normal stress is an initial state, so step 1 (lambda = 0) is at rest
 disp = {name: res_sc.displacement([i], "u")[:, 0] for name, i in point_ids.items()}
 disp["edge"] = scene["u_edge"]
 tau_sc = scene["tau_bar"]
-status = np.array([Interface6.status(st[1]) for st in res_sc.states])      # (steps, n_el, n_ip)
-print(f"scene: {scene['model'].n_dof} DOF, {res_sc.n_steps} steps, {scene['iterations']} iterations, "
-      f"{scene['wall']:.2f} s; tau_f = {tau_f_scene / 1e3:.1f} kPa, final tau_bar = "
-      f"{scene['tau_bar'][-1] / 1e3:.2f} kPa")
+status = np.array([Interface6.status(st[1]) for st in res_sc.states])  # (steps, n_el, n_ip)
+print(
+    f"scene: {scene['model'].n_dof} DOF, {res_sc.n_steps} steps, {scene['iterations']} iterations, "
+    f"{scene['wall']:.2f} s; tau_f = {tau_f_scene / 1e3:.1f} kPa, final tau_bar = "
+    f"{scene['tau_bar'][-1] / 1e3:.2f} kPa"
+)
 
 # %% [markdown]
 # ## Verification
 
 # %%
-SHEAR_LAG_TOL = 0.02     # the issue's claim: within 2 % in slip length and edge displacement at the named mesh
-SLIDE_TOL = 2e-3         # full sliding: tau_bar -> tau_f within the solver's force tolerance and step size
+SHEAR_LAG_TOL = 0.02  # the issue's claim: within 2 % in slip length and edge displacement at the named mesh
+SLIDE_TOL = 2e-3  # full sliding: tau_bar -> tau_f within the solver's force tolerance and step size
 c = checks[(NAMED_MESH, 0.01)]
 err_named = max(c["err_s"], c["err_u"])
-print(f"named mesh ({NAMED_MESH} elements, H = 1 cm): slip-length error {c['err_s']:.2e} (s >= {S_MIN} m), "
-      f"edge-displacement error {c['err_u']:.2e}, over tau_bar = {c['rows'][:, 0].min() / 1e3:.1f} .. "
-      f"{c['rows'][:, 0].max() / 1e3:.1f} kPa")
+print(
+    f"named mesh ({NAMED_MESH} elements, H = 1 cm): slip-length error {c['err_s']:.2e} (s >= {S_MIN} m), "
+    f"edge-displacement error {c['err_u']:.2e}, over tau_bar = {c['rows'][:, 0].min() / 1e3:.1f} .. "
+    f"{c['rows'][:, 0].max() / 1e3:.1f} kPa"
+)
 assert c["err_s"] <= SHEAR_LAG_TOL and c["err_u"] <= SHEAR_LAG_TOL
-assert c["err_s_abs"] <= SHEAR_LAG_TOL * S_MIN / L         # short slip zones: within 2 % of 5 cm
+assert c["err_s_abs"] <= SHEAR_LAG_TOL * S_MIN / L  # short slip zones: within 2 % of 5 cm
 # the thin-layer limit: the error falls as the layer's shear compliance beta = kt H / G goes to zero
-errs_beta = [max(checks[(NAMED_MESH, H)]["err_s"], checks[(NAMED_MESH, H)]["err_u"]) for H in (0.2, 0.05, 0.01)]
+errs_beta = [
+    max(checks[(NAMED_MESH, H)]["err_s"], checks[(NAMED_MESH, H)]["err_u"]) for H in (0.2, 0.05, 0.01)
+]
 assert errs_beta[0] > errs_beta[1] > errs_beta[2]
 # the edge slips first and the front moves monotonically towards the free end
 s_hist = c["rows"][:, 3]
 assert np.all(np.diff(s_hist) >= -1e-9) and s_hist[-1] > 0.8 * L
 onset_step = int(np.argmax(s_hist > 0))
-st_on = c["result"].states[onset_step + 2][1]               # rows start at step 2
+st_on = c["result"].states[onset_step + 2][1]  # rows start at step 2
 slipping_x = c["itf"].ip_coords()[..., 0][Interface6.status(st_on) == SLIP]
-assert slipping_x.min() < 1e-12                            # the first slipping points include the loaded edge
+assert slipping_x.min() < 1e-12  # the first slipping points include the loaded edge
 # the scene: point 6 (nearest the loaded edge) leads, point 1 trails, at every step; the whole sample slides
-order = np.array([disp[f"point{k}"] for k in range(6, 0, -1)])        # (6, steps): point 6 first
+order = np.array([disp[f"point{k}"] for k in range(6, 0, -1)])  # (6, steps): point 6 first
 assert np.all(np.diff(order, axis=0) <= 1e-12)
 assert np.all(disp["edge"] >= disp["point6"] - 1e-12)
-assert abs(tau_sc[1]) < 1e-6 * tau_f_scene and np.abs(res_sc.u[1]).max() < 1e-12   # at rest under sigma0
+assert abs(tau_sc[1]) < 1e-6 * tau_f_scene and np.abs(res_sc.u[1]).max() < 1e-12  # at rest under sigma0
 assert abs(scene["tau_bar"][-1] / tau_f_scene - 1) < SLIDE_TOL
 assert np.all(status[-1] == SLIP)
-report.record("fig13_shear_lag", f"max rel. error in slip length (s>={S_MIN} m) and edge displacement vs exact "
-              f"shear lag, {NAMED_MESH} elements, H=1 cm, tau_bar up to 49.9 kPa", err_named, SHEAR_LAG_TOL,
-              err_named <= SHEAR_LAG_TOL)
+report.record(
+    "fig13_shear_lag",
+    f"max rel. error in slip length (s>={S_MIN} m) and edge displacement vs exact "
+    f"shear lag, {NAMED_MESH} elements, H=1 cm, tau_bar up to 49.9 kPa",
+    err_named,
+    SHEAR_LAG_TOL,
+    err_named <= SHEAR_LAG_TOL,
+)
 
 # the measured curves: an empty, documented slot until someone with the paper digitises Fig. 13(a)
 meta, measured = read_reference(paths.REFERENCE_DATA / "zongze1995_fig13a.csv")
 n_measured = len(measured["curve"])
 if n_measured == 0:
-    report.record_empty("fig13_measured", "Fig. 13a measured curves (Yin Zong-Ze et al. 1995): slot "
-                        "reference_data/zongze1995_fig13a.csv has no rows yet; fill with python -m ssi.digitize")
+    report.record_empty(
+        "fig13_measured",
+        "Fig. 13a measured curves (Yin Zong-Ze et al. 1995): slot "
+        "reference_data/zongze1995_fig13a.csv has no rows yet; fill with python -m ssi.digitize",
+    )
     print("fig13_measured: EMPTY slot -", meta["how_obtained"][:120], "...")
 else:
     curves = set(measured["curve"])
     complete = curves >= {*x_points, "edge"}
-    report.record("fig13_measured", "number of digitised points of Fig. 13a plotted (pass = all 7 curves "
-                  "present; the comparison is qualitative: the scene's parameters are assumed)", n_measured,
-                  7, complete)
+    report.record(
+        "fig13_measured",
+        "number of digitised points of Fig. 13a plotted (pass = all 7 curves "
+        "present; the comparison is qualitative: the scene's parameters are assumed)",
+        n_measured,
+        7,
+        complete,
+    )
 print("all checks passed")
 
 # %% [markdown]
@@ -317,16 +367,29 @@ report.save_figure(fig, "fig13_shear_lag")
 # %%
 fig, ax = plt.subplots(1, 2, figsize=(14, 4.8), gridspec_kw={"width_ratios": [1.1, 1]})
 for name in [f"point{k}" for k in range(1, 7)] + ["edge"]:
-    ax[0].plot(disp[name] * 1e3, tau_sc / 1e3, "-" if name != "edge" else "k--", lw=1.2,
-               label=name.replace("point", "point ") if name != "edge" else "box edge")
+    ax[0].plot(
+        disp[name] * 1e3,
+        tau_sc / 1e3,
+        "-" if name != "edge" else "k--",
+        lw=1.2,
+        label=name.replace("point", "point ") if name != "edge" else "box edge",
+    )
 if n_measured:
     for name in sorted(set(measured["curve"])):
         sel = measured["curve"] == name
-        ax[0].plot(measured["displacement_mm"][sel], measured["tau_bar_kPa"][sel], "x", ms=4,
-                   label=f"measured {name}")
+        ax[0].plot(
+            measured["displacement_mm"][sel],
+            measured["tau_bar_kPa"][sel],
+            "x",
+            ms=4,
+            label=f"measured {name}",
+        )
 ax[0].axhline(tau_f_scene / 1e3, color="k", ls=":", lw=0.8)
-ax[0].set(xlabel="displacement relative to the plate [mm]", ylabel="mean shear stress τ̄ [kPa]",
-          title="(b) simulated, assumed parameters" + ("" if n_measured else " (measured slot (a) empty)"))
+ax[0].set(
+    xlabel="displacement relative to the plate [mm]",
+    ylabel="mean shear stress τ̄ [kPa]",
+    title="(b) simulated, assumed parameters" + ("" if n_measured else " (measured slot (a) empty)"),
+)
 ax[0].legend(fontsize=8, loc="lower right")
 # (c) mesh and loads
 msh = scene["mesh"]
@@ -337,17 +400,31 @@ ax[1].add_patch(Rectangle((0, -6), L * 100, 6, color="0.8", hatch="//", ec="0.4"
 ax[1].text(L * 50, -3.5, "concrete plate (fixed)", ha="center", fontsize=8)
 ax[1].plot([0, L * 100], [0, 0], "r-", lw=2, label="interface elements")
 for xa in np.linspace(2, L * 100 - 2, 12):
-    ax[1].annotate("", xy=(xa, SC["H"] * 100), xytext=(xa, SC["H"] * 100 + 5),
-                   arrowprops={"arrowstyle": "->", "color": "tab:blue"})
+    ax[1].annotate(
+        "",
+        xy=(xa, SC["H"] * 100),
+        xytext=(xa, SC["H"] * 100 + 5),
+        arrowprops={"arrowstyle": "->", "color": "tab:blue"},
+    )
 ax[1].text(L * 50, SC["H"] * 100 + 6, f"σ0 = {SC['sigma0'] / 1e3:.0f} kPa", ha="center", color="tab:blue")
-ax[1].annotate("", xy=(0, SC["H"] * 50), xytext=(-9, SC["H"] * 50),
-               arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 2})
+ax[1].annotate(
+    "",
+    xy=(0, SC["H"] * 50),
+    xytext=(-9, SC["H"] * 50),
+    arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 2},
+)
 ax[1].text(-9, SC["H"] * 50 + 2, "box edge\n(prescribed u)", fontsize=8)
 for name, x in x_points.items():
     ax[1].plot(x * 100, 0, "o", color="tab:orange", ms=5)
     ax[1].text(x * 100, 1.2, name[-1], ha="center", fontsize=9, color="tab:orange")
-ax[1].set(xlim=(-12, L * 100 + 3), ylim=(-8, SC["H"] * 100 + 10), aspect="equal", xlabel="x [cm]",
-          ylabel="z [cm]", title=f"(c) mesh {SC_MESH[0]}×{SC_MESH[1]} Q8, loads and monitored points")
+ax[1].set(
+    xlim=(-12, L * 100 + 3),
+    ylim=(-8, SC["H"] * 100 + 10),
+    aspect="equal",
+    xlabel="x [cm]",
+    ylabel="z [cm]",
+    title=f"(c) mesh {SC_MESH[0]}×{SC_MESH[1]} Q8, loads and monitored points",
+)
 ax[1].legend(fontsize=8, loc="upper right")
 fig.tight_layout()
 report.save_figure(fig, "fig13_direct_shear")

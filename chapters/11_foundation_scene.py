@@ -76,27 +76,40 @@ steel = (STEEL, steel_params(fy, Es))
 section = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, steel, n_concrete=9)
 
 
-N_COLUMN = 400e3    # [N/m] per column
+N_COLUMN = 400e3  # [N/m] per column
 
 
 def foundation_scene(h_fine, N=N_COLUMN, H=0.0):
     return Scene(
-        width=30.0, depth=10.0,
-        layers=[SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
-                SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
+        width=30.0,
+        depth=10.0,
+        layers=[
+            SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
+            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ],
         foundation=Foundation(x0=-3.0, x1=3.0, section=section, self_weight=25e3 * 0.4, bar_diameter=0.016),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=N, H=H), ColumnLoad(x=2.5, N=N)],
-        mesh=MeshSize(h_fine=h_fine, h_coarse=2.0, growth=1.3))
+        mesh=MeshSize(h_fine=h_fine, h_coarse=2.0, growth=1.3),
+    )
 
 
 H_FINE = 0.5 if FAST else 0.25
 built = foundation_scene(H_FINE).build()
-print("groups:", [g.name for g in built.model.groups], "| DOFs:", built.model.n_dof,
-      "| linear scene:", built.is_linear)
-print("crack band of the concrete layers (MC2010 s_r,max, bottom / top bars):",
-      sorted({f"{v:.3f} m" for v in built.plate.section.params[built.plate.section.kind == CONCRETE, 7]}),
-      "| self-bending:", built.plate.self_bending)
+print(
+    "groups:",
+    [g.name for g in built.model.groups],
+    "| DOFs:",
+    built.model.n_dof,
+    "| linear scene:",
+    built.is_linear,
+)
+print(
+    "crack band of the concrete layers (MC2010 s_r,max, bottom / top bars):",
+    sorted({f"{v:.3f} m" for v in built.plate.section.params[built.plate.section.kind == CONCRETE, 7]}),
+    "| self-bending:",
+    built.plate.self_bending,
+)
 
 # %% [markdown]
 # ## Solving: the paper's modified Newton–Raphson and full Newton
@@ -114,13 +127,16 @@ for method in ("modified", "full"):
     # which cracks spread along the strip) is retried with K0, which is cheaper than hundreds of tangent
     # factorisations (measured: h = 0.5 m 1.1 s instead of 5.6 s with a cap of 500; h = 0.125 m 32 s
     # instead of 124 s)
-    out = scene_built.solve(n_steps=10, settings=Settings(method=method, max_iter=500 if method == "modified"
-                                                          else None))
+    out = scene_built.solve(
+        n_steps=10, settings=Settings(method=method, max_iter=500 if method == "modified" else None)
+    )
     runs[method] = (out, time.perf_counter() - t0)
     res = out.solver_result
-    print(f"{method:9s}: {sum(res.iterations):5d} iterations, {res.factorizations:4d} factorisations, "
-          f"{res.cuts} step cuts, {runs[method][1]:6.2f} s, max settlement "
-          f"{1e3 * out.settlement()[1].max():.2f} mm")
+    print(
+        f"{method:9s}: {sum(res.iterations):5d} iterations, {res.factorizations:4d} factorisations, "
+        f"{res.cuts} step cuts, {runs[method][1]:6.2f} s, max settlement "
+        f"{1e3 * out.settlement()[1].max():.2f} mm"
+    )
 out = runs["full"][0]
 
 # %% [markdown]
@@ -184,8 +200,10 @@ equilibrium_error = abs(contact_resultant - applied) / applied
 method_gap = np.max(np.abs(runs["modified"][0].settlement()[1] - settle)) / settle.max()
 mid = np.argmin(np.abs(layers["x"].ravel()))
 top_concrete = int(np.flatnonzero(~layers["steel"])[-1])
-print(f"contact resultant {contact_resultant / 1e3:.2f} kN/m vs applied {applied / 1e3:.2f} kN/m "
-      f"(relative error {equilibrium_error:.2e}); modified vs full Newton {method_gap:.2e}")
+print(
+    f"contact resultant {contact_resultant / 1e3:.2f} kN/m vs applied {applied / 1e3:.2f} kN/m "
+    f"(relative error {equilibrium_error:.2e}); modified vs full Newton {method_gap:.2e}"
+)
 
 # the strip's section state at the most stressed bar point
 plate = out.built.plate
@@ -201,23 +219,33 @@ e_s, q_s, j_s = np.unravel_index(np.argmax(np.abs(steel_sig)), steel_sig.shape)
 bar = int(np.flatnonzero(layers["steel"])[j_s])
 eps0_free, m_free, _ = sa.layer_free_state(sec_p, kap_pts[e_s, q_s], N_pts[e_s, q_s])
 h0, h1 = np.zeros(N_LAYER_HIST), np.zeros(N_LAYER_HIST)
-sig_free = layer_update(STEEL, sec_p.params[bar], eps0_free - sec_p.z_mid[bar] * kap_pts[e_s, q_s], 0.0, h0, h1,
-                        1)[0]
+sig_free = layer_update(
+    STEEL, sec_p.params[bar], eps0_free - sec_p.z_mid[bar] * kap_pts[e_s, q_s], 0.0, h0, h1, 1
+)[0]
 steel_gap = abs(steel_sig[e_s, q_s, j_s] / sig_free - 1)
-print(f"most stressed bar point x = {layers['x'][e_s, q_s]:.3f} m: kap = {kap_pts[e_s, q_s]:.3e} 1/m, "
-      f"N = {N_pts[e_s, q_s] / 1e3:.1f} kN/m; steel stress strip {steel_sig[e_s, q_s, j_s] / 1e6:.1f} MPa, "
-      f"layer-free section {sig_free / 1e6:.1f} MPa (relative difference {steel_gap:.1e})")
-print(f"cracked points {layers['cracked'].sum()}, max steel stress {np.abs(steel_sig).max() / 1e6:.1f} MPa "
-      f"(fy = {fy / 1e6:.0f} MPa)")
+print(
+    f"most stressed bar point x = {layers['x'][e_s, q_s]:.3f} m: kap = {kap_pts[e_s, q_s]:.3e} 1/m, "
+    f"N = {N_pts[e_s, q_s] / 1e3:.1f} kN/m; steel stress strip {steel_sig[e_s, q_s, j_s] / 1e6:.1f} MPa, "
+    f"layer-free section {sig_free / 1e6:.1f} MPa (relative difference {steel_gap:.1e})"
+)
+print(
+    f"cracked points {layers['cracked'].sum()}, max steel stress {np.abs(steel_sig).max() / 1e6:.1f} MPa "
+    f"(fy = {fy / 1e6:.0f} MPa)"
+)
 
-METHOD_TOL = 1e-3          # both methods converge to 1e-5 in force; settlements agree to ~1e-4
-STEEL_TOL = 0.03           # the 11-layer rule against the layer-free section (chapter 02: ~1 % in M)
+METHOD_TOL = 1e-3  # both methods converge to 1e-5 in force; settlements agree to ~1e-4
+STEEL_TOL = 0.03  # the 11-layer rule against the layer-free section (chapter 02: ~1 % in M)
 assert method_gap < METHOD_TOL
 assert steel_gap < STEEL_TOL, steel_gap
 assert layers["cracked"].any()
 assert layers["cracked"][:, :, top_concrete].ravel()[mid]  # the top face is cracked at mid-span
-record("scene_equilibrium", "relative error of the contact resultant vs applied loads (consistency only)",
-       equilibrium_error, 1e-4, equilibrium_error < 1e-4)
+record(
+    "scene_equilibrium",
+    "relative error of the contact resultant vs applied loads (consistency only)",
+    equilibrium_error,
+    1e-4,
+    equilibrium_error < 1e-4,
+)
 
 # %% [markdown]
 # ## Results are kept: HDF5
@@ -258,7 +286,10 @@ def midspan_moment(o):
     r = p.resultants(o.u[-1][p.edofs], o.states[-1][o.built.model.groups.index(p)])
     ends = p._x[:, [0, 2]]
     vals = []
-    for e in (int(np.flatnonzero(np.isclose(ends[:, 1], 0.0))[0]), int(np.flatnonzero(np.isclose(ends[:, 0], 0.0))[0])):
+    for e in (
+        int(np.flatnonzero(np.isclose(ends[:, 1], 0.0))[0]),
+        int(np.flatnonzero(np.isclose(ends[:, 0], 0.0))[0]),
+    ):
         vals.append(np.polyval(np.polyfit(r["x_ax"][e], r["M"][e], 2), 0.0))
     return float(np.mean(vals))
 
@@ -270,9 +301,13 @@ for h in sizes:
     o = b.solve(n_steps=10, settings=Settings(method="full"))
     wall = time.perf_counter() - t0
     x_pl, s_pl = o.settlement()
-    study.append((h, b.model.n_dof, 1e3 * float(s_pl[np.argmin(np.abs(x_pl - 2.5))]), midspan_moment(o) / 1e3, wall))
-    print(f"h = {h:5.3f} m: {b.model.n_dof:6d} DOFs, settlement at the column {study[-1][2]:.4f} mm, "
-          f"mid-span moment {study[-1][3]:.3f} kN m/m, {wall:.2f} s")
+    study.append(
+        (h, b.model.n_dof, 1e3 * float(s_pl[np.argmin(np.abs(x_pl - 2.5))]), midspan_moment(o) / 1e3, wall)
+    )
+    print(
+        f"h = {h:5.3f} m: {b.model.n_dof:6d} DOFs, settlement at the column {study[-1][2]:.4f} mm, "
+        f"mid-span moment {study[-1][3]:.3f} kN m/m, {wall:.2f} s"
+    )
 study = np.array(study)
 
 
@@ -284,13 +319,22 @@ def fitted_order(q):
 order_w, order_m = fitted_order(study[:, 2]), fitted_order(study[:, 3])
 est_w = abs(study[-1, 2] - study[-2, 2]) / (2**order_w - 1) / abs(study[-1, 2])
 est_m = abs(study[-1, 3] - study[-2, 3]) / (2**order_m - 1) / abs(study[-1, 3])
-print(f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson estimate of the finest "
-      f"mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}")
+print(
+    f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson estimate of the finest "
+    f"mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}"
+)
 fig, ax = plt.subplots(1, 3, figsize=(13, 3.5))
 ax[0].plot(study[:, 1], study[:, 2], "o-")
 ax[0].set(xscale="log", xlabel="DOFs", ylabel="settlement at the column [mm]")
-ax[1].loglog(study[:-1, 0], np.abs(np.diff(study[:, 2])) / abs(study[-1, 2]), "o-", label=f"settlement (p = {order_w:.2f})")
-ax[1].loglog(study[:-1, 0], np.abs(np.diff(study[:, 3])) / abs(study[-1, 3]), "s-", label=f"moment (p = {order_m:.2f})")
+ax[1].loglog(
+    study[:-1, 0],
+    np.abs(np.diff(study[:, 2])) / abs(study[-1, 2]),
+    "o-",
+    label=f"settlement (p = {order_w:.2f})",
+)
+ax[1].loglog(
+    study[:-1, 0], np.abs(np.diff(study[:, 3])) / abs(study[-1, 3]), "s-", label=f"moment (p = {order_m:.2f})"
+)
 ax[1].set(xlabel="h of the coarser mesh [m]", ylabel="relative change on halving h")
 ax[1].legend(fontsize=8)
 ax[2].loglog(study[:, 1], study[:, 4], "o-")
@@ -298,13 +342,18 @@ ax[2].set(xlabel="DOFs", ylabel="wall time [s]")
 fig.suptitle("Fig. 11.2 — accuracy vs cost under mesh refinement")
 fig.tight_layout()
 save_figure(fig, "ch11_mesh_trade")
-ORDER_MIN = 0.5    # the punch-edge singularity's h^(1/2) (see above)
+ORDER_MIN = 0.5  # the punch-edge singularity's h^(1/2) (see above)
 order_min = min(order_w, order_m)
-record("ch11_mesh_order", f"fitted order of convergence over {len(sizes)} meshes h = {sizes} m: settlement at the "
-       f"column {order_w:.2f}, mid-span moment {order_m:.2f} (value: the smaller; pass: >= {ORDER_MIN}); "
-       f"Richardson error of the finest mesh: settlement {est_w:.3f}, moment {est_m:.3f}",
-       order_min, ORDER_MIN, order_min >= ORDER_MIN)
-assert order_min > 0.0, (order_w, order_m)      # the changes shrink: the sequence converges
+record(
+    "ch11_mesh_order",
+    f"fitted order of convergence over {len(sizes)} meshes h = {sizes} m: settlement at the "
+    f"column {order_w:.2f}, mid-span moment {order_m:.2f} (value: the smaller; pass: >= {ORDER_MIN}); "
+    f"Richardson error of the finest mesh: settlement {est_w:.3f}, moment {est_m:.3f}",
+    order_min,
+    ORDER_MIN,
+    order_min >= ORDER_MIN,
+)
+assert order_min > 0.0, (order_w, order_m)  # the changes shrink: the sequence converges
 
 # %% [markdown]
 # ## Summary

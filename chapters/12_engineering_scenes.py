@@ -77,11 +77,11 @@ from ssi.section import homogeneous
 from ssi.solver import Settings
 
 FAST = paths.FAST
-MESHES = [0.5, 0.25] if FAST else [0.5, 0.25, 0.125]   # element size under the strip [m]
+MESHES = [0.5, 0.25] if FAST else [0.5, 0.25, 0.125]  # element size under the strip [m]
 PUSH = Settings(method="full", line_search=True, backend="superlu", max_cuts=8)  # as chapter 10's push-overs
-STRIP = homogeneous(0.5, 30e9, 0.2)   # a stiff 0.5 m strip: rigid next to the soil
-B = 2.0                               # strip width [m]
-BLOCK = dict(width=12.0, mesh_coarse=1.0, growth=1.25)   # chapter 10's block (full instead of half model)
+STRIP = homogeneous(0.5, 30e9, 0.2)  # a stiff 0.5 m strip: rigid next to the soil
+B = 2.0  # strip width [m]
+BLOCK = dict(width=12.0, mesh_coarse=1.0, growth=1.25)  # chapter 10's block (full instead of half model)
 print("fast mode" if FAST else "full mode", "meshes h =", MESHES)
 
 
@@ -116,19 +116,31 @@ E, NU, H_LAYER, Q = 20e6, 0.3, 6.0, 10e3
 M_OED = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
 heave = []
 for with_strip in (False, True):
-    scene = Scene(width=12.0, depth=H_LAYER, layers=[SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3)],
-                  surcharge=Q, mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-                  foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP) if with_strip else None,
-                  contact=Contact(kn=1e10, kt=1e9) if with_strip else None,
-                  phases=[Phase("surcharge only")])
+    scene = Scene(
+        width=12.0,
+        depth=H_LAYER,
+        layers=[SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3)],
+        surcharge=Q,
+        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+        foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP) if with_strip else None,
+        contact=Contact(kn=1e10, kt=1e9) if with_strip else None,
+        phases=[Phase("surcharge only")],
+    )
     out = scene.build().solve(n_steps=1)
     heave.append(np.abs(out.surface()[1]).max() / (Q * H_LAYER / M_OED))
-    print(f"{'with' if with_strip else 'without'} strip: max |surface displacement| / (qH/M) = {heave[-1]:.2e}")
+    print(
+        f"{'with' if with_strip else 'without'} strip: max |surface displacement| / (qH/M) = {heave[-1]:.2e}"
+    )
 NO_HEAVE_TOL = 1e-8
 surcharge_no_heave = max(heave)
 assert surcharge_no_heave < NO_HEAVE_TOL
-record("surcharge_no_heave", "max surface displacement under surcharge alone / (q H / M)", surcharge_no_heave,
-       NO_HEAVE_TOL, surcharge_no_heave < NO_HEAVE_TOL)
+record(
+    "surcharge_no_heave",
+    "max surface displacement under surcharge alone / (q H / M)",
+    surcharge_no_heave,
+    NO_HEAVE_TOL,
+    surcharge_no_heave < NO_HEAVE_TOL,
+)
 
 # %% [markdown]
 # ### q·N_q in the bearing capacity of a c = 0 strip
@@ -149,29 +161,57 @@ q_nq = prandtl(0.0, PHI, Q_NQ)[0]
 SAME_MESH_TOL = 0.01
 curves_nq, nq_err, nq_gap, nq_half = {}, {}, {}, {}
 for h in MESHES:
-    scene = Scene(width=BLOCK["width"], depth=5.0,
-                  layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)], surcharge=Q_NQ, mesh=mesh(h),
-                  foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP), contact=Contact(kn=1e11, kt=0.0),
-                  phases=[Phase("push", loads=(Settlement(w=0.15),))])
+    scene = Scene(
+        width=BLOCK["width"],
+        depth=5.0,
+        layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)],
+        surcharge=Q_NQ,
+        mesh=mesh(h),
+        foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+        contact=Contact(kn=1e11, kt=0.0),
+        phases=[Phase("push", loads=(Settlement(w=0.15),))],
+    )
     t0 = time.perf_counter()
     curves_nq[h] = push_over(scene)
-    half = push_footing(rigid_footing(B=B, c=0.0, phi_deg=PHI, E=E, nu=NU, rough=False, h_fine=h, settle=0.15,
-                                      surcharge=Q_NQ, half_width=6.0, depth=5.0, h_coarse=1.0), n_steps=30)
+    half = push_footing(
+        rigid_footing(
+            B=B,
+            c=0.0,
+            phi_deg=PHI,
+            E=E,
+            nu=NU,
+            rough=False,
+            h_fine=h,
+            settle=0.15,
+            surcharge=Q_NQ,
+            half_width=6.0,
+            depth=5.0,
+            h_coarse=1.0,
+        ),
+        n_steps=30,
+    )
     nq_err[h] = curves_nq[h][2] / q_nq - 1
     nq_gap[h] = curves_nq[h][2] / half["q_u"] - 1
     nq_half[h] = half["q_u"] / q_nq - 1
-    print(f"h = {h:5.3f} m: q_u = {curves_nq[h][2] / 1e3:6.1f} kPa, q N_q = {q_nq / 1e3:6.1f} kPa, error "
-          f"{100 * nq_err[h]:+.2f} %; half-model footing {half['q_u'] / 1e3:6.1f} kPa (gap {100 * nq_gap[h]:+.2f} %)"
-          f"  [{time.perf_counter() - t0:.1f} s]")
+    print(
+        f"h = {h:5.3f} m: q_u = {curves_nq[h][2] / 1e3:6.1f} kPa, q N_q = {q_nq / 1e3:6.1f} kPa, error "
+        f"{100 * nq_err[h]:+.2f} %; half-model footing {half['q_u'] / 1e3:6.1f} kPa (gap {100 * nq_gap[h]:+.2f} %)"
+        f"  [{time.perf_counter() - t0:.1f} s]"
+    )
 h_fin = MESHES[-1]
 errors = [nq_err[h] for h in MESHES]
 TOL_NQ = abs(nq_half[h_fin]) + SAME_MESH_TOL
 assert all(a > b > 0 for a, b in pairwise(errors)), "the error must shrink with h from above"
 assert max(abs(g) for g in nq_gap.values()) < SAME_MESH_TOL
 assert nq_err[h_fin] < TOL_NQ
-record("surcharge_nq", f"q_u/(q Nq) - 1, c = 0, phi = 30 deg, smooth, h = {h_fin} m (errors "
-       f"{', '.join(f'{100 * e:+.1f}%' for e in errors)} for h = {MESHES}; tolerance: half-model error + 1%)",
-       nq_err[h_fin], TOL_NQ, nq_err[h_fin] < TOL_NQ and all(a > b for a, b in pairwise(errors)))
+record(
+    "surcharge_nq",
+    f"q_u/(q Nq) - 1, c = 0, phi = 30 deg, smooth, h = {h_fin} m (errors "
+    f"{', '.join(f'{100 * e:+.1f}%' for e in errors)} for h = {MESHES}; tolerance: half-model error + 1%)",
+    nq_err[h_fin],
+    TOL_NQ,
+    nq_err[h_fin] < TOL_NQ and all(a > b for a, b in pairwise(errors)),
+)
 
 # %% [markdown]
 # ## 2. Loads on the ground and on the strip
@@ -184,27 +224,50 @@ record("surcharge_nq", f"q_u/(q Nq) - 1, c = 0, phi = 30 deg, smooth, h = {h_fin
 # to every result file) lists each load with its type.
 
 # %%
-layers = [SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3),
-          SoilLayer(6.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3)]
-building = (ColumnLoad(-1.3, N=300e3, H=20e3), ColumnLoad(1.7, N=200e3, M=10e3), StripLoad(20e3, q_end=5e3),
-            SurfacePressure(4.0, 6.0, 15e3))
-phases = [Phase("weight", (StripWeight(25e3),)), Phase("building", building),
-          Phase("unload", factors={"building": 0.0}), Phase("reload", factors={"building": 1.0})]
-phased = Scene(width=20.0, depth=8.0, layers=layers, foundation=Foundation(x0=-2.0, x1=2.0, section=STRIP),
-               contact=Contact(kn=1e10, kt=1e9), surcharge=10e3, water_table=1.5,
-               mesh=MeshSize(h_fine=0.25, h_coarse=2.0, growth=1.3), phases=phases)
+layers = [
+    SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3),
+    SoilLayer(6.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
+]
+building = (
+    ColumnLoad(-1.3, N=300e3, H=20e3),
+    ColumnLoad(1.7, N=200e3, M=10e3),
+    StripLoad(20e3, q_end=5e3),
+    SurfacePressure(4.0, 6.0, 15e3),
+)
+phases = [
+    Phase("weight", (StripWeight(25e3),)),
+    Phase("building", building),
+    Phase("unload", factors={"building": 0.0}),
+    Phase("reload", factors={"building": 1.0}),
+]
+phased = Scene(
+    width=20.0,
+    depth=8.0,
+    layers=layers,
+    foundation=Foundation(x0=-2.0, x1=2.0, section=STRIP),
+    contact=Contact(kn=1e10, kt=1e9),
+    surcharge=10e3,
+    water_table=1.5,
+    mesh=MeshSize(h_fine=0.25, h_coarse=2.0, growth=1.3),
+    phases=phases,
+)
 built = phased.build()
 out = built.solve(n_steps=4)
 step = {r["name"]: r["last"] for r in out.phases}
 force = built.contact_force(out)
 weight = 25e3 * 0.5 * 4.0
-expected = {"geostatic": 10e3 * 4.0, "weight": 10e3 * 4.0 + weight,
-            "building": 10e3 * 4.0 + weight + 500e3 + 0.5 * (20e3 + 5e3) * 4.0}
-LOAD_TOL = 1e-9   # round-off of the force sums (the scene is elastic: one K0 solve per increment)
+expected = {
+    "geostatic": 10e3 * 4.0,
+    "weight": 10e3 * 4.0 + weight,
+    "building": 10e3 * 4.0 + weight + 500e3 + 0.5 * (20e3 + 5e3) * 4.0,
+}
+LOAD_TOL = 1e-9  # round-off of the force sums (the scene is elastic: one K0 solve per increment)
 for name, value in expected.items():
     err = abs(force[step[name]] / value - 1)
-    print(f"after {name:9s}: contact force {force[step[name]] / 1e3:8.2f} kN/m, expected {value / 1e3:8.2f}"
-          f" (relative error {err:.1e})")
+    print(
+        f"after {name:9s}: contact force {force[step[name]] / 1e3:8.2f} kN/m, expected {value / 1e3:8.2f}"
+        f" (relative error {err:.1e})"
+    )
     assert err < LOAD_TOL
 print("column nodes:", [float(built.model.coords[built.plate_node_at(x), 0]) for x in (-1.3, 1.7)])
 print("recorded loads:", [ld["type"] for ld in built.model.info["scene"]["phases"][1]["loads"]])
@@ -227,11 +290,18 @@ phases_unload = np.abs(u[step["unload"]] - u[step["weight"]]).max() / by_buildin
 reload_gap = np.abs(u[step["reload"]] - u[step["building"]]).max() / by_building
 UNLOAD_TOL = 1e-8
 print(f"geostatic phase: max |u| = {geostatic_move:.1e} m; building: {1e3 * by_building:.2f} mm")
-print(f"unloaded vs after weight: {phases_unload:.1e}; reloaded vs loaded: {reload_gap:.1e} (of the building's)")
+print(
+    f"unloaded vs after weight: {phases_unload:.1e}; reloaded vs loaded: {reload_gap:.1e} (of the building's)"
+)
 assert geostatic_move < 1e-12
 assert phases_unload < UNLOAD_TOL and reload_gap < UNLOAD_TOL
-record("phases_unload", "max |u_unloaded - u_before| / max |u_building| (elastic scene)", phases_unload,
-       UNLOAD_TOL, phases_unload < UNLOAD_TOL)
+record(
+    "phases_unload",
+    "max |u_unloaded - u_before| / max |u_building| (elastic scene)",
+    phases_unload,
+    UNLOAD_TOL,
+    phases_unload < UNLOAD_TOL,
+)
 
 # %% [markdown]
 # The same phases on a plastic first layer (c = 10 kPa, φ = 25°) leave a permanent settlement after
@@ -240,14 +310,23 @@ record("phases_unload", "max |u_unloaded - u_before| / max |u_building| (elastic
 # %%
 # the contact stays bonded here: with a Coulomb contact (phi_i = 25 deg) the building phase stalls at 22 % of
 # its load on a point at the strip's edge (the Coulomb corner of the interface law is being reworked)
-plastic = replace(phased, layers=[SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3,
-                                           phi_deg=25.0, psi_deg=0.0), layers[1]])
+plastic = replace(
+    phased,
+    layers=[
+        SoilLayer(
+            2.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=25.0, psi_deg=0.0
+        ),
+        layers[1],
+    ],
+)
 plastic_built = plastic.build()
 plastic_out = plastic_built.solve(n_steps=4, settings=PUSH)
 pstep = {r["name"]: r["last"] for r in plastic_out.phases}
 residual = plastic_out.settlement(pstep["unload"])[1] - plastic_out.settlement(pstep["weight"])[1]
-print(f"plastic soil: settlement left after unloading {1e3 * residual.mean():.2f} mm "
-      f"(loaded {1e3 * (plastic_out.settlement(pstep['building'])[1] - plastic_out.settlement(pstep['weight'])[1]).mean():.2f} mm)")
+print(
+    f"plastic soil: settlement left after unloading {1e3 * residual.mean():.2f} mm "
+    f"(loaded {1e3 * (plastic_out.settlement(pstep['building'])[1] - plastic_out.settlement(pstep['weight'])[1]).mean():.2f} mm)"
+)
 assert residual.mean() > 0.0
 
 fig, ax = plt.subplots(1, 2, figsize=(11, 3.8))
@@ -288,8 +367,12 @@ z_ip = built.soil.integration_points()[..., 1]
 depth = -z_ip
 gw = 9.81e3
 t1, d_w = 2.0, 1.5
-sv_hand = (10e3 + 18e3 * np.minimum(depth, d_w) + (20e3 - gw) * np.clip(depth - d_w, 0.0, t1 - d_w)
-           + (21e3 - gw) * np.maximum(depth - t1, 0.0))
+sv_hand = (
+    10e3
+    + 18e3 * np.minimum(depth, d_w)
+    + (20e3 - gw) * np.clip(depth - d_w, 0.0, t1 - d_w)
+    + (21e3 - gw) * np.maximum(depth - t1, 0.0)
+)
 p_hand = gw * np.maximum(depth - d_w, 0.0)
 geo_state = built.soil.stress(out.states[step["geostatic"]][built.model.groups.index(built.soil)])
 err_v = np.abs(-geo_state[..., 1] - sv_hand).max() / sv_hand.max()
@@ -299,8 +382,13 @@ water_table_k0 = max(err_v, err_h, err_p)
 K0_TOL = 1e-12
 print(f"relative errors: sigma'_v {err_v:.1e}, sigma'_h {err_h:.1e}, pore pressure {err_p:.1e}")
 assert water_table_k0 < K0_TOL
-record("water_table_k0", "max relative error of sigma'v, sigma'h, p after the geostatic phase vs hand calculation",
-       water_table_k0, K0_TOL, water_table_k0 < K0_TOL)
+record(
+    "water_table_k0",
+    "max relative error of sigma'v, sigma'h, p after the geostatic phase vs hand calculation",
+    water_table_k0,
+    K0_TOL,
+    water_table_k0 < K0_TOL,
+)
 
 # %% [markdown]
 # ### Undrained clay: Prandtl's (2 + π) s_u
@@ -317,27 +405,55 @@ S_U = 20e3
 q_prandtl_u = (2.0 + np.pi) * S_U
 und_err, und_gap, und_half, curves_u = {}, {}, {}, {}
 for h in MESHES:
-    scene = Scene(width=BLOCK["width"], depth=5.0,
-                  layers=[SoilLayer.undrained(5.0, E_u=10e6, s_u=S_U, unit_weight=18e3, unit_weight_sat=19e3,
-                                              nu_u=0.49)],
-                  water_table=1.0, mesh=mesh(h), foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
-                  contact=Contact(kn=1e11, kt=0.0), phases=[Phase("push", loads=(Settlement(w=0.05),))])
+    scene = Scene(
+        width=BLOCK["width"],
+        depth=5.0,
+        layers=[
+            SoilLayer.undrained(5.0, E_u=10e6, s_u=S_U, unit_weight=18e3, unit_weight_sat=19e3, nu_u=0.49)
+        ],
+        water_table=1.0,
+        mesh=mesh(h),
+        foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+        contact=Contact(kn=1e11, kt=0.0),
+        phases=[Phase("push", loads=(Settlement(w=0.05),))],
+    )
     curves_u[h] = push_over(scene)
-    half = push_footing(rigid_footing(B=B, c=S_U, phi_deg=0.0, E=10e6, nu=0.49, rough=False, h_fine=h,
-                                      settle=0.05, half_width=6.0, depth=5.0, h_coarse=1.0), n_steps=30)
+    half = push_footing(
+        rigid_footing(
+            B=B,
+            c=S_U,
+            phi_deg=0.0,
+            E=10e6,
+            nu=0.49,
+            rough=False,
+            h_fine=h,
+            settle=0.05,
+            half_width=6.0,
+            depth=5.0,
+            h_coarse=1.0,
+        ),
+        n_steps=30,
+    )
     und_err[h] = curves_u[h][2] / q_prandtl_u - 1
     und_gap[h] = curves_u[h][2] / half["q_u"] - 1
     und_half[h] = half["q_u"] / q_prandtl_u - 1
-    print(f"h = {h:5.3f} m: q_u/(5.14 s_u) - 1 = {100 * und_err[h]:+.2f} %, half-model footing "
-          f"{100 * (half['q_u'] / q_prandtl_u - 1):+.2f} % (gap {100 * und_gap[h]:+.3f} %)")
+    print(
+        f"h = {h:5.3f} m: q_u/(5.14 s_u) - 1 = {100 * und_err[h]:+.2f} %, half-model footing "
+        f"{100 * (half['q_u'] / q_prandtl_u - 1):+.2f} % (gap {100 * und_gap[h]:+.3f} %)"
+    )
 TOL_U = abs(und_half[h_fin]) + SAME_MESH_TOL
 u_errors = [und_err[h] for h in MESHES]
 assert all(a > b > 0 for a, b in pairwise(u_errors))
 assert max(abs(g) for g in und_gap.values()) < SAME_MESH_TOL
 assert und_err[h_fin] < TOL_U
-record("undrained_prandtl", f"q_u/(5.14 s_u) - 1, smooth strip, h = {h_fin} m (errors "
-       f"{', '.join(f'{100 * e:+.1f}%' for e in u_errors)} for h = {MESHES}; tolerance: half-model error + 1%)",
-       und_err[h_fin], TOL_U, und_err[h_fin] < TOL_U and all(a > b for a, b in pairwise(u_errors)))
+record(
+    "undrained_prandtl",
+    f"q_u/(5.14 s_u) - 1, smooth strip, h = {h_fin} m (errors "
+    f"{', '.join(f'{100 * e:+.1f}%' for e in u_errors)} for h = {MESHES}; tolerance: half-model error + 1%)",
+    und_err[h_fin],
+    TOL_U,
+    und_err[h_fin] < TOL_U and all(a > b for a, b in pairwise(u_errors)),
+)
 
 # %% [markdown]
 # ### Undrained in effective stress ("undrained A") and ν_u
@@ -359,22 +475,33 @@ K_U = 2 * G_SK * (1 + NU_U) / (3 * (1 - 2 * NU_U))
 M_U = K_U + 4 * G_SK / 3
 K_W = K_U - E_SK / (3 * (1 - 2 * NU_SK))
 UNDRAINED_A_TOL = 1e-10
-one_d = Scene(width=12.0, depth=H_LAYER, layers=[SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, drainage="undrained_A",
-                                                           nu_u=NU_U)],
-              loads=[SurfacePressure(-6.0, 6.0, Q_U1D)], mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5))
+one_d = Scene(
+    width=12.0,
+    depth=H_LAYER,
+    layers=[SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, drainage="undrained_A", nu_u=NU_U)],
+    loads=[SurfacePressure(-6.0, 6.0, Q_U1D)],
+    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+)
 one_d_built = one_d.build()
 one_d_out = one_d_built.solve()
 settle_err = np.abs(one_d_out.surface()[1] / (Q_U1D * H_LAYER / M_U) - 1).max()
 p_err = np.abs(one_d_built.excess_pore_pressure(one_d_out) / (Q_U1D * K_W / M_U) - 1).max()
-strip_a = Scene(width=12.0, depth=H_LAYER, layers=[SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, drainage="undrained_A",
-                                                             nu_u=NU_U)],
-                foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP), contact=Contact(kn=1e10, kt=1e9),
-                loads=[ColumnLoad(0.0, N=300e3)], mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5))
+strip_a = Scene(
+    width=12.0,
+    depth=H_LAYER,
+    layers=[SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, drainage="undrained_A", nu_u=NU_U)],
+    foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+    contact=Contact(kn=1e10, kt=1e9),
+    loads=[ColumnLoad(0.0, N=300e3)],
+    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+)
 strip_u = replace(strip_a, layers=[SoilLayer(H_LAYER, E=2 * G_SK * (1 + NU_U), nu=NU_U)])
 u_a, u_u = strip_a.build().solve().u[-1], strip_u.build().solve().u[-1]
 equiv_err = np.abs(u_a - u_u).max() / np.abs(u_u).max()
-print(f"1D: settlement / (qH/M_u) - 1 = {settle_err:.1e}, pore pressure / (q K_w/n / M_u) - 1 = {p_err:.1e} "
-      f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A vs elastic (G, nu_u) {equiv_err:.1e}")
+print(
+    f"1D: settlement / (qH/M_u) - 1 = {settle_err:.1e}, pore pressure / (q K_w/n / M_u) - 1 = {p_err:.1e} "
+    f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A vs elastic (G, nu_u) {equiv_err:.1e}"
+)
 assert max(settle_err, p_err, equiv_err) < UNDRAINED_A_TOL
 
 # %% [markdown]
@@ -398,32 +525,56 @@ D, GAMMA_B = 1.0, 18e3
 q_depth = prandtl(0.0, PHI, GAMMA_B * D)[0]
 emb = {}
 with warnings.catch_warnings():
-    warnings.simplefilter("ignore", UserWarning)   # the soft backfill's E is small on purpose
+    warnings.simplefilter("ignore", UserWarning)  # the soft backfill's E is small on purpose
     for E_b in (1e5, 1e4, 1e3):
-        scene = Scene(width=BLOCK["width"], depth=5.0 + D,
-                      layers=[SoilLayer(D, E=E_b, nu=0.3, unit_weight=GAMMA_B),
-                              SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)],
-                      embedment=D, mesh=mesh(h_fin), foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
-                      contact=Contact(kn=1e11, kt=0.0), phases=[Phase("push", loads=(Settlement(w=0.15),))])
+        scene = Scene(
+            width=BLOCK["width"],
+            depth=5.0 + D,
+            layers=[
+                SoilLayer(D, E=E_b, nu=0.3, unit_weight=GAMMA_B),
+                SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0),
+            ],
+            embedment=D,
+            mesh=mesh(h_fin),
+            foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+            contact=Contact(kn=1e11, kt=0.0),
+            phases=[Phase("push", loads=(Settlement(w=0.15),))],
+        )
         emb[E_b] = push_over(scene)
-        print(f"E_b = {E_b:7.0f} Pa: q_u = {emb[E_b][2] / 1e3:6.1f} kPa, gamma D Nq = {q_depth / 1e3:6.1f} kPa "
-              f"({100 * (emb[E_b][2] / q_depth - 1):+.2f} %)")
-equivalent = Scene(width=BLOCK["width"], depth=5.0, layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)],
-                   surcharge=GAMMA_B * D, mesh=mesh(h_fin), foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
-                   contact=Contact(kn=1e11, kt=0.0), phases=[Phase("push", loads=(Settlement(w=0.15),))])
+        print(
+            f"E_b = {E_b:7.0f} Pa: q_u = {emb[E_b][2] / 1e3:6.1f} kPa, gamma D Nq = {q_depth / 1e3:6.1f} kPa "
+            f"({100 * (emb[E_b][2] / q_depth - 1):+.2f} %)"
+        )
+equivalent = Scene(
+    width=BLOCK["width"],
+    depth=5.0,
+    layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)],
+    surcharge=GAMMA_B * D,
+    mesh=mesh(h_fin),
+    foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+    contact=Contact(kn=1e11, kt=0.0),
+    phases=[Phase("push", loads=(Settlement(w=0.15),))],
+)
 q_equivalent = push_over(equivalent)[2]
 mesh_err = q_equivalent / q_depth - 1
 gaps = [emb[e][2] / q_equivalent - 1 for e in (1e5, 1e4, 1e3)]
-print(f"surcharge q = gamma D on the same mesh: q_u = {q_equivalent / 1e3:6.1f} kPa ({100 * mesh_err:+.2f} %); "
-      f"embedded vs it: {', '.join(f'{100 * g:+.2f} %' for g in gaps)}")
+print(
+    f"surcharge q = gamma D on the same mesh: q_u = {q_equivalent / 1e3:6.1f} kPa ({100 * mesh_err:+.2f} %); "
+    f"embedded vs it: {', '.join(f'{100 * g:+.2f} %' for g in gaps)}"
+)
 GAP_TOL = 0.02
 embedment_nq = emb[1e3][2] / q_depth - 1
 EMB_TOL = mesh_err + GAP_TOL
 assert all(a > b > 0 for a, b in pairwise(gaps)), "a softer backfill must carry less, down to the surcharge"
 assert gaps[-1] < GAP_TOL
 assert 0.0 < embedment_nq < EMB_TOL
-record("embedment_nq", f"q_u/(gamma D Nq) - 1, D = 1 m, soft backfill E_b = 1 kPa, smooth, h = {h_fin} m",
-       embedment_nq, EMB_TOL, 0.0 < embedment_nq < EMB_TOL)
+record(
+    "embedment_nq",
+    f"q_u/(gamma D Nq) - 1, D = 1 m, soft backfill E_b = 1 kPa, smooth, h = {h_fin} m",
+    embedment_nq,
+    EMB_TOL,
+    0.0 < embedment_nq < EMB_TOL,
+)
 
 fig, ax = plt.subplots(1, 3, figsize=(14, 3.8))
 for h in MESHES:
@@ -451,11 +602,18 @@ save_figure(fig, "12_pushover")
 # horizontal column force is frictionless (kt = 0): it carries no shear, the right half carries all of it.
 
 # %%
-seg_scene = Scene(width=20.0, depth=8.0, layers=[SoilLayer(8.0, E=30e6, nu=0.3)],
-                  foundation=Foundation(x0=-2.0, x1=2.0, section=STRIP),
-                  contact=[ContactSegment(-2.0, 0.3, Contact(kn=1e10, kt=0.0)),
-                           ContactSegment(0.3, 2.0, Contact(kn=1e10, kt=1e9))],
-                  loads=[ColumnLoad(0.0, N=300e3, H=60e3)], mesh=MeshSize(h_fine=0.25, h_coarse=2.0, growth=1.3))
+seg_scene = Scene(
+    width=20.0,
+    depth=8.0,
+    layers=[SoilLayer(8.0, E=30e6, nu=0.3)],
+    foundation=Foundation(x0=-2.0, x1=2.0, section=STRIP),
+    contact=[
+        ContactSegment(-2.0, 0.3, Contact(kn=1e10, kt=0.0)),
+        ContactSegment(0.3, 2.0, Contact(kn=1e10, kt=1e9)),
+    ],
+    loads=[ColumnLoad(0.0, N=300e3, H=60e3)],
+    mesh=MeshSize(h_fine=0.25, h_coarse=2.0, growth=1.3),
+)
 seg_built = seg_scene.build()
 seg_out = seg_built.solve()
 c = seg_out.contact()

@@ -67,29 +67,38 @@ from ssi.sweep import sweep
 FAST = paths.FAST
 N_SAMPLES = 12 if FAST else 300
 SEED = 14
-S_LIMIT = 0.050   # [m] serviceability limit of the total settlement (EN 1997-1 Annex H: 50 mm is often
-                  # acceptable for isolated shallow foundations)
+S_LIMIT = 0.050  # [m] serviceability limit of the total settlement (EN 1997-1 Annex H: 50 mm is often
+# acceptable for isolated shallow foundations)
 MEAN = {"E": 10e6, "c": 20e3, "tan_phi": math.tan(math.radians(20.0))}
 COV = {"E": 0.30, "c": 0.30, "tan_phi": 0.10}
 
 fc, fy, Es = 38e6, 500e6, 200e9
 d = designer_concrete(fc)
-SECTION = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)],
-                     (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / Es)),
-                     (STEEL, steel_params(fy, Es)), n_concrete=9)
+SECTION = rc_section(
+    0.4,
+    [(0.05, 1.5e-3), (0.35, 1.5e-3)],
+    (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / Es)),
+    (STEEL, steel_params(fy, Es)),
+    n_concrete=9,
+)
 
 
 def foundation_on(E, c, tan_phi):
     """The chapter-11 scene with the clay's E [Pa], c [Pa] and tan(phi) [-] given, on a coarse mesh."""
     return Scene(
-        width=30.0, depth=10.0,
-        layers=[SoilLayer(2.0, E=E, nu=0.3, unit_weight=18e3, c=c, phi_deg=math.degrees(math.atan(tan_phi)),
-                          psi_deg=0.0),
-                SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
+        width=30.0,
+        depth=10.0,
+        layers=[
+            SoilLayer(
+                2.0, E=E, nu=0.3, unit_weight=18e3, c=c, phi_deg=math.degrees(math.atan(tan_phi)), psi_deg=0.0
+            ),
+            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ],
         foundation=Foundation(x0=-3.0, x1=3.0, section=SECTION, self_weight=25e3 * 0.4),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=450e3), ColumnLoad(x=2.5, N=450e3)],
-        mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.3))
+        mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.3),
+    )
 
 
 def lognormal(mean, cov, size, rng):
@@ -116,8 +125,10 @@ t0 = time.perf_counter()
 rows = sweep(foundation_on, parameters, out_dir=out_dir, n_workers=2, keep_files=not FAST)
 wall = time.perf_counter() - t0
 status = [r["status"] for r in rows]
-print(f"sweep: {wall:.1f} s for {N_SAMPLES} scenes ({60 * N_SAMPLES / wall:.1f} scenes/min on 2 workers); "
-      f"statuses {dict(zip(*np.unique(status, return_counts=True)))}")
+print(
+    f"sweep: {wall:.1f} s for {N_SAMPLES} scenes ({60 * N_SAMPLES / wall:.1f} scenes/min on 2 workers); "
+    f"statuses {dict(zip(*np.unique(status, return_counts=True)))}"
+)
 for r in rows:
     if r["status"] == "failed":
         print("failed:", r["params"], r["error"])
@@ -134,6 +145,7 @@ n_collapsed = status.count("collapsed")
 # its 95 % confidence interval is Wilson's score interval, which stays inside [0, 1] and is honest also when
 # p̂ is 0 or 1 with few samples.
 
+
 # %%
 def wilson(k, n, z=1.96):
     """95 % Wilson score interval of a binomial proportion k/n."""
@@ -147,13 +159,20 @@ n_valid = len(ok) + n_collapsed
 n_exceed = int(np.sum(settle > S_LIMIT)) + n_collapsed
 p_exceed = n_exceed / n_valid
 ci = wilson(n_exceed, n_valid)
-print(f"settlement: mean {1e3 * settle.mean():.2f} mm, CoV {settle.std(ddof=1) / settle.mean():.3f}; "
-      f"differential: mean {1e3 * diff.mean():.2f} mm; max moment: mean {moment.mean() / 1e3:.1f} kNm/m")
-print(f"P(s > {1e3 * S_LIMIT:.0f} mm) = {p_exceed:.3f}, 95 % CI [{ci[0]:.3f}, {ci[1]:.3f}] ({n_valid} samples)")
+print(
+    f"settlement: mean {1e3 * settle.mean():.2f} mm, CoV {settle.std(ddof=1) / settle.mean():.3f}; "
+    f"differential: mean {1e3 * diff.mean():.2f} mm; max moment: mean {moment.mean() / 1e3:.1f} kNm/m"
+)
+print(
+    f"P(s > {1e3 * S_LIMIT:.0f} mm) = {p_exceed:.3f}, 95 % CI [{ci[0]:.3f}, {ci[1]:.3f}] ({n_valid} samples)"
+)
 
 fig, ax = plt.subplots(1, 3, figsize=(12, 3.4))
-panels = ((settle, "max settlement [mm]", 1e3), (diff, "differential settlement [mm]", 1e3),
-          (moment, "max |M| [kNm/m]", 1e-3))
+panels = (
+    (settle, "max settlement [mm]", 1e3),
+    (diff, "differential settlement [mm]", 1e3),
+    (moment, "max |M| [kNm/m]", 1e-3),
+)
 for a, (vals, label, scale) in zip(ax, panels):
     a.hist(scale * vals, bins=max(5, int(np.sqrt(len(vals)))), color="C0", alpha=0.8)
     a.set_xlabel(label)
@@ -192,8 +211,10 @@ var_fosm = sum((grad[k] * sigma[k]) ** 2 for k in MEAN)
 share = {k: (grad[k] * sigma[k]) ** 2 / var_fosm for k in MEAN}
 second_order = 0.5 * sum(curv[k] * sigma[k] ** 2 for k in MEAN)
 corr = {k: float(np.corrcoef(np.log(X[k]), settle)[0, 1]) for k in MEAN}
-print(f"FOSM: s(mu) = {1e3 * s_mean:.2f} mm, std {1e3 * math.sqrt(var_fosm):.2f} mm; second-order mean "
-      f"shift {1e3 * second_order:+.2f} mm")
+print(
+    f"FOSM: s(mu) = {1e3 * s_mean:.2f} mm, std {1e3 * math.sqrt(var_fosm):.2f} mm; second-order mean "
+    f"shift {1e3 * second_order:+.2f} mm"
+)
 print("first-order sensitivity shares:", {k: round(v, 3) for k, v in share.items()})
 print("MC correlation of ln X with s:", {k: round(v, 3) for k, v in corr.items()})
 
@@ -222,10 +243,18 @@ mc_mean = settle.mean()
 standard_error = settle.std(ddof=1) / math.sqrt(len(settle))
 mc_vs_fosm = abs(mc_mean - s_mean) / s_mean
 tol_fosm = (3.0 * standard_error + abs(second_order)) / s_mean
-print(f"MC mean {1e3 * mc_mean:.2f} mm vs FOSM {1e3 * s_mean:.2f} mm: relative difference {mc_vs_fosm:.3%} "
-      f"(tolerance 3 SE + curvature = {tol_fosm:.3%})")
-record("mc_mean_vs_fosm", f"|mean s_MC - s_FOSM|/s_FOSM, {len(settle)} samples (tolerance: 3 standard errors + "
-       "second-order mean shift)", mc_vs_fosm, tol_fosm, mc_vs_fosm <= tol_fosm)
+print(
+    f"MC mean {1e3 * mc_mean:.2f} mm vs FOSM {1e3 * s_mean:.2f} mm: relative difference {mc_vs_fosm:.3%} "
+    f"(tolerance 3 SE + curvature = {tol_fosm:.3%})"
+)
+record(
+    "mc_mean_vs_fosm",
+    f"|mean s_MC - s_FOSM|/s_FOSM, {len(settle)} samples (tolerance: 3 standard errors + "
+    "second-order mean shift)",
+    mc_vs_fosm,
+    tol_fosm,
+    mc_vs_fosm <= tol_fosm,
+)
 assert mc_vs_fosm <= tol_fosm
 assert max(share, key=share.get) == "E"
 assert ci[0] <= p_exceed <= ci[1]

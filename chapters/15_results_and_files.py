@@ -99,15 +99,29 @@ print(phased_path.read_text())
 # the command exits with status 3).
 
 # %%
-KEYS = ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete", "steps",
-        "status", "phase", "phase_load_factor", "limit_load_factor")
+KEYS = (
+    "max_settlement",
+    "max_contact_pressure",
+    "max_abs_moment",
+    "contact_resultant",
+    "complete",
+    "steps",
+    "status",
+    "phase",
+    "phase_load_factor",
+    "limit_load_factor",
+)
 cli_ok = {}
 for example in sorted(EXAMPLES.glob("*.toml")):
     work = OUT / example.name
     work.write_text(example.read_text())
     t0 = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "ssi.cli", "run", str(work), "--overwrite"],
-                          capture_output=True, text=True, check=False)
+    proc = subprocess.run(
+        [sys.executable, "-m", "ssi.cli", "run", str(work), "--overwrite"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     wall = time.perf_counter() - t0
     stored = json.loads(work.with_name(work.stem + "_summary.json").read_text())
     scene, n_steps, settings = read_scene_file(example)
@@ -154,8 +168,14 @@ assert back_api.phases is not None and len(back_api.phases) == 4
 assert back_api.built.scene.embedment == 1.0 and back_api.built.scene.water_table == 2.0
 assert roundtrip <= RESULT_ROUNDTRIP_TOL
 assert roundtrip_live <= RESULT_ROUNDTRIP_TOL  # the solve is deterministic: the CLI's file equals it too
-record("result_roundtrip", "max |difference| of every SceneResult quantity after write -> read (phased, "
-       "embedded scene with a water table)", roundtrip, RESULT_ROUNDTRIP_TOL, roundtrip <= RESULT_ROUNDTRIP_TOL)
+record(
+    "result_roundtrip",
+    "max |difference| of every SceneResult quantity after write -> read (phased, "
+    "embedded scene with a water table)",
+    roundtrip,
+    RESULT_ROUNDTRIP_TOL,
+    roundtrip <= RESULT_ROUNDTRIP_TOL,
+)
 
 # the RC strip of the ParaView section below, from the file `ssi run` wrote
 stem = OUT / "rc_strip"
@@ -181,19 +201,27 @@ for k, (lam, mesh) in enumerate(series):
     assert lam == back.load_factor[k]
     u = back.u[k]
     disp = mesh.point_data["displacement"]
-    checks = [(disp[soil, 0], u[built.model.dof(soil, "u")]), (disp[soil, 1], u[built.model.dof(soil, "w")]),
-              (mesh.cell_data["szz"][0], back.soil_stress(k)[..., 1].mean(axis=1)),
-              (mesh.cell_data["plastic_fraction"][0], back.plastic_points(k).mean(axis=1)),
-              (mesh.cell_data["M"][1][:n_plate], back.strip_forces(k)["M"].mean(axis=1)),
-              (mesh.cell_data["contact_pressure"][1][n_plate:], -back.contact(k)["sig_n"].mean(axis=1))]
+    checks = [
+        (disp[soil, 0], u[built.model.dof(soil, "u")]),
+        (disp[soil, 1], u[built.model.dof(soil, "w")]),
+        (mesh.cell_data["szz"][0], back.soil_stress(k)[..., 1].mean(axis=1)),
+        (mesh.cell_data["plastic_fraction"][0], back.plastic_points(k).mean(axis=1)),
+        (mesh.cell_data["M"][1][:n_plate], back.strip_forces(k)["M"].mean(axis=1)),
+        (mesh.cell_data["contact_pressure"][1][n_plate:], -back.contact(k)["sig_n"].mean(axis=1)),
+    ]
     for got, want in checks:
         scale = max(np.abs(want).max(), 1e-300)
         vtk_error = max(vtk_error, float(np.abs(got - want).max() / scale))
 print(f"{len(series)} steps read back; largest relative difference {vtk_error:.3g}")
 VTK_TOL = 1e-12
 assert vtk_error <= VTK_TOL
-record("vtk_roundtrip", "max relative difference of the meshio read-back of the ParaView export", vtk_error,
-       VTK_TOL, vtk_error <= VTK_TOL)
+record(
+    "vtk_roundtrip",
+    "max relative difference of the meshio read-back of the ParaView export",
+    vtk_error,
+    VTK_TOL,
+    vtk_error <= VTK_TOL,
+)
 
 # %% [markdown]
 # ## The standard figures, from the file alone
@@ -219,8 +247,10 @@ save_figure(fig2, "ch15_strip_figures")
 fig3, ax3 = plt.subplots(1, 2, figsize=(12, 4), layout="constrained")
 plot.load_settlement(phased_back, ax=ax3[0])
 plot.settlement(phased_back, ax=ax3[1])
-fig3.suptitle("Fig. 15.3 — examples/phased_embedded.toml from its result file: settlement through the phases "
-              "(phase time: phase i runs from i - 1 to i) and the strip's settlement at the end")
+fig3.suptitle(
+    "Fig. 15.3 — examples/phased_embedded.toml from its result file: settlement through the phases "
+    "(phase time: phase i runs from i - 1 to i) and the strip's settlement at the end"
+)
 save_figure(fig3, "ch15_phased_figures")
 
 # %% [markdown]
@@ -229,8 +259,13 @@ save_figure(fig3, "ch15_phased_figures")
 # %%
 print(cli_ok)
 assert all(cli_ok.values())
-record("cli_example", "every example scene file runs through `ssi run` and its summary equals the Python API",
-       float(all(cli_ok.values())), 1.0, all(cli_ok.values()))
+record(
+    "cli_example",
+    "every example scene file runs through `ssi run` and its summary equals the Python API",
+    float(all(cli_ok.values())),
+    1.0,
+    all(cli_ok.values()),
+)
 
 # %% [markdown]
 # ## Summary

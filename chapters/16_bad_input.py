@@ -79,8 +79,8 @@ from ssi.report import record, save_figure
 from ssi.scene import ColumnLoad, MeshSize, SoilLayer
 
 FAST = paths.FAST
-N_INVALID = 500 if FAST else 5000   # invalid calls drawn
-N_VALID = 20 if FAST else 200       # random valid scenes drawn
+N_INVALID = 500 if FAST else 5000  # invalid calls drawn
+N_VALID = 20 if FAST else 200  # random valid scenes drawn
 SEED = 20261201
 
 # %% [markdown]
@@ -89,9 +89,11 @@ SEED = 20261201
 # What a user sees for three typical slips:
 
 # %%
-for make in (lambda: SoilLayer(4.0, E="20e6", nu=0.3),
-             lambda: MeshSize(h_fine=-0.5),
-             lambda: ColumnLoad(x=float("nan"), N=400e3)):
+for make in (
+    lambda: SoilLayer(4.0, E="20e6", nu=0.3),
+    lambda: MeshSize(h_fine=-0.5),
+    lambda: ColumnLoad(x=float("nan"), N=400e3),
+):
     try:
         make()
     except (TypeError, ValueError) as err:
@@ -107,8 +109,9 @@ outcomes = ["named", "unnamed", "returned", "other", "timeout"]
 table = {t: {o: 0 for o in outcomes} for t in targets}
 for case, outcome, _ in study["invalid"]:
     table[case.target][outcome] += 1
-print(f"{len(study['invalid'])} invalid calls, {len(study['valid'])} valid scenes, "
-      f"{study['wall_time']:.1f} s")
+print(
+    f"{len(study['invalid'])} invalid calls, {len(study['valid'])} valid scenes, {study['wall_time']:.1f} s"
+)
 print(f"{'entry point':28s}" + "".join(f"{o:>10s}" for o in outcomes))
 for t in targets:
     print(f"{t:28s}" + "".join(f"{table[t][o]:10d}" for o in outcomes))
@@ -128,10 +131,20 @@ for case, outcome, detail in study["invalid"]:
 named_fraction = study["named_fraction"]
 escapes = study["escapes"]
 valid_ok = sum(study["counts_valid"].get(k, 0) for k in ("solved", "nonconvergence"))
-record("fuzz_named_errors", "fraction of invalid inputs raising a ValueError/TypeError that names the parameter "
-       "and value", named_fraction, 1.0, named_fraction == 1.0)
-record("fuzz_escapes", "invalid inputs with any other outcome (unnamed error, other exception, result returned, "
-       "timeout)", escapes, 0, escapes == 0)
+record(
+    "fuzz_named_errors",
+    "fraction of invalid inputs raising a ValueError/TypeError that names the parameter and value",
+    named_fraction,
+    1.0,
+    named_fraction == 1.0,
+)
+record(
+    "fuzz_escapes",
+    "invalid inputs with any other outcome (unnamed error, other exception, result returned, timeout)",
+    escapes,
+    0,
+    escapes == 0,
+)
 assert named_fraction == 1.0, named_fraction
 assert escapes == 0, escapes
 assert valid_ok == len(study["valid"]), study["counts_valid"]
@@ -153,8 +166,13 @@ assert study["counts_valid"].get("solved", 0) > 0  # the valid population is not
 # %%
 fig, ax = plt.subplots(figsize=(9, 4.5))
 left = np.zeros(len(targets))
-colors = {"named": "tab:green", "unnamed": "tab:orange", "returned": "tab:red", "other": "tab:purple",
-          "timeout": "black"}
+colors = {
+    "named": "tab:green",
+    "unnamed": "tab:orange",
+    "returned": "tab:red",
+    "other": "tab:purple",
+    "timeout": "black",
+}
 for o in outcomes:
     counts = np.array([table[t][o] for t in targets])
     ax.barh(targets, counts, left=left, color=colors[o], label=o)

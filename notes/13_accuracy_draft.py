@@ -99,8 +99,11 @@ def strip_compression(n):
     m = structured_q8(lines, lines - 4.0 * B_HALF)
     model = Model()
     model.add_nodes(m.xy, 2)
-    model.add_group(SoilQ8(m.xy[m.conn], model.element_dofs(m.conn), 0, [ELASTIC], [elastic_params(E_SOIL, NU)],
-                           n_gauss=2))
+    model.add_group(
+        SoilQ8(
+            m.xy[m.conn], model.element_dofs(m.conn), 0, [ELASTIC], [elastic_params(E_SOIL, NU)], n_gauss=2
+        )
+    )
     model.fix(m.left, "u")
     model.fix(m.bottom[:1], "w")
 
@@ -148,11 +151,13 @@ def winkler_deflection(n_el):
     """Deflection [m] under the load of the plate strip on the interface bed with n_el elements."""
     length = 6.0 * math.pi / LAM
     m = Model()
-    plate, pids, pconn = add_plate_strip(m, np.linspace(-length / 2, length / 2, n_el + 1),
-                                         homogeneous(H_PLATE, E_PLATE, 0.2), z=H_PLATE / 2)
+    plate, pids, pconn = add_plate_strip(
+        m, np.linspace(-length / 2, length / 2, n_el + 1), homogeneous(H_PLATE, E_PLATE, 0.2), z=H_PLATE / 2
+    )
     low = m.add_nodes(m.coords[pids] - [0.0, H_PLATE / 2], 2)
-    add_interface(m, pconn, low[pconn - pids[0]], interface_params(0.0, K_BED, c=math.inf),
-                  offset=plate.bottom_offset)
+    add_interface(
+        m, pconn, low[pconn - pids[0]], interface_params(0.0, K_BED, c=math.inf), offset=plate.bottom_offset
+    )
     m.fix(low, "u")
     m.fix(low, "w")
     mid = pids[len(pids) // 2]
@@ -162,8 +167,19 @@ def winkler_deflection(n_el):
 
 
 C_MC = 10e3
-FOOTING = {"B": 2.0, "c": C_MC, "phi_deg": 0.0, "E": 20e6, "nu": 0.3, "rough": False, "settle": 0.04, "half_width": 6.0, "depth": 5.0,
-               "h_coarse": 1.0, "growth": 1.25}
+FOOTING = {
+    "B": 2.0,
+    "c": C_MC,
+    "phi_deg": 0.0,
+    "E": 20e6,
+    "nu": 0.3,
+    "rough": False,
+    "settle": 0.04,
+    "half_width": 6.0,
+    "depth": 5.0,
+    "h_coarse": 1.0,
+    "growth": 1.25,
+}
 
 
 def footing_capacity(h, n_steps=30, method="line_search"):
@@ -181,32 +197,57 @@ SHEAR_FLEXIBILITY = EI_PLATE * LAM**2 / (5.0 / 6.0 * E_PLATE / (2 * 1.2) * H_PLA
 MODEL_ERROR = {"strip load w(0,0)-w(0,-2b)": 1e-10, "Hetenyi w(0)": SHEAR_FLEXIBILITY, "Prandtl q_u": 0.005}
 t0 = time.perf_counter()
 cases = {
-    "strip load w(0,0)-w(0,-2b)": ([1, 2, 4] if FAST else [1, 2, 4, 8], strip_compression,
-                                   strip_centreline_compression(2 * B_HALF, Q, B_HALF, E_SOIL, NU)),
-    "Hetenyi w(0)": ([16, 32, 64] if FAST else [16, 32, 64, 128], winkler_deflection,
-                     float(hetenyi_deflection(np.array([0.0]), P_LOAD, K_BED, EI_PLATE)[0])),
-    "Prandtl q_u": ([0.5, 0.25, 0.125] if FAST else [0.5, 0.25, 0.125, 0.0625],
-                    lambda h: footing_capacity(h)[0], prandtl(C_MC, 0.0)[0]),
+    "strip load w(0,0)-w(0,-2b)": (
+        [1, 2, 4] if FAST else [1, 2, 4, 8],
+        strip_compression,
+        strip_centreline_compression(2 * B_HALF, Q, B_HALF, E_SOIL, NU),
+    ),
+    "Hetenyi w(0)": (
+        [16, 32, 64] if FAST else [16, 32, 64, 128],
+        winkler_deflection,
+        float(hetenyi_deflection(np.array([0.0]), P_LOAD, K_BED, EI_PLATE)[0]),
+    ),
+    "Prandtl q_u": (
+        [0.5, 0.25, 0.125] if FAST else [0.5, 0.25, 0.125, 0.0625],
+        lambda h: footing_capacity(h)[0],
+        prandtl(C_MC, 0.0)[0],
+    ),
 }
 efficiency = []
 for name, (levels, solve, exact) in cases.items():
     values = [solve(lv) for lv in levels]
     for i in range(len(levels) - 2):
-        r = richardson(*values[i:i + 3], noise=0.0)   # linear solves / the footing's converged plateau
+        r = richardson(*values[i : i + 3], noise=0.0)  # linear solves / the footing's converged plateau
         true_base, true_fine = values[i] - exact, values[i + 2] - exact
         # a true error within 3x the closed form's model error measures the model, not the discretisation
         judged = abs(true_base / exact) >= 3.0 * MODEL_ERROR[name]
-        efficiency.append({"case": name, "level": levels[i], "order": r.order, "est": r.error_base / exact,
-                           "true": true_base / exact, "index": r.error_base / true_base,
-                           "index_fine": r.error_fine / true_fine, "asymptotic": r.asymptotic, "judged": judged})
-print(f"closed-form studies: {time.perf_counter() - t0:.1f} s; Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}")
-print(f"{'case':28s} {'level':>7s} {'p':>6s} {'est. err':>10s} {'true err':>10s} {'index':>7s} "
-      f"{'index (finest)':>15s}")
+        efficiency.append(
+            {
+                "case": name,
+                "level": levels[i],
+                "order": r.order,
+                "est": r.error_base / exact,
+                "true": true_base / exact,
+                "index": r.error_base / true_base,
+                "index_fine": r.error_fine / true_fine,
+                "asymptotic": r.asymptotic,
+                "judged": judged,
+            }
+        )
+print(
+    f"closed-form studies: {time.perf_counter() - t0:.1f} s; Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}"
+)
+print(
+    f"{'case':28s} {'level':>7s} {'p':>6s} {'est. err':>10s} {'true err':>10s} {'index':>7s} "
+    f"{'index (finest)':>15s}"
+)
 for row in efficiency:
-    print(f"{row['case']:28s} {row['level']:7g} {row['order']:6.2f} {row['est']:10.2e} {row['true']:10.2e} "
-          f"{row['index']:7.3f} {row['index_fine']:15.3f}"
-          + ("" if row["asymptotic"] else "  (order outside [0.5, 5]: flagged)")
-          + ("" if row["judged"] else "  (true error within 3x the model error: not judged)"))
+    print(
+        f"{row['case']:28s} {row['level']:7g} {row['order']:6.2f} {row['est']:10.2e} {row['true']:10.2e} "
+        f"{row['index']:7.3f} {row['index_fine']:15.3f}"
+        + ("" if row["asymptotic"] else "  (order outside [0.5, 5]: flagged)")
+        + ("" if row["judged"] else "  (true error within 3x the model error: not judged)")
+    )
 
 # %% [markdown]
 # The index of the scene *as given* (the coarsest of each triple: what a user solving that mesh is told) is
@@ -217,14 +258,19 @@ for row in efficiency:
 # relatively largest.
 
 # %%
-EFFICIENCY_RANGE = (0.5, 2.0)   # the issue's band: an estimate within a factor 2 of the true error
+EFFICIENCY_RANGE = (0.5, 2.0)  # the issue's band: an estimate within a factor 2 of the true error
 indices = np.array([row["index"] for row in efficiency if row["judged"]])
 print(f"efficiency indices of the scene as given: {np.round(indices, 3).tolist()}")
-assert np.all(indices > 0.0)            # the estimate has the sign of the true error: it brackets q*
+assert np.all(indices > 0.0)  # the estimate has the sign of the true error: it brackets q*
 efficiency_ok = bool(np.all((indices >= EFFICIENCY_RANGE[0]) & (indices <= EFFICIENCY_RANGE[1])))
-record("error_estimate_efficiency", "efficiency index est./true error of the scene as given, min over strip "
-       f"load, Prandtl, Hetenyi (max {indices.max():.3g}; PASS when all in [0.5, 2])", indices.min(),
-       EFFICIENCY_RANGE[0], efficiency_ok)
+record(
+    "error_estimate_efficiency",
+    "efficiency index est./true error of the scene as given, min over strip "
+    f"load, Prandtl, Hetenyi (max {indices.max():.3g}; PASS when all in [0.5, 2])",
+    indices.min(),
+    EFFICIENCY_RANGE[0],
+    efficiency_ok,
+)
 assert efficiency_ok, f"efficiency indices {indices} outside {EFFICIENCY_RANGE}"
 
 # %% [markdown]
@@ -240,18 +286,22 @@ d = designer_concrete(fc)
 concrete = (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / Es))
 steel = (STEEL, steel_params(fy, Es))
 SECTION = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, steel, n_concrete=9)
-H_COARSE = 4.0   # both modes: the full-mode 2.0 made the refined references run for > 25 min here
+H_COARSE = 4.0  # both modes: the full-mode 2.0 made the refined references run for > 25 min here
 
 
 def foundation_scene(h_fine=1.0):
     return Scene(
-        width=30.0, depth=10.0,
-        layers=[SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
-                SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
+        width=30.0,
+        depth=10.0,
+        layers=[
+            SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
+            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ],
         foundation=Foundation(x0=-3.0, x1=3.0, section=SECTION, self_weight=25e3 * 0.4),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=400e3), ColumnLoad(x=2.5, N=400e3)],
-        mesh=MeshSize(h_fine=h_fine, h_coarse=H_COARSE, growth=1.3))
+        mesh=MeshSize(h_fine=h_fine, h_coarse=H_COARSE, growth=1.3),
+    )
 
 
 scene11 = foundation_scene()
@@ -288,23 +338,36 @@ def solve_and_check(target_error):
     ref = RefinedSolver(scene11, None, NEWTON)(ref_key)
     got, want = res.result.max_settlement()[1], ref.values["max_settlement"]
     err = abs(got - want) / abs(want)
-    print(f"  delivered at halvings {res.key}: {1e3 * got:.3f} mm; reference at {ref_key} ({ref.n_dof} DOFs, "
-          f"{ref.wall_time:.1f} s): {1e3 * want:.3f} mm; true error {err:.2%} (predicted "
-          f"{res.predicted['max_settlement']:.2%})")
+    print(
+        f"  delivered at halvings {res.key}: {1e3 * got:.3f} mm; reference at {ref_key} ({ref.n_dof} DOFs, "
+        f"{ref.wall_time:.1f} s): {1e3 * want:.3f} mm; true error {err:.2%} (predicted "
+        f"{res.predicted['max_settlement']:.2%})"
+    )
     return res, err, ref
 
 
 target, true_target_error, reference = solve_and_check(TARGET)
 if target.met:
-    record("target_error_met", f"|s_max - s_ref|/s_ref of the chapter-11 scene solved to target_error={TARGET} "
-           f"(reference: one more halving of mesh, steps and layers, {reference.n_dof} DOFs)", true_target_error,
-           TARGET, true_target_error <= TARGET)
+    record(
+        "target_error_met",
+        f"|s_max - s_ref|/s_ref of the chapter-11 scene solved to target_error={TARGET} "
+        f"(reference: one more halving of mesh, steps and layers, {reference.n_dof} DOFs)",
+        true_target_error,
+        TARGET,
+        true_target_error <= TARGET,
+    )
     assert true_target_error <= TARGET
 else:
     # an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash);
     # the driver is then shown on the loosest target it can reach here
-    record("target_error_met", f"chapter-11 scene, target_error={TARGET}: {target.status} (value: estimated "
-           "error of the scene as given)", target.predicted["max_settlement"], TARGET, False)
+    record(
+        "target_error_met",
+        f"chapter-11 scene, target_error={TARGET}: {target.status} (value: estimated "
+        "error of the scene as given)",
+        target.predicted["max_settlement"],
+        TARGET,
+        False,
+    )
     assert not FAST, "fast mode's 10 % must be reachable"
     looser, looser_error, reference = solve_and_check(0.10)
     assert looser.met and looser_error <= 0.10
@@ -319,10 +382,12 @@ s_ref = reference.values["max_settlement"]
 # is the solve's wall time. A setting is on the Pareto front when no other is both faster and more accurate.
 
 # %%
-mesh_levels = [0, 1]   # both modes (h/4 copies of this scene take tens of minutes on this machine)
-solvers = {"bfgs": RefinedSolver(scene11, None, Settings(method="bfgs")),
-           "full": RefinedSolver(scene11, None, NEWTON)}
-solvers["full"].cache.update(est11.levels)       # the estimate's solves used full Newton
+mesh_levels = [0, 1]  # both modes (h/4 copies of this scene take tens of minutes on this machine)
+solvers = {
+    "bfgs": RefinedSolver(scene11, None, Settings(method="bfgs")),
+    "full": RefinedSolver(scene11, None, NEWTON),
+}
+solvers["full"].cache.update(est11.levels)  # the estimate's solves used full Newton
 trade11 = []
 for method, solver in solvers.items():
     for m in mesh_levels:
@@ -330,12 +395,19 @@ for method, solver in solvers.items():
             for lay in (0, 1):
                 try:
                     lv = solver((m, s, lay))
-                except NonConvergence as err:   # a setting that fails is not on any front: say so
-                    print(f"h/{2 ** m} steps x{2 ** s} layers x{2 ** lay} {method}: failed ({err.report['reason']})")
+                except NonConvergence as err:  # a setting that fails is not on any front: say so
+                    print(
+                        f"h/{2**m} steps x{2**s} layers x{2**lay} {method}: failed ({err.report['reason']})"
+                    )
                     continue
-                trade11.append({"setting": f"h/{2 ** m} steps x{2 ** s} layers x{2 ** lay} {method}",
-                                "error": abs(lv.values["max_settlement"] - s_ref) / abs(s_ref),
-                                "wall": lv.wall_time, "n_dof": lv.n_dof})
+                trade11.append(
+                    {
+                        "setting": f"h/{2**m} steps x{2**s} layers x{2**lay} {method}",
+                        "error": abs(lv.values["max_settlement"] - s_ref) / abs(s_ref),
+                        "wall": lv.wall_time,
+                        "n_dof": lv.n_dof,
+                    }
+                )
 
 
 def footing_trade():
@@ -346,8 +418,13 @@ def footing_trade():
         for h in h_levels:
             for n_steps in (15, 30):
                 q_u, wall = footing_capacity(h, n_steps, method)
-                rows.append({"setting": f"h={h} {n_steps} steps {method}", "error": abs(q_u / q_exact - 1),
-                             "wall": wall})
+                rows.append(
+                    {
+                        "setting": f"h={h} {n_steps} steps {method}",
+                        "error": abs(q_u / q_exact - 1),
+                        "wall": wall,
+                    }
+                )
     return rows
 
 
@@ -356,9 +433,14 @@ trade_mc = footing_trade()
 
 def pareto(rows):
     """The rows no other row beats in both error and wall time, fastest first."""
+
     def dominates(o, r):
-        return o["wall"] <= r["wall"] and o["error"] <= r["error"] and (o["wall"] < r["wall"]
-                                                                        or o["error"] < r["error"])
+        return (
+            o["wall"] <= r["wall"]
+            and o["error"] <= r["error"]
+            and (o["wall"] < r["wall"] or o["error"] < r["error"])
+        )
+
     front = [r for r in rows if not any(dominates(o, r) for o in rows)]
     return sorted(front, key=lambda r: r["wall"])
 
@@ -372,11 +454,14 @@ def cheapest(rows, levels=(0.10, 0.05, 0.02, 0.01)):
 
 
 fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-for ax, (title, rows) in zip(axes, (("chapter-11 foundation, max settlement", trade11),
-                                    ("MC footing (Prandtl), q_u", trade_mc))):
+for ax, (title, rows) in zip(
+    axes, (("chapter-11 foundation, max settlement", trade11), ("MC footing (Prandtl), q_u", trade_mc))
+):
     ax.loglog([r["wall"] for r in rows], [max(r["error"], 1e-5) for r in rows], "o", color="0.6", ms=4)
     front = pareto(rows)
-    ax.loglog([r["wall"] for r in front], [max(r["error"], 1e-5) for r in front], "C0o-", label="Pareto front")
+    ax.loglog(
+        [r["wall"] for r in front], [max(r["error"], 1e-5) for r in front], "C0o-", label="Pareto front"
+    )
     for tol in (0.10, 0.05, 0.02, 0.01):
         ax.axhline(tol, color="k", lw=0.5, ls=":")
     ax.set_xlabel("wall time [s]")
@@ -392,8 +477,14 @@ for title, rows in (("chapter-11 foundation", trade11), ("MC footing", trade_mc)
         print(f"  {r['setting']:36s} error {r['error']:8.3%}  {r['wall']:7.2f} s")
     print(f"{title}: cheapest setting reaching")
     for tol, r in cheapest(rows).items():
-        print(f"  {tol:4.0%}: " + ("not reached in this study" if r is None else
-                                   f"{r['setting']:36s} error {r['error']:7.3%}  {r['wall']:6.2f} s"))
+        print(
+            f"  {tol:4.0%}: "
+            + (
+                "not reached in this study"
+                if r is None
+                else f"{r['setting']:36s} error {r['error']:7.3%}  {r['wall']:6.2f} s"
+            )
+        )
 
 # %% [markdown]
 # ## Checks
@@ -411,8 +502,10 @@ finest = next(r for r in trade11 if r["setting"] == f"h/{2 ** mesh_levels[-1]} s
 assert finest["error"] < coarse["error"]
 true_base = abs(est11.value["max_settlement"] - s_ref) / abs(s_ref)
 est_base = est11.relative["max_settlement"]
-print(f"chapter-11 scene as given: estimated error {est_base:.2%}, error against the reference {true_base:.2%}, "
-      f"index {est_base / true_base:.2f} (the reference carries its own error: printed, not asserted)")
+print(
+    f"chapter-11 scene as given: estimated error {est_base:.2%}, error against the reference {true_base:.2%}, "
+    f"index {est_base / true_base:.2f} (the reference carries its own error: printed, not asserted)"
+)
 assert est_base > 0.0 and true_base > 0.0
 
 # %% [markdown]

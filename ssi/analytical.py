@@ -109,8 +109,13 @@ def shear_lag_slip_length(tau_bar, EA, kt, L, tau_f):
         elif t >= tau_f:
             out[i] = L
         else:
-            out[i] = brentq(lambda s, t=t: shear_lag_from_slip(s, EA, kt, L, tau_f)[0] - t, 0.0, L,
-                            xtol=1e-14 * L, rtol=1e-14)
+            out[i] = brentq(
+                lambda s, t=t: shear_lag_from_slip(s, EA, kt, L, tau_f)[0] - t,
+                0.0,
+                L,
+                xtol=1e-14 * L,
+                rtol=1e-14,
+            )
     return out if np.ndim(tau_bar) else float(out[0])
 
 
@@ -123,7 +128,7 @@ def shear_lag_displacement(x, tau_bar, EA, kt, L, tau_f):
     s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
     if s >= L:
         raise ValueError("tau_bar = tau_f: the whole bar slides, the displacement is not determined")
-    N_s = F - tau_f * s                       # axial force at the slip front
+    N_s = F - tau_f * s  # axial force at the slip front
     u_el = N_s * np.cosh(lam * (L - x)) / (EA * lam * np.sinh(lam * (L - s)))
     u_sl = tau_f / kt + (F * (s - x) - 0.5 * tau_f * (s * s - x * x)) / EA
     return np.where(x < s, u_sl, u_el)

@@ -23,8 +23,13 @@ from scipy.integrate import quad
 from .quadrature import gauss_legendre
 from .shapes import lagrange3
 
-__all__ = ["edge_forces", "flamant_strip_quadrature", "lame_cylinder_displacement", "strip_centreline_compression",
-           "strip_load_stresses"]
+__all__ = [
+    "edge_forces",
+    "flamant_strip_quadrature",
+    "lame_cylinder_displacement",
+    "strip_centreline_compression",
+    "strip_load_stresses",
+]
 
 
 def _check(q, b):

@@ -180,8 +180,10 @@ class SparsePattern:
     def _merge(self, ptrs, cols):
         if len(ptrs) == 1:
             return ptrs[0], cols[0]
-        mats = [sp.csr_matrix((np.ones(c.size), c, p), shape=(self.n_free, self.n_free))
-                for p, c in zip(ptrs, cols)]
+        mats = [
+            sp.csr_matrix((np.ones(c.size), c, p), shape=(self.n_free, self.n_free))
+            for p, c in zip(ptrs, cols)
+        ]
         union = sum(mats[1:], mats[0]).tocsr()
         union.sort_indices()
         return union.indptr.astype(np.int64), union.indices.astype(np.int32)

@@ -45,15 +45,33 @@ def prandtl(c, phi_deg, q=0.0):
 class FootingScene:
     model: Model
     soil: SoilQ8
-    footing: np.ndarray   # node ids under the (half) footing
+    footing: np.ndarray  # node ids under the (half) footing
     B: float
     mesh: object
     info: dict
 
 
-def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rough=True, half_width=10.0,
-                  depth=10.0, h_fine=0.25, h_coarse=2.0, growth=1.25, scheme="implicit", n_sub=1, drift=False,
-                  surcharge=0.0, settle=0.1, n_gauss=2, layers=None):
+def rigid_footing(
+    B=2.0,
+    c=10e3,
+    phi_deg=20.0,
+    psi_deg=None,
+    E=20e6,
+    nu=0.3,
+    rough=True,
+    half_width=10.0,
+    depth=10.0,
+    h_fine=0.25,
+    h_coarse=2.0,
+    growth=1.25,
+    scheme="implicit",
+    n_sub=1,
+    drift=False,
+    surcharge=0.0,
+    settle=0.1,
+    n_gauss=2,
+    layers=None,
+):
     """Half model of a rigid strip footing of width ``B`` on a weightless Mohr–Coulomb block.
 
     ``settle`` is the footing settlement at load factor 1 [m]. ``surcharge`` [Pa] acts on the ground surface
@@ -65,8 +83,10 @@ def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rou
     half_width = check_real("half_width", half_width, lo=0.0, lo_open=True, unit="m")
     depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
     if half_width <= B / 2:
-        raise ValueError(f"half_width must be > B/2 = {B / 2:g} m (the block must extend beyond the footing), "
-                         f"got half_width={half_width!r}")
+        raise ValueError(
+            f"half_width must be > B/2 = {B / 2:g} m (the block must extend beyond the footing), "
+            f"got half_width={half_width!r}"
+        )
     check_real("settle", settle, lo=0.0, lo_open=True, unit="m (footing settlement at load factor 1)")
     check_real("surcharge", surcharge, lo=0.0, unit="Pa")
     for name, value in (("c", c), ("E", E), ("nu", nu), ("phi_deg", phi_deg)):
@@ -76,18 +96,29 @@ def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rou
     check_bool("drift", drift)
     check_choice("n_gauss", n_gauss, (2, 3))
     thick = None if layers is None else [lay[0] for lay in layers]
-    mesh = soil_block(half_width, depth, thick, foundation=(0.0, 0.5 * B), h_fine=h_fine, h_coarse=h_coarse,
-                      growth=growth, x_left=0.0)
+    mesh = soil_block(
+        half_width,
+        depth,
+        thick,
+        foundation=(0.0, 0.5 * B),
+        h_fine=h_fine,
+        h_coarse=h_coarse,
+        growth=growth,
+        x_left=0.0,
+    )
     model = Model()
     ids = model.add_nodes(mesh.xy, ndof=2)
     if layers is None:
         mats = [mohr_coulomb_params(E, nu, c, phi_deg, psi_deg, scheme=scheme, n_sub=n_sub, drift=drift)]
     else:
-        mats = [mohr_coulomb_params(lay[1], nu, lay[2], lay[3], lay[4], scheme=scheme, n_sub=n_sub, drift=drift)
-                for lay in layers]
+        mats = [
+            mohr_coulomb_params(lay[1], nu, lay[2], lay[3], lay[4], scheme=scheme, n_sub=n_sub, drift=drift)
+            for lay in layers
+        ]
     kinds, params = material_table(mats)
-    soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params,
-                  n_gauss=n_gauss)
+    soil = SoilQ8(
+        mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params, n_gauss=n_gauss
+    )
     if surcharge:
         s0 = np.zeros((soil.n_el, len(soil.gw), 4))
         s0[..., [0, 1, 3]] = -surcharge
@@ -103,9 +134,24 @@ def rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=None, E=20e6, nu=0.3, rou
         model.fix(footing, "u")
     if surcharge:
         _surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, dead=True)
-    info = dict(B=B, c=c, phi_deg=phi_deg, psi_deg=phi_deg if psi_deg is None else psi_deg, E=E, nu=nu,
-                rough=rough, half_width=half_width, depth=depth, h_fine=h_fine, scheme=scheme, n_sub=n_sub,
-                drift=drift, surcharge=surcharge, n_el=len(mesh.conn), n_dof=model.n_dof)
+    info = dict(
+        B=B,
+        c=c,
+        phi_deg=phi_deg,
+        psi_deg=phi_deg if psi_deg is None else psi_deg,
+        E=E,
+        nu=nu,
+        rough=rough,
+        half_width=half_width,
+        depth=depth,
+        h_fine=h_fine,
+        scheme=scheme,
+        n_sub=n_sub,
+        drift=drift,
+        surcharge=surcharge,
+        n_el=len(mesh.conn),
+        n_dof=model.n_dof,
+    )
     return FootingScene(model, soil, footing, B, mesh, info)
 
 
@@ -162,9 +208,18 @@ def push_footing(scene: FootingScene, n_steps=20, method="line_search", grading=
         failure = err.report
     wall = time.perf_counter() - t0
     s, q = footing_pressure(scene, res)
-    return dict(settlement=s, q=q, q_u=float(q.max()), iterations=list(res.iterations[1:]),
-                n_iterations=int(sum(res.iterations[1:])), wall_time=wall, result=res, failure=failure,
-                cuts=res.cuts, factorizations=res.factorizations)
+    return dict(
+        settlement=s,
+        q=q,
+        q_u=float(q.max()),
+        iterations=list(res.iterations[1:]),
+        n_iterations=int(sum(res.iterations[1:])),
+        wall_time=wall,
+        result=res,
+        failure=failure,
+        cuts=res.cuts,
+        factorizations=res.factorizations,
+    )
 
 
 # ---------------------------------------------------------------------------------------------------------

@@ -30,9 +30,15 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     the load factor reached in it. ``column_load`` [N/m]: of a single-phase scene, load factor times the sum
     of the column forces N (None for a phased scene: its phase, load factor and contact resultant say it)."""
     from .scene import ColumnLoad
+
     x_s, s_max = result.max_settlement()
-    out = {"complete": bool(complete), "steps": result.n_steps, "load_factor": float(result.load_factor[-1]),
-           "max_settlement": s_max, "x_max_settlement": x_s}
+    out = {
+        "complete": bool(complete),
+        "steps": result.n_steps,
+        "load_factor": float(result.load_factor[-1]),
+        "max_settlement": s_max,
+        "x_max_settlement": x_s,
+    }
     if result.built.plate is not None:
         c = result.contact()
         i = int(c["sig_n"].argmin())
@@ -58,27 +64,42 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
 
 def summary_text(s: dict) -> str:
     """The summary as the lines ``ssi run`` and ``ssi show`` print (kN, kPa, mm)."""
-    state = {"completed": ")", "limit load reached": ", the limit load)",
-             "stopped": ", INCOMPLETE: the run stopped before the end of its load path)"}[s["status"]]
+    state = {
+        "completed": ")",
+        "limit load reached": ", the limit load)",
+        "stopped": ", INCOMPLETE: the run stopped before the end of its load path)",
+    }[s["status"]]
     lines = [f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}"]
     if s.get("phase") is not None:
-        lines.append(f"last phase       {s['phase']!r} at load factor {s['phase_load_factor']:.4g} of its loads")
+        lines.append(
+            f"last phase       {s['phase']!r} at load factor {s['phase_load_factor']:.4g} of its loads"
+        )
     lines.append(f"max settlement   {1e3 * s['max_settlement']:.3f} mm at x = {s['x_max_settlement']:.3f} m")
     if "max_contact_pressure" in s:
-        lines += [(f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
-                   f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"),
-                  f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m"]
+        lines += [
+            (
+                f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
+                f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"
+            ),
+            f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m",
+        ]
     load = "" if s.get("column_load") is None else f", {s['column_load'] / 1e3:.2f} kN/m of column load"
     if s["status"] == "limit load reached":
         where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
-        lines.append(f"limit load       reached at load factor {s['limit_load_factor']:.4g}{where}{load}: "
-                     "the scene cannot carry its full loads (the path up to the limit is the answer)")
+        lines.append(
+            f"limit load       reached at load factor {s['limit_load_factor']:.4g}{where}{load}: "
+            "the scene cannot carry its full loads (the path up to the limit is the answer)"
+        )
     elif s["status"] == "stopped":
         where = "" if s.get("phase") is None else f" in phase {s['phase']!r}"
-        lines.append(f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
-                     f"(solver failure, not a detected limit load: {s['stop_reason']})")
+        lines.append(
+            f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
+            f"(solver failure, not a detected limit load: {s['stop_reason']})"
+        )
     if s.get("wall_time_s") is not None:
-        lines.append(f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})")
+        lines.append(
+            f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})"
+        )
     return "\n".join(lines)
 
 
@@ -90,6 +111,7 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     from .scene import SceneResult
     from .scene_file import read_scene_file
     from .solver import NonConvergence
+
     scene_path = Path(scene_path)
     stem = scene_path.with_suffix("")
     out = Path(out) if out else stem.with_suffix(".h5")
@@ -116,6 +138,7 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     complete = stop is None
     written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
     from .export import export_series
+
     written.append(export_series(result, paraview, overwrite=overwrite))
     s = summary(result, wall, complete, stop)
     with atomic_path(summary_path, overwrite) as tmp:
@@ -130,6 +153,7 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     """What ``ssi show`` does; returns (result, summary dict, written paths)."""
     from .plot import save_standard_figures
     from .results import read_info, read_result
+
     path = Path(path)
     result = read_result(path)
     info = read_info(path)
@@ -147,14 +171,19 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="ssi", description="2D soil-structure interaction of strip "
-                                     "foundations: solve a scene file, show a result file.")
+    parser = argparse.ArgumentParser(
+        prog="ssi",
+        description="2D soil-structure interaction of strip "
+        "foundations: solve a scene file, show a result file.",
+    )
     sub = parser.add_subparsers(dest="command", required=True)
     run_p = sub.add_parser("run", help="solve a TOML scene file; write result, ParaView file, plots, summary")
     run_p.add_argument("scene", type=Path)
     run_p.add_argument("-o", "--out", type=Path, help="result file (default: <scene>.h5)")
     run_p.add_argument("--plots", type=Path, help="folder for the figures (default: <scene>_plots)")
-    run_p.add_argument("--paraview", type=Path, help="ParaView series (default: <scene>.pvd, steps in <scene>_steps/)")
+    run_p.add_argument(
+        "--paraview", type=Path, help="ParaView series (default: <scene>.pvd, steps in <scene>_steps/)"
+    )
     run_p.add_argument("--no-plots", action="store_true", help="skip the figures")
     run_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
@@ -168,12 +197,14 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.command == "schema":
         from .scene_file import schema_text
+
         print(schema_text())
         return 0
     try:
         if args.command == "run":
-            _, s, written = run_scene_file(args.scene, args.out, args.plots, args.paraview, args.overwrite,
-                                           not args.no_plots)
+            _, s, written = run_scene_file(
+                args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots
+            )
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)
     except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:

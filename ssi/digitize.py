@@ -42,8 +42,14 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["REQUIRED_META", "AxisCalibration", "convert", "read_digitizer_csv", "read_reference",
-           "write_reference"]
+__all__ = [
+    "REQUIRED_META",
+    "AxisCalibration",
+    "convert",
+    "read_digitizer_csv",
+    "read_reference",
+    "write_reference",
+]
 
 REQUIRED_META = ("source", "figure", "units", "trust", "uncertainty", "how_obtained")
 TRUST_LABELS = ("A", "B", "C", "D")
@@ -132,7 +138,7 @@ def read_digitizer_csv(src, name: str = "curve") -> dict[str, np.ndarray]:
     for k, nm in enumerate(names):
         pts = []
         for r in data:
-            cells = r[2 * k:2 * k + 2] + ["", ""]
+            cells = r[2 * k : 2 * k + 2] + ["", ""]
             x, y = _num(cells[0]) if cells[0].strip() else None, _num(cells[1]) if cells[1].strip() else None
             if x is None and y is None:
                 continue
@@ -193,9 +199,17 @@ def read_reference(path) -> tuple[dict, dict]:
     return meta, cols
 
 
-def convert(src, dst, meta: dict, columns=("curve", "x", "y"), x_axis: AxisCalibration | None = None,
-            y_axis: AxisCalibration | None = None, swap: bool = False, rename: dict | None = None,
-            sort: bool = True) -> dict:
+def convert(
+    src,
+    dst,
+    meta: dict,
+    columns=("curve", "x", "y"),
+    x_axis: AxisCalibration | None = None,
+    y_axis: AxisCalibration | None = None,
+    swap: bool = False,
+    rename: dict | None = None,
+    sort: bool = True,
+) -> dict:
     """Convert a digitiser export ``src`` into the reference CSV ``dst``; returns the written columns.
 
     ``columns``: names of the (curve, first value, second value) columns of the reference file. The
@@ -244,11 +258,20 @@ def main(argv=None) -> int:
         if v is not None:
             meta[k] = v
     rename = dict(p.split("=", 1) for p in a.rename.split(",") if p)
-    cols = convert(a.export, a.output, meta, tuple(a.columns.split(",")),
-                   AxisCalibration.parse(a.x_cal) if a.x_cal else None,
-                   AxisCalibration.parse(a.y_cal) if a.y_cal else None, a.swap, rename)
-    print(f"wrote {len(next(iter(cols.values())))} points of {len(set(cols[a.columns.split(',')[0]]))} "
-          f"curves to {a.output}")
+    cols = convert(
+        a.export,
+        a.output,
+        meta,
+        tuple(a.columns.split(",")),
+        AxisCalibration.parse(a.x_cal) if a.x_cal else None,
+        AxisCalibration.parse(a.y_cal) if a.y_cal else None,
+        a.swap,
+        rename,
+    )
+    print(
+        f"wrote {len(next(iter(cols.values())))} points of {len(set(cols[a.columns.split(',')[0]]))} "
+        f"curves to {a.output}"
+    )
     return 0
 
 

@@ -38,16 +38,26 @@ from .section import Section, layered
 from .solver import Settings
 
 REFINEMENTS = ("mesh", "steps", "layers")
-QUANTITIES = ("max_settlement", "differential_settlement", "max_contact_pressure", "max_moment",
-              "limit_load_factor")
-UNITS = {"max_settlement": "m", "differential_settlement": "m", "max_contact_pressure": "Pa",
-         "max_moment": "N m/m", "limit_load_factor": "-"}
-ORDER_MIN = 0.5   # below: the differences hardly shrink -- far from the asymptotic range
-ORDER_MAX = 5.0   # above: the second difference collapsed by accident (cancellation), not convergence
+QUANTITIES = (
+    "max_settlement",
+    "differential_settlement",
+    "max_contact_pressure",
+    "max_moment",
+    "limit_load_factor",
+)
+UNITS = {
+    "max_settlement": "m",
+    "differential_settlement": "m",
+    "max_contact_pressure": "Pa",
+    "max_moment": "N m/m",
+    "limit_load_factor": "-",
+}
+ORDER_MIN = 0.5  # below: the differences hardly shrink -- far from the asymptotic range
+ORDER_MAX = 5.0  # above: the second difference collapsed by accident (cancellation), not convergence
 ROUND_OFF = 1e-9  # relative differences below this are the solver's round-off: the refinement is exact
-NOISE = 1e-3      # relative differences below this are the iteration error of a nonlinear solve (force_tol
-                  # 1e-5 moves chapter 11's settlements by ~1e-4 between solvers): no order can be observed,
-                  # the error is bounded by the differences themselves
+NOISE = 1e-3  # relative differences below this are the iteration error of a nonlinear solve (force_tol
+# 1e-5 moves chapter 11's settlements by ~1e-4 between solvers): no order can be observed,
+# the error is bounded by the differences themselves
 
 
 # ---- Richardson on a sequence of halvings ----------------------------------------------------------------
@@ -90,10 +100,16 @@ def richardson(q0: float, q1: float, q2: float, ratio: float = 2.0, noise: float
         # converged at h/2 (or oscillating): no order; the error of q0 is at least |d1|, q2's is unknown
         return Richardson((q0, q1, q2), math.inf if d1 * d2 > 0 else math.nan, -(d1 + d2), abs(d2), q2, False)
     p = math.log(abs(d1 / d2)) / math.log(ratio)
-    growth = ratio ** p
+    growth = ratio**p
     asymptotic = ORDER_MIN <= p <= ORDER_MAX
-    return Richardson((q0, q1, q2), p, -d1 * growth / (growth - 1.0), -d2 / (growth - 1.0),
-                      q2 + d2 / (growth - 1.0), asymptotic)
+    return Richardson(
+        (q0, q1, q2),
+        p,
+        -d1 * growth / (growth - 1.0),
+        -d2 / (growth - 1.0),
+        q2 + d2 / (growth - 1.0),
+        asymptotic,
+    )
 
 
 # ---- refined copies of a scene ---------------------------------------------------------------------------
@@ -105,8 +121,14 @@ def split_section(section: Section, factor: int = 2) -> Section:
     order = np.argsort(section.z_mid)
     rep = np.repeat(order, f)
     labels = tuple(section.labels[i] for i in rep) if section.labels else ()
-    return layered(section.h[rep] / f, section.kind[rep], list(section.params[rep]),
-                   carries_shear=section.carries_shear[rep], z_ref=-section.z_bottom, labels=labels)
+    return layered(
+        section.h[rep] / f,
+        section.kind[rep],
+        list(section.params[rep]),
+        carries_shear=section.carries_shear[rep],
+        z_ref=-section.z_bottom,
+        labels=labels,
+    )
 
 
 def refined_scene(scene, mesh: int = 0, layers: int = 0):
@@ -114,11 +136,15 @@ def refined_scene(scene, mesh: int = 0, layers: int = 0):
     layer split in 2^``layers``; the scene itself is not changed."""
     if mesh < 0 or layers < 0:
         raise ValueError(f"refinement levels must be >= 0, got mesh={mesh}, layers={layers}")
-    out = replace(scene, mesh=replace(scene.mesh, h_fine=scene.mesh.h_fine / 2 ** mesh,
-                                      h_coarse=scene.mesh.h_coarse / 2 ** mesh))
+    out = replace(
+        scene,
+        mesh=replace(scene.mesh, h_fine=scene.mesh.h_fine / 2**mesh, h_coarse=scene.mesh.h_coarse / 2**mesh),
+    )
     if layers and scene.foundation is not None:
-        out = replace(out, foundation=replace(scene.foundation,
-                                              section=split_section(scene.foundation.section, 2 ** layers)))
+        out = replace(
+            out,
+            foundation=replace(scene.foundation, section=split_section(scene.foundation.section, 2**layers)),
+        )
     return out
 
 
@@ -126,7 +152,7 @@ def refined_steps(n_steps: int | None, settings: Settings | None, level: int):
     """(n_steps, settings) with the load increments halved ``level`` times: 2^level times the equal load
     levels, and the automatic stepping's first, largest and smallest increments divided by 2^level."""
     s = settings or Settings()
-    f = 2 ** level
+    f = 2**level
     n = None if n_steps is None else int(n_steps) * f
     return n, replace(s, first_step=s.first_step / f, max_step=s.max_step / f, min_step=s.min_step / f)
 
@@ -191,8 +217,9 @@ class ErrorEstimate:
 
     @property
     def cost(self) -> dict:
-        return {name: sum(self.levels[k].wall_time for k in _keys(self.base_key, name)[1:])
-                for name in self.parts}
+        return {
+            name: sum(self.levels[k].wall_time for k in _keys(self.base_key, name)[1:]) for name in self.parts
+        }
 
     @property
     def base_wall_time(self) -> float:
@@ -200,19 +227,30 @@ class ErrorEstimate:
 
     def worst_refinement(self, quantities) -> str:
         """The refinement whose estimated error (relative, summed over ``quantities``) is largest."""
-        return max(self.parts, key=lambda r: sum(abs(self.parts[r][q].error_base) / abs(self.value[q])
-                                                 for q in quantities if q in self.parts[r] and self.value[q]))
+        return max(
+            self.parts,
+            key=lambda r: sum(
+                abs(self.parts[r][q].error_base) / abs(self.value[q])
+                for q in quantities
+                if q in self.parts[r] and self.value[q]
+            ),
+        )
 
     def __str__(self) -> str:
-        lines = [f"{'quantity':24s} {'value':>12s} {'error':>10s} {'rel':>8s}  "
-                 + "  ".join(f"{r + ' (p)':>14s}" for r in self.parts)]
+        lines = [
+            f"{'quantity':24s} {'value':>12s} {'error':>10s} {'rel':>8s}  "
+            + "  ".join(f"{r + ' (p)':>14s}" for r in self.parts)
+        ]
         for q, v in self.value.items():
-            orders = "  ".join(f"{self.parts[r][q].order:14.2f}" if q in self.parts[r] else f"{'-':>14s}"
-                               for r in self.parts)
+            orders = "  ".join(
+                f"{self.parts[r][q].order:14.2f}" if q in self.parts[r] else f"{'-':>14s}" for r in self.parts
+            )
             flag = "" if self.asymptotic[q] else "  (not asymptotic)"
             lines.append(f"{q:24s} {v:12.5g} {self.error[q]:10.3g} {self.relative[q]:8.2%}  {orders}{flag}")
-        lines.append(f"cost [s]: base {self.base_wall_time:.2f}, "
-                     + ", ".join(f"{r} {c:.2f}" for r, c in self.cost.items()))
+        lines.append(
+            f"cost [s]: base {self.base_wall_time:.2f}, "
+            + ", ".join(f"{r} {c:.2f}" for r, c in self.cost.items())
+        )
         return "\n".join(lines)
 
 
@@ -238,8 +276,9 @@ class RefinedSolver:
             self.linear &= bool(built.is_linear and not self.scene.phases)
             t0 = time.perf_counter()
             out = built.solve(n_steps=n, settings=settings)
-            self.cache[key] = Level(key, headline(out), time.perf_counter() - t0, built.model.n_dof,
-                                    out.status, out)
+            self.cache[key] = Level(
+                key, headline(out), time.perf_counter() - t0, built.model.n_dof, out.status, out
+            )
         return self.cache[key]
 
 
@@ -265,8 +304,9 @@ def _estimate(solver, base, refine) -> ErrorEstimate:
     return ErrorEstimate(value, parts, dict(solver.cache), base)
 
 
-def estimate(scene, n_steps: int | None = None, settings: Settings | None = None,
-             refine=REFINEMENTS) -> ErrorEstimate:
+def estimate(
+    scene, n_steps: int | None = None, settings: Settings | None = None, refine=REFINEMENTS
+) -> ErrorEstimate:
     """Estimate the discretisation error of ``scene``'s headline quantities (see the module docstring).
 
     ``refine``: the refinements to estimate, a subset of ("mesh", "steps", "layers"); each costs two more
@@ -276,8 +316,7 @@ def estimate(scene, n_steps: int | None = None, settings: Settings | None = None
     return _estimate(RefinedSolver(scene, n_steps, settings), (0, 0, 0), _check_refine(refine, scene))
 
 
-def solve_with_error(scene, n_steps: int | None = None, settings: Settings | None = None,
-                     refine=REFINEMENTS):
+def solve_with_error(scene, n_steps: int | None = None, settings: Settings | None = None, refine=REFINEMENTS):
     """(SceneResult of the scene as given, its ErrorEstimate): what ``Scene.solve(estimate_error=True)``
     would return."""
     est = estimate(scene, n_steps, settings, refine)
@@ -308,13 +347,20 @@ def _error_at(r: Richardson, j: int) -> float:
     """|estimated error| after j halvings from the base, from the base's fitted power law C h^p."""
     if r.error_base == 0.0:
         return 0.0
-    if not math.isfinite(r.order):          # resolved to the noise: refining does not shrink the bound
+    if not math.isfinite(r.order):  # resolved to the noise: refining does not shrink the bound
         return abs(r.error_base) if j == 0 else abs(r.error_fine)
     return abs(r.error_base) * 2.0 ** (-r.order * j)
 
 
-def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settlement",), n_steps=None,
-                    settings: Settings | None = None, refine=REFINEMENTS, max_halvings: int = 3) -> TargetResult:
+def solve_to_target(
+    scene,
+    target_error: float = 0.02,
+    quantities=("max_settlement",),
+    n_steps=None,
+    settings: Settings | None = None,
+    refine=REFINEMENTS,
+    max_halvings: int = 3,
+) -> TargetResult:
     """Solve ``scene`` refined just enough that the estimated relative error of every quantity in
     ``quantities`` is at most ``target_error``.
 
@@ -336,7 +382,9 @@ def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settleme
     est = _estimate(solver, (0, 0, 0), refine)
     missing = [q for q in quantities if q not in est.value]
     if missing:
-        raise ValueError(f"quantities {missing} are not answered by this scene (it answers {list(est.value)})")
+        raise ValueError(
+            f"quantities {missing} are not answered by this scene (it answers {list(est.value)})"
+        )
 
     def wall():
         return sum(lv.wall_time for lv in solver.cache.values())
@@ -344,18 +392,32 @@ def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settleme
     base = est.levels[(0, 0, 0)]
     rel0 = {q: est.relative[q] for q in quantities}
     if all(r <= target_error for r in rel0.values()):
-        return TargetResult("target met", f"the scene as given meets the target: {_fmt(rel0)}", base.result,
-                            (0, 0, 0), rel0, est, wall())
+        return TargetResult(
+            "target met",
+            f"the scene as given meets the target: {_fmt(rel0)}",
+            base.result,
+            (0, 0, 0),
+            rel0,
+            est,
+            wall(),
+        )
     # a non-asymptotic refinement whose whole change is below a tenth of the target cannot decide it
-    bad = [(r, q) for r in est.parts for q in quantities if not est.parts[r][q].asymptotic
-           and abs(est.parts[r][q].error_base) > 0.1 * target_error * abs(est.value[q])]
+    bad = [
+        (r, q)
+        for r in est.parts
+        for q in quantities
+        if not est.parts[r][q].asymptotic
+        and abs(est.parts[r][q].error_base) > 0.1 * target_error * abs(est.value[q])
+    ]
     if bad:
         r, q = bad[0]
         part = est.parts[r][q]
-        msg = (f"stopped: the {r} refinement of {q} is not in the asymptotic range (answers at h, h/2, h/4: "
-               f"{', '.join(f'{v:.6g}' for v in part.values)}; observed order {part.order:.2f}, outside "
-               f"[{ORDER_MIN}, {ORDER_MAX}]): its error cannot be extrapolated; estimated errors of the scene "
-               f"as given {_fmt(rel0)}. Start from a finer scene, or check the model")
+        msg = (
+            f"stopped: the {r} refinement of {q} is not in the asymptotic range (answers at h, h/2, h/4: "
+            f"{', '.join(f'{v:.6g}' for v in part.values)}; observed order {part.order:.2f}, outside "
+            f"[{ORDER_MIN}, {ORDER_MAX}]): its error cannot be extrapolated; estimated errors of the scene "
+            f"as given {_fmt(rel0)}. Start from a finer scene, or check the model"
+        )
         warnings.warn(msg, RuntimeWarning, stacklevel=2)
         return TargetResult("not asymptotic", msg, base.result, (0, 0, 0), rel0, est, wall())
     names = list(est.parts)
@@ -365,22 +427,33 @@ def solve_to_target(scene, target_error: float = 0.02, quantities=("max_settleme
         growth[r] = max(math.sqrt(t[2] / t[0]), 1.0) if t[0] > 0 else 2.0
     best = None
     for combo in itertools.product(range(int(max_halvings) + 1), repeat=len(names)):
-        pred = {q: sum(_error_at(est.parts[r][q], j) for r, j in zip(names, combo)) / abs(est.value[q])
-                for q in quantities}
+        pred = {
+            q: sum(_error_at(est.parts[r][q], j) for r, j in zip(names, combo)) / abs(est.value[q])
+            for q in quantities
+        }
         if all(v <= target_error for v in pred.values()):
             cost = math.prod(growth[r] ** j for r, j in zip(names, combo))
             if best is None or cost < best[0]:
                 best = (cost, combo, pred)
     if best is None:
-        msg = (f"stopped: no combination of at most {max_halvings} halvings of {names} is predicted to meet "
-               f"{target_error:g} (scene as given: {_fmt(rel0)}); raise max_halvings or start finer")
+        msg = (
+            f"stopped: no combination of at most {max_halvings} halvings of {names} is predicted to meet "
+            f"{target_error:g} (scene as given: {_fmt(rel0)}); raise max_halvings or start finer"
+        )
         warnings.warn(msg, RuntimeWarning, stacklevel=2)
         return TargetResult("limit of refinements", msg, base.result, (0, 0, 0), rel0, est, wall())
     _, combo, pred = best
     key = tuple(combo[names.index(r)] if r in names else 0 for r in REFINEMENTS)
     level = solver(key)
-    return TargetResult("target met", f"halvings {dict(zip(REFINEMENTS, key))}: predicted errors {_fmt(pred)} "
-                        f"<= {target_error:g}", level.result, key, pred, est, wall())
+    return TargetResult(
+        "target met",
+        f"halvings {dict(zip(REFINEMENTS, key))}: predicted errors {_fmt(pred)} <= {target_error:g}",
+        level.result,
+        key,
+        pred,
+        est,
+        wall(),
+    )
 
 
 def _fmt(rel):

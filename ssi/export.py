@@ -24,8 +24,18 @@ import numpy as np
 from .results import atomic_path
 
 STRESS_NAMES = ("sxx", "szz", "txz", "syy")
-CELL_FIELDS = (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "pore_pressure", "N", "M", "Q",
-               "contact_pressure", "contact_shear", "contact_open")
+CELL_FIELDS = (
+    *STRESS_NAMES,
+    "plastic_fraction",
+    "plastic_strain",
+    "pore_pressure",
+    "N",
+    "M",
+    "Q",
+    "contact_pressure",
+    "contact_shear",
+    "contact_open",
+)
 
 
 def mesh_cells(result) -> list:
@@ -43,6 +53,7 @@ def mesh_cells(result) -> list:
 
 def _interface_lower_nodes(built):
     from .results import element_nodes
+
     return element_nodes(built.model, built.interface.edofs)[:, 3:]
 
 
@@ -96,8 +107,9 @@ def export_vtu(result, path, k=-1, overwrite=False) -> Path:
     path = Path(path)
     if path.suffix != ".vtu":
         raise ValueError(f"path must end in .vtu, got {path.name!r}")
-    mesh = meshio.Mesh(_points(result), mesh_cells(result), point_data=point_data(result, k),
-                       cell_data=cell_data(result, k))
+    mesh = meshio.Mesh(
+        _points(result), mesh_cells(result), point_data=point_data(result, k), cell_data=cell_data(result, k)
+    )
     with atomic_path(path, overwrite) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
     return path
@@ -125,9 +137,14 @@ def export_series(result, path, overwrite=False) -> Path:
     for k, lam in enumerate(times):
         step_file = folder / f"{path.stem}_{k:04d}.vtu"
         export_vtu(result, step_file, k=k, overwrite=overwrite)
-        entries.append(f'    <DataSet timestep="{float(lam)!r}" part="0" file="{folder.name}/{step_file.name}"/>')
-    text = ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
-            + "\n".join(entries) + "\n  </Collection>\n</VTKFile>\n")
+        entries.append(
+            f'    <DataSet timestep="{float(lam)!r}" part="0" file="{folder.name}/{step_file.name}"/>'
+        )
+    text = (
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
+        + "\n".join(entries)
+        + "\n  </Collection>\n</VTKFile>\n"
+    )
     with atomic_path(path, overwrite) as tmp:
         tmp.write_text(text)
     return path
@@ -136,9 +153,12 @@ def export_series(result, path, overwrite=False) -> Path:
 def read_series(path) -> list:
     """[(time: load factor or step number, meshio.Mesh)] of a .pvd series written by :func:`export_series`."""
     import xml.etree.ElementTree as ET
+
     path = Path(path)
     root = ET.parse(path).getroot()
-    return [(float(d.get("timestep")), meshio.read(path.parent / d.get("file"))) for d in root.iter("DataSet")]
+    return [
+        (float(d.get("timestep")), meshio.read(path.parent / d.get("file"))) for d in root.iter("DataSet")
+    ]
 
 
 def export(result, path, overwrite=False) -> Path:

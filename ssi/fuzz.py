@@ -81,8 +81,17 @@ ANGLE = Real(lo=0.0, hi=90.0, hi_open=True)
 POISSON = Real(lo=-1.0, hi=0.5, lo_open=True, hi_open=True)
 
 # base values of every perturbed call (a small linear scene: one factorisation, one solve)
-BASE_LAYER = dict(thickness=4.0, E=20e6, nu=0.3, unit_weight=18e3, c=None, phi_deg=30.0, psi_deg=None, K0=None,
-                  scheme="implicit")
+BASE_LAYER = dict(
+    thickness=4.0,
+    E=20e6,
+    nu=0.3,
+    unit_weight=18e3,
+    c=None,
+    phi_deg=30.0,
+    psi_deg=None,
+    K0=None,
+    scheme="implicit",
+)
 BASE_FOUNDATION = dict(x0=-1.0, x1=1.0, kappa=5.0 / 6.0, integration="selective", self_weight=0.0)
 BASE_CONTACT = dict(kn=1e10, kt=1e9, phi_deg=None, c=0.0, psi_deg=None, sig_t=None, rule="newton_cotes")
 BASE_LOAD = dict(x=0.0, N=200e3, H=0.0, M=0.0)
@@ -90,42 +99,106 @@ BASE_MESH = dict(h_fine=0.5, h_coarse=2.0, growth=1.5, n_gauss=2)
 BASE_SCENE = dict(width=8.0, depth=4.0, surcharge=0.0)
 BASE_SOLVE = dict(n_steps=1)
 BASE_SECTION = dict(thickness=0.5, E=30e9, nu=0.2, n_layers=2)
-BASE_RIGID = dict(B=1.0, c=20e3, phi_deg=0.0, E=20e6, nu=0.3, half_width=3.0, depth=2.0, h_fine=0.5,
-                  h_coarse=1.0, settle=1e-4, surcharge=0.0, n_gauss=2, scheme="implicit", rough=True)
+BASE_RIGID = dict(
+    B=1.0,
+    c=20e3,
+    phi_deg=0.0,
+    E=20e6,
+    nu=0.3,
+    half_width=3.0,
+    depth=2.0,
+    h_fine=0.5,
+    h_coarse=1.0,
+    settle=1e-4,
+    surcharge=0.0,
+    n_gauss=2,
+    scheme="implicit",
+    rough=True,
+)
 BASE_PUSH = dict(n_steps=1, grading=1.0, method="line_search")
 BASE_PRANDTL = dict(c=10e3, phi_deg=20.0, q=0.0)
 BASE_SADOWSKY = dict(a=1.0, P=1e5)
 BASE_HETENYI = dict(P=1e5, k=1e7, EI=1e8)
 BASE_SHEAR_LAG = dict(tau_bar=50e3, EA=1e9, kt=1e9, L=1.0, tau_f=100e3)
 
-LAYER_SPEC = dict(thickness=POSITIVE, E=POSITIVE, nu=POISSON, unit_weight=NON_NEGATIVE,
-                  c=Real(lo=0.0, optional=True), phi_deg=ANGLE, psi_deg=Real(lo=0.0, hi=30.0, optional=True),
-                  K0=Real(lo=0.0, hi=10.0, hi_open=True, optional=True), scheme=Choice(("implicit", "explicit")))
-FOUNDATION_SPEC = dict(x0=ANY_REAL, x1=ANY_REAL, kappa=Real(lo=0.0, hi=1.0, lo_open=True),
-                       integration=Choice(("selective", "full", "reduced")), self_weight=NON_NEGATIVE,
-                       section=Instance())
-CONTACT_SPEC = dict(kn=POSITIVE, kt=NON_NEGATIVE, phi_deg=Real(lo=0.0, hi=90.0, hi_open=True, optional=True),
-                    c=Real(lo=0.0, allow_inf=True), psi_deg=Real(lo=0.0, hi=90.0, hi_open=True, optional=True),
-                    sig_t=Real(lo=0.0, optional=True), rule=Choice(("newton_cotes", "gauss")))
+LAYER_SPEC = dict(
+    thickness=POSITIVE,
+    E=POSITIVE,
+    nu=POISSON,
+    unit_weight=NON_NEGATIVE,
+    c=Real(lo=0.0, optional=True),
+    phi_deg=ANGLE,
+    psi_deg=Real(lo=0.0, hi=30.0, optional=True),
+    K0=Real(lo=0.0, hi=10.0, hi_open=True, optional=True),
+    scheme=Choice(("implicit", "explicit")),
+)
+FOUNDATION_SPEC = dict(
+    x0=ANY_REAL,
+    x1=ANY_REAL,
+    kappa=Real(lo=0.0, hi=1.0, lo_open=True),
+    integration=Choice(("selective", "full", "reduced")),
+    self_weight=NON_NEGATIVE,
+    section=Instance(),
+)
+CONTACT_SPEC = dict(
+    kn=POSITIVE,
+    kt=NON_NEGATIVE,
+    phi_deg=Real(lo=0.0, hi=90.0, hi_open=True, optional=True),
+    c=Real(lo=0.0, allow_inf=True),
+    psi_deg=Real(lo=0.0, hi=90.0, hi_open=True, optional=True),
+    sig_t=Real(lo=0.0, optional=True),
+    rule=Choice(("newton_cotes", "gauss")),
+)
 LOAD_SPEC = dict(x=ANY_REAL, N=ANY_REAL, H=ANY_REAL, M=ANY_REAL)
 MESH_SPEC = dict(h_fine=POSITIVE, h_coarse=POSITIVE, growth=Real(lo=1.0), n_gauss=Choice((2, 3)))
-SCENE_SPEC = dict(width=POSITIVE, depth=POSITIVE, surcharge=NON_NEGATIVE, layers=Instance(),
-                  foundation=Instance(optional=True), contact=Instance(optional=True), loads=Instance(),
-                  mesh=Instance())
+SCENE_SPEC = dict(
+    width=POSITIVE,
+    depth=POSITIVE,
+    surcharge=NON_NEGATIVE,
+    layers=Instance(),
+    foundation=Instance(optional=True),
+    contact=Instance(optional=True),
+    loads=Instance(),
+    mesh=Instance(),
+)
 SOLVE_SPEC = dict(n_steps=Integer(lo=1, optional=True), settings=Instance(optional=True))
-SETTINGS_SPEC = dict(method=Choice(("bfgs", "modified", "full")), stepping=Choice(("auto", "fixed")),
-                     convergence_reference=Choice(("structural", "total")), force_tol=Real(0.0, 1.0, True, True),
-                     energy_tol=Real(0.0, 1.0, True, True), max_iter=Integer(lo=1, optional=True),
-                     max_cuts=Integer(lo=0), divergence_ratio=Real(lo=1.0, lo_open=True),
-                     backend=Choice(("auto", "superlu", "pardiso")), symmetric_tangent=Flag(), verbose=Flag(),
-                     keep_states=Flag(), line_search_min=Real(0.0, 1.0, lo_open=True),
-                     fallback_iter=Integer(lo=0), desired_iterations=Integer(lo=1, optional=True),
-                     bfgs_memory=Integer(lo=0), collapse_stiffness=Real(0.0, 1.0, hi_open=True),
-                     viscosity=Real(lo=0.0))
+SETTINGS_SPEC = dict(
+    method=Choice(("bfgs", "modified", "full")),
+    stepping=Choice(("auto", "fixed")),
+    convergence_reference=Choice(("structural", "total")),
+    force_tol=Real(0.0, 1.0, True, True),
+    energy_tol=Real(0.0, 1.0, True, True),
+    max_iter=Integer(lo=1, optional=True),
+    max_cuts=Integer(lo=0),
+    divergence_ratio=Real(lo=1.0, lo_open=True),
+    backend=Choice(("auto", "superlu", "pardiso")),
+    symmetric_tangent=Flag(),
+    verbose=Flag(),
+    keep_states=Flag(),
+    line_search_min=Real(0.0, 1.0, lo_open=True),
+    fallback_iter=Integer(lo=0),
+    desired_iterations=Integer(lo=1, optional=True),
+    bfgs_memory=Integer(lo=0),
+    collapse_stiffness=Real(0.0, 1.0, hi_open=True),
+    viscosity=Real(lo=0.0),
+)
 HOMOGENEOUS_SPEC = dict(thickness=POSITIVE, E=POSITIVE, nu=POISSON, n_layers=Integer(lo=1))
-RIGID_SPEC = dict(B=POSITIVE, c=NON_NEGATIVE, phi_deg=ANGLE, E=POSITIVE, nu=POISSON, half_width=POSITIVE,
-                  depth=POSITIVE, h_fine=POSITIVE, h_coarse=POSITIVE, settle=POSITIVE, surcharge=NON_NEGATIVE,
-                  n_gauss=Choice((2, 3)), scheme=Choice(("implicit", "explicit")), rough=Flag())
+RIGID_SPEC = dict(
+    B=POSITIVE,
+    c=NON_NEGATIVE,
+    phi_deg=ANGLE,
+    E=POSITIVE,
+    nu=POISSON,
+    half_width=POSITIVE,
+    depth=POSITIVE,
+    h_fine=POSITIVE,
+    h_coarse=POSITIVE,
+    settle=POSITIVE,
+    surcharge=NON_NEGATIVE,
+    n_gauss=Choice((2, 3)),
+    scheme=Choice(("implicit", "explicit")),
+    rough=Flag(),
+)
 PUSH_SPEC = dict(n_steps=Integer(lo=1), grading=POSITIVE, method=Choice(("line_search", "full", "modified")))
 PRANDTL_SPEC = dict(c=NON_NEGATIVE, phi_deg=ANGLE, q=NON_NEGATIVE)
 SADOWSKY_SPEC = dict(a=POSITIVE, P=ANY_REAL)
@@ -140,19 +213,30 @@ def _section(**kw):
     return homogeneous(**{**BASE_SECTION, **kw})
 
 
-def run_scene(layer=None, foundation=None, contact=None, load=None, mesh=None, scene=None, solve=None,
-              section=None, settings_kw=None):
+def run_scene(
+    layer=None,
+    foundation=None,
+    contact=None,
+    load=None,
+    mesh=None,
+    scene=None,
+    solve=None,
+    section=None,
+    settings_kw=None,
+):
     """Build and solve the base scene with the given overrides of each component; returns the result."""
     from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
     from .solver import Settings
 
     parts = dict(
         layers=[SoilLayer(**{**BASE_LAYER, **(layer or {})})],
-        foundation=Foundation(**{**BASE_FOUNDATION, "section": _section() if section is None else section,
-                                 **(foundation or {})}),
+        foundation=Foundation(
+            **{**BASE_FOUNDATION, "section": _section() if section is None else section, **(foundation or {})}
+        ),
         contact=Contact(**{**BASE_CONTACT, **(contact or {})}),
         loads=[ColumnLoad(**{**BASE_LOAD, **(load or {})})],
-        mesh=MeshSize(**{**BASE_MESH, **(mesh or {})}))
+        mesh=MeshSize(**{**BASE_MESH, **(mesh or {})}),
+    )
     parts.update(scene or {})
     scene_obj = Scene(**{**BASE_SCENE, **parts})
     solve_kw = {**BASE_SOLVE, **(solve or {})}
@@ -165,8 +249,9 @@ def _run_section(**fields):
     from .section import Section
 
     base = _section()
-    arrays = {k: getattr(base, k) for k in ("z_mid", "h", "kind", "params", "carries_shear", "z_bottom",
-                                             "z_top")}
+    arrays = {
+        k: getattr(base, k) for k in ("z_mid", "h", "kind", "params", "carries_shear", "z_bottom", "z_top")
+    }
     return run_scene(section=Section(**{**arrays, **fields}))
 
 
@@ -233,7 +318,7 @@ class InvalidCase:
     target: str
     overrides: dict = field(hash=False)
     param: str = ""
-    value_text: tuple = ()   # the message must contain one of these (empty: the name suffices)
+    value_text: tuple = ()  # the message must contain one of these (empty: the name suffices)
 
     def __repr__(self):
         return f"InvalidCase({self.target}: {self.overrides!r}, expect {self.param!r})"
@@ -258,11 +343,17 @@ def _invalid_values(spec):
             bad.append(-math.inf)
         parts = [st.sampled_from(bad)]
         if spec.lo is not None:
-            parts.append(st.floats(max_value=spec.lo, exclude_max=not spec.lo_open, allow_nan=False,
-                                   allow_infinity=False))
+            parts.append(
+                st.floats(
+                    max_value=spec.lo, exclude_max=not spec.lo_open, allow_nan=False, allow_infinity=False
+                )
+            )
         if spec.hi is not None:
-            parts.append(st.floats(min_value=spec.hi, exclude_min=not spec.hi_open, allow_nan=False,
-                                   allow_infinity=False))
+            parts.append(
+                st.floats(
+                    min_value=spec.hi, exclude_min=not spec.hi_open, allow_nan=False, allow_infinity=False
+                )
+            )
         return st.one_of(parts)
     if isinstance(spec, Integer):
         bad = ["abc", 2.7, math.nan, [1]] + ([] if spec.optional else [None])
@@ -428,21 +519,43 @@ def valid_scenes(draw):
         phi = draw(st.floats(0.0, 40.0))
         plastic = draw(st.booleans())
         c = draw(st.floats(5e3, 50e3)) if plastic else None
-        layers.append(SoilLayer(t, E=draw(st.floats(1e4, 1e8)), nu=draw(st.floats(0.0, 0.45)),
-                                unit_weight=draw(st.sampled_from([0.0, 18e3])), c=c, phi_deg=phi,
-                                psi_deg=draw(st.floats(0.0, phi)) if plastic else None))
+        layers.append(
+            SoilLayer(
+                t,
+                E=draw(st.floats(1e4, 1e8)),
+                nu=draw(st.floats(0.0, 0.45)),
+                unit_weight=draw(st.sampled_from([0.0, 18e3])),
+                c=c,
+                phi_deg=phi,
+                psi_deg=draw(st.floats(0.0, phi)) if plastic else None,
+            )
+        )
     section = homogeneous(draw(st.floats(0.3, 1.0)), draw(st.floats(20e9, 40e9)), 0.2)
     x_c = draw(st.sampled_from([0.0, -h_fine, h_fine]))
     foundation = Foundation(x_c - half_b, x_c + half_b, section)
     coulomb = draw(st.booleans())
     contact = Contact(kn=1e10, kt=1e9, phi_deg=draw(st.floats(15.0, 35.0)) if coulomb else None)
-    load = ColumnLoad(x=x_c, N=draw(st.floats(0.0, 300e3)), H=draw(st.floats(-20e3, 20e3)),
-                      M=draw(st.floats(-20e3, 20e3)))
-    scene = Scene(width=width, depth=depth, layers=layers, foundation=foundation, contact=contact, loads=[load],
-                  mesh=MeshSize(h_fine=h_fine, h_coarse=2.0, growth=1.5))
+    load = ColumnLoad(
+        x=x_c, N=draw(st.floats(0.0, 300e3)), H=draw(st.floats(-20e3, 20e3)), M=draw(st.floats(-20e3, 20e3))
+    )
+    scene = Scene(
+        width=width,
+        depth=depth,
+        layers=layers,
+        foundation=foundation,
+        contact=contact,
+        loads=[load],
+        mesh=MeshSize(h_fine=h_fine, h_coarse=2.0, growth=1.5),
+    )
     method = draw(st.sampled_from(["modified", "full"]))
-    solver = Settings(method=method, line_search=method == "full", max_iter=60 if method == "modified" else 20,
-                      max_cuts=2, fallback_iter=60, backend="superlu")
+    solver = Settings(
+        method=method,
+        line_search=method == "full",
+        max_iter=60 if method == "modified" else 20,
+        max_cuts=2,
+        fallback_iter=60,
+        backend="superlu",
+    )
     return scene, draw(st.integers(1, 3)), solver
 
 
@@ -471,8 +584,13 @@ def _collect(strategy, classify, n_examples, seed_value):
     rows = []
 
     @seed(seed_value)
-    @settings(max_examples=n_examples, database=None, deadline=None, phases=[Phase.generate],
-              suppress_health_check=list(HealthCheck))
+    @settings(
+        max_examples=n_examples,
+        database=None,
+        deadline=None,
+        phases=[Phase.generate],
+        suppress_health_check=list(HealthCheck),
+    )
     @given(strategy)
     def draw(case):
         rows.append((case, *classify(case)))
@@ -500,6 +618,12 @@ def study(n_invalid: int = 200, n_valid: int = 10, seed_value: int = 20261201) -
     for _, outcome, _ in valid:
         counts_valid[outcome] = counts_valid.get(outcome, 0) + 1
     named = counts_invalid.get("named", 0)
-    return {"invalid": invalid, "valid": valid, "named_fraction": named / max(len(invalid), 1),
-            "escapes": len(invalid) - named, "counts_invalid": counts_invalid, "counts_valid": counts_valid,
-            "wall_time": time.perf_counter() - t0}
+    return {
+        "invalid": invalid,
+        "valid": valid,
+        "named_fraction": named / max(len(invalid), 1),
+        "escapes": len(invalid) - named,
+        "counts_invalid": counts_invalid,
+        "counts_valid": counts_valid,
+        "wall_time": time.perf_counter() - t0,
+    }

@@ -185,12 +185,17 @@ class Factorization:
         """Solve for one right-hand side (n,) or several (n, k)."""
         rhs = np.ascontiguousarray(rhs, dtype=np.float64)
         if not np.all(np.isfinite(rhs)):
-            raise FloatingPointError(f"the right-hand side has {np.count_nonzero(~np.isfinite(rhs))} non-finite "
-                                     "entries (non-finite loads, prescribed values or internal forces)")
+            raise FloatingPointError(
+                f"the right-hand side has {np.count_nonzero(~np.isfinite(rhs))} non-finite "
+                "entries (non-finite loads, prescribed values or internal forces)"
+            )
         x = self._solve(rhs)
         if not np.all(np.isfinite(x)):
-            raise SingularMatrix("the factorised matrix is singular: the solution is not finite for a finite "
-                                 "right-hand side (check supports: rigid-body modes)", self._matrix)
+            raise SingularMatrix(
+                "the factorised matrix is singular: the solution is not finite for a finite "
+                "right-hand side (check supports: rigid-body modes)",
+                self._matrix,
+            )
         return x
 
 
@@ -206,11 +211,17 @@ def _superlu_factor(matrix, trap_solves=True):
     try:
         lu, text = _trap_c_output(spla.splu, a, permc_spec="MMD_AT_PLUS_A")
     except RuntimeError as err:  # "Factor is exactly singular", or scipy's stop after BLAS refused a call
-        raise SingularMatrix(f"the matrix is singular or the factorisation broke down on a numerically "
-                             f"singular matrix ({err})", a) from err
+        raise SingularMatrix(
+            f"the matrix is singular or the factorisation broke down on a numerically "
+            f"singular matrix ({err})",
+            a,
+        ) from err
     if "illegal value" in text:
-        raise SingularMatrix(f"the factorisation broke down on a numerically singular matrix (BLAS: "
-                             f"{text.strip().splitlines()[0].strip(' *')})", a)
+        raise SingularMatrix(
+            f"the factorisation broke down on a numerically singular matrix (BLAS: "
+            f"{text.strip().splitlines()[0].strip(' *')})",
+            a,
+        )
 
     if not trap_solves:
         return lu.solve
@@ -218,8 +229,11 @@ def _superlu_factor(matrix, trap_solves=True):
     def solve(b):
         x, text = _trap_c_output(lu.solve, b)
         if "illegal value" in text:
-            raise SingularMatrix(f"the solve broke down on a numerically singular matrix (BLAS: "
-                                 f"{text.strip().splitlines()[0].strip(' *')})", a)
+            raise SingularMatrix(
+                f"the solve broke down on a numerically singular matrix (BLAS: "
+                f"{text.strip().splitlines()[0].strip(' *')})",
+                a,
+            )
         return x
 
     return solve
@@ -278,14 +292,24 @@ class _PardisoHandle:
         err = ctypes.c_int32(0)
         i32 = ctypes.POINTER(ctypes.c_int32)
         f64 = ctypes.POINTER(ctypes.c_double)
-        _mkl_pardiso()(self.pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)),
-                       ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),
-                       ctypes.byref(ctypes.c_int32(self.mtype)), ctypes.byref(ctypes.c_int32(phase)),
-                       ctypes.byref(ctypes.c_int32(self.n)), self.a.ctypes.data_as(f64),
-                       self.ia.ctypes.data_as(i32), self.ja.ctypes.data_as(i32), None,
-                       ctypes.byref(ctypes.c_int32(nrhs)), self.iparm.ctypes.data_as(i32),
-                       ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(f64), x.ctypes.data_as(f64),
-                       ctypes.byref(err))
+        _mkl_pardiso()(
+            self.pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)),
+            ctypes.byref(ctypes.c_int32(1)),
+            ctypes.byref(ctypes.c_int32(1)),
+            ctypes.byref(ctypes.c_int32(self.mtype)),
+            ctypes.byref(ctypes.c_int32(phase)),
+            ctypes.byref(ctypes.c_int32(self.n)),
+            self.a.ctypes.data_as(f64),
+            self.ia.ctypes.data_as(i32),
+            self.ja.ctypes.data_as(i32),
+            None,
+            ctypes.byref(ctypes.c_int32(nrhs)),
+            self.iparm.ctypes.data_as(i32),
+            ctypes.byref(ctypes.c_int32(0)),
+            b.ctypes.data_as(f64),
+            x.ctypes.data_as(f64),
+            ctypes.byref(err),
+        )
         if err.value != 0:
             raise RuntimeError(f"PARDISO failed with error {err.value} in phase {phase}")
 

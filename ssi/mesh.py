@@ -28,7 +28,9 @@ def graded_lines(start, stop, h_start, h_max, growth=1.2):
     if length == 0.0:
         return np.array([start])
     if length / h_max > MAX_LINES:
-        raise ValueError(f"h_max={h_max!r} gives more than {MAX_LINES} mesh lines over the length {length:g} m")
+        raise ValueError(
+            f"h_max={h_max!r} gives more than {MAX_LINES} mesh lines over the length {length:g} m"
+        )
     sizes = []
     h = h_start
     while sum(sizes) < length - 1e-9 * length:
@@ -73,8 +75,9 @@ class SoilMesh:
 
     def nodes_between(self, x0, x1, z=0.0, tol=1e-9):
         """Ids of the nodes on the line z (must be a mesh line) with x0 <= x <= x1, ordered by x."""
-        ids = np.flatnonzero((np.abs(self.xy[:, 1] - z) < tol) & (self.xy[:, 0] >= x0 - tol)
-                             & (self.xy[:, 0] <= x1 + tol))
+        ids = np.flatnonzero(
+            (np.abs(self.xy[:, 1] - z) < tol) & (self.xy[:, 0] >= x0 - tol) & (self.xy[:, 0] <= x1 + tol)
+        )
         return ids[np.argsort(self.xy[ids, 0])]
 
 
@@ -99,17 +102,37 @@ def structured_q8(x_lines, z_lines, z_layer_tops=None):
     xy = np.column_stack([xs[i[keep]], zs[j[keep]]])
     ei, ej = np.meshgrid(np.arange(nx), np.arange(nz), indexing="ij")
     ei, ej = 2 * ei.ravel(), 2 * ej.ravel()
-    conn = np.column_stack([grid[ei, ej], grid[ei + 2, ej], grid[ei + 2, ej + 2], grid[ei, ej + 2],
-                            grid[ei + 1, ej], grid[ei + 2, ej + 1], grid[ei + 1, ej + 2], grid[ei, ej + 1]])
+    conn = np.column_stack(
+        [
+            grid[ei, ej],
+            grid[ei + 2, ej],
+            grid[ei + 2, ej + 2],
+            grid[ei, ej + 2],
+            grid[ei + 1, ej],
+            grid[ei + 2, ej + 1],
+            grid[ei + 1, ej + 2],
+            grid[ei, ej + 1],
+        ]
+    )
     z_mid = 0.5 * (z_lines[:-1] + z_lines[1:])[ej // 2]
     el_layer = np.zeros(len(conn), np.int64)
-    for top in (z_layer_tops if z_layer_tops is not None else []):
+    for top in z_layer_tops if z_layer_tops is not None else []:
         el_layer += z_mid < top
     return SoilMesh(xy, conn, el_layer, x_lines, z_lines, grid)
 
 
-def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_fine=0.25, h_coarse=2.0,
-               growth=1.25, x_left=None, breaks=(), embedment=0.0):
+def soil_block(
+    width,
+    depth,
+    layer_thicknesses=None,
+    foundation=(-0.5, 0.5),
+    h_fine=0.25,
+    h_coarse=2.0,
+    growth=1.25,
+    x_left=None,
+    breaks=(),
+    embedment=0.0,
+):
     """The graded soil block of Fig. 1.
 
     Parameters
@@ -134,28 +157,38 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
     x0 = check_real("foundation x0", foundation[0], unit="m")
     x1 = check_real("foundation x1", foundation[1], unit="m")
     if not (x_left <= x0 < x1 <= x_right):
-        raise ValueError(f"foundation (x0, x1) = {foundation} must lie within the block [{x_left}, {x_right}] "
-                         "and have x0 < x1")
+        raise ValueError(
+            f"foundation (x0, x1) = {foundation} must lie within the block [{x_left}, {x_right}] "
+            "and have x0 < x1"
+        )
     layers = [depth] if layer_thicknesses is None else list(layer_thicknesses)
     for i, t in enumerate(layers):
         check_real(f"layer_thicknesses[{i}]", t, lo=0.0, lo_open=True, unit="m")
     if abs(sum(layers) - depth) > 1e-9 * depth:
-        raise ValueError(f"layer_thicknesses {layers} must tile the depth {depth} (their sum is {sum(layers):g})")
+        raise ValueError(
+            f"layer_thicknesses {layers} must tile the depth {depth} (their sum is {sum(layers):g})"
+        )
     h_fine = check_real("h_fine", h_fine, lo=0.0, lo_open=True, unit="m")
     if h_fine > x1 - x0:
-        raise ValueError(f"h_fine={h_fine!r} must be <= the foundation width x1 - x0 = {x1 - x0:g} m (at least one "
-                         "element under the foundation)")
+        raise ValueError(
+            f"h_fine={h_fine!r} must be <= the foundation width x1 - x0 = {x1 - x0:g} m (at least one "
+            "element under the foundation)"
+        )
     h_coarse = check_real("h_coarse", h_coarse, lo=h_fine, unit="m (>= h_fine)")
     check_real("growth", growth, lo=1.0)
     if (x1 - x0) / h_fine > MAX_LINES or max(width, depth) / h_coarse > MAX_LINES:
-        raise ValueError(f"h_fine={h_fine!r}, h_coarse={h_coarse!r} give more than {MAX_LINES} mesh lines "
-                         f"in one direction (block {width:g} m x {depth:g} m): check the units")
+        raise ValueError(
+            f"h_fine={h_fine!r}, h_coarse={h_coarse!r} give more than {MAX_LINES} mesh lines "
+            f"in one direction (block {width:g} m x {depth:g} m): check the units"
+        )
     n_under = max(1, round((x1 - x0) / h_fine))
     under = np.linspace(x0, x1, n_under + 1)
     h0 = (x1 - x0) / n_under
     left = graded_lines(x0, x_left, h0, h_coarse, growth)[::-1]
     right = graded_lines(x1, x_right, h0, h_coarse, growth)
-    x_lines = _insert_breaks(np.unique(np.concatenate([left, under, right])), breaks, (x_left, x0, x1, x_right))
+    x_lines = _insert_breaks(
+        np.unique(np.concatenate([left, under, right])), breaks, (x_left, x0, x1, x_right)
+    )
     z_parts = [np.array([0.0])]
     top, h = 0.0, h0
     for t in layers:
@@ -168,8 +201,10 @@ def soil_block(width, depth, layer_thicknesses=None, foundation=(-0.5, 0.5), h_f
     mesh = structured_q8(x_lines, z_lines, tops)
     if embedment:
         if not (0.0 < embedment < depth) or np.min(np.abs(tops - (-embedment)), initial=np.inf) > 1e-9:
-            raise ValueError(f"embedment={embedment} m must be a layer boundary inside the block (layer tops "
-                             f"at depths {(-tops).tolist()} m): give the soil beside the strip as its own layer")
+            raise ValueError(
+                f"embedment={embedment} m must be a layer boundary inside the block (layer tops "
+                f"at depths {(-tops).tolist()} m): give the soil beside the strip as its own layer"
+            )
         centre = mesh.xy[mesh.conn].mean(axis=1)
         trench = (centre[:, 0] > x0) & (centre[:, 0] < x1) & (centre[:, 1] > -embedment)
         mesh = remove_elements(mesh, ~trench)
@@ -226,7 +261,7 @@ def surface_pressure_forces(mesh: SoilMesh, x0, x1, z=0.0):
     f = np.zeros(len(nodes))
     for i in range(0, len(nodes) - 2, 2):
         L = xs[i + 2] - xs[i]
-        f[i:i + 3] += np.array([1.0, 4.0, 1.0]) * L / 6.0
+        f[i : i + 3] += np.array([1.0, 4.0, 1.0]) * L / 6.0
     return nodes, f
 
 
@@ -234,10 +269,10 @@ def surface_pressure_forces(mesh: SoilMesh, x0, x1, z=0.0):
 class Contact:
     """The foundation strip on the block's surface and the interface node pairs under it."""
 
-    plate_xy: np.ndarray        # (n, 2) plate mid-surface nodes, z = thickness / 2
-    soil_nodes: np.ndarray      # (n,) soil surface node ids under them, ordered by x
-    plate_conn: np.ndarray      # (n_el, 3) local plate-node indices of each 3-node plate/interface element
-    soil_conn: np.ndarray       # (n_el, 3) soil node ids of each interface element's lower side
+    plate_xy: np.ndarray  # (n, 2) plate mid-surface nodes, z = thickness / 2
+    soil_nodes: np.ndarray  # (n,) soil surface node ids under them, ordered by x
+    plate_conn: np.ndarray  # (n_el, 3) local plate-node indices of each 3-node plate/interface element
+    soil_conn: np.ndarray  # (n_el, 3) soil node ids of each interface element's lower side
 
 
 def foundation_contact(mesh: SoilMesh, x0, x1, thickness, z=0.0):

@@ -191,7 +191,9 @@ class Model:
         edofs = np.asarray(edofs).ravel()
         f_el = check_array("element load f_el", f_el).ravel()
         if f_el.shape != edofs.shape:
-            raise ValueError(f"element load f_el must have the shape of edofs {np.shape(edofs)}, got {f_el.shape}")
+            raise ValueError(
+                f"element load f_el must have the shape of edofs {np.shape(edofs)}, got {f_el.shape}"
+            )
         target.append((edofs, f_el))
 
     # ---- what the solver needs ------------------------------------------------------------------------
@@ -219,8 +221,10 @@ class Model:
             body = g.body_force()
             if body is not None:
                 if not np.all(np.isfinite(body)):
-                    raise ValueError(f"group {g.name!r}: its body force (unit weight or self weight) is not "
-                                     "finite; give finite unit weights [N/m^3]")
+                    raise ValueError(
+                        f"group {g.name!r}: its body force (unit weight or self weight) is not "
+                        "finite; give finite unit weights [N/m^3]"
+                    )
                 scatter_vector(g.edofs, body, f_dead)
         return f_ref, f_dead
 
@@ -235,8 +239,10 @@ class Model:
             used[g.edofs.ravel()] = True
         unconnected = ~used & self.free_mask()
         if unconnected.any():
-            raise ValueError(f"{np.count_nonzero(unconnected)} free DOFs belong to no element (unconnected "
-                             "nodes): connect them or fix them")
+            raise ValueError(
+                f"{np.count_nonzero(unconnected)} free DOFs belong to no element (unconnected "
+                "nodes): connect them or fix them"
+            )
         self._check_rigid_body_modes()
 
     def _check_rigid_body_modes(self):
@@ -262,14 +268,26 @@ class Model:
             dofs = constrained[constrained_part == part]
             free = _free_rigid_motion(coords, start, nodes_here, dofs)
             if free is not None:
-                where = "" if n_parts == 1 else (f" of the part with nodes {nodes_here[:4].tolist()}"
-                                                 f"{'...' if nodes_here.size > 4 else ''}")
-                raise ValueError(f"supports: the stiffness matrix is singular: {free}{where} moves no fixed or "
-                                 "prescribed DOF; fix or prescribe a DOF that this motion moves")
+                where = (
+                    ""
+                    if n_parts == 1
+                    else (
+                        f" of the part with nodes {nodes_here[:4].tolist()}"
+                        f"{'...' if nodes_here.size > 4 else ''}"
+                    )
+                )
+                raise ValueError(
+                    f"supports: the stiffness matrix is singular: {free}{where} moves no fixed or "
+                    "prescribed DOF; fix or prescribe a DOF that this motion moves"
+                )
 
     def describe(self) -> dict:
-        return {"n_nodes": self.n_nodes, "n_dof": self.n_dof,
-                "groups": [g.describe() for g in self.groups], **self.info}
+        return {
+            "n_nodes": self.n_nodes,
+            "n_dof": self.n_dof,
+            "groups": [g.describe() for g in self.groups],
+            **self.info,
+        }
 
     # ---- linear solution ------------------------------------------------------------------------------
     def solve_linear(self, backend="auto"):
@@ -286,8 +304,10 @@ class Model:
             fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
             u[system.free] += fac.solve(residual)
         except SingularMatrix as err:
-            raise ValueError(f"supports: the stiffness matrix is singular (a rigid-body mode is not held); "
-                             f"{system.describe_dofs(err.rows)}") from err
+            raise ValueError(
+                f"supports: the stiffness matrix is singular (a rigid-body mode is not held); "
+                f"{system.describe_dofs(err.rows)}"
+            ) from err
         f_int, _, states = system.evaluate(u, u, states, None)
         return LinearResult(u=u, reactions=f_int - f_ref - f_dead, states=states, model=self)
 
@@ -318,8 +338,11 @@ class System:
         dofs = self.free_dofs[np.asarray(rows, np.int64)[:limit]]
         _, _, start = self.model._arrays
         nodes = np.searchsorted(start, dofs, side="right") - 1
-        names = [f"node {n} ({('u', 'w', 'alpha')[d - start[n]]}) at ({self.model.coords[n, 0]:.4g}, "
-                 f"{self.model.coords[n, 1]:.4g})" for n, d in zip(nodes, dofs)]
+        names = [
+            f"node {n} ({('u', 'w', 'alpha')[d - start[n]]}) at ({self.model.coords[n, 0]:.4g}, "
+            f"{self.model.coords[n, 1]:.4g})"
+            for n, d in zip(nodes, dofs)
+        ]
         more = f" and {len(rows) - limit} more" if len(rows) > limit else ""
         return "unsupported DOFs: " + ", ".join(names) + more
 

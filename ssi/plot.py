@@ -71,8 +71,9 @@ def plastic_points(result, k=-1, ax=None, window=None):
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
-    ax.add_collection(PolyCollection(xy[built.mesh.conn[:, _OUTLINE]], facecolors="none", edgecolors="0.8",
-                                     linewidths=0.4))
+    ax.add_collection(
+        PolyCollection(xy[built.mesh.conn[:, _OUTLINE]], facecolors="none", edgecolors="0.8", linewidths=0.4)
+    )
     pts = result.soil_points()
     mask = result.plastic_points(k)
     ax.plot(pts[mask][:, 0], pts[mask][:, 1], "r.", ms=3, label=f"plastic ({mask.sum()} points)")
@@ -133,8 +134,9 @@ def strip_forces(result, k=-1, ax=None):
     Q [kN/m] and normal force N [kN/m] along the strip. ``ax``: three axes or None."""
     fig, axes = _axes(ax, 3, figsize=(8, 7)) if ax is None else (ax[0].figure, ax)
     f = result.strip_forces(k)
-    for a, (xkey, key, label) in zip(axes, (("x_ax", "M", "M [kN m/m]"), ("x_sh", "Q", "Q [kN/m]"),
-                                            ("x_ax", "N", "N [kN/m]"))):
+    for a, (xkey, key, label) in zip(
+        axes, (("x_ax", "M", "M [kN m/m]"), ("x_sh", "Q", "Q [kN/m]"), ("x_ax", "N", "N [kN/m]"))
+    ):
         a.plot(f[xkey].ravel(), f[key].ravel() / 1e3, ".-")
         a.axhline(0.0, color="0.5", lw=0.6)
         a.set_ylabel(label)
@@ -178,8 +180,13 @@ def load_settlement(result, ax=None):
         ax.plot(1e3 * path["settlement"], path["load_factor"], "o-", ms=3)
         for i, record in enumerate(result.phases):
             ax.axhline(i, color="0.8", lw=0.8, zorder=0)
-            ax.annotate(record["name"], (0.02, i - 0.5 if i else 0.0), xycoords=("axes fraction", "data"),
-                        fontsize=8, va="center")
+            ax.annotate(
+                record["name"],
+                (0.02, i - 0.5 if i else 0.0),
+                xycoords=("axes fraction", "data"),
+                fontsize=8,
+                va="center",
+            )
         ax.set_ylabel("phase time [-]")
     else:
         ax.plot(1e3 * path["settlement"], path["column_load"] / 1e3, "o-")
@@ -191,8 +198,11 @@ def load_settlement(result, ax=None):
 
 def standard_figures(result) -> dict:
     """Every figure that applies to the result's scene: name -> Figure."""
-    figs = {"settlement": settlement(result), "deformed_mesh": deformed_mesh(result),
-            "load_settlement": load_settlement(result)}
+    figs = {
+        "settlement": settlement(result),
+        "deformed_mesh": deformed_mesh(result),
+        "load_settlement": load_settlement(result),
+    }
     if any(lay.c is not None for lay in result.built.scene.layers):
         figs["plastic_points"] = plastic_points(result)
     if result.built.plate is not None:
@@ -207,6 +217,7 @@ def save_standard_figures(result, folder, overwrite=False) -> list[Path]:
     """Write :func:`standard_figures` as PNGs into ``folder`` (atomically, never replacing a file unless
     ``overwrite``); return the paths."""
     from .results import atomic_path
+
     folder = Path(folder)
     paths = []
     for name, fig in standard_figures(result).items():

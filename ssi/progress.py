@@ -68,9 +68,16 @@ def solver_progress(enabled: bool | None = None, total: float = 1.0, stream=None
     bar = None
     if progress_enabled(enabled, stream):
         from tqdm.auto import tqdm
+
         columns = shutil.get_terminal_size((100, 24)).columns  # a pseudo-terminal may report 0 columns
-        bar = tqdm(total=float(total), unit="λ", file=stream or sys.stderr, leave=True, ncols=min(columns, 120),
-                   bar_format="{l_bar}{bar}| λ={n:.3f}/{total:.3g} [{elapsed}] {postfix}")
+        bar = tqdm(
+            total=float(total),
+            unit="λ",
+            file=stream or sys.stderr,
+            leave=True,
+            ncols=min(columns, 120),
+            bar_format="{l_bar}{bar}| λ={n:.3f}/{total:.3g} [{elapsed}] {postfix}",
+        )
     try:
         yield SolverProgress(bar, total)
     finally:
@@ -96,7 +103,11 @@ def announce_compilation(stream=None, estimate_s: float = COMPILE_ESTIMATE_S) ->
     if _announced or not numba_cache_is_empty():
         return False
     _announced = True
-    print(f"ssi: compiling kernels once, ~{estimate_s:.0f} s (cached afterwards in "
-          f"{os.environ.get('NUMBA_CACHE_DIR')})", file=stream or sys.stderr, flush=True)
+    print(
+        f"ssi: compiling kernels once, ~{estimate_s:.0f} s (cached afterwards in "
+        f"{os.environ.get('NUMBA_CACHE_DIR')})",
+        file=stream or sys.stderr,
+        flush=True,
+    )
     log.info("numba cache empty: compiling kernels")
     return True

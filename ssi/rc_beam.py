@@ -41,10 +41,16 @@ __all__ = [
 ]
 
 JANNEY = {
-    "b": 0.1524, "h": 0.3048, "span": 2.7432, "a": 0.9144, "As": 600.0e-6, "d": 0.2108,
-    "fc": 36.2e6, "fy": 333.0e6,
+    "b": 0.1524,
+    "h": 0.3048,
+    "span": 2.7432,
+    "a": 0.9144,
+    "As": 600.0e-6,
+    "d": 0.2108,
+    "fc": 36.2e6,
+    "fy": 333.0e6,
 }
-ES_DESIGN = 200.0e9   # designer value of the bar modulus (not reported in the substitute's summary)
+ES_DESIGN = 200.0e9  # designer value of the bar modulus (not reported in the substitute's summary)
 
 
 def janney_materials(ls=0.05, alpha_ts=0.5, beta0=0.25, Es=ES_DESIGN, EH=0.0):
@@ -52,8 +58,18 @@ def janney_materials(ls=0.05, alpha_ts=0.5, beta0=0.25, Es=ES_DESIGN, EH=0.0):
     g = JANNEY
     des = rc.designer_concrete(g["fc"])
     eps_y = g["fy"] / Es
-    pc = rc.concrete_params(g["fc"], des["E0"], des["eps_c"], des["fr"], des["Gf"], ls, eps_y,
-                            eps_cu=des["eps_cu"], alpha_ts=alpha_ts, beta0=beta0)
+    pc = rc.concrete_params(
+        g["fc"],
+        des["E0"],
+        des["eps_c"],
+        des["fr"],
+        des["Gf"],
+        ls,
+        eps_y,
+        eps_cu=des["eps_cu"],
+        alpha_ts=alpha_ts,
+        beta0=beta0,
+    )
     ps = rc.steel_params(g["fy"], Es, EH)
     return pc, ps, des
 
@@ -88,29 +104,57 @@ class FourPointBeam:
     info: dict = field(default_factory=dict)
 
 
-def build_four_point(section, span, a, n_shear, n_middle, crack_band="point", integration="selective",
-                     kappa=5.0 / 6.0, **strip_options):
+def build_four_point(
+    section,
+    span,
+    a,
+    n_shear,
+    n_middle,
+    crack_band="point",
+    integration="selective",
+    kappa=5.0 / 6.0,
+    **strip_options,
+):
     """Half beam: ``n_shear`` equal elements on [0, a], ``n_middle`` on [a, L/2]. Extra keywords go to
     :class:`ssi.elements.plate.PlateStrip` (e.g. ``self_bending``)."""
     if not 0.0 < a < 0.5 * span:
         raise ValueError(f"a must be in (0, span/2 = {0.5 * span}), got {a}")
     if int(n_shear) < 1 or int(n_middle) < 1:
         raise ValueError(f"n_shear and n_middle must be >= 1, got {n_shear}, {n_middle}")
-    x_ends = np.concatenate([np.linspace(0.0, a, int(n_shear) + 1),
-                             np.linspace(a, 0.5 * span, int(n_middle) + 1)[1:]])
+    x_ends = np.concatenate(
+        [np.linspace(0.0, a, int(n_shear) + 1), np.linspace(a, 0.5 * span, int(n_middle) + 1)[1:]]
+    )
     model = Model()
-    group, ids, _ = add_plate_strip(model, x_ends, section, crack_band=crack_band, integration=integration,
-                                    kappa=kappa, name="beam", **strip_options)
+    group, ids, _ = add_plate_strip(
+        model,
+        x_ends,
+        section,
+        crack_band=crack_band,
+        integration=integration,
+        kappa=kappa,
+        name="beam",
+        **strip_options,
+    )
     support, load, mid = int(ids[0]), int(ids[2 * int(n_shear)]), int(ids[-1])
     model.fix([support], "w")
     model.fix([mid], "u")
     model.fix([mid], "alpha")
-    return FourPointBeam(model, group, support, load, mid, float(span), float(a), x_ends,
-                         {"n_shear": int(n_shear), "n_middle": int(n_middle)})
+    return FourPointBeam(
+        model,
+        group,
+        support,
+        load,
+        mid,
+        float(span),
+        float(a),
+        x_ends,
+        {"n_shear": int(n_shear), "n_middle": int(n_middle)},
+    )
 
 
-def load_path(beam: FourPointBeam, w_load_max, n_steps, settings: Settings | None = None,
-              allow_partial=False):
+def load_path(
+    beam: FourPointBeam, w_load_max, n_steps, settings: Settings | None = None, allow_partial=False
+):
     """Drive the load point down to ``w_load_max`` (> 0, a deflection) in ``n_steps`` equal steps.
 
     Returns a dict of arrays (n_steps + 1,): ``P`` (load per unit width at the load point, positive
@@ -129,9 +173,16 @@ def load_path(beam: FourPointBeam, w_load_max, n_steps, settings: Settings | Non
         res, failure = err.result, err.report
     wall = time.perf_counter() - t0
     P = -res.reaction([beam.load], "w")
-    return {"P": P, "M": P * beam.a, "delta": -res.displacement([beam.mid], "w")[:, 0],
-            "delta_load": -res.displacement([beam.load], "w")[:, 0], "wall_time": wall,
-            "iterations": np.array(res.iterations), "result": res, "failure": failure}
+    return {
+        "P": P,
+        "M": P * beam.a,
+        "delta": -res.displacement([beam.mid], "w")[:, 0],
+        "delta_load": -res.displacement([beam.load], "w")[:, 0],
+        "wall_time": wall,
+        "iterations": np.array(res.iterations),
+        "result": res,
+        "failure": failure,
+    }
 
 
 def linear_compliance(beam: FourPointBeam):
@@ -161,7 +212,7 @@ def read_reference_csv(name):
     return comments, names, data
 
 
-JANNEY_BAR_DIAMETER = 0.0159   # No. 5 bar [m]
+JANNEY_BAR_DIAMETER = 0.0159  # No. 5 bar [m]
 
 
 def janney_band_section(n_layers=11, tension_stiffening="all", **kw):

@@ -67,13 +67,17 @@ def main() -> int:
         print("  ".join(c.ljust(w) for c, w in zip(r, widths)))
     n_fail = sum(r[4] == "FAIL" for r in rows)
     n_empty = sum(r[4] == "EMPTY" for r in rows)
-    print(f"\n{len(rows)} rows: {len(rows) - n_fail - n_empty} PASS, {n_fail} FAIL, {n_empty} EMPTY "
-          f"(EMPTY = a reference slot still waiting for measured data)")
+    print(
+        f"\n{len(rows)} rows: {len(rows) - n_fail - n_empty} PASS, {n_fail} FAIL, {n_empty} EMPTY "
+        f"(EMPTY = a reference slot still waiting for measured data)"
+    )
     if n_empty:
         print("empty slots: " + ", ".join(r[0] for r in rows if r[4] == "EMPTY"))
     if n_fail:
-        print("FAIL (a reproduced number outside its reference's tolerance, reported, not hidden): "
-              + ", ".join(r[0] for r in rows if r[4] == "FAIL"))
+        print(
+            "FAIL (a reproduced number outside its reference's tolerance, reported, not hidden): "
+            + ", ".join(r[0] for r in rows if r[4] == "FAIL")
+        )
     return 0
 
 

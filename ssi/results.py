@@ -76,12 +76,14 @@ def atomic_path(path, overwrite=False):
             try:
                 os.link(tmp, path)
             except FileExistsError:
-                raise FileExistsError(f"{path} appeared while writing; pass overwrite=True to replace it"
-                                      ) from None
+                raise FileExistsError(
+                    f"{path} appeared while writing; pass overwrite=True to replace it"
+                ) from None
             except OSError:  # a file system without hard links: check, then rename
                 if path.exists():
-                    raise FileExistsError(f"{path} appeared while writing; pass overwrite=True to replace it"
-                                          ) from None
+                    raise FileExistsError(
+                        f"{path} appeared while writing; pass overwrite=True to replace it"
+                    ) from None
                 os.replace(tmp, path)
             if os.path.exists(tmp):
                 os.unlink(tmp)
@@ -148,11 +150,15 @@ def write_result(path, result, settings=None, overwrite=False, complete=None, st
 
 def _write_scene_result(h5, result):
     from .scene_file import scene_to_dict
+
     built = result.built
     h5.attrs["kind"] = "scene"
     h5.attrs["scene"] = json.dumps(scene_to_dict(built.scene))
-    extra = {f.name: getattr(result, f.name) for f in dataclasses.fields(result)
-             if f.name not in _SCENE_RESULT_FIELDS}
+    extra = {
+        f.name: getattr(result, f.name)
+        for f in dataclasses.fields(result)
+        if f.name not in _SCENE_RESULT_FIELDS
+    }
     h5.attrs["extra"] = json.dumps(extra, default=_jsonable)
     _write_mesh(h5, built.model)
     _write_steps(h5, built.model, result.load_factor, result.u, result.states)
@@ -255,8 +261,8 @@ class StoredResult:
     edofs: dict
     load_factor: np.ndarray
     u: np.ndarray
-    states: list                     # per kept step: one array per group, in group order
-    model: dict                      # Model.describe()
+    states: list  # per kept step: one array per group, in group order
+    model: dict  # Model.describe()
     f_int: np.ndarray | None = None
     iterations: np.ndarray | None = None
     info: dict = field(default_factory=dict)
@@ -299,7 +305,9 @@ def read_result(path):
     with h5py.File(path, "r") as h5:
         info = _info(h5)
         if info.get("format") != FORMAT:
-            raise ValueError(f"{path}: not an ssi result file of format {FORMAT} (found {info.get('format')})")
+            raise ValueError(
+                f"{path}: not an ssi result file of format {FORMAT} (found {info.get('format')})"
+            )
         lam = h5["steps/load_factor"][...]
         u = h5["steps/u"][...]
         names = list(h5["steps/state"])
@@ -307,27 +315,55 @@ def read_result(path):
         stored = {k: h5[f"steps/state/{k}"][...] for k in names}
         kept = len(h5["steps/state_step"])
         solver = _read_solver(h5["solver"]) if "solver/f_int" in h5 else None
-        phases = [(_read_solver(h5[f"phases/{i}"]), {k: json.loads(v) for k, v in h5[f"phases/{i}"].attrs.items()
-                                                      if k in ("name", "first", "last")})
-                  for i in range(len(h5["phases"]))] if "phases" in h5 else []
-        mesh = {k: (h5[f"mesh/{k}/conn"][...], h5[f"mesh/{k}/edofs"][...]) for k in h5["mesh"]
-                if isinstance(h5[f"mesh/{k}"], h5py.Group)}
+        phases = (
+            [
+                (
+                    _read_solver(h5[f"phases/{i}"]),
+                    {
+                        k: json.loads(v)
+                        for k, v in h5[f"phases/{i}"].attrs.items()
+                        if k in ("name", "first", "last")
+                    },
+                )
+                for i in range(len(h5["phases"]))
+            ]
+            if "phases" in h5
+            else []
+        )
+        mesh = {
+            k: (h5[f"mesh/{k}/conn"][...], h5[f"mesh/{k}/edofs"][...])
+            for k in h5["mesh"]
+            if isinstance(h5[f"mesh/{k}"], h5py.Group)
+        }
         coords, node_ndof = h5["mesh/coords"][...], h5["mesh/node_ndof"][...]
     group_order = _stored_group_order(order, names)
     states = [[stored[name][i] for name in group_order] for i in range(kept)]
     for record, _ in phases:
         if "state_own" in record:
-            record["state_own"] = [[record["state_own"][name][i] for name in group_order]
-                                   for i in range(len(record["state_own"][group_order[0]]))]
+            record["state_own"] = [
+                [record["state_own"][name][i] for name in group_order]
+                for i in range(len(record["state_own"][group_order[0]]))
+            ]
     if solver is not None and "state_own" in solver:
-        solver["state_own"] = [[solver["state_own"][name][i] for name in group_order]
-                               for i in range(len(solver["state_own"][group_order[0]]))]
+        solver["state_own"] = [
+            [solver["state_own"][name][i] for name in group_order]
+            for i in range(len(solver["state_own"][group_order[0]]))
+        ]
     if info["kind"] != "scene":
-        return StoredResult(coords=coords, node_ndof=node_ndof, conn={k: v[0] for k, v in mesh.items()},
-                            edofs={k: v[1] for k, v in mesh.items()}, load_factor=lam, u=u, states=states,
-                            model=info["model"], f_int=None if solver is None else solver["f_int"],
-                            iterations=None if solver is None else solver["iterations"], info=info,
-                            group_names=group_order)
+        return StoredResult(
+            coords=coords,
+            node_ndof=node_ndof,
+            conn={k: v[0] for k, v in mesh.items()},
+            edofs={k: v[1] for k, v in mesh.items()},
+            load_factor=lam,
+            u=u,
+            states=states,
+            model=info["model"],
+            f_int=None if solver is None else solver["f_int"],
+            iterations=None if solver is None else solver["iterations"],
+            info=info,
+            group_names=group_order,
+        )
     return _scene_result(info, lam, u, states, solver, phases, coords)
 
 
@@ -360,18 +396,26 @@ def _optional_float(value):
 def _scene_result(info, lam, u, states, solver, phases, coords):
     from .scene import SceneResult
     from .scene_file import scene_from_dict
+
     built = scene_from_dict(info["scene"]).build()
     if built.model.coords.shape != coords.shape or not np.array_equal(built.model.coords, coords):
-        raise ValueError("the rebuilt scene's mesh differs from the stored one (file written by another "
-                         f"ssi version? this is {__version__}, the file {info.get('ssi_version')})")
+        raise ValueError(
+            "the rebuilt scene's mesh differs from the stored one (file written by another "
+            f"ssi version? this is {__version__}, the file {info.get('ssi_version')})"
+        )
     u_rows = list(u)
-    records = [{**meta, "result": _solver_result(built.model, rec, lam, u_rows, states)} for rec, meta in phases]
+    records = [
+        {**meta, "result": _solver_result(built.model, rec, lam, u_rows, states)} for rec, meta in phases
+    ]
     if "solver_phase" in info:
         solver_result = records[int(info["solver_phase"])]["result"]
     else:
         solver_result = None if solver is None else _solver_result(built.model, solver, lam, u_rows, states)
-    extra = {k: v for k, v in info.get("extra", {}).items()
-             if k in {f.name for f in dataclasses.fields(SceneResult)}}
+    extra = {
+        k: v
+        for k, v in info.get("extra", {}).items()
+        if k in {f.name for f in dataclasses.fields(SceneResult)}
+    }
     return SceneResult(built, list(lam), u_rows, states, solver_result, phases=records or None, **extra)
 
 
@@ -379,26 +423,34 @@ def _solver_result(model, rec, lam, u, states):
     """A :class:`ssi.solver.Result` from its stored record; its u and state rows are the scene result's
     where the file says so (files without the row tables: the scene result's rows themselves)."""
     from .solver import Result
+
     u_rows = rec.get("u_rows", np.arange(len(lam)))
     state_rows = rec.get("state_rows", np.arange(len(states)))
     own_u = iter(rec.get("u_own", ()))
     own_states = iter(rec.get("state_own", ()))
-    return Result(model=model, load_factor=list(rec.get("load_factor", lam)),
-                  u=[u[r] if r >= 0 else next(own_u) for r in u_rows], f_int=list(rec["f_int"]),
-                  states=[states[r] if r >= 0 else next(own_states) for r in state_rows],
-                  iterations=rec["iterations"].tolist(),
-                  residuals=_split(rec["residuals"], rec["residuals_counts"]),
-                  energies=_split(rec["energies"], rec["energies_counts"]),
-                  stiffness=list(rec.get("stiffness", [])), cuts=int(rec["cuts"]),
-                  wall_time=float(rec["wall_time"]), factorizations=int(rec["factorizations"]),
-                  status=str(rec.get("status", "completed")),
-                  limit_load_factor=_optional_float(rec.get("limit_load_factor")),
-                  u_origin=rec.get("u_origin"), f_int_origin=rec.get("f_int_origin"))
+    return Result(
+        model=model,
+        load_factor=list(rec.get("load_factor", lam)),
+        u=[u[r] if r >= 0 else next(own_u) for r in u_rows],
+        f_int=list(rec["f_int"]),
+        states=[states[r] if r >= 0 else next(own_states) for r in state_rows],
+        iterations=rec["iterations"].tolist(),
+        residuals=_split(rec["residuals"], rec["residuals_counts"]),
+        energies=_split(rec["energies"], rec["energies_counts"]),
+        stiffness=list(rec.get("stiffness", [])),
+        cuts=int(rec["cuts"]),
+        wall_time=float(rec["wall_time"]),
+        factorizations=int(rec["factorizations"]),
+        status=str(rec.get("status", "completed")),
+        limit_load_factor=_optional_float(rec.get("limit_load_factor")),
+        u_origin=rec.get("u_origin"),
+        f_int_origin=rec.get("f_int_origin"),
+    )
 
 
 def _split(flat, counts):
     ends = np.cumsum(counts)
-    return [flat[e - c:e].tolist() for e, c in zip(ends, counts)]
+    return [flat[e - c : e].tolist() for e, c in zip(ends, counts)]
 
 
 def _jsonable(obj):
@@ -415,10 +467,14 @@ def scene_quantities(result) -> dict:
     arrays keyed by name: what a file must give back unchanged (``max_difference``). With the status and
     limit load, the solver result (``solver.*``) and of a phased result every phase's name, step range and
     solver result (``phases[i].*``)."""
-    out = {"load_factor": np.asarray(result.load_factor, np.float64), "u": np.asarray(result.u, np.float64),
-           "coords": result.built.model.coords, "status": np.asarray(result.status),
-           "limit_load_factor": _number(result.limit_load_factor),
-           "n_phases": np.asarray(-1 if result.phases is None else len(result.phases))}
+    out = {
+        "load_factor": np.asarray(result.load_factor, np.float64),
+        "u": np.asarray(result.u, np.float64),
+        "coords": result.built.model.coords,
+        "status": np.asarray(result.status),
+        "limit_load_factor": _number(result.limit_load_factor),
+        "n_phases": np.asarray(-1 if result.phases is None else len(result.phases)),
+    }
     if result.solver_result is not None:
         out.update(solver_quantities(result.solver_result, "solver."))
     for i, record in enumerate(result.phases or []):
@@ -433,14 +489,23 @@ def scene_quantities(result) -> dict:
     for k in range(n_rows - len(result.states), n_rows):
         for i, state in enumerate(result.states[k - n_rows]):
             out[f"state[{k}][{i}]"] = state
-        q = {"settlement": result.surface(k), "soil_stress": result.soil_stress(k),
-             "plastic_points": result.plastic_points(k), "plastic_strain": result.plastic_strain(k),
-             "max_settlement": result.max_settlement(k)}
+        q = {
+            "settlement": result.surface(k),
+            "soil_stress": result.soil_stress(k),
+            "plastic_points": result.plastic_points(k),
+            "plastic_strain": result.plastic_strain(k),
+            "max_settlement": result.max_settlement(k),
+        }
         if result.built.plate is not None:
-            q.update(plate_settlement=result.settlement(k), contact=result.contact(k),
-                     contact_resultant=result.contact_resultant(k), strip_forces=result.strip_forces(k),
-                     plate_layers=result.plate_layers(k), steel_stress=result.steel_stress(k),
-                     crack_map=result.crack_map(k))
+            q.update(
+                plate_settlement=result.settlement(k),
+                contact=result.contact(k),
+                contact_resultant=result.contact_resultant(k),
+                strip_forces=result.strip_forces(k),
+                plate_layers=result.plate_layers(k),
+                steel_stress=result.steel_stress(k),
+                crack_map=result.crack_map(k),
+            )
         for name, value in q.items():
             if isinstance(value, dict):
                 items = value.items()

@@ -106,7 +106,9 @@ class SoilLayer:
         if self.drainage != "undrained_A":
             raise ValueError(f"drainage must be 'drained' or 'undrained_A', got {self.drainage!r}")
         if not (self.nu < self.nu_u < 0.5):
-            raise ValueError(f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}")
+            raise ValueError(
+                f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}"
+            )
         shear = self.E / (2.0 * (1.0 + self.nu))
         k_skeleton = self.E / (3.0 * (1.0 - 2.0 * self.nu))
         return 2.0 * shear * (1.0 + self.nu_u) / (3.0 * (1.0 - 2.0 * self.nu_u)) - k_skeleton
@@ -116,8 +118,16 @@ class SoilLayer:
         """Total-stress undrained clay (Tresca: phi = 0, c = s_u [Pa]) with the undrained modulus E_u [Pa] and
         nu_u close to 0.5 (nearly incompressible). phi = 0 makes the strength independent of the mean stress,
         so the hydrostatic pore pressure the scene separates does not change it."""
-        return cls(thickness, E=E_u, nu=nu_u, unit_weight=unit_weight, c=s_u, phi_deg=0.0, K0=K0,
-                   unit_weight_sat=unit_weight_sat)
+        return cls(
+            thickness,
+            E=E_u,
+            nu=nu_u,
+            unit_weight=unit_weight,
+            c=s_u,
+            phi_deg=0.0,
+            K0=K0,
+            unit_weight_sat=unit_weight_sat,
+        )
 
     def __post_init__(self):
         check_real("SoilLayer.thickness", self.thickness, lo=0.0, lo_open=True, unit="m")
@@ -126,15 +136,19 @@ class SoilLayer:
         check_real("SoilLayer.unit_weight", self.unit_weight, lo=0.0, unit="N/m^3")
         check_optional_real("SoilLayer.c", self.c, lo=0.0, unit="Pa")
         check_real("SoilLayer.phi_deg", self.phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
-        check_optional_real("SoilLayer.psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="degrees (<= phi_deg)")
+        check_optional_real(
+            "SoilLayer.psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="degrees (<= phi_deg)"
+        )
         check_optional_real("SoilLayer.K0", self.K0, lo=0.0, hi=10.0, hi_open=True)
         check_choice("SoilLayer.scheme", self.scheme, ("implicit", "explicit"))
         check_optional_real("SoilLayer.unit_weight_sat", self.unit_weight_sat, lo=0.0, unit="N/m^3")
         check_choice("SoilLayer.drainage", self.drainage, DRAINAGE)
         check_real("SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, hi_open=True, unit="(nu <= nu_u < 0.5)")
         if self.c == 0.0 and self.phi_deg == 0.0:
-            raise ValueError("SoilLayer: c=0 and phi_deg=0 give a soil without strength; need c > 0 or "
-                             "phi_deg > 0 (or c=None for an elastic layer)")
+            raise ValueError(
+                "SoilLayer: c=0 and phi_deg=0 give a soil without strength; need c > 0 or "
+                "phi_deg > 0 (or c=None for an elastic layer)"
+            )
 
     def law(self):
         if self.c is None:
@@ -182,6 +196,7 @@ class Foundation:
 
         from .materials.rc import with_plane_strain
         from .section import with_crack_spacing_band
+
         sec = self.section
         if not np.any(sec.kind == CONCRETE):
             return sec
@@ -196,8 +211,13 @@ class Foundation:
 
     def strip_options(self) -> dict:
         """Keyword arguments of :class:`ssi.elements.plate.PlateStrip` for this foundation."""
-        return {"kappa": self.kappa, "integration": self.integration, "self_weight": self.self_weight,
-                "self_bending": self.self_bending, "crack_band": "point" if self.crack_band == "point" else None}
+        return {
+            "kappa": self.kappa,
+            "integration": self.integration,
+            "self_weight": self.self_weight,
+            "self_bending": self.self_bending,
+            "crack_band": "point" if self.crack_band == "point" else None,
+        }
 
     def __post_init__(self):
         x0 = check_real("Foundation.x0", self.x0, unit="m")
@@ -234,8 +254,14 @@ class Contact:
         check_optional_real("Contact.phi_deg", self.phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
         check_real("Contact.c", self.c, lo=0.0, allow_inf=True, unit="Pa")
         psi_max = 90.0 if self.phi_deg is None else self.phi_deg
-        check_optional_real("Contact.psi_deg", self.psi_deg, lo=0.0, hi=psi_max, hi_open=self.phi_deg is None,
-                            unit="degrees (<= phi_deg)")
+        check_optional_real(
+            "Contact.psi_deg",
+            self.psi_deg,
+            lo=0.0,
+            hi=psi_max,
+            hi_open=self.phi_deg is None,
+            unit="degrees (<= phi_deg)",
+        )
         check_optional_real("Contact.sig_t", self.sig_t, lo=0.0, unit="Pa")
         check_choice("Contact.rule", self.rule, ("newton_cotes", "gauss"))
         self.params()  # the interface law's own checks of the combination (sig_t below the apex)
@@ -243,8 +269,9 @@ class Contact:
     def params(self):
         if self.phi_deg is None:
             return interface_params(kt=self.kt, kn=self.kn, phi_deg=0.0, c=np.inf, psi_deg=None, sig_t=np.inf)
-        return interface_params(kt=self.kt, kn=self.kn, phi_deg=self.phi_deg, c=self.c, psi_deg=self.psi_deg,
-                                sig_t=self.sig_t)
+        return interface_params(
+            kt=self.kt, kn=self.kn, phi_deg=self.phi_deg, c=self.c, psi_deg=self.psi_deg, sig_t=self.sig_t
+        )
 
 
 @dataclass(frozen=True)
@@ -330,8 +357,10 @@ class Phase:
             raise TypeError(f"Phase.name must be a non-empty string, got {self.name!r}")
         _check_list(f"Phase({self.name!r}).loads", list(self.loads), LOAD_TYPES)
         if not isinstance(self.factors, dict):
-            raise TypeError(f"Phase({self.name!r}).factors must be a dict {{phase name: factor}}, got "
-                            f"{type(self.factors).__name__}")
+            raise TypeError(
+                f"Phase({self.name!r}).factors must be a dict {{phase name: factor}}, got "
+                f"{type(self.factors).__name__}"
+            )
         for key, value in self.factors.items():
             check_real(f"Phase({self.name!r}).factors[{key!r}]", value)
         if self.n_steps is not None:
@@ -398,19 +427,27 @@ class Scene:
         check_real("Scene.gamma_w", self.gamma_w, lo=0.0, lo_open=True, unit="N/m^3")
         total = sum(lay.thickness for lay in self.layers)
         if abs(total - depth) > 1e-9 * depth:
-            raise ValueError(f"Scene.depth={self.depth!r}: the layer thicknesses "
-                             f"{[lay.thickness for lay in self.layers]} must tile the depth (their sum is {total:g})")
+            raise ValueError(
+                f"Scene.depth={self.depth!r}: the layer thicknesses "
+                f"{[lay.thickness for lay in self.layers]} must tile the depth (their sum is {total:g})"
+            )
         f = self.foundation
         x0, x1 = (f.x0, f.x1) if f else (-0.25 * width, 0.25 * width)
         if f is not None and not (-0.5 * width <= x0 and x1 <= 0.5 * width):
-            raise ValueError(f"Scene.foundation (x0={f.x0!r}, x1={f.x1!r}) must lie within the block "
-                             f"[-width/2, width/2] = [{-0.5 * width:g}, {0.5 * width:g}] (Scene.width={self.width!r})")
+            raise ValueError(
+                f"Scene.foundation (x0={f.x0!r}, x1={f.x1!r}) must lie within the block "
+                f"[-width/2, width/2] = [{-0.5 * width:g}, {0.5 * width:g}] (Scene.width={self.width!r})"
+            )
         if self.mesh.h_fine > x1 - x0:
-            raise ValueError(f"MeshSize.h_fine={self.mesh.h_fine!r} must be <= the foundation width x1 - x0 = "
-                             f"{x1 - x0:g} m (at least one element under the foundation)")
+            raise ValueError(
+                f"MeshSize.h_fine={self.mesh.h_fine!r} must be <= the foundation width x1 - x0 = "
+                f"{x1 - x0:g} m (at least one element under the foundation)"
+            )
         for i, load in enumerate(self.loads):
             if isinstance(load, ColumnLoad) and f is not None and not x0 <= load.x <= x1:
-                raise ValueError(f"loads[{i}].x={load.x!r} must lie on the foundation [x0, x1] = [{x0:g}, {x1:g}]")
+                raise ValueError(
+                    f"loads[{i}].x={load.x!r} must lie on the foundation [x0, x1] = [{x0:g}, {x1:g}]"
+                )
 
     def build(self) -> "BuiltScene":
         """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads."""
@@ -420,8 +457,10 @@ class Scene:
             raise ValueError("contact: a foundation needs a Contact (interface) to rest on the soil")
         strip_loads = [ld for ld in self._all_loads() if not isinstance(ld, SurfacePressure)]
         if self.foundation is None and strip_loads:
-            raise ValueError(f"loads: {type(strip_loads[0]).__name__} needs a foundation to act on (a pressure on "
-                             "the ground without a foundation is a SurfacePressure)")
+            raise ValueError(
+                f"loads: {type(strip_loads[0]).__name__} needs a foundation to act on (a pressure on "
+                "the ground without a foundation is a SurfacePressure)"
+            )
         if self.embedment and self.foundation is None:
             raise ValueError(f"embedment={self.embedment}: an embedded scene needs a foundation")
         _check_phases(self)
@@ -429,18 +468,33 @@ class Scene:
         f = self.foundation
         x0, x1 = (f.x0, f.x1) if f else (-0.25 * self.width, 0.25 * self.width)
         mesh_layers = self._mesh_layers()
-        mesh = soil_block(self.width, self.depth, [t for t, _, _ in mesh_layers], (x0, x1),
-                          self.mesh.h_fine, self.mesh.h_coarse, self.mesh.growth, breaks=self._breaks(),
-                          embedment=self.embedment)
+        mesh = soil_block(
+            self.width,
+            self.depth,
+            [t for t, _, _ in mesh_layers],
+            (x0, x1),
+            self.mesh.h_fine,
+            self.mesh.h_coarse,
+            self.mesh.growth,
+            breaks=self._breaks(),
+            embedment=self.embedment,
+        )
         model = Model()
         model.info["scene"] = _describe(self)
         soil_ids = model.add_nodes(mesh.xy, ndof=2)
         kinds, params = material_table([lay.law() for _, lay, _ in mesh_layers])
         weights = np.array([gamma for _, _, gamma in mesh_layers])
         k_water = np.array([lay.k_water() for _, lay, _ in mesh_layers])
-        soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(soil_ids[mesh.conn]), mesh.el_layer, kinds, params,
-                      n_gauss=self.mesh.n_gauss, unit_weight=weights if weights.any() else None,
-                      k_water=k_water if k_water.any() else None)
+        soil = SoilQ8(
+            mesh.xy[mesh.conn],
+            model.element_dofs(soil_ids[mesh.conn]),
+            mesh.el_layer,
+            kinds,
+            params,
+            n_gauss=self.mesh.n_gauss,
+            unit_weight=weights if weights.any() else None,
+            k_water=k_water if k_water.any() else None,
+        )
         if weights.any() or self.surcharge:
             soil.initial_stress = self._geostatic(soil.integration_points()[..., 1])
         model.add_group(soil)
@@ -475,8 +529,9 @@ class Scene:
                 out += list(load.x)
         bad = [x for x in out if not (-0.5 * self.width <= x <= 0.5 * self.width)]
         if bad:
-            raise ValueError(f"loads: x={bad[0]} lies outside the block [{-0.5 * self.width}, "
-                             f"{0.5 * self.width}] m")
+            raise ValueError(
+                f"loads: x={bad[0]} lies outside the block [{-0.5 * self.width}, {0.5 * self.width}] m"
+            )
         if f is not None:
             out += [v for seg in _segments(self) for v in (seg.x0, seg.x1)]
         return out
@@ -486,7 +541,9 @@ class Scene:
         gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective stress)."""
         d_w = math.inf if self.water_table is None else float(self.water_table)
         if self.water_table is not None and not (np.isfinite(d_w) and d_w >= 0.0):
-            raise ValueError(f"water_table must be a depth >= 0 below the ground [m] or None, got {self.water_table}")
+            raise ValueError(
+                f"water_table must be a depth >= 0 below the ground [m] or None, got {self.water_table}"
+            )
         out, top = [], 0.0
         for lay in self.layers:
             sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
@@ -501,8 +558,15 @@ class Scene:
 
     def _geostatic(self, z):
         """Effective geostatic stress (n, ..., 4) at the points z [m] (see ``geostatic_stress``)."""
-        layers = [{"thickness": lay.thickness, "gamma": lay.unit_weight, "gamma_sat": lay.unit_weight_sat,
-                   **({"K0": lay.K0} if lay.K0 is not None else {"phi_deg": lay.phi_deg})} for lay in self.layers]
+        layers = [
+            {
+                "thickness": lay.thickness,
+                "gamma": lay.unit_weight,
+                "gamma_sat": lay.unit_weight_sat,
+                **({"K0": lay.K0} if lay.K0 is not None else {"phi_deg": lay.phi_deg}),
+            }
+            for lay in self.layers
+        ]
         return geostatic_stress(z, layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w)
 
     def _ground_loads(self, built):
@@ -513,8 +577,11 @@ class Scene:
         f_vec = np.zeros(model.n_dof)
         half = 0.5 * self.width
         if self.surcharge:
-            ranges = [(-half, half)] if self.foundation is None else [(-half, self.foundation.x0),
-                                                                       (self.foundation.x1, half)]
+            ranges = (
+                [(-half, half)]
+                if self.foundation is None
+                else [(-half, self.foundation.x0), (self.foundation.x1, half)]
+            )
             for a, b in ranges:
                 if b - a > 1e-12:
                     nodes, f = surface_pressure_forces(mesh, a, b)
@@ -527,18 +594,20 @@ class Scene:
 
     def _wall_forces(self, mesh, x_wall, normal):
         """Nodal forces [N/m] of the traction sig_xx0 * n_x on a trench wall (3-point Gauss per edge)."""
-        on = np.flatnonzero((np.abs(mesh.xy[:, 0] - x_wall) < 1e-9) & (mesh.xy[:, 1] >= -self.embedment - 1e-9))
+        on = np.flatnonzero(
+            (np.abs(mesh.xy[:, 0] - x_wall) < 1e-9) & (mesh.xy[:, 1] >= -self.embedment - 1e-9)
+        )
         nodes = on[np.argsort(mesh.xy[on, 1])]
         z = mesh.xy[nodes, 1]
         f = np.zeros(len(nodes))
         xi = np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
         wt = np.array([5.0, 8.0, 5.0]) / 9.0
         for i in range(0, len(nodes) - 2, 2):
-            za = z[i:i + 3]
+            za = z[i : i + 3]
             for s, w in zip(xi, wt):
                 n = _lagrange_row(s)
                 sxx = self._geostatic(np.array([n @ za]))[0, 0]
-                f[i:i + 3] += n * sxx * normal * w * 0.5 * (za[2] - za[0])
+                f[i : i + 3] += n * sxx * normal * w * 0.5 * (za[2] - za[0])
         return nodes, f
 
     def _add_foundation(self, built):
@@ -550,8 +619,9 @@ class Scene:
         ids = model.add_nodes(plate_xy, ndof=3)
         built.geostatic_load = np.concatenate([built.geostatic_load, np.zeros(3 * len(ids))])
         conn = ids[contact.plate_conn]
-        plate = PlateStrip(plate_xy[contact.plate_conn], model.element_dofs(conn), f.strip_section(),
-                           **f.strip_options())
+        plate = PlateStrip(
+            plate_xy[contact.plate_conn], model.element_dofs(conn), f.strip_section(), **f.strip_options()
+        )
         model.add_group(plate)
         segments = _segments(self)
         x_mid = plate_xy[contact.plate_conn[:, 1], 0]
@@ -559,9 +629,15 @@ class Scene:
         # the strip starts carrying the geostatic vertical stress of its base level (surcharge, overburden):
         # contact traction and an equal dead load on the strip, so the initial state is in equilibrium
         p0 = -float(self._geostatic(np.array([z_base]))[0, 1]) if self._has_geostatic_stress() else 0.0
-        iface = add_interface(model, conn, contact.soil_conn, params, offset=plate.bottom_offset,
-                              rule=segments[0].contact.rule,
-                              initial_traction=np.array([0.0, -p0]) if p0 else None)
+        iface = add_interface(
+            model,
+            conn,
+            contact.soil_conn,
+            params,
+            offset=plate.bottom_offset,
+            rule=segments[0].contact.rule,
+            initial_traction=np.array([0.0, -p0]) if p0 else None,
+        )
         built.plate, built.interface, built.plate_nodes = plate, iface, ids
         built.base_pressure = p0
         if p0:
@@ -583,8 +659,10 @@ def _segments(scene):
     ends = [f.x0] + [v for s in segs for v in (s.x0, s.x1)] + [f.x1]
     gaps = [abs(a - b) for a, b in zip(ends[0::2], ends[1::2])]
     if max(gaps) > tol or any(s.x1 <= s.x0 for s in segs):
-        raise ValueError(f"contact segments {[(s.x0, s.x1) for s in segs]} must tile the strip [{f.x0}, {f.x1}] "
-                         "without gaps or overlaps")
+        raise ValueError(
+            f"contact segments {[(s.x0, s.x1) for s in segs]} must tile the strip [{f.x0}, {f.x1}] "
+            "without gaps or overlaps"
+        )
     if len({s.contact.rule for s in segs}) != 1:
         raise ValueError("contact segments must share one integration rule")
     return segs
@@ -602,11 +680,12 @@ def _check_phases(scene):
     if len(set(names)) != len(names) or "geostatic" in names:
         raise ValueError(f"phase names {names} must be unique and not 'geostatic' (the first phase's name)")
     for k, ph in enumerate(scene.phases):
-        earlier = names[:names.index(ph.name)]
+        earlier = names[: names.index(ph.name)]
         unknown = [n for n in ph.factors if n not in earlier]
         if unknown:
-            raise ValueError(f"phases[{k}] ({ph.name!r}): factors name {unknown}, which are not earlier phases "
-                             f"({earlier})")
+            raise ValueError(
+                f"phases[{k}] ({ph.name!r}): factors name {unknown}, which are not earlier phases ({earlier})"
+            )
         if ph.n_steps is not None and int(ph.n_steps) < 1:
             raise ValueError(f"phases[{k}] ({ph.name!r}): n_steps must be >= 1, got {ph.n_steps}")
 
@@ -617,11 +696,16 @@ _PLAUSIBLE_MIN = {"E": 1e5, "unit_weight": 100.0, "c": 100.0, "pressure": 100.0,
 
 def _warn_implausible_units(scene):
     """Warn (never refuse) where a value looks like kN, kPa or kN/m^3 instead of N, Pa, N/m^3."""
+
     def warn(what, value, unit, key):
         size = abs(value) if key in ("force", "pressure") else value  # a negative modulus is the validator's
         if 0.0 < size < _PLAUSIBLE_MIN[key]:
-            warnings.warn(f"{what} = {value:g} {unit} looks small for SI units (was it given in k{unit}?); "
-                          "the scene uses N, Pa, N/m^3", UserWarning, stacklevel=3)
+            warnings.warn(
+                f"{what} = {value:g} {unit} looks small for SI units (was it given in k{unit}?); "
+                "the scene uses N, Pa, N/m^3",
+                UserWarning,
+                stacklevel=3,
+            )
 
     for i, lay in enumerate(scene.layers):
         warn(f"layers[{i}].E", lay.E, "Pa", "E")
@@ -629,8 +713,9 @@ def _warn_implausible_units(scene):
         if lay.c is not None:
             warn(f"layers[{i}].c", lay.c, "Pa", "c")
     warn("surcharge", scene.surcharge, "Pa", "pressure")
-    for c in ([scene.contact] if isinstance(scene.contact, Contact) else
-              [s.contact for s in scene.contact or []]):
+    for c in (
+        [scene.contact] if isinstance(scene.contact, Contact) else [s.contact for s in scene.contact or []]
+    ):
         warn("contact.kn", c.kn, "Pa/m", "kn")
     for load in scene._all_loads():
         if isinstance(load, ColumnLoad):
@@ -665,7 +750,9 @@ def _check_integration(name, value):
         check_choice(name, value, tuple(INTEGRATIONS))
         return
     if not (isinstance(value, list | tuple) and len(value) == 2):
-        raise TypeError(f"{name} must be one of {tuple(INTEGRATIONS)} or a pair (n_axial, n_shear), got {value!r}")
+        raise TypeError(
+            f"{name} must be one of {tuple(INTEGRATIONS)} or a pair (n_axial, n_shear), got {value!r}"
+        )
     for v in value:
         check_int(f"{name} point count", v, lo=1, hi=3)
 
@@ -674,6 +761,7 @@ def _describe(scene):
     """The scene record of ``model.info["scene"]``: :func:`ssi.scene_file.scene_to_dict` (one home for the
     plain form of a scene; every load tagged with its class name under ``type``)."""
     from .scene_file import scene_to_dict
+
     return scene_to_dict(scene)
 
 
@@ -709,14 +797,16 @@ class BuiltScene:
     plate: PlateStrip | None = None
     interface: Interface6 | None = None
     plate_nodes: np.ndarray | None = None
-    geostatic_load: np.ndarray | None = None   # (n_dof,) dead loads [N/m] holding the geostatic state
-    base_pressure: float = 0.0                 # geostatic vertical stress [Pa] the strip's base starts with
+    geostatic_load: np.ndarray | None = None  # (n_dof,) dead loads [N/m] holding the geostatic state
+    base_pressure: float = 0.0  # geostatic vertical stress [Pa] the strip's base starts with
 
     def plate_node_at(self, x, tol=1e-6):
         xs = self.model.coords[self.plate_nodes, 0]
         i = int(np.argmin(np.abs(xs - x)))
         if abs(xs[i] - x) > tol * max(1.0, abs(x)):
-            raise ValueError(f"x={x}: column loads must act on the strip; nearest plate node is x={xs[i]:.6g}")
+            raise ValueError(
+                f"x={x}: column loads must act on the strip; nearest plate node is x={xs[i]:.6g}"
+            )
         return self.plate_nodes[i]
 
     @property
@@ -724,7 +814,8 @@ class BuiltScene:
         soil_linear = all(lay.c is None for lay in self.scene.layers)
         plate_linear = self.plate is None or bool(np.all(self.plate.section.kind == LAYER_ELASTIC))
         contact_linear = self.scene.contact is None or all(
-            seg.contact.phi_deg is None for seg in _segments(self.scene))
+            seg.contact.phi_deg is None for seg in _segments(self.scene)
+        )
         return soil_linear and plate_linear and contact_linear
 
     # ---- loads -----------------------------------------------------------------------------------------
@@ -734,8 +825,10 @@ class BuiltScene:
         if isinstance(load, SurfacePressure):
             f = self.scene.foundation
             if f is not None and min(load.x1, f.x1) - max(load.x0, f.x0) > 1e-9:
-                raise ValueError(f"SurfacePressure ({load.x0}, {load.x1}) overlaps the strip ({f.x0}, {f.x1}): "
-                                 "a load on the strip is a StripLoad")
+                raise ValueError(
+                    f"SurfacePressure ({load.x0}, {load.x1}) overlaps the strip ({f.x0}, {f.x1}): "
+                    "a load on the strip is a StripLoad"
+                )
             nodes, w = surface_pressure_forces(self.mesh, load.x0, load.x1)
             np.add.at(f_vec, model.dof(nodes, "w"), -load.q * w)
         elif isinstance(load, ColumnLoad):
@@ -743,8 +836,9 @@ class BuiltScene:
             for comp, value in (("w", -load.N), ("u", load.H), ("alpha", load.M)):
                 f_vec[model.dof(node, comp)] += value
         elif isinstance(load, StripLoad):
-            scatter_vector(self.plate.edofs, self.plate.distributed_load(self._strip_profile(load), comp="w"),
-                           f_vec)
+            scatter_vector(
+                self.plate.edofs, self.plate.distributed_load(self._strip_profile(load), comp="w"), f_vec
+            )
         elif isinstance(load, StripWeight):
             q = load.unit_weight * self.plate.section.thickness
             scatter_vector(self.plate.edofs, self.plate.distributed_load(-q, comp="w"), f_vec)
@@ -754,20 +848,24 @@ class BuiltScene:
             if load.x is None:  # rigid strip: rotations held
                 held.update({int(d): 0.0 for d in model.dof(ids, "alpha")})
         else:
-            raise TypeError(f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or "
-                            "Settlement")
+            raise TypeError(
+                f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or Settlement"
+            )
         return f_vec, held
 
     def _strip_profile(self, load):
         a = self.scene.foundation.x0 if load.x0 is None else load.x0
         b = self.scene.foundation.x1 if load.x1 is None else load.x1
         if not (self.scene.foundation.x0 - 1e-9 <= a < b <= self.scene.foundation.x1 + 1e-9):
-            raise ValueError(f"StripLoad x0={a}, x1={b} must satisfy foundation.x0 <= x0 < x1 <= foundation.x1")
+            raise ValueError(
+                f"StripLoad x0={a}, x1={b} must satisfy foundation.x0 <= x0 < x1 <= foundation.x1"
+            )
         q_end = load.q if load.q_end is None else load.q_end
 
         def q(x):
             inside = (x >= a - 1e-12) & (x <= b + 1e-12)
             return np.where(inside, -(load.q + (q_end - load.q) * (x - a) / (b - a)), 0.0)
+
         return q
 
     def _register(self, load):
@@ -799,8 +897,15 @@ class BuiltScene:
         return np.array([-np.sum(st[k][..., V_SIG] * w) for st in out.states])
 
     # ---- solution --------------------------------------------------------------------------------------
-    def solve(self, n_steps: int | None = None, settings: Settings | None = None, *, estimate_error: bool = False,
-              target_error: float | None = None, quantities=("max_settlement",)):
+    def solve(
+        self,
+        n_steps: int | None = None,
+        settings: Settings | None = None,
+        *,
+        estimate_error: bool = False,
+        target_error: float | None = None,
+        quantities=("max_settlement",),
+    ):
         """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear and
         has no phases.
 
@@ -826,10 +931,17 @@ class BuiltScene:
         check_instance("settings", settings, Settings, optional=True)
         if target_error is not None:
             from .estimate import solve_to_target
-            return solve_to_target(self.scene, check_real("target_error", target_error, lo=0.0, hi=1.0,
-                                                          lo_open=True), quantities, n_steps, settings)
+
+            return solve_to_target(
+                self.scene,
+                check_real("target_error", target_error, lo=0.0, hi=1.0, lo_open=True),
+                quantities,
+                n_steps,
+                settings,
+            )
         if estimate_error:
             from .estimate import solve_with_error
+
             out, estimate = solve_with_error(self.scene, n_steps, settings)
             out.error_estimate = estimate
             return out
@@ -837,7 +949,9 @@ class BuiltScene:
             return self._solve_phases(n_steps, settings)
         if self.is_linear:
             lin = self.model.solve_linear(backend=(settings or Settings()).backend)
-            return SceneResult(self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None)
+            return SceneResult(
+                self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None
+            )
         res = _run_phase(self.model, _load_levels(n_steps), settings)
         return SceneResult(self, res.load_factor, res.u, res.states, res)
 
@@ -884,8 +998,13 @@ class BuiltScene:
                 dofs = np.array(sorted(target), np.int64)
                 now = res.u[-1][dofs]
                 _hold(model, dofs, now, np.array([target[d] for d in dofs]) - now)
-                res = _run_phase(model, _load_levels(ph.n_steps or n_steps), settings, start=res,
-                                 loads=(f_end - f_prev, f_geo + f_prev))
+                res = _run_phase(
+                    model,
+                    _load_levels(ph.n_steps or n_steps),
+                    settings,
+                    start=res,
+                    loads=(f_end - f_prev, f_geo + f_prev),
+                )
                 _hold(model, dofs, np.array([target[d] for d in dofs]), np.zeros(len(dofs)))
                 f_prev = f_end
                 first = len(lam)
@@ -916,7 +1035,7 @@ class SceneResult:
 
     @property
     def status(self) -> str:
-        """"completed" (load factor 1 reached) or "limit load reached" (collapse detected before it)."""
+        """ "completed" (load factor 1 reached) or "limit load reached" (collapse detected before it)."""
         return "completed" if self.solver_result is None else self.solver_result.status
 
     @property
@@ -971,10 +1090,18 @@ class SceneResult:
                     sig[e, q, n] = layer_update(sec.kind[n], prm, eps[e, q, n], gam[e, q], hist, h_new, 0)[0]
                     if sec.kind[n] == CONCRETE:
                         cracked[e, q, n] = hist[1] > prm[P_FR] / prm[P_E0]
-        x_pts = np.array([[np.dot(_lagrange_row(xi), plate._x[e]) for xi in plate.xi] for e in range(plate.n_el)])
+        x_pts = np.array(
+            [[np.dot(_lagrange_row(xi), plate._x[e]) for xi in plate.xi] for e in range(plate.n_el)]
+        )
         axial = plate.ax.astype(bool)
-        return {"x": x_pts[:, axial], "z": sec.z_mid, "eps": eps[:, axial], "sig": sig[:, axial],
-                "cracked": cracked[:, axial], "steel": sec.kind == STEEL}
+        return {
+            "x": x_pts[:, axial],
+            "z": sec.z_mid,
+            "eps": eps[:, axial],
+            "sig": sig[:, axial],
+            "cracked": cracked[:, axial],
+            "steel": sec.kind == STEEL,
+        }
 
     # ---- what the engineer asks (issue 13); units in each docstring -------------------------------------
     @property
@@ -1020,13 +1147,18 @@ class SceneResult:
         ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
         ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
         from .materials.steel import S_FY
+
         layers = self.plate_layers(k)
         steel = layers["steel"]
         sig = layers["sig"][..., steel]
         params = self.built.plate.section.params
         fy = params[steel, S_FY] if steel.any() else np.zeros(0)
-        return {"x": layers["x"], "z": layers["z"][steel], "sig": sig,
-                "yielded": np.abs(sig) >= fy * (1.0 - 1e-9)}
+        return {
+            "x": layers["x"],
+            "z": layers["z"][steel],
+            "sig": sig,
+            "yielded": np.abs(sig) >= fy * (1.0 - 1e-9),
+        }
 
     def crack_map(self, k=-1):
         """Cracked concrete layer points at step ``k``: ``x`` (n_el, n_ax) [m], ``z`` (n_layer,) [m],
@@ -1046,12 +1178,14 @@ class SceneResult:
         """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
         surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
         from .elements.soil_q8 import N_STRESS
+
         return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
 
     def plastic_strain(self, k=-1):
         """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
         (history slot 0; zero for elastic layers)."""
         from .elements.soil_q8 import N_STRESS
+
         return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
 
     def load_settlement(self):

@@ -84,45 +84,97 @@ from .section import Section
 from .solver import Settings
 
 UNITS = {
-    "Scene": {"width": "m", "depth": "m", "layers": "list of SoilLayer tables, from the surface down",
-              "foundation": "Foundation table (leave out: no foundation)",
-              "contact": "Contact table, or a list of ContactSegment tables tiling the strip",
-              "loads": "list of load tables (type = ...) of the first phase", "mesh": "MeshSize table",
-              "surcharge": "Pa", "phases": "list of Phase tables", "embedment": "m (depth of the strip's base)",
-              "water_table": "m (depth below the ground; leave out: dry)", "gamma_w": "N/m^3"},
-    "SoilLayer": {"thickness": "m", "E": "Pa", "nu": "-", "unit_weight": "N/m^3", "c": "Pa", "phi_deg": "deg",
-                  "psi_deg": "deg", "K0": "-", "scheme": "'implicit' | 'explicit'",
-                  "unit_weight_sat": "N/m^3", "drainage": "'drained' | 'undrained_A'", "nu_u": "-"},
-    "Foundation": {"x0": "m", "x1": "m", "section": "{homogeneous | rc | layers} table", "kappa": "-",
-                   "integration": "'selective' | 'full' | 'reduced'", "self_weight": "N/m^2",
-                   "self_bending": "'chord' | 'tangent' | 'initial' | 'none'",
-                   "crack_band": "'spacing' | 'point' | none", "bar_diameter": "m", "plane_strain": "bool",
-                   "tension_stiffening": "'all' | 'effective_area'"},
-    "Contact": {"kn": "Pa/m", "kt": "Pa/m", "phi_deg": "deg", "c": "Pa", "psi_deg": "deg", "sig_t": "Pa",
-                "rule": "'newton_cotes' | 'gauss'"},
+    "Scene": {
+        "width": "m",
+        "depth": "m",
+        "layers": "list of SoilLayer tables, from the surface down",
+        "foundation": "Foundation table (leave out: no foundation)",
+        "contact": "Contact table, or a list of ContactSegment tables tiling the strip",
+        "loads": "list of load tables (type = ...) of the first phase",
+        "mesh": "MeshSize table",
+        "surcharge": "Pa",
+        "phases": "list of Phase tables",
+        "embedment": "m (depth of the strip's base)",
+        "water_table": "m (depth below the ground; leave out: dry)",
+        "gamma_w": "N/m^3",
+    },
+    "SoilLayer": {
+        "thickness": "m",
+        "E": "Pa",
+        "nu": "-",
+        "unit_weight": "N/m^3",
+        "c": "Pa",
+        "phi_deg": "deg",
+        "psi_deg": "deg",
+        "K0": "-",
+        "scheme": "'implicit' | 'explicit'",
+        "unit_weight_sat": "N/m^3",
+        "drainage": "'drained' | 'undrained_A'",
+        "nu_u": "-",
+    },
+    "Foundation": {
+        "x0": "m",
+        "x1": "m",
+        "section": "{homogeneous | rc | layers} table",
+        "kappa": "-",
+        "integration": "'selective' | 'full' | 'reduced'",
+        "self_weight": "N/m^2",
+        "self_bending": "'chord' | 'tangent' | 'initial' | 'none'",
+        "crack_band": "'spacing' | 'point' | none",
+        "bar_diameter": "m",
+        "plane_strain": "bool",
+        "tension_stiffening": "'all' | 'effective_area'",
+    },
+    "Contact": {
+        "kn": "Pa/m",
+        "kt": "Pa/m",
+        "phi_deg": "deg",
+        "c": "Pa",
+        "psi_deg": "deg",
+        "sig_t": "Pa",
+        "rule": "'newton_cotes' | 'gauss'",
+    },
     "ContactSegment": {"x0": "m", "x1": "m", "contact": "Contact table"},
     "ColumnLoad": {"x": "m", "N": "N/m (down positive)", "H": "N/m (+x)", "M": "N m/m (counter-clockwise)"},
     "SurfacePressure": {"x0": "m", "x1": "m", "q": "Pa (down positive)"},
-    "StripLoad": {"q": "Pa (down positive) at x0", "q_end": "Pa at x1 (leave out: uniform)",
-                  "x0": "m (leave out: the strip's x0)", "x1": "m (leave out: the strip's x1)"},
+    "StripLoad": {
+        "q": "Pa (down positive) at x0",
+        "q_end": "Pa at x1 (leave out: uniform)",
+        "x0": "m (leave out: the strip's x0)",
+        "x1": "m (leave out: the strip's x1)",
+    },
     "StripWeight": {"unit_weight": "N/m^3"},
     "Settlement": {"w": "m (down positive)", "x": "[m, ...] settled columns (leave out: the rigid strip)"},
-    "Phase": {"name": "text", "loads": "list of load tables (type = ...)",
-              "factors": "{earlier phase name = factor -}", "n_steps": "- (leave out: [solve] n_steps)"},
+    "Phase": {
+        "name": "text",
+        "loads": "list of load tables (type = ...)",
+        "factors": "{earlier phase name = factor -}",
+        "n_steps": "- (leave out: [solve] n_steps)",
+    },
     "MeshSize": {"h_fine": "m", "h_coarse": "m", "growth": "-", "n_gauss": "2 | 3"},
     "homogeneous": {"thickness": "m", "E": "Pa", "nu": "-", "n_layers": "-"},
-    "rc": {"depth": "m", "bars": "[[z_bar m, As m^2/m], ...]", "n_concrete": "-",
-           "concrete": "{fc Pa, E0 Pa, eps_c, fr Pa, Gf N/m, ls m}", "steel": "{fy Pa, Es Pa, EH Pa}"},
+    "rc": {
+        "depth": "m",
+        "bars": "[[z_bar m, As m^2/m], ...]",
+        "n_concrete": "-",
+        "concrete": "{fc Pa, E0 Pa, eps_c, fr Pa, Gf N/m, ls m}",
+        "steel": "{fy Pa, Es Pa, EH Pa}",
+    },
 }
 
 # the load classes a load table may name with its ``type`` key (the class name; ColumnLoad if left out)
 LOAD_TYPES = {cls.__name__: cls for cls in (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)}
 _LOAD = "load"  # marks a field holding load tables
 # fields holding other dataclasses: (class, field) -> (element class, container: "one" | "list" | "tuple")
-_NESTED = {(Scene, "layers"): (SoilLayer, "list"), (Scene, "foundation"): (Foundation, "one"),
-           (Scene, "loads"): (_LOAD, "list"), (Scene, "mesh"): (MeshSize, "one"),
-           (Scene, "phases"): (Phase, "list"), (Phase, "loads"): (_LOAD, "tuple"),
-           (ContactSegment, "contact"): (Contact, "one")}
+_NESTED = {
+    (Scene, "layers"): (SoilLayer, "list"),
+    (Scene, "foundation"): (Foundation, "one"),
+    (Scene, "loads"): (_LOAD, "list"),
+    (Scene, "mesh"): (MeshSize, "one"),
+    (Scene, "phases"): (Phase, "list"),
+    (Phase, "loads"): (_LOAD, "tuple"),
+    (ContactSegment, "contact"): (Contact, "one"),
+}
 # plain lists that the dataclass holds as tuples
 _TUPLES = {(Settlement, "x")}
 _SECTION_FIELDS = [f.name for f in dataclasses.fields(Section)]
@@ -179,9 +231,13 @@ def _build(cls, data, where):
                 continue
             name = "load" if sub is _LOAD else sub.__name__
             if not isinstance(value, list | tuple):
-                raise TypeError(f"{where}.{key}: expected a list of {name} tables, got {type(value).__name__}")
-            items = [_load(v, f"{where}.{key}[{i}]") if sub is _LOAD else _build(sub, v, f"{where}.{key}[{i}]")
-                     for i, v in enumerate(value)]
+                raise TypeError(
+                    f"{where}.{key}: expected a list of {name} tables, got {type(value).__name__}"
+                )
+            items = [
+                _load(v, f"{where}.{key}[{i}]") if sub is _LOAD else _build(sub, v, f"{where}.{key}[{i}]")
+                for i, v in enumerate(value)
+            ]
             kwargs[key] = tuple(items) if container == "tuple" else items
         elif (cls, key) in _TUPLES and isinstance(value, list | tuple):
             kwargs[key] = tuple(value)
@@ -224,7 +280,7 @@ def section_from_dict(data: dict, where: str = "section") -> Section:
     """A :class:`Section` from ``{"homogeneous": {...}}``, ``{"rc": {...}}`` or ``{"layers": {...}}``."""
     if not isinstance(data, dict) or len(data) != 1:
         raise ValueError(f"{where}: give exactly one of 'homogeneous', 'rc', 'layers', got {data!r}")
-    (kind, args), = data.items()
+    ((kind, args),) = data.items()
     if kind == "homogeneous":
         _check_keys(args, {"thickness", "E", "nu", "n_layers", "z_ref"}, f"{where}.homogeneous")
         return section_mod.homogeneous(**args)
@@ -232,9 +288,16 @@ def section_from_dict(data: dict, where: str = "section") -> Section:
         return rc_section_from(args, f"{where}.rc")
     if kind == "layers":
         _check_keys(args, set(_SECTION_FIELDS), f"{where}.layers")
-        arrays = {"z_mid": np.float64, "h": np.float64, "kind": np.int64, "params": np.float64,
-                  "carries_shear": bool}
-        kw = {k: (np.ascontiguousarray(np.asarray(v, arrays[k])) if k in arrays else v) for k, v in args.items()}
+        arrays = {
+            "z_mid": np.float64,
+            "h": np.float64,
+            "kind": np.int64,
+            "params": np.float64,
+            "carries_shear": bool,
+        }
+        kw = {
+            k: (np.ascontiguousarray(np.asarray(v, arrays[k])) if k in arrays else v) for k, v in args.items()
+        }
         kw["labels"] = tuple(kw.get("labels", ()))
         return Section(**kw)
     raise ValueError(f"{where}: unknown key {kind!r}; allowed: 'homogeneous', 'rc', 'layers'")
@@ -246,6 +309,7 @@ def rc_section_from(args: dict, where: str = "rc") -> Section:
     ``steel = {fy, Es?, EH?}``; the concrete's yield strain for shear retention is fy/Es."""
     from .materials.layer_laws import CONCRETE, STEEL
     from .materials.rc import concrete_params, designer_concrete, steel_params
+
     _check_keys(args, {"depth", "bars", "concrete", "steel", "n_concrete", "z_ref"}, where)
     conc = dict(args["concrete"])
     steel = dict(args["steel"])
@@ -253,11 +317,18 @@ def rc_section_from(args: dict, where: str = "rc") -> Section:
     _check_keys(steel, {"fy", "Es", "EH"}, f"{where}.steel")
     d = {**designer_concrete(conc["fc"]), **conc}
     es = steel.get("Es", 200e9)
-    concrete = (CONCRETE, concrete_params(d["fc"], d["E0"], d["eps_c"], d["fr"], d["Gf"], d.get("ls", 0.1),
-                                          steel["fy"] / es))
-    return section_mod.rc_section(args["depth"], [tuple(b) for b in args["bars"]], concrete,
-                                  (STEEL, steel_params(steel["fy"], es, steel.get("EH", 0.0))),
-                                  n_concrete=args.get("n_concrete", 9), z_ref=args.get("z_ref"))
+    concrete = (
+        CONCRETE,
+        concrete_params(d["fc"], d["E0"], d["eps_c"], d["fr"], d["Gf"], d.get("ls", 0.1), steel["fy"] / es),
+    )
+    return section_mod.rc_section(
+        args["depth"],
+        [tuple(b) for b in args["bars"]],
+        concrete,
+        (STEEL, steel_params(steel["fy"], es, steel.get("EH", 0.0))),
+        n_concrete=args.get("n_concrete", 9),
+        z_ref=args.get("z_ref"),
+    )
 
 
 def _check_keys(args, allowed, where):
@@ -282,8 +353,10 @@ def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
     solve = dict(data.pop("solve", {}))
     n_steps = solve.pop("n_steps", None)
     if n_steps is not None and (isinstance(n_steps, bool) or not isinstance(n_steps, int) or n_steps < 1):
-        raise ValueError(f"{path.name}: solve: 'n_steps' must be an integer >= 1 (leave it out for automatic "
-                         f"stepping), got {n_steps!r}")
+        raise ValueError(
+            f"{path.name}: solve: 'n_steps' must be an integer >= 1 (leave it out for automatic "
+            f"stepping), got {n_steps!r}"
+        )
     _check_keys(solve, {f.name for f in dataclasses.fields(Settings)}, f"{path.name}: solve")
     scene = _build(Scene, data, path.name)
     return scene, n_steps, Settings(**solve)
@@ -293,7 +366,9 @@ def schema_text() -> str:
     """The scene file's tables, their keys and units, as text (``ssi schema``)."""
     lines = []
     for table, units in UNITS.items():
-        lines.append(f"[{table}]" + ("  (a load table: type = \"" + table + "\")" if table in LOAD_TYPES else ""))
+        lines.append(
+            f"[{table}]" + ('  (a load table: type = "' + table + '")' if table in LOAD_TYPES else "")
+        )
         lines += [f"  {key:16s} {unit}" for key, unit in units.items()]
     lines.append("[solve]  n_steps (leave out: automatic stepping) and any ssi.solver.Settings field")
     return "\n".join(lines)

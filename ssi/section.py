@@ -60,19 +60,24 @@ class Section:
         kind = check_array("Section.kind", self.kind, shape=(n,), dtype=np.int64)
         if not np.all(np.isin(kind, LAYER_KINDS)):
             bad = kind[~np.isin(kind, LAYER_KINDS)][0]
-            raise ValueError(f"Section.kind must hold layer law kinds {LAYER_KINDS} (ELASTIC, CONCRETE, STEEL), "
-                             f"got {bad}")
+            raise ValueError(
+                f"Section.kind must hold layer law kinds {LAYER_KINDS} (ELASTIC, CONCRETE, STEEL), got {bad}"
+            )
         params = check_array("Section.params", self.params, ndim=2)
         if params.shape[0] != n or params.shape[1] < 2:
-            raise ValueError(f"Section.params must have shape ({n}, n_par >= 2), one row per layer, got "
-                             f"{params.shape}")
+            raise ValueError(
+                f"Section.params must have shape ({n}, n_par >= 2), one row per layer, got {params.shape}"
+            )
         if not params[:, 0].min() > 0.0:
-            raise ValueError(f"Section.params[:, 0] (each layer's initial modulus) must be > 0, got "
-                             f"{params[:, 0].min()!r}")
+            raise ValueError(
+                f"Section.params[:, 0] (each layer's initial modulus) must be > 0, got {params[:, 0].min()!r}"
+            )
         elastic = kind == ELASTIC
         if np.any(elastic & ~((params[:, 1] > -1.0) & (params[:, 1] < 0.5))):
             bad = params[elastic, 1][~((params[elastic, 1] > -1.0) & (params[elastic, 1] < 0.5))][0]
-            raise ValueError(f"Section.params[:, 1] (nu of an ELASTIC layer) must lie in (-1, 0.5), got {bad!r}")
+            raise ValueError(
+                f"Section.params[:, 1] (nu of an ELASTIC layer) must lie in (-1, 0.5), got {bad!r}"
+            )
         shear = self.carries_shear
         if isinstance(shear, str) or np.asarray(shear).dtype != bool:
             raise TypeError(f"Section.carries_shear must be a boolean array of shape ({n},), got {shear!r}")
@@ -84,22 +89,36 @@ class Section:
         z_bottom = check_real("Section.z_bottom", self.z_bottom, unit="m")
         z_top = check_real("Section.z_top", self.z_top, unit="m")
         if not z_bottom < z_top:
-            raise ValueError(f"Section.z_bottom must be < z_top, got z_bottom={self.z_bottom!r}, "
-                             f"z_top={self.z_top!r}")
+            raise ValueError(
+                f"Section.z_bottom must be < z_top, got z_bottom={self.z_bottom!r}, z_top={self.z_top!r}"
+            )
         tol = 1e-9 * (z_top - z_bottom)
         if abs(h.sum() - (z_top - z_bottom)) > tol:
-            raise ValueError(f"Section.h must add up to the depth z_top - z_bottom = {z_top - z_bottom:g} m "
-                             f"(stacked layers), got sum(h) = {h.sum():g}")
+            raise ValueError(
+                f"Section.h must add up to the depth z_top - z_bottom = {z_top - z_bottom:g} m "
+                f"(stacked layers), got sum(h) = {h.sum():g}"
+            )
         stacked = z_bottom + np.cumsum(h) - 0.5 * h
         if np.max(np.abs(z_mid - stacked)) > tol:
-            raise ValueError(f"Section.z_mid must be the mid-depths of the layers stacked upwards from z_bottom "
-                             f"({stacked.tolist()}), got {z_mid.tolist()}")
+            raise ValueError(
+                f"Section.z_mid must be the mid-depths of the layers stacked upwards from z_bottom "
+                f"({stacked.tolist()}), got {z_mid.tolist()}"
+            )
         labels = self.labels
-        if not isinstance(labels, tuple | list) or not all(isinstance(t, str) for t in labels) \
-                or len(labels) not in (0, n):
+        if (
+            not isinstance(labels, tuple | list)
+            or not all(isinstance(t, str) for t in labels)
+            or len(labels) not in (0, n)
+        ):
             raise TypeError(f"Section.labels must be a tuple of {n} strings (or empty), got {labels!r}")
-        for name, value in (("z_mid", z_mid), ("h", h), ("kind", kind), ("params", params),
-                            ("carries_shear", shear), ("labels", tuple(labels))):
+        for name, value in (
+            ("z_mid", z_mid),
+            ("h", h),
+            ("kind", kind),
+            ("params", params),
+            ("carries_shear", shear),
+            ("labels", tuple(labels)),
+        ):
             object.__setattr__(self, name, value)
 
     @property
@@ -131,15 +150,22 @@ class Section:
         e0, g0 = self.initial_moduli()
         A = float(np.sum(e0 * self.h))
         B = float(-np.sum(e0 * self.h * self.z_mid))
-        D = float(np.sum(e0 * self.h * (self.z_mid ** 2 + self.h ** 2 / 12.0)))
+        D = float(np.sum(e0 * self.h * (self.z_mid**2 + self.h**2 / 12.0)))
         S = float(kappa * np.sum(np.where(self.carries_shear, g0 * self.h, 0.0)))
         return {"A": A, "B": B, "D": D, "S": S, "z_na": -B / A, "D_na": D - B * B / A}
 
     def describe(self) -> dict:
-        return {"n_layer": self.n_layer, "thickness": self.thickness, "z_bottom": self.z_bottom,
-                "z_mid": self.z_mid.tolist(), "h": self.h.tolist(), "kind": self.kind.tolist(),
-                "params": self.params.tolist(), "carries_shear": self.carries_shear.tolist(),
-                "labels": list(self.labels)}
+        return {
+            "n_layer": self.n_layer,
+            "thickness": self.thickness,
+            "z_bottom": self.z_bottom,
+            "z_mid": self.z_mid.tolist(),
+            "h": self.h.tolist(),
+            "kind": self.kind.tolist(),
+            "params": self.params.tolist(),
+            "carries_shear": self.carries_shear.tolist(),
+            "labels": list(self.labels),
+        }
 
 
 def _pad_params(params_list) -> np.ndarray:
@@ -148,7 +174,7 @@ def _pad_params(params_list) -> np.ndarray:
         raise ValueError("params must give a non-empty 1-D parameter vector per layer")
     out = np.zeros((len(rows), max(r.size for r in rows)))
     for i, r in enumerate(rows):
-        out[i, :r.size] = r
+        out[i, : r.size] = r
     return out
 
 
@@ -175,7 +201,7 @@ def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=(
     z_mid, h = layer_rule(h_in, -float(z_ref))
     kind = np.ascontiguousarray(np.broadcast_to(np.asarray(kinds, np.int64), (n,)))
     if all(np.isscalar(x) for x in params):
-        plist = [np.asarray(params, np.float64)] * n    # one parameter vector for every layer
+        plist = [np.asarray(params, np.float64)] * n  # one parameter vector for every layer
     else:
         plist = list(params)
     if len(plist) != n:
@@ -185,9 +211,16 @@ def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=(
         raise ValueError(f"carries_shear must have shape ({n},), got {cs.shape}")
     if not cs.any():
         raise ValueError("at least one layer must carry shear (carries_shear all False)")
-    return Section(z_mid=np.ascontiguousarray(z_mid), h=np.ascontiguousarray(h), kind=kind,
-                   params=_pad_params(plist), carries_shear=np.ascontiguousarray(cs),
-                   z_bottom=-float(z_ref), z_top=total - float(z_ref), labels=tuple(labels))
+    return Section(
+        z_mid=np.ascontiguousarray(z_mid),
+        h=np.ascontiguousarray(h),
+        kind=kind,
+        params=_pad_params(plist),
+        carries_shear=np.ascontiguousarray(cs),
+        z_bottom=-float(z_ref),
+        z_top=total - float(z_ref),
+        labels=tuple(labels),
+    )
 
 
 def homogeneous(thickness: float, E: float, nu: float, n_layers: int = 1, z_ref=None) -> Section:
@@ -234,7 +267,7 @@ def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) ->
     if not depth > 0.0:
         raise ValueError(f"depth must be > 0, got {depth}")
     bars = sorted((float(z), float(a)) for z, a in bars)
-    if len(steel) == 2 and np.isscalar(steel[0]):                    # one (kind, params) for all bars
+    if len(steel) == 2 and np.isscalar(steel[0]):  # one (kind, params) for all bars
         steel = [steel] * len(bars)
     if len(steel) != len(bars):
         raise ValueError(f"steel must be one (kind, params) or one per bar ({len(bars)}), got {len(steel)}")
@@ -244,8 +277,10 @@ def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) ->
             raise ValueError(f"bar area per width As must be > 0, got {a}")
         lo, hi = z - 0.5 * a, z + 0.5 * a
         if lo <= edges[-1] or hi >= depth:
-            raise ValueError(f"bar layer at z_bar={z} (thickness {a}) overlaps a face or another bar; "
-                             f"need 0 < z_bar - As/2 and z_bar + As/2 < depth={depth}")
+            raise ValueError(
+                f"bar layer at z_bar={z} (thickness {a}) overlaps a face or another bar; "
+                f"need 0 < z_bar - As/2 and z_bar + As/2 < depth={depth}"
+            )
         edges += [lo, hi]
     edges.append(depth)
     gaps = np.array([edges[2 * i + 1] - edges[2 * i] for i in range(len(bars) + 1)])
@@ -272,16 +307,23 @@ def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) ->
     return layered(th, kinds, params, carries_shear=shear, z_ref=z_ref, labels=labels)
 
 
-def paper_rc_section(depth: float, cover: float, as_bottom: float, as_top: float, concrete, steel,
-                     n_concrete: int = 9) -> Section:
+def paper_rc_section(
+    depth: float, cover: float, as_bottom: float, as_top: float, concrete, steel, n_concrete: int = 9
+) -> Section:
     """The paper's doubly reinforced section (§9.2): bars at ``cover`` (to the bar centroid) from each face;
     with the default 9 concrete layers (1 + 7 + 1) there are 11 layers, steel in layers 2 and 10."""
-    return rc_section(depth, [(cover, as_bottom), (depth - cover, as_top)], concrete, steel,
-                      n_concrete=[1, n_concrete - 2, 1] if n_concrete >= 3 else n_concrete)
+    return rc_section(
+        depth,
+        [(cover, as_bottom), (depth - cover, as_top)],
+        concrete,
+        steel,
+        n_concrete=[1, n_concrete - 2, 1] if n_concrete >= 3 else n_concrete,
+    )
 
 
-def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiffening: str = "all"
-                            ) -> tuple[Section, list]:
+def with_crack_spacing_band(
+    section: Section, bar_diameter: float, tension_stiffening: str = "all"
+) -> tuple[Section, list]:
     """Copy of an RC ``section`` whose concrete layers get the crack band width ls = s_r,max of *fib* Model Code
     2010 (``ssi.materials.rc.crack_spacing_mc2010``): one band per crack, so that a band dissipates Gf per crack
     whatever the element size (chapter 08).
@@ -299,6 +341,7 @@ def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiff
     from .materials.concrete import P_E0
     from .materials.layer_laws import CONCRETE, STEEL
     from .materials.rc import _positive, crack_spacing_mc2010, with_crack_band
+
     phi = _positive("bar_diameter", bar_diameter)
     bars = np.flatnonzero(section.kind == STEEL)
     conc = np.flatnonzero(section.kind == CONCRETE)
@@ -314,7 +357,10 @@ def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiff
         order = bars if side == "bottom" else bars[::-1]
         group = [order[0]]
         for b in order[1:]:
-            if abs(section.z_mid[b] - section.z_mid[group[-1]]) > 0.5 * (section.h[b] + section.h[group[-1]]) + 1e-12:
+            if (
+                abs(section.z_mid[b] - section.z_mid[group[-1]])
+                > 0.5 * (section.h[b] + section.h[group[-1]]) + 1e-12
+            ):
                 break
             group.append(b)
         area = float(section.h[group].sum())
@@ -332,6 +378,7 @@ def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiff
     if tension_stiffening not in ("all", "effective_area"):
         raise ValueError(f"tension_stiffening must be 'all' or 'effective_area', got {tension_stiffening!r}")
     from .materials.concrete import P_ALPHA_TS
+
     params = section.params.copy()
     for n in conc:
         face = faces[0] if section.z_mid[n] < z_mid_sec else faces[1]
@@ -342,4 +389,5 @@ def with_crack_spacing_band(section: Section, bar_diameter: float, tension_stiff
             if not (near_bottom or near_top):
                 params[n, P_ALPHA_TS] = 0.0
     from dataclasses import replace
+
     return replace(section, params=params), faces

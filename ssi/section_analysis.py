@@ -69,13 +69,18 @@ def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6
     N = M = A = S = 0.0
     for n in range(section.n_layer):
         z, h = section.z_mid[n], section.h[n]
-        sig, _, e_t, g_t = layer_update(section.kind[n], params[n], eps0 - z * kap, 0.0, hist_old[n],
-                                        hist_new[n], 1)
+        sig, _, e_t, g_t = layer_update(
+            section.kind[n], params[n], eps0 - z * kap, 0.0, hist_old[n], hist_new[n], 1
+        )
         N += h * sig
         M += -h * z * sig
         if self_bending == "chord":
-            s_b = layer_update(section.kind[n], params[n], eps0 - (z - h / 2) * kap, 0.0, hist_old[n], scratch, 1)[0]
-            s_t = layer_update(section.kind[n], params[n], eps0 - (z + h / 2) * kap, 0.0, hist_old[n], scratch, 1)[0]
+            s_b = layer_update(
+                section.kind[n], params[n], eps0 - (z - h / 2) * kap, 0.0, hist_old[n], scratch, 1
+            )[0]
+            s_t = layer_update(
+                section.kind[n], params[n], eps0 - (z + h / 2) * kap, 0.0, hist_old[n], scratch, 1
+            )[0]
             M += h * h / 12.0 * (s_b - s_t)
         else:
             e_self = e0[n] if self_bending == "initial" else (e_t if self_bending == "tangent" else 0.0)
@@ -142,18 +147,22 @@ class MomentCurvature:
         return np.interp(M, m, self.S[: self.monotone], right=np.nan)
 
 
-def moment_curvature(section: Section, kap_max: float, n_steps: int = 2000, ls=None, kappa_s=5.0 / 6.0,
-                     self_bending="chord"):
+def moment_curvature(
+    section: Section, kap_max: float, n_steps: int = 2000, ls=None, kappa_s=5.0 / 6.0, self_bending="chord"
+):
     """Trace M(kap) of ``section`` for kap = 0 .. kap_max in ``n_steps`` equal steps (N = 0).
 
     ``ls``: crack band width given to every CONCRETE layer (None: as in the section's params);
     ``self_bending``: as in :func:`section_state` (match the strip's option)."""
     if self_bending not in ("initial", "tangent", "chord", "none"):
-        raise ValueError(f"self_bending must be 'initial', 'tangent', 'chord' or 'none', got {self_bending!r}")
+        raise ValueError(
+            f"self_bending must be 'initial', 'tangent', 'chord' or 'none', got {self_bending!r}"
+        )
     if not kap_max > 0.0 or int(n_steps) < 2:
         raise ValueError(f"need kap_max > 0 and n_steps >= 2, got {kap_max}, {n_steps}")
     params = _params(section, ls)
     from .materials.layer_laws import STEEL
+
     steel = np.flatnonzero(section.kind == STEEL)
     e0, _ = section.initial_moduli()
     n_scale = float(np.sum(e0 * section.h)) * 1e-3
@@ -165,8 +174,9 @@ def moment_curvature(section: Section, kap_max: float, n_steps: int = 2000, ls=N
     _, M[0], _, S[0], _ = section_state(section, params, 0.0, 0.0, hist, kappa_s, self_bending)
     first_yield = None
     for i in range(1, kaps.size):
-        eps0[i], M[i], S[i], hist = _solve_eps0(section, params, kaps[i], hist, eps0[i - 1], n_scale, kappa_s,
-                                               self_bending)
+        eps0[i], M[i], S[i], hist = _solve_eps0(
+            section, params, kaps[i], hist, eps0[i - 1], n_scale, kappa_s, self_bending
+        )
         if first_yield is None and steel.size and np.any(hist[steel, 0] != 0.0):
             first_yield = i
     rising = np.diff(M) > 0.0
@@ -230,12 +240,15 @@ def _kink_strains(kind, prm):
     """Strains at which a law's monotonic envelope has a kink or a jump (breakpoints for quadrature)."""
     from .materials.concrete import P_E0, P_EPS_CU, P_EPS_Y, P_FR, P_GF
     from .materials.layer_laws import STEEL
+
     if kind == CONCRETE:
         from .materials.concrete import P_NU, P_PLANE
+
         e0 = prm[P_E0] / (1.0 - prm[P_NU] ** 2) if prm[P_PLANE] != 0.0 else prm[P_E0]
         eps_r = prm[P_FR] / e0
         eps_u = 2.0 * prm[P_GF] / (prm[P_FR] * prm[P_LS])
         from .materials.concrete import P_EPS_C, P_FC, P_GC, crushing_end
+
         eps_cd = crushing_end(e0, prm[P_FC], prm[P_EPS_C], prm[P_EPS_CU], prm[P_GC], prm[P_LS])[1]
         return [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU], -eps_cd] + _softening_meets_stiffening(prm, eps_r)
     if kind == STEEL:
@@ -246,6 +259,7 @@ def _kink_strains(kind, prm):
 def _softening_meets_stiffening(prm, eps_r):
     """Strain where the softening line (eq. 5.4) meets the tension-stiffening line (the kink of their max)."""
     from .materials.concrete import P_ALPHA_TS, P_EPS_Y, P_FR, P_GF
+
     fr, eps_y, alpha = prm[P_FR], prm[P_EPS_Y], prm[P_ALPHA_TS]
     eps_u = 2.0 * prm[P_GF] / (fr * prm[P_LS])
     # fr (eps_u - e)/(eps_u - eps_r) = alpha fr (eps_y - e)/(eps_y - eps_r)
@@ -259,6 +273,7 @@ def _envelope(kind, prm, eps):
     """Stress and shear modulus of a fibre loaded monotonically to ``eps`` (the law from a virgin history;
     the shear modulus with the crack or crushing state that strain leaves)."""
     from .materials.concrete import H_EMAX, H_XMAX
+
     h0 = np.zeros(N_LAYER_HIST)
     h1 = np.zeros(N_LAYER_HIST)
     sig = layer_update(kind, prm, eps, 0.0, h0, h1, 1)[0]
@@ -289,6 +304,7 @@ def layer_free_state(section: Section, kap: float, N: float = 0.0, ls=None, kapp
     Brent's method on N(eps0) between the all-compressed and the all-tensile strain planes, then
     :func:`layer_free_resultants`. Returns ``(eps0, M, S)``; raises ValueError if the section cannot carry N."""
     from scipy.optimize import brentq
+
     if kap == 0.0:
         raise ValueError("kap must be non-zero for layer_free_state (at kap = 0 the strain plane is uniform)")
     ends = (kap * section.z_bottom, kap * section.z_top)
@@ -296,22 +312,33 @@ def layer_free_state(section: Section, kap: float, N: float = 0.0, ls=None, kapp
     f_lo = _axial_force(lo, section, kap, ls, kappa_s, N)
     f_hi = _axial_force(hi, section, kap, ls, kappa_s, N)
     if f_lo > 0.0 or f_hi < 0.0:
-        raise ValueError(f"N = {N!r} N/m is outside what the section carries at kap = {kap!r} 1/m "
-                         f"([{f_lo + N:.6g}, {f_hi + N:.6g}] between the all-compressed and all-tensile planes)")
-    eps0 = brentq(_axial_force, lo, hi, args=(section, kap, ls, kappa_s, N), xtol=1e-15 + 1e-13 * (hi - lo),
-                  rtol=1e-12, maxiter=200)
+        raise ValueError(
+            f"N = {N!r} N/m is outside what the section carries at kap = {kap!r} 1/m "
+            f"([{f_lo + N:.6g}, {f_hi + N:.6g}] between the all-compressed and all-tensile planes)"
+        )
+    eps0 = brentq(
+        _axial_force,
+        lo,
+        hi,
+        args=(section, kap, ls, kappa_s, N),
+        xtol=1e-15 + 1e-13 * (hi - lo),
+        rtol=1e-12,
+        maxiter=200,
+    )
     _, M, S = layer_free_resultants(section, eps0, kap, ls, kappa_s)
     return eps0, M, S
 
 
-def layer_free_resultants(section: Section, eps0: float, kap: float, ls=None, kappa_s=5.0 / 6.0,
-                          epsrel: float = 1e-10):
+def layer_free_resultants(
+    section: Section, eps0: float, kap: float, ls=None, kappa_s=5.0 / 6.0, epsrel: float = 1e-10
+):
     """N, M, S of the section at (eps0, kap) with every fibre loaded monotonically to its strain, by
     adaptive quadrature (``scipy.integrate.quad``) of the continuous stress profile sig(eps0 - z kap) over each
     material interval, with breakpoints where the strain crosses a kink of the law (cracking, end of
     softening and of tension stiffening, crushing, steel yield). No layers and no self-bending term: the
     reference the layered rule converges to. Returns ``(N, M, S)`` per unit width."""
     from scipy.integrate import quad
+
     params = _params(section, ls)
     N = M = S = 0.0
     for z_lo, z_hi, kind, prm, shear in _material_intervals(section, params):
@@ -343,6 +370,7 @@ def layer_free_moment_curvature(section: Section, kaps, ls=None, kappa_s=5.0 / 6
     keeps and this one does not (measured in chapter 02: below 1e-3 of M). ``first_yield``: first row with a
     steel fibre past fy/Es."""
     from .materials.layer_laws import STEEL
+
     kaps = np.asarray(kaps, np.float64)
     if kaps.ndim != 1 or kaps.size < 2 or np.any(np.diff(kaps) <= 0.0) or kaps[0] < 0.0:
         raise ValueError("kaps must be an increasing 1-D array of curvatures >= 0 with at least 2 values")
@@ -350,8 +378,9 @@ def layer_free_moment_curvature(section: Section, kaps, ls=None, kappa_s=5.0 / 6
     eps0 = np.zeros_like(kaps)
     S = np.zeros_like(kaps)
     steel = section.kind == STEEL
-    faces = np.concatenate([section.z_mid[steel] - 0.5 * section.h[steel],
-                            section.z_mid[steel] + 0.5 * section.h[steel]])
+    faces = np.concatenate(
+        [section.z_mid[steel] - 0.5 * section.h[steel], section.z_mid[steel] + 0.5 * section.h[steel]]
+    )
     eps_y = section.params[steel, 2] / section.params[steel, 0] if steel.any() else np.zeros(0)
     first_yield = None
     for i, k in enumerate(kaps):

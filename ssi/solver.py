@@ -78,38 +78,38 @@ class Settings:
 
     method: str = "bfgs"
     stepping: str = "auto"
-    force_tol: float = 1e-5       # |r| <= force_tol * (structural load; see convergence_reference)
-    energy_tol: float = 1e-8      # |du . r| <= energy_tol * max(|du_0 . r_0|, work of the structural load)
+    force_tol: float = 1e-5  # |r| <= force_tol * (structural load; see convergence_reference)
+    energy_tol: float = 1e-8  # |du . r| <= energy_tol * max(|du_0 . r_0|, work of the structural load)
     convergence_reference: str = "structural"  # "total": relative to max(|F_ext|, |F_int|) incl. geostatic
-    max_iter: int | None = None   # per increment; None: 100 (bfgs), 300 (modified), 30 (full Newton: more
-                                  # tangent factorisations than that cost more than the K0 retry below)
-    first_step: float = 0.1       # auto stepping: first increment of the load factor
-    max_step: float = 0.25        # auto stepping: largest increment
-    min_step: float = 1e-4        # auto stepping: smallest increment tried before the path is judged stuck
+    max_iter: int | None = None  # per increment; None: 100 (bfgs), 300 (modified), 30 (full Newton: more
+    # tangent factorisations than that cost more than the K0 retry below)
+    first_step: float = 0.1  # auto stepping: first increment of the load factor
+    max_step: float = 0.25  # auto stepping: largest increment
+    min_step: float = 1e-4  # auto stepping: smallest increment tried before the path is judged stuck
     desired_iterations: int | None = None  # auto stepping: None: 20 (bfgs), 60 (modified), 8 (full)
-    max_cuts: int = 6             # fixed stepping: halvings of a failing increment
+    max_cuts: int = 6  # fixed stepping: halvings of a failing increment
     collapse_stiffness: float = 0.05  # current stiffness / initial below which a stuck path is a collapse
     divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
     backend: str = "auto"
     symmetric_tangent: bool = False  # set True when every law's tangent is symmetric (associated flow)
-    verbose: bool = False         # log every converged step at INFO level (logger "ssi.solver")
+    verbose: bool = False  # log every converged step at INFO level (logger "ssi.solver")
     progress: bool | None = None  # progress bar: None = only when stderr is a terminal and no test runs
-    keep_states: bool = True      # keep the committed state of every step (False: only the last)
+    keep_states: bool = True  # keep the committed state of every step (False: only the last)
     line_search: bool | None = None  # None: on for bfgs, off for full Newton (on, it stopped chapter 11's
-                                  # finest mesh at 95 % of its load); never for modified Newton
+    # finest mesh at 95 % of its load); never for modified Newton
     line_search_min: float = 1.0 / 64.0  # full Newton: smallest step fraction the line search tries
-    bfgs_memory: int = 30         # L-BFGS pairs kept within an increment
+    bfgs_memory: int = 30  # L-BFGS pairs kept within an increment
     viscous_fallback: bool = True  # a stuck path that has not stopped rising goes on viscous (tau = 1) and is
-                                  # relaxed to the rate-independent state at its end (see ``viscosity``)
-    viscosity: float = 0.0        # Duvaut-Lions regularisation tau = dt/eta per increment of the groups that
-                                  # have it (soil); > 0: the path is viscous and, after the last target, the
-                                  # load is held while tau grows (relaxation) until the state is the
-                                  # rate-independent one -- see :func:`relax`
+    # relaxed to the rate-independent state at its end (see ``viscosity``)
+    viscosity: float = 0.0  # Duvaut-Lions regularisation tau = dt/eta per increment of the groups that
+    # have it (soil); > 0: the path is viscous and, after the last target, the
+    # load is held while tau grows (relaxation) until the state is the
+    # rate-independent one -- see :func:`relax`
     fallback: str | None = "auto"  # method that retries a failed increment before it is cut; "auto": full
-                                  # Newton with line search for bfgs (points that flip between elastic and
-                                  # plastic stall the K0-based update), K0 (modified) for full Newton (an
-                                  # indefinite tangent can send Newton astray; K0 cannot); None: no retry
-    fallback_iter: int = 300      # iterations of the fallback retry
+    # Newton with line search for bfgs (points that flip between elastic and
+    # plastic stall the K0-based update), K0 (modified) for full Newton (an
+    # indefinite tangent can send Newton astray; K0 cannot); None: no retry
+    fallback_iter: int = 300  # iterations of the fallback retry
 
     def __post_init__(self):
         check_choice("Settings.method", self.method, METHODS)
@@ -181,18 +181,18 @@ class Result:
     f_int: list = field(default_factory=list)
     states: list = field(default_factory=list)
     iterations: list = field(default_factory=list)
-    residuals: list = field(default_factory=list)   # per step: relative force norm of every iteration
-    energies: list = field(default_factory=list)    # per step: relative energy norm of every iteration
-    stiffness: list = field(default_factory=list)   # per step: current stiffness parameter (step 0: nan)
+    residuals: list = field(default_factory=list)  # per step: relative force norm of every iteration
+    energies: list = field(default_factory=list)  # per step: relative energy norm of every iteration
+    stiffness: list = field(default_factory=list)  # per step: current stiffness parameter (step 0: nan)
     cuts: int = 0
     wall_time: float = 0.0
     factorizations: int = 0
     status: str = COMPLETED
     limit_load_factor: float | None = None
-    relaxed_steps: int | None = None        # viscous path: relaxation increments after the last target
-    viscous_from: int | None = None         # viscous fallback: the steps from here to the relaxation are
-                                            # viscous (rate-dependent) states; the last step is relaxed
-    u_origin: np.ndarray | None = None      # displacement and internal force of the state the structural
+    relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target
+    viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
+    # viscous (rate-dependent) states; the last step is relaxed
+    u_origin: np.ndarray | None = None  # displacement and internal force of the state the structural
     f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
 
     @property
@@ -221,17 +221,27 @@ class Result:
         if self.status == STOPPED:
             return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
         if self.collapsed:
-            return (f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
-                    f"current stiffness {self.stiffness[-1]:.3g} of the initial)")
+            return (
+                f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
+                f"current stiffness {self.stiffness[-1]:.3g} of the initial)"
+            )
         text = f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
         if self.viscous_from is not None:
-            text += (f" (viscous fallback from step {self.viscous_from}, relaxed to the rate-independent state "
-                     f"in the last {self.relaxed_steps} steps)")
+            text += (
+                f" (viscous fallback from step {self.viscous_from}, relaxed to the rate-independent state "
+                f"in the last {self.relaxed_steps} steps)"
+            )
         return text
 
 
-def run(model: Model, load_factors=(1.0,), settings: Settings | None = None, *, start: "Result | None" = None,
-        loads: tuple | None = None) -> Result:
+def run(
+    model: Model,
+    load_factors=(1.0,),
+    settings: Settings | None = None,
+    *,
+    start: "Result | None" = None,
+    loads: tuple | None = None,
+) -> Result:
     """Follow the load path through the targets ``load_factors`` (increasing or not) from lambda = 0.
 
     With ``settings.stepping == "auto"`` the targets are waypoints, each reached by automatic increments;
@@ -280,10 +290,10 @@ def _set_viscosity(model, tau):
             g.viscosity = float(tau)
 
 
-RELAX_GROWTH = 10.0      # tau grows tenfold from one relaxation stage to the next ...
-RELAX_STAGES = 4         # ... over this many stages, then the last stage is rate independent (tau = 0)
-RELAX_STEPS = 8          # increments at most per stage
-RELAX_TOL = 1e-5         # a stage ends when the load measure changes by less than this (relative)
+RELAX_GROWTH = 10.0  # tau grows tenfold from one relaxation stage to the next ...
+RELAX_STAGES = 4  # ... over this many stages, then the last stage is rate independent (tau = 0)
+RELAX_STEPS = 8  # increments at most per stage
+RELAX_TOL = 1e-5  # a stage ends when the load measure changes by less than this (relative)
 
 
 def relax(path: "_Path") -> bool:
@@ -321,7 +331,8 @@ class _Path:
         """``scale``: the largest target |lambda|; step sizes are fractions of it."""
         self.model, self.settings = model, settings
         self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, self.fac_k0 = _start(
-            model, settings, start, loads)
+            model, settings, start, loads
+        )
         self.lam = 0.0
         self.tau = settings.viscosity  # the viscosity in force (the viscous fallback may switch it on)
         self.scale = scale
@@ -380,25 +391,60 @@ class _Path:
     def _increment(self, lam_next):
         """One increment with the settings' method, retried with the fallback method before a step cut."""
         s = self.settings
-        outcome = _increment(self.system, s, self.fac_k0, self.u, self.states, lam_next, self.f_ref,
-                             self.f_dead, self.result, s.method)
+        outcome = _increment(
+            self.system,
+            s,
+            self.fac_k0,
+            self.u,
+            self.states,
+            lam_next,
+            self.f_ref,
+            self.f_dead,
+            self.result,
+            s.method,
+        )
         if not outcome["converged"] and s.fallback and s.fallback != s.method:
-            retry = _increment(self.system, s, self.fac_k0, self.u, self.states, lam_next, self.f_ref,
-                               self.f_dead, self.result, s.fallback)
+            retry = _increment(
+                self.system,
+                s,
+                self.fac_k0,
+                self.u,
+                self.states,
+                lam_next,
+                self.f_ref,
+                self.f_dead,
+                self.result,
+                s.fallback,
+            )
             retry["iterations"] += outcome["iterations"]
             outcome = retry if retry["converged"] else outcome
         return outcome
 
     def _commit(self, lam, outcome):
         self.u, self.states, self.lam = outcome["u"], outcome["states"], lam
-        _record(self.result, lam, self.u, outcome["f_int"], self.states, outcome["iterations"],
-                outcome["residuals"], outcome["energies"], self.settings)
+        _record(
+            self.result,
+            lam,
+            self.u,
+            outcome["f_int"],
+            self.states,
+            outcome["iterations"],
+            outcome["residuals"],
+            outcome["energies"],
+            self.settings,
+        )
         self.result.stiffness.append(self.measure.stiffness())
         residual = outcome["residuals"][-1] if outcome["residuals"] else 0.0
         self.bar.update(self.result.n_steps, lam, outcome["iterations"], residual)
         if self.settings.verbose:
-            log.info("step %4d  lambda=%.6g  iterations=%3d  residual=%.2e  stiffness=%.3g", self.result.n_steps,
-                     lam, outcome["iterations"], residual, self.result.stiffness[-1])
+            log.info(
+                "step %4d  lambda=%.6g  iterations=%3d  residual=%.2e  stiffness=%.3g",
+                self.result.n_steps,
+                lam,
+                outcome["iterations"],
+                residual,
+                self.result.stiffness[-1],
+            )
 
     def _adapt(self, last_step, iterations):
         """Next increment from the last one: 1.5x after an easy increment (at most ``desired_iterations``),
@@ -415,7 +461,9 @@ class _Path:
             factor = 1.0
         else:
             factor = 0.7
-        self.step = self.scale * min(s.max_step, max(s.min_step, factor * max(last_step, self.step) / self.scale))
+        self.step = self.scale * min(
+            s.max_step, max(s.min_step, factor * max(last_step, self.step) / self.scale)
+        )
 
     def _stuck(self, outcome, lam_next) -> bool:
         """The path cannot advance. A limit load if it had stopped rising (returns False: the path ends);
@@ -591,16 +639,20 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
             if evaluated is not None:
                 bfgs.update(step * du, r_f - evaluated[3][free])
         else:
-            u_new, evaluated = _advance(system, settings, u, du, u_conv, states, use_k0, f_ext,
-                                        np.linalg.norm(r_f), line_search)
+            u_new, evaluated = _advance(
+                system, settings, u, du, u_conv, states, use_k0, f_ext, np.linalg.norm(r_f), line_search
+            )
         u = u_new
-    outcome.update(reason=f"no convergence in {max_iter} iterations" + (f" (fallback: {method})" if fallback
-                                                                         else ""))
+    outcome.update(
+        reason=f"no convergence in {max_iter} iterations" + (f" (fallback: {method})" if fallback else "")
+    )
     return outcome
 
 
 def _stagnates(residuals, window=30):
-    return len(residuals) > window and min(residuals[-window // 2:]) > 0.9 * min(residuals[-window:-window // 2])
+    return len(residuals) > window and min(residuals[-window // 2 :]) > 0.9 * min(
+        residuals[-window : -window // 2]
+    )
 
 
 class _Lbfgs:
@@ -639,8 +691,8 @@ class _Lbfgs:
             self.pairs.pop(0)
 
 
-LINE_SEARCH_TOL = 0.5   # accept a step s once |du . r(s)| <= LINE_SEARCH_TOL |du . r(0)|
-LINE_SEARCH_MAX = 4     # extra residual evaluations per iteration at most
+LINE_SEARCH_TOL = 0.5  # accept a step s once |du . r(s)| <= LINE_SEARCH_TOL |du . r(0)|
+LINE_SEARCH_MAX = 4  # extra residual evaluations per iteration at most
 LINE_SEARCH_RANGE = (0.05, 4.0)
 
 
@@ -667,10 +719,12 @@ def _line_search_bfgs(system, u, du, r_f, u_conv, states, f_ext, line_search):
             break
         if ev is None or not np.isfinite(g_hi):
             s_new = 0.5 * (s_lo + s_hi)
-        elif g_hi < 0.0:      # bracketed between s_lo (G > 0) and s_hi (G < 0): regula falsi
+        elif g_hi < 0.0:  # bracketed between s_lo (G > 0) and s_hi (G < 0): regula falsi
             s_new = s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)
-        else:                  # still descending: secant extrapolation, at most doubling
-            s_new = min(2.0 * s_hi, s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)) if g_hi < g_lo else 2.0 * s_hi
+        else:  # still descending: secant extrapolation, at most doubling
+            s_new = (
+                min(2.0 * s_hi, s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)) if g_hi < g_lo else 2.0 * s_hi
+            )
         s_new = min(max(s_new, LINE_SEARCH_RANGE[0]), LINE_SEARCH_RANGE[1])
         if s_new == s_hi:
             break
@@ -744,7 +798,8 @@ def _converged(rel_force, rel_energy, iteration, settings):
     """Both norms small; or the force norm far below its tolerance (the energy ratio of a step that starts
     almost converged is meaningless)."""
     return rel_force <= settings.force_tol and (
-        rel_energy <= settings.energy_tol or (iteration > 1 and rel_force <= 1e-3 * settings.force_tol))
+        rel_energy <= settings.energy_tol or (iteration > 1 and rel_force <= 1e-3 * settings.force_tol)
+    )
 
 
 GROUP_ACTIVITY = {"interface": ("stick", "slip", "open"), "soil_q8": ("elastic", "plastic")}
@@ -757,6 +812,7 @@ def _point_codes(group, state):
         return np.asarray(status(state)).ravel(), GROUP_ACTIVITY["interface"]
     if group.name == "soil_q8":
         from .elements.soil_q8 import N_STRESS
+
         return (state[..., N_STRESS + 1] > 0).astype(int).ravel(), GROUP_ACTIVITY["soil_q8"]
     return None
 
@@ -783,23 +839,37 @@ def _activity(model, outcome, worst_dof):
 
 
 def _failure_report(model, free, outcome, lam_from, lam_to):
-    report = {"reason": outcome.get("reason", "unknown"), "load_factor_from": float(lam_from),
-              "load_factor_to": float(lam_to), "iterations": outcome.get("iterations", 0)}
+    report = {
+        "reason": outcome.get("reason", "unknown"),
+        "load_factor_from": float(lam_from),
+        "load_factor_to": float(lam_to),
+        "iterations": outcome.get("iterations", 0),
+    }
     r = outcome.get("residual")
     if r is not None and np.any(np.isfinite(r[free])):
         r_free = np.where(free, np.abs(np.nan_to_num(r, nan=np.inf)), 0.0)
         worst = int(np.argmax(r_free))
         start = np.concatenate([[0], np.cumsum(model.node_ndof)])
         node = int(np.searchsorted(start, worst, side="right") - 1)
-        report.update(worst_dof=worst, worst_node=node, worst_component=("u", "w", "alpha")[worst - start[node]],
-                      node_xy=tuple(float(v) for v in model.coords[node]),
-                      worst_groups=_activity(model, outcome, worst),
-                      last_residual=float(outcome["residuals"][-1]) if outcome["residuals"] else float("nan"))
+        report.update(
+            worst_dof=worst,
+            worst_node=node,
+            worst_component=("u", "w", "alpha")[worst - start[node]],
+            node_xy=tuple(float(v) for v in model.coords[node]),
+            worst_groups=_activity(model, outcome, worst),
+            last_residual=float(outcome["residuals"][-1]) if outcome["residuals"] else float("nan"),
+        )
     return report
 
 
-def run_arc_length(model: Model, n_steps: int, first_increment: float, settings: Settings | None = None,
-                   max_load_factor: float = np.inf, min_arc_ratio: float = 1e-4) -> Result:
+def run_arc_length(
+    model: Model,
+    n_steps: int,
+    first_increment: float,
+    settings: Settings | None = None,
+    max_load_factor: float = np.inf,
+    min_arc_ratio: float = 1e-4,
+) -> Result:
     """Follow the equilibrium path through limit points with Crisfield's cylindrical arc-length method.
 
     The load factor becomes an unknown; every iteration keeps the displacement increment of the step on a
@@ -828,7 +898,9 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
     arc0 = first_increment * np.linalg.norm(du_ref)
     arc, lam, direction = arc0, 0.0, None
     while result.n_steps < n_steps and lam < max_load_factor:
-        outcome = _arc_step(system, settings, fac, du_ref, u, states, lam, arc, direction, f_ref, f_dead, result)
+        outcome = _arc_step(
+            system, settings, fac, du_ref, u, states, lam, arc, direction, f_ref, f_dead, result
+        )
         if not outcome["converged"]:
             arc *= 0.5
             result.cuts += 1
@@ -838,12 +910,23 @@ def run_arc_length(model: Model, n_steps: int, first_increment: float, settings:
             continue
         direction = outcome["u"][free] - u[free]
         u, states, lam = outcome["u"], outcome["states"], outcome["lam"]
-        _record(result, lam, u, outcome["f_int"], states, outcome["iterations"], outcome["residuals"],
-                outcome["energies"], settings)
+        _record(
+            result,
+            lam,
+            u,
+            outcome["f_int"],
+            states,
+            outcome["iterations"],
+            outcome["residuals"],
+            outcome["energies"],
+            settings,
+        )
         result.stiffness.append(np.nan)
         if settings.verbose:
-            print(f"arc step {result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}",
-                  flush=True)
+            print(
+                f"arc step {result.n_steps:4d}  lambda={lam:.6g}  iterations={outcome['iterations']:3d}",
+                flush=True,
+            )
         if outcome["iterations"] <= 0.25 * settings.max_iter:
             arc = min(2.0 * arc, arc0)  # regrow after cuts while convergence is easy
     result.wall_time = time.perf_counter() - t_start
@@ -868,7 +951,9 @@ def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, dire
             outcome.update(reason=f"material update failed: {err}", iterations=it)
             return outcome
         r = lam * f_ref + f_dead - f_int
-        rel = np.linalg.norm(r[free]) / _force_scale(settings, lam, f_ref, lam * f_ref + f_dead, f_int, result)
+        rel = np.linalg.norm(r[free]) / _force_scale(
+            settings, lam, f_ref, lam * f_ref + f_dead, f_int, result
+        )
         residuals.append(rel)
         outcome.update(iterations=it, residual=r, u=u)
         if not np.isfinite(rel):

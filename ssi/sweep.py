@@ -64,8 +64,9 @@ def _write_json(path: Path, row: dict) -> None:
         Path(tmp).write_text(json.dumps(row, indent=1, default=repr))
 
 
-def run_scene(scene_factory, params: dict, out_dir: str, n_steps=None, settings=None,
-              keep_files: bool = True) -> dict:
+def run_scene(
+    scene_factory, params: dict, out_dir: str, n_steps=None, settings=None, keep_files: bool = True
+) -> dict:
     """Build and solve ``scene_factory(**params)``; write its result file and row; return the row.
 
     The row: ``key``, ``params``, ``status`` ("completed", "collapsed": a limit load was reached, "failed":
@@ -81,13 +82,18 @@ def run_scene(scene_factory, params: dict, out_dir: str, n_steps=None, settings=
     try:
         built = scene_factory(**params).build()
         out = built.solve(n_steps=n_steps, settings=settings)
-        row.update(status="completed" if out.status == "completed" else "collapsed", n_dof=built.model.n_dof,
-                   limit_load_factor=out.limit_load_factor, **headline(out))
+        row.update(
+            status="completed" if out.status == "completed" else "collapsed",
+            n_dof=built.model.n_dof,
+            limit_load_factor=out.limit_load_factor,
+            **headline(out),
+        )
         if keep_files:
             write_result(folder / f"{key}.h5", out, settings, overwrite=True)
     except Exception as err:  # noqa: BLE001 -- a failed scene is a result of the sweep, not its end
-        row.update(status="failed", error=f"{type(err).__name__}: {err}",
-                   traceback=traceback.format_exc(limit=5))
+        row.update(
+            status="failed", error=f"{type(err).__name__}: {err}", traceback=traceback.format_exc(limit=5)
+        )
     row["wall_time"] = time.perf_counter() - t0
     _write_json(folder / f"{key}.json", row)
     return row
@@ -127,16 +133,26 @@ def _client(client, n_workers):
         for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             os.environ.setdefault(var, "1")
         with _main_not_reimported():
-            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=":0")
+            cluster = LocalCluster(
+                n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=":0"
+            )
         return Client(cluster), True
     if isinstance(client, str):
         return Client(client), True
     return client, False
 
 
-def sweep(scene_factory, parameters, client=None, out_dir=None, n_steps=None, settings=None,
-          n_workers: int = 2, keep_files: bool = True, retry_failed: bool = True) -> list[dict]:
+def sweep(
+    scene_factory,
+    parameters,
+    client=None,
+    out_dir=None,
+    n_steps=None,
+    settings=None,
+    n_workers: int = 2,
+    keep_files: bool = True,
+    retry_failed: bool = True,
+) -> list[dict]:
     """Solve ``scene_factory(**p)`` for every ``p`` in ``parameters`` (a list of dicts, e.g. :func:`grid`).
 
     ``client``: None (a LocalCluster of ``n_workers`` processes), a scheduler address, a
@@ -174,8 +190,12 @@ def _run(scene_factory, todo, client, out_dir, n_steps, settings, n_workers, kee
         try:
             import distributed  # noqa: F401
         except ImportError:
-            warnings.warn("dask.distributed is not installed (pip install 'ssi[sweep]'): the sweep runs "
-                          "serially in this process", RuntimeWarning, stacklevel=3)
+            warnings.warn(
+                "dask.distributed is not installed (pip install 'ssi[sweep]'): the sweep runs "
+                "serially in this process",
+                RuntimeWarning,
+                stacklevel=3,
+            )
             client = "serial"
     if client == "serial":
         return {k: run_scene(scene_factory, p, out_dir, n_steps, settings, keep_files) for k, p in todo}
@@ -183,8 +203,20 @@ def _run(scene_factory, todo, client, out_dir, n_steps, settings, n_workers, kee
 
     cl, owned = _client(client, n_workers)
     try:
-        futures = {cl.submit(run_scene, scene_factory, p, out_dir, n_steps, settings, keep_files,
-                             key=f"ssi-scene-{k}", pure=False): k for k, p in todo}
+        futures = {
+            cl.submit(
+                run_scene,
+                scene_factory,
+                p,
+                out_dir,
+                n_steps,
+                settings,
+                keep_files,
+                key=f"ssi-scene-{k}",
+                pure=False,
+            ): k
+            for k, p in todo
+        }
         done = {}
         for fut in as_completed(futures):
             k = futures[fut]
@@ -192,8 +224,13 @@ def _run(scene_factory, todo, client, out_dir, n_steps, settings, n_workers, kee
                 done[k] = fut.result()
             except Exception as err:  # noqa: BLE001 -- a lost worker: recorded like a failed scene
                 p = dict(todo)[k]
-                done[k] = {"key": k, "params": p, "status": "failed", "wall_time": math.nan,
-                           "error": f"{type(err).__name__}: {err} (worker lost)"}
+                done[k] = {
+                    "key": k,
+                    "params": p,
+                    "status": "failed",
+                    "wall_time": math.nan,
+                    "error": f"{type(err).__name__}: {err} (worker lost)",
+                }
                 _write_json(Path(out_dir) / "scenes" / f"{k}.json", done[k])
         return done
     finally:
@@ -219,17 +256,23 @@ def write_table(path, rows) -> Path:
         w = csv.writer(fh)
         w.writerow(header)
         for r in rows:
-            w.writerow([r.get(c, "") for c in TABLE_FIRST] + [r.get("params", {}).get(n, "") for n in params]
-                       + [r.get(q, "") for q in quantities] + [r.get("error", "")])
+            w.writerow(
+                [r.get(c, "") for c in TABLE_FIRST]
+                + [r.get("params", {}).get(n, "") for n in params]
+                + [r.get(q, "") for q in quantities]
+                + [r.get("error", "")]
+            )
     return path
 
 
 def read_table(path) -> list[dict]:
     """The rows of a ``sweep.csv`` as dicts of strings converted to float where they are numbers."""
+
     def conv(v):
         try:
             return float(v)
         except ValueError:
             return v
+
     with open(path, newline="") as fh:
         return [{k: conv(v) for k, v in r.items()} for r in csv.DictReader(fh)]

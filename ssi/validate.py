@@ -15,8 +15,15 @@ import numbers
 
 import numpy as np
 
-__all__ = ["check_array", "check_bool", "check_choice", "check_instance", "check_int", "check_optional_real",
-           "check_real"]
+__all__ = [
+    "check_array",
+    "check_bool",
+    "check_choice",
+    "check_instance",
+    "check_int",
+    "check_optional_real",
+    "check_real",
+]
 
 
 def _interval(lo, hi, lo_open, hi_open) -> str:
@@ -38,8 +45,16 @@ def _in_range(v, lo, hi, lo_open, hi_open) -> bool:
     return not (hi is not None and (v > hi or (hi_open and v == hi)))
 
 
-def check_real(name: str, value, lo: float | None = None, hi: float | None = None, lo_open: bool = False,
-               hi_open: bool = False, allow_inf: bool = False, unit: str = "") -> float:
+def check_real(
+    name: str,
+    value,
+    lo: float | None = None,
+    hi: float | None = None,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    allow_inf: bool = False,
+    unit: str = "",
+) -> float:
     """``value`` as a float, checked to be a real number in the interval [lo, hi] (ends open on request).
 
     NaN is never allowed; +-inf only with ``allow_inf`` (and then still subject to the bounds). ``unit`` is
@@ -50,8 +65,10 @@ def check_real(name: str, value, lo: float | None = None, hi: float | None = Non
     v = float(value)
     finite = "" if allow_inf else "finite "
     if math.isnan(v) or (math.isinf(v) and not allow_inf) or not _in_range(v, lo, hi, lo_open, hi_open):
-        raise ValueError(f"{name} must be a {finite}number in {_interval(lo, hi, lo_open, hi_open)}"
-                         f"{_unit(unit)}, got {value!r}")
+        raise ValueError(
+            f"{name} must be a {finite}number in {_interval(lo, hi, lo_open, hi_open)}"
+            f"{_unit(unit)}, got {value!r}"
+        )
     return v
 
 
@@ -94,22 +111,40 @@ def check_instance(name: str, value, cls, optional: bool = False):
         return None
     if not isinstance(value, cls):
         names = cls.__name__ if isinstance(cls, type) else " or ".join(c.__name__ for c in cls)
-        raise TypeError(f"{name} must be a {names}{' or None' if optional else ''}, got {value!r} "
-                        f"({type(value).__name__})")
+        raise TypeError(
+            f"{name} must be a {names}{' or None' if optional else ''}, got {value!r} "
+            f"({type(value).__name__})"
+        )
     return value
 
 
-def check_array(name: str, value, shape: tuple | None = None, ndim: int | None = None, lo: float | None = None,
-                hi: float | None = None, lo_open: bool = False, hi_open: bool = False, min_size: int = 0,
-                allow_inf: bool = False, dtype=np.float64) -> np.ndarray:
+def check_array(
+    name: str,
+    value,
+    shape: tuple | None = None,
+    ndim: int | None = None,
+    lo: float | None = None,
+    hi: float | None = None,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    min_size: int = 0,
+    allow_inf: bool = False,
+    dtype=np.float64,
+) -> np.ndarray:
     """``value`` as a C-contiguous array of ``dtype`` (float64 or int64), every entry checked like
     :func:`check_real`. ``shape`` entries of ``None`` match any length."""
     arr = _as_numeric_array(name, value, dtype)
     if ndim is not None and arr.ndim != ndim:
         raise ValueError(f"{name} must be a {ndim}-D array, got shape {arr.shape}")
-    if shape is not None and (arr.ndim != len(shape) or any(s is not None and s != n
-                                                             for s, n in zip(shape, arr.shape))):
-        want = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
+    if shape is not None and (
+        arr.ndim != len(shape) or any(s is not None and s != n for s, n in zip(shape, arr.shape))
+    ):
+        want = (
+            "("
+            + ", ".join("n" if s is None else str(s) for s in shape)
+            + ("," if len(shape) == 1 else "")
+            + ")"
+        )
         raise ValueError(f"{name} must have shape {want}, got {arr.shape}")
     if arr.size < min_size:
         raise ValueError(f"{name} must have at least {min_size} entries, got {arr.size}")
@@ -123,11 +158,15 @@ def check_array(name: str, value, shape: tuple | None = None, ndim: int | None =
     if np.any(bad):
         i = tuple(int(k) for k in np.argwhere(np.atleast_1d(bad))[0])
         if arr.ndim == 0:
-            raise ValueError(f"{name} must be a {'' if allow_inf else 'finite '}number in "
-                             f"{_interval(lo, hi, lo_open, hi_open)}, got {arr.item()!r}")
+            raise ValueError(
+                f"{name} must be a {'' if allow_inf else 'finite '}number in "
+                f"{_interval(lo, hi, lo_open, hi_open)}, got {arr.item()!r}"
+            )
         finite = "" if allow_inf or arr.dtype.kind != "f" else "finite "
-        raise ValueError(f"{name} must hold {finite}numbers in {_interval(lo, hi, lo_open, hi_open)}, got "
-                         f"{arr[i].item()!r} at index {i if len(i) > 1 else i[0]}")
+        raise ValueError(
+            f"{name} must hold {finite}numbers in {_interval(lo, hi, lo_open, hi_open)}, got "
+            f"{arr[i].item()!r} at index {i if len(i) > 1 else i[0]}"
+        )
     return arr if arr.flags.c_contiguous else arr.copy(order="C")  # (np.ascontiguousarray makes 0-d 1-d)
 
 

@@ -28,20 +28,25 @@ def rc_strip(depth: float = 0.5, fc: float = 30e6, fy: float = 500e6, area: floa
     """An RC strip section: bars of ``area`` [m^2/m] top and bottom at 5 cm cover (chapter 03 concrete)."""
     d = designer_concrete(fc)
     concrete = (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / 200e9))
-    return rc_section(depth, [(0.05, area), (depth - 0.05, area)], concrete, (STEEL, steel_params(fy, 200e9)),
-                      n_concrete=7)
+    return rc_section(
+        depth, [(0.05, area), (depth - 0.05, area)], concrete, (STEEL, steel_params(fy, 200e9)), n_concrete=7
+    )
 
 
 def _base(**changes) -> Scene:
     """A 2 m footing on 1.5 m of clay over sand, 250 kN/m at its centre (about 40 % of its capacity)."""
     scene = Scene(
-        width=12.0, depth=6.0,
-        layers=[SoilLayer(1.5, E=15e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=25.0, psi_deg=0.0),
-                SoilLayer(4.5, E=60e6, nu=0.3, unit_weight=19e3, c=1e3, phi_deg=35.0, psi_deg=5.0)],
+        width=12.0,
+        depth=6.0,
+        layers=[
+            SoilLayer(1.5, E=15e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=25.0, psi_deg=0.0),
+            SoilLayer(4.5, E=60e6, nu=0.3, unit_weight=19e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ],
         foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
         contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
         loads=[ColumnLoad(x=0.0, N=250e3)],
-        mesh=MeshSize(h_fine=0.5, h_coarse=2.0))
+        mesh=MeshSize(h_fine=0.5, h_coarse=2.0),
+    )
     return replace(scene, **changes)
 
 
@@ -57,41 +62,95 @@ def ordinary_scenes() -> list[tuple[str, Scene]]:
     out = []
     for nu in (0.0, 0.1, 0.3, 0.45, 0.49):
         out.append((f"nu={nu}", _base(layers=[replace(lay, nu=nu) for lay in base.layers])))
-    sand = [SoilLayer(6.0, E=40e6, nu=0.3, unit_weight=18e3, c=0.0, phi_deg=phi, psi_deg=0.0)
-            for phi in (30.0, 35.0)]
+    sand = [
+        SoilLayer(6.0, E=40e6, nu=0.3, unit_weight=18e3, c=0.0, phi_deg=phi, psi_deg=0.0)
+        for phi in (30.0, 35.0)
+    ]
     for lay in sand:
         out.append((f"sand c=0 phi={lay.phi_deg:g} surcharge", _base(layers=[lay], surcharge=10e3)))
     for phi_i in (10.0, 20.0, 35.0):
         for psi_i in (0.0, phi_i):
-            out.append((f"contact phi_i={phi_i:g} psi_i={psi_i:g} c_i=0",
-                        _base(contact=Contact(kn=1e10, kt=1e9, phi_deg=phi_i, psi_deg=psi_i),
-                              loads=[ColumnLoad(x=0.0, N=200e3, H=30e3)])))
+            out.append(
+                (
+                    f"contact phi_i={phi_i:g} psi_i={psi_i:g} c_i=0",
+                    _base(
+                        contact=Contact(kn=1e10, kt=1e9, phi_deg=phi_i, psi_deg=psi_i),
+                        loads=[ColumnLoad(x=0.0, N=200e3, H=30e3)],
+                    ),
+                )
+            )
     out.append(("horizontal force", _base(loads=[ColumnLoad(x=0.0, N=250e3, H=50e3)])))
     out.append(("moment", _base(loads=[ColumnLoad(x=0.0, N=250e3, M=60e3)])))
-    out.append(("force and moment, two columns", _base(
-        foundation=Foundation(x0=-2.0, x1=2.0, section=homogeneous(0.5, 30e9, 0.2)),
-        loads=[ColumnLoad(x=-1.5, N=200e3, H=20e3), ColumnLoad(x=1.5, N=150e3, M=-40e3)])))
+    out.append(
+        (
+            "force and moment, two columns",
+            _base(
+                foundation=Foundation(x0=-2.0, x1=2.0, section=homogeneous(0.5, 30e9, 0.2)),
+                loads=[ColumnLoad(x=-1.5, N=200e3, H=20e3), ColumnLoad(x=1.5, N=150e3, M=-40e3)],
+            ),
+        )
+    )
     soft, stiff = 2e6, 2e10
-    out.append(("contrast 1e4 soft over stiff", _base(layers=[
-        replace(base.layers[0], E=soft, c=20e3, phi_deg=0.0), replace(base.layers[1], E=stiff)],
-        loads=[ColumnLoad(x=0.0, N=150e3)])))
-    out.append(("contrast 1e4 stiff over soft", _base(layers=[
-        replace(base.layers[0], E=stiff, c=None), replace(base.layers[1], E=soft)])))
+    out.append(
+        (
+            "contrast 1e4 soft over stiff",
+            _base(
+                layers=[
+                    replace(base.layers[0], E=soft, c=20e3, phi_deg=0.0),
+                    replace(base.layers[1], E=stiff),
+                ],
+                loads=[ColumnLoad(x=0.0, N=150e3)],
+            ),
+        )
+    )
+    out.append(
+        (
+            "contrast 1e4 stiff over soft",
+            _base(layers=[replace(base.layers[0], E=stiff, c=None), replace(base.layers[1], E=soft)]),
+        )
+    )
     for h in (0.25, 0.125):
         out.append((f"h_fine={h}", _base(mesh=MeshSize(h_fine=h, h_coarse=2.0))))
     out.append(("RC section", _base(foundation=Foundation(x0=-1.0, x1=1.0, section=rc_strip()))))
-    out.append(("RC beam, two columns", _base(
-        width=16.0, foundation=Foundation(x0=-3.0, x1=3.0, section=rc_strip(0.4)),
-        loads=[ColumnLoad(x=-2.5, N=250e3), ColumnLoad(x=2.5, N=250e3)])))
-    out.append(("foundation at the block's side", _base(
-        foundation=Foundation(x0=4.0, x1=6.0, section=homogeneous(0.5, 30e9, 0.2)),
-        loads=[ColumnLoad(x=5.0, N=150e3)])))
-    out.append(("foundation across the block", _base(
-        width=4.0, foundation=Foundation(x0=-2.0, x1=2.0, section=homogeneous(0.5, 30e9, 0.2)),
-        loads=[ColumnLoad(x=0.0, N=200e3)])))
+    out.append(
+        (
+            "RC beam, two columns",
+            _base(
+                width=16.0,
+                foundation=Foundation(x0=-3.0, x1=3.0, section=rc_strip(0.4)),
+                loads=[ColumnLoad(x=-2.5, N=250e3), ColumnLoad(x=2.5, N=250e3)],
+            ),
+        )
+    )
+    out.append(
+        (
+            "foundation at the block's side",
+            _base(
+                foundation=Foundation(x0=4.0, x1=6.0, section=homogeneous(0.5, 30e9, 0.2)),
+                loads=[ColumnLoad(x=5.0, N=150e3)],
+            ),
+        )
+    )
+    out.append(
+        (
+            "foundation across the block",
+            _base(
+                width=4.0,
+                foundation=Foundation(x0=-2.0, x1=2.0, section=homogeneous(0.5, 30e9, 0.2)),
+                loads=[ColumnLoad(x=0.0, N=200e3)],
+            ),
+        )
+    )
     out.append(("bonded contact", _base(contact=Contact(kn=1e10, kt=1e9))))
-    out.append(("weightless soil", _base(layers=[replace(lay, unit_weight=0.0) for lay in base.layers],
-                                         loads=[ColumnLoad(x=0.0, N=150e3)])))
+    out.append(
+        (
+            "weightless soil",
+            _base(
+                layers=[replace(lay, unit_weight=0.0) for lay in base.layers],
+                loads=[ColumnLoad(x=0.0, N=150e3)],
+            ),
+        )
+    )
     out.append(("associated soil", _base(layers=[replace(lay, psi_deg=lay.phi_deg) for lay in base.layers])))
     out.append(("above capacity, clay", _base(loads=[ColumnLoad(x=0.0, N=2.0e6)])))
     out.append(("above capacity, sand", _base(layers=[sand[0]], loads=[ColumnLoad(x=0.0, N=3.0e6)])))
@@ -110,16 +169,22 @@ def random_scenes(n: int, seed: int = 0) -> list[tuple[str, Scene]]:
         E2 = E1 * 10 ** rng.uniform(-2.0, 2.0)
         phi_i = rng.uniform(10.0, 35.0)
         half = rng.uniform(0.5, 2.0)
-        layers = [SoilLayer(1.5, E=E1, nu=nu, unit_weight=18e3, c=c1, phi_deg=phi1, psi_deg=0.0),
-                  SoilLayer(4.5, E=E2, nu=nu, unit_weight=19e3, c=1e3, phi_deg=35.0, psi_deg=5.0)]
+        layers = [
+            SoilLayer(1.5, E=E1, nu=nu, unit_weight=18e3, c=c1, phi_deg=phi1, psi_deg=0.0),
+            SoilLayer(4.5, E=E2, nu=nu, unit_weight=19e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ]
         load = rng.uniform(50e3, 600e3) * half
-        scene = _base(layers=layers,
-                      foundation=Foundation(x0=-half, x1=half, section=homogeneous(0.5, 30e9, 0.2)),
-                      contact=Contact(kn=1e10, kt=1e9, phi_deg=phi_i,
-                                      psi_deg=float(rng.choice([0.0, phi_i]))),
-                      loads=[ColumnLoad(x=0.0, N=load, H=rng.uniform(-0.15, 0.15) * load,
-                                        M=rng.uniform(-0.1, 0.1) * load * half)],
-                      mesh=MeshSize(h_fine=float(rng.choice([0.5, 0.25])), h_coarse=2.0))
+        scene = _base(
+            layers=layers,
+            foundation=Foundation(x0=-half, x1=half, section=homogeneous(0.5, 30e9, 0.2)),
+            contact=Contact(kn=1e10, kt=1e9, phi_deg=phi_i, psi_deg=float(rng.choice([0.0, phi_i]))),
+            loads=[
+                ColumnLoad(
+                    x=0.0, N=load, H=rng.uniform(-0.15, 0.15) * load, M=rng.uniform(-0.1, 0.1) * load * half
+                )
+            ],
+            mesh=MeshSize(h_fine=float(rng.choice([0.5, 0.25])), h_coarse=2.0),
+        )
         out.append((f"random {i}", scene))
     return out
 
@@ -127,9 +192,9 @@ def random_scenes(n: int, seed: int = 0) -> list[tuple[str, Scene]]:
 @dataclass
 class ZooOutcome:
     name: str
-    status: str              # "completed", "limit load reached" or "failed"
-    load_factor: float       # last converged lambda
-    wall_time: float         # [s]
+    status: str  # "completed", "limit load reached" or "failed"
+    load_factor: float  # last converged lambda
+    wall_time: float  # [s]
     message: str = ""
 
     @property

@@ -23,12 +23,14 @@ def case(n_gauss):
     corners = ref[:4] + rng.uniform(-0.25, 0.25, (N_EL, 4, 2))
     mids = 0.5 * (corners + np.roll(corners, -1, axis=1))
     coords = np.concatenate([corners, mids], axis=1) * rng.uniform(0.2, 2.0, (N_EL, 1, 1))
-    materials = [(0, elastic_params(20e6, 0.3)),
-                 mohr_coulomb_params(20e6, 0.3, 10e3, 20.0),                   # associated
-                 mohr_coulomb_params(20e6, 0.3, 10e3, 30.0, psi_deg=0.0),      # non-associated
-                 mohr_coulomb_params(20e6, 0.25, 5e3, 25.0, 5.0, scheme="explicit", n_sub=3, drift=True),
-                 mohr_coulomb_params(20e6, 0.3, 8e3, 20.0, scheme="explicit"),
-                 von_mises_params(20e6, 0.45, 30e3)]
+    materials = [
+        (0, elastic_params(20e6, 0.3)),
+        mohr_coulomb_params(20e6, 0.3, 10e3, 20.0),  # associated
+        mohr_coulomb_params(20e6, 0.3, 10e3, 30.0, psi_deg=0.0),  # non-associated
+        mohr_coulomb_params(20e6, 0.25, 5e3, 25.0, 5.0, scheme="explicit", n_sub=3, drift=True),
+        mohr_coulomb_params(20e6, 0.3, 8e3, 20.0, scheme="explicit"),
+        von_mises_params(20e6, 0.45, 30e3),
+    ]
     kinds, params = material_table(materials)
     el_mat = np.arange(N_EL) % len(kinds)
     edofs = np.arange(N_EL * 16).reshape(N_EL, 16)

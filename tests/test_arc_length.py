@@ -27,7 +27,9 @@ def footing(kind, params, q_ref):
     top = mesh.nodes_between(0.0, 2.0)
     f = np.zeros(len(top))
     for k in range(0, len(top) - 2, 2):  # consistent nodal forces of a uniform pressure on quadratic edges
-        f[k:k + 3] += -q_ref * (mesh.xy[top[k + 2], 0] - mesh.xy[top[k], 0]) * np.array([1.0, 4.0, 1.0]) / 6.0
+        f[k : k + 3] += (
+            -q_ref * (mesh.xy[top[k + 2], 0] - mesh.xy[top[k], 0]) * np.array([1.0, 4.0, 1.0]) / 6.0
+        )
     model.add_load(top, "w", f)
     return model, top
 

@@ -30,9 +30,17 @@ def q_u(**kw):
 
 def test_bearing_factors_match_the_published_table():
     # reference-data.md (Prandtl–Reissner), 4 decimals
-    table = {0: (5.1416, 1.0), 5: (6.4888, 1.5677), 10: (8.3449, 2.4714), 15: (10.9765, 3.9411),
-             20: (14.8347, 6.3994), 25: (20.7205, 10.6621), 30: (30.1396, 18.4011), 35: (46.1236, 33.2961),
-             40: (75.3131, 64.1952)}
+    table = {
+        0: (5.1416, 1.0),
+        5: (6.4888, 1.5677),
+        10: (8.3449, 2.4714),
+        15: (10.9765, 3.9411),
+        20: (14.8347, 6.3994),
+        25: (20.7205, 10.6621),
+        30: (30.1396, 18.4011),
+        35: (46.1236, 33.2961),
+        40: (75.3131, 64.1952),
+    }
     for phi, (nc, nq) in table.items():
         _, c_nc, c_nq = prandtl(1.0, float(phi))
         assert c_nc == pytest.approx(nc, abs=6e-5) and c_nq == pytest.approx(nq, abs=6e-5)
@@ -144,12 +152,21 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
     model = Model()
     ids = model.add_nodes(mesh.xy, 2)
     if plastic:
-        mats = [mohr_coulomb_params(20e6, 0.3, 5e3, 30.0, 0.0), mohr_coulomb_params(50e6, 0.3, 0.0, 35.0, 5.0)]
+        mats = [
+            mohr_coulomb_params(20e6, 0.3, 5e3, 30.0, 0.0),
+            mohr_coulomb_params(50e6, 0.3, 0.0, 35.0, 5.0),
+        ]
     else:
         mats = [(0, elastic_params(20e6, 0.3)), (0, elastic_params(50e6, 0.3))]
     kinds, params = material_table(mats)
-    soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params,
-                  unit_weight=np.array([18e3, 20e3]))
+    soil = SoilQ8(
+        mesh.xy[mesh.conn],
+        model.element_dofs(ids[mesh.conn]),
+        mesh.el_layer,
+        kinds,
+        params,
+        unit_weight=np.array([18e3, 20e3]),
+    )
     layers = [dict(thickness=2.0, gamma=18e3, phi_deg=30.0), dict(thickness=4.0, gamma=20e3, K0=0.6)]
     soil.initial_stress = geostatic_stress(soil.integration_points()[..., 1], layers)
     model.add_group(soil)
@@ -172,12 +189,24 @@ def test_viscous_path_relaxes_to_the_rate_independent_limit():
     from ssi.solver import Settings
 
     def scene():
-        return rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=20.0, E=20e6, nu=0.3, h_fine=0.5, settle=0.06,
-                             half_width=6.0, depth=5.0, h_coarse=1.0)
+        return rigid_footing(
+            B=2.0,
+            c=10e3,
+            phi_deg=20.0,
+            psi_deg=20.0,
+            E=20e6,
+            nu=0.3,
+            h_fine=0.5,
+            settle=0.06,
+            half_width=6.0,
+            depth=5.0,
+            h_coarse=1.0,
+        )
 
     plain = push_footing(scene(), n_steps=20, settings=Settings(stepping="fixed", backend="superlu"))
-    viscous = push_footing(scene(), n_steps=20, settings=Settings(stepping="fixed", backend="superlu",
-                                                                  viscosity=1.0))
+    viscous = push_footing(
+        scene(), n_steps=20, settings=Settings(stepping="fixed", backend="superlu", viscosity=1.0)
+    )
     assert plain["failure"] is None and viscous["failure"] is None
     assert viscous["result"].relaxed_steps >= 5
     # the viscous path's pressure before relaxation is well above the limit (overstress), after it is not

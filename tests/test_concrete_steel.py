@@ -26,7 +26,7 @@ H_FD = 1e-9
 
 FC = 30.0e6
 E0 = 30.0e9
-EPS_C = 0.0022           # a = E0 eps_c / fc = 2.2 (> 2)
+EPS_C = 0.0022  # a = E0 eps_c / fc = 2.2 (> 2)
 FR = 3.0e6
 GF = 100.0
 LS = 0.1
@@ -68,13 +68,13 @@ def fd_check(kind, p, eps, gam, h):
 
 def test_compression_curve_features():
     f, df0 = compression_envelope(0.0, E0, FC, EPS_C, 0.0035)
-    assert f == 0.0 and abs(df0 - E0) <= 1e-12 * E0            # initial slope E0
+    assert f == 0.0 and abs(df0 - E0) <= 1e-12 * E0  # initial slope E0
     f, dfc = compression_envelope(EPS_C, E0, FC, EPS_C, 0.0035)
-    assert abs(f - FC) <= 1e-12 * FC                            # peak fc at eps_c
-    assert abs(dfc) <= 1e-12 * E0                               # zero slope at the peak
-    assert compression_envelope(0.0036, E0, FC, EPS_C, 0.0035) == (0.0, 0.0)   # crushed
+    assert abs(f - FC) <= 1e-12 * FC  # peak fc at eps_c
+    assert abs(dfc) <= 1e-12 * E0  # zero slope at the peak
+    assert compression_envelope(0.0036, E0, FC, EPS_C, 0.0035) == (0.0, 0.0)  # crushed
     sig = call(CONCRETE, concrete(), -EPS_C)[0]
-    assert abs(sig + FC) <= 1e-12 * FC                          # sign: compression negative
+    assert abs(sig + FC) <= 1e-12 * FC  # sign: compression negative
 
 
 @pytest.mark.parametrize("x_max", [0.0003, 0.001, 0.0018, EPS_C * 0.999, 0.0025, 0.003, 0.0034])
@@ -97,8 +97,8 @@ def test_unloading_along_E0_from_compression():
     for eps in (-0.0027, -0.002, -eps_p * 1.001):
         sig, _, e_t, _ = call(CONCRETE, p, eps, 0.0, h)
         assert abs(sig - E0 * (eps + eps_p)) <= 1e-12 * FC and e_t == E0
-    assert abs(call(CONCRETE, p, -x_max, 0.0, h)[0] + f_max) <= 1e-9 * FC   # back on the envelope
-    assert abs(call(CONCRETE, p, -eps_p, 0.0, h)[0]) <= 1e-6                 # zero stress at eps_p
+    assert abs(call(CONCRETE, p, -x_max, 0.0, h)[0] + f_max) <= 1e-9 * FC  # back on the envelope
+    assert abs(call(CONCRETE, p, -eps_p, 0.0, h)[0]) <= 1e-6  # zero stress at eps_p
 
 
 def test_tension_linear_then_crack_band_softening():
@@ -130,7 +130,7 @@ def test_secant_unloading_of_cracked_point():
     s_env = sig[2]
     assert abs(sig[3] - 0.5 * s_env) <= 1e-9 * FR and abs(sig[4]) <= 1e-9 * FR
     f5, _ = compression_envelope(1e-5, E0, FC, EPS_C, 0.0035)
-    assert abs(sig[5] + f5) <= 1e-9 * FR                        # crack closed: back on the eq. (5.1) curve
+    assert abs(sig[5] + f5) <= 1e-9 * FR  # crack closed: back on the eq. (5.1) curve
     # reloading along the secant, from the (tiny) irreversible strain of the closing step
     e6 = 3e-4 + irreversible_strain(1e-5, E0, FC, EPS_C, 0.0035)
     assert abs(sig[6] - e6 / 4e-4 * s_env) <= 1e-9 * FR
@@ -150,10 +150,10 @@ def test_tension_stiffening_and_shear_retention_vanish_at_yield():
     # shear retention follows the committed crack strain (hist[1]), not the trial strain
     _, tau, _, g_t = call(CONCRETE, p, 0.0, 1e-4, hist(0.0, e))
     assert abs(g_t - 0.25 * (1 - e / EPS_Y) * G) <= 1e-12 * G and abs(tau - g_t * 1e-4) <= 1e-12 * G * 1e-4
-    assert abs(call(CONCRETE, p, e, 1e-4)[3] - G) <= 1e-12 * G                          # not yet committed
+    assert abs(call(CONCRETE, p, e, 1e-4)[3] - G) <= 1e-12 * G  # not yet committed
     assert abs(call(CONCRETE, p, 0.0, 1e-4, hist(0.0, 1.5 * EPS_Y))[3] - 1e-4 * G) <= 1e-12 * G  # floor
-    assert abs(call(CONCRETE, p, 0.0, 1e-4, hist(0.004, 0.0))[3] - 1e-4 * G) <= 1e-12 * G      # crushed
-    assert abs(call(CONCRETE, p, 0.5 * eps_r, 1e-4)[3] - G) <= 1e-12 * G                # uncracked
+    assert abs(call(CONCRETE, p, 0.0, 1e-4, hist(0.004, 0.0))[3] - 1e-4 * G) <= 1e-12 * G  # crushed
+    assert abs(call(CONCRETE, p, 0.5 * eps_r, 1e-4)[3] - G) <= 1e-12 * G  # uncracked
 
 
 def test_steel_bilinear_hardening_and_unloading():
@@ -163,8 +163,8 @@ def test_steel_bilinear_hardening_and_unloading():
     path = np.array([0.0, 0.5 * ey, ey, 4 * ey, 3 * ey, 0.0, -4 * ey])
     sig, tau, e_t, _, h = rc.drive(STEEL, p, path)
     assert abs(sig[2] - 500e6) <= 1e-9 * 500e6
-    assert abs(sig[3] - (500e6 + EH * 3 * ey)) <= 1e-9 * 500e6          # hardening slope EH
-    assert abs(sig[4] - (sig[3] - 200e9 * ey)) <= 1e-9 * 500e6          # unloading slope Es
+    assert abs(sig[3] - (500e6 + EH * 3 * ey)) <= 1e-9 * 500e6  # hardening slope EH
+    assert abs(sig[4] - (sig[3] - 200e9 * ey)) <= 1e-9 * 500e6  # unloading slope Es
     assert abs(h[4, 0] - h[3, 0]) == 0.0 and np.all(tau == 0.0)
     assert e_t[3] == pytest.approx(EH, rel=1e-12) and e_t[4] == 200e9
     # perfectly plastic (EH = 0): plateau at fy
@@ -193,8 +193,10 @@ def test_concrete_fd_tangent_every_branch(name, eps, h):
     fd_check(CONCRETE, concrete(), eps, 1e-4, h)
 
 
-@pytest.mark.parametrize("eps,h", [(1e-3, hist()), (4e-3, hist()), (-4e-3, hist()),
-                                   (2e-3, hist(5e-3)), (7e-3, hist(5e-3 - 2.0 / 200))])
+@pytest.mark.parametrize(
+    "eps,h",
+    [(1e-3, hist()), (4e-3, hist()), (-4e-3, hist()), (2e-3, hist(5e-3)), (7e-3, hist(5e-3 - 2.0 / 200))],
+)
 def test_steel_fd_tangent_every_branch(eps, h):
     fd_check(STEEL, steel(), eps, 0.0, h)
 
@@ -202,7 +204,8 @@ def test_steel_fd_tangent_every_branch(eps, h):
 def test_elastic_branch_unchanged_and_k0_moduli():
     E, nu = 30e9, 0.2
     assert call(ELASTIC, np.array([E, nu]), 1e-4, 2e-4) == pytest.approx(
-        (E / (1 - nu**2) * 1e-4, E / 2.4 * 2e-4, E / (1 - nu**2), E / 2.4), rel=1e-14)
+        (E / (1 - nu**2) * 1e-4, E / 2.4 * 2e-4, E / (1 - nu**2), E / 2.4), rel=1e-14
+    )
     # K0 (tangent = 0) always returns the pristine moduli, whatever the state
     assert call(CONCRETE, concrete(), 3e-4, 0.0, hist(0.0, 2e-4), tangent=0)[2:] == (E0, E0 / 2.4)
     assert call(STEEL, steel(), 0.01, 0.0, hist(), tangent=0)[2:] == (200e9, 0.0)
@@ -217,7 +220,7 @@ def test_validation_messages():
     with pytest.raises(ValueError, match="E0"):
         rc.concrete_params(FC, -E0, EPS_C, FR, GF, LS, EPS_Y)
     with pytest.raises(ValueError, match="eps_c"):
-        rc.concrete_params(FC, E0, 0.0015, FR, GF, LS, EPS_Y)      # a = 1.5 < 2
+        rc.concrete_params(FC, E0, 0.0015, FR, GF, LS, EPS_Y)  # a = 1.5 < 2
     with pytest.raises(ValueError, match="eps_y"):
         rc.concrete_params(FC, E0, EPS_C, FR, GF, LS, 0.5 * FR / E0)
     with pytest.raises(ValueError, match="EH"):
@@ -231,7 +234,9 @@ def test_validation_messages():
 
 
 def test_designer_values_mc2010():
-    d = rc.designer_concrete(38e6)      # C30 (fck = 30 MPa): MC2010 tabulates Eci = 33.6 GPa, fctm = 2.9 MPa (rounded)
+    d = rc.designer_concrete(
+        38e6
+    )  # C30 (fck = 30 MPa): MC2010 tabulates Eci = 33.6 GPa, fctm = 2.9 MPa (rounded)
     assert d["E0"] == pytest.approx(33.6e9, rel=2e-3)
     assert d["fr"] == pytest.approx(2.9e6, rel=5e-3)
     assert d["E0"] * d["eps_c"] / 38e6 == pytest.approx(2.0, rel=1e-14)
@@ -248,13 +253,13 @@ def test_crushing_regularised_by_energy():
     eps_cd = 0.0035 + 2 * Gc / (f_cu * LS)
     path = -np.linspace(0.0035, eps_cd * 1.05, 20001)
     sig = rc.drive(CONCRETE, p, path)[0]
-    assert abs(sig[0] + f_cu) <= 1e-6 * FC                             # continuous at eps_cu
-    assert np.all(np.diff(-sig) <= 1e-9 * FC) and sig[-1] == 0.0        # falls to zero, then stays there
+    assert abs(sig[0] + f_cu) <= 1e-6 * FC  # continuous at eps_cu
+    assert np.all(np.diff(-sig) <= 1e-9 * FC) and sig[-1] == 0.0  # falls to zero, then stays there
     energy = np.trapezoid(-sig, -path)
     assert energy == pytest.approx(Gc / LS, rel=1e-3)
     cliff = rc.drive(CONCRETE, concrete(Gc=0.0), -np.array([0.0034, 0.0035]))[0]
     assert cliff[-1] == 0.0 and cliff[0] < -0.5 * FC
-    back = rc.drive(CONCRETE, p, np.array([-0.004, -0.0038, 0.001]))[0]   # eps_p = 0.004 - f/E0 ~ 0.0032
+    back = rc.drive(CONCRETE, p, np.array([-0.004, -0.0038, 0.001]))[0]  # eps_p = 0.004 - f/E0 ~ 0.0032
     assert back[1] < 0.0 and back[2] == 0.0
     with pytest.raises(ValueError, match="Gc"):
         concrete(Gc=-1.0)
@@ -269,7 +274,7 @@ def test_plane_strain_concrete():
     assert e_t == pytest.approx(E0 / (1 - nu**2), rel=1e-12) and sig == pytest.approx(e_t * 1e-5, rel=1e-12)
     assert g_t == pytest.approx(E0 / (2 * (1 + nu)), rel=1e-12)
     assert call(CONCRETE, ps, 0.0, 0.0, tangent=0)[2] == pytest.approx(E0 / (1 - nu**2), rel=1e-12)
-    assert call(CONCRETE, ps, -EPS_C)[0] == pytest.approx(-FC, rel=1e-12)          # peak unchanged
-    assert call(CONCRETE, concrete(nu=nu), 1e-5)[2] == E0                            # default: uniaxial
+    assert call(CONCRETE, ps, -EPS_C)[0] == pytest.approx(-FC, rel=1e-12)  # peak unchanged
+    assert call(CONCRETE, concrete(nu=nu), 1e-5)[2] == E0  # default: uniaxial
     elastic = call(ELASTIC, rc.elastic_params(E0, nu), 1e-5)[2]
-    assert elastic == pytest.approx(e_t, rel=1e-12)                                  # consistent with ELASTIC
+    assert elastic == pytest.approx(e_t, rel=1e-12)  # consistent with ELASTIC

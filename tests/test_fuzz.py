@@ -91,9 +91,15 @@ def test_every_relational_case_is_named():
 def test_soft_but_valid_si_input_is_accepted():
     """Plausibility is another layer's job (warnings): E = 10 kPa soil, a 1 mm thin weightless layer and a huge
     load are valid SI input and must not be refused."""
-    scene = Scene(width=8.0, depth=4.0, layers=[SoilLayer(0.001, E=1e4, nu=0.0), SoilLayer(3.999, E=1e4, nu=0.49)],
-                  foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), contact=Contact(kn=1e10, kt=1e9),
-                  loads=[ColumnLoad(x=0.0, N=1e9)], mesh=MeshSize(h_fine=0.5, h_coarse=4.0, growth=2.0))
+    scene = Scene(
+        width=8.0,
+        depth=4.0,
+        layers=[SoilLayer(0.001, E=1e4, nu=0.0), SoilLayer(3.999, E=1e4, nu=0.49)],
+        foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9),
+        loads=[ColumnLoad(x=0.0, N=1e9)],
+        mesh=MeshSize(h_fine=0.5, h_coarse=4.0, growth=2.0),
+    )
     _, w = scene.build().solve(n_steps=1).settlement()
     assert np.all(np.isfinite(w)) and w.max() > 0.0
 
@@ -104,7 +110,9 @@ def _soil_model(support_u=True):
     model = Model()
     ids = model.add_nodes(mesh.xy, ndof=2)
     kinds, params = material_table([(0, elastic_params(1e7, 0.3))])
-    model.add_group(SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params))
+    model.add_group(
+        SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params)
+    )
     model.fix(mesh.bottom, "w")
     if support_u:
         model.fix(mesh.bottom, "u")
@@ -130,8 +138,11 @@ def test_singular_matrix_message_names_the_unsupported_dofs():
     exactly from the supports, before any factorisation; a fully supported block solves."""
     model, mesh = _soil_model(support_u=False)
     model.add_load(mesh.surface, "w", -1e3)
-    with pytest.raises(ValueError, match=r"supports: the stiffness matrix is singular: a translation in x "
-                                         r"\(unsupported DOFs: every node's u\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"supports: the stiffness matrix is singular: a translation in x "
+        r"\(unsupported DOFs: every node's u\)",
+    ):
         model.solve_linear(backend="superlu")
     turning, _ = _soil_model(support_u=False)
     turning._fixed.clear()
@@ -152,10 +163,19 @@ def test_a_mechanism_the_supports_cannot_see_is_still_called_singular():
     model, mesh = _soil_model(support_u=True)
     far = model.add_nodes(mesh.xy + [10.0, 0.0], ndof=2)
     kinds, params = material_table([(0, elastic_params(1e7, 0.3))])
-    model.add_group(SoilQ8((mesh.xy + [10.0, 0.0])[mesh.conn], model.element_dofs(far[mesh.conn]), mesh.el_layer,
-                           kinds, params))
+    model.add_group(
+        SoilQ8(
+            (mesh.xy + [10.0, 0.0])[mesh.conn],
+            model.element_dofs(far[mesh.conn]),
+            mesh.el_layer,
+            kinds,
+            params,
+        )
+    )
     model.add_load(far[mesh.surface], "w", -1e3)
-    with pytest.raises(ValueError, match=r"singular: a translation in x .* of the part with nodes \[(\d+)") as info:
+    with pytest.raises(
+        ValueError, match=r"singular: a translation in x .* of the part with nodes \[(\d+)"
+    ) as info:
         model.solve_linear(backend="superlu")
     first = int(str(info.value).split("of the part with nodes [")[1].split(",")[0])
     assert first >= len(mesh.xy)  # a node of the floating block
@@ -177,12 +197,17 @@ def test_nan_right_hand_side_is_not_called_singular():
 
 # ---- BLAS's refusal on a broken-down factorisation --------------------------------------------------------
 def _readme_scene():
-    return Scene(width=20.0, depth=10.0,
-                 layers=[SoilLayer(3.0, E=20e6, nu=0.3, unit_weight=18e3, c=5e3, phi_deg=30.0, psi_deg=0.0),
-                         SoilLayer(7.0, E=60e6, nu=0.3, unit_weight=19e3)],
-                 foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-                 contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
-                 loads=[ColumnLoad(x=0.0, N=400e3)])
+    return Scene(
+        width=20.0,
+        depth=10.0,
+        layers=[
+            SoilLayer(3.0, E=20e6, nu=0.3, unit_weight=18e3, c=5e3, phi_deg=30.0, psi_deg=0.0),
+            SoilLayer(7.0, E=60e6, nu=0.3, unit_weight=19e3),
+        ],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+        loads=[ColumnLoad(x=0.0, N=400e3)],
+    )
 
 
 def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypatch):
@@ -195,8 +220,10 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     drain = linsolve._drain_scratch
     monkeypatch.setattr(linsolve, "_drain_scratch", lambda: trapped.append(drain()) or trapped[-1])
     with pytest.raises(NonConvergence):
-        _readme_scene().build().solve(n_steps=10, settings=Settings(method="full", stepping="fixed", viscous_fallback=False,
-                                                                    backend="superlu"))
+        _readme_scene().build().solve(
+            n_steps=10,
+            settings=Settings(method="full", stepping="fixed", viscous_fallback=False, backend="superlu"),
+        )
     ctypes.CDLL(None).fflush(None)  # C's stdout is block-buffered: anything printed must reach capfd now
     out, err = capfd.readouterr()
     assert any("illegal value" in t for t in trapped)

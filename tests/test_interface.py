@@ -25,16 +25,17 @@ from ssi.materials.interface_law import (
     interface_update,
 )
 
-KT, KN = 2.0e7, 5.0e7          # Pa/m
-C, PHI = 8.0e3, 30.0           # Pa, deg
+KT, KN = 2.0e7, 5.0e7  # Pa/m
+C, PHI = 8.0e3, 30.0  # Pa, deg
 TAN = math.tan(math.radians(PHI))
 
 
 def update(params, dgap, t_old=(0.0, 0.0), hist_old=None, tangent=CONSISTENT):
     t_new, h_new, D = np.zeros(2), np.zeros(N_HIST), np.zeros((2, 2))
     h_old = np.zeros(N_HIST) if hist_old is None else np.asarray(hist_old, float)
-    code = interface_update(params, np.asarray(dgap, float), np.asarray(t_old, float), h_old, t_new, h_new, D,
-                            tangent)
+    code = interface_update(
+        params, np.asarray(dgap, float), np.asarray(t_old, float), h_old, t_new, h_new, D, tangent
+    )
     return code, t_new, h_new, D
 
 
@@ -52,11 +53,18 @@ def fd_tangent(params, dgap, t_old, hist_old, h=1e-9):
 
 
 # ---- parameters ---------------------------------------------------------------------------------------
-@pytest.mark.parametrize("kwargs, word", [
-    ({"kt": -1, "kn": 1}, "kt"), ({"kt": 1, "kn": 0}, "kn"), ({"kt": 1, "kn": 1, "phi_deg": 90}, "phi_deg"),
-    ({"kt": 1, "kn": 1, "c": -1}, "c"), ({"kt": 1, "kn": 1, "phi_deg": 20, "psi_deg": 25}, "psi_deg"),
-    ({"kt": 1, "kn": 1, "phi_deg": 30, "c": 1e3, "sig_t": 2e3}, "sig_t"), ({"kt": 1, "kn": 1, "sig_t": -1}, "sig_t"),
-])
+@pytest.mark.parametrize(
+    "kwargs, word",
+    [
+        ({"kt": -1, "kn": 1}, "kt"),
+        ({"kt": 1, "kn": 0}, "kn"),
+        ({"kt": 1, "kn": 1, "phi_deg": 90}, "phi_deg"),
+        ({"kt": 1, "kn": 1, "c": -1}, "c"),
+        ({"kt": 1, "kn": 1, "phi_deg": 20, "psi_deg": 25}, "psi_deg"),
+        ({"kt": 1, "kn": 1, "phi_deg": 30, "c": 1e3, "sig_t": 2e3}, "sig_t"),
+        ({"kt": 1, "kn": 1, "sig_t": -1}, "sig_t"),
+    ],
+)
 def test_params_reject_bad_input(kwargs, word):
     with pytest.raises(ValueError, match=word):
         interface_params(**kwargs)
@@ -64,9 +72,9 @@ def test_params_reject_bad_input(kwargs, word):
 
 def test_params_defaults():
     p = interface_params(KT, KN, PHI, C)
-    assert p[4] == pytest.approx(TAN)                      # psi = phi (the paper's associated rule)
-    assert p[5] == pytest.approx(C / TAN)                  # tension cut-off at the Coulomb apex
-    assert interface_params(KT, KN, PHI, 0.0)[5] == 0.0    # cohesionless: opens at sig_n > 0
+    assert p[4] == pytest.approx(TAN)  # psi = phi (the paper's associated rule)
+    assert p[5] == pytest.approx(C / TAN)  # tension cut-off at the Coulomb apex
+    assert interface_params(KT, KN, PHI, 0.0)[5] == 0.0  # cohesionless: opens at sig_n > 0
 
 
 # ---- material point -----------------------------------------------------------------------------------
@@ -78,7 +86,7 @@ def test_driver_stick_then_slip_at_coulomb_limit():
     t, st, _, hist = drive_point(p, np.column_stack([gt, np.full_like(gt, gn)]))
     sig = KN * gn
     tau_f = C - sig * TAN
-    np.testing.assert_allclose(t[:, 1], sig, rtol=1e-12)              # psi = 0: no dilation, sig_n constant
+    np.testing.assert_allclose(t[:, 1], sig, rtol=1e-12)  # psi = 0: no dilation, sig_n constant
     np.testing.assert_allclose(t[:, 0], np.minimum(KT * gt, tau_f), rtol=1e-12)
     assert np.all(st[KT * gt < tau_f] == STICK) and np.all(st[KT * gt > tau_f] == SLIP)
     # the plastic slip is the part of the gap that the spring does not carry
@@ -107,7 +115,7 @@ def test_associated_slip_tangent_is_eq_6_10():
         assert code == SLIP
         eq610 = KT * KN / (KT + KN * TAN**2) * np.array([[TAN**2, -s * TAN], [-s * TAN, 1.0]])
         np.testing.assert_allclose(D, eq610, rtol=1e-12)
-        assert np.allclose(D, D.T)                          # associated flow: symmetric
+        assert np.allclose(D, D.T)  # associated flow: symmetric
 
 
 def test_nonassociated_tangent_is_unsymmetric():
@@ -166,8 +174,8 @@ def test_cohesionless_traction_is_continuous_across_the_apex(psi_deg):
     traction of order kt*dg_t to zero (open), and Newton cycled slip -> open -> stick at such a point."""
     p = interface_params(KT, KN, PHI, 0.0, psi_deg=psi_deg)
     t_old = [0.0, -1e3]
-    g_t = 2e-3                                               # |tau_tr| = 4e4 Pa >> friction 1e3 tan(phi)
-    for g_n in np.linspace(0.5e3 / KN, 2.0e3 / KN, 41):      # sig_n,trial from -0.5e3 to +1e3 Pa
+    g_t = 2e-3  # |tau_tr| = 4e4 Pa >> friction 1e3 tan(phi)
+    for g_n in np.linspace(0.5e3 / KN, 2.0e3 / KN, 41):  # sig_n,trial from -0.5e3 to +1e3 Pa
         eps = 1e-12
         lo = update(p, [g_t, g_n - eps], t_old)[1]
         hi = update(p, [g_t, g_n + eps], t_old)[1]
@@ -185,13 +193,13 @@ def test_tension_cutoff_opens_and_debonds():
     p = interface_params(KT, KN, PHI, C, psi_deg=0.0, sig_t=5e3)
     code, t, h, _ = update(p, [0.0, 0.9 * 5e3 / KN])
     assert code == STICK and t[1] == pytest.approx(0.9 * 5e3)
-    code, t, h, _ = update(p, [0.0, 0.2 * 5e3 / KN], t, h)     # sig_n,trial = 1.1 sig_t -> opens
+    code, t, h, _ = update(p, [0.0, 0.2 * 5e3 / KN], t, h)  # sig_n,trial = 1.1 sig_t -> opens
     assert code == OPEN and np.all(t == 0.0) and h[H_BROKEN] == 1.0 and h[H_STATUS] == OPEN
-    assert h[H_OPEN] == pytest.approx(1.1 * 5e3 / KN)          # gap beyond the stress-free position
+    assert h[H_OPEN] == pytest.approx(1.1 * 5e3 / KN)  # gap beyond the stress-free position
     # closing by more than the open gap: compression from the closure point on, and no cohesion left
     code, t, h, _ = update(p, [0.0, -1.1 * 5e3 / KN - 1e-4], t, h)
     assert code == STICK and t[1] == pytest.approx(-KN * 1e-4, rel=1e-9)
-    code, t, h, _ = update(p, [1.0, 0.0], t, h)                # large slip: tau = -sig_n tan(phi), c lost
+    code, t, h, _ = update(p, [1.0, 0.0], t, h)  # large slip: tau = -sig_n tan(phi), c lost
     assert code == SLIP and t[0] == pytest.approx(KN * 1e-4 * TAN, rel=1e-9)
 
 
@@ -212,7 +220,7 @@ def straight(n_el=1, L=1.0, angle=0.0, plate_h=None, x0=0.0):
     lower = np.column_stack([s * tx, s * tz])
     coords = np.empty((n_el, 6, 2))
     for e in range(n_el):
-        low = lower[2 * e:2 * e + 3]
+        low = lower[2 * e : 2 * e + 3]
         up = low.copy() if plate_h is None else low + [0.0, plate_h / 2]
         coords[e] = np.vstack([up, low])
     n_nodes = 2 * n_el + 1
@@ -244,14 +252,20 @@ def test_zero_force_at_zero_gap_and_rigid_motion(rule, plate_h):
     """Zero displacement and any small rigid motion of the glued pair (translation + rotation theta, with
     the plate rotating alpha = theta about its mid-surface) give zero gap, force and traction."""
     coords, edofs, n_dof = straight(n_el=1, L=0.8, angle=0.0, plate_h=plate_h, x0=0.3)
-    g = Interface6(coords, edofs, interface_params(KT, KN, PHI, C), offset=None if plate_h is None else plate_h / 2, rule=rule)
+    g = Interface6(
+        coords,
+        edofs,
+        interface_params(KT, KN, PHI, C),
+        offset=None if plate_h is None else plate_h / 2,
+        rule=rule,
+    )
     f, _, st = g.evaluate(np.zeros(edofs.shape), np.zeros(edofs.shape), g.initial_state(), CONSISTENT)
     assert np.all(f == 0.0) and np.all(st == 0.0)
     theta, a, b = 1e-4, 2e-3, -3e-3
     u = np.zeros(n_dof)
     nd_up = 2 if plate_h is None else 3
     xz_up = coords[0, :3]
-    for k in range(3):                       # upper nodes (mid-surface for the plate): u = a - theta z, w = b + theta x
+    for k in range(3):  # upper nodes (mid-surface for the plate): u = a - theta z, w = b + theta x
         u[edofs[0, nd_up * k]] = a - theta * xz_up[k, 1]
         u[edofs[0, nd_up * k + 1]] = b + theta * xz_up[k, 0]
         if plate_h is not None:
@@ -262,9 +276,9 @@ def test_zero_force_at_zero_gap_and_rigid_motion(rule, plate_h):
         u[edofs[0, 3 * nd_up + 2 * k + 1]] = b + theta * x
     u_el = u[edofs]
     f, _, st = g.evaluate(u_el, u_el, g.initial_state(), CONSISTENT)
-    scale = KN * 1e-3 * 0.8                  # a force of a 1 mm gap over the element: round-off reference
+    scale = KN * 1e-3 * 0.8  # a force of a 1 mm gap over the element: round-off reference
     assert np.abs(f).max() < 1e-12 * scale
-    assert np.abs(st[..., V_GT:V_GN + 1]).max() < 1e-15
+    assert np.abs(st[..., V_GT : V_GN + 1]).max() < 1e-15
 
 
 def test_newton_cotes_is_node_to_node_and_gauss_is_the_consistent_matrix():
@@ -293,8 +307,9 @@ def test_number_of_zero_energy_modes(rule, n_gauss, n_zero):
     """Solid variant, 12 DOFs: the 6 modes with equal upper and lower motion are free; a 2-point Gauss rule
     leaves 2 spurious ones (rank 4 from 2 points x 2 components)."""
     coords, edofs, _ = straight(n_el=1, L=1.0, angle=0.3)
-    K = Interface6(coords, edofs, interface_params(KT, KN, c=math.inf), rule=rule,
-                   n_gauss=n_gauss).elastic_stiffness()[0]
+    K = Interface6(
+        coords, edofs, interface_params(KT, KN, c=math.inf), rule=rule, n_gauss=n_gauss
+    ).elastic_stiffness()[0]
     ev = np.linalg.eigvalsh(K)
     assert np.count_nonzero(ev < 1e-10 * ev.max()) == n_zero
     np.testing.assert_allclose(K, K.T, atol=1e-9 * ev.max())
@@ -357,7 +372,7 @@ def test_element_fd_tangent_with_mixed_states(rule, plate_h):
     p = interface_params(KT, KN, PHI, C, psi_deg=10.0)
     coords, edofs, _ = straight(n_el=1, L=1.0, plate_h=plate_h)
     if plate_h is None:
-        coords[0, 1, 1] = coords[0, 4, 1] = 0.05          # curved contact line
+        coords[0, 1, 1] = coords[0, 4, 1] = 0.05  # curved contact line
     g = Interface6(coords, edofs, p, offset=None if plate_h is None else plate_h / 2, rule=rule)
     n = edofs.shape[1]
     # committed state: everything pressed and slipping a little
@@ -394,13 +409,15 @@ def test_initial_traction_is_a_prestressed_committed_state():
     traction (L (1/6, 2/3, 1/6) sig0 on the upper w-DOFs), and the first slip happens at tau = -sig0 tan(phi)."""
     L, sig0 = 0.6, -40e3
     coords, edofs, _ = straight(n_el=1, L=L)
-    g = Interface6(coords, edofs, interface_params(KT, KN, PHI, 0.0, psi_deg=0.0), initial_traction=(0.0, sig0))
+    g = Interface6(
+        coords, edofs, interface_params(KT, KN, PHI, 0.0, psi_deg=0.0), initial_traction=(0.0, sig0)
+    )
     z = np.zeros((1, 12))
     f, _, st = g.evaluate(z, z, g.initial_state(), CONSISTENT)
     np.testing.assert_allclose(f[0, [1, 3, 5]], sig0 * L * np.array([1, 4, 1]) / 6, rtol=1e-13)
     np.testing.assert_allclose(st[0, :, 1], sig0)
     du = np.zeros((1, 12))
-    du[0, [0, 2, 4]] = 1e-2                                  # a large tangential push of the upper side
+    du[0, [0, 2, 4]] = 1e-2  # a large tangential push of the upper side
     _, _, st = g.evaluate(du, du, g.initial_state(), CONSISTENT)
     np.testing.assert_allclose(st[0, :, 0], -sig0 * TAN, rtol=1e-12)
     assert np.all(st[0, :, V_STATUS] == SLIP)
@@ -417,14 +434,15 @@ def test_analytical_references_against_reference_data():
         shear_lag_onset,
         shear_lag_slip_length,
     )
+
     EA, kt, L, tf = 4000e3, 2e7, 0.6, 50e3
     assert shear_lag_onset(EA, kt, L, tf) == pytest.approx(32.5e3, abs=0.05e3)
     for tb, s in ((38e3, 0.093), (40e3, 0.130), (45e3, 0.244), (49e3, 0.402), (49.9e3, 0.510)):
-        assert shear_lag_slip_length(tb, EA, kt, L, tf) == pytest.approx(s, abs=0.0005)   # 3 decimals given
-    assert shear_lag_from_slip(L, EA, kt, L, tf)[0] == pytest.approx(tf)                  # full sliding
+        assert shear_lag_slip_length(tb, EA, kt, L, tf) == pytest.approx(s, abs=0.0005)  # 3 decimals given
+    assert shear_lag_from_slip(L, EA, kt, L, tf)[0] == pytest.approx(tf)  # full sliding
     xi = np.array([0, 0.2, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.99])
     pp = [0.6366, 0.6497, 0.6946, 0.7351, 0.7958, 0.8914, 1.0610, 1.4605, 2.0388, 4.5129]
-    np.testing.assert_allclose(sadowsky_pressure(xi, 1.0, 2.0), pp, atol=5e-5)             # P = 2 a: p_m = 1
+    np.testing.assert_allclose(sadowsky_pressure(xi, 1.0, 2.0), pp, atol=5e-5)  # P = 2 a: p_m = 1
     x = np.linspace(-40, 40, 400001)
     w = hetenyi_deflection(x, 1e3, 5e6, 3e5)
-    assert np.trapezoid(5e6 * w, x) == pytest.approx(1e3, rel=1e-6)                         # springs carry P
+    assert np.trapezoid(5e6 * w, x) == pytest.approx(1e3, rel=1e-6)  # springs carry P

@@ -20,8 +20,9 @@ def block_system():
     mesh = structured_q8(np.linspace(0, 4, 13), np.linspace(-2, 0, 7))
     model = Model()
     model.add_nodes(mesh.xy, 2)
-    g = model.add_group(SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC],
-                               [elastic_params(30e6, 0.3)]))
+    g = model.add_group(
+        SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(30e6, 0.3)])
+    )
     model.fix(mesh.bottom, "u")
     model.fix(mesh.bottom, "w")
     free = model.free_mask()

@@ -36,8 +36,8 @@ from ssi.materials.soil_laws import (
 E, NU = 20e6, 0.3
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))
 MU = E / (2 * (1 + NU))
-TOL_F = 1e-9      # relative yield-function residual after a return
-TOL_FD = 1e-6     # relative tangent error against central differences
+TOL_F = 1e-9  # relative yield-function residual after a return
+TOL_FD = 1e-6  # relative tangent error against central differences
 
 
 def update(kind, p, deps, sig0, tangent=1):
@@ -72,12 +72,23 @@ def k_of(phi_deg):
 
 
 # ------------------------------------------------------------------------------------------------ inputs
-@pytest.mark.parametrize("kw, name", [
-    (dict(E=0.0), "E"), (dict(E=-1.0), "E"), (dict(nu=0.5), "nu"), (dict(nu=-1.0), "nu"),
-    (dict(c=-1.0), "c"), (dict(phi_deg=90.0), "phi_deg"), (dict(phi_deg=-1.0), "phi_deg"),
-    (dict(psi_deg=31.0), "psi_deg"), (dict(psi_deg=-1.0), "psi_deg"), (dict(c=0.0, phi_deg=0.0, psi_deg=0.0), "c"),
-    (dict(scheme="rk4"), "scheme"), (dict(n_sub=0), "n_sub"),
-])
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(E=0.0), "E"),
+        (dict(E=-1.0), "E"),
+        (dict(nu=0.5), "nu"),
+        (dict(nu=-1.0), "nu"),
+        (dict(c=-1.0), "c"),
+        (dict(phi_deg=90.0), "phi_deg"),
+        (dict(phi_deg=-1.0), "phi_deg"),
+        (dict(psi_deg=31.0), "psi_deg"),
+        (dict(psi_deg=-1.0), "psi_deg"),
+        (dict(c=0.0, phi_deg=0.0, psi_deg=0.0), "c"),
+        (dict(scheme="rk4"), "scheme"),
+        (dict(n_sub=0), "n_sub"),
+    ],
+)
 def test_bad_parameters_raise_naming_them(kw, name):
     args = dict(E=E, nu=NU, c=10e3, phi_deg=30.0, psi_deg=10.0) | kw
     with pytest.raises(ValueError, match=name):
@@ -85,8 +96,9 @@ def test_bad_parameters_raise_naming_them(kw, name):
 
 
 def test_material_table_pads_rows_of_different_kinds():
-    kinds, table = material_table([(ELASTIC, elastic_params(E, NU)), mohr_coulomb_params(E, NU, 1e4, 20),
-                                   (ELASTIC, [E, NU])])
+    kinds, table = material_table(
+        [(ELASTIC, elastic_params(E, NU)), mohr_coulomb_params(E, NU, 1e4, 20), (ELASTIC, [E, NU])]
+    )
     assert kinds.tolist() == [ELASTIC, MOHR_COULOMB, ELASTIC]
     assert table.shape == (3, 8) and table[2, 0] == E and table[1, 3] == pytest.approx(math.radians(20))
 
@@ -103,24 +115,30 @@ def test_elastic_branch_is_hooke_and_tangent_is_elastic(scheme):
     assert st == 0 and h[1] == 0
     np.testing.assert_allclose(s, sig0 + De @ deps, rtol=1e-14, atol=1e-9)
     np.testing.assert_allclose(D, De, rtol=1e-14)
-    np.testing.assert_allclose(fd_tangent(kind, p, deps, sig0)[:, :3], De[:, :3], rtol=TOL_FD, atol=TOL_FD * E)
+    np.testing.assert_allclose(
+        fd_tangent(kind, p, deps, sig0)[:, :3], De[:, :3], rtol=TOL_FD, atol=TOL_FD * E
+    )
 
 
 # ------------------------------------------------------------------------------------------------ branches
 # trial principal stresses (s1 >= s2 >= s3, kPa) that land in each return region for c = 10 kPa, phi = 30
 BRANCH_TRIALS = {
-    1: (-40.0, -80.0, -200.0),     # plane
-    2: (-10.0, -12.0, -200.0),     # edge s1 = s2 (plane return would make s2 > s1)
-    3: (0.0, -150.0, -155.0),      # edge s2 = s3
-    4: (40.0, 30.0, 25.0),         # apex (c cot(phi) = 17.3 kPa)
+    1: (-40.0, -80.0, -200.0),  # plane
+    2: (-10.0, -12.0, -200.0),  # edge s1 = s2 (plane return would make s2 > s1)
+    3: (0.0, -150.0, -155.0),  # edge s2 = s3
+    4: (40.0, 30.0, 25.0),  # apex (c cot(phi) = 17.3 kPa)
 }
 
 
 def potential_gradients(m, branch):
     """Columns: gradients of the potential planes active on a branch (ordered principal space). At the apex
     all six planes of the pyramid meet, and the plastic strain may be any non-negative combination."""
-    g = {1: [[m, 0, -1]], 2: [[m, 0, -1], [0, m, -1]], 3: [[m, 0, -1], [m, -1, 0]],
-         4: [[m, 0, -1], [0, m, -1], [m, -1, 0], [-1, m, 0], [0, -1, m], [-1, 0, m]]}[branch]
+    g = {
+        1: [[m, 0, -1]],
+        2: [[m, 0, -1], [0, m, -1]],
+        3: [[m, 0, -1], [m, -1, 0]],
+        4: [[m, 0, -1], [0, m, -1], [m, -1, 0], [-1, m, 0], [0, -1, m], [-1, 0, m]],
+    }[branch]
     return np.array(g, float).T
 
 
@@ -294,8 +312,9 @@ def test_explicit_drift_and_substepping_converge_to_implicit_on_rotating_path():
     ref = rotating_shear_path(*mohr_coulomb_params(E, NU, c, phi, psi), 4000)[-1]
     errs = []
     for n_sub in (1, 4, 16):
-        sig = rotating_shear_path(*mohr_coulomb_params(E, NU, c, phi, psi, scheme="explicit", n_sub=n_sub,
-                                                       drift=True), 10)
+        sig = rotating_shear_path(
+            *mohr_coulomb_params(E, NU, c, phi, psi, scheme="explicit", n_sub=n_sub, drift=True), 10
+        )
         assert abs(mc_yield(sig[-1], c, math.radians(phi))) < TOL_F * 1e5  # drift correction: on the surface
         errs.append(np.abs(sig[-1] - ref).max())
     assert errs[2] < errs[1] < errs[0]
@@ -340,8 +359,12 @@ def test_extreme_angles_and_near_incompressibility(phi, nu, branch):
     kind, p = mohr_coulomb_params(E, nu, c, phi, 0.0)
     k = k_of(phi)
     apex = c / math.tan(math.radians(phi))
-    base = {1: (-40.0, -80.0, -400.0), 2: (-10.0, -12.0, -400.0), 3: (0.0, -300.0, -305.0),
-            4: (1.0, 0.9, 0.8)}[branch]
+    base = {
+        1: (-40.0, -80.0, -400.0),
+        2: (-10.0, -12.0, -400.0),
+        3: (0.0, -300.0, -305.0),
+        4: (1.0, 0.9, 0.8),
+    }[branch]
     pr = np.array(base) * 1e3
     if branch == 4:
         if apex > 1e7:
@@ -354,8 +377,9 @@ def test_extreme_angles_and_near_incompressibility(phi, nu, branch):
     assert st == 1 and np.all(np.isfinite(s)) and np.all(np.isfinite(D))
     assert abs(mc_yield(s, c, math.radians(phi))) < TOL_F * np.abs(sigB).max()
     lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-    np.testing.assert_allclose(D[:, :3], fd_tangent(kind, p, np.zeros(4), sigB, h=1e-10)[:, :3],
-                               atol=TOL_FD * (lam + E))
+    np.testing.assert_allclose(
+        D[:, :3], fd_tangent(kind, p, np.zeros(4), sigB, h=1e-10)[:, :3], atol=TOL_FD * (lam + E)
+    )
 
 
 @pytest.mark.parametrize("size", [1e-14, 1e-8, 1e-2, 1.0])

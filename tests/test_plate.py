@@ -18,12 +18,12 @@ from ssi.model import Model
 from ssi.section import homogeneous, layered, paper_rc_section, rc_section
 
 E, NU, H, L = 30.0e9, 0.2, 0.5, 5.0
-E1 = E / (1.0 - NU ** 2)           # D1 of eq. (4.4), cylindrical bending
-G = E / (2.0 * (1.0 + NU))         # D2 before the shear factor
+E1 = E / (1.0 - NU**2)  # D1 of eq. (4.4), cylindrical bending
+G = E / (2.0 * (1.0 + NU))  # D2 before the shear factor
 KAPPA = 5.0 / 6.0
-EI = E1 * H ** 3 / 12.0
+EI = E1 * H**3 / 12.0
 KGA = KAPPA * G * H
-ROUND = 1e-10                      # exact-in-exact-arithmetic results: a few hundred ulps of conditioning
+ROUND = 1e-10  # exact-in-exact-arithmetic results: a few hundred ulps of conditioning
 
 
 def one_element(section, integration="selective", x=(0.0, 1.0, 2.0), **kw):
@@ -50,7 +50,7 @@ def test_zero_force_at_zero_displacement(make):
 
 @pytest.mark.parametrize("integration", ["selective", "full", "reduced"])
 def test_symmetric_stiffness(integration):
-    g = one_element(rc_test_section(), integration, x=(0.0, 0.22, 0.5))   # off-centre mid node: J varies
+    g = one_element(rc_test_section(), integration, x=(0.0, 0.22, 0.5))  # off-centre mid node: J varies
     k = g.elastic_stiffness()[0]
     assert np.abs(k - k.T).max() <= ROUND * np.abs(k).max()
 
@@ -107,21 +107,23 @@ def test_layer_rule_exact_and_composite():
     # transformed section, measured from the bottom face
     zc, zs = hs + hc / 2, hs / 2
     zna = (Ec * hc * zc + Es * hs * zs) / (Ec * hc + Es * hs)
-    ei = Ec * (hc ** 3 / 12 + hc * (zc - zna) ** 2) + Es * (hs ** 3 / 12 + hs * (zs - zna) ** 2)
+    ei = Ec * (hc**3 / 12 + hc * (zc - zna) ** 2) + Es * (hs**3 / 12 + hs * (zs - zna) ** 2)
     props = sec.elastic_resultant_stiffness()
     assert abs(props["z_na"] - (zna + sec.z_bottom)) <= ROUND * (hc + hs)
     assert abs(props["D_na"] - ei) <= ROUND * ei
-    assert abs(props["S"] - KAPPA * Ec / 2 * hc) <= ROUND * props["S"]      # steel carries no shear
+    assert abs(props["S"] - KAPPA * Ec / 2 * hc) <= ROUND * props["S"]  # steel carries no shear
     # the element with this section: cantilever tip load, exact nodal deflection with EI and kGA;
     # reference surface at the neutral axis removes the membrane-bending coupling
     sec_na = layered([hs, hc], K_ELASTIC, [[Es, 0.0], [Ec, 0.0]], carries_shear=[False, True], z_ref=zna)
     P, Lc = 1e4, 3.0
     m = Model()
     _, ids, _ = add_plate_strip(m, np.linspace(0.0, Lc, 4), sec_na)
-    m.fix(ids[0], "u"); m.fix(ids[0], "w"); m.fix(ids[0], "alpha")
+    m.fix(ids[0], "u")
+    m.fix(ids[0], "w")
+    m.fix(ids[0], "alpha")
     m.add_load(ids[-1], "w", -P)
     w_tip = m.solve_linear().at(ids[-1], "w")[0]
-    exact = -(P * Lc ** 3 / (3 * ei) + P * Lc / props["S"])
+    exact = -(P * Lc**3 / (3 * ei) + P * Lc / props["S"])
     assert abs(w_tip / exact - 1.0) <= ROUND
 
 
@@ -139,7 +141,7 @@ def test_tangent_matches_finite_differences(integration, self_bending):
     self-bending term (plate docstring), so there only the elastic state is exact and is checked in
     :func:`test_tangent_self_bending_exact_while_elastic`."""
     sec = rc_test_section()
-    eps0 = 2.0e-5          # well below the cracking strain fr/E0 = 1e-4 (a kink of the law)
+    eps0 = 2.0e-5  # well below the cracking strain fr/E0 = 1e-4 (a kink of the law)
     # elastic; cracked bottom; bottom steel (z = -0.2) strained 0.2 * 0.02 = 4e-3 > fy/Es = 2.5e-3
     for x_mid, kap in ((0.55, 1e-5), (0.5, 0.004), (0.5, 0.02)):
         g = one_element(sec, integration, x=(0.0, x_mid, 1.0), self_bending=self_bending)
@@ -147,7 +149,7 @@ def test_tangent_matches_finite_differences(integration, self_bending):
         x = g.coords[0, :, 0]
         u = np.zeros((1, 9))
         u[0, 0::3] = eps0 * x
-        u[0, 1::3] = 0.5 * kap * x ** 2
+        u[0, 1::3] = 0.5 * kap * x**2
         u[0, 2::3] = kap * x
         _f, k, _ = g.evaluate(u, u, g.initial_state(), CONSISTENT)
         k_fd = np.empty((9, 9))
@@ -156,8 +158,10 @@ def test_tangent_matches_finite_differences(integration, self_bending):
             up, um = u.copy(), u.copy()
             up[0, j] += step
             um[0, j] -= step
-            k_fd[:, j] = (g.evaluate(up, up, g.initial_state(), CONSISTENT)[0][0]
-                          - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]) / (2 * step)
+            k_fd[:, j] = (
+                g.evaluate(up, up, g.initial_state(), CONSISTENT)[0][0]
+                - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]
+            ) / (2 * step)
         # round-off of the difference: 2e-16 |f| / step ~ 2e-16 * 1e8 / 1e-9 = 20, against |k| ~ 1e10
         # (2e-9 relative); truncation step^2 |f'''| is far smaller; 1e-6 leaves room for neither kinks nor bugs
         assert np.abs(k_fd - k[0]).max() <= 1e-6 * np.abs(k[0]).max(), kap
@@ -166,12 +170,12 @@ def test_tangent_matches_finite_differences(integration, self_bending):
 def test_tangent_self_bending_exact_while_elastic():
     """Self-bending "tangent": central differences of f_int equal the consistent tangent in the elastic state
     (off-centre mid node), where no layer's modulus depends on its strain."""
-    assert one_element(rc_test_section(), x=(0.0, 0.5, 1.0)).self_bending == "chord"   # the default
+    assert one_element(rc_test_section(), x=(0.0, 0.5, 1.0)).self_bending == "chord"  # the default
     g = one_element(rc_test_section(), "selective", x=(0.0, 0.55, 1.0), self_bending="tangent")
     x = g.coords[0, :, 0]
     u = np.zeros((1, 9))
     u[0, 0::3] = 2.0e-5 * x
-    u[0, 1::3] = 0.5e-5 * x ** 2
+    u[0, 1::3] = 0.5e-5 * x**2
     u[0, 2::3] = 1e-5 * x
     k = g.evaluate(u, u, g.initial_state(), CONSISTENT)[1][0]
     k_fd = np.empty((9, 9))
@@ -179,8 +183,10 @@ def test_tangent_self_bending_exact_while_elastic():
         up, um = u.copy(), u.copy()
         up[0, j] += 1e-9
         um[0, j] -= 1e-9
-        k_fd[:, j] = (g.evaluate(up, up, g.initial_state(), CONSISTENT)[0][0]
-                      - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]) / 2e-9
+        k_fd[:, j] = (
+            g.evaluate(up, up, g.initial_state(), CONSISTENT)[0][0]
+            - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]
+        ) / 2e-9
     assert np.abs(k_fd - k).max() <= 1e-6 * np.abs(k).max()
 
 
@@ -191,13 +197,13 @@ def test_force_independent_of_tangent_flag_and_K0_constant():
     rng = np.random.default_rng(7)
     x = g.coords[0, :, 0]
     u = np.zeros((1, 9))
-    u[0, 1::3] = 0.5 * 0.02 * x ** 2 + 1e-4 * rng.standard_normal(3)
+    u[0, 1::3] = 0.5 * 0.02 * x**2 + 1e-4 * rng.standard_normal(3)
     u[0, 2::3] = 0.02 * x
     f1, k1, s1 = g.evaluate(u, u, g.initial_state(), CONSISTENT)
     f0, k0, s0 = g.evaluate(u, u, g.initial_state(), 0)
     assert np.array_equal(f0, f1) and np.array_equal(s0, s1)
     assert np.array_equal(k0, g.elastic_stiffness())
-    assert np.abs(k1 - k0).max() > 0.1 * np.abs(k0).max()      # the state is really nonlinear
+    assert np.abs(k1 - k0).max() > 0.1 * np.abs(k0).max()  # the state is really nonlinear
 
 
 def test_layer_stresses_integrate_to_resultants():
@@ -208,17 +214,17 @@ def test_layer_stresses_integrate_to_resultants():
     x = g.coords[0, :, 0]
     u = np.zeros((1, 9))
     u[0, 0::3] = 2e-4 * x
-    u[0, 1::3] = 0.5 * 0.006 * x ** 2 + 1e-4 * x             # plus a uniform shear strain 1e-4
+    u[0, 1::3] = 0.5 * 0.006 * x**2 + 1e-4 * x  # plus a uniform shear strain 1e-4
     u[0, 2::3] = 0.006 * x
     sig, tau = g.layer_stresses(u)
     res = g.resultants(u)
     ax = g.ax.astype(bool)
     e0, _ = sec.initial_moduli()
     n_sum = (sig[0][ax] * sec.h).sum(axis=1)
-    m_sum = (-sig[0][ax] * sec.h * sec.z_mid).sum(axis=1) + (e0 * sec.h ** 3 / 12).sum() * 0.006
+    m_sum = (-sig[0][ax] * sec.h * sec.z_mid).sum(axis=1) + (e0 * sec.h**3 / 12).sum() * 0.006
     assert np.allclose(n_sum, res["N"][0], rtol=1e-12, atol=0)
     assert np.allclose(m_sum, res["M"][0], rtol=1e-12, atol=0)
-    assert sig[0, 0, 0] > 0 > sig[0, 0, -1]                     # sagging: bottom in tension, top compressed
+    assert sig[0, 0, 0] > 0 > sig[0, 0, -1]  # sagging: bottom in tension, top compressed
     shear = g.sh.astype(bool)
     q_sum = g.kappa * (tau[0][shear] * np.where(sec.carries_shear, sec.h, 0.0)).sum(axis=1)
     assert np.allclose(q_sum, res["Q"][0], rtol=1e-12, atol=0) and np.all(res["Q"][0] > 0)
@@ -227,8 +233,9 @@ def test_layer_stresses_integrate_to_resultants():
 # ---- Timoshenko closed forms (global, through Model) --------------------------------------------------------
 def strip(n_el, length=L, integration="selective", n_layers=1):
     m = Model()
-    g, ids, _ = add_plate_strip(m, np.linspace(0.0, length, n_el + 1), homogeneous(H, E, NU, n_layers),
-                                integration=integration)
+    g, ids, _ = add_plate_strip(
+        m, np.linspace(0.0, length, n_el + 1), homogeneous(H, E, NU, n_layers), integration=integration
+    )
     return m, g, ids
 
 
@@ -236,12 +243,14 @@ def strip(n_el, length=L, integration="selective", n_layers=1):
 def test_simply_supported_uniform_load(n_el):
     q = -2.0e4
     m, g, ids = strip(n_el)
-    m.fix(ids[0], "u"); m.fix(ids[0], "w"); m.fix(ids[-1], "w")
+    m.fix(ids[0], "u")
+    m.fix(ids[0], "w")
+    m.fix(ids[-1], "w")
     m.add_element_load(g.edofs, g.distributed_load(q))
     r = m.solve_linear()
-    ends = ids[0::2]                      # element end nodes: nodally exact (superconvergent)
+    ends = ids[0::2]  # element end nodes: nodally exact (superconvergent)
     x = m.coords[ends, 0]
-    exact = (q / (24 * EI)) * x * (L ** 3 - 2 * L * x ** 2 + x ** 3) + (q / (2 * KGA)) * x * (L - x)
+    exact = (q / (24 * EI)) * x * (L**3 - 2 * L * x**2 + x**3) + (q / (2 * KGA)) * x * (L - x)
     # the shear part: w_s'' = -q/kGA with w_s(0) = w_s(L) = 0 (q negative, downwards)
     assert np.abs(r.at(ends, "w") - exact).max() <= ROUND * np.abs(exact).max()
     assert abs(r.reactions[m.dof([ids[0], ids[-1]], "w")].sum() + q * L) <= ROUND * abs(q * L)
@@ -251,11 +260,13 @@ def test_simply_supported_uniform_load(n_el):
 def test_simply_supported_central_point_load(n_el):
     P = -1.0e5
     m, _g, ids = strip(n_el)
-    m.fix(ids[0], "u"); m.fix(ids[0], "w"); m.fix(ids[-1], "w")
+    m.fix(ids[0], "u")
+    m.fix(ids[0], "w")
+    m.fix(ids[-1], "w")
     mid = ids[len(ids) // 2]
     m.add_load(mid, "w", P)
     w = m.solve_linear().at(mid, "w")[0]
-    exact = P * L ** 3 / (48 * EI) + P * L / (4 * KGA)
+    exact = P * L**3 / (48 * EI) + P * L / (4 * KGA)
     assert abs(w / exact - 1.0) <= ROUND
 
 
@@ -263,12 +274,14 @@ def test_simply_supported_central_point_load(n_el):
 def test_cantilever_tip_load_and_resultants(n_el):
     P = -1.0e5
     m, g, ids = strip(n_el)
-    m.fix(ids[0], "u"); m.fix(ids[0], "w"); m.fix(ids[0], "alpha")
+    m.fix(ids[0], "u")
+    m.fix(ids[0], "w")
+    m.fix(ids[0], "alpha")
     m.add_load(ids[-1], "w", P)
     r = m.solve_linear()
     x = m.coords[ids, 0]
-    w_exact = P * x ** 2 * (3 * L - x) / (6 * EI) + P * x / KGA
-    a_exact = P * (2 * L * x - x ** 2) / (2 * EI)
+    w_exact = P * x**2 * (3 * L - x) / (6 * EI) + P * x / KGA
+    a_exact = P * (2 * L * x - x**2) / (2 * EI)
     assert np.abs(r.at(ids, "w") - w_exact).max() <= ROUND * np.abs(w_exact).max()
     assert np.abs(r.at(ids, "alpha") - a_exact).max() <= ROUND * np.abs(a_exact).max()
     res = g.resultants(r.u[g.edofs])
@@ -286,24 +299,29 @@ def test_full_integration_locks_selective_does_not():
     does not vanish as the strip gets thinner, and wild shear-force oscillations. Selective integration is nodally
     exact at any slenderness."""
     q, length, n_el = -1.0, 1000.0 * H, 4
-    exact = 5 * q * length ** 4 / (384 * EI) + q * length ** 2 / (8 * KGA)
+    exact = 5 * q * length**4 / (384 * EI) + q * length**2 / (8 * KGA)
     out = {}
     for integration in ("selective", "full"):
         m, g, ids = strip(n_el, length, integration)
-        m.fix(ids[0], "u"); m.fix(ids[0], "w"); m.fix(ids[-1], "w")
+        m.fix(ids[0], "u")
+        m.fix(ids[0], "w")
+        m.fix(ids[-1], "w")
         m.add_element_load(g.edofs, g.distributed_load(q))
         r = m.solve_linear()
         out[integration] = r.at(ids[len(ids) // 2], "w")[0] / exact
         out[integration + "_Q"] = g.resultants(r.u[g.edofs])
-    assert abs(out["selective"] - 1.0) <= 1e-6        # conditioning ~ (L/h)^2 = 1e6 times round-off
+    assert abs(out["selective"] - 1.0) <= 1e-6  # conditioning ~ (L/h)^2 = 1e6 times round-off
     # thin limit derived in chapter 02: curvature = element mean of M/EI, deficit 4/(5 n^2) = 0.05; the finite
     # shear penalty at L/h = 1000 (l_e/h = 250) leaves a remainder O((h/l_e)^2) ~ 1.6e-5
-    assert abs(out["full"] - (1.0 - 4.0 / (5 * n_el ** 2))) <= 1e-4
-    m, g, ids = strip(n_el, 10.0 * H, "full")           # the same mesh on a thick strip locks much less
-    m.fix(ids[0], "u"); m.fix(ids[0], "w"); m.fix(ids[-1], "w")
+    assert abs(out["full"] - (1.0 - 4.0 / (5 * n_el**2))) <= 1e-4
+    m, g, ids = strip(n_el, 10.0 * H, "full")  # the same mesh on a thick strip locks much less
+    m.fix(ids[0], "u")
+    m.fix(ids[0], "w")
+    m.fix(ids[-1], "w")
     m.add_element_load(g.edofs, g.distributed_load(q))
     thick = m.solve_linear().at(ids[len(ids) // 2], "w")[0] / (
-        5 * q * (10 * H) ** 4 / (384 * EI) + q * (10 * H) ** 2 / (8 * KGA))
+        5 * q * (10 * H) ** 4 / (384 * EI) + q * (10 * H) ** 2 / (8 * KGA)
+    )
     assert 1.0 - thick < 0.5 * (1.0 - out["full"])
     # shear force at the shear points: selective matches statics Q = q (L/2 - x), full oscillates
     for key, tol in (("selective_Q", 1e-6), ("full_Q", None)):
@@ -325,7 +343,7 @@ def test_distributed_load_resultants():
     lin = lambda s: qa + (qb - qa) * s / 2.3
     ends = np.column_stack([lin(x[conn[:, 0]]), lin(x[conn[:, 2]])])
     total = 2.3 * (qa + qb) / 2
-    moment = qa * 2.3 ** 2 / 2 + (qb - qa) * 2.3 ** 2 / 3
+    moment = qa * 2.3**2 / 2 + (qb - qa) * 2.3**2 / 3
     for q in (ends, lambda s: lin(s)):
         f = g.distributed_load(q, comp="w")
         fw = f[:, 1::3]
@@ -334,8 +352,8 @@ def test_distributed_load_resultants():
         assert abs((fw * xn).sum() - moment) <= 1e-12 * abs(moment) * 10
         assert np.all(f[:, 0::3] == 0.0) and np.all(f[:, 2::3] == 0.0)
     # quadratic load through the callable (exact, 4-point rule), elements mask
-    f = g.distributed_load(lambda s: s ** 2, comp="u", elements=[1])
-    assert abs(f[:, 0::3].sum() - (2.0 ** 3 - 0.7 ** 3) / 3) <= 1e-12
+    f = g.distributed_load(lambda s: s**2, comp="u", elements=[1])
+    assert abs(f[:, 0::3].sum() - (2.0**3 - 0.7**3) / 3) <= 1e-12
     assert np.all(f[[0, 2]] == 0.0)
 
 
@@ -361,14 +379,19 @@ def test_paper_rc_section_layout():
     sec = rc_test_section()
     assert sec.n_layer == 11
     steel = np.flatnonzero(sec.kind == STEEL)
-    assert steel.tolist() == [1, 9]                           # layers 2 and 10, counted from 1
+    assert steel.tolist() == [1, 9]  # layers 2 and 10, counted from 1
     assert not sec.carries_shear[steel].any() and sec.carries_shear[sec.kind == CONCRETE].all()
     assert sec.h.sum() == pytest.approx(0.5, rel=1e-14)
     assert sec.z_mid[1] == pytest.approx(-0.25 + 0.05) and sec.z_mid[9] == pytest.approx(0.25 - 0.05)
     assert sec.h[1] == pytest.approx(1.5e-3) and sec.h[9] == pytest.approx(0.8e-3)
     # general builder: 3 bar layers and the largest-remainder split of the concrete layers
-    sec3 = rc_section(1.0, [(0.1, 1e-3), (0.5, 1e-3), (0.9, 1e-3)], (K_ELASTIC, [E, NU]),
-                      (K_ELASTIC, [200e9, 0.0]), n_concrete=10)
+    sec3 = rc_section(
+        1.0,
+        [(0.1, 1e-3), (0.5, 1e-3), (0.9, 1e-3)],
+        (K_ELASTIC, [E, NU]),
+        (K_ELASTIC, [200e9, 0.0]),
+        n_concrete=10,
+    )
     assert sec3.n_layer == 13 and (sec3.kind == K_ELASTIC).all()
     assert np.all(np.diff(sec3.z_mid) > 0)
 

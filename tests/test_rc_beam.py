@@ -96,7 +96,9 @@ def test_layer_free_reference_closed_forms():
     kap_y = 2 * fy / (Es * H)
     kaps = np.array([0.0, 0.5, 1.5, 3.0, 5.0]) * kap_y
     m_p = fy * H**2 / 4
-    exact = np.where(kaps <= kap_y, Es * H**3 / 12 * kaps, m_p * (1 - (kap_y / np.maximum(kaps, 1e-30)) ** 2 / 3))
+    exact = np.where(
+        kaps <= kap_y, Es * H**3 / 12 * kaps, m_p * (1 - (kap_y / np.maximum(kaps, 1e-30)) ** 2 / 3)
+    )
     for n in (1, 50):
         sec = layered(np.full(n, H / n), STEEL, rc.steel_params(fy, Es, 0.0))
         ref = sa.layer_free_moment_curvature(sec, kaps)

@@ -44,7 +44,7 @@ def test_crack_spacing_band_per_face():
     high = conc[sec.z_mid[conc] >= 0.0]
     assert np.all(sec.params[low, P_LS] == faces[0]["s_r_max"])
     assert np.all(sec.params[high, P_LS] == faces[1]["s_r_max"])
-    assert faces[1]["s_r_max"] > faces[0]["s_r_max"]              # fewer top bars: wider spacing
+    assert faces[1]["s_r_max"] > faces[0]["s_r_max"]  # fewer top bars: wider spacing
     alpha_e = 200e9 / designer_concrete(38e6)["E0"]
     by_hand = crack_spacing_mc2010(0.05 - 0.008, 0.016, 1.5e-3, 1.0, 0.4, 0.35, alpha_e)
     assert faces[0]["s_r_max"] == pytest.approx(by_hand["s_r_max"], rel=1e-12)
@@ -53,10 +53,15 @@ def test_crack_spacing_band_per_face():
 
 
 def _scene(**options):
-    return Scene(width=12.0, depth=4.0, layers=[SoilLayer(4.0, E=20e6, nu=0.3)],
-                 foundation=Foundation(x0=-1.0, x1=1.0, section=_rc(), **options),
-                 contact=Contact(kn=4e9, kt=4e8), loads=[ColumnLoad(x=0.0, N=100e3)],
-                 mesh=MeshSize(h_fine=0.5, h_coarse=2.0))
+    return Scene(
+        width=12.0,
+        depth=4.0,
+        layers=[SoilLayer(4.0, E=20e6, nu=0.3)],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=_rc(), **options),
+        contact=Contact(kn=4e9, kt=4e8),
+        loads=[ColumnLoad(x=0.0, N=100e3)],
+        mesh=MeshSize(h_fine=0.5, h_coarse=2.0),
+    )
 
 
 def test_foundation_options_reach_the_strip():
@@ -95,8 +100,9 @@ def test_crack_spacing_does_not_depend_on_how_a_bar_layer_is_split():
 
     d = designer_concrete(38e6)
     concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
-    sec = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)),
-                     n_concrete=9)
+    sec = rc_section(
+        0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)), n_concrete=9
+    )
     base = [f["s_r_max"] for f in with_crack_spacing_band(sec, 0.016)[1]]
     for factor in (2, 4):
         split = [f["s_r_max"] for f in with_crack_spacing_band(split_section(sec, factor), 0.016)[1]]

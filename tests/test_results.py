@@ -42,27 +42,46 @@ COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
 
 def mc_scene(N=300e3, H=50e3):
     """The scene of examples/strip_mohr_coulomb.toml, written in Python."""
-    return Scene(width=12.0, depth=6.0,
-                 layers=[SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0),
-                         SoilLayer(4.0, E=60e6, nu=0.3, unit_weight=19e3)],
-                 foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-                 contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0), loads=[ColumnLoad(x=0.0, N=N, H=H)],
-                 mesh=COARSE)
+    return Scene(
+        width=12.0,
+        depth=6.0,
+        layers=[
+            SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0),
+            SoilLayer(4.0, E=60e6, nu=0.3, unit_weight=19e3),
+        ],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+        loads=[ColumnLoad(x=0.0, N=N, H=H)],
+        mesh=COARSE,
+    )
 
 
 def phased_scene():
     """The scene of examples/phased_embedded.toml, written in Python: an embedded strip below a water table,
     loaded in phases (weight, building, half the building taken off)."""
-    layers = [SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3),
-              SoilLayer(5.0, E=50e6, nu=0.3, unit_weight=19e3, unit_weight_sat=20e3, c=2e3, phi_deg=32.0,
-                        psi_deg=0.0)]
-    phases = [Phase("weight", (StripWeight(25e3),)),
-              Phase("building", (ColumnLoad(0.0, N=250e3, H=20e3), SurfacePressure(3.0, 5.0, 20e3))),
-              Phase("half_unload", factors={"building": 0.5})]
-    return Scene(width=12.0, depth=6.0, layers=layers,
-                 foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-                 contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0), phases=phases, embedment=1.0, water_table=2.0,
-                 gamma_w=9.81e3, mesh=COARSE)
+    layers = [
+        SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3),
+        SoilLayer(
+            5.0, E=50e6, nu=0.3, unit_weight=19e3, unit_weight_sat=20e3, c=2e3, phi_deg=32.0, psi_deg=0.0
+        ),
+    ]
+    phases = [
+        Phase("weight", (StripWeight(25e3),)),
+        Phase("building", (ColumnLoad(0.0, N=250e3, H=20e3), SurfacePressure(3.0, 5.0, 20e3))),
+        Phase("half_unload", factors={"building": 0.5}),
+    ]
+    return Scene(
+        width=12.0,
+        depth=6.0,
+        layers=layers,
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+        phases=phases,
+        embedment=1.0,
+        water_table=2.0,
+        gamma_w=9.81e3,
+        mesh=COARSE,
+    )
 
 
 @pytest.fixture(scope="module")
@@ -138,7 +157,12 @@ def test_phased_file_keeps_the_phase_loads(phased, tmp_path):
     the column, half the column); the rebuilt scene of the file gives the same, and a changed number in a
     phase's own rows is found."""
     back = read_result(write_result(tmp_path / "p.h5", phased))
-    expected = {"geostatic": 36e3, "weight": 36e3 + 25e3, "building": 61e3 + 250e3, "half_unload": 61e3 + 125e3}
+    expected = {
+        "geostatic": 36e3,
+        "weight": 36e3 + 25e3,
+        "building": 61e3 + 250e3,
+        "half_unload": 61e3 + 125e3,
+    }
     for result in (phased, back):
         force = result.built.contact_force(result)
         for record in result.phases:
@@ -211,7 +235,9 @@ def test_collapsed_run_is_complete_and_keeps_its_limit_load(collapsed, tmp_path,
     assert "INCOMPLETE" not in text and "stopped" not in text
     s = summary(back)
     assert s["status"] == "limit load reached" and s["limit_load_factor"] == out.limit_load_factor < 1.0
-    assert s["column_load"] == pytest.approx(3e6 * out.load_factor[-1]) and s["stopped_at_column_load"] is None
+    assert (
+        s["column_load"] == pytest.approx(3e6 * out.load_factor[-1]) and s["stopped_at_column_load"] is None
+    )
 
 
 # ---- scene files ---------------------------------------------------------------------------------------
@@ -228,20 +254,42 @@ def test_toml_maps_onto_the_dataclasses():
 def every_feature_scene():
     """A scene using every field the scene file knows: each load type, phases with factors and n_steps,
     contact segments, a water table, embedment, an undrained-A layer and a total-stress undrained one."""
-    return Scene(width=12.0, depth=6.0,
-                 layers=[SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3, K0=0.6, scheme="explicit"),
-                         SoilLayer(2.0, E=30e6, nu=0.3, unit_weight=19e3, unit_weight_sat=20e3, c=5e3,
-                                   phi_deg=25.0, psi_deg=0.0, drainage="undrained_A", nu_u=0.49),
-                         SoilLayer.undrained(3.0, E_u=20e6, s_u=30e3, unit_weight=18e3, unit_weight_sat=19e3)],
-                 foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2), self_weight=1e3),
-                 contact=[ContactSegment(-1.0, 0.25, Contact(kn=1e10, kt=0.0)),
-                          ContactSegment(0.25, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=0.0))],
-                 loads=[ColumnLoad(0.0, N=100e3, M=5e3)], surcharge=5e3, embedment=1.0, water_table=1.5,
-                 gamma_w=10e3, mesh=MeshSize(0.5, 2.0, 1.5, 3),
-                 phases=[Phase("weight", (StripWeight(24e3), StripLoad(10e3, q_end=2e3, x0=-0.5, x1=0.75)),
-                               n_steps=2),
-                         Phase("beside", (SurfacePressure(3.0, 5.0, 15e3), Settlement(0.01, x=(0.0,)))),
-                         Phase("push", (Settlement(0.02),), factors={"loads": 0.0, "beside": 0.5})])
+    return Scene(
+        width=12.0,
+        depth=6.0,
+        layers=[
+            SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3, K0=0.6, scheme="explicit"),
+            SoilLayer(
+                2.0,
+                E=30e6,
+                nu=0.3,
+                unit_weight=19e3,
+                unit_weight_sat=20e3,
+                c=5e3,
+                phi_deg=25.0,
+                psi_deg=0.0,
+                drainage="undrained_A",
+                nu_u=0.49,
+            ),
+            SoilLayer.undrained(3.0, E_u=20e6, s_u=30e3, unit_weight=18e3, unit_weight_sat=19e3),
+        ],
+        foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2), self_weight=1e3),
+        contact=[
+            ContactSegment(-1.0, 0.25, Contact(kn=1e10, kt=0.0)),
+            ContactSegment(0.25, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=0.0)),
+        ],
+        loads=[ColumnLoad(0.0, N=100e3, M=5e3)],
+        surcharge=5e3,
+        embedment=1.0,
+        water_table=1.5,
+        gamma_w=10e3,
+        mesh=MeshSize(0.5, 2.0, 1.5, 3),
+        phases=[
+            Phase("weight", (StripWeight(24e3), StripLoad(10e3, q_end=2e3, x0=-0.5, x1=0.75)), n_steps=2),
+            Phase("beside", (SurfacePressure(3.0, 5.0, 15e3), Settlement(0.01, x=(0.0,)))),
+            Phase("push", (Settlement(0.02),), factors={"loads": 0.0, "beside": 0.5}),
+        ],
+    )
 
 
 SEGMENTS_TOML = """
@@ -294,11 +342,25 @@ def test_every_feature_survives_dict_and_json():
     """scene -> plain dict -> JSON (what result files store) -> scene gives the same dataclasses back."""
     scene = every_feature_scene()
     back = scene_from_dict(json.loads(json.dumps(scene_to_dict(scene))))
-    for name in ("layers", "contact", "loads", "phases", "mesh", "surcharge", "embedment", "water_table",
-                 "gamma_w", "width", "depth"):
+    for name in (
+        "layers",
+        "contact",
+        "loads",
+        "phases",
+        "mesh",
+        "surcharge",
+        "embedment",
+        "water_table",
+        "gamma_w",
+        "width",
+        "depth",
+    ):
         assert getattr(back, name) == getattr(scene, name), name
     assert scene_to_dict(back) == scene_to_dict(scene)
-    assert [ld["type"] for ld in scene_to_dict(scene)["phases"][1]["loads"]] == ["SurfacePressure", "Settlement"]
+    assert [ld["type"] for ld in scene_to_dict(scene)["phases"][1]["loads"]] == [
+        "SurfacePressure",
+        "Settlement",
+    ]
     assert scene.build().model.info["scene"] == scene_to_dict(scene)  # the scene record is the same dict
 
 
@@ -307,24 +369,34 @@ def test_toml_contact_segments_phases_and_settlement(tmp_path):
     path.write_text(SEGMENTS_TOML)
     scene, n_steps, _ = read_scene_file(path)
     assert n_steps == 2
-    assert scene.contact == [ContactSegment(-1.0, 0.25, Contact(kn=1e10, kt=0.0)),
-                             ContactSegment(0.25, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0))]
+    assert scene.contact == [
+        ContactSegment(-1.0, 0.25, Contact(kn=1e10, kt=0.0)),
+        ContactSegment(0.25, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0)),
+    ]
     assert scene.phases == [Phase("push", (Settlement(0.01, x=(0.0,)),), factors={"loads": 0.0}, n_steps=3)]
     assert scene.loads == [ColumnLoad(0.0, N=100e3)] and scene.embedment == 1.0 and scene.water_table == 1.5
     assert scene.layers[1] == SoilLayer(5.0, E=30e6, nu=0.3, drainage="undrained_A", nu_u=0.49)
 
 
-@pytest.mark.parametrize("text, key", [
-    ("widht = 3.0\n", "widht"),
-    ("width = 12.0\ndepth = 6.0\n[[loads]]\ntype = 'Column'\nx = 0.0\n", "Column"),
-    ("width = 12.0\ndepth = 6.0\n[[loads]]\ntype = 'SurfacePressure'\nx0 = 1.0\nx1 = 2.0\nN = 1e3\n", "N"),
-    ("width = 12.0\ndepth = 6.0\n[[phases]]\nname = 'a'\n[[phases.loads]]\ntype = 'StripWeight'\ngamma = 1.0\n",
-     "gamma"),
-    ("width = 12.0\ndepth = 6.0\n[[contact]]\nx0 = 0.0\nx1 = 1.0\nkn = 1e10\n", "kn"),
-    ("width = 12.0\ndepth = 6.0\n[solve]\nn_steps = 0\n", "n_steps"),
-    ("width = 12.0\ndepth = 6.0\n[[layers]]\nthickness = 2.0\nE = 1e7\nnu = 0.3\nphi = 30.0\n", "phi"),
-    ("width = 12.0\ndepth = 6.0\n[solve]\nmethd = 'full'\n", "methd"),
-])
+@pytest.mark.parametrize(
+    "text, key",
+    [
+        ("widht = 3.0\n", "widht"),
+        ("width = 12.0\ndepth = 6.0\n[[loads]]\ntype = 'Column'\nx = 0.0\n", "Column"),
+        (
+            "width = 12.0\ndepth = 6.0\n[[loads]]\ntype = 'SurfacePressure'\nx0 = 1.0\nx1 = 2.0\nN = 1e3\n",
+            "N",
+        ),
+        (
+            "width = 12.0\ndepth = 6.0\n[[phases]]\nname = 'a'\n[[phases.loads]]\ntype = 'StripWeight'\ngamma = 1.0\n",
+            "gamma",
+        ),
+        ("width = 12.0\ndepth = 6.0\n[[contact]]\nx0 = 0.0\nx1 = 1.0\nkn = 1e10\n", "kn"),
+        ("width = 12.0\ndepth = 6.0\n[solve]\nn_steps = 0\n", "n_steps"),
+        ("width = 12.0\ndepth = 6.0\n[[layers]]\nthickness = 2.0\nE = 1e7\nnu = 0.3\nphi = 30.0\n", "phi"),
+        ("width = 12.0\ndepth = 6.0\n[solve]\nmethd = 'full'\n", "methd"),
+    ],
+)
 def test_unknown_keys_are_refused_by_name(tmp_path, text, key):
     path = tmp_path / "bad.toml"
     path.write_text(text)
@@ -339,10 +411,16 @@ def test_every_field_has_a_unit():
     import inspect
 
     from ssi import scene as scene_module
+
     runtime = {"BuiltScene", "SceneResult"}  # built from a scene, not written in a scene file
-    classes = [c for _, c in inspect.getmembers(scene_module, inspect.isclass)
-               if dataclasses.is_dataclass(c) and c.__module__ == "ssi.scene" and c.__name__ not in runtime]
-    assert {"Scene", "Phase", "ContactSegment", "Settlement", "SurfacePressure"} <= {c.__name__ for c in classes}
+    classes = [
+        c
+        for _, c in inspect.getmembers(scene_module, inspect.isclass)
+        if dataclasses.is_dataclass(c) and c.__module__ == "ssi.scene" and c.__name__ not in runtime
+    ]
+    assert {"Scene", "Phase", "ContactSegment", "Settlement", "SurfacePressure"} <= {
+        c.__name__ for c in classes
+    }
     for cls in classes:
         assert set(UNITS[cls.__name__]) == {f.name for f in dataclasses.fields(cls)}, cls.__name__
     assert set(LOAD_TYPES) == {"ColumnLoad", "SurfacePressure", "StripLoad", "StripWeight", "Settlement"}
@@ -363,9 +441,9 @@ def test_vtu_reads_back(nonlinear, tmp_path):
     sig = nonlinear.soil_stress().mean(axis=1)
     assert np.max(np.abs(mesh.cell_data["szz"][0] - sig[:, 1])) <= 1e-12 * np.abs(sig).max()
     m = nonlinear.strip_forces()["M"].mean(1)
-    assert np.max(np.abs(mesh.cell_data["M"][1][:len(m)] - m)) <= 1e-12 * np.abs(m).max()
+    assert np.max(np.abs(mesh.cell_data["M"][1][: len(m)] - m)) <= 1e-12 * np.abs(m).max()
     p = -nonlinear.contact()["sig_n"].mean(1)
-    assert np.max(np.abs(mesh.cell_data["contact_pressure"][1][len(m):] - p)) <= 1e-12 * np.abs(p).max()
+    assert np.max(np.abs(mesh.cell_data["contact_pressure"][1][len(m) :] - p)) <= 1e-12 * np.abs(p).max()
     with pytest.raises(FileExistsError):
         export_vtu(nonlinear, path)
 
@@ -406,7 +484,14 @@ def test_series_every_step_reads_back(nonlinear, tmp_path):
 def test_every_plot_returns_a_figure(nonlinear, tmp_path):
     back = read_result(write_result(tmp_path / "r.h5", nonlinear))  # replots without the script
     figs = plot.standard_figures(back)
-    assert {"settlement", "contact", "strip_forces", "plastic_points", "load_settlement", "deformed_mesh"} <= set(figs)
+    assert {
+        "settlement",
+        "contact",
+        "strip_forces",
+        "plastic_points",
+        "load_settlement",
+        "deformed_mesh",
+    } <= set(figs)
     for fig in figs.values():
         assert isinstance(fig, matplotlib.figure.Figure) and fig.axes
         matplotlib.pyplot.close(fig)
@@ -414,6 +499,7 @@ def test_every_plot_returns_a_figure(nonlinear, tmp_path):
 
 def test_progress_is_quiet_in_tests_and_draws_when_asked(capsys):
     import io
+
     assert progress_enabled(None) is False  # PYTEST_CURRENT_TEST is set
     stream = io.StringIO()
     with solver_progress(True, total=1.0, stream=stream) as bar:
@@ -436,8 +522,17 @@ def test_cli_runs_the_examples(name, tmp_path, capsys):
     stored = json.loads((tmp_path / (scene_path.stem + "_summary.json")).read_text())
     scene, n_steps, settings = read_scene_file(scene_path)
     direct = summary(scene.build().solve(n_steps=n_steps, settings=settings))  # the Python API
-    for key in ("max_settlement", "max_contact_pressure", "max_abs_moment", "contact_resultant", "complete",
-                "status", "phase", "phase_load_factor", "column_load"):
+    for key in (
+        "max_settlement",
+        "max_contact_pressure",
+        "max_abs_moment",
+        "contact_resultant",
+        "complete",
+        "status",
+        "phase",
+        "phase_load_factor",
+        "column_load",
+    ):
         assert stored[key] == direct[key], key
     assert main(["run", str(scene_path), "--no-plots"]) == 2  # outputs exist: refused
     assert main(["show", str(tmp_path / (scene_path.stem + ".h5")), "--json", "--no-plots"]) == 0
@@ -449,6 +544,7 @@ def test_compile_notice_only_on_an_empty_cache(tmp_path, monkeypatch):
     import io
 
     from ssi import progress
+
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(progress, "_announced", False)
     stream = io.StringIO()
@@ -476,10 +572,12 @@ def test_rc_section_table_equals_the_python_section():
     from ssi.materials.layer_laws import CONCRETE, STEEL
     from ssi.materials.rc import concrete_params, designer_concrete, steel_params
     from ssi.section import rc_section
+
     d = designer_concrete(38e6)
     concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
-    python = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)),
-                        n_concrete=9)
+    python = rc_section(
+        0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, (STEEL, steel_params(500e6, 200e9)), n_concrete=9
+    )
     scene, _, settings = read_scene_file(os.path.join(EXAMPLES, "rc_strip.toml"))
     assert scene_to_dict(scene)["foundation"]["section"] == scene_to_dict(Foundation(0, 1, python))["section"]
     assert settings.method == "full" and len(scene.loads) == 2
@@ -487,9 +585,15 @@ def test_rc_section_table_equals_the_python_section():
 
 def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     with open(os.path.join(EXAMPLES, "strip_mohr_coulomb.toml")) as fh:
-        text = fh.read().replace("N = 300e3", "N = 3e6").replace(
-            "n_steps = 4", "n_steps = 2\nmax_iter = 40\nmax_cuts = 1\nmethod = 'modified'\nstepping = 'fixed'\n"
-            "viscous_fallback = false")
+        text = (
+            fh.read()
+            .replace("N = 300e3", "N = 3e6")
+            .replace(
+                "n_steps = 4",
+                "n_steps = 2\nmax_iter = 40\nmax_cuts = 1\nmethod = 'modified'\nstepping = 'fixed'\n"
+                "viscous_fallback = false",
+            )
+        )
     scene_path = tmp_path / "overload.toml"
     scene_path.write_text(text)
     assert main(["run", str(scene_path), "--no-plots"]) == 3

@@ -16,11 +16,18 @@ COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
 
 
 def strip_scene(**changes):
-    kwargs = dict(width=12.0, depth=6.0,
-                  layers=[SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3),
-                          SoilLayer(4.0, E=60e6, nu=0.3, unit_weight=19e3)],
-                  foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-                  contact=Contact(kn=1e10, kt=1e9), loads=[ColumnLoad(x=0.0, N=300e3)], mesh=COARSE)
+    kwargs = dict(
+        width=12.0,
+        depth=6.0,
+        layers=[
+            SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3),
+            SoilLayer(4.0, E=60e6, nu=0.3, unit_weight=19e3),
+        ],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9),
+        loads=[ColumnLoad(x=0.0, N=300e3)],
+        mesh=COARSE,
+    )
     kwargs.update(changes)
     return Scene(**kwargs)
 
@@ -50,8 +57,9 @@ def test_linear_scene_contact_carries_the_column_load():
 
 
 def test_nonlinear_scene_reports_zones_and_balances_loads():
-    scene = strip_scene(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
-                        loads=[ColumnLoad(x=0.0, N=300e3, H=50e3)])
+    scene = strip_scene(
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0), loads=[ColumnLoad(x=0.0, N=300e3, H=50e3)]
+    )
     scene.layers[0] = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0)
     built = scene.build()
     assert not built.is_linear
@@ -75,12 +83,15 @@ def test_scene_result_roundtrip(tmp_path):
         write_result(path, lin)
 
 
-@pytest.mark.parametrize("change, word", [
-    (dict(layers=[]), "layers"),
-    (dict(contact=None), "contact"),
-    (dict(foundation=Foundation(x0=-7.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2))), "foundation"),
-    (dict(loads=[ColumnLoad(x=3.0, N=300e3)]), "x=3.0"),  # off the strip
-])
+@pytest.mark.parametrize(
+    "change, word",
+    [
+        (dict(layers=[]), "layers"),
+        (dict(contact=None), "contact"),
+        (dict(foundation=Foundation(x0=-7.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2))), "foundation"),
+        (dict(loads=[ColumnLoad(x=3.0, N=300e3)]), "x=3.0"),  # off the strip
+    ],
+)
 def test_bad_scenes_are_named(change, word):
     with pytest.raises(ValueError, match=word):
         strip_scene(**change).build()
@@ -127,9 +138,13 @@ M_OED = E_SOIL * (1 - NU_SOIL) / ((1 + NU_SOIL) * (1 - 2 * NU_SOIL))
 def test_surcharge_alone_does_not_heave(with_strip):
     """The old scene heaved q H / M under the surcharge alone; now the geostatic state is in equilibrium."""
     q, depth = 10e3, 6.0
-    scene = strip_scene(layers=[SoilLayer(depth, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)], surcharge=q, loads=[],
-                        phases=[Phase("nothing")],
-                        **({} if with_strip else dict(foundation=None, contact=None)))
+    scene = strip_scene(
+        layers=[SoilLayer(depth, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)],
+        surcharge=q,
+        loads=[],
+        phases=[Phase("nothing")],
+        **({} if with_strip else dict(foundation=None, contact=None)),
+    )
     built = scene.build()
     out = built.solve(n_steps=1)
     assert np.abs(out.surface()[1]).max() < 1e-8 * q * depth / M_OED
@@ -139,8 +154,11 @@ def test_surcharge_alone_does_not_heave(with_strip):
 
 def test_surcharge_default_path_is_also_in_equilibrium():
     """Without phases (one proportional path) a tiny column load gives a tiny settlement, not a heave."""
-    scene = strip_scene(layers=[SoilLayer(6.0, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)], surcharge=10e3,
-                        loads=[ColumnLoad(0.0, N=1e3)])
+    scene = strip_scene(
+        layers=[SoilLayer(6.0, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)],
+        surcharge=10e3,
+        loads=[ColumnLoad(0.0, N=1e3)],
+    )
     out = scene.build().solve()
     x, s = out.settlement()
     assert np.all(s > 0.0) and s.max() < 0.05 * 10e3 * 6.0 / M_OED  # the old heave was -q H / M everywhere
@@ -153,10 +171,21 @@ def test_column_anywhere_on_the_strip_gets_a_node():
 
 
 def phased_scene(**changes):
-    building = (ColumnLoad(-0.3, N=300e3, H=20e3), StripLoad(20e3, q_end=5e3, x0=-1.0, x1=0.5),
-                SurfacePressure(2.0, 4.0, 15e3))
-    kwargs = dict(phases=[Phase("weight", (StripWeight(25e3),)), Phase("building", building),
-                          Phase("unload", factors={"building": 0.0})], loads=[], surcharge=10e3, water_table=1.0)
+    building = (
+        ColumnLoad(-0.3, N=300e3, H=20e3),
+        StripLoad(20e3, q_end=5e3, x0=-1.0, x1=0.5),
+        SurfacePressure(2.0, 4.0, 15e3),
+    )
+    kwargs = dict(
+        phases=[
+            Phase("weight", (StripWeight(25e3),)),
+            Phase("building", building),
+            Phase("unload", factors={"building": 0.0}),
+        ],
+        loads=[],
+        surcharge=10e3,
+        water_table=1.0,
+    )
     kwargs.update(changes)
     return strip_scene(**kwargs)
 
@@ -182,14 +211,20 @@ def test_phases_carry_each_load_and_unload_elastically():
 
 def test_water_table_geostatic_state_against_hand_calculation():
     """Effective stress with the buoyant weight below the table, K0 on effective stress, hydrostatic p."""
-    layers = [SoilLayer(2.0, E=2e7, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, phi_deg=30.0),
-              SoilLayer(4.0, E=6e7, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3, K0=0.6)]
+    layers = [
+        SoilLayer(2.0, E=2e7, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, phi_deg=30.0),
+        SoilLayer(4.0, E=6e7, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3, K0=0.6),
+    ]
     built = strip_scene(layers=layers, water_table=1.5, loads=[], phases=[Phase("nothing")]).build()
     out = built.solve(n_steps=1)
     assert np.abs(out.u[-1]).max() < 1e-14  # buoyant body force and effective initial stress balance
     d = -built.soil.integration_points()[..., 1]
     gw = 9.81e3
-    sv = 18e3 * np.minimum(d, 1.5) + (20e3 - gw) * np.clip(d - 1.5, 0, 0.5) + (21e3 - gw) * np.maximum(d - 2, 0)
+    sv = (
+        18e3 * np.minimum(d, 1.5)
+        + (20e3 - gw) * np.clip(d - 1.5, 0, 0.5)
+        + (21e3 - gw) * np.maximum(d - 2, 0)
+    )
     k0 = np.where(d < 2.0, 0.5, 0.6)
     sig = built.soil.stress(out.states[-1][0])
     assert np.allclose(-sig[..., 1], sv, rtol=1e-12)
@@ -199,21 +234,36 @@ def test_water_table_geostatic_state_against_hand_calculation():
 
 
 def test_geostatic_stress_water_table_function():
-    sig = geostatic_stress(np.array([-1.0, -3.0]), [{"thickness": 2.0, "gamma": 18e3, "gamma_sat": 20e3,
-                                                      "K0": 0.5}], water_table=1.0, gamma_w=10e3)
+    sig = geostatic_stress(
+        np.array([-1.0, -3.0]),
+        [{"thickness": 2.0, "gamma": 18e3, "gamma_sat": 20e3, "K0": 0.5}],
+        water_table=1.0,
+        gamma_w=10e3,
+    )
     assert sig[:, 1] == pytest.approx([-18e3, -(18e3 + 2 * 10e3)])
     with pytest.raises(ValueError, match="gamma_sat"):
-        geostatic_stress(np.array([-1.0]), [{"thickness": 1.0, "gamma": 18e3, "gamma_sat": 5e3, "K0": 0.5}],
-                         water_table=0.5)
+        geostatic_stress(
+            np.array([-1.0]),
+            [{"thickness": 1.0, "gamma": 18e3, "gamma_sat": 5e3, "K0": 0.5}],
+            water_table=0.5,
+        )
 
 
 @pytest.mark.parametrize("water_table", [None, 0.5, 3.0])
 def test_embedded_strip_starts_in_equilibrium(water_table):
     """Trench walls carry the horizontal, the strip's base the vertical geostatic stress: nothing moves."""
-    layers = [SoilLayer(1.0, E=1e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3),
-              SoilLayer(5.0, E=2e7, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3, phi_deg=30.0)]
-    built = strip_scene(layers=layers, embedment=1.0, water_table=water_table, surcharge=5e3, loads=[],
-                        phases=[Phase("nothing")]).build()
+    layers = [
+        SoilLayer(1.0, E=1e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3),
+        SoilLayer(5.0, E=2e7, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3, phi_deg=30.0),
+    ]
+    built = strip_scene(
+        layers=layers,
+        embedment=1.0,
+        water_table=water_table,
+        surcharge=5e3,
+        loads=[],
+        phases=[Phase("nothing")],
+    ).build()
     out = built.solve(n_steps=1)
     assert np.abs(out.u[-1]).max() < 1e-14
     sv_base = 5e3 + (18e3 if water_table != 0.5 else 18e3 * 0.5 + (20e3 - 9.81e3) * 0.5)
@@ -240,7 +290,10 @@ def test_rigid_settlement_reaction_is_the_contact_force():
 
 
 def test_contact_segments_give_each_element_its_law():
-    segs = [ContactSegment(-1.0, 0.2, Contact(kn=1e10, kt=0.0)), ContactSegment(0.2, 1.0, Contact(kn=2e10, kt=1e9))]
+    segs = [
+        ContactSegment(-1.0, 0.2, Contact(kn=1e10, kt=0.0)),
+        ContactSegment(0.2, 1.0, Contact(kn=2e10, kt=1e9)),
+    ]
     built = strip_scene(contact=segs).build()
     mid = built.interface.ip_coords()[:, 1, 0]
     kt, kn = built.interface.params[:, 0], built.interface.params[:, 1]
@@ -256,17 +309,21 @@ def test_units_warn_but_do_not_refuse():
     with pytest.warns(UserWarning, match="kPa"):
         strip_scene(layers=[SoilLayer(6.0, E=2e4, nu=0.3)]).build()
     import warnings
+
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         strip_scene().build()  # an SI scene warns about nothing
 
 
-@pytest.mark.parametrize("change, word", [
-    (dict(phases=[Phase("a", factors={"b": 0.0})]), "not earlier phases"),
-    (dict(loads=[SurfacePressure(0.0, 2.0, 10e3)]), "overlaps the strip"),
-    (dict(foundation=None, contact=None, loads=[StripLoad(1e4)]), "needs a foundation"),
-    (dict(phases=[Phase("geostatic")]), "unique"),
-])
+@pytest.mark.parametrize(
+    "change, word",
+    [
+        (dict(phases=[Phase("a", factors={"b": 0.0})]), "not earlier phases"),
+        (dict(loads=[SurfacePressure(0.0, 2.0, 10e3)]), "overlaps the strip"),
+        (dict(foundation=None, contact=None, loads=[StripLoad(1e4)]), "needs a foundation"),
+        (dict(phases=[Phase("geostatic")]), "unique"),
+    ],
+)
 def test_bad_phases_and_loads_are_named(change, word):
     with pytest.raises(ValueError, match=word):
         strip_scene(**change).build().solve(n_steps=1)
@@ -280,12 +337,18 @@ def test_undrained_A_elastic_is_elastic_with_nu_u():
     b = strip_scene(layers=[SoilLayer(6.0, E=2 * G * (1 + nu_u), nu=nu_u)]).build().solve()
     assert np.abs(a.u[-1] - b.u[-1]).max() < 1e-10 * np.abs(b.u[-1]).max()
     k_u = 2 * G * (1 + nu_u) / (3 * (1 - 2 * nu_u))
-    built = strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=nu_u)], foundation=None,
-                        contact=None, loads=[SurfacePressure(-6.0, 6.0, 10e3)]).build()
+    built = strip_scene(
+        layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=nu_u)],
+        foundation=None,
+        contact=None,
+        loads=[SurfacePressure(-6.0, 6.0, 10e3)],
+    ).build()
     out = built.solve()
     m_u = k_u + 4 * G / 3
     assert out.surface()[1] == pytest.approx(10e3 * 6.0 / m_u, rel=1e-10)
-    assert built.excess_pore_pressure(out) == pytest.approx(10e3 * (k_u - E / (3 * (1 - 2 * nu))) / m_u, rel=1e-10)
+    assert built.excess_pore_pressure(out) == pytest.approx(
+        10e3 * (k_u - E / (3 * (1 - 2 * nu))) / m_u, rel=1e-10
+    )
     with pytest.raises(ValueError, match="nu_u"):
         strip_scene(layers=[SoilLayer(6.0, E=E, nu=nu, drainage="undrained_A", nu_u=0.2)]).build()
 

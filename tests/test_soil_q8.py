@@ -38,7 +38,7 @@ def distorted_mesh(n=3, seed=1, amplitude=0.18):
     for i in range(2 * n + 1):
         for j in range(2 * n + 1):
             if g[i, j] >= 0 and (i % 2) != (j % 2):
-                a, b = ((g[i - 1, j], g[i + 1, j]) if i % 2 else (g[i, j - 1], g[i, j + 1]))
+                a, b = (g[i - 1, j], g[i + 1, j]) if i % 2 else (g[i, j - 1], g[i, j + 1])
                 xy[g[i, j]] = 0.5 * (xy[a] + xy[b])
     return m, xy
 
@@ -71,7 +71,7 @@ def test_serendipity_identities():
     rng = np.random.default_rng(0)
     for xi, eta in rng.uniform(-1, 1, (20, 2)):
         n, dn = serendipity8(xi, eta)
-        assert abs(n.sum() - 1.0) < TOL_ROUNDOFF           # partition of unity
+        assert abs(n.sum() - 1.0) < TOL_ROUNDOFF  # partition of unity
         assert np.abs(dn.sum(axis=0)).max() < TOL_ROUNDOFF  # derivatives of a constant vanish
         # reproduces linear fields: sum N_a x_a = x
         assert abs(n @ Q8_NODES[:, 0] - xi) < TOL_ROUNDOFF and abs(n @ Q8_NODES[:, 1] - eta) < TOL_ROUNDOFF
@@ -92,7 +92,7 @@ def test_lagrange3_identities():
     for xi in np.linspace(-1, 1, 7):
         n, dn = lagrange3(xi)
         assert abs(n.sum() - 1) < TOL_ROUNDOFF and abs(dn.sum()) < TOL_ROUNDOFF
-        assert abs(n @ LINE3_NODES ** 2 - xi ** 2) < TOL_ROUNDOFF  # quadratic reproduction
+        assert abs(n @ LINE3_NODES**2 - xi**2) < TOL_ROUNDOFF  # quadratic reproduction
 
 
 # ---- quadrature -----------------------------------------------------------------------------------------
@@ -101,15 +101,15 @@ def test_gauss_legendre_exact_to_degree_2n_minus_1(n):
     p, w = gauss_legendre(n)
     for k in range(2 * n):
         exact = 0.0 if k % 2 else 2.0 / (k + 1)
-        assert abs(w @ p ** k - exact) < TOL_ROUNDOFF
+        assert abs(w @ p**k - exact) < TOL_ROUNDOFF
     k = 2 * n  # the first degree it cannot integrate
-    assert abs(w @ p ** k - 2.0 / (k + 1)) > 1e-3
+    assert abs(w @ p**k - 2.0 / (k + 1)) > 1e-3
 
 
 def test_newton_cotes_and_tensor_rule():
     p, w = newton_cotes(3)  # Simpson: exact to degree 3, not 4
-    assert all(abs(w @ p ** k - (0.0 if k % 2 else 2.0 / (k + 1))) < TOL_ROUNDOFF for k in range(4))
-    assert abs(w @ p ** 4 - 0.4) > 1e-2
+    assert all(abs(w @ p**k - (0.0 if k % 2 else 2.0 / (k + 1))) < TOL_ROUNDOFF for k in range(4))
+    assert abs(w @ p**4 - 0.4) > 1e-2
     p, w = newton_cotes(2)
     assert abs(w @ p - 0.0) < TOL_ROUNDOFF and abs(w.sum() - 2) < TOL_ROUNDOFF
     for n in (2, 3):
@@ -130,7 +130,8 @@ def single_element(n_gauss, xy8=None):
 def test_q8_stiffness_matches_dense_reference(n_gauss):
     _, xy = distorted_mesh(1, amplitude=0.0)
     xy8 = xy[structured_q8([0, 1], [0, 1]).conn[0]] + np.array(
-        [[0.1, 0.05], [-0.1, 0.0], [0.05, 0.1], [0, -0.12], [0, 0], [0.02, 0], [0, 0.03], [0, 0]])
+        [[0.1, 0.05], [-0.1, 0.0], [0.05, 0.1], [0, -0.12], [0, 0], [0.02, 0], [0, 0.03], [0, 0]]
+    )
     K = single_element(n_gauss, xy8).elastic_stiffness()[0]
     K_ref = dense_q8_stiffness(xy8, n_gauss, E, NU)
     assert np.abs(K - K_ref).max() < TOL_ROUNDOFF * np.abs(K_ref).max()
@@ -182,7 +183,9 @@ def test_distorted_patch_test(n_gauss):
     a = np.array([1e-3, 2e-3, -1.5e-3, 0.5e-3, 3e-3, -1e-3])  # u = a0 + a1 x + a2 z, w = a3 + a4 x + a5 z
 
     def exact(p):
-        return np.column_stack([a[0] + a[1] * p[:, 0] + a[2] * p[:, 1], a[3] + a[4] * p[:, 0] + a[5] * p[:, 1]])
+        return np.column_stack(
+            [a[0] + a[1] * p[:, 0] + a[2] * p[:, 1], a[3] + a[4] * p[:, 0] + a[5] * p[:, 1]]
+        )
 
     boundary = np.unique(np.concatenate([m.left, m.right, m.bottom, m.surface]))
     ue = exact(xy[boundary])
@@ -195,8 +198,9 @@ def test_distorted_patch_test(n_gauss):
     lam = E * NU / ((1 + NU) * (1 - 2 * NU))
     mu = E / (2 * (1 + NU))
     exx, ezz, gxz = a[1], a[5], a[2] + a[4]
-    sig = np.array([lam * (exx + ezz) + 2 * mu * exx, lam * (exx + ezz) + 2 * mu * ezz, mu * gxz,
-                    lam * (exx + ezz)])
+    sig = np.array(
+        [lam * (exx + ezz) + 2 * mu * exx, lam * (exx + ezz) + 2 * mu * ezz, mu * gxz, lam * (exx + ezz)]
+    )
     s = g.stress(res.states[0])
     assert np.abs(s - sig).max() < TOL_PATCH * np.abs(sig).max()
 
@@ -232,8 +236,8 @@ def test_elimination_with_prescribed_displacements_matches_dense_solve():
     model.add_nodes(xy, 2)
     g = model.add_group(q8_group(xy, m.conn, model, 2))
     model.fix(m.bottom, "w")
-    model.fix(m.bottom[:1], "u", 1e-4)                 # a non-zero fixed value
-    model.prescribe(m.surface[:3], "w", -2e-3)          # prescribed, scaled by the load factor (1 here)
+    model.fix(m.bottom[:1], "u", 1e-4)  # a non-zero fixed value
+    model.prescribe(m.surface[:3], "w", -2e-3)  # prescribed, scaled by the load factor (1 here)
     model.add_load(m.right, "u", 5e3)
     res = model.solve_linear()
     K = np.zeros((model.n_dof, model.n_dof))
@@ -264,8 +268,17 @@ def test_strip_load_closed_form_matches_flamant_quadrature():
 
 
 # ---- bad input ------------------------------------------------------------------------------------------
-@pytest.mark.parametrize("E_, nu, name", [(0.0, 0.3, "E"), (-1e6, 0.3, "E"), (float("nan"), 0.3, "E"),
-                                          (1e6, 0.5, "nu"), (1e6, -1.0, "nu"), (1e6, 0.7, "nu")])
+@pytest.mark.parametrize(
+    "E_, nu, name",
+    [
+        (0.0, 0.3, "E"),
+        (-1e6, 0.3, "E"),
+        (float("nan"), 0.3, "E"),
+        (1e6, 0.5, "nu"),
+        (1e6, -1.0, "nu"),
+        (1e6, 0.7, "nu"),
+    ],
+)
 def test_bad_elastic_parameters(E_, nu, name):
     with pytest.raises(ValueError, match=rf"\b{name}\b"):
         elastic_params(E_, nu)
@@ -273,9 +286,9 @@ def test_bad_elastic_parameters(E_, nu, name):
 
 def test_bad_scene():
     with pytest.raises(ValueError, match="layer_thicknesses"):
-        soil_block(20.0, 10.0, layer_thicknesses=[3.0, 4.0])       # 7 m of layers in a 10 m block
+        soil_block(20.0, 10.0, layer_thicknesses=[3.0, 4.0])  # 7 m of layers in a 10 m block
     with pytest.raises(ValueError, match="foundation"):
-        soil_block(4.0, 10.0, foundation=(-3.0, 3.0))              # 6 m foundation on a 4 m block
+        soil_block(4.0, 10.0, foundation=(-3.0, 3.0))  # 6 m foundation on a 4 m block
     with pytest.raises(ValueError, match="empty"):
         Model().check()
     with pytest.raises(ValueError, match="empty"):
@@ -284,7 +297,7 @@ def test_bad_scene():
         single_element(4)
     mesh = soil_block(10.0, 5.0, foundation=(-1.0, 1.0), h_fine=0.5)
     with pytest.raises(ValueError, match="foundation"):
-        foundation_contact(mesh, -1.2, 1.0, 0.5)                  # not on a mesh line
+        foundation_contact(mesh, -1.2, 1.0, 0.5)  # not on a mesh line
 
 
 # ---- the fast K0 kernel ---------------------------------------------------------------------------------

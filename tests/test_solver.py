@@ -31,12 +31,15 @@ def fitted_order(residuals, lo=1e-13, hi=5e-2):
 
 
 # ---- the spring group itself ----------------------------------------------------------------------------
-@pytest.mark.parametrize("kind, params, d0, dd", [
-    (TANH, [K0, FU, 0.0], 7e-4, 7e-4),               # tanh, on the softening part
-    (ELASTOPLASTIC, [K0, FU, 2e5], 5e-4, 5e-4),      # elastic branch
-    (ELASTOPLASTIC, [K0, FU, 2e5], 2e-3, 2e-3),      # plastic branch (loading)
-    (ELASTOPLASTIC, [K0, FU, 2e5], -2e-3, -2e-3),    # plastic branch, compression
-])
+@pytest.mark.parametrize(
+    "kind, params, d0, dd",
+    [
+        (TANH, [K0, FU, 0.0], 7e-4, 7e-4),  # tanh, on the softening part
+        (ELASTOPLASTIC, [K0, FU, 2e5], 5e-4, 5e-4),  # elastic branch
+        (ELASTOPLASTIC, [K0, FU, 2e5], 2e-3, 2e-3),  # plastic branch (loading)
+        (ELASTOPLASTIC, [K0, FU, 2e5], -2e-3, -2e-3),  # plastic branch, compression
+    ],
+)
 def test_spring_tangent_matches_finite_differences(kind, params, d0, dd):
     g = Spring([[0, 1]], kind, params)
     st = g.initial_state()
@@ -51,7 +54,7 @@ def test_spring_tangent_matches_finite_differences(kind, params, d0, dd):
     fd = (force(h)[0][0, 1] - force(-h)[0][0, 1]) / (2 * h)
     assert abs(k[0, 1, 1] - fd) < 1e-6 * K0
     assert np.allclose(k[0], k[0, 1, 1] * np.array([[1, -1], [-1, 1]]))
-    assert abs(f[0, 0] + f[0, 1]) == 0.0                                        # action = reaction
+    assert abs(f[0, 0] + f[0, 1]) == 0.0  # action = reaction
     assert np.allclose(g.evaluate(np.zeros((1, 2)), np.zeros((1, 2)), st, ELASTIC)[1][0, 1, 1], K0)
 
 
@@ -79,8 +82,8 @@ def test_linear_problem_converges_in_one_iteration():
     direct = model.solve_linear()
     for method in ("bfgs", "modified", "full"):
         res = run(model, [0.5, 1.0], Settings(method=method, stepping="fixed"))
-        assert all(len(r) == 2 for r in res.residuals[1:])             # one solve per step
-        assert all(r[1] < 1e-12 for r in res.residuals[1:])            # ... already at round-off
+        assert all(len(r) == 2 for r in res.residuals[1:])  # one solve per step
+        assert all(r[1] < 1e-12 for r in res.residuals[1:])  # ... already at round-off
         assert np.abs(res.u[-1] - direct.u).max() < 1e-10 * np.abs(direct.u).max()
         assert np.abs(res.u[1] - 0.5 * direct.u).max() < 1e-10 * np.abs(direct.u).max()
     assert res.factorizations >= 1
@@ -94,8 +97,11 @@ def test_tanh_spring_load_control_and_convergence_orders():
     exact = np.arctanh(0.9) * FU / K0
     orders = {}
     for method in ("bfgs", "modified", "full"):
-        res = run(model, [1.0], Settings(method=method, stepping="fixed", force_tol=1e-12, energy_tol=1e-12,
-                                         max_iter=400))
+        res = run(
+            model,
+            [1.0],
+            Settings(method=method, stepping="fixed", force_tol=1e-12, energy_tol=1e-12, max_iter=400),
+        )
         assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-9 * exact
         orders[method], n_pairs = fitted_order(res.residuals[1])
         assert n_pairs >= 3
@@ -113,11 +119,12 @@ def test_phase_continuation_matches_one_path():
     model.add_load(nodes[-1], "u", 0.5 * FU)
     first = run(model, [0.5, 1.0], Settings(method="full", force_tol=1e-10))
     f_half, _ = model.load_vectors()
-    second = run(model, [0.5, 1.0], Settings(method="full", force_tol=1e-10), start=first,
-                 loads=(0.8 * f_half, f_half))                  # 0.5 F_u already on, 0.4 F_u added
+    second = run(
+        model, [0.5, 1.0], Settings(method="full", force_tol=1e-10), start=first, loads=(0.8 * f_half, f_half)
+    )  # 0.5 F_u already on, 0.4 F_u added
     exact = np.arctanh(0.9) * FU / K0
     assert abs(second.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-8 * exact
-    assert np.array_equal(second.u[0], first.u[-1])             # step 0 of the phase is the previous end
+    assert np.array_equal(second.u[0], first.u[-1])  # step 0 of the phase is the previous end
     with pytest.raises(ValueError, match="loads"):
         run(model, [1.0], start=first, loads=(f_half[:-1], f_half))
 
@@ -152,7 +159,7 @@ def test_untrustworthy_tangent_solve_falls_back_to_k0(monkeypatch):
     monkeypatch.setattr(solver_module, "_tangent_solve", spy)
     monkeypatch.setattr(solver_module, "Factorization", Garbled)
     res = run(model, [1.0], Settings(method="full", force_tol=1e-10, energy_tol=1e-12, max_iter=400))
-    assert calls and all(c is None for c in calls)            # every tangent correction was refused
+    assert calls and all(c is None for c in calls)  # every tangent correction was refused
     assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-8 * exact
     assert abs(fitted_order(res.residuals[1])[0] - 1.0) < 0.05  # K0 iterations: linear, as modified Newton
 
@@ -169,7 +176,7 @@ def test_displacement_control_and_committed_plastic_state():
     f = res.reaction(nodes[-1], "u")
     kep = K0 * h / (K0 + h)
     f_peak = fy + kep * 2 * dy
-    kappa_peak = 3 * dy - f_peak / K0           # plastic elongation = total - elastic at the peak
+    kappa_peak = 3 * dy - f_peak / K0  # plastic elongation = total - elastic at the peak
     # back to 0: the elastic trial f_peak - 3 k0 d_y passes the hardened reverse yield force
     # -(F_y + H kappa_peak) by `over`, and plastic flow of over / (k0 + H) brings it back to the surface
     over = -(f_peak - 3 * K0 * dy) - (fy + h * kappa_peak)
@@ -177,7 +184,7 @@ def test_displacement_control_and_committed_plastic_state():
     expected = [0.0, 0.5 * fy, fy, fy + kep * dy, f_peak, f_peak - K0 * dy, f_peak - 2 * K0 * dy, f_back]
     assert over > 0
     assert np.allclose(f, expected, rtol=1e-9, atol=1e-9 * fy)
-    assert abs(res.states[-2][0][0, 0, 1] - kappa_peak) < 1e-12   # elastic unloading keeps kappa
+    assert abs(res.states[-2][0][0, 0, 1] - kappa_peak) < 1e-12  # elastic unloading keeps kappa
     assert abs(res.final_state[0][0, 0, 1] - (kappa_peak + over / (K0 + h))) < 1e-12
 
 
@@ -265,4 +272,3 @@ def test_hdf5_round_trip_and_no_overwrite(tmp_path):
     write_result(tmp_path / "lin.h5", lin)
     assert np.array_equal(read_result(tmp_path / "lin.h5").u[-1], lin.u)
     assert abs(lin.u[lin_model.dof(lin_nodes[-1], "u")[0]] - FU / K0) < 1e-12
-

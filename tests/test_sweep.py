@@ -17,10 +17,15 @@ CALLS = []
 def strip_on_soil(E, N):
     """A linear 2 m strip on one elastic layer; E < 0 makes the build fail (a failing scene)."""
     CALLS.append((E, N))
-    return Scene(width=12.0, depth=6.0, layers=[SoilLayer(6.0, E=E, nu=0.3)],
-                 foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-                 contact=Contact(kn=1e10, kt=1e9), loads=[ColumnLoad(x=0.0, N=N)],
-                 mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.5))
+    return Scene(
+        width=12.0,
+        depth=6.0,
+        layers=[SoilLayer(6.0, E=E, nu=0.3)],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9),
+        loads=[ColumnLoad(x=0.0, N=N)],
+        mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.5),
+    )
 
 
 def test_grid_is_the_product_of_the_axes():
@@ -44,7 +49,7 @@ def test_serial_sweep_records_failures_and_resumes(tmp_path):
     assert stored.max_settlement()[1] == pytest.approx(rows[0]["max_settlement"], rel=1e-12)
     CALLS.clear()
     again = sweep(strip_on_soil, params, client="serial", out_dir=tmp_path)
-    assert CALLS == [(-1.0, 100e3)]                      # only the failed scene is tried again
+    assert CALLS == [(-1.0, 100e3)]  # only the failed scene is tried again
     assert again[0]["max_settlement"] == rows[0]["max_settlement"]
     row = json.loads((tmp_path / "scenes" / f"{scene_key(params[1])}.json").read_text())
     assert row["status"] == "completed"
@@ -62,11 +67,12 @@ def test_sweep_rejects_bad_input(tmp_path):
 def test_dask_sweep_matches_the_serial_one(tmp_path):
     pytest.importorskip("distributed")
     import cloudpickle
-    cloudpickle.register_pickle_by_value(sys.modules[__name__])   # workers do not import the tests
+
+    cloudpickle.register_pickle_by_value(sys.modules[__name__])  # workers do not import the tests
     params = grid(E=[20e6, 30e6], N=[100e3, 200e3])
     serial = sweep(strip_on_soil, params, client="serial", out_dir=tmp_path / "serial", keep_files=False)
     dist = sweep(strip_on_soil, params, out_dir=tmp_path / "dask", n_workers=2, keep_files=False)
     assert [r["status"] for r in dist] == ["completed"] * 4
     for a, b in zip(serial, dist):
         assert b["max_settlement"] == pytest.approx(a["max_settlement"], rel=1e-12)
-    assert len({r["worker"] for r in dist} | {r["worker"] for r in serial}) >= 2   # ran in other processes
+    assert len({r["worker"] for r in dist} | {r["worker"] for r in serial}) >= 2  # ran in other processes

@@ -26,10 +26,9 @@ def test_zoo_scene_reaches_its_load_or_a_detected_collapse(name):
     assert out.status == "completed" and out.load_factor[-1] == 1.0
     contact = out.contact()
     weights = built.interface.ip_weights()
-    carried = -np.sum(contact["sig_n"] * weights)                # [N/m], compression positive
+    carried = -np.sum(contact["sig_n"] * weights)  # [N/m], compression positive
     width = scene.foundation.x1 - scene.foundation.x0
     # the strip also carries its own weight and the surcharge it displaces (the geostatic stress at its base)
     applied = sum(load.N for load in scene.loads) + (scene.foundation.self_weight + scene.surcharge) * width
     # tolerance: the convergence tolerance (force_tol 1e-5 of the structural load) with ample room
     assert carried == pytest.approx(applied, rel=1e-3), (carried, applied)
-

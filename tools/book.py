@@ -50,7 +50,9 @@ def prepare(notebooks: Path, source: Path) -> Path:
     docs.mkdir(parents=True)
     pages = sorted(Path(notebooks).glob("*.ipynb"))
     if not pages:
-        raise FileNotFoundError(f"no notebooks in {notebooks}: run `make reproduce` (or `make notebooks`) first")
+        raise FileNotFoundError(
+            f"no notebooks in {notebooks}: run `make reproduce` (or `make notebooks`) first"
+        )
     nav = ["  - Contents: index.md"]
     lines = ["# ssi: soil-structure interaction of RC shallow foundations", "", "Chapters:", ""]
     for nb in pages:
@@ -61,7 +63,8 @@ def prepare(notebooks: Path, source: Path) -> Path:
     (docs / "index.md").write_text("\n".join(lines) + "\n")
     (source / "mkdocs.yml").write_text(
         "site_name: ssi\ndocs_dir: docs\nnav:\n" + "\n".join(nav) + "\nplugins:\n  - mkdocs-jupyter:\n"
-        f"      execute: false\n      cache: false\n      include_source: false\n      custom_mathjax_url: \"{MATHJAX_URL}\"\n")
+        f'      execute: false\n      cache: false\n      include_source: false\n      custom_mathjax_url: "{MATHJAX_URL}"\n'
+    )
     return source / "mkdocs.yml"
 
 
@@ -70,8 +73,9 @@ def build(notebooks, site, source=None) -> Path:
     site = Path(site).resolve()
     source = Path(source) if source else site.parent / (site.name + "_src")
     config = prepare(Path(notebooks), source)
-    subprocess.run([sys.executable, "-m", "mkdocs", "build", "-q", "-f", str(config), "-d", str(site)],
-                   check=True)
+    subprocess.run(
+        [sys.executable, "-m", "mkdocs", "build", "-q", "-f", str(config), "-d", str(site)], check=True
+    )
     return site
 
 
@@ -120,8 +124,10 @@ def main(argv=None) -> int:
         for p in items:
             print(f"{page}: {p}")
     n_pages = len(list(site.rglob("*.html")))
-    print(f"book: {site}/index.html ({n_pages} pages); equation check: "
-          + ("OK" if not problems else f"{sum(map(len, problems.values()))} problems"))
+    print(
+        f"book: {site}/index.html ({n_pages} pages); equation check: "
+        + ("OK" if not problems else f"{sum(map(len, problems.values()))} problems")
+    )
     return 1 if problems else 0
 
 

@@ -24,8 +24,21 @@ def main():
     code = re.search(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.DOTALL).group(1)
     code = code.replace("print(", "(")  # quiet
     exec(compile(code, "README.md", "exec"), {"__name__": "warm"})  # noqa: S102
-    scene = rigid_footing(B=2.0, c=10e3, phi_deg=20.0, psi_deg=0.0, E=20e6, nu=0.3, rough=True,
-                          half_width=5.0, depth=5.0, h_fine=1.0, h_coarse=2.0, growth=1.5, settle=0.02)
+    scene = rigid_footing(
+        B=2.0,
+        c=10e3,
+        phi_deg=20.0,
+        psi_deg=0.0,
+        E=20e6,
+        nu=0.3,
+        rough=True,
+        half_width=5.0,
+        depth=5.0,
+        h_fine=1.0,
+        h_coarse=2.0,
+        growth=1.5,
+        settle=0.02,
+    )
     push_footing(scene, n_steps=2)
     import numpy as np
 
@@ -37,7 +50,9 @@ def main():
     mesh = structured_q8(np.linspace(0.0, 2.0, 3), np.linspace(-1.0, 0.0, 2))
     m = Model()
     m.add_nodes(mesh.xy, 2)
-    m.add_group(SoilQ8(mesh.xy[mesh.conn], m.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(1e7, 0.3)]))
+    m.add_group(
+        SoilQ8(mesh.xy[mesh.conn], m.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(1e7, 0.3)])
+    )
     m.fix(mesh.bottom, "u")
     m.fix(mesh.bottom, "w")
     m.add_load(mesh.surface, "w", -1.0)

@@ -30,10 +30,10 @@ from typing import Protocol
 
 import numpy as np
 
-ELASTIC = 0      # tangent flag: return the initial elastic stiffness K0 (modified Newton-Raphson)
-CONSISTENT = 1   # tangent flag: return the algorithmic (consistent) tangent (full Newton)
-NO_MATRIX = -1   # tangent flag: internal forces only; k_el may be None. Only groups whose attribute
-                 # ``forces_only`` is True receive it (the others get ELASTIC and their k_el is ignored)
+ELASTIC = 0  # tangent flag: return the initial elastic stiffness K0 (modified Newton-Raphson)
+CONSISTENT = 1  # tangent flag: return the algorithmic (consistent) tangent (full Newton)
+NO_MATRIX = -1  # tangent flag: internal forces only; k_el may be None. Only groups whose attribute
+# ``forces_only`` is True receive it (the others get ELASTIC and their k_el is ignored)
 
 
 class ElementGroup(Protocol):
@@ -43,8 +43,9 @@ class ElementGroup(Protocol):
     def initial_state(self) -> np.ndarray:
         """Committed state before the first step (zeros, or geostatic stress for soil)."""
 
-    def evaluate(self, u_el: np.ndarray, du_el: np.ndarray, state_old: np.ndarray,
-                 tangent: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def evaluate(
+        self, u_el: np.ndarray, du_el: np.ndarray, state_old: np.ndarray, tangent: int
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Return ``(f_el, k_el, state_new)``; ``tangent`` is ELASTIC or CONSISTENT."""
 
     def elastic_stiffness(self) -> np.ndarray:

@@ -39,7 +39,9 @@ from .base import CONSISTENT, ELASTIC
 
 __all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 
-_lagrange3_py = getattr(lagrange3, "py_func", lagrange3)   # plain Python version (also under NUMBA_DISABLE_JIT)
+_lagrange3_py = getattr(
+    lagrange3, "py_func", lagrange3
+)  # plain Python version (also under NUMBA_DISABLE_JIT)
 
 N_VAR = 2 + N_HIST
 V_TAU, V_SIG, V_STATUS, V_GT, V_GN, V_SLIPT, V_SLIPN, V_OPEN, V_BROKEN = range(N_VAR)
@@ -110,7 +112,9 @@ def _evaluate(coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangen
                 for j in range(n_edof):
                     s += B[r, j] * du_el[e, j]
                 dgap[r] = s
-            interface_update(params[e], dgap, state_old[e, q, 0:2], state_old[e, q, 2:], t_new, h_new, D, tangent)
+            interface_update(
+                params[e], dgap, state_old[e, q, 0:2], state_old[e, q, 2:], t_new, h_new, D, tangent
+            )
             state_new[e, q, 0] = t_new[0]
             state_new[e, q, 1] = t_new[1]
             for k in range(N_HIST):
@@ -154,36 +158,53 @@ class Interface6:
         geostatic or pre-loaded state that the loads already equilibrate; sig_n < 0 compression). Default 0.
     """
 
-    def __init__(self, coords, edofs, params, offset=None, rule="newton_cotes", n_gauss=3,
-                 name="interface", initial_traction=None):
+    def __init__(
+        self,
+        coords,
+        edofs,
+        params,
+        offset=None,
+        rule="newton_cotes",
+        n_gauss=3,
+        name="interface",
+        initial_traction=None,
+    ):
         coords = np.ascontiguousarray(coords, dtype=np.float64)
         edofs = np.ascontiguousarray(edofs, dtype=np.int64)
         if coords.ndim != 3 or coords.shape[1:] != (6, 2):
             raise ValueError(f"coords must have shape (n_el, 6, 2), got {coords.shape}")
         n_el = coords.shape[0]
         if edofs.ndim != 2 or edofs.shape[0] != n_el or edofs.shape[1] not in (12, 15):
-            raise ValueError(f"edofs must have shape (n_el, 15) (plate upper nodes) or (n_el, 12) "
-                             f"(solid upper nodes) with n_el = {n_el}, got {edofs.shape}")
+            raise ValueError(
+                f"edofs must have shape (n_el, 15) (plate upper nodes) or (n_el, 12) "
+                f"(solid upper nodes) with n_el = {n_el}, got {edofs.shape}"
+            )
         self.upper = "plate" if edofs.shape[1] == 15 else "solid"
         n_up_dof = 9 if self.upper == "plate" else 6
         params = np.asarray(params, dtype=np.float64)
         if params.shape == (N_PARAMS,):
             params = np.tile(params, (n_el, 1))
         if params.shape != (n_el, N_PARAMS):
-            raise ValueError(f"params must have shape ({N_PARAMS},) or ({n_el}, {N_PARAMS}); "
-                             "build it with interface_params()")
+            raise ValueError(
+                f"params must have shape ({N_PARAMS},) or ({n_el}, {N_PARAMS}); "
+                "build it with interface_params()"
+            )
         lower = coords[:, 3:, :]
         chord = np.hypot(*(lower[:, 2] - lower[:, 0]).T)
         if np.any(chord <= 0.0):
             raise ValueError("coords: lower nodes 3 and 5 of an element coincide (zero-length element)")
         mid = 0.5 * (lower[:, 0] + lower[:, 2])
         if np.any(np.hypot(*(lower[:, 1] - mid).T) > 0.25 * chord):
-            raise ValueError("coords: the middle lower node must lie near the middle of the element "
-                             "(within a quarter of its length)")
+            raise ValueError(
+                "coords: the middle lower node must lie near the middle of the element "
+                "(within a quarter of its length)"
+            )
         if self.upper == "plate":
             if offset is None:
-                raise ValueError("offset (plate nodes to bottom face, >= 0 [m]; h/2 for mid-surface nodes) is "
-                                 "required when the upper nodes are plate nodes")
+                raise ValueError(
+                    "offset (plate nodes to bottom face, >= 0 [m]; h/2 for mid-surface nodes) is "
+                    "required when the upper nodes are plate nodes"
+                )
             e_off = np.broadcast_to(np.asarray(offset, dtype=np.float64), (n_el,)).copy()
             if np.any(~(e_off >= 0.0)):
                 raise ValueError("offset must be >= 0 [m]")
@@ -191,15 +212,19 @@ class Interface6:
             off = coords[:, :3, :] - lower
             tol = 1e-6 * chord[:, None]
             if np.any(np.abs(off[:, :, 0]) > tol) or np.any(np.abs(off[:, :, 1] - e_off[:, None]) > tol):
-                raise ValueError("coords: plate nodes must lie offset (e.g. h/2) straight above their lower "
-                                 "(soil) nodes (plate reference surface over its bottom face, eq. 6.1a)")
+                raise ValueError(
+                    "coords: plate nodes must lie offset (e.g. h/2) straight above their lower "
+                    "(soil) nodes (plate reference surface over its bottom face, eq. 6.1a)"
+                )
             hoff = e_off
         else:
             if offset is not None:
                 raise ValueError("offset applies only to plate upper nodes (edofs with 15 columns)")
             if np.any(np.abs(coords[:, :3, :] - lower) > 1e-6 * chord[:, None, None]):
-                raise ValueError("coords: solid upper nodes must coincide with their lower nodes "
-                                 "(zero-thickness interface)")
+                raise ValueError(
+                    "coords: solid upper nodes must coincide with their lower nodes "
+                    "(zero-thickness interface)"
+                )
             hoff = np.zeros(n_el)
         if rule == "newton_cotes":
             xis, wts = newton_cotes(3)
@@ -225,8 +250,9 @@ class Interface6:
             try:
                 t0 = np.broadcast_to(np.asarray(initial_traction, np.float64), (n_el, self.n_ip, 2)).copy()
             except ValueError as err:
-                raise ValueError(f"initial_traction must broadcast to (n_el, n_ip, 2) = ({n_el}, {self.n_ip}, 2)"
-                                 ) from err
+                raise ValueError(
+                    f"initial_traction must broadcast to (n_el, n_ip, 2) = ({n_el}, {self.n_ip}, 2)"
+                ) from err
             if not np.all(np.isfinite(t0)):
                 raise ValueError("initial_traction must be finite")
             self.initial_traction = t0
@@ -235,7 +261,7 @@ class Interface6:
     def initial_state(self) -> np.ndarray:
         state = np.zeros((self.n_el, self.n_ip, N_VAR))
         if self.initial_traction is not None:
-            state[..., V_TAU:V_SIG + 1] = self.initial_traction
+            state[..., V_TAU : V_SIG + 1] = self.initial_traction
         return state
 
     def evaluate(self, u_el, du_el, state_old, tangent):
@@ -247,8 +273,20 @@ class Interface6:
         f_el = np.empty(self.edofs.shape)
         k_el = np.empty((self.n_el, self.edofs.shape[1], self.edofs.shape[1]))
         state_new = np.empty_like(state_old)
-        _evaluate(self.coords, self.hoff, self.n_up_dof, self.xi, self.w, self.params, du_el,
-                  np.ascontiguousarray(state_old), int(tangent), f_el, k_el, state_new)
+        _evaluate(
+            self.coords,
+            self.hoff,
+            self.n_up_dof,
+            self.xi,
+            self.w,
+            self.params,
+            du_el,
+            np.ascontiguousarray(state_old),
+            int(tangent),
+            f_el,
+            k_el,
+            state_new,
+        )
         return f_el, k_el, state_new
 
     def elastic_stiffness(self) -> np.ndarray:
@@ -259,9 +297,16 @@ class Interface6:
         return None
 
     def describe(self) -> dict:
-        return {"type": "Interface6", "name": self.name, "n_el": self.n_el, "upper": self.upper,
-                "rule": self.rule, "n_ip": self.n_ip,
-                "params": "[kt, kn, c, tan_phi, tan_psi, sig_t]", "params_first": self.params[0].tolist()}
+        return {
+            "type": "Interface6",
+            "name": self.name,
+            "n_el": self.n_el,
+            "upper": self.upper,
+            "rule": self.rule,
+            "n_ip": self.n_ip,
+            "params": "[kt, kn, c, tan_phi, tan_psi, sig_t]",
+            "params_first": self.params[0].tolist(),
+        }
 
     # ---- reporting ------------------------------------------------------------------------------------
     def ip_coords(self) -> np.ndarray:
@@ -284,7 +329,7 @@ class Interface6:
     @staticmethod
     def tractions(state) -> np.ndarray:
         """(n_el, n_ip, 2) tractions [tau, sig_n] from a state array."""
-        return state[..., V_TAU:V_SIG + 1]
+        return state[..., V_TAU : V_SIG + 1]
 
     @staticmethod
     def status(state) -> np.ndarray:
@@ -298,8 +343,17 @@ class Interface6:
         return {name: int(np.count_nonzero(codes == k)) for k, name in STATE_NAMES.items()}
 
 
-def add_interface(model, upper_conn, lower_conn, params, offset=None, rule="newton_cotes", n_gauss=3,
-                  name="interface", initial_traction=None):
+def add_interface(
+    model,
+    upper_conn,
+    lower_conn,
+    params,
+    offset=None,
+    rule="newton_cotes",
+    n_gauss=3,
+    name="interface",
+    initial_traction=None,
+):
     """Build an :class:`Interface6` group from node ids and add it to ``model``.
 
     ``upper_conn`` (n_el, 3): plate-strip nodes (3 DOFs; then ``offset`` is required, e.g. the plate group's
@@ -309,10 +363,19 @@ def add_interface(model, upper_conn, lower_conn, params, offset=None, rule="newt
     upper_conn = np.atleast_2d(np.asarray(upper_conn, np.int64))
     lower_conn = np.atleast_2d(np.asarray(lower_conn, np.int64))
     if upper_conn.shape != lower_conn.shape or upper_conn.shape[1:] != (3,):
-        raise ValueError(f"upper_conn and lower_conn must both be (n_el, 3), got {upper_conn.shape} and "
-                         f"{lower_conn.shape}")
+        raise ValueError(
+            f"upper_conn and lower_conn must both be (n_el, 3), got {upper_conn.shape} and {lower_conn.shape}"
+        )
     conn = np.hstack([upper_conn, lower_conn])
-    group = Interface6(model.coords[conn], model.element_dofs(conn), params, offset=offset, rule=rule,
-                       n_gauss=n_gauss, name=name, initial_traction=initial_traction)
+    group = Interface6(
+        model.coords[conn],
+        model.element_dofs(conn),
+        params,
+        offset=offset,
+        rule=rule,
+        n_gauss=n_gauss,
+        name=name,
+        initial_traction=initial_traction,
+    )
     model.add_group(group)
     return group

@@ -78,7 +78,7 @@ __all__ = [
 ]
 
 INTEGRATIONS = {"selective": (3, 2), "full": (3, 3), "reduced": (2, 2)}
-SELF_BENDING = {"initial": 0, "tangent": 1, "chord": 2}   # modulus of each layer's own bending term
+SELF_BENDING = {"initial": 0, "tangent": 1, "chord": 2}  # modulus of each layer's own bending term
 
 
 def integration_rule(integration):
@@ -88,8 +88,10 @@ def integration_rule(integration):
     integrates the membrane/bending terms (``axial``) and/or the shear terms (``shear``)."""
     if isinstance(integration, str):
         if integration not in INTEGRATIONS:
-            raise ValueError(f"integration must be one of {sorted(INTEGRATIONS)} or (n_axial, n_shear), "
-                             f"got {integration!r}")
+            raise ValueError(
+                f"integration must be one of {sorted(INTEGRATIONS)} or (n_axial, n_shear), "
+                f"got {integration!r}"
+            )
         n_ax, n_sh = INTEGRATIONS[integration]
     else:
         n_ax, n_sh = (int(v) for v in integration)
@@ -126,8 +128,27 @@ def _crack_band(prm, band, ls_index, ls):
 
 
 @njit(cache=True)
-def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, g0, self_mode, hist_old, hist_new,
-             tangent, do_ax, do_sh, res, scratch):
+def _section(
+    u,
+    nn,
+    bx,
+    z_mid,
+    h,
+    kind,
+    params,
+    cshear,
+    kappa,
+    e0,
+    g0,
+    self_mode,
+    hist_old,
+    hist_new,
+    tangent,
+    do_ax,
+    do_sh,
+    res,
+    scratch,
+):
     """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
 
     Writes ``res`` (8,) = [N, M, Q, A, B, D, S, 0] with A = dN/deps0, B = dN/dkap = dM/deps0,
@@ -156,9 +177,11 @@ def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, g0, self_mode
         hn = h[n]
         # the law always returns its tangent; K0 (tangent=0) uses the initial moduli instead, so that the
         # internal force never depends on which matrix the solver asks for
-        sig, tau, e_t, g_t = layer_update(kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], 1)
+        sig, tau, e_t, g_t = layer_update(
+            kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], 1
+        )
         if do_ax:
-            i_n = hn * hn * hn / 12.0                 # exact within-layer bending, eq. (4.7b) h_n^2/12
+            i_n = hn * hn * hn / 12.0  # exact within-layer bending, eq. (4.7b) h_n^2/12
             e_k = e_t if tangent == 1 else e0[n]
             N += hn * sig
             M += -hn * z * sig
@@ -170,8 +193,12 @@ def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, g0, self_mode
                 # chord: M_self = -int (z - z_n) sig dz with sig linear between the faces' stresses
                 z_b = z - 0.5 * hn
                 z_t = z + 0.5 * hn
-                s_b, _, e_b, _ = layer_update(kind[n], params[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, 1)
-                s_t, _, e_tp, _ = layer_update(kind[n], params[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, 1)
+                s_b, _, e_b, _ = layer_update(
+                    kind[n], params[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, 1
+                )
+                s_t, _, e_tp, _ = layer_update(
+                    kind[n], params[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, 1
+                )
                 c = hn * hn / 12.0
                 M += c * (s_b - s_t)
                 if tangent == 1:
@@ -197,8 +224,30 @@ def _section(u, nn, bx, z_mid, h, kind, params, cshear, kappa, e0, g0, self_mode
 
 
 @njit(cache=True)
-def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, params,
-                 cshear, kappa, e0, g0, self_mode, band, ls_index, tangent):
+def plate_kernel(
+    x_el,
+    u_el,
+    state_old,
+    state_new,
+    f_el,
+    k_el,
+    xi,
+    wt,
+    ax,
+    sh,
+    z_mid,
+    h,
+    kind,
+    params,
+    cshear,
+    kappa,
+    e0,
+    g0,
+    self_mode,
+    band,
+    ls_index,
+    tangent,
+):
     """Internal forces and stiffness of all plate-strip elements; returns the number of bad Jacobians.
 
     x_el (n_el, 3) nodal x; u_el (n_el, 9); state_old/state_new (n_el, n_ip, n_layer, N_LAYER_HIST);
@@ -210,9 +259,9 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
     n_el = x_el.shape[0]
     nn = np.empty(3)
     bx = np.empty(3)
-    be = np.zeros(9)   # d eps0 / d u_el
-    bk = np.zeros(9)   # d kap / d u_el
-    bg = np.zeros(9)   # d gam / d u_el
+    be = np.zeros(9)  # d eps0 / d u_el
+    bk = np.zeros(9)  # d kap / d u_el
+    bg = np.zeros(9)  # d gam / d u_el
     res = np.zeros(8)
     scratch = np.zeros(state_old.shape[3])
     prm = params.copy()
@@ -235,8 +284,27 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
                 bg[3 * a + 1] = bx[a]
                 bg[3 * a + 2] = -nn[a]
                 bk[3 * a + 2] = bx[a]
-            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, g0, self_mode, state_old[e, p],
-                     state_new[e, p], tangent, ax[p] != 0, sh[p] != 0, res, scratch)
+            _section(
+                u_el[e],
+                nn,
+                bx,
+                z_mid,
+                h,
+                kind,
+                prm,
+                cshear,
+                kappa,
+                e0,
+                g0,
+                self_mode,
+                state_old[e, p],
+                state_new[e, p],
+                tangent,
+                ax[p] != 0,
+                sh[p] != 0,
+                res,
+                scratch,
+            )
             Nr = res[0] * wj
             Mr = res[1] * wj
             Qr = res[2] * wj
@@ -244,11 +312,11 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
             B = res[4] * wj
             D = res[5] * wj
             S = res[6] * wj
-            B2 = res[7] * wj                    # dM/deps0 (= B = dN/dkap unless the chord term is used)
+            B2 = res[7] * wj  # dM/deps0 (= B = dN/dkap unless the chord term is used)
             for i in range(9):
                 f_el[e, i] += be[i] * Nr + bk[i] * Mr + bg[i] * Qr
-                ei = A * be[i] + B2 * bk[i]     # column j = eps0: d(N be_i + M bk_i)/d eps0
-                ki = B * be[i] + D * bk[i]      # column j = kap
+                ei = A * be[i] + B2 * bk[i]  # column j = eps0: d(N be_i + M bk_i)/d eps0
+                ki = B * be[i] + D * bk[i]  # column j = kap
                 gi = S * bg[i]
                 for j in range(9):
                     k_el[e, i, j] += ei * be[j] + ki * bk[j] + gi * bg[j]
@@ -256,8 +324,27 @@ def plate_kernel(x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z
 
 
 @njit(cache=True)
-def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, cshear, kappa, e0, g0,
-                     self_mode, band, ls_index, out):
+def plate_resultants(
+    x_el,
+    u_el,
+    state,
+    xi,
+    wt,
+    ax,
+    sh,
+    z_mid,
+    h,
+    kind,
+    params,
+    cshear,
+    kappa,
+    e0,
+    g0,
+    self_mode,
+    band,
+    ls_index,
+    out,
+):
     """Stress resultants at sampling points: out (n_el, n_pt, 4) = [x, N, M, Q], NaN where a point does not
     carry the quantity (N, M at axial points, Q at shear points). ``state`` (n_el, n_pt, n_layer, n_hist) is
     the committed history at these points."""
@@ -271,8 +358,27 @@ def plate_resultants(x_el, u_el, state, xi, wt, ax, sh, z_mid, h, kind, params, 
         for p in range(xi.shape[0]):
             _point_b(x_el[e], xi[p], nn, bx)
             _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
-            _section(u_el[e], nn, bx, z_mid, h, kind, prm, cshear, kappa, e0, g0, self_mode, state[e, p],
-                     scratch, 0, ax[p] != 0, sh[p] != 0, res, scratch1)
+            _section(
+                u_el[e],
+                nn,
+                bx,
+                z_mid,
+                h,
+                kind,
+                prm,
+                cshear,
+                kappa,
+                e0,
+                g0,
+                self_mode,
+                state[e, p],
+                scratch,
+                0,
+                ax[p] != 0,
+                sh[p] != 0,
+                res,
+                scratch1,
+            )
             out[e, p, 0] = nn[0] * x_el[e, 0] + nn[1] * x_el[e, 1] + nn[2] * x_el[e, 2]
             out[e, p, 1] = res[0] if ax[p] != 0 else np.nan
             out[e, p, 2] = res[1] if ax[p] != 0 else np.nan
@@ -291,7 +397,9 @@ def plate_layer_stresses(eps, gam, state, kind, params, band, ls_index, wt, leng
         for p in range(eps.shape[1]):
             _crack_band(prm, band, ls_index, 0.5 * wt[p] * length[e])
             for n in range(eps.shape[2]):
-                s, t, _, _ = layer_update(kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, 1)
+                s, t, _, _ = layer_update(
+                    kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, 1
+                )
                 sig[e, p, n] = s
                 tau[e, p, n] = t
 
@@ -341,14 +449,26 @@ class PlateStrip:
     -z_bottom`` so that u_g = u_b + bottom_offset * alpha_b (eq. 6.1); ``thickness`` is the section depth.
     """
 
-    def __init__(self, coords, edofs, section: Section, kappa: float = 5.0 / 6.0, integration="selective",
-                 self_weight: float = 0.0, crack_band="point", self_bending="chord", name: str = "plate"):
+    def __init__(
+        self,
+        coords,
+        edofs,
+        section: Section,
+        kappa: float = 5.0 / 6.0,
+        integration="selective",
+        self_weight: float = 0.0,
+        crack_band="point",
+        self_bending="chord",
+        name: str = "plate",
+    ):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0] if self.coords.ndim == 3 else -1
         if self.coords.shape != (n_el, 3, 2) or self.edofs.shape != (n_el, 9):
-            raise ValueError(f"coords must be (n_el, 3, 2) and edofs (n_el, 9); got {self.coords.shape}, "
-                             f"{self.edofs.shape}")
+            raise ValueError(
+                f"coords must be (n_el, 3, 2) and edofs (n_el, 9); got {self.coords.shape}, "
+                f"{self.edofs.shape}"
+            )
         if not isinstance(section, Section):
             raise ValueError("section must be an ssi.section.Section (see ssi.section.layered / rc_section)")  # noqa: TRY004
         if not 0.0 < kappa <= 1.0:
@@ -378,6 +498,7 @@ class PlateStrip:
         if self.band.any() and n_el:
             from ..materials.concrete import P_E0, P_FR, P_GF
             from ..materials.rc import check_crack_band
+
             ls_max = 0.5 * self.wt.max() * length.max()
             for n in np.flatnonzero(self.band):
                 prm = section.params[n]
@@ -418,10 +539,30 @@ class PlateStrip:
         k_el = np.empty((self.n_el, 9, 9))
         state_new = np.empty_like(state_old)
         s = self.section
-        bad = plate_kernel(self._x, np.ascontiguousarray(u_el, np.float64), state_old, state_new, f_el, k_el,
-                           self.xi, self.wt, self.ax, self.sh, s.z_mid, s.h, s.kind, s.params,
-                           s.carries_shear, self.kappa, self.e0, self.g0, self.self_mode, self.band, P_LS,
-                           int(tangent))
+        bad = plate_kernel(
+            self._x,
+            np.ascontiguousarray(u_el, np.float64),
+            state_old,
+            state_new,
+            f_el,
+            k_el,
+            self.xi,
+            self.wt,
+            self.ax,
+            self.sh,
+            s.z_mid,
+            s.h,
+            s.kind,
+            s.params,
+            s.carries_shear,
+            self.kappa,
+            self.e0,
+            self.g0,
+            self.self_mode,
+            self.band,
+            P_LS,
+            int(tangent),
+        )
         if bad:
             raise FloatingPointError(f"{self.name}: {bad} points with non-positive Jacobian")
         return f_el, k_el, state_new
@@ -438,10 +579,17 @@ class PlateStrip:
         return self.distributed_load(-self.self_weight, comp="w")
 
     def describe(self) -> dict:
-        return {"name": self.name, "type": "PlateStrip", "n_el": self.n_el, "kappa": self.kappa,
-                "integration": str(self.integration), "self_weight": self.self_weight,
-                "crack_band": str(self.crack_band), "self_bending": self.self_bending,
-                "section": self.section.describe()}
+        return {
+            "name": self.name,
+            "type": "PlateStrip",
+            "n_el": self.n_el,
+            "kappa": self.kappa,
+            "integration": str(self.integration),
+            "self_weight": self.self_weight,
+            "crack_band": str(self.crack_band),
+            "self_bending": self.self_bending,
+            "section": self.section.describe(),
+        }
 
     # ---- loads and results --------------------------------------------------------------------------------
     def distributed_load(self, q, comp="w", elements=None) -> np.ndarray:
@@ -461,7 +609,7 @@ class PlateStrip:
         x = self._x
         # physical x of the Gauss points (quadratic map)
         nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in xi])
-        xq = x @ nvals.T                                                   # (n_el, 4)
+        xq = x @ nvals.T  # (n_el, 4)
         if callable(q):
             q_pts = np.asarray(q(xq), np.float64) * np.ones_like(xq)
         else:
@@ -469,7 +617,7 @@ class PlateStrip:
             if qa.ndim == 0:
                 q_pts = np.full_like(xq, float(qa))
             elif qa.shape == (self.n_el, 2):
-                t = 0.5 * (xi + 1.0)                                       # linear in xi between the ends
+                t = 0.5 * (xi + 1.0)  # linear in xi between the ends
                 q_pts = qa[:, :1] * (1.0 - t) + qa[:, 1:] * t
             else:
                 raise ValueError(f"q must be a number, a callable or shape ({self.n_el}, 2); got {qa.shape}")
@@ -491,19 +639,42 @@ class PlateStrip:
             state = self.initial_state()
         s = self.section
         out = np.empty((self.n_el, self.n_ip, 4))
-        plate_resultants(self._x, np.ascontiguousarray(u_el, np.float64), state, self.xi, self.wt, self.ax,
-                         self.sh, s.z_mid, s.h, s.kind, s.params, s.carries_shear, self.kappa, self.e0,
-                         self.g0, self.self_mode, self.band, P_LS, out)
+        plate_resultants(
+            self._x,
+            np.ascontiguousarray(u_el, np.float64),
+            state,
+            self.xi,
+            self.wt,
+            self.ax,
+            self.sh,
+            s.z_mid,
+            s.h,
+            s.kind,
+            s.params,
+            s.carries_shear,
+            self.kappa,
+            self.e0,
+            self.g0,
+            self.self_mode,
+            self.band,
+            P_LS,
+            out,
+        )
         a = self.ax.astype(bool)
         b = self.sh.astype(bool)
-        return {"x_ax": out[:, a, 0], "N": out[:, a, 1], "M": out[:, a, 2],
-                "x_sh": out[:, b, 0], "Q": out[:, b, 3]}
+        return {
+            "x_ax": out[:, a, 0],
+            "N": out[:, a, 1],
+            "M": out[:, a, 2],
+            "x_sh": out[:, b, 0],
+            "Q": out[:, b, 3],
+        }
 
     def layer_strains(self, u_el):
         """Axial strain (n_el, n_ip, n_layer) at every layer's mid-depth and shear strain (n_el, n_ip)."""
         nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in self.xi])
         dvals = np.array([[s - 0.5, -2.0 * s, s + 0.5] for s in self.xi])
-        jac = self._x @ dvals.T                                            # (n_el, n_ip)
+        jac = self._x @ dvals.T  # (n_el, n_ip)
         u = np.asarray(u_el).reshape(self.n_el, 3, 3)
         eps0 = (u[:, :, 0] @ dvals.T) / jac
         kap = (u[:, :, 2] @ dvals.T) / jac
@@ -521,9 +692,19 @@ class PlateStrip:
         sig = np.empty_like(eps)
         tau = np.empty_like(eps)
         s = self.section
-        plate_layer_stresses(np.ascontiguousarray(eps), np.ascontiguousarray(gam), state, s.kind, s.params,
-                             self.band, P_LS, self.wt, np.ascontiguousarray(self._x[:, 2] - self._x[:, 0]),
-                             sig, tau)
+        plate_layer_stresses(
+            np.ascontiguousarray(eps),
+            np.ascontiguousarray(gam),
+            state,
+            s.kind,
+            s.params,
+            self.band,
+            P_LS,
+            self.wt,
+            np.ascontiguousarray(self._x[:, 2] - self._x[:, 0]),
+            sig,
+            tau,
+        )
         return sig, tau
 
 

@@ -229,8 +229,19 @@ class SoilQ8:
     name = "soil_q8"
     forces_only = True  # accepts the NO_MATRIX flag
 
-    def __init__(self, coords, edofs, el_mat, kinds, params, n_gauss=2, unit_weight=None,
-                 initial_stress=None, k_water=None, viscosity=0.0):
+    def __init__(
+        self,
+        coords,
+        edofs,
+        el_mat,
+        kinds,
+        params,
+        n_gauss=2,
+        unit_weight=None,
+        initial_stress=None,
+        k_water=None,
+        viscosity=0.0,
+    ):
         self.coords = np.ascontiguousarray(coords, np.float64)
         self.edofs = np.ascontiguousarray(edofs, np.int64)
         n_el = self.coords.shape[0]
@@ -254,7 +265,9 @@ class SoilQ8:
                 raise ValueError(f"k_water must be finite and >= 0 (K_w/n, Pa), got {kw}")
             self.k_water = kw if kw.any() else None
         if not (np.isfinite(viscosity) and viscosity >= 0.0):
-            raise ValueError(f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {viscosity}")
+            raise ValueError(
+                f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {viscosity}"
+            )
         self.viscosity = float(viscosity)
 
     @property
@@ -271,16 +284,39 @@ class SoilQ8:
         f_el = np.empty((self.n_el, 16))
         k_el = np.empty((self.n_el, 16, 16) if tangent >= 0 else (1, 16, 16))
         state_new = np.empty_like(state_old)
-        failures = q8_kernel(self.coords, np.ascontiguousarray(du_el), self.el_mat, self.kinds, self.params,
-                             self.gp, self.gw, state_old, state_new, f_el, k_el, tangent)
+        failures = q8_kernel(
+            self.coords,
+            np.ascontiguousarray(du_el),
+            self.el_mat,
+            self.kinds,
+            self.params,
+            self.gp,
+            self.gw,
+            state_old,
+            state_new,
+            f_el,
+            k_el,
+            tangent,
+        )
         if failures:
-            raise FloatingPointError(f"soil_q8: {failures} integration points failed (distorted element "
-                                     "or a stress update that did not converge)")
+            raise FloatingPointError(
+                f"soil_q8: {failures} integration points failed (distorted element "
+                "or a stress update that did not converge)"
+            )
         if self.viscosity > 0.0:
             self._blend_with_trial(du_el, state_old, state_new, f_el, k_el, tangent)
         if self.k_water is not None:
-            q8_pore_water(self.coords, np.ascontiguousarray(u_el), self.el_mat, self.k_water, self.gp, self.gw,
-                          f_el, k_el, tangent >= 0)
+            q8_pore_water(
+                self.coords,
+                np.ascontiguousarray(u_el),
+                self.el_mat,
+                self.k_water,
+                self.gp,
+                self.gw,
+                f_el,
+                k_el,
+                tangent >= 0,
+            )
         return f_el, (k_el if tangent >= 0 else None), state_new
 
     def _blend_with_trial(self, du_el, state_old, state_new, f_el, k_el, tangent):
@@ -289,8 +325,20 @@ class SoilQ8:
         f_tr = np.empty_like(f_el)
         k_tr = np.empty_like(k_el)
         st_tr = np.empty_like(state_old)
-        q8_kernel(self.coords, np.ascontiguousarray(du_el), self.el_mat, np.zeros_like(self.kinds), self.params,
-                  self.gp, self.gw, state_old, st_tr, f_tr, k_tr, tangent)
+        q8_kernel(
+            self.coords,
+            np.ascontiguousarray(du_el),
+            self.el_mat,
+            np.zeros_like(self.kinds),
+            self.params,
+            self.gp,
+            self.gw,
+            state_old,
+            st_tr,
+            f_tr,
+            k_tr,
+            tangent,
+        )
         tau = self.viscosity
         f_el[...] = (f_tr + tau * f_el) / (1.0 + tau)
         if tangent >= 0:
@@ -306,7 +354,9 @@ class SoilQ8:
         k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
         if self.k_water is not None:
             zero = np.zeros((self.n_el, 16))
-            q8_pore_water(self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(), k0, True)
+            q8_pore_water(
+                self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(), k0, True
+            )
         return k0
 
     def excess_pore_pressure(self, u_el) -> np.ndarray:
@@ -335,5 +385,10 @@ class SoilQ8:
         return state[:, :, :N_STRESS]
 
     def describe(self):
-        return {"name": self.name, "n_el": self.n_el, "n_gauss": self.n_gauss,
-                "kinds": self.kinds.tolist(), "params": self.params.tolist()}
+        return {
+            "name": self.name,
+            "n_el": self.n_el,
+            "n_gauss": self.n_gauss,
+            "kinds": self.kinds.tolist(),
+            "params": self.params.tolist(),
+        }

@@ -52,7 +52,7 @@ def spring_force(kind, p0, p1, p2, d, dd, f_old, kappa_old, out):
             out[2] = kappa_old
         else:
             s = 1.0 if f_trial > 0.0 else -1.0
-            dlam = over / (p0 + p2)   # |f_trial| - k0 dlam = F_y + H (kappa_old + dlam)
+            dlam = over / (p0 + p2)  # |f_trial| - k0 dlam = F_y + H (kappa_old + dlam)
             out[0] = f_trial - s * p0 * dlam
             out[1] = p0 * p2 / (p0 + p2)
             out[2] = kappa_old + dlam
@@ -68,8 +68,17 @@ def _springs(kinds, params, u_el, du_el, state_old, tangent, f_el, k_el, state_n
     for e in range(u_el.shape[0]):
         d = u_el[e, 1] - u_el[e, 0]
         dd = du_el[e, 1] - du_el[e, 0]
-        spring_force(kinds[e], params[e, 0], params[e, 1], params[e, 2], d, dd, state_old[e, 0, 0],
-                     state_old[e, 0, 1], out)
+        spring_force(
+            kinds[e],
+            params[e, 0],
+            params[e, 1],
+            params[e, 2],
+            d,
+            dd,
+            state_old[e, 0, 0],
+            state_old[e, 0, 1],
+            out,
+        )
         k = params[e, 0] if tangent == ELASTIC else out[1]
         f_el[e, 0] = -out[0]
         f_el[e, 1] = out[0]
@@ -122,8 +131,17 @@ class Spring:
         f_el = np.empty((self.n_el, 2))
         k_el = np.empty((self.n_el, 2, 2))
         state_new = np.empty_like(state_old)
-        _springs(self.kinds, self.params, np.ascontiguousarray(u_el, np.float64),
-                 np.ascontiguousarray(du_el, np.float64), state_old, int(tangent), f_el, k_el, state_new)
+        _springs(
+            self.kinds,
+            self.params,
+            np.ascontiguousarray(u_el, np.float64),
+            np.ascontiguousarray(du_el, np.float64),
+            state_old,
+            int(tangent),
+            f_el,
+            k_el,
+            state_new,
+        )
         return f_el, k_el, state_new
 
     def elastic_stiffness(self):
@@ -134,8 +152,12 @@ class Spring:
         return None
 
     def describe(self):
-        return {"name": self.name, "n_el": self.n_el, "kinds": [KIND_NAMES[int(k)] for k in self.kinds],
-                "params": self.params.tolist()}
+        return {
+            "name": self.name,
+            "n_el": self.n_el,
+            "kinds": [KIND_NAMES[int(k)] for k in self.kinds],
+            "params": self.params.tolist(),
+        }
 
 
 def spring_chain(kinds, params, name="spring"):

@@ -65,8 +65,22 @@ import math
 
 from numba import njit
 
-(P_E0, P_NU, P_FC, P_EPS_C, P_EPS_CU, P_FR, P_GF, P_LS, P_ALPHA_TS, P_EPS_Y, P_BETA0, P_BETA_FLOOR,
- P_GC, P_PLANE) = range(14)
+(
+    P_E0,
+    P_NU,
+    P_FC,
+    P_EPS_C,
+    P_EPS_CU,
+    P_FR,
+    P_GF,
+    P_LS,
+    P_ALPHA_TS,
+    P_EPS_Y,
+    P_BETA0,
+    P_BETA_FLOOR,
+    P_GC,
+    P_PLANE,
+) = range(14)
 N_CONCRETE_PARAMS = 14
 N_CONCRETE_HIST = 2
 H_XMAX, H_EMAX = 0, 1
@@ -194,7 +208,7 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     E0 = params[P_E0]
     G = 0.5 * E0 / (1.0 + params[P_NU])
     if params[P_PLANE] != 0.0:
-        E0 = E0 / (1.0 - params[P_NU] * params[P_NU])      # plane strain: D1 of eq. (4.4)
+        E0 = E0 / (1.0 - params[P_NU] * params[P_NU])  # plane strain: D1 of eq. (4.4)
     fc = params[P_FC]
     eps_c = params[P_EPS_C]
     eps_cu = params[P_EPS_CU]

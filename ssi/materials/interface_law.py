@@ -64,8 +64,9 @@ H_STATUS, H_GT, H_GN, H_SLIPT, H_SLIPN, H_OPEN, H_BROKEN = range(7)
 N_HIST = 7
 
 
-def interface_params(kt: float, kn: float, phi_deg: float = 0.0, c: float = 0.0, psi_deg=None,
-                     sig_t=None) -> np.ndarray:
+def interface_params(
+    kt: float, kn: float, phi_deg: float = 0.0, c: float = 0.0, psi_deg=None, sig_t=None
+) -> np.ndarray:
     """Validated parameter vector of the interface law.
 
     Parameters
@@ -188,9 +189,16 @@ def interface_update(params, dgap, t_old, hist_old, t_new, hist_new, D, tangent)
     a01 = -kt * s * tan_phi / h
     a10 = -kn * tan_psi * s / h
     a11 = 1.0 - kn * tan_psi * tan_phi / h
-    _set_tangent(D, tangent, kt, kn,
-                 a00 * j00 + a01 * j10, a00 * j01 + a01 * j11,
-                 a10 * j00 + a11 * j10, a10 * j01 + a11 * j11)
+    _set_tangent(
+        D,
+        tangent,
+        kt,
+        kn,
+        a00 * j00 + a01 * j10,
+        a00 * j01 + a01 * j11,
+        a10 * j00 + a11 * j10,
+        a10 * j01 + a11 * j11,
+    )
     return SLIP
 
 

@@ -260,9 +260,11 @@ def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H):
         # H = I - [r0 r1] A^{-1} [a0 a1]^T
         for i in range(3):
             for j in range(3):
-                H[i, j] = ((1.0 if i == j else 0.0)
-                           - r0[i] * (I00 * a0[j] + I01 * a1[j])
-                           - r1[i] * (I10 * a0[j] + I11 * a1[j]))
+                H[i, j] = (
+                    (1.0 if i == j else 0.0)
+                    - r0[i] * (I00 * a0[j] + I01 * a1[j])
+                    - r1[i] * (I10 * a0[j] + I11 * a1[j])
+                )
         return B_EDGE12 if jj == 1 else B_EDGE23
     # --- apex
     if apex < math.inf:
@@ -491,7 +493,7 @@ def _continuum_dep(sig, lam, mu, k, m, kc, apex, deps, Dep, use_deps):
     etol = 1e-9 * scale
     elastic_fill(lam, mu, Dep)
     # global gradient basis of each ordered principal value: Voigt vectors (xz doubled)
-    Nv = np.zeros((3, 4))   # rows: [a, b, y] directions
+    Nv = np.zeros((3, 4))  # rows: [a, b, y] directions
     Nv[0, 0] = cc * cc
     Nv[0, 1] = ss * ss
     Nv[0, 2] = 2.0 * cc * ss

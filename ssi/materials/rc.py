@@ -50,7 +50,8 @@ def check_crack_band(ls, E0: float, Gf: float, fr: float) -> None:
         raise ValueError(
             f"crack band width ls = {ls.max():.6g} m is too large: eq. (5.4) snaps back unless "
             f"ls < 2*E0*Gf/fr**2 = {limit:.6g} m (E0 = {E0:.6g} Pa, Gf = {Gf:.6g} N/m, fr = {fr:.6g} Pa); "
-            "refine the mesh or raise Gf")
+            "refine the mesh or raise Gf"
+        )
 
 
 def designer_concrete(fc: float) -> dict:
@@ -71,8 +72,23 @@ def designer_concrete(fc: float) -> dict:
     }
 
 
-def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, alpha_ts=0.5,
-                    beta0=0.25, beta_floor=1e-4, Gc=None, plane_strain=False) -> np.ndarray:
+def concrete_params(
+    fc,
+    E0,
+    eps_c,
+    fr,
+    Gf,
+    ls,
+    eps_y,
+    *,
+    eps_cu=0.0035,
+    nu=0.2,
+    alpha_ts=0.5,
+    beta0=0.25,
+    beta_floor=1e-4,
+    Gc=None,
+    plane_strain=False,
+) -> np.ndarray:
     """Validated CONCRETE parameter vector (N_CONCRETE_PARAMS,), SI units (Pa, m, N/m).
 
     ``ls`` is the crack band width of eq. (5.4) (the length the integration point represents);
@@ -91,9 +107,11 @@ def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, 
     eps_y = _positive("eps_y", eps_y)
     a = E0 * eps_c / fc
     if a < 2.0 - 1e-12:
-        raise ValueError(f"E0*eps_c/fc must be >= 2 (eq. 5.1 would rise above its initial tangent and the "
-                         f"irreversible strain turn negative), got E0*eps_c/fc = {a:.6g}; raise eps_c to "
-                         f">= 2*fc/E0 = {2 * fc / E0:.6g}")
+        raise ValueError(
+            f"E0*eps_c/fc must be >= 2 (eq. 5.1 would rise above its initial tangent and the "
+            f"irreversible strain turn negative), got E0*eps_c/fc = {a:.6g}; raise eps_c to "
+            f">= 2*fc/E0 = {2 * fc / E0:.6g}"
+        )
     if eps_cu <= eps_c:
         raise ValueError(f"eps_cu must exceed eps_c = {eps_c:.6g}, got {eps_cu:.6g}")
     if fr >= fc:
@@ -112,8 +130,24 @@ def concrete_params(fc, E0, eps_c, fr, Gf, ls, eps_y, *, eps_cu=0.0035, nu=0.2, 
     Gc = 8.8e3 * math.sqrt(fc / MPA) if Gc is None else float(Gc)
     if not (Gc >= 0.0 and math.isfinite(Gc)):
         raise ValueError(f"Gc must be a finite number >= 0 N/m (0: no crushing energy), got {Gc!r}")
-    p = np.array([E0, nu, fc, eps_c, eps_cu, fr, Gf, float(ls), alpha_ts, eps_y, beta0, beta_floor, Gc,
-                  1.0 if plane_strain else 0.0])
+    p = np.array(
+        [
+            E0,
+            nu,
+            fc,
+            eps_c,
+            eps_cu,
+            fr,
+            Gf,
+            float(ls),
+            alpha_ts,
+            eps_y,
+            beta0,
+            beta_floor,
+            Gc,
+            1.0 if plane_strain else 0.0,
+        ]
+    )
     assert p.size == N_CONCRETE_PARAMS
     return p
 
@@ -124,8 +158,10 @@ def steel_params(fy, Es=200.0e9, EH=0.0) -> np.ndarray:
     Es = _positive("Es", Es)
     EH = float(EH)
     if not (0.0 <= EH < Es):
-        raise ValueError(f"EH must be in [0, Es = {Es:.6g}) Pa, got {EH!r} (a negative hardening modulus "
-                         "would soften the bars)")
+        raise ValueError(
+            f"EH must be in [0, Es = {Es:.6g}) Pa, got {EH!r} (a negative hardening modulus "
+            "would soften the bars)"
+        )
     p = np.array([Es, 0.0, fy, EH])
     assert p.size == N_STEEL_PARAMS
     return p
@@ -142,6 +178,7 @@ def elastic_params(E, nu) -> np.ndarray:
 def with_plane_strain(params, plane_strain: bool = True) -> np.ndarray:
     """Copy of a CONCRETE vector with the plane-strain flag set (True) or cleared (False)."""
     from .concrete import P_PLANE
+
     p = np.array(params, dtype=np.float64)
     p[P_PLANE] = 1.0 if plane_strain else 0.0
     return p
@@ -150,6 +187,7 @@ def with_plane_strain(params, plane_strain: bool = True) -> np.ndarray:
 def with_crack_band(params, ls) -> np.ndarray:
     """Copy of a CONCRETE vector with the crack band width replaced by ``ls`` (validated)."""
     from .concrete import P_E0, P_FR, P_GF, P_LS
+
     p = np.array(params, dtype=np.float64)
     check_crack_band(ls, p[P_E0], p[P_GF], p[P_FR])
     p[P_LS] = float(ls)
@@ -165,6 +203,7 @@ def drive(kind: int, params, eps_path, gam_path=None, tangent: int = 1):
     Returns ``(sig, tau, e_t, g_t, hist)`` with shapes (n,), (n,), (n,), (n,), (n, N_LAYER_HIST).
     """
     from .layer_laws import N_LAYER_HIST, layer_update
+
     eps_path = np.asarray(eps_path, dtype=np.float64)
     gam_path = np.zeros_like(eps_path) if gam_path is None else np.asarray(gam_path, dtype=np.float64)
     params = np.asarray(params, dtype=np.float64)
@@ -180,7 +219,9 @@ def drive(kind: int, params, eps_path, gam_path=None, tangent: int = 1):
     return out[0], out[1], out[2], out[3], hist
 
 
-def crack_spacing_mc2010(c: float, phi: float, As: float, b: float, h: float, d: float, alpha_e: float) -> dict:
+def crack_spacing_mc2010(
+    c: float, phi: float, As: float, b: float, h: float, d: float, alpha_e: float
+) -> dict:
     """Maximum crack spacing of stabilised cracking, *fib* Model Code 2010 §7.6.4.4, eq. (7.6-4):
 
         s_r,max = 2 l_s,max,   l_s,max = k c + (1/4) (f_ctm / tau_bms) phi / rho_s,ef,

@@ -34,8 +34,12 @@ MOHR_COULOMB_EXPLICIT = 2
 VON_MISES = 3
 N_SOIL_HIST = 2  # history variables per integration point (laws may use fewer)
 N_SOIL_PARAMS = 8  # width of a padded parameter row
-KIND_NAMES = {ELASTIC: "elastic", MOHR_COULOMB: "mohr_coulomb", MOHR_COULOMB_EXPLICIT: "mohr_coulomb_explicit",
-              VON_MISES: "von_mises"}
+KIND_NAMES = {
+    ELASTIC: "elastic",
+    MOHR_COULOMB: "mohr_coulomb",
+    MOHR_COULOMB_EXPLICIT: "mohr_coulomb_explicit",
+    VON_MISES: "von_mises",
+}
 
 
 @njit(cache=True)
@@ -106,10 +110,13 @@ def mohr_coulomb_params(E, nu, c, phi_deg, psi_deg=None, scheme="implicit", n_su
         raise ValueError(f"phi_deg must lie in [0, 90) (friction angle, degrees), got {phi_deg}")
     psi_deg = phi_deg if psi_deg is None else psi_deg
     if not (0.0 <= psi_deg <= phi_deg):
-        raise ValueError(f"psi_deg must lie in [0, phi_deg] = [0, {phi_deg}] (dilation angle, degrees), "
-                         f"got {psi_deg}")
+        raise ValueError(
+            f"psi_deg must lie in [0, phi_deg] = [0, {phi_deg}] (dilation angle, degrees), got {psi_deg}"
+        )
     if c == 0.0 and phi_deg == 0.0:
-        raise ValueError("c and phi_deg are both zero: the soil would have no strength (need c > 0 or phi > 0)")
+        raise ValueError(
+            "c and phi_deg are both zero: the soil would have no strength (need c > 0 or phi > 0)"
+        )
     if scheme not in ("implicit", "explicit"):
         raise ValueError(f"scheme must be 'implicit' or 'explicit', got {scheme!r}")
     if int(n_sub) != n_sub or n_sub < 1:
@@ -135,7 +142,7 @@ def material_table(materials):
     table = np.zeros((len(materials), N_SOIL_PARAMS))
     for i, (_, p) in enumerate(materials):
         p = np.asarray(p, np.float64)
-        table[i, :len(p)] = p
+        table[i, : len(p)] = p
     return kinds, table
 
 
@@ -188,11 +195,15 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, 
         gamma = float(lay["gamma"])
         gamma_sat = float(lay.get("gamma_sat") if lay.get("gamma_sat") is not None else gamma)
         if gamma < 0.0 or gamma_sat < 0.0:
-            raise ValueError(f"layers[{i}] gamma and gamma_sat must be >= 0 (unit weights, N/m^3), got "
-                             f"{gamma}, {gamma_sat}")
+            raise ValueError(
+                f"layers[{i}] gamma and gamma_sat must be >= 0 (unit weights, N/m^3), got "
+                f"{gamma}, {gamma_sat}"
+            )
         if water_table is not None and gamma_sat < gamma_w:
-            raise ValueError(f"layers[{i}]['gamma_sat'] = {gamma_sat} N/m^3 is below the unit weight of water "
-                             f"{gamma_w}: the buoyant weight would be negative")
+            raise ValueError(
+                f"layers[{i}]['gamma_sat'] = {gamma_sat} N/m^3 is below the unit weight of water "
+                f"{gamma_w}: the buoyant weight would be negative"
+            )
         K0 = lay.get("K0")
         if K0 is None:
             K0 = k0_jaky(lay["phi_deg"])
@@ -241,6 +252,7 @@ def drive(kind, params, deps_path, sig0=None, tangent=1):
     status = np.zeros(n, np.int64)
     Ds = np.zeros((n, 4, 4))
     for i in range(n):
-        status[i] = soil_update(int(kind), params, deps_path[i], sig[i], hist[i], sig[i + 1], hist[i + 1],
-                                Ds[i], tangent)
+        status[i] = soil_update(
+            int(kind), params, deps_path[i], sig[i], hist[i], sig[i + 1], hist[i + 1], Ds[i], tangent
+        )
     return sig, hist, status, Ds
