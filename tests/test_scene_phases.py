@@ -8,10 +8,7 @@ linear scene solved with one K0 per increment) and the solver's force tolerance 
 import numpy as np
 import pytest
 
-from ssi.elements.soil_q8 import SoilQ8
-from ssi.materials.soil_laws import material_table
-from ssi.mesh import structured_q8
-from ssi.model import Model
+from ssi.element_test import biaxial_compression
 from ssi.results import read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
@@ -28,7 +25,7 @@ from ssi.scene import (
 )
 from ssi.scene_file import scene_from_dict, scene_to_dict
 from ssi.section import homogeneous
-from ssi.solver import NonConvergence, Settings, run
+from ssi.solver import NonConvergence, Settings
 
 E, NU, GAMMA, GW = 20e6, 0.3, 18e3, 9.81e3
 M_OED = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
@@ -258,35 +255,6 @@ def test_submerged_strip_weight_is_buoyant():
     assert built.contact_force(out)[-1] == pytest.approx((25e3 - GW) * 0.5 * 2.0, rel=1e-10)
 
 
-def undrained_biaxial(layer, sig0, delta=0.02, n_steps=40):
-    """One Q8 element, smooth platens: bottom w and left u held, the right side under its initial total
-    stress (dead load), the top pushed down by delta. Returns the deviator t = (sxx - szz)/2 per step."""
-    mesh = structured_q8([0.0, 1.0], [0.0, 1.0])
-    model = Model()
-    ids = model.add_nodes(mesh.xy, 2)
-    kinds, params = material_table([layer.law()])
-    soil = SoilQ8(
-        mesh.xy[mesh.conn],
-        model.element_dofs(ids[mesh.conn]),
-        0,
-        kinds,
-        params,
-        k_water=[layer.k_water()],
-        initial_stress=np.broadcast_to(sig0, (1, 4, 4)).copy(),
-    )
-    model.add_group(soil)
-    xy = mesh.xy
-    right = np.flatnonzero(xy[:, 0] == 1.0)
-    right = right[np.argsort(xy[right, 1])]
-    model.fix(np.flatnonzero(xy[:, 1] == 0.0), "w")
-    model.fix(np.flatnonzero(xy[:, 0] == 0.0), "u")
-    model.prescribe(np.flatnonzero(xy[:, 1] == 1.0), "w", -delta)
-    model.add_dead_load(right, "u", sig0[0] * np.array([1.0, 4.0, 1.0]) / 6.0)
-    res = run(model, np.linspace(0.0, 1.0, n_steps + 1)[1:], Settings(method="full"))
-    sig = np.array([soil.stress(s[0])[0, 0] for s in res.states])
-    return 0.5 * (sig[:, 0] - sig[:, 1])
-
-
 @pytest.mark.parametrize("k0", [1.0, 0.6])
 def test_undrained_A_mohr_coulomb_strength(k0):
     """psi = 0: the plastic strain has no volume change and no out-of-plane part, so the in-plane mean
@@ -296,7 +264,7 @@ def test_undrained_A_mohr_coulomb_strength(k0):
     c, phi = 10e3, np.radians(30.0)
     layer = SoilLayer(1.0, E=E, nu=NU, c=c, phi_deg=30.0, psi_deg=0.0, drainage="undrained_A", nu_u=0.495)
     sig0 = np.array([-k0 * 100e3, -100e3, 0.0, -k0 * 100e3])
-    t = undrained_biaxial(layer, sig0)
+    t = biaxial_compression(layer, sig0)["t"]
     G, lam = E / (2 * (1 + NU)), E * NU / ((1 + NU) * (1 - 2 * NU))
     beta = (lam + G) / (lam + G + layer.k_water())
     s0, t0 = -0.5 * (sig0[0] + sig0[1]), 0.5 * (sig0[0] - sig0[1])
@@ -340,3 +308,52 @@ def test_stopped_phased_run_reports_every_completed_phase(tmp_path):
     path = write_result(tmp_path / "stop.h5", result, stop=err.report)
     assert read_info(path)["complete"] is False
     assert [r["name"] for r in read_result(path).phases] == ["geostatic", "weight", "overload"]
+
+
+PHASES_TOML = """
+width = 12.0
+depth = 6.0
+water_table = -1.5
+
+[[layers]]
+thickness = 2.0
+E = 20e6
+nu = 0.3
+unit_weight = 18e3
+
+[[layers]]
+thickness = 4.0
+E = 30e6
+nu = 0.3
+unit_weight = 19e3
+
+[[phases]]
+name = "dig"
+[[phases.excavate]]
+x0 = -2.0
+x1 = 2.0
+bottom = 1.5
+
+[[phases]]
+name = "rapid"
+drainage = { 1 = "undrained_A" }
+[[phases.loads]]
+type = "SurfacePressure"
+x0 = 3.0
+x1 = 5.0
+q = 20e3
+"""
+
+
+def test_toml_excavation_drainage_and_ponding(tmp_path):
+    from ssi.scene_file import read_scene_file
+
+    path = tmp_path / "phases.toml"
+    path.write_text(PHASES_TOML)
+    scene, _, _ = read_scene_file(path)
+    assert scene.water_table == -1.5
+    assert scene.phases[0].excavate == (Excavation(-2.0, 2.0, bottom=1.5),)
+    assert scene.phases[1].drainage == {1: "undrained_A"}
+    assert scene_from_dict(scene_to_dict(scene)) == scene
+    with pytest.raises(ValueError, match="layer index"):
+        scene_from_dict({**scene_to_dict(scene), "phases": [{"name": "a", "drainage": {"top": "drained"}}]})
