@@ -40,6 +40,10 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
   the layer(s) above depth D (the backfill).
 * **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
+* **Phases that change the soil**: ``Phase.excavate`` removes :class:`Excavation` regions (the forces the
+  removed soil exerted fall to zero over the phase), ``Phase.drainage`` switches a layer between drained and
+  undrained_A; ``water_table < 0`` is free water above the ground (pore pressure, not effective stress). A
+  phase that does not converge raises :class:`PhaseNonConvergence` with every completed phase.
 """
 
 import math
@@ -352,7 +356,10 @@ class Excavation:
     """Soil removed in the phase that lists it: every element whose centre lies in ``x0`` < x < ``x1`` [m]
     and ``top`` < depth below the ground < ``bottom`` [m]. The mesh puts element edges on all four sides
     (x0 and x1 become element lines, top and bottom split the layers there). x0 = -width/2 and
-    x1 = width/2 remove a whole layer part over the full width."""
+    x1 = width/2 remove a whole layer part over the full width. The removed soil's stress and weight (and a
+    surcharge on its ground) are released over the phase; below the water table the pit stays flooded to
+    the table (the effective-stress formulation: the water in it balances the pore pressure on its faces).
+    It may not remove soil under the strip or beside an embedded strip's trench walls."""
 
     x0: float
     x1: float
@@ -1333,8 +1340,14 @@ class SceneResult:
         return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": names}
 
     def surface(self, k=-1):
-        """(x, settlement) of the soil surface, positive downwards."""
+        """(x, settlement) of the soil surface, positive downwards; after an excavation the ground as it is at
+        step ``k`` (the pit's bottom and walls' tops)."""
         ids = self.built.mesh.surface
+        if any(ph.excavate for ph in self.built.scene.phases) and self.phases:
+            mesh = self.built.mesh
+            used = np.zeros(len(mesh.xy), bool)
+            used[mesh.conn[self.active_elements(k)].ravel()] = True
+            ids = np.array([col[(col >= 0) & used[np.maximum(col, 0)]][-1] for col in mesh.grid], np.int64)
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
     def plate_layers(self, k=-1):
