@@ -357,3 +357,63 @@ def test_toml_excavation_drainage_and_ponding(tmp_path):
     assert scene_from_dict(scene_to_dict(scene)) == scene
     with pytest.raises(ValueError, match="layer index"):
         scene_from_dict({**scene_to_dict(scene), "phases": [{"name": "a", "drainage": {"top": "drained"}}]})
+
+
+STOP_TOML = """
+width = 12.0
+depth = 6.0
+
+[[layers]]
+thickness = 6.0
+E = 20e6
+nu = 0.3
+unit_weight = 18e3
+c = 10e3
+phi_deg = 30.0
+psi_deg = 0.0
+
+[foundation]
+x0 = -1.0
+x1 = 1.0
+section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } }
+
+[contact]
+kn = 1e10
+kt = 1e9
+
+[mesh]
+h_fine = 0.5
+h_coarse = 2.0
+growth = 1.5
+
+[[phases]]
+name = "weight"
+[[phases.loads]]
+type = "StripWeight"
+
+[[phases]]
+name = "overload"
+[[phases.loads]]
+x = 0.0
+N = 3e6
+
+[solve]
+n_steps = 2
+method = "modified"
+stepping = "fixed"
+viscous_fallback = false
+max_iter = 40
+max_cuts = 1
+"""
+
+
+def test_ssi_run_writes_every_completed_phase_of_a_stopped_run(tmp_path):
+    """``ssi run`` on a phased scene that stops: exit status 3, and the file holds the completed phases."""
+    from ssi.cli import EXIT_INCOMPLETE, main
+
+    path = tmp_path / "stop.toml"
+    path.write_text(STOP_TOML)
+    assert main(["run", str(path), "--no-plots"]) == EXIT_INCOMPLETE
+    result = tmp_path / "stop.h5"
+    assert read_info(result)["stop"]["phase"] == "overload"
+    assert [r["name"] for r in read_result(result).phases] == ["geostatic", "weight", "overload"]
