@@ -31,7 +31,10 @@
 #   geostatic state with the hand calculation; collapse undrained clay (φ = 0, c = s_u) and compare with
 #   Prandtl's (2 + π) s_u;
 # - embed the strip in a trench with backfill and compare with the depth term q = γD of N_q;
-# - vary the contact law along the strip, and see the unit plausibility warning.
+# - vary the contact law along the strip, and see the unit plausibility warning;
+# - excavate soil in a phase, switch a layer from drained to undrained and back, put free water above the
+#   ground, derive the undrained strength of a Mohr–Coulomb soil in effective stress, and read the completed
+#   phases of a run that stops.
 #
 # ## Notation
 #
@@ -46,6 +49,9 @@
 # | σ'_v, σ'_h, p | effective vertical and horizontal stress, pore pressure [Pa] | soil state, `BuiltScene.pore_pressure()` |
 # | s_u | undrained shear strength [Pa] | `SoilLayer.undrained(..., s_u=)` |
 # | D | embedment: depth of the strip's base below the ground [m] | `Scene.embedment` |
+# | t, h | excavated thickness, depth of free water above the ground [m] | `Excavation.bottom`, `-Scene.water_table` |
+# | K_w/n, M' | pore-water penalty, constrained modulus K' + 4G/3 of the skeleton [Pa] | `SoilLayer.k_water()` |
+# | s', t, β | in-plane mean effective stress, deviator [Pa], (λ' + G)/(λ' + G + K_w/n) [-] | |
 
 # %%
 import time
@@ -58,14 +64,17 @@ import numpy as np
 
 from ssi import paths
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
+from ssi.element_test import biaxial_compression
 from ssi.report import record, save_figure
 from ssi.scene import (
     ColumnLoad,
     Contact,
     ContactSegment,
+    Excavation,
     Foundation,
     MeshSize,
     Phase,
+    PhaseNonConvergence,
     Scene,
     Settlement,
     SoilLayer,
@@ -639,6 +648,412 @@ for wng in caught:
 assert len(caught) == 2
 
 # %% [markdown]
+# ## 8. Excavation: removing soil in a phase
+#
+# `Phase(..., excavate=(Excavation(x0, x1, bottom, top=0),))` removes every element whose centre lies in
+# x0 < x < x1 and top < depth < bottom; the mesh puts element edges on all four sides (x0, x1 become element
+# lines, top and bottom split the layers). The standard treatment: at the phase's first state u₀ the soil
+# that stays was in equilibrium together with the removed part; without it the remaining soil is loaded by
+#
+# g = F_int,kept(u₀) − F_ext,kept = −(∫ Bᵀσ dV − ∫ Nᵀγ dV)_removed   (on the free DOFs, at equilibrium),
+#
+# the forces the removed soil's stress and weight exerted on the rest (the excavation forces). The phase
+# applies F_ext(λ) = F_ext,kept + (1 − λ) g: in equilibrium at λ = 0, and at λ = 1 the removed soil acts no
+# more. Nodes that no remaining element uses are held where they are (they leave the system), removed
+# elements carry no stress, the surcharge on removed ground goes with it. In the effective-stress
+# formulation (buoyant weight below the table) a pit below the water table stays flooded to the table: the
+# water in it balances the pore pressure on its faces. A dewatered pit needs a seepage analysis this code
+# does not do.
+#
+# **Hand calculation.** An elastic block of depth H on rollers, the top layer of thickness t removed over the
+# full width. The removed layer pressed γt on the new surface; taking it away unloads the remaining column
+# uniformly and laterally confined: Δσ_v = γt (tension positive), Δε_z = γt/M with the constrained modulus
+# M = E(1 − ν)/((1 + ν)(1 − 2ν)), so the new surface heaves γ t (H − t)/M, and Δσ_h = ν/(1 − ν)·γt (ε_x = 0).
+# The change is a uniform strain, which the quadratic elements represent exactly, and the excavation forces
+# are the same elements' consistent nodal forces: the finite-element answer must match to round-off
+# (tolerance 1e-12, measured about 1e-15).
+
+# %%
+GAMMA_E, H_E, T_E, K0_E = 18e3, 6.0, 2.0, 0.5
+dig = Scene(
+    width=4.0,
+    depth=H_E,
+    layers=[SoilLayer(H_E, E=E, nu=NU, unit_weight=GAMMA_E, K0=K0_E)],
+    mesh=MeshSize(h_fine=0.5, h_coarse=1.0, growth=1.2),
+    phases=[Phase("dig", excavate=(Excavation(-2.0, 2.0, bottom=T_E),), n_steps=1)],
+)
+dig_built = dig.build()
+dig_out = dig_built.solve()
+new_surface = np.flatnonzero(np.abs(dig_built.mesh.xy[:, 1] + T_E) < 1e-9)
+heave = dig_out.u[-1][dig_built.model.dof(new_surface, "w")]
+heave_hand = GAMMA_E * T_E * (H_E - T_E) / M_OED
+kept = dig_out.active_elements()
+z_e = dig_built.soil.integration_points()[..., 1]
+sig_e = dig_out.soil_stress()
+d_sv = sig_e[kept][..., 1] - GAMMA_E * z_e[kept]
+d_sh = sig_e[kept][..., 0] - K0_E * GAMMA_E * z_e[kept]
+err_heave = np.abs(heave / heave_hand - 1).max()
+err_sv = np.abs(d_sv / (GAMMA_E * T_E) - 1).max()
+err_sh = np.abs(d_sh / (NU / (1 - NU) * GAMMA_E * T_E) - 1).max()
+excavation_heave = max(err_heave, err_sv, err_sh)
+EXC_TOL = 1e-12
+print(
+    f"heave {1e3 * heave.mean():.4f} mm, hand gamma t (H - t)/M = {1e3 * heave_hand:.4f} mm; relative errors: "
+    f"heave {err_heave:.1e}, d sigma_v {err_sv:.1e}, d sigma_h {err_sh:.1e}; removed elements' stress "
+    f"{np.abs(sig_e[~kept]).max():.0f} Pa"
+)
+assert excavation_heave < EXC_TOL and np.all(sig_e[~kept] == 0.0)
+record(
+    "excavation_heave",
+    "max rel. error of heave gamma t (H-t)/M and of d sigma_v = gamma t, d sigma_h = nu/(1-nu) gamma t "
+    "(top layer excavated over the full width, elastic)",
+    excavation_heave,
+    EXC_TOL,
+    excavation_heave < EXC_TOL,
+)
+
+# %% [markdown]
+# **A pit beside a loaded strip, default settings.** Mohr–Coulomb top layer, water table at 1 m, a 10 kPa
+# surcharge, a strip at x = −5…−3 m carrying 300 kN/m, then a 5 m wide, 1.5 m deep pit from x = −1.3 m
+# (neither end on the regular mesh). The check is global equilibrium, independent of the mesh: the bottom
+# reaction must fall by the removed buoyant weight plus the surcharge that stood on the pit,
+# 5·(18·1 + (20 − 9.81)·0.5) + 10·5 = 165.5 kN/m. The solver stops at a residual of 1e-5 of the structural
+# load (a norm); its sum over the bottom nodes may be larger, so the tolerance is 1e-4.
+
+# %%
+pit = Scene(
+    width=20.0,
+    depth=8.0,
+    layers=[
+        SoilLayer(
+            3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=30.0, psi_deg=0.0
+        ),
+        SoilLayer(5.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
+    ],
+    water_table=1.0,
+    surcharge=10e3,
+    foundation=Foundation(x0=-5.0, x1=-3.0, section=STRIP),
+    contact=Contact(kn=1e10, kt=1e9),
+    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.3),
+    phases=[
+        Phase("building", loads=(ColumnLoad(-4.0, N=300e3),)),
+        Phase("pit", excavate=(Excavation(-1.3, 3.7, bottom=1.5),)),
+    ],
+)
+pit_built = pit.build()
+pit_out = pit_built.solve()
+bottom_w = pit_built.model.dof(pit_built.mesh.bottom, "w")
+reaction = [np.array(r["result"].f_int)[-1][bottom_w].sum() for r in pit_out.phases]
+removed_weight = 5.0 * (18e3 * 1.0 + (20e3 - gw) * 0.5) + 10e3 * 5.0
+excavation_pit_reaction = abs((reaction[1] - reaction[2]) / removed_weight - 1)
+PIT_TOL = 1e-4
+pstep_pit = {r["name"]: r["last"] for r in pit_out.phases}
+print(
+    f"status {pit_out.status}; bottom reaction fell by {(reaction[1] - reaction[2]) / 1e3:.3f} kN/m, removed "
+    f"{removed_weight / 1e3:.3f} kN/m (relative error {excavation_pit_reaction:.1e}); strip settlement "
+    f"{1e3 * pit_out.settlement(pstep_pit['building'])[1].mean():.2f} -> "
+    f"{1e3 * pit_out.settlement(pstep_pit['pit'])[1].mean():.2f} mm"
+)
+assert pit_out.status == "completed" and excavation_pit_reaction < PIT_TOL
+record(
+    "excavation_pit_reaction",
+    "|drop of the bottom reaction / (removed buoyant weight + surcharge on the pit) - 1|, pit beside a strip",
+    excavation_pit_reaction,
+    PIT_TOL,
+    excavation_pit_reaction < PIT_TOL,
+)
+
+# %% [markdown]
+# ## 9. A layer drained in one phase, undrained in the next
+#
+# `Phase(..., drainage={index: "undrained_A"})` makes layer `index` (0 = the top) undrained from that phase on:
+# its excess pore pressure p = −(K_w/n)(ε_v − ε_v,switch) counts the volume change from the phase's first
+# state, so a consolidated state from construction is the start of a rapid loading. `"drained"` in a later
+# phase switches it back: the water force falls to zero over that phase (full consolidation), the skeleton
+# takes the load.
+#
+# Closed forms for an elastic skeleton (E', ν', G, K' and the penalty K_w/n = K_u − K' of section 4):
+# (i) the undrained increment is that of an elastic soil with G and ν_u (bulk modulus K' + K_w/n = K_u);
+# (ii) a pressure Δσ_v over the whole width (ε_x = 0, 1D) gives Δσ_v = (M' + K_w/n) Δε_z with M' = K' + 4G/3,
+# so the excess pore pressure is Δu = Δσ_v (K_w/n)/(K_w/n + M') — 0.965 Δσ_v for ν_u = 0.495 (the ratio that
+# matches the implemented penalty; Skempton's B = (K_w/n)/(K_w/n + K') is the isotropic-loading one);
+# (iii) after consolidation the state is the drained response to all loads (an elastic skeleton does not
+# remember the path). All three are linear solves: round-off, tolerance 1e-10.
+
+# %%
+lay_sw = SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, unit_weight=18e3, unit_weight_sat=20e3, nu_u=NU_U)
+sw_common = {
+    "width": 12.0,
+    "depth": H_LAYER,
+    "foundation": Foundation(x0=-1.0, x1=1.0, section=STRIP),
+    "contact": Contact(kn=1e10, kt=1e9),
+    "mesh": MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+    "water_table": 1.0,
+}
+first_load, second_load = ColumnLoad(0.0, N=200e3), ColumnLoad(0.3, N=150e3, H=20e3)
+switch = Scene(
+    layers=[lay_sw],
+    phases=[
+        Phase("construction", loads=(first_load,)),
+        Phase("rapid", loads=(second_load,), drainage={0: "undrained_A"}),
+        Phase("consolidation", drainage={0: "drained"}),
+    ],
+    **sw_common,
+)
+sw_built = switch.build()
+sw_out = sw_built.solve(n_steps=1)
+sw_step = {r["name"]: r["last"] for r in sw_out.phases}
+u_nu_u = (
+    Scene(
+        layers=[SoilLayer(H_LAYER, E=2 * G_SK * (1 + NU_U), nu=NU_U, unit_weight=18e3, unit_weight_sat=20e3)],
+        loads=[second_load],
+        **sw_common,
+    )
+    .build()
+    .solve()
+    .u[-1]
+)
+u_drained = Scene(layers=[lay_sw], loads=[first_load, second_load], **sw_common).build().solve().u[-1]
+err_increment = (
+    np.abs(sw_out.u[sw_step["rapid"]] - sw_out.u[sw_step["construction"]] - u_nu_u).max()
+    / np.abs(u_nu_u).max()
+)
+err_consolidated = np.abs(sw_out.u[sw_step["consolidation"]] - u_drained).max() / np.abs(u_drained).max()
+M_SK = E_SK / (3 * (1 - 2 * NU_SK)) + 4 * G_SK / 3
+one_d_switch = Scene(
+    width=12.0,
+    depth=H_LAYER,
+    layers=[lay_sw],
+    water_table=1.0,
+    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+    phases=[
+        Phase("fill", loads=(SurfacePressure(-6.0, 6.0, 20e3),)),
+        Phase("rapid", loads=(SurfacePressure(-6.0, 6.0, Q_U1D),), drainage={0: "undrained_A"}),
+    ],
+)
+od_built = one_d_switch.build()
+od_out = od_built.solve(n_steps=1)
+od_step = {r["name"]: r["last"] for r in od_out.phases}
+p_switch = od_built.excess_pore_pressure(od_out, od_step["rapid"])
+err_p_switch = np.abs(p_switch / (Q_U1D * K_W / (K_W + M_SK)) - 1).max()
+undrained_switch = max(err_increment, err_consolidated, err_p_switch)
+SWITCH_TOL = 1e-10
+print(
+    f"undrained increment vs elastic (G, nu_u): {err_increment:.1e}; consolidated vs drained: "
+    f"{err_consolidated:.1e}; 1D excess pore pressure {p_switch.mean() / 1e3:.4f} kPa = "
+    f"{Q_U1D / 1e3:g} kPa x {K_W / (K_W + M_SK):.4f} (error {err_p_switch:.1e}); excess after the drained fill "
+    f"{np.abs(od_built.excess_pore_pressure(od_out, od_step['fill'])).max():.1f} Pa, after consolidation "
+    f"{np.abs(sw_built.excess_pore_pressure(sw_out, sw_step['consolidation'])).max():.1f} Pa"
+)
+assert undrained_switch < SWITCH_TOL
+assert np.all(od_built.excess_pore_pressure(od_out, od_step["fill"]) == 0.0)
+record(
+    "undrained_switch",
+    "max rel. error: undrained increment vs elastic (G, nu_u); 1D excess p vs dq Kw/(Kw + M'); consolidated "
+    "vs drained",
+    undrained_switch,
+    SWITCH_TOL,
+    undrained_switch < SWITCH_TOL,
+)
+
+# %% [markdown]
+# ## 10. Water above the ground (ponding)
+#
+# `water_table = -h` puts the free water level h above the ground. The pore pressure is hydrostatic from that
+# level, p = γ_w (h + d); the pond presses γ_w h on the ground. In effective stress nothing changes: with
+# σ = σ' − p m, equilibrium of σ under the saturated weight becomes equilibrium of σ' under the buoyant
+# weight γ_sat − γ_w, and on the ground σ'·n = σ·n + p n = −γ_w h n + γ_w h n = 0 — the pond is no load on
+# the skeleton. So (drained) the effective stresses and the displacements under a load must not depend on h
+# (exactly: the same equations), while the total vertical stress is σ_v = −(γ_w h + γ_sat d) and
+# p = γ_w (h + d) (hand calculation; tolerance 1e-12, round-off). On the impermeable strip the water presses
+# on its base more than on its top by γ_w times the submerged thickness: `StripWeight` nets that buoyancy, so
+# a 0.5 m concrete strip under water rests on the soil with (25 − 9.81) kN/m³ × 0.5 m.
+
+# %%
+pond_layer = SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
+pond_runs = {}
+for h_pond in (0.0, 1.0, 3.0):
+    pond_scene = Scene(
+        width=12.0,
+        depth=H_LAYER,
+        layers=[pond_layer],
+        water_table=-h_pond,
+        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+        phases=[Phase("load", loads=(SurfacePressure(-1.0, 1.0, 50e3),))],
+    )
+    pond_built = pond_scene.build()
+    pond_runs[h_pond] = (pond_built, pond_built.solve(n_steps=1))
+ref_built, ref_out = pond_runs[0.0]
+d_pond = -ref_built.soil.integration_points()[..., 1]
+pond_errors = []
+for h_pond, (b, o) in pond_runs.items():
+    pond_errors += [
+        np.abs(o.soil_stress() - ref_out.soil_stress()).max() / np.abs(ref_out.soil_stress()).max(),
+        np.abs(o.u[-1] - ref_out.u[-1]).max() / np.abs(ref_out.u[-1]).max(),
+        np.abs(o.pore_pressure(1) / (gw * (h_pond + d_pond)) - 1).max(),
+        np.abs(o.total_stress(1)[..., 1] / -(gw * h_pond + 20e3 * d_pond) - 1).max(),
+    ]
+    print(
+        f"h = {h_pond:3.1f} m: sigma'_v at the bottom {-o.soil_stress(1)[..., 1].min() / 1e3:6.2f} kPa, p "
+        f"{o.pore_pressure(1).max() / 1e3:6.2f} kPa, total sigma_v {-o.total_stress(1)[..., 1].min() / 1e3:6.2f} kPa;"
+        f" settlement under the load {1e3 * o.max_settlement()[1]:.3f} mm"
+    )
+sub_scene = Scene(
+    width=12.0,
+    depth=H_LAYER,
+    layers=[pond_layer],
+    water_table=-2.0,
+    foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+    contact=Contact(kn=1e10, kt=1e9),
+    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+    phases=[Phase("weight", loads=(StripWeight(25e3),))],
+)
+sub_built = sub_scene.build()
+sub_force = sub_built.contact_force(sub_built.solve(n_steps=1))[-1]
+pond_errors.append(abs(sub_force / ((25e3 - gw) * 0.5 * 2.0) - 1))
+ponding_effective_stress = max(pond_errors)
+POND_TOL = 1e-12
+print(
+    f"submerged strip rests with {sub_force / 1e3:.4f} kN/m = (25 - 9.81) x 0.5 x 2 kN/m; largest error "
+    f"{ponding_effective_stress:.1e}"
+)
+assert ponding_effective_stress < POND_TOL
+record(
+    "ponding_effective_stress",
+    "max rel. difference of sigma' and u for pond depths 0, 1, 3 m; rel. error of p, total sigma_v, "
+    "buoyant strip weight vs hand",
+    ponding_effective_stress,
+    POND_TOL,
+    ponding_effective_stress < POND_TOL,
+)
+
+# %% [markdown]
+# ## 11. Undrained strength of a Mohr–Coulomb soil in effective stress
+#
+# Undrained "A" keeps c', φ' and lets the pore water resist volume change. What strength does that give? Take
+# a plane-strain biaxial test (one element, `ssi.element_test.biaxial_compression`: smooth platens, the side
+# at its initial total stress, the top pushed down) with ψ = 0, starting from an effective state with
+# in-plane mean s'₀ = −(σ'_xx + σ'_zz)/2 and deviator t₀ = (σ'_xx − σ'_zz)/2 (principal axes x, z).
+#
+# With ψ = 0 the plastic strain rate is deviatoric and lies in the plane of σ₁ and σ₃ (in-plane here), so it
+# changes neither ε_v nor ε_y. Then Δσ'_y = λ' Δε_v and Δσ'_xx + Δσ'_zz = 2(λ' + G) Δε_v, plastic or not.
+# The water adds Δp = −(K_w/n) Δε_v to the total stress, whose horizontal part is held: Δσ_xx = 0. So
+# Δσ_zz/2 = (λ' + G + K_w/n) Δε_v and the in-plane mean effective stress grows with the deviator,
+# Δs' = β Δt, β = (λ' + G)/(λ' + G + K_w/n). With K_w/n → ∞, β → 0: s' stays s'₀ and the strength is
+# s_u = c' cos φ' + s'₀ sin φ' — the textbook result. With the finite penalty the Mohr–Coulomb condition
+# t = c' cos φ' + s' sin φ' is met at
+#
+# t_u = (c' cos φ' + s'₀ sin φ' − β t₀ sin φ') / (1 − β sin φ'),
+#
+# and it stays there (Δt (1 − β sin φ') = 0 on the yield surface: a plateau). The derivation needs σ'_y to
+# stay the intermediate stress, which holds here (it changes by λ'Δε_v, between the other two). The element
+# is uniform, so the check is to round-off (tolerance 1e-10, the plateau after ~35 plastic steps); the
+# penalty's finite K_w/n raises s_u above the K_w/n → ∞ form by at most β sin φ'/(1 − β sin φ'),
+# 1.3 % for ν_u = 0.495 (β = 0.025), which is the modelling error of the penalty, and is asserted as such.
+
+# %%
+C_A, PHI_A = 10e3, 30.0
+lay_a = SoilLayer(1.0, E=E_SK, nu=NU_SK, c=C_A, phi_deg=PHI_A, psi_deg=0.0, drainage="undrained_A", nu_u=NU_U)
+lam_sk = E_SK * NU_SK / ((1 + NU_SK) * (1 - 2 * NU_SK))
+beta = (lam_sk + G_SK) / (lam_sk + G_SK + lay_a.k_water())
+sphi, cphi = np.sin(np.radians(PHI_A)), np.cos(np.radians(PHI_A))
+su_err, su_gap, paths_a = [], [], {}
+for k0 in (1.0, 0.6):
+    sig0 = np.array([-k0 * 100e3, -100e3, 0.0, -k0 * 100e3])
+    test = biaxial_compression(lay_a, sig0)
+    s0, t0 = -0.5 * (sig0[0] + sig0[1]), 0.5 * (sig0[0] - sig0[1])
+    t_u = (C_A * cphi + s0 * sphi - beta * t0 * sphi) / (1 - beta * sphi)
+    su_err += [abs(test["t"].max() / t_u - 1), abs(test["t"][-1] / t_u - 1)]
+    su_gap.append(t_u / (C_A * cphi + s0 * sphi) - 1)
+    paths_a[k0] = (test, t_u)
+    print(
+        f"K0 = {k0}: peak t = {test['t'].max() / 1e3:.4f} kPa, closed form t_u = {t_u / 1e3:.4f} kPa "
+        f"(error {su_err[-2]:.1e}, plateau {su_err[-1]:.1e}); c cos phi + s'0 sin phi = "
+        f"{(C_A * cphi + s0 * sphi) / 1e3:.4f} kPa (penalty effect {100 * su_gap[-1]:+.2f} %); excess pore "
+        f"pressure at the end {test['excess_pore_pressure'][-1] / 1e3:.2f} kPa"
+    )
+undrained_a_su = max(su_err)
+SU_TOL = 1e-10
+PENALTY_BOUND = beta * sphi / (1 - beta * sphi)
+assert undrained_a_su < SU_TOL and all(0.0 < g <= PENALTY_BOUND * (1 + 1e-9) for g in su_gap)  # = for t0 = 0
+record(
+    "undrained_a_su",
+    "max |t_peak / t_u - 1| (and of the plateau), Mohr-Coulomb psi = 0 undrained A biaxial, isotropic and "
+    "K0 = 0.6 starts; t_u with the finite K_w/n",
+    undrained_a_su,
+    SU_TOL,
+    undrained_a_su < SU_TOL,
+)
+
+fig, ax = plt.subplots(1, 2, figsize=(11, 3.8))
+for name, k in (("building", pstep_pit["building"]), ("pit", pstep_pit["pit"])):
+    x, s = pit_out.surface(k)
+    ax[0].plot(x, 1e3 * s, label=f"after {name}")
+ax[0].invert_yaxis()
+ax[0].set_xlabel("x [m]")
+ax[0].set_ylabel("settlement of the ground [mm]")
+ax[0].set_title("strip at x = -5..-3 m, then a pit at -1.3..3.7 m")
+ax[0].legend()
+s_line = np.linspace(0.0, 110e3, 2)
+ax[1].plot(s_line / 1e3, (C_A * cphi + s_line * sphi) / 1e3, "k", lw=0.8, label="t = c cos φ + s' sin φ")
+for k0, (test, t_u) in paths_a.items():
+    ax[1].plot(test["s"] / 1e3, test["t"] / 1e3, "o-", ms=2, label=f"undrained path, K0 = {k0}")
+    ax[1].axhline(t_u / 1e3, ls=":", color="0.5")
+ax[1].set_xlabel("s' = -(σ'xx + σ'zz)/2 [kPa]")
+ax[1].set_ylabel("t = (σ'xx − σ'zz)/2 [kPa]")
+ax[1].set_title("undrained A, ψ = 0: effective stress paths")
+ax[1].legend()
+save_figure(fig, "12_excavation_undrained")
+
+# %% [markdown]
+# *Figure 12.3 — Left: settlement of the ground (negative: heave) after the strip is loaded and after the pit
+# beside it is dug; the pit's bottom heaves and the strip tilts towards the pit. Right: effective stress
+# paths of the undrained biaxial test: the mean stress hardly moves (β = 0.025) until the path meets the
+# Mohr–Coulomb line, where it stays; dotted: the closed-form t_u.*
+#
+# ## 12. A phased run that stops
+#
+# If a phase cannot be solved, the analysis raises `PhaseNonConvergence` (a `NonConvergence`): its message
+# names the failing phase and every completed one with its steps, and `err.scene_result` is a `SceneResult` of
+# all of them — the completed phases' states can be read, plotted and written (`write_result(...,
+# stop=err.report)`, which `ssi run` does). Here the paper's equal steps with one cut allowed stop a
+# 3 MN/m overload after the strip's weight; the weight phase must still be there, the contact carrying
+# the strip's weight 25 kN/m³ × 0.5 m × 2 m to the solver's tolerance (1e-4).
+
+# %%
+stop_scene = Scene(
+    width=12.0,
+    depth=H_LAYER,
+    layers=[SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0)],
+    foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
+    contact=Contact(kn=1e10, kt=1e9),
+    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+    phases=[Phase("weight", loads=(StripWeight(25e3),)), Phase("overload", loads=(ColumnLoad(0.0, N=3e6),))],
+)
+stop_built = stop_scene.build()
+try:
+    stop_built.solve(n_steps=2, settings=Settings.paper(max_iter=40, max_cuts=1))
+    raise AssertionError("the overload was expected to stop")
+except PhaseNonConvergence as err:
+    stopped = err
+print(str(stopped)[:400], "...")
+kept_phases = stopped.scene_result.phases
+print([(r["name"], r["first"], r["last"], r["result"].status) for r in kept_phases])
+weight_force = stop_built.contact_force(stopped.scene_result)[kept_phases[1]["last"]]
+phases_stopped_kept = abs(weight_force / (25e3 * 0.5 * 2.0) - 1)
+STOP_TOL = 1e-4
+assert [r["name"] for r in kept_phases] == ["geostatic", "weight", "overload"]
+assert [r["result"].status for r in kept_phases] == ["completed", "completed", "stopped"]
+assert "weight (steps" in str(stopped) and phases_stopped_kept < STOP_TOL
+record(
+    "phases_stopped_kept",
+    "stopped phased run: |contact force at the end of the completed weight phase / strip weight - 1|",
+    phases_stopped_kept,
+    STOP_TOL,
+    phases_stopped_kept < STOP_TOL,
+)
+
+# %% [markdown]
 # ## Summary
 #
 # | check | reference | result |
@@ -650,6 +1065,12 @@ assert len(caught) == 2
 # | water table | hand calculation of σ'_v, σ'_h, p | `water_table_k0` |
 # | undrained clay | Prandtl (2 + π) s_u | `undrained_prandtl` |
 # | embedment | Terzaghi's depth term γD N_q | `embedment_nq` |
+# | excavation, 1D | heave γt(H − t)/M, Δσ_v = γt, Δσ_h = ν/(1 − ν) γt | `excavation_heave` |
+# | excavation, pit | removed buoyant weight + surcharge (equilibrium) | `excavation_pit_reaction` |
+# | drained → undrained → drained | elastic (G, ν_u); Δu = Δσ_v K_w/n/(K_w/n + M'); drained end state | `undrained_switch` |
+# | ponding | σ', u independent of the pond; p, σ_v, buoyant strip by hand | `ponding_effective_stress` |
+# | undrained A, Mohr–Coulomb | t_u = (c cos φ + s'₀ sin φ − β t₀ sin φ)/(1 − β sin φ) | `undrained_a_su` |
+# | stopped phased run | completed phases kept (strip weight carried) | `phases_stopped_kept` |
 #
 # References: L. Prandtl (1920), H. Reissner (1924) for N_q; K. Terzaghi (1943) *Theoretical Soil Mechanics*
 # for the surcharge treatment of the overburden; G.G. Meyerhof (1963) for depth factors.

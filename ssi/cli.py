@@ -129,10 +129,10 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     try:
         result = built.solve(n_steps=n_steps, settings=settings)
     except NonConvergence as err:
-        # the converged steps before the failure (of a phased scene: those of the failing phase only, which
-        # is all NonConvergence carries)
+        # the converged steps before the failure; of a phased scene every completed phase and the failing
+        # phase's steps (PhaseNonConvergence.scene_result)
         r = err.result
-        result = SceneResult(built, r.load_factor, r.u, r.states, r)
+        result = getattr(err, "scene_result", None) or SceneResult(built, r.load_factor, r.u, r.states, r)
         stop = err.report
     wall = time.perf_counter() - t0
     complete = stop is None

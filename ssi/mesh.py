@@ -132,6 +132,7 @@ def soil_block(
     x_left=None,
     breaks=(),
     embedment=0.0,
+    edges=(),
 ):
     """The graded soil block of Fig. 1.
 
@@ -147,6 +148,8 @@ def soil_block(
         otherwise a line is added; a position that already is a node (a mid-side node) is left alone
     embedment : depth D [m] of the foundation base below the ground (>= 0; must be a layer boundary): the
         elements above it between the foundation ends are removed (the trench the strip sits in)
+    edges : x positions [m] that must be element edges (vertical mesh lines through corner nodes, e.g. the
+        sides of an excavation), placed before ``breaks`` as they are
     """
     width = check_real("width", width, lo=0.0, lo_open=True, unit="m")
     depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
@@ -186,9 +189,9 @@ def soil_block(
     h0 = (x1 - x0) / n_under
     left = graded_lines(x0, x_left, h0, h_coarse, growth)[::-1]
     right = graded_lines(x1, x_right, h0, h_coarse, growth)
-    x_lines = _insert_breaks(
-        np.unique(np.concatenate([left, under, right])), breaks, (x_left, x0, x1, x_right)
-    )
+    protected = (x_left, x0, x1, x_right)
+    x_lines = _insert_breaks(np.unique(np.concatenate([left, under, right])), edges, protected, as_edges=True)
+    x_lines = _insert_breaks(x_lines, breaks, protected + tuple(float(v) for v in edges))
     z_parts = [np.array([0.0])]
     top, h = 0.0, h0
     for t in layers:
@@ -211,9 +214,10 @@ def soil_block(
     return mesh
 
 
-def _insert_breaks(lines, breaks, protected):
+def _insert_breaks(lines, breaks, protected, as_edges=False):
     """Make every x in ``breaks`` a node of the surface: move the nearest unprotected line there when both
-    neighbouring elements stay at least half their size, else insert a line."""
+    neighbouring elements stay at least half their size, else insert a line. ``as_edges``: every x must be
+    a line itself (an element edge), a mid-side node is not enough."""
     lines = np.array(lines, np.float64)
     fixed = list(protected)
     for b in sorted(float(v) for v in breaks):
@@ -221,7 +225,7 @@ def _insert_breaks(lines, breaks, protected):
             raise ValueError(f"break x={b} lies outside the block [{lines[0]}, {lines[-1]}]")
         mids = 0.5 * (lines[:-1] + lines[1:])
         scale = max(1.0, abs(b)) * 1e-9
-        if np.min(np.abs(lines - b)) < scale or np.min(np.abs(mids - b)) < scale:
+        if np.min(np.abs(lines - b)) < scale or (not as_edges and np.min(np.abs(mids - b)) < scale):
             fixed.append(b)
             continue
         i = int(np.argmin(np.abs(lines - b)))

@@ -40,11 +40,16 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
   the layer(s) above depth D (the backfill).
 * **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
+* **Phases that change the soil**: ``Phase.excavate`` removes :class:`Excavation` regions (the forces the
+  removed soil exerted fall to zero over the phase), ``Phase.drainage`` switches a layer between drained and
+  undrained_A; ``water_table < 0`` is free water above the ground (pore pressure, not effective stress). A
+  phase that does not converge raises :class:`PhaseNonConvergence` with every completed phase.
 """
 
 import math
 import warnings
 from dataclasses import dataclass, field
+from itertools import pairwise
 
 import numpy as np
 
@@ -65,9 +70,9 @@ from .materials.soil_laws import (
     pore_pressure,
 )
 from .mesh import foundation_contact, soil_block, surface_pressure_forces
-from .model import Model
+from .model import Model, System
 from .section import Section
-from .solver import Settings, run
+from .solver import NonConvergence, Settings, run
 from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
 
 
@@ -99,12 +104,16 @@ class SoilLayer:
     nu_u: float = 0.495
 
     def k_water(self) -> float:
-        """K_w/n [Pa] of the pore water: 0 if drained; else K_u - K' with K_u the bulk modulus of the skeleton's
-        shear modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
+        """K_w/n [Pa] of the pore water: 0 if drained; else :meth:`undrained_k_water`."""
         if self.drainage == "drained":
             return 0.0
         if self.drainage != "undrained_A":
             raise ValueError(f"drainage must be 'drained' or 'undrained_A', got {self.drainage!r}")
+        return self.undrained_k_water()
+
+    def undrained_k_water(self) -> float:
+        """K_w/n [Pa] of the layer when undrained: K_u - K' with K_u the bulk modulus of the skeleton's shear
+        modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
         if not (self.nu < self.nu_u < 0.5):
             raise ValueError(
                 f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}"
@@ -324,7 +333,9 @@ class StripLoad:
 @dataclass(frozen=True)
 class StripWeight:
     """Self-weight of the strip from its section: ``unit_weight`` [N/m^3] times the section depth [m], a
-    uniform downward load [Pa] applied in the phase that lists it (reinforced concrete: 25e3)."""
+    uniform downward load [Pa] applied in the phase that lists it (reinforced concrete: 25e3). Below the
+    water level the strip's buoyancy gamma_w [N/m^3] times its submerged thickness [m] is netted from it (the
+    water pressure on its base exceeds that on its top by that much)."""
 
     unit_weight: float = 25e3
 
@@ -341,16 +352,47 @@ class Settlement:
 
 
 @dataclass(frozen=True)
+class Excavation:
+    """Soil removed in the phase that lists it: every element whose centre lies in ``x0`` < x < ``x1`` [m]
+    and ``top`` < depth below the ground < ``bottom`` [m]. The mesh puts element edges on all four sides
+    (x0 and x1 become element lines, top and bottom split the layers there). x0 = -width/2 and
+    x1 = width/2 remove a whole layer part over the full width. The removed soil's stress and weight (and a
+    surcharge on its ground) are released over the phase; below the water table the pit stays flooded to
+    the table (the effective-stress formulation: the water in it balances the pore pressure on its faces).
+    It may not remove soil under the strip or beside an embedded strip's trench walls."""
+
+    x0: float
+    x1: float
+    bottom: float
+    top: float = 0.0
+
+    def __post_init__(self):
+        x0 = check_real("Excavation.x0", self.x0, unit="m")
+        if not x0 < check_real("Excavation.x1", self.x1, unit="m"):
+            raise ValueError(f"Excavation.x0 must be < x1, got x0={self.x0!r}, x1={self.x1!r}")
+        top = check_real("Excavation.top", self.top, lo=0.0, unit="m (depth below the ground)")
+        check_real("Excavation.bottom", self.bottom, lo=top, lo_open=True, unit="m (depth, > top)")
+
+
+@dataclass(frozen=True)
 class Phase:
     """One stage of the analysis: ``loads`` added (at full value at the end of the phase), ``factors``
     {name of an earlier phase: factor} rescaling that phase's loads (0 removes them, 1 restores them;
     a Settlement's factor scales its settlement), ``n_steps`` equal increments (None: the ``n_steps`` given to
-    ``solve``)."""
+    ``solve``).
+
+    ``excavate``: :class:`Excavation` regions whose soil this phase removes (the forces the removed soil
+    exerted on the rest -- its stress and weight -- fall to zero during the phase). ``drainage``: {index of a
+    layer in ``Scene.layers`` (0 = top): "drained" | "undrained_A"} from this phase on (a layer switched to
+    undrained starts its excess pore pressure at zero from the phase's first state; switched back to
+    drained, its excess pore pressure is released during the phase: full consolidation)."""
 
     name: str
     loads: tuple = ()
     factors: dict = field(default_factory=dict)
     n_steps: int | None = None
+    excavate: tuple = ()
+    drainage: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name:
@@ -365,6 +407,15 @@ class Phase:
             check_real(f"Phase({self.name!r}).factors[{key!r}]", value)
         if self.n_steps is not None:
             check_int(f"Phase({self.name!r}).n_steps", self.n_steps, lo=1)
+        _check_list(f"Phase({self.name!r}).excavate", list(self.excavate), Excavation)
+        if not isinstance(self.drainage, dict):
+            raise TypeError(
+                f"Phase({self.name!r}).drainage must be a dict {{layer index: 'drained' | 'undrained_A'}}, "
+                f"got {type(self.drainage).__name__}"
+            )
+        for key, value in self.drainage.items():
+            check_int(f"Phase({self.name!r}).drainage key (layer index)", key, lo=0)
+            check_choice(f"Phase({self.name!r}).drainage[{key!r}]", value, DRAINAGE)
 
 
 @dataclass(frozen=True)
@@ -393,7 +444,8 @@ class Scene:
     one; ``mesh``; ``surcharge`` [Pa] on the ground (a dead load of the geostatic state, beside the strip; the
     strip carries it over its own width); ``phases`` after ``loads``; ``embedment`` D [m] of the strip's base
     below the ground (a layer boundary); ``water_table`` [m] depth of the water table below the ground (None:
-    dry); ``gamma_w`` [N/m^3] unit weight of water.
+    dry; negative: free water stands -water_table above the ground, ponding); ``gamma_w`` [N/m^3] unit weight
+    of water.
     """
 
     width: float
@@ -423,7 +475,9 @@ class Scene:
         check_instance("Scene.mesh", self.mesh, MeshSize)
         _check_list("Scene.phases", self.phases, Phase)
         check_real("Scene.embedment", self.embedment, lo=0.0, hi=depth, hi_open=True, unit="m")
-        check_optional_real("Scene.water_table", self.water_table, lo=0.0, unit="m")
+        check_optional_real(
+            "Scene.water_table", self.water_table, unit="m (depth below the ground; < 0: water above it)"
+        )
         check_real("Scene.gamma_w", self.gamma_w, lo=0.0, lo_open=True, unit="N/m^3")
         total = sum(lay.thickness for lay in self.layers)
         if abs(total - depth) > 1e-9 * depth:
@@ -478,6 +532,7 @@ class Scene:
             self.mesh.growth,
             breaks=self._breaks(),
             embedment=self.embedment,
+            edges=sorted({v for ph in self.phases for ex in ph.excavate for v in (ex.x0, ex.x1)}),
         )
         model = Model()
         model.info["scene"] = _describe(self)
@@ -503,10 +558,13 @@ class Scene:
         model.fix(mesh.left, "u")
         model.fix(mesh.right, "u")
         built = BuiltScene(self, model, mesh, soil)
+        owner = [next(i for i, lay in enumerate(self.layers) if lay is own) for _, own, _ in mesh_layers]
+        built.element_layer = np.array(owner, np.int64)[mesh.el_layer]
         built.geostatic_load = self._ground_loads(built)
         if f is not None:
             self._add_foundation(built)
         model.add_element_load(np.arange(model.n_dof)[None], built.geostatic_load[None], dead=True)
+        _check_excavations(built)
         for load in self.loads:
             built._register(load)
         return built
@@ -540,19 +598,18 @@ class Scene:
         """[(thickness, layer, body-force unit weight)] with the layer that holds the water table split there:
         gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective stress)."""
         d_w = math.inf if self.water_table is None else float(self.water_table)
-        if self.water_table is not None and not (np.isfinite(d_w) and d_w >= 0.0):
-            raise ValueError(
-                f"water_table must be a depth >= 0 below the ground [m] or None, got {self.water_table}"
-            )
+        if self.water_table is not None and not np.isfinite(d_w):
+            raise ValueError(f"water_table must be a finite depth below the ground [m] or None, got {d_w}")
+        # depths where a layer is split: the water table and the top and bottom of every excavation
+        cuts = [d_w] + [d for ph in self.phases for ex in ph.excavate for d in (ex.top, ex.bottom)]
         out, top = [], 0.0
         for lay in self.layers:
             sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
             wet = max(sat - self.gamma_w, 0.0) if self.water_table is not None else sat
             bottom = top + lay.thickness
-            if top < d_w < bottom and min(d_w - top, bottom - d_w) > 1e-9 * lay.thickness:
-                out += [(d_w - top, lay, lay.unit_weight), (bottom - d_w, lay, wet)]
-            else:
-                out.append((lay.thickness, lay, lay.unit_weight if bottom <= d_w + 1e-12 else wet))
+            inner = sorted({d for d in cuts if min(d - top, bottom - d) > 1e-9 * lay.thickness})
+            for a, b in pairwise([top, *inner, bottom]):
+                out.append((b - a, lay, lay.unit_weight if b <= d_w + 1e-12 else wet))
             top = bottom
         return out
 
@@ -688,6 +745,62 @@ def _check_phases(scene):
             )
         if ph.n_steps is not None and int(ph.n_steps) < 1:
             raise ValueError(f"phases[{k}] ({ph.name!r}): n_steps must be >= 1, got {ph.n_steps}")
+        _check_phase_soil(scene, k, ph)
+
+
+def _check_excavations(built):
+    """No excavation removes soil under the strip or beside an embedded strip's trench walls (an element with
+    an edge on the contact or on a wall)."""
+    scene, mesh = built.scene, built.mesh
+    f = scene.foundation
+    if f is None or not any(ph.excavate for ph in scene.phases):
+        return
+    xy = mesh.xy
+    on_base = (
+        (np.abs(xy[:, 1] + scene.embedment) < 1e-9) & (xy[:, 0] > f.x0 - 1e-9) & (xy[:, 0] < f.x1 + 1e-9)
+    )
+    on_wall = (
+        (np.minimum(np.abs(xy[:, 0] - f.x0), np.abs(xy[:, 0] - f.x1)) < 1e-9)
+        & (xy[:, 1] > -scene.embedment - 1e-9)
+        & (scene.embedment > 0.0)
+    )
+    touching = (on_base | on_wall)[mesh.conn].sum(axis=1) >= 2
+    for k, ph in enumerate(scene.phases):
+        if (built._excavated(ph) & touching).any():
+            raise ValueError(
+                f"phases[{k}] ({ph.name!r}): an excavation removes soil under the strip or beside its trench "
+                f"walls (strip x0={f.x0}, x1={f.x1}, embedment {scene.embedment} m); keep it clear of them"
+            )
+
+
+def _check_phase_soil(scene, k, ph):
+    """A phase's excavations lie in the block and leave the strip and its loads alone; its drainage names
+    existing layers that can be undrained."""
+    where = f"phases[{k}] ({ph.name!r})"
+    for key, value in ph.drainage.items():
+        if key >= len(scene.layers):
+            raise ValueError(
+                f"{where}: drainage names layer {key}; the scene has layers 0..{len(scene.layers) - 1}"
+            )
+        if value == "undrained_A":
+            try:
+                scene.layers[key].undrained_k_water()
+            except ValueError as err:
+                raise ValueError(f"{where}: drainage[{key}] = 'undrained_A': {err}") from err
+    half = 0.5 * scene.width
+    pressures = [ld for p in scene.phases for ld in p.loads if isinstance(ld, SurfacePressure)]
+    pressures += [ld for ld in scene.loads if isinstance(ld, SurfacePressure)]
+    for j, ex in enumerate(ph.excavate):
+        name = f"{where}.excavate[{j}]"
+        if ex.x0 < -half - 1e-9 or ex.x1 > half + 1e-9:
+            raise ValueError(f"{name}: x0={ex.x0}, x1={ex.x1} must lie in the block [{-half:g}, {half:g}] m")
+        if ex.bottom >= scene.depth:
+            raise ValueError(f"{name}: bottom={ex.bottom} m must be < the block depth {scene.depth:g} m")
+        for ld in pressures:
+            if ex.top == 0.0 and min(ex.x1, ld.x1) - max(ex.x0, ld.x0) > 1e-9:
+                raise ValueError(
+                    f"{name}: ({ex.x0}, {ex.x1}) removes the ground under SurfacePressure({ld.x0}, {ld.x1})"
+                )
 
 
 # values below these in SI look like they were given in kN, kPa or kN/m^3
@@ -780,6 +893,36 @@ def _run_phase(model, load_factors, settings, start=None, loads=None):
     return run(model, load_factors, settings, start=start, loads=loads)
 
 
+class PhaseNonConvergence(NonConvergence):
+    """A phase of a phased solve did not converge. ``scene_result`` is a :class:`SceneResult` of every
+    completed phase plus the failing phase's converged steps (its record's ``result`` has status "stopped";
+    ``ssi.results.write_result`` writes it with ``stop=report``); ``result`` is the failing phase's partial
+    solver result (as for any :class:`~ssi.solver.NonConvergence`); ``report`` is the solver's report with
+    ``phase`` (the failing phase's name) and ``completed_phases`` ("name (steps first-last)") added."""
+
+    def __init__(self, report: dict, result, scene_result: "SceneResult"):
+        super().__init__(report, result)
+        self.scene_result = scene_result
+        solver = ", ".join(f"{k}={v}" for k, v in report.items() if k not in ("phase", "completed_phases"))
+        done = ", ".join(report["completed_phases"]) or "none"
+        text = f"phase {report['phase']!r} did not converge: {solver}; completed phases: {done}"
+        self.args = (text + " (all in .scene_result)",)
+
+
+def _phase_failure(built, err, name, records, lam, u, states, index):
+    """The PhaseNonConvergence of phase ``name`` (phase time ``index`` .. index + 1) from the solver's
+    NonConvergence ``err``, with the completed phases' ``records`` and rows ``lam``, ``u``, ``states``."""
+    partial = err.result
+    first = len(lam)
+    lam = lam + [index + v for v in partial.load_factor[1:]]
+    u = u + partial.u[1:]
+    states = states + partial.states[1:]
+    records = records + [{"name": name, "first": first, "last": len(lam) - 1, "result": partial}]
+    done = [f"{r['name']} (steps {r['first']}-{r['last']})" for r in records[:-1]]
+    report = {"phase": name, "completed_phases": done, **err.report}
+    return PhaseNonConvergence(report, partial, SceneResult(built, lam, u, states, partial, phases=records))
+
+
 def _hold(model, dofs, start, increment):
     """Constrain ``dofs`` to start + lambda * increment during a phase (the model stores a DOF's fixed value
     and its prescribed reference apart; both are set here)."""
@@ -799,6 +942,7 @@ class BuiltScene:
     plate_nodes: np.ndarray | None = None
     geostatic_load: np.ndarray | None = None  # (n_dof,) dead loads [N/m] holding the geostatic state
     base_pressure: float = 0.0  # geostatic vertical stress [Pa] the strip's base starts with
+    element_layer: np.ndarray | None = None  # (n_el,) index in scene.layers of every soil element
 
     def plate_node_at(self, x, tol=1e-6):
         xs = self.model.coords[self.plate_nodes, 0]
@@ -840,7 +984,7 @@ class BuiltScene:
                 self.plate.edofs, self.plate.distributed_load(self._strip_profile(load), comp="w"), f_vec
             )
         elif isinstance(load, StripWeight):
-            q = load.unit_weight * self.plate.section.thickness
+            q = load.unit_weight * self.plate.section.thickness - self.scene.gamma_w * self._submerged_depth()
             scatter_vector(self.plate.edofs, self.plate.distributed_load(-q, comp="w"), f_vec)
         elif isinstance(load, Settlement):
             ids = self.plate_nodes if load.x is None else np.array([self.plate_node_at(x) for x in load.x])
@@ -852,6 +996,14 @@ class BuiltScene:
                 f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or Settlement"
             )
         return f_vec, held
+
+    def _submerged_depth(self) -> float:
+        """Thickness [m] of the strip below the water level: the water pressure on its base exceeds that on its
+        top by gamma_w times it (the strip's buoyancy, netted in :class:`StripWeight`)."""
+        if self.scene.water_table is None:
+            return 0.0
+        t = self.plate.section.thickness
+        return float(np.clip(-self.scene.water_table + self.scene.embedment, 0.0, t))
 
     def _strip_profile(self, load):
         a = self.scene.foundation.x0 if load.x0 is None else load.x0
@@ -886,8 +1038,23 @@ class BuiltScene:
 
     def excess_pore_pressure(self, out, k=-1) -> np.ndarray:
         """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's integration
-        points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers."""
-        return self.soil.excess_pore_pressure(out.u[k][self.soil.edofs])
+        points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers (and in a layer's drained phases,
+        see ``Phase.drainage``) and in excavated elements."""
+        config = self.soil_configuration(out, k) if out.phases else None
+        try:
+            if config is not None:
+                self.soil.configure(config["active"], config["k_water"], config["reference"])
+            return self.soil.excess_pore_pressure(out.u[k][self.soil.edofs])
+        finally:
+            self.soil.configure()
+
+    def total_stress(self, out, k=-1) -> np.ndarray:
+        """(n_el, n_ip, 4) total stress [sxx, szz, txz, syy] [Pa] (tension positive) at step ``k`` of ``out``:
+        the effective stress of the state minus the pore pressure (hydrostatic from the water level, ponding
+        included, plus the excess of undrained layers) on the normal components."""
+        p = self.pore_pressure() + self.excess_pore_pressure(out, k)
+        sig = out.soil_stress(k)
+        return sig - p[..., None] * np.array([1.0, 1.0, 0.0, 1.0])
 
     def contact_force(self, out) -> np.ndarray:
         """Vertical force [N/m] the strip presses on the soil (> 0 compression) at every step of ``out``:
@@ -978,6 +1145,7 @@ class BuiltScene:
             lam, u, states = [0.0, 0.0], [res.u[0], res.u[-1]], [res.states[0], res.states[-1]]
             effects, factors, held_from = {}, {}, {}
             f_prev = np.zeros(n)
+            config = self._initial_soil()
             for i, ph in enumerate(phases):
                 parts = [self.load_effect(ld) for ld in ph.loads]
                 f_ph = sum((p[0] for p in parts), np.zeros(n)) + (plate_weight if i == 0 else 0.0)
@@ -997,14 +1165,27 @@ class BuiltScene:
                         target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
                 dofs = np.array(sorted(target), np.int64)
                 now = res.u[-1][dofs]
+                soil_before = config
+                config = self._phase_soil(config, ph, res.u[-1])
+                if config is not soil_before:  # soil removed or drainage switched
+                    self.soil.configure(config["active"], config["k_water"], config["reference"])
+                    self._fix_removed_nodes(config, res.u[-1])
+                    f_geo = self._body_force() + self.geostatic_load - self._removed_ground_load(config)
                 _hold(model, dofs, now, np.array([target[d] for d in dofs]) - now)
-                res = _run_phase(
-                    model,
-                    _load_levels(ph.n_steps or n_steps),
-                    settings,
-                    start=res,
-                    loads=(f_end - f_prev, f_geo + f_prev),
-                )
+                # a changed soil releases the forces it no longer carries: the out-of-balance force g of the
+                # phase's first state (removed elements' stress and weight, the released pore water) is
+                # applied at the start and falls to zero over the phase
+                g = self._release_force(res, f_geo + f_prev) if config is not soil_before else 0.0
+                try:
+                    res = _run_phase(
+                        model,
+                        _load_levels(ph.n_steps or n_steps),
+                        settings,
+                        start=res,
+                        loads=(f_end - f_prev - g, f_geo + f_prev + g),
+                    )
+                except NonConvergence as err:
+                    raise _phase_failure(self, err, ph.name, records, lam, u, states, i) from err
                 _hold(model, dofs, np.array([target[d] for d in dofs]), np.zeros(len(dofs)))
                 f_prev = f_end
                 first = len(lam)
@@ -1019,7 +1200,106 @@ class BuiltScene:
             model._fixed.update(saved[0])
             model._prescribed.clear()
             model._prescribed.update(saved[1])
+            self.soil.configure()
         return SceneResult(self, lam, u, states, res, phases=records)
+
+    # ---- phases that change the soil: excavation, drainage switch ---------------------------------------
+    def _phase_list(self):
+        """The phases after the geostatic one: ``scene.loads`` (if any) as the first, named "loads"."""
+        scene = self.scene
+        return ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
+
+    def _initial_soil(self):
+        """The soil configuration as built: every element present, each layer's own drainage."""
+        n_el = self.soil.n_el
+        kw = np.array([lay.k_water() for lay in self.scene.layers])[self.element_layer]
+        return {"active": np.ones(n_el, bool), "k_water": kw, "reference": np.zeros((n_el, 16))}
+
+    def _phase_soil(self, config, phase, u_start):
+        """The soil configuration of ``phase`` from that of the phase before (returned itself if unchanged):
+        its excavations removed, its drainage switches made (an undrained layer's pore water counts the
+        volume change from ``u_start``, the phase's first state)."""
+        removed = self._excavated(phase)
+        switch = {
+            k: v
+            for k, v in phase.drainage.items()
+            if (config["k_water"][self.element_layer == k] > 0).any() != (v == "undrained_A")
+        }
+        if not (removed & config["active"]).any() and not switch:
+            return config
+        active = config["active"] & ~removed
+        kw, ref = config["k_water"].copy(), config["reference"].copy()
+        for k, value in switch.items():
+            els = self.element_layer == k
+            kw[els] = self.scene.layers[k].undrained_k_water() if value == "undrained_A" else 0.0
+            ref[els] = u_start[self.soil.edofs[els]]
+        return {"active": active, "k_water": kw, "reference": ref}
+
+    def _excavated(self, phase):
+        """(n_el,) bool: the soil elements inside the phase's excavation regions."""
+        xc = self.soil.coords.mean(axis=1)
+        out = np.zeros(self.soil.n_el, bool)
+        for ex in phase.excavate:
+            depth = -xc[:, 1]
+            out |= (xc[:, 0] > ex.x0) & (xc[:, 0] < ex.x1) & (depth > ex.top) & (depth < ex.bottom)
+        return out
+
+    def soil_configuration(self, out, k=-1) -> dict:
+        """The soil configuration at step ``k`` of ``out``: ``active`` (n_el,) elements present (False:
+        excavated), ``k_water`` (n_el,) K_w/n [Pa] (0: drained), ``reference`` (n_el, 16) displacement [m]
+        from which each undrained element's pore water counts. Replayed from the phases of ``out``."""
+        config = self._initial_soil()
+        k = k % len(out.u)
+        for phase, record in zip(self._phase_list(), (out.phases or [])[1:]):
+            if record["first"] > k:
+                break
+            config = self._phase_soil(config, phase, out.u[record["first"] - 1])
+        return config
+
+    def _body_force(self):
+        """(n_dof,) body forces [N/m] of the soil as currently configured (the plate's weight is a load)."""
+        f = np.zeros(self.model.n_dof)
+        for g in self.model.groups:
+            if g is not self.plate and g.body_force() is not None:
+                scatter_vector(g.edofs, g.body_force(), f)
+        return f
+
+    def _removed_ground_load(self, config):
+        """(n_dof,) the part of the geostatic ground load (the surcharge) that acted on the top edges of
+        excavated elements: it is removed with them."""
+        f = np.zeros(self.model.n_dof)
+        q, fdn = self.scene.surcharge, self.scene.foundation
+        if not q:
+            return f
+        for e in np.flatnonzero(~config["active"]):
+            top = self.mesh.conn[e][[3, 6, 2]]  # serendipity order: top edge left, middle, right
+            x, z = self.mesh.xy[top, 0], self.mesh.xy[top, 1]
+            under_strip = fdn is not None and fdn.x0 - 1e-9 <= x[1] <= fdn.x1 + 1e-9
+            if np.all(np.abs(z) < 1e-9) and not under_strip:
+                np.add.at(f, self.model.dof(top, "w"), -q * np.array([1.0, 4.0, 1.0]) * (x[2] - x[0]) / 6.0)
+        return f
+
+    def _fix_removed_nodes(self, config, u_start):
+        """Hold the soil nodes that no present element uses at their displacement (they leave the system)."""
+        used = np.zeros(len(self.mesh.xy), bool)
+        used[self.mesh.conn[config["active"]].ravel()] = True
+        for d in (
+            self.model.dof(np.flatnonzero(~used), "u").tolist()
+            + self.model.dof(np.flatnonzero(~used), "w").tolist()
+        ):
+            self.model._fixed[int(d)] = float(u_start[d])
+            self.model._prescribed.pop(int(d), None)
+
+    def _release_force(self, res, f_ext):
+        """g (n_dof,) [N/m]: internal force of the changed model at the phase's first state minus the external
+        force ``f_ext`` it keeps, on the free DOFs -- the excavation forces (the removed soil's stress and
+        weight acting on what remains) and the pore water force a drained layer releases."""
+        system = System(self.model)
+        u0 = res.u[-1]
+        f_int, _, _ = system.evaluate(u0, np.zeros_like(u0), res.final_state, None)
+        g = np.zeros(self.model.n_dof)
+        g[system.free] = (f_int - f_ext)[system.free]
+        return g
 
 
 @dataclass
@@ -1060,8 +1340,14 @@ class SceneResult:
         return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": names}
 
     def surface(self, k=-1):
-        """(x, settlement) of the soil surface, positive downwards."""
+        """(x, settlement) of the soil surface, positive downwards; after an excavation the ground as it is at
+        step ``k`` (the pit's bottom and walls' tops)."""
         ids = self.built.mesh.surface
+        if any(ph.excavate for ph in self.built.scene.phases) and self.phases:
+            mesh = self.built.mesh
+            used = np.zeros(len(mesh.xy), bool)
+            used[mesh.conn[self.active_elements(k)].ravel()] = True
+            ids = np.array([col[(col >= 0) & used[np.maximum(col, 0)]][-1] for col in mesh.grid], np.int64)
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
     def plate_layers(self, k=-1):
@@ -1173,6 +1459,20 @@ class SceneResult:
     def soil_stress(self, k=-1):
         """(n_el, n_ip, 4) soil stress [sxx, szz, txz, syy] [Pa] (tension positive; geostatic included)."""
         return self.built.soil.stress(self._group_state(self.built.soil, k)).copy()
+
+    def total_stress(self, k=-1):
+        """(n_el, n_ip, 4) total soil stress [sxx, szz, txz, syy] [Pa] (tension positive) at step ``k``: see
+        :meth:`BuiltScene.total_stress`."""
+        return self.built.total_stress(self, k)
+
+    def pore_pressure(self, k=-1):
+        """(n_el, n_ip) pore pressure [Pa] (compression positive) at step ``k``: hydrostatic from the water
+        level (ponding included) plus the excess pore pressure of undrained layers."""
+        return self.built.pore_pressure() + self.built.excess_pore_pressure(self, k)
+
+    def active_elements(self, k=-1):
+        """(n_el,) bool: the soil elements present at step ``k`` (False: excavated in an earlier phase)."""
+        return self.built.soil_configuration(self, k)["active"]
 
     def plastic_points(self, k=-1):
         """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield

@@ -43,7 +43,8 @@ not have is refused with its name and where it was found. SI units throughout (s
 A load table names its class with ``type`` (:data:`LOAD_TYPES`: ``ColumnLoad`` -- the default, so a table
 without ``type`` is a column --, ``SurfacePressure``, ``StripLoad``, ``StripWeight``, ``Settlement``); its
 other keys are that class's fields. Phases are ``[[phases]]`` tables (``name``, ``factors = {earlier = 0.0}``,
-``n_steps``) with their loads in ``[[phases.loads]]``; ``embedment``, ``water_table`` and ``gamma_w`` are
+``n_steps``, ``drainage = {1 = "undrained_A"}`` by layer index) with their loads in ``[[phases.loads]]`` and
+their excavations in ``[[phases.excavate]]`` (``x0``, ``x1``, ``bottom``, ``top`` [m]); ``embedment``, ``water_table`` and ``gamma_w`` are
 top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of
 :class:`ssi.scene.ContactSegment` tables (``x0``, ``x1`` and a ``[contact.contact]`` table)::
 
@@ -70,6 +71,7 @@ from .scene import (
     ColumnLoad,
     Contact,
     ContactSegment,
+    Excavation,
     Foundation,
     MeshSize,
     Phase,
@@ -95,7 +97,7 @@ UNITS = {
         "surcharge": "Pa",
         "phases": "list of Phase tables",
         "embedment": "m (depth of the strip's base)",
-        "water_table": "m (depth below the ground; leave out: dry)",
+        "water_table": "m (depth below the ground; < 0: free water above it, ponding; leave out: dry)",
         "gamma_w": "N/m^3",
     },
     "SoilLayer": {
@@ -150,6 +152,14 @@ UNITS = {
         "loads": "list of load tables (type = ...)",
         "factors": "{earlier phase name = factor -}",
         "n_steps": "- (leave out: [solve] n_steps)",
+        "excavate": "list of Excavation tables removed in this phase",
+        "drainage": "{layer index = 'drained' | 'undrained_A'} from this phase on",
+    },
+    "Excavation": {
+        "x0": "m",
+        "x1": "m",
+        "bottom": "m (depth below the ground)",
+        "top": "m (depth below the ground; leave out: 0)",
     },
     "MeshSize": {"h_fine": "m", "h_coarse": "m", "growth": "-", "n_gauss": "2 | 3"},
     "homogeneous": {"thickness": "m", "E": "Pa", "nu": "-", "n_layers": "-"},
@@ -173,6 +183,7 @@ _NESTED = {
     (Scene, "mesh"): (MeshSize, "one"),
     (Scene, "phases"): (Phase, "list"),
     (Phase, "loads"): (_LOAD, "tuple"),
+    (Phase, "excavate"): (Excavation, "tuple"),
     (ContactSegment, "contact"): (Contact, "one"),
 }
 # plain lists that the dataclass holds as tuples
@@ -244,6 +255,8 @@ def _build(cls, data, where):
         elif cls is Phase and key == "factors":
             _check_table(value, f"{where}.factors")
             kwargs[key] = dict(value)
+        elif cls is Phase and key == "drainage":
+            kwargs[key] = _layer_keys(value, f"{where}.drainage")
         else:
             kwargs[key] = value
     try:
@@ -269,6 +282,19 @@ def _contact(value, where):
             raise ValueError(f"{where}: a list of contact segments must not be empty")
         return [_build(ContactSegment, v, f"{where}[{i}]") for i, v in enumerate(value)]
     return _build(Contact, value, where)
+
+
+def _layer_keys(value, where):
+    """``{layer index: value}`` from a table whose keys are layer indices written as text (TOML keys and
+    JSON object keys are strings: ``drainage = { 1 = "undrained_A" }``)."""
+    _check_table(value, where)
+    out = {}
+    for key, item in value.items():
+        text = str(key)
+        if not text.isdigit():
+            raise ValueError(f"{where}: key {key!r} must be a layer index 0, 1, ... (0 = the top layer)")
+        out[int(text)] = item
+    return out
 
 
 def _check_table(data, where):

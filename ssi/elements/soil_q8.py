@@ -269,6 +269,7 @@ class SoilQ8:
                 f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {viscosity}"
             )
         self.viscosity = float(viscosity)
+        self._phase = None  # see configure()
 
     @property
     def n_el(self):
@@ -280,7 +281,73 @@ class SoilQ8:
             state[:, :, :N_STRESS] = self.initial_stress
         return state
 
+    # ---- phases (ssi.scene): excavated elements and the pore water of a drainage switch -------------------
+    def configure(self, active=None, k_water_el=None, water_reference=None):
+        """Set the phase's configuration; all None restores the group as built.
+
+        ``active`` (n_el,) bool: the elements present (False: excavated -- no force, no stiffness, no
+        weight, zero stress). ``k_water_el`` (n_el,) K_w/n [Pa] of every element (replaces the material's
+        ``k_water``: a layer switched between drained and undrained). ``water_reference`` (n_el, 16): the
+        displacement [m] from which the pore water's volumetric strain counts (the state where the layer
+        became undrained: its excess pore pressure starts at zero there)."""
+        if active is None and k_water_el is None and water_reference is None:
+            self._phase = None
+            return
+        active = np.ones(self.n_el, bool) if active is None else np.asarray(active, bool)
+        kw = self.k_water_of_elements() if k_water_el is None else np.asarray(k_water_el, np.float64)
+        ref = (
+            np.zeros((self.n_el, 16)) if water_reference is None else np.asarray(water_reference, np.float64)
+        )
+        if active.shape != (self.n_el,) or kw.shape != (self.n_el,) or ref.shape != (self.n_el, 16):
+            raise ValueError(
+                "configure: active and k_water_el need shape (n_el,), water_reference (n_el, 16)"
+            )
+        idx = np.flatnonzero(active)
+        mat = self.el_mat[idx]
+        # the active elements as a group of their own, one material row per element (each its own K_w/n)
+        sub = SoilQ8(
+            self.coords[idx],
+            self.edofs[idx],
+            np.arange(len(idx)),
+            self.kinds[mat],
+            self.params[mat],
+            n_gauss=self.n_gauss,
+            k_water=kw[idx] if kw[idx].any() else None,
+        )
+        self._phase = {"active": active, "index": idx, "k_water": kw, "reference": ref, "group": sub}
+
+    def k_water_of_elements(self) -> np.ndarray:
+        """(n_el,) K_w/n [Pa] of every element in the current configuration (0: drained)."""
+        phase = self._phase
+        if phase is not None:
+            return phase["k_water"].copy()
+        return np.zeros(self.n_el) if self.k_water is None else self.k_water[self.el_mat]
+
+    @property
+    def active(self) -> np.ndarray:
+        """(n_el,) bool: the elements present in the current configuration."""
+        phase = self._phase
+        return np.ones(self.n_el, bool) if phase is None else phase["active"].copy()
+
+    def _scatter(self, values, fill_shape):
+        out = np.zeros((self.n_el,) + fill_shape)
+        out[self._phase["index"]] = values
+        return out
+
+    def _evaluate_phase(self, u_el, du_el, state_old, tangent):
+        phase = self._phase
+        idx, sub = phase["index"], phase["group"]
+        sub.viscosity = self.viscosity
+        u_water = np.asarray(u_el)[idx] - phase["reference"][idx]
+        f_s, k_s, st_s = sub.evaluate(u_water, np.asarray(du_el)[idx], state_old[idx], tangent)
+        state_new = np.zeros_like(state_old)
+        state_new[idx] = st_s
+        k_el = None if k_s is None else self._scatter(k_s, (16, 16))
+        return self._scatter(f_s, (16,)), k_el, state_new
+
     def evaluate(self, u_el, du_el, state_old, tangent):
+        if self._phase is not None:
+            return self._evaluate_phase(u_el, du_el, state_old, tangent)
         f_el = np.empty((self.n_el, 16))
         k_el = np.empty((self.n_el, 16, 16) if tangent >= 0 else (1, 16, 16))
         state_new = np.empty_like(state_old)
@@ -349,6 +416,8 @@ class SoilQ8:
         """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start with
         E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and keeping
         it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
+        if self._phase is not None:
+            return self._scatter(self._phase["group"].elastic_stiffness(), (16, 16))
         E = self.params[self.el_mat, 0]
         nu = self.params[self.el_mat, 1]
         k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)
@@ -363,8 +432,10 @@ class SoilQ8:
         """Excess pore pressure [Pa] (compression positive) at the integration points (n_el, n_ip) of the
         undrained materials, -K_w/n eps_v from the total displacement ``u_el`` (n_el, 16); 0 where drained."""
         ev = np.empty((self.n_el, len(self.gw)))
-        q8_volumetric_strain(self.coords, np.ascontiguousarray(u_el, np.float64), self.gp, ev)
-        kw = np.zeros(self.n_el) if self.k_water is None else self.k_water[self.el_mat]
+        phase = self._phase
+        u_water = np.asarray(u_el, np.float64) - (0.0 if phase is None else phase["reference"])
+        q8_volumetric_strain(self.coords, np.ascontiguousarray(u_water), self.gp, ev)
+        kw = self.k_water_of_elements() * self.active
         return -kw[:, None] * ev
 
     def body_force(self):
@@ -372,7 +443,7 @@ class SoilQ8:
             return None
         f_el = np.empty((self.n_el, 16))
         q8_body_force(self.coords, self.el_mat, self.unit_weight, self.gp, self.gw, f_el)
-        return f_el
+        return f_el * self.active[:, None]
 
     def integration_points(self):
         """(n_el, n_ip, 2) physical coordinates of the integration points."""

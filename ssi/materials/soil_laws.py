@@ -168,7 +168,8 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, 
         ``phi_deg`` (then K0 = 1 - sin φ); the last layer extends downwards without limit
     surcharge : uniform vertical pressure on the surface [Pa] (>= 0, compression)
     z_surface : z of the ground surface [m]
-    water_table : depth of the water table below the surface [m] (>= 0), or None (dry)
+    water_table : depth of the water table below the surface [m], or None (dry); negative: free water
+        stands above the surface (ponding; it changes the pore pressure, not the effective stress)
     gamma_w : unit weight of water [N/m^3]
 
     Returns an array of shape ``z.shape + (4,)``: szz = -(surcharge + ∫ γ' dz) above the point with the
@@ -184,8 +185,10 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, 
         raise ValueError("layers must list at least one layer")
     if np.any(z > z_surface + 1e-9):
         raise ValueError(f"all points must lie at or below the surface z = {z_surface}")
-    if water_table is not None and not (np.isfinite(water_table) and water_table >= 0.0):
-        raise ValueError(f"water_table must be a depth >= 0 below the surface [m] or None, got {water_table}")
+    if water_table is not None and not np.isfinite(water_table):
+        raise ValueError(
+            f"water_table must be a finite depth below the surface [m] or None, got {water_table}"
+        )
     d_w = math.inf if water_table is None else float(water_table)
     depth = z_surface - z
     szz = np.full(z.shape, -float(surcharge))
@@ -229,7 +232,8 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, 
 
 def pore_pressure(z, water_table=None, z_surface=0.0, gamma_w=GAMMA_W):
     """Hydrostatic pore pressure [Pa] (compression positive) at ``z``: γ_w (depth - d_w) below the water table
-    at depth ``water_table`` [m] below ``z_surface``, zero above it (and everywhere if None)."""
+    at depth ``water_table`` [m] below ``z_surface`` (negative: the free water level above it), zero above it
+    (and everywhere if None)."""
     z = np.asarray(z, np.float64)
     if water_table is None:
         return np.zeros(z.shape)
