@@ -80,7 +80,8 @@ class Settings:
     stepping: str = "auto"
     force_tol: float = 1e-5  # |r| <= force_tol * (structural load; see convergence_reference)
     energy_tol: float = 1e-8  # |du . r| <= energy_tol * max(|du_0 . r_0|, work of the structural load)
-    convergence_reference: str = "structural"  # "total": relative to max(|F_ext|, |F_int|) incl. geostatic
+    convergence_reference: str = "structural"  # "total": the old measure, force relative to
+    # max(|F_ext|, |F_int|) and energy relative to |u . F_int|, geostatic forces included
     max_iter: int | None = None  # per increment; None: 100 (bfgs), 300 (modified), 30 (full Newton: more
     # tangent factorisations than that cost more than the K0 retry below)
     first_step: float = 0.1  # auto stepping: first increment of the load factor
@@ -189,6 +190,9 @@ class Result:
     factorizations: int = 0
     status: str = COMPLETED
     limit_load_factor: float | None = None
+    limit_load_upper: float | None = None  # limit found by relaxing a viscous path: the smallest load
+    # factor at which no rate-independent equilibrium was found (the limit lies in [factor, upper])
+    limit_evidence: str = ""  # why the stop was taken for a collapse (viscous path)
     relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target
     viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
     # viscous (rate-dependent) states; the last step is relaxed
@@ -220,6 +224,11 @@ class Result:
     def message(self) -> str:
         if self.status == STOPPED:
             return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
+        if self.collapsed and self.limit_load_upper is not None:
+            return (
+                f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent equilibrium "
+                f"found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
+            )
         if self.collapsed:
             return (
                 f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
@@ -294,34 +303,200 @@ RELAX_GROWTH = 10.0  # tau grows tenfold from one relaxation stage to the next .
 RELAX_STAGES = 4  # ... over this many stages, then the last stage is rate independent (tau = 0)
 RELAX_STEPS = 8  # increments at most per stage
 RELAX_TOL = 1e-5  # a stage ends when the load measure changes by less than this (relative)
+RELAX_MIN_GROWTH = 1.5  # a failing stage is retried with a smaller growth of tau, down to this
+CREEP_FLOW = 0.5  # held load: displacement increments that shrink by less than this flow (a mechanism); a
+# state that relaxes shrinks them by 1/(1 + tau) <= 0.09 per increment (tau >= 10) or converges at once
+BRACKET_TOL = 0.01  # a limit load found by relaxation is bracketed to 1 % of its load factor ...
+BRACKET_REFINEMENTS = 4  # ... with at most this many extra relaxations
+
+
+class _RelaxationFailed(Exception):
+    """No rate-independent equilibrium was found at the held load (the last relaxation stage failed)."""
+
+    def __init__(self, outcome, tau, lam, creep=np.nan):
+        super().__init__(outcome.get("reason", ""))
+        self.outcome, self.tau, self.lam = outcome, tau, lam
+        self.creep = creep  # |d delta| of the last held increment over the one before (nan: unknown)
+
+
+def _creep_ratio(path):
+    """|d delta| of the last committed increment over that of the one before (both at the held load)."""
+    r = path.result
+    if r.n_steps < 3 or not (r.load_factor[-1] == r.load_factor[-2] == r.load_factor[-3]):
+        return np.nan
+    d = [path.measure.point(k)[1] for k in (r.n_steps - 2, r.n_steps - 1, r.n_steps)]
+    return abs(d[2] - d[1]) / abs(d[1] - d[0]) if d[1] != d[0] else np.nan
+
+
+def _relax_stages(path):
+    """Hold the path's load while tau grows; raises :class:`_RelaxationFailed` if the state does not relax.
+    A stage that fails is retried from its start with the square root of its growth (down to 1.5x): a
+    sudden tenfold stiffening of the viscous law is a large jump of the problem, a smaller one may not be."""
+    lam, tau, growth = path.lam, path.tau, RELAX_GROWTH
+    tau_last = path.tau * RELAX_GROWTH**RELAX_STAGES
+    try:
+        while True:
+            nxt = 0.0 if tau >= tau_last * (1.0 - 1e-12) else min(tau * growth, tau_last)
+            start = path.save()
+            try:
+                _hold(path, lam, nxt)
+            except _RelaxationFailed:
+                path.restore(start)
+                growth = growth**0.5
+                if nxt == 0.0 or growth < RELAX_MIN_GROWTH:
+                    raise
+                continue
+            if nxt == 0.0:
+                return
+            tau = nxt
+    finally:
+        _set_viscosity(path.model, path.tau)
+
+
+def _hold(path, lam, tau):
+    """One relaxation stage: up to ``RELAX_STEPS`` increments at the held load with viscosity ``tau``, until
+    the load measure settles."""
+    _set_viscosity(path.model, tau)
+    for _ in range(RELAX_STEPS):
+        before = np.array(path.measure.point(path.result.n_steps))
+        outcome = path._increment(lam)
+        if not outcome["converged"]:
+            raise _RelaxationFailed(outcome, tau, lam, _creep_ratio(path))
+        path._commit(lam, outcome)
+        after = np.array(path.measure.point(path.result.n_steps))
+        if np.all(np.abs(after - before) <= RELAX_TOL * np.maximum(np.abs(after), 1e-30)):
+            return
 
 
 def relax(path: "_Path") -> bool:
     """Hold the last target load of a viscous path while tau grows (10x per stage, then tau = 0): the
     overstress of each increment decays by 1/(1 + tau), and the last stage is the rate-independent law, so
     the final step is an equilibrium state of the inviscid problem (converged to the usual tolerances).
-    Its step count is ``RELAX_STEPS`` per stage at most; each stage ends once the load measure settles."""
-    lam, first = path.lam, path.result.n_steps
-    taus = [path.tau * RELAX_GROWTH ** (k + 1) for k in range(RELAX_STAGES)] + [0.0]
-    for tau in taus:
-        _set_viscosity(path.model, tau)
-        for _ in range(RELAX_STEPS):
-            before = np.array(path.measure.point(path.result.n_steps))
-            outcome = path._increment(lam)
-            if not outcome["converged"]:
-                path.tau = 0.0  # no second fallback: a state that does not relax is a failure
-                _set_viscosity(path.model, 0.0)
-                report = _failure_report(path.model, path.system.free, outcome, lam, lam)
-                report["reason"] = f"relaxation of the viscous path failed at tau={tau:g}: {report['reason']}"
-                path.result.status = STOPPED
-                raise NonConvergence(report, path.result)
-            path._commit(lam, outcome)
-            after = np.array(path.measure.point(path.result.n_steps))
-            if np.all(np.abs(after - before) <= RELAX_TOL * np.maximum(np.abs(after), 1e-30)):
-                break
+    Its step count is ``RELAX_STEPS`` per stage at most; each stage ends once the load measure settles.
+
+    A viscous path can pass a limit load: the regularised problem has a solution above the rate-independent
+    capacity (the overstress carries the excess). If the held load does not relax, the largest load factor
+    of the viscous path that does relax is searched (bisection over its steps, then over lambda), and the
+    result ends as ``"limit load reached"`` there, with ``limit_load_upper`` the smallest load factor where
+    no rate-independent equilibrium was found -- provided the path's current stiffness had fallen below
+    ``collapse_stiffness`` (else :class:`NonConvergence`)."""
+    first = path.result.n_steps
+    saved = path.save()
+    try:
+        _relax_stages(path)
+    except _RelaxationFailed as failure:
+        path.restore(saved)
+        _bracket_limit(path, saved, failure)
+        path.result.relaxed_steps = path.result.n_steps - first
+        path.tau = 0.0
+        return False
     path.result.relaxed_steps = path.result.n_steps - first
     path.tau = 0.0
+    _set_viscosity(path.model, 0.0)
     return True
+
+
+def _bracket_limit(path, saved, failure):
+    """The held load of a viscous path did not relax: find the largest load factor that does (see
+    :func:`relax`), or raise NonConvergence. ``saved`` is the path before the failed relaxation."""
+    res = path.result
+    if not path.settings.keep_states:  # the steps' states are needed to relax at an earlier step
+        _raise_relaxation_failure(path, failure, np.nan, np.nan)
+    lo = res.viscous_from if res.viscous_from is not None else 0
+    hi = res.n_steps
+    best = None
+    relaxed = [path.measure.point(lo)]  # (load measure, loaded displacement) of rate-independent states
+    while hi - lo > 1:  # bisection over the committed viscous steps
+        mid = (lo + hi) // 2
+        path.restore(saved, mid)
+        try:
+            _relax_stages(path)
+            best, lo = path.save(), mid
+            relaxed.append(path.measure.point(path.result.n_steps))
+        except _RelaxationFailed as nearer:
+            hi, failure = mid, nearer
+    if best is None:  # only the state before the viscous fallback (rate independent already)
+        path.restore(saved, lo)
+    else:
+        path.restore(best)
+    lam_hi = saved.load_factor[hi]
+    lam_lo = path.lam
+    for _ in range(BRACKET_REFINEMENTS):  # bisection over lambda from the relaxed state at lam_lo
+        if lam_hi - lam_lo <= BRACKET_TOL * abs(lam_hi):
+            break
+        here = path.save()
+        lam_mid = 0.5 * (lam_lo + lam_hi)
+        try:
+            _set_viscosity(path.model, path.tau)
+            outcome = path._increment(lam_mid)
+            if not outcome["converged"]:
+                raise _RelaxationFailed(outcome, path.tau, lam_mid)
+            path._commit(lam_mid, outcome)
+            _relax_stages(path)
+            lam_lo = lam_mid
+            relaxed.append(path.measure.point(path.result.n_steps))
+        except _RelaxationFailed as nearer:
+            path.restore(here)
+            lam_hi, failure = lam_mid, nearer
+    path.tau = 0.0
+    _set_viscosity(path.model, 0.0)
+    stiff = _secant_stiffness(path.measure, relaxed)
+    flowing = failure.creep >= CREEP_FLOW
+    if flowing or (np.isfinite(stiff) and stiff < path.settings.collapse_stiffness):
+        res.status, res.limit_load_factor, res.limit_load_upper = LIMIT_LOAD, float(lam_lo), float(lam_hi)
+        res.limit_evidence = (
+            f"held at lambda = {lam_hi:.6g} the body kept flowing (displacement increments {failure.creep:.2f} "
+            "of the previous)"
+            if flowing
+            else f"the relaxed path's current stiffness fell to {stiff:.3g} of the initial"
+        )
+        return
+    _raise_relaxation_failure(path, failure, lam_lo, stiff)
+
+
+def _secant_stiffness(measure, points):
+    """Current stiffness parameter of the rate-independent path from its two highest relaxed points (P,
+    delta): the viscous path's own stiffness says nothing about the limit, its overstress stiffens it."""
+    if len(points) < 2 or measure.first is None:
+        return np.nan
+    (p1, d1), (p2, d2) = sorted(points)[-2:]
+    return float((p2 - p1) / (d2 - d1) / measure.first) if d2 != d1 else np.nan
+
+
+def _raise_relaxation_failure(path, failure, lam_lo, stiff):
+    report = _failure_report(path.model, path.system.free, failure.outcome, failure.lam, failure.lam)
+    report["reason"] = f"relaxation of the viscous path failed at tau={failure.tau:g}: {report['reason']}"
+    if np.isfinite(lam_lo):
+        report["reason"] += (
+            f" (the largest load factor that relaxes is {lam_lo:.6g}; the relaxed path's current stiffness "
+            f"there is {stiff:.3g} of the initial, not below collapse_stiffness="
+            f"{path.settings.collapse_stiffness:g}, and the held load did not flow (displacement increments "
+            f"{failure.creep:.2g} of the previous), so this is not taken for a collapse)"
+        )
+    path.result.status = STOPPED
+    raise NonConvergence(report, path.result)
+
+
+@dataclass
+class _Snapshot:
+    LISTS = ("load_factor", "u", "f_int", "states", "iterations", "residuals", "energies", "stiffness")
+    lists: dict
+    u: np.ndarray
+    states: list
+    lam: float
+    step: float
+
+    @property
+    def n_steps(self):
+        return len(self.lists["load_factor"]) - 1
+
+    @property
+    def load_factor(self):
+        return self.lists["load_factor"]
+
+    @property
+    def stiffness(self):
+        return self.lists["stiffness"]
 
 
 class _Path:
@@ -339,6 +514,28 @@ class _Path:
         self.bar = SolverProgress(None, 1.0)  # silent until run() opens the real one
         self.step = settings.first_step * scale
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
+
+    def save(self) -> "_Snapshot":
+        """The committed path (result lists and current state), to return to with :meth:`restore`."""
+        r = self.result
+        return _Snapshot(
+            {name: list(getattr(r, name)) for name in _Snapshot.LISTS},
+            self.u,
+            self.states,
+            self.lam,
+            self.step,
+        )
+
+    def restore(self, snap: "_Snapshot", step: int | None = None):
+        """Return to ``snap``, or to its committed step ``step`` (the later steps are dropped)."""
+        k = len(snap.lists["load_factor"]) if step is None else step + 1
+        for name, values in snap.lists.items():
+            setattr(self.result, name, list(values[:k]))
+        if step is None:
+            self.u, self.states, self.lam, self.step = snap.u, snap.states, snap.lam, snap.step
+        else:
+            self.u, self.lam = self.result.u[-1].copy(), self.result.load_factor[-1]
+            self.states = self.result.states[-1]
 
     def follow(self, target):
         """Advance the committed state to ``target``, or stop at a detected limit load."""
@@ -628,7 +825,7 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
                 du = fac_k0.solve(r_f)
         energy = abs(float(du @ r_f))
         energy0 = energy if energy0 is None else energy0
-        rel_energy = energy / _energy_scale(energy0, u, f_int, result)
+        rel_energy = energy / _energy_scale(energy0, u, f_int, result, settings)
         energies.append(rel_energy)
         if _converged(rel, rel_energy, it, settings) or rel <= 1e-14 * settings.force_tol or energy == 0.0:
             outcome.update(converged=True, u=u, f_int=f_int, states=trial)
@@ -786,10 +983,13 @@ def _advance(system, settings, u, du, u_conv, states, use_k0, f_ext, r_norm, lin
         step *= 0.5
 
 
-def _energy_scale(energy_first, u, f_int, result):
+def _energy_scale(energy_first, u, f_int, result, settings):
     """Reference of the energy norm: the first iteration's |du . r|, or the work of the structural load
     |(u - u_0) . (F_int - F_int,0)| if larger -- a cut step's tiny first iteration must not make the test
-    ever stricter."""
+    ever stricter. ``convergence_reference="total"``: the old reference |u . F_int|, geostatic forces
+    included."""
+    if settings.convergence_reference == "total":
+        return max(energy_first, abs(float(u @ f_int)), 1e-300)
     work = abs(float((u - result.u_origin) @ (f_int - result.f_int_origin)))
     return max(energy_first, work, 1e-300)
 
@@ -962,7 +1162,7 @@ def _arc_step(system, settings, fac, du_ref, u_conv, states, lam_conv, arc, dire
         du_r = fac.solve(r[free])
         energy = abs(float(du_r @ r[free]))
         energy0 = energy if energy0 is None else energy0
-        energies.append(energy / _energy_scale(energy0, u, f_int, result))
+        energies.append(energy / _energy_scale(energy0, u, f_int, result, settings))
         if it > 1 and _converged(rel, energies[-1], it, settings):
             outcome.update(converged=True, u=u, f_int=f_int, states=trial, lam=lam)
             return outcome

@@ -446,3 +446,44 @@ def test_analytical_references_against_reference_data():
     x = np.linspace(-40, 40, 400001)
     w = hetenyi_deflection(x, 1e3, 5e6, 3e5)
     assert np.trapezoid(5e6 * w, x) == pytest.approx(1e3, rel=1e-6)  # springs carry P
+
+
+def test_viscous_interface_blends_elastic_trial_and_inviscid_response():
+    """Duvaut--Lions regularisation (the solver's viscous fallback): with tau, tractions and forces are
+    (elastic trial + tau inviscid) / (1 + tau) -- checked against the two responses computed separately --
+    the consistent tangent is the FD Jacobian of the blended forces, and the history stays the inviscid law's."""
+    p = interface_params(KT, KN, PHI, C, psi_deg=0.0)
+    coords, edofs, _ = straight(n_el=1, L=1.0, plate_h=0.4)
+    n = edofs.shape[1]
+    inviscid = Interface6(coords, edofs, p, offset=0.2)
+    u0 = np.zeros((1, n))
+    u0[0, [0, 3, 6]] = 2e-3
+    u0[0, [1, 4, 7]] = -1e-3
+    _, _, st0 = inviscid.evaluate(u0, u0, inviscid.initial_state(), CONSISTENT)
+    du = np.zeros((1, n))
+    du[0, [1, 4, 7]] = [4e-3, 0.0, -1e-3]
+    du[0, [0, 3, 6]] = [0.0, -1e-4, 3e-3]
+    f_inv, _, st_inv = inviscid.evaluate(u0 + du, du, st0, CONSISTENT)
+    assert set(np.rint(st_inv[0, :, V_STATUS]).astype(int)) == {STICK, SLIP, OPEN}
+    # the elastic trial by hand: committed tractions + De * gap increment, through a never-slipping contact
+    never = Interface6(coords, edofs, interface_params(KT, KN, PHI, np.inf), offset=0.2)
+    closed = st0.copy()
+    closed[..., V_STATUS] = STICK
+    f_tr, _, st_tr = never.evaluate(u0 + du, du, closed, CONSISTENT)
+    tau = 3.0
+    viscous = Interface6(coords, edofs, p, offset=0.2, viscosity=tau)
+    f, k, st = viscous.evaluate(u0 + du, du, st0, CONSISTENT)
+    np.testing.assert_allclose(f, (f_tr + tau * f_inv) / (1 + tau), rtol=1e-12, atol=1e-12 * KN)
+    np.testing.assert_allclose(st[..., :2], (st_tr[..., :2] + tau * st_inv[..., :2]) / (1 + tau), rtol=1e-12)
+    np.testing.assert_array_equal(st[..., 2:], st_inv[..., 2:])
+    h = 1e-10
+    K_fd = np.empty((n, n))
+    for j in range(n):
+        e = np.zeros((1, n))
+        e[0, j] = h
+        fp = viscous.evaluate(u0 + du + e, du + e, st0, CONSISTENT)[0]
+        fm = viscous.evaluate(u0 + du - e, du - e, st0, CONSISTENT)[0]
+        K_fd[:, j] = (fp - fm)[0] / (2 * h)
+    np.testing.assert_allclose(k[0], K_fd, atol=1e-5 * KN)
+    with pytest.raises(ValueError, match="viscosity"):
+        Interface6(coords, edofs, p, offset=0.2, viscosity=-1.0)

@@ -272,3 +272,32 @@ def test_hdf5_round_trip_and_no_overwrite(tmp_path):
     write_result(tmp_path / "lin.h5", lin)
     assert np.array_equal(read_result(tmp_path / "lin.h5").u[-1], lin.u)
     assert abs(lin.u[lin_model.dof(lin_nodes[-1], "u")[0]] - FU / K0) < 1e-12
+
+
+def test_old_convergence_measure_accepted_a_wrong_state_the_structural_one_does_not():
+    """A light footing (10 kN/m) on a deep (60 m), soft, heavy sand block: the geostatic forces dwarf the
+    structural load. The old measure (``convergence_reference="total"``: force relative to max(|F_ext|,
+    |F_int|), energy relative to |u . F_int|, geostatic state included) accepts a state whose settlement is
+    0.1 % off; the structural measure, with the same tolerances, lands within 1e-4. The reference is the same
+    scene converged 1e4 times tighter (force_tol 1e-9)."""
+    from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+    from ssi.section import homogeneous
+
+    scene = Scene(
+        width=120.0,
+        depth=60.0,
+        layers=[SoilLayer(60.0, E=2e6, nu=0.3, unit_weight=20e3, c=0.0, phi_deg=30.0, psi_deg=0.0)],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+        loads=[ColumnLoad(x=0.0, N=10e3, H=1e3)],
+        mesh=MeshSize(h_fine=0.5, h_coarse=7.5),
+    )
+
+    def settlement(**kw):
+        return scene.build().solve(settings=Settings(**kw)).max_settlement()[1]
+
+    reference = settlement(force_tol=1e-9, energy_tol=1e-16)
+    old = settlement(convergence_reference="total")
+    new = settlement()
+    assert abs(old / reference - 1) > 5e-4, old / reference - 1
+    assert abs(new / reference - 1) < 1e-4, new / reference - 1

@@ -32,7 +32,7 @@ Layout (see ``base``): coords (n_el, 6, 2) [upper 0-2, lower 3-5]; edofs (n_el, 
 import numpy as np
 from numba import njit
 
-from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, interface_update
+from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, STICK, interface_update
 from ..quadrature import gauss_legendre, newton_cotes
 from ..shapes import lagrange3
 from .base import CONSISTENT, ELASTIC
@@ -168,6 +168,7 @@ class Interface6:
         n_gauss=3,
         name="interface",
         initial_traction=None,
+        viscosity=0.0,
     ):
         coords = np.ascontiguousarray(coords, dtype=np.float64)
         edofs = np.ascontiguousarray(edofs, dtype=np.int64)
@@ -245,6 +246,11 @@ class Interface6:
         self.w = np.ascontiguousarray(wts)
         self.n_el = n_el
         self.n_ip = len(xis)
+        if not (np.isfinite(viscosity) and viscosity >= 0.0):
+            raise ValueError(
+                f"viscosity must be finite and >= 0 (tau = dt/eta per increment), got {viscosity}"
+            )
+        self.viscosity = float(viscosity)
         self.initial_traction = None
         if initial_traction is not None:
             try:
@@ -273,21 +279,47 @@ class Interface6:
         f_el = np.empty(self.edofs.shape)
         k_el = np.empty((self.n_el, self.edofs.shape[1], self.edofs.shape[1]))
         state_new = np.empty_like(state_old)
+        state_old = np.ascontiguousarray(state_old)
+        self._kernel(self.params, du_el, state_old, tangent, f_el, k_el, state_new)
+        if self.viscosity > 0.0:
+            self._blend_with_trial(du_el, state_old, tangent, f_el, k_el, state_new)
+        return f_el, k_el, state_new
+
+    def _kernel(self, params, du_el, state_old, tangent, f_el, k_el, state_new):
         _evaluate(
             self.coords,
             self.hoff,
             self.n_up_dof,
             self.xi,
             self.w,
-            self.params,
+            params,
             du_el,
-            np.ascontiguousarray(state_old),
+            state_old,
             int(tangent),
             f_el,
             k_el,
             state_new,
         )
-        return f_el, k_el, state_new
+
+    def _blend_with_trial(self, du_el, state_old, tangent, f_el, k_el, state_new):
+        """Duvaut--Lions, as for the soil (``SoilQ8``): forces, tangent and tractions become
+        (trial + tau inviscid) / (1 + tau), the trial being the elastic springs' response t_old + De dgap
+        (no slip, no opening); the history (status, slips, opening) stays the inviscid law's. It regularises
+        the non-associated friction of the contact the way the viscous soil regularises its flow."""
+        elastic = self.params.copy()
+        elastic[:, 2] = np.inf  # cohesion: the Coulomb condition is never met
+        elastic[:, 5] = np.inf  # tensile strength: never opens
+        closed = state_old.copy()
+        closed[..., V_STATUS] = STICK
+        closed[..., V_BROKEN] = 0.0
+        f_tr, k_tr, st_tr = np.empty_like(f_el), np.empty_like(k_el), np.empty_like(state_new)
+        self._kernel(elastic, du_el, closed, tangent, f_tr, k_tr, st_tr)
+        tau = self.viscosity
+        f_el[...] = (f_tr + tau * f_el) / (1.0 + tau)
+        k_el[...] = (k_tr + tau * k_el) / (1.0 + tau)
+        state_new[..., V_TAU : V_SIG + 1] = (
+            st_tr[..., V_TAU : V_SIG + 1] + tau * state_new[..., V_TAU : V_SIG + 1]
+        ) / (1.0 + tau)
 
     def elastic_stiffness(self) -> np.ndarray:
         z = np.zeros(self.edofs.shape)
