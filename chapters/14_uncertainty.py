@@ -38,8 +38,10 @@
 # The coefficients of variation are chosen inside the ranges of inherent variability that Phoon & Kulhawy
 # (1999a, b) compiled from field and laboratory data: undrained and cohesive strengths of clays with CoV of
 # roughly 0.1–0.55, the effective friction angle's tangent 0.05–0.15, and deformation moduli 0.2–0.5 (these
-# are ranges of that compilation, not a fit to a site; a design would use the site's own data). The three
-# are sampled independently (no cross-correlation, no spatial field: each sample is a homogeneous layer —
+# are ranges of that compilation, not a fit to a site; a design would use the site's own data). The two
+# papers' titles, journal, volume and first pages (612, 625) were checked; the numeric ranges could not be
+# re-checked against their tables from the sources available to this project, so read them as approximate.
+# The three are sampled independently (no cross-correlation, no spatial field: each sample is a homogeneous layer —
 # the scatter of the *layer's* property, which overstates the variance of an average over a large
 # foundation). The lognormal keeps E and c positive; its parameters follow from the mean μ and CoV V as
 # σ_ln² = ln(1 + V²), μ_ln = ln μ − σ_ln²/2.
