@@ -1,7 +1,8 @@
 """Benchmark of issue 15: throughput of ``ssi.sweep`` on this machine.
 
-Twenty-four scenes like chapter 14's (the chapter-11 foundation on a coarse mesh, 785 DOFs, with the zoo's
-RC strip section; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own solve time), then by a LocalCluster
+Twenty-four scenes like chapter 14's (``ssi.examples.chapter11_foundation`` on a coarse mesh: chapter 11's
+section and its 400 kN/m per column -- until the shared factory this benchmark used the zoo's 7-layer RC strip
+and 450 kN/m; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own solve time), then by a LocalCluster
 of 1 and of 2 worker processes (threads_per_worker=1). The cluster's start-up is timed separately: it is paid
 once per sweep, not per scene. The numba cache is warm (a first scene is solved before timing, and the
 workers load the same NUMBA_CACHE_DIR).
@@ -20,30 +21,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from ssi.examples import chapter11_foundation
 from ssi.sweep import _client, sweep
-from ssi.zoo import rc_strip
 
 N_SCENES = 24
 
 
 def foundation_on(E, c, tan_phi):
-    """The chapter-11 foundation, coarse, with the clay's E [Pa], c [Pa], tan(phi) [-]."""
-    return Scene(
-        width=30.0,
-        depth=10.0,
-        layers=[
-            SoilLayer(
-                2.0, E=E, nu=0.3, unit_weight=18e3, c=c, phi_deg=math.degrees(math.atan(tan_phi)), psi_deg=0.0
-            ),
-            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
-        ],
-        foundation=Foundation(
-            x0=-3.0, x1=3.0, section=rc_strip(0.4, fc=38e6, area=1.5e-3), self_weight=25e3 * 0.4
-        ),
-        contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
-        loads=[ColumnLoad(x=-2.5, N=450e3), ColumnLoad(x=2.5, N=450e3)],
-        mesh=MeshSize(h_fine=1.0, h_coarse=4.0, growth=1.3),
+    """The chapter-11 foundation (400 kN/m per column), coarse, with the clay's E [Pa], c [Pa], tan(phi) [-]."""
+    return chapter11_foundation(
+        1.0, clay_E=E, clay_c=c, clay_phi_deg=math.degrees(math.atan(tan_phi)), h_coarse=4.0
     )
 
 

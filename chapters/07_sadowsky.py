@@ -78,6 +78,7 @@ from ssi.analytical import hetenyi_deflection, sadowsky_pressure
 from ssi.elements.interface import add_interface
 from ssi.elements.plate import add_plate_strip
 from ssi.elements.soil_q8 import SoilQ8
+from ssi.examples import winkler_strip
 from ssi.materials.interface_law import interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block
@@ -208,25 +209,11 @@ N_B = 100  # named mesh: 100 elements, 16 per wavelength 2 pi / lam
 
 
 def winkler_beam(n_el, h=H_B):
+    """The strip of depth h on the bed (`ssi.examples.winkler_strip`) against Hetenyi: x, w, w_exact, max
+    relative error, lambda, EI."""
     ei = E_B * h**3 / (12 * (1 - NU_B**2))
     lam = (K_BED / (4 * ei)) ** 0.25
-    length = 2 * 3 * math.pi / lam
-    m = Model()
-    plate, pids, pconn = add_plate_strip(
-        m, np.linspace(-length / 2, length / 2, n_el + 1), homogeneous(h, E_B, NU_B), z=h / 2
-    )
-    low = m.add_nodes(m.coords[pids] - [0.0, h / 2], 2)
-    add_interface(
-        m, pconn, low[pconn - pids[0]], interface_params(0.0, K_BED, c=math.inf), offset=plate.bottom_offset
-    )
-    m.fix(low, "u")
-    m.fix(low, "w")
-    mid = pids[len(pids) // 2]
-    m.fix([mid], "u")
-    m.add_load([mid], "w", -P_B)
-    res = m.solve_linear(backend="superlu")
-    x = m.coords[pids, 0]
-    w = -res.at(pids, "w")
+    x, w = winkler_strip(n_el, h, E_B, NU_B, K_BED, P_B)
     w_ex = hetenyi_deflection(x, P_B, K_BED, ei)
     return x, w, w_ex, float(np.abs(w - w_ex).max() / w_ex.max()), lam, ei
 

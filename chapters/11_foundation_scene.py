@@ -29,6 +29,9 @@
 #
 # ## The scene
 #
+# The scene is built by `ssi.examples.chapter11_foundation(h_fine)` (its section: `chapter11_section()`), so
+# that chapters 13 and 14 and the sweep benchmark vary the very scene studied here.
+#
 # | component | choice | code |
 # |---|---|---|
 # | soil block | 30 m × 10 m, bottom fixed, sides on rollers (Fig. 1) | `Scene(width, depth)` |
@@ -45,7 +48,7 @@
 # from the stresses at its faces (`self_bending="chord"`), and a crack band equal to the *fib* Model Code 2010 crack spacing s_r,max of the
 # nearest bars (`crack_band="spacing"`, `bar_diameter` = 16 mm here), which makes the cracked response
 # independent of the element size (chapter 08: 0.55 % spread over four meshes, against 21.5 % for the paper's
-# per-point band); the concrete layers are plane strain like the elastic ones (`plane_strain=True`, eq. 4.4). The band width 0.1 m given to `concrete_params` below is therefore replaced.
+# per-point band); the concrete layers are plane strain like the elastic ones (`plane_strain=True`, eq. 4.4). The band width 0.1 m given to `concrete_params` in the section is therefore replaced.
 #
 # The column load is 400 kN/m. (With the former defaults — initial-modulus self-bending and a 0.1 m band — the
 # chapter used 450 kN/m; the corrected strip is softer, and at 450 kN/m its top bars reach 497 of 500 MPa,
@@ -54,44 +57,30 @@
 
 # %%
 import time
+from dataclasses import replace
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths
 from ssi import section_analysis as sa
+from ssi.examples import CHAPTER11_COLUMN_LOAD, chapter11_foundation, chapter11_section
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
-from ssi.materials.rc import concrete_params, designer_concrete, steel_params
+from ssi.materials.rc import designer_concrete
 from ssi.report import record, save_figure
 from ssi.results import read_result, write_result
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.section import rc_section
+from ssi.scene import Contact
+from ssi.section import homogeneous
 from ssi.solver import Settings
 
 FAST = paths.FAST
-fc, fy, Es = 38e6, 500e6, 200e9
-d = designer_concrete(fc)
-concrete = (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / Es))
-steel = (STEEL, steel_params(fy, Es))
-section = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, steel, n_concrete=9)
-
-
-N_COLUMN = 400e3  # [N/m] per column
+fy = 500e6
+section = chapter11_section()  # fc = 38 MPa, fy = 500 MPa, 15 cm^2/m top and bottom, 9 concrete layers
+N_COLUMN = CHAPTER11_COLUMN_LOAD  # [N/m] per column: 400 kN/m
 
 
 def foundation_scene(h_fine, N=N_COLUMN, H=0.0):
-    return Scene(
-        width=30.0,
-        depth=10.0,
-        layers=[
-            SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
-            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
-        ],
-        foundation=Foundation(x0=-3.0, x1=3.0, section=section, self_weight=25e3 * 0.4, bar_diameter=0.016),
-        contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
-        loads=[ColumnLoad(x=-2.5, N=N, H=H), ColumnLoad(x=2.5, N=N)],
-        mesh=MeshSize(h_fine=h_fine, h_coarse=2.0, growth=1.3),
-    )
+    return chapter11_foundation(h_fine, column_load=N, horizontal_load=H)
 
 
 H_FINE = 0.5 if FAST else 0.25
@@ -189,19 +178,62 @@ save_figure(fig, "ch11_foundation_scene")
 #   fibres; the tolerance is 3 % of the stress.
 # - **Cracks**: the soil pushes the beam up between the columns, so the hogging moment is largest near
 #   mid-span and the top face cracks there.
-# - Equilibrium of the contact resultant with the loads is printed as a consistency figure only: every
-#   iterate that passes the solver's force test satisfies it.
+# - **Equilibrium of the contact resultant with the loads is not a test of convergence**, and the check
+#   that is. The same scene is solved once more with the same ten load steps but every increment accepted as
+#   soon as the residual is below 5 % of the load (`Settings(method="modified", stepping="fixed",
+#   force_tol=0.05)`: modified Newton–Raphson stopped early, an un-converged iterate). Its contact resultant
+#   and even the load taken by the block's fixed base still match the applied loads to round-off: the
+#   residual such an iterate leaves is the stress correction of the yielding soil and the cracked strip,
+#   a self-equilibrated set of nodal forces (zero resultant) wherever the nonlinearity is away from the
+#   supports, so every *global* resultant holds for any iterate. The row `scene_equilibrium` is therefore a
+#   consistency figure only. What does see the stopped iterate is the settlement: against the converged full
+#   Newton answer it differs by far more than the 1e-3 within which the two converged methods must agree —
+#   the method check above fails on it.
 
 # %%
-w = out.built.interface.ip_weights()
 applied = 2 * N_COLUMN + 25e3 * 0.4 * 6.0
-contact_resultant = -np.sum(contact["sig_n"] * w)
-equilibrium_error = abs(contact_resultant - applied) / applied
+
+
+def contact_resultant(o):
+    """Vertical resultant [N/m] of the contact pressure of a solved scene (compression positive)."""
+    return -np.sum(o.contact()["sig_n"] * o.built.interface.ip_weights())
+
+
+equilibrium_error = abs(contact_resultant(out) - applied) / applied
+LOOSE_TOL = 0.05  # [-] force tolerance of the stopped-early iterates (the solver's default is 1e-5)
+loose = (
+    foundation_scene(H_FINE)
+    .build()
+    .solve(
+        n_steps=10,
+        settings=Settings(
+            method="modified", stepping="fixed", force_tol=LOOSE_TOL, energy_tol=0.5, max_iter=500
+        ),
+    )
+)
+
+
+def base_load(o):
+    """Vertical force [N/m] the block's fixed base takes on beyond the geostatic state."""
+    r = o.solver_result.reaction(o.built.mesh.bottom, "w")
+    return float(r[-1] - r[0])
+
+
+loose_resultant_error = abs(contact_resultant(loose) - applied) / applied
+loose_base_error = abs(base_load(loose) - applied) / applied
+loose_gap = np.max(np.abs(loose.settlement()[1] - settle)) / settle.max()
 method_gap = np.max(np.abs(runs["modified"][0].settlement()[1] - settle)) / settle.max()
+print(
+    f"stopped-early iterate (force_tol {LOOSE_TOL}, {sum(loose.solver_result.iterations)} iterations against "
+    f"{sum(runs['modified'][0].solver_result.iterations)} converged): contact resultant error "
+    f"{loose_resultant_error:.1e}, base load error {loose_base_error:.1e} (converged: "
+    f"{equilibrium_error:.1e}, {abs(base_load(out) - applied) / applied:.1e}); settlement vs full Newton "
+    f"{loose_gap:.2e} (converged modified Newton: {method_gap:.2e})"
+)
 mid = np.argmin(np.abs(layers["x"].ravel()))
 top_concrete = int(np.flatnonzero(~layers["steel"])[-1])
 print(
-    f"contact resultant {contact_resultant / 1e3:.2f} kN/m vs applied {applied / 1e3:.2f} kN/m "
+    f"contact resultant {contact_resultant(out) / 1e3:.2f} kN/m vs applied {applied / 1e3:.2f} kN/m "
     f"(relative error {equilibrium_error:.2e}); modified vs full Newton {method_gap:.2e}"
 )
 
@@ -239,12 +271,16 @@ assert method_gap < METHOD_TOL
 assert steel_gap < STEEL_TOL, steel_gap
 assert layers["cracked"].any()
 assert layers["cracked"][:, :, top_concrete].ravel()[mid]  # the top face is cracked at mid-span
+EQUILIBRIUM_TOL = 1e-4  # the row's tolerance: 10x the solver's force tolerance
+assert method_gap < METHOD_TOL
+assert loose_gap > METHOD_TOL  # the method check fails on the stopped-early iterate: it tests convergence
 record(
     "scene_equilibrium",
-    "relative error of the contact resultant vs applied loads (consistency only)",
+    "relative error of the contact resultant vs applied loads (consistency only: an iterate stopped at "
+    f"force_tol {LOOSE_TOL} meets it too, to {loose_resultant_error:.0e})",
     equilibrium_error,
-    1e-4,
-    equilibrium_error < 1e-4,
+    EQUILIBRIUM_TOL,
+    equilibrium_error < EQUILIBRIUM_TOL,
 )
 
 # %% [markdown]
@@ -356,17 +392,73 @@ record(
 assert order_min > 0.0, (order_w, order_m)  # the changes shrink: the sequence converges
 
 # %% [markdown]
+# **Is the low order the edge singularity, the nonlinearity, or coarse meshes?** The nonlinear scene cannot
+# go to h = 0.125 m here (full Newton cuts its steps from λ ≈ 0.4 on, the default BFGS crawls near λ ≈ 0.76 —
+# minutes per mesh on this machine). The same scene made linear — elastic soil (`c=None`), a homogeneous
+# elastic strip with the concrete's E0, a bonded linear contact — solves in about a second per mesh, so its
+# order can be read over four meshes, one more halving. Successive orders p_i = log2(d_i / d_(i+1)) of the
+# column settlement show whether the three meshes of the row are in the asymptotic range at all.
+
+# %%
+E0 = designer_concrete(38e6)["E0"]
+
+
+def linear_variant(h):
+    sc = foundation_scene(h)
+    return replace(
+        sc,
+        layers=[replace(lay, c=None) for lay in sc.layers],
+        foundation=replace(sc.foundation, section=homogeneous(0.4, E0, 0.2)),
+        contact=Contact(kn=sc.contact.kn, kt=sc.contact.kt),
+    )
+
+
+linear_sizes = [1.0, 0.5, 0.25, 0.125]
+linear_study = []
+for h in linear_sizes:
+    b = linear_variant(h).build()
+    assert b.is_linear
+    o = b.solve(n_steps=1)
+    x_pl, s_pl = o.settlement()
+    linear_study.append((1e3 * float(s_pl[np.argmin(np.abs(x_pl - 2.5))]), midspan_moment(o) / 1e3))
+linear_study = np.array(linear_study)
+d_lin = np.abs(np.diff(linear_study, axis=0))
+successive = np.log2(d_lin[:-1] / d_lin[1:])
+print(
+    "linear variant, column settlement [mm]:",
+    np.round(linear_study[:, 0], 4).tolist(),
+    "| successive orders:",
+    np.round(successive[:, 0], 2).tolist(),
+)
+print(
+    "linear variant, mid-span moment [kN m/m]:",
+    np.round(linear_study[:, 1], 3).tolist(),
+    "| successive orders:",
+    np.round(successive[:, 1], 2).tolist(),
+)
+# the linear scene's settlement order rises with the finest halving: the row's meshes are pre-asymptotic
+assert successive[-1, 0] > successive[0, 0]
+
+# %% [markdown]
 # ## Summary
 # A scene is a handful of components; `build()` makes only the groups it needs, `solve()` returns
 # settlements, contact pressures and zones, cracks and steel stresses; the steel stress is checked against an
 # independent layer-free section calculation (0.9 %), and settlement and moment converge under mesh refinement,
 # but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and the Richardson estimate
 # of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls below the h^(1/2) that the
-# punch-edge singularity alone would allow (row `ch11_mesh_order` fails). A likely cause, not isolated here:
-# the soil yields under the strip's edges and the contact slips and opens there, so the contact pressure that
-# bends the strip keeps changing with the mesh. A design moment from this scene needs a finer mesh than this
-# chapter can afford; the h = 0.125 m mesh stopped at 55 % of the load with full Newton (measured before the
-# plane-strain change). Full Newton and the paper's modified Newton–Raphson give the same answer; the measured
+# punch-edge singularity alone would allow (row `ch11_mesh_order` fails). The linear variant of the scene
+# (elastic soil, elastic strip, bonded contact), which can go one halving further, shows why: even without any
+# yield or cracking, h = 1, 0.5, 0.25 m are not yet in the asymptotic range — its settlement's successive
+# order rises from 0.55 (h = 1 → 0.25 m) to 1.16 (0.5 → 0.125 m), and its mid-span moment's changes first
+# grow (order −1.08) before they shrink at order 0.95. The row's fitted orders are those of a pre-asymptotic
+# sequence; it needs a fourth, finer mesh, and the nonlinear scene at h = 0.125 m does not finish in
+# reasonable time on this machine (full Newton cuts its steps from λ ≈ 0.4 on, the default BFGS crawls near
+# λ ≈ 0.76; measured). Yielding under the strip's edges and the contact's slip and opening may slow the
+# convergence further; that is not isolated here. A design moment from this scene needs a finer mesh than this
+# chapter can afford. An iterate stopped at 5 % residual still balances the loads in its contact resultant
+# and its base reaction to round-off (its residual is self-equilibrated), so that row is consistency only;
+# its settlement misses the converged one by 9·10⁻³, which the method check (10⁻³) catches.
+# Full Newton and the paper's modified Newton–Raphson give the same answer; the measured
 # iteration counts and wall times above are the trade between them. Beyond steel yield this particular beam forms a
 # plastic hinge at mid-span; load control then stops with a `NonConvergence` report naming the node — use
 # `run_arc_length` or displacement control (chapter 06) to follow the path further.

@@ -63,19 +63,13 @@ from ssi import paths
 from ssi.analytical import hetenyi_deflection
 from ssi.analytical_soil import edge_forces, strip_centreline_compression, strip_load_stresses
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
-from ssi.elements.interface import add_interface
-from ssi.elements.plate import add_plate_strip
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.estimate import RefinedSolver, estimate, richardson, solve_to_target
-from ssi.materials.interface_law import interface_params
-from ssi.materials.layer_laws import CONCRETE, STEEL
-from ssi.materials.rc import concrete_params, designer_concrete, steel_params
+from ssi.estimate import RefinedSolver, richardson, solve_to_target
+from ssi.examples import chapter11_foundation, winkler_strip
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.report import record, save_figure
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.section import homogeneous, rc_section
 from ssi.solver import NonConvergence, Settings
 
 FAST = paths.FAST
@@ -142,28 +136,16 @@ def strip_compression(n):
 # 0.5 % (chapter 10).
 
 # %%
-H_PLATE, E_PLATE, K_BED, P_LOAD = 0.01, 30e9, 5e6, 10e3
-EI_PLATE = E_PLATE * H_PLATE**3 / (12 * (1 - 0.2**2))
+H_PLATE, E_PLATE, NU_PLATE, K_BED, P_LOAD = 0.01, 30e9, 0.2, 5e6, 10e3
+EI_PLATE = E_PLATE * H_PLATE**3 / (12 * (1 - NU_PLATE**2))
 LAM = (K_BED / (4 * EI_PLATE)) ** 0.25
 
 
 def winkler_deflection(n_el):
-    """Deflection [m] under the load of the plate strip on the interface bed with n_el elements."""
-    length = 6.0 * math.pi / LAM
-    m = Model()
-    plate, pids, pconn = add_plate_strip(
-        m, np.linspace(-length / 2, length / 2, n_el + 1), homogeneous(H_PLATE, E_PLATE, 0.2), z=H_PLATE / 2
-    )
-    low = m.add_nodes(m.coords[pids] - [0.0, H_PLATE / 2], 2)
-    add_interface(
-        m, pconn, low[pconn - pids[0]], interface_params(0.0, K_BED, c=math.inf), offset=plate.bottom_offset
-    )
-    m.fix(low, "u")
-    m.fix(low, "w")
-    mid = pids[len(pids) // 2]
-    m.fix([mid], "u")
-    m.add_load([mid], "w", -P_LOAD)
-    return float(-m.solve_linear(backend="superlu").at([mid], "w")[0])
+    """Deflection [m] under the load of the plate strip on the interface bed (`ssi.examples.winkler_strip`,
+    the model of chapter 07) with n_el elements."""
+    x, w = winkler_strip(n_el, H_PLATE, E_PLATE, NU_PLATE, K_BED, P_LOAD)
+    return float(w[np.argmin(np.abs(x))])
 
 
 C_MC = 10e3
@@ -180,20 +162,37 @@ FOOTING = {
     "h_coarse": 1.0,
     "growth": 1.25,
 }
+# the footing's two solvers: full Newton with a line search (chapter 10's) and BFGS on K0 (the scenes'
+# default), both on the footing's fixed displacement increments
+FOOTING_SOLVERS = {
+    "line_search": {"method": "line_search"},
+    "bfgs": {"settings": Settings(method="bfgs", stepping="fixed", backend="superlu", max_cuts=8)},
+}
+footing_runs = {}  # (h, n_steps, solver) -> (q_u [Pa] or None, wall time [s]); each setting solved once
 
 
-def footing_capacity(h, n_steps=30, method="line_search"):
-    """(limit pressure q_u [Pa], wall time [s]) of the smooth rigid footing with element size h [m]."""
-    out = push_footing(rigid_footing(h_fine=h, **FOOTING), n_steps=n_steps, method=method)
-    if out["failure"]:
-        raise RuntimeError(f"footing h={h}, {n_steps} steps, {method}: {out['failure']}")
-    return out["q_u"], out["wall_time"]
+def footing_capacity(h, n_steps=30, solver="line_search"):
+    """(limit pressure q_u [Pa] or None if the solver stopped, wall time [s]) of the smooth rigid footing
+    with element size h [m] under it."""
+    key = (h, n_steps, solver)
+    if key not in footing_runs:
+        out = push_footing(rigid_footing(h_fine=h, **FOOTING), n_steps=n_steps, **FOOTING_SOLVERS[solver])
+        if out["failure"]:
+            print(f"footing h={h}, {n_steps} steps, {solver}: stopped ({out['failure'].get('reason')})")
+        footing_runs[key] = (None if out["failure"] else out["q_u"], out["wall_time"])
+    return footing_runs[key]
+
+
+def footing_q_u(h):
+    q_u, _ = footing_capacity(h)
+    assert q_u is not None, f"the 30-step line-search footing must reach its plateau (h = {h})"
+    return q_u
 
 
 # relative error of each closed form as a model of the discrete problem (not a discretisation error): the
 # strip's window has exact tractions (quadrature error ~1e-10); the Mindlin strip's shear flexibility
 # EI lambda^2 / (kappa G h) (chapter 07); Prandtl's block size and finite settlement (< 0.5 %, chapter 10)
-SHEAR_FLEXIBILITY = EI_PLATE * LAM**2 / (5.0 / 6.0 * E_PLATE / (2 * 1.2) * H_PLATE)
+SHEAR_FLEXIBILITY = EI_PLATE * LAM**2 / (5.0 / 6.0 * E_PLATE / (2 * (1 + NU_PLATE)) * H_PLATE)
 MODEL_ERROR = {"strip load w(0,0)-w(0,-2b)": 1e-10, "Hetenyi w(0)": SHEAR_FLEXIBILITY, "Prandtl q_u": 0.005}
 t0 = time.perf_counter()
 cases = {
@@ -209,7 +208,7 @@ cases = {
     ),
     "Prandtl q_u": (
         [0.5, 0.25, 0.125] if FAST else [0.5, 0.25, 0.125, 0.0625],
-        lambda h: footing_capacity(h)[0],
+        footing_q_u,
         prandtl(C_MC, 0.0)[0],
     ),
 }
@@ -220,7 +219,8 @@ for name, (levels, solve, exact) in cases.items():
         r = richardson(*values[i : i + 3], noise=0.0)  # linear solves / the footing's converged plateau
         true_base, true_fine = values[i] - exact, values[i + 2] - exact
         # a true error within 3x the closed form's model error measures the model, not the discretisation
-        judged = abs(true_base / exact) >= 3.0 * MODEL_ERROR[name]
+        # and a triple the estimate itself flags (order outside [0.5, 5]) is not a claim the tool makes
+        judged = abs(true_base / exact) >= 3.0 * MODEL_ERROR[name] and r.asymptotic
         efficiency.append(
             {
                 "case": name,
@@ -246,16 +246,21 @@ for row in efficiency:
         f"{row['case']:28s} {row['level']:7g} {row['order']:6.2f} {row['est']:10.2e} {row['true']:10.2e} "
         f"{row['index']:7.3f} {row['index_fine']:15.3f}"
         + ("" if row["asymptotic"] else "  (order outside [0.5, 5]: flagged)")
-        + ("" if row["judged"] else "  (true error within 3x the model error: not judged)")
+        + (
+            ""
+            if row["judged"] or not row["asymptotic"]
+            else "  (true error within 3x the model error: not judged)"
+        )
     )
 
 # %% [markdown]
 # The index of the scene *as given* (the coarsest of each triple: what a user solving that mesh is told) is
-# the claim, for every triple whose true error is at least three times the closed form's own model error
-# (the finest Hetényi triple of full mode is below it: there the reference measures the Mindlin strip's shear
-# flexibility, not the mesh); the finest level's index is printed too — it is less reliable, since there the power law is
-# extrapolated furthest and the other error sources (the Hetényi model error, the solver's tolerance) are
-# relatively largest.
+# the claim, for every triple the estimate does not flag itself and whose true error is at least three
+# times the closed form's own model error (the finest Hetényi triple of full mode is below it: there the
+# reference measures the Mindlin strip's shear flexibility, not the mesh; the finest strip-load triple of
+# full mode has an observed order of 5.5, so the tool flags it and tells the user not to extrapolate it); the finest level's index is printed too — it is less reliable, since there the
+# power law is extrapolated furthest and the other error sources (the Hetényi model error, the solver's
+# tolerance) are relatively largest.
 
 # %%
 EFFICIENCY_RANGE = (0.5, 2.0)  # the issue's band: an estimate within a factor 2 of the true error
@@ -274,80 +279,61 @@ record(
 assert efficiency_ok, f"efficiency indices {indices} outside {EFFICIENCY_RANGE}"
 
 # %% [markdown]
-# ## 2. The chapter-11 foundation, with its error
+# ## 2. The chapter-11 foundation, asked for 2 %
 #
-# The scene of chapter 11 — an RC beam on soft clay over sand under two columns — solved as given (coarse:
-# h = 1 m under the foundation) with `estimate`: every headline quantity, the error estimate of each
-# refinement with its observed order, and what each refinement cost.
+# The scene of chapter 11 (`ssi.examples.chapter11_foundation`: an RC beam on soft clay over sand under two
+# columns of 400 kN/m) on a coarse mesh — h = 1 m under the foundation, 4 m far from it — solved with the
+# default solver (BFGS on K0, automatic steps) and asked for its maximum settlement to 2 %:
+# `solve_to_target` first estimates every headline quantity's error (mesh h, h/2, h/4; steps ×1, ×2, ×4;
+# plate layers ×1, ×2, ×4), then extrapolates each refinement's fitted power law to the cheapest setting of
+# at most three halvings per refinement predicted to meet the target, and solves it — or says that none is.
+#
+# (Profiled first: the scene's own solves are cheap with the default solver — 0.2–0.4 s at h = 1 m, 9–13 s
+# at h/4 on this shared machine — while full Newton, which the parked draft of this chapter used everywhere,
+# took 41 s for one h = 0.25 m solve; that, not the mesh, made the draft run for over 15 minutes.)
 
 # %%
-fc, fy, Es = 38e6, 500e6, 200e9
-d = designer_concrete(fc)
-concrete = (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / Es))
-steel = (STEEL, steel_params(fy, Es))
-SECTION = rc_section(0.4, [(0.05, 1.5e-3), (0.35, 1.5e-3)], concrete, steel, n_concrete=9)
-H_COARSE = 4.0  # both modes: the full-mode 2.0 made the refined references run for > 25 min here
-
-
-def foundation_scene(h_fine=1.0):
-    return Scene(
-        width=30.0,
-        depth=10.0,
-        layers=[
-            SoilLayer(2.0, E=10e6, nu=0.3, unit_weight=18e3, c=20e3, phi_deg=20.0, psi_deg=0.0),
-            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
-        ],
-        foundation=Foundation(x0=-3.0, x1=3.0, section=SECTION, self_weight=25e3 * 0.4),
-        contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
-        loads=[ColumnLoad(x=-2.5, N=400e3), ColumnLoad(x=2.5, N=400e3)],
-        mesh=MeshSize(h_fine=h_fine, h_coarse=H_COARSE, growth=1.3),
-    )
-
-
-scene11 = foundation_scene()
-# full Newton, as in chapter 11: the default BFGS on K0 stalls near 97 % of the load on some refined copies
-# (h/4 with twice the steps or layers), where the beam's cracking spreads
-NEWTON = Settings(method="full")
+TARGET = 0.02  # the issue's target, both modes
+scene11 = chapter11_foundation(1.0, h_coarse=4.0)
 t0 = time.perf_counter()
-est11 = estimate(scene11, settings=NEWTON)
+target = solve_to_target(scene11, target_error=TARGET, quantities=("max_settlement",))
+wall_target = time.perf_counter() - t0
+est11 = target.estimate
 print(est11)
-print(f"estimate: {time.perf_counter() - t0:.1f} s")
+print(f"solve_to_target({TARGET}): {target.status} | {target.message} | {wall_target:.1f} s")
+mesh_s = est11.parts["mesh"]["max_settlement"]
+p_mesh = mesh_s.order
+e_base = abs(mesh_s.error_base) / abs(est11.value["max_settlement"])
+halvings_needed = math.ceil(math.log2(est11.relative["max_settlement"] / TARGET) / p_mesh)
+finest_error = abs(mesh_s.error_fine) / abs(mesh_s.values[2])
+print(
+    f"mesh refinement of the settlement: answers {[f'{1e3 * v:.2f} mm' for v in mesh_s.values]}, observed "
+    f"order {p_mesh:.2f}; estimated error of the scene as given {e_base:.1%}, of the h/4 copy "
+    f"{finest_error:.1%}; halvings of h needed for {TARGET:.0%} at that order: {halvings_needed}"
+)
 
 # %% [markdown]
-# ## Accuracy on demand: `solve_to_target`
-#
-# From the estimate, each refinement's error is extrapolated with its fitted power law; the cheapest number of
-# halvings predicted to reach the target is solved. Fast mode asks for 10 %, full mode for the issue's 2 %.
-# The delivered settlement is then compared with a reference one halving finer than it in every refinement
-# — an independent solve the driver never saw. If no setting within three halvings per refinement
-# is predicted to reach the target, the driver says so, the row records a FAIL of the claim, and the driver
-# is checked on 10 % instead.
+# **What the driver says, and why it is right.** The observed mesh order of the settlement is about 0.55 —
+# inside the asymptotic band [0.5, 5], so the estimate is used, not refused — and the three answers change
+# by 3.0 and 2.1 mm, so the error shrinks by only 2^0.55 ≈ 1.5 per halving. From an estimated 24 % at
+# h = 1 m, 2 % needs about seven halvings of the element size (h ≈ 1 cm under the beam, some 10⁶ DOFs); the
+# driver's limit is three, and it stops with status "limit of refinements" instead of solving a setting that
+# cannot meet the target. The order is an honest one, not a tolerance problem: the beam's edges are the
+# corners of a stiff punch on a yielding soil (chapter 11). Nor can the next mesh be had cheaply: with
+# h = 0.125 m under the beam (and 4 m far from it) the default solver's automatic steps crawl at λ ≈ 0.76 in
+# increments of about 10⁻³ (measured: 23 increments in 160 s, still at λ = 0.763; full Newton on chapter 11's
+# own h = 0.125 m mesh cuts its steps from λ = 0.4 on). The row `target_error_met` therefore records
+# the claim as **not met**; its value is the estimated error of the finest copy that was solved (h/4).
+# Should a driver ever meet the target, the delivered settlement is compared with an independent solve one
+# halving finer in every refinement.
 
 # %%
-TARGET = 0.10 if FAST else 0.02
-
-
-def solve_and_check(target_error):
-    """(TargetResult, true relative error of its settlement or None, reference Level or None)."""
-    t0 = time.perf_counter()
-    res = solve_to_target(scene11, target_error=target_error, quantities=("max_settlement",), settings=NEWTON)
-    print(f"target {target_error:.0%}: {res.status} | {res.message} | {time.perf_counter() - t0:.1f} s")
-    if not res.met:
-        return res, None, None
-    ref_key = tuple(k + 1 for k in res.key)
-    ref = RefinedSolver(scene11, None, NEWTON)(ref_key)
-    got, want = res.result.max_settlement()[1], ref.values["max_settlement"]
-    err = abs(got - want) / abs(want)
-    print(
-        f"  delivered at halvings {res.key}: {1e3 * got:.3f} mm; reference at {ref_key} ({ref.n_dof} DOFs, "
-        f"{ref.wall_time:.1f} s): {1e3 * want:.3f} mm; true error {err:.2%} (predicted "
-        f"{res.predicted['max_settlement']:.2%})"
-    )
-    return res, err, ref
-
-
-target, true_target_error, reference = solve_and_check(TARGET)
 if target.met:
+    ref_key = tuple(k + 1 for k in target.key)
+    reference = RefinedSolver(scene11, None, None)(ref_key)
+    got, want = target.result.max_settlement()[1], reference.values["max_settlement"]
+    true_target_error = abs(got - want) / abs(want)
+    print(f"delivered at {target.key}: true error against {ref_key}: {true_target_error:.2%}")
     record(
         "target_error_met",
         f"|s_max - s_ref|/s_ref of the chapter-11 scene solved to target_error={TARGET} "
@@ -358,77 +344,97 @@ if target.met:
     )
     assert true_target_error <= TARGET
 else:
-    # an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash);
-    # the driver is then shown on the loosest target it can reach here
+    # an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash)
     record(
         "target_error_met",
-        f"chapter-11 scene, target_error={TARGET}: {target.status} (value: estimated "
-        "error of the scene as given)",
-        target.predicted["max_settlement"],
+        f"chapter-11 scene (h = 1 m, 4 m far), target_error={TARGET}: '{target.status}' (mesh order "
+        f"{p_mesh:.2f}, about {halvings_needed} halvings needed, 3 allowed; h = 0.125 m crawls at 76 % of the load); value: "
+        "estimated error of the finest copy solved (h/4)",
+        finest_error,
         TARGET,
         False,
     )
-    assert not FAST, "fast mode's 10 % must be reachable"
-    looser, looser_error, reference = solve_and_check(0.10)
-    assert looser.met and looser_error <= 0.10
-s_ref = reference.values["max_settlement"]
+    # the refusal must be the consistent one: the order is asymptotic, and more than 3 halvings are needed
+    assert target.status == "limit of refinements", target.status
+    assert halvings_needed > 3
+    assert finest_error > TARGET
 
 # %% [markdown]
 # ## 3. The speed/accuracy trade: Pareto fronts
 #
-# Every combination of mesh (h, h/2[, h/4]), load steps (automatic, and twice as fine), plate layers (9 + 2
-# bars, and each split in two) and solver (BFGS on K0, the default, and full Newton) is one setting; its error
-# is measured against the finest solve of the study (for the chapter-11 scene: the reference above), its cost
-# is the solve's wall time. A setting is on the Pareto front when no other is both faster and more accurate.
+# Every combination of mesh (h, h/2, and in full mode h/4), load steps (automatic, and twice as fine), plate
+# layers (9 + 2 bars, and each split in two) and solver (BFGS on K0, the default, and full Newton) is one
+# setting; its cost is the solve's wall time. The MC footing's settings are its mesh (h = 0.5, 0.25, 0.125 m
+# under the footing, full mode also 0.0625 m), 15 or 30 displacement increments and two solvers (full Newton
+# with a line search, BFGS on K0); its error is exact, against Prandtl's (2 + π)c. The chapter-11 scene has no
+# closed form; its error is measured against the Richardson extrapolation of the mesh sequence above,
+# s* = q2 + d2/(2^p − 1). That reference rests on the fitted power law: its own uncertainty is of the order of
+# the steps and layers contributions and of how well p = 0.55 holds beyond h/4, so errors of the chapter-11
+# scene below about 1 % are not resolved by this study (none of its settings comes near that). A setting is
+# on the Pareto front when no other is both faster and more accurate.
 
 # %%
-mesh_levels = [0, 1]  # both modes (h/4 copies of this scene take tens of minutes on this machine)
+s_star = mesh_s.extrapolated
+print(f"chapter-11 reference: Richardson-extrapolated max settlement {1e3 * s_star:.2f} mm")
 solvers = {
-    "bfgs": RefinedSolver(scene11, None, Settings(method="bfgs")),
-    "full": RefinedSolver(scene11, None, NEWTON),
+    "bfgs": RefinedSolver(scene11, None, None),
+    "full": RefinedSolver(scene11, None, Settings(method="full")),
 }
-solvers["full"].cache.update(est11.levels)  # the estimate's solves used full Newton
+solvers["bfgs"].cache.update(est11.levels)  # the estimate's solves used the default solver
+
+
+def in_study(method, m, s, lay):
+    """Fast mode: h and h/2 with every combination, plus the estimate's h/4 solve (already made). Full mode:
+    also h/4 with every combination of the default solver and the plain h/4 with full Newton (one h/4 full
+    Newton solve costs about 40 s or more here)."""
+    if m < 2:
+        return True
+    if FAST:
+        return method == "bfgs" and (s, lay) == (0, 0)
+    return method == "bfgs" or (s, lay) == (0, 0)
+
+
+def label11(m, s, lay, method):
+    """The name of a chapter-11 setting: element size under the beam, step and layer factors, solver."""
+    return f"h={scene11.mesh.h_fine / 2**m:g}m steps x{2**s} layers x{2**lay} {method}"
+
+
 trade11 = []
 for method, solver in solvers.items():
-    for m in mesh_levels:
-        for s in (0, 1):
-            for lay in (0, 1):
-                try:
-                    lv = solver((m, s, lay))
-                except NonConvergence as err:  # a setting that fails is not on any front: say so
-                    print(
-                        f"h/{2**m} steps x{2**s} layers x{2**lay} {method}: failed ({err.report['reason']})"
-                    )
-                    continue
-                trade11.append(
-                    {
-                        "setting": f"h/{2**m} steps x{2**s} layers x{2**lay} {method}",
-                        "error": abs(lv.values["max_settlement"] - s_ref) / abs(s_ref),
-                        "wall": lv.wall_time,
-                        "n_dof": lv.n_dof,
-                    }
-                )
+    for m, s, lay in itertools.product((0, 1, 2), (0, 1), (0, 1)):
+        if not in_study(method, m, s, lay):
+            continue
+        setting = label11(m, s, lay, method)
+        try:
+            lv = solver((m, s, lay))
+        except NonConvergence as err:  # a setting that fails is not on any front: say so
+            print(f"{setting}: failed ({err.report['reason']})")
+            continue
+        trade11.append(
+            {
+                "setting": setting,
+                "error": abs(lv.values["max_settlement"] - s_star) / abs(s_star),
+                "wall": lv.wall_time,
+                "n_dof": lv.n_dof,
+            }
+        )
 
-
-def footing_trade():
-    h_levels = [0.5, 0.25] if FAST else [0.5, 0.25, 0.125]
-    q_exact = prandtl(C_MC, 0.0)[0]
-    rows = []
-    for method in ("line_search", "bfgs"):
-        for h in h_levels:
-            for n_steps in (15, 30):
-                q_u, wall = footing_capacity(h, n_steps, method)
-                rows.append(
+q_exact = prandtl(C_MC, 0.0)[0]
+trade_mc = []
+for solver_name in FOOTING_SOLVERS:
+    for h in [0.5, 0.25, 0.125] if FAST else [0.5, 0.25, 0.125, 0.0625]:
+        for n_steps in (15, 30):
+            if h < 0.1 and (solver_name, n_steps) != ("line_search", 30):
+                continue  # full mode's finest mesh: only the setting of the efficiency study (50 s)
+            q_u, wall = footing_capacity(h, n_steps, solver_name)
+            if q_u is not None:
+                trade_mc.append(
                     {
-                        "setting": f"h={h} {n_steps} steps {method}",
+                        "setting": f"h={h} {n_steps} steps {solver_name}",
                         "error": abs(q_u / q_exact - 1),
                         "wall": wall,
                     }
                 )
-    return rows
-
-
-trade_mc = footing_trade()
 
 
 def pareto(rows):
@@ -445,7 +451,11 @@ def pareto(rows):
     return sorted(front, key=lambda r: r["wall"])
 
 
-def cheapest(rows, levels=(0.10, 0.05, 0.02, 0.01)):
+LEVELS = (0.10, 0.05, 0.02, 0.01)
+
+
+def cheapest(rows, levels=LEVELS):
+    """{tolerance: the fastest row whose error is at most it, or None}."""
     out = {}
     for tol in levels:
         ok = [r for r in rows if r["error"] <= tol]
@@ -462,7 +472,7 @@ for ax, (title, rows) in zip(
     ax.loglog(
         [r["wall"] for r in front], [max(r["error"], 1e-5) for r in front], "C0o-", label="Pareto front"
     )
-    for tol in (0.10, 0.05, 0.02, 0.01):
+    for tol in LEVELS:
         ax.axhline(tol, color="k", lw=0.5, ls=":")
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("relative error")
@@ -472,7 +482,10 @@ fig.suptitle("Fig. 13.1 — error against wall time over mesh × steps × layers
 save_figure(fig, "ch13_pareto")
 
 for title, rows in (("chapter-11 foundation", trade11), ("MC footing", trade_mc)):
-    print(f"\n{title}: Pareto front")
+    print(f"\n{title}: every setting (error, wall time)")
+    for r in sorted(rows, key=lambda r: r["wall"]):
+        print(f"  {r['setting']:40s} error {r['error']:8.3%}  {r['wall']:7.2f} s")
+    print(f"{title}: Pareto front")
     for r in pareto(rows):
         print(f"  {r['setting']:36s} error {r['error']:8.3%}  {r['wall']:7.2f} s")
     print(f"{title}: cheapest setting reaching")
@@ -489,34 +502,40 @@ for title, rows in (("chapter-11 foundation", trade11), ("MC footing", trade_mc)
 # %% [markdown]
 # ## Checks
 # - every Pareto front is a front: along it, the error falls as the wall time grows;
-# - the finest mesh is more accurate than the coarsest for both scenes (the refinement is not wasted);
-# - the chapter-11 scene's estimated error is compared with its error against the reference (printed: the
-#   reference is itself only one halving finer than the delivered answer, so this is not a second index).
+# - for both scenes the finest mesh is more accurate than the coarsest (the refinement is not wasted), and the
+#   mesh, not the steps or the layers, decides the chapter-11 scene's error: at every mesh the settings that
+#   refine only steps or layers stay within 0.5 % of the plain one (the estimate's steps and layers
+#   contributions are below 0.1 %).
 
 # %%
 for rows in (trade11, trade_mc):
     front = pareto(rows)
     assert all(a["error"] > b["error"] for a, b in itertools.pairwise(front))
-coarse = next(r for r in trade11 if r["setting"] == "h/1 steps x1 layers x1 full")
-finest = next(r for r in trade11 if r["setting"] == f"h/{2 ** mesh_levels[-1]} steps x1 layers x1 full")
-assert finest["error"] < coarse["error"]
-true_base = abs(est11.value["max_settlement"] - s_ref) / abs(s_ref)
-est_base = est11.relative["max_settlement"]
-print(
-    f"chapter-11 scene as given: estimated error {est_base:.2%}, error against the reference {true_base:.2%}, "
-    f"index {est_base / true_base:.2f} (the reference carries its own error: printed, not asserted)"
-)
-assert est_base > 0.0 and true_base > 0.0
+by11 = {r["setting"]: r for r in trade11}
+finest_m = 1 if FAST else 2
+assert by11[label11(finest_m, 0, 0, "bfgs")]["error"] < by11[label11(0, 0, 0, "bfgs")]["error"]
+for m in range(finest_m + 1):
+    plain = by11[label11(m, 0, 0, "bfgs")]["error"]
+    for r in trade11:
+        if r["setting"].startswith(label11(m, 0, 0, "bfgs").split()[0] + " "):
+            assert abs(r["error"] - plain) < 0.005, (r["setting"], r["error"], plain)
+by_mc = {r["setting"]: r for r in trade_mc}
+assert by_mc["h=0.125 30 steps line_search"]["error"] < by_mc["h=0.5 30 steps line_search"]["error"]
 
 # %% [markdown]
 # ## Summary
 # `ssi.estimate.estimate(scene)` answers "how wrong is this?" for the headline quantities from three
 # refinement levels of the mesh, the steps and the plate layers, with the observed order of each; on three
-# closed forms its efficiency index lies in the table above. `solve_to_target(scene, 0.02)` turns it round:
-# it extrapolates each refinement's error and solves the cheapest setting predicted to meet the target, and it
-# refuses (with a message naming the refinement and its order) when the refinements are not in the
-# asymptotic range. The Pareto fronts show where the time goes: for the chapter-11 scene the mesh dominates
-# the error and the cost; the number of load steps hardly matters at the solver's tolerance.
+# closed forms its efficiency index lies in the table above (row `error_estimate_efficiency`).
+# `solve_to_target(scene, 0.02)` turns it round: it extrapolates each refinement's error and solves the
+# cheapest setting predicted to meet the target — and on the chapter-11 scene it honestly refuses: the
+# settlement converges with the mesh at order 0.55 (the punch edges on yielding clay), so 2 % would take about
+# seven halvings of h; the finest copy this machine solves (h/4) is still about 10 % off (row
+# `target_error_met`, FAIL). The Pareto fronts show where the time goes: for both scenes the mesh decides
+# the error and the cost; for the chapter-11 scene twice the load steps or twice the plate layers change the
+# settlement by less than 0.1 %, and BFGS and full Newton give the same settlement to the solver's tolerance
+# (their costs are in the table above). The MC footing,
+# which converges at order ≈ 1, reaches 10 % and 5 % cheaply and 2 % only on the finest mesh of full mode.
 #
 # References: L. F. Richardson (1911), *Phil. Trans. R. Soc. A* 210, 307–357; P. J. Roache (1998),
 # *Verification and Validation in Computational Science and Engineering*, Hermosa (the grid convergence index

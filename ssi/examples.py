@@ -1,0 +1,109 @@
+"""Model problems shared by several chapters, benchmarks and tests (one home for each).
+
+* :func:`chapter11_foundation` -- the RC foundation beam on soft clay over sand under two columns of chapter
+  11, as a :class:`~ssi.scene.Scene`; chapters 13 and 14 and ``benchmarks/bench_sweep.py`` vary it.
+* :func:`chapter11_section` -- that beam's RC section.
+* :func:`winkler_strip` -- a plate strip on an interface bed over a rigid base under a point load: the finite
+  element model of Hetenyi's beam on a Winkler foundation (chapters 07 and 13 compare it with
+  :func:`ssi.analytical.hetenyi_deflection`).
+"""
+
+import math
+
+import numpy as np
+
+from .elements.interface import add_interface
+from .elements.plate import add_plate_strip
+from .materials.interface_law import interface_params
+from .materials.layer_laws import CONCRETE, STEEL
+from .materials.rc import concrete_params, designer_concrete, steel_params
+from .model import Model
+from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from .section import Section, homogeneous, rc_section
+from .validate import check_int, check_real
+
+__all__ = ["chapter11_foundation", "chapter11_section", "winkler_strip"]
+
+CHAPTER11_COLUMN_LOAD = 400e3  # [N/m] per column (chapter 11: the cracked, elastic service state)
+
+
+def chapter11_section(fc: float = 38e6, fy: float = 500e6, area: float = 1.5e-3) -> Section:
+    """The 0.4 m deep RC strip of chapter 11: bars of ``area`` [m^2/m] top and bottom at 5 cm cover, concrete
+    of strength ``fc`` [Pa] with the designer parameters of chapter 03, steel of yield stress ``fy`` [Pa]
+    (Es = 200 GPa), 9 concrete layers."""
+    es = 200e9
+    d = designer_concrete(fc)
+    concrete = (CONCRETE, concrete_params(fc, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, fy / es))
+    return rc_section(
+        0.4, [(0.05, area), (0.35, area)], concrete, (STEEL, steel_params(fy, es)), n_concrete=9
+    )
+
+
+def chapter11_foundation(
+    h_fine: float = 1.0,
+    *,
+    column_load: float = CHAPTER11_COLUMN_LOAD,
+    horizontal_load: float = 0.0,
+    clay_E: float = 10e6,
+    clay_c: float = 20e3,
+    clay_phi_deg: float = 20.0,
+    h_coarse: float = 2.0,
+    growth: float = 1.3,
+    section: Section | None = None,
+) -> Scene:
+    """The scene of chapter 11: a 6 m long RC beam (:func:`chapter11_section`) on 2 m of soft clay over 8 m of
+    sand, a 30 m x 10 m block, two columns at x = +-2.5 m carrying ``column_load`` [N/m] each (the left one
+    also ``horizontal_load`` [N/m]), the beam's self-weight 25 kN/m^3 x 0.4 m.
+
+    ``h_fine`` / ``h_coarse`` [m]: element size under the beam / far from it, ``growth`` [-] their ratio per
+    element; ``clay_E`` [Pa], ``clay_c`` [Pa], ``clay_phi_deg`` [deg]: the clay's modulus and strength (the
+    variables of chapter 14); ``section``: another strip section (default chapter 11's)."""
+    check_real("column_load", column_load, unit="N/m")
+    return Scene(
+        width=30.0,
+        depth=10.0,
+        layers=[
+            SoilLayer(2.0, E=clay_E, nu=0.3, unit_weight=18e3, c=clay_c, phi_deg=clay_phi_deg, psi_deg=0.0),
+            SoilLayer(8.0, E=80e6, nu=0.3, unit_weight=20e3, c=1e3, phi_deg=35.0, psi_deg=5.0),
+        ],
+        foundation=Foundation(
+            x0=-3.0,
+            x1=3.0,
+            section=chapter11_section() if section is None else section,
+            self_weight=25e3 * 0.4,
+            bar_diameter=0.016,
+        ),
+        contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
+        loads=[ColumnLoad(x=-2.5, N=column_load, H=horizontal_load), ColumnLoad(x=2.5, N=column_load)],
+        mesh=MeshSize(h_fine=h_fine, h_coarse=h_coarse, growth=growth),
+    )
+
+
+def winkler_strip(n_el: int, depth: float, E: float, nu: float, k: float, P: float):
+    """A plate strip (``depth`` [m], ``E`` [Pa], ``nu`` [-]) on interface elements of normal stiffness ``k``
+    [Pa/m] (k_t = 0, no strength limit) whose lower nodes are fixed, ``n_el`` elements over a length
+    6 pi / lambda, lambda = (k / 4EI)^(1/4), EI = E depth^3 / (12 (1 - nu^2)) (the ends then carry
+    exp(-3 pi) = 8e-5 of the centre's deflection), a point load ``P`` [N/m] at the middle node; solved
+    linearly. Returns (x [m], w [m], settlement positive) of the strip's nodes."""
+    n_el = check_int("n_el", n_el, lo=2)
+    for name, v in (("depth", depth), ("E", E), ("k", k)):
+        check_real(name, v, lo=0.0, lo_open=True)
+    check_real("nu", nu, lo=0.0, hi=0.5, hi_open=True)
+    ei = E * depth**3 / (12 * (1 - nu**2))
+    lam = (k / (4 * ei)) ** 0.25
+    length = 2 * 3 * math.pi / lam
+    m = Model()
+    plate, pids, pconn = add_plate_strip(
+        m, np.linspace(-length / 2, length / 2, n_el + 1), homogeneous(depth, E, nu), z=depth / 2
+    )
+    low = m.add_nodes(m.coords[pids] - [0.0, depth / 2], 2)
+    add_interface(
+        m, pconn, low[pconn - pids[0]], interface_params(0.0, k, c=math.inf), offset=plate.bottom_offset
+    )
+    m.fix(low, "u")
+    m.fix(low, "w")
+    mid = pids[len(pids) // 2]
+    m.fix([mid], "u")
+    m.add_load([mid], "w", -P)
+    res = m.solve_linear(backend="superlu")
+    return m.coords[pids, 0], -res.at(pids, "w")
