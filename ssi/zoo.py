@@ -19,7 +19,18 @@ import numpy as np
 
 from .materials.layer_laws import CONCRETE, STEEL
 from .materials.rc import concrete_params, designer_concrete, steel_params
-from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from .scene import (
+    ColumnLoad,
+    Contact,
+    Excavation,
+    Foundation,
+    MeshSize,
+    Phase,
+    Scene,
+    SoilLayer,
+    StripWeight,
+    SurfacePressure,
+)
 from .section import homogeneous, rc_section
 from .solver import NonConvergence, Settings
 
@@ -152,9 +163,43 @@ def ordinary_scenes() -> list[tuple[str, Scene]]:
         )
     )
     out.append(("associated soil", _base(layers=[replace(lay, psi_deg=lay.phi_deg) for lay in base.layers])))
+    out.extend(phased_scenes())
     out.append(("above capacity, clay", _base(loads=[ColumnLoad(x=0.0, N=2.0e6)])))
     out.append(("above capacity, sand", _base(layers=[sand[0]], loads=[ColumnLoad(x=0.0, N=3.0e6)])))
     return out
+
+
+def phased_scenes() -> list[tuple[str, Scene]]:
+    """Phased scenes of the zoo (chapter 12's capabilities): an embedded strip below a water table loaded in
+    phases and half unloaded, and a pit excavated beside a loaded strip."""
+    base = _base()
+    sand = SoilLayer(
+        4.5, E=50e6, nu=0.3, unit_weight=19e3, unit_weight_sat=20e3, c=2e3, phi_deg=32.0, psi_deg=0.0
+    )
+    embedded = _base(
+        layers=[SoilLayer(1.5, E=10e6, nu=0.3, unit_weight=18e3), sand],
+        embedment=1.5,
+        water_table=2.0,
+        loads=[],
+        phases=[
+            Phase("weight", loads=(StripWeight(unit_weight=25e3),)),
+            Phase(
+                "building",
+                loads=(ColumnLoad(x=0.0, N=250e3, H=20e3), SurfacePressure(x0=3.0, x1=5.0, q=20e3)),
+            ),
+            Phase("half unload", factors={"building": 0.5}),
+        ],
+    )
+    pit = _base(
+        water_table=1.0,
+        loads=[],
+        phases=[
+            Phase("building", loads=(ColumnLoad(x=0.0, N=250e3),)),
+            Phase("pit", excavate=(Excavation(x0=3.0, x1=5.0, bottom=1.0),)),
+        ],
+        layers=list(base.layers),
+    )
+    return [("phased, embedded, water table", embedded), ("excavation beside a strip", pit)]
 
 
 def random_scenes(n: int, seed: int = 0) -> list[tuple[str, Scene]]:

@@ -23,6 +23,10 @@ def test_zoo_scene_reaches_its_load_or_a_detected_collapse(name):
     if name.startswith("above capacity"):
         assert out.status == LIMIT_LOAD and out.limit_load_factor < 1.0
         return
+    if scene.phases:  # every phase to its end (their physics is verified in chapter 12)
+        assert [p["result"].status for p in out.phases] == ["completed"] * (len(scene.phases) + 1)
+        assert out.load_factor[-1] == len(scene.phases)
+        return
     assert out.status == "completed" and out.load_factor[-1] == 1.0
     contact = out.contact()
     weights = built.interface.ip_weights()
