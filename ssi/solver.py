@@ -304,8 +304,6 @@ RELAX_STAGES = 4  # ... over this many stages, then the last stage is rate indep
 RELAX_STEPS = 8  # increments at most per stage
 RELAX_TOL = 1e-5  # a stage ends when the load measure changes by less than this (relative)
 RELAX_MIN_GROWTH = 1.5  # a failing stage is retried with a smaller growth of tau, down to this
-CREEP_FLOW = 0.5  # held load: displacement increments that shrink by less than this flow (a mechanism); a
-# state that relaxes shrinks them by 1/(1 + tau) <= 0.09 per increment (tau >= 10) or converges at once
 BRACKET_TOL = 0.01  # a limit load found by relaxation is bracketed to 1 % of its load factor ...
 BRACKET_REFINEMENTS = 4  # ... with at most this many extra relaxations
 
@@ -313,19 +311,21 @@ BRACKET_REFINEMENTS = 4  # ... with at most this many extra relaxations
 class _RelaxationFailed(Exception):
     """No rate-independent equilibrium was found at the held load (the last relaxation stage failed)."""
 
-    def __init__(self, outcome, tau, lam, creep=np.nan):
+    def __init__(self, outcome, tau, lam, flow_stiffness=np.nan):
         super().__init__(outcome.get("reason", ""))
         self.outcome, self.tau, self.lam = outcome, tau, lam
-        self.creep = creep  # |d delta| of the last held increment over the one before (nan: unknown)
+        self.flow_stiffness = flow_stiffness  # see _flow_stiffness (nan: unknown)
 
 
-def _creep_ratio(path):
-    """|d delta| of the last committed increment over that of the one before (both at the held load)."""
-    r = path.result
-    if r.n_steps < 3 or not (r.load_factor[-1] == r.load_factor[-2] == r.load_factor[-3]):
+def _flow_stiffness(deltas, tau):
+    """Current stiffness parameter of a held load's flow mode, from the loaded displacement of its last three
+    increments at viscosity ``tau``: a mode of stiffness s (relative to the elastic one) relaxes by
+    1 / (1 + tau s) per increment, so s = (1/r - 1) / tau with r the ratio of the last two displacement
+    increments. nan when unknown (fewer than three, tau = 0, no motion)."""
+    if len(deltas) < 3 or tau <= 0.0 or deltas[-2] == deltas[-3]:
         return np.nan
-    d = [path.measure.point(k)[1] for k in (r.n_steps - 2, r.n_steps - 1, r.n_steps)]
-    return abs(d[2] - d[1]) / abs(d[1] - d[0]) if d[1] != d[0] else np.nan
+    r = abs(deltas[-1] - deltas[-2]) / abs(deltas[-2] - deltas[-3])
+    return (1.0 / r - 1.0) / tau if r > 0.0 else np.inf
 
 
 def _relax_stages(path):
@@ -355,17 +355,22 @@ def _relax_stages(path):
 
 def _hold(path, lam, tau):
     """One relaxation stage: up to ``RELAX_STEPS`` increments at the held load with viscosity ``tau``, until
-    the load measure settles."""
+    the load measure settles. A stage that ends unsettled leaves its flow stiffness in ``path.flow``."""
     _set_viscosity(path.model, tau)
+    deltas = [path.measure.point(path.result.n_steps)[1]]
     for _ in range(RELAX_STEPS):
         before = np.array(path.measure.point(path.result.n_steps))
         outcome = path._increment(lam)
         if not outcome["converged"]:
-            raise _RelaxationFailed(outcome, tau, lam, _creep_ratio(path))
+            flow = _flow_stiffness(deltas, tau) if len(deltas) >= 3 else path.flow
+            raise _RelaxationFailed(outcome, tau, lam, flow)
         path._commit(lam, outcome)
         after = np.array(path.measure.point(path.result.n_steps))
+        deltas.append(after[1])
         if np.all(np.abs(after - before) <= RELAX_TOL * np.maximum(np.abs(after), 1e-30)):
+            path.flow = np.nan
             return
+    path.flow = _flow_stiffness(deltas, tau)
 
 
 def relax(path: "_Path") -> bool:
@@ -378,8 +383,9 @@ def relax(path: "_Path") -> bool:
     capacity (the overstress carries the excess). If the held load does not relax, the largest load factor
     of the viscous path that does relax is searched (bisection over its steps, then over lambda), and the
     result ends as ``"limit load reached"`` there, with ``limit_load_upper`` the smallest load factor where
-    no rate-independent equilibrium was found -- provided the path's current stiffness had fallen below
-    ``collapse_stiffness`` (else :class:`NonConvergence`)."""
+    no rate-independent equilibrium was found -- provided the structure is at a limit: the held load kept
+    flowing with a current stiffness (:func:`_flow_stiffness`) below ``collapse_stiffness``, or the two
+    highest relaxed states' secant stiffness is below it. Else :class:`NonConvergence`."""
     first = path.result.n_steps
     saved = path.save()
     try:
@@ -441,12 +447,12 @@ def _bracket_limit(path, saved, failure):
     path.tau = 0.0
     _set_viscosity(path.model, 0.0)
     stiff = _secant_stiffness(path.measure, relaxed)
-    flowing = failure.creep >= CREEP_FLOW
+    flowing = failure.flow_stiffness < path.settings.collapse_stiffness  # False for nan
     if flowing or (np.isfinite(stiff) and stiff < path.settings.collapse_stiffness):
         res.status, res.limit_load_factor, res.limit_load_upper = LIMIT_LOAD, float(lam_lo), float(lam_hi)
         res.limit_evidence = (
-            f"held at lambda = {lam_hi:.6g} the body kept flowing (displacement increments {failure.creep:.2f} "
-            "of the previous)"
+            f"held at lambda = {lam_hi:.6g} the body kept flowing, its current stiffness "
+            f"{failure.flow_stiffness:.2g} of the initial"
             if flowing
             else f"the relaxed path's current stiffness fell to {stiff:.3g} of the initial"
         )
@@ -470,8 +476,8 @@ def _raise_relaxation_failure(path, failure, lam_lo, stiff):
         report["reason"] += (
             f" (the largest load factor that relaxes is {lam_lo:.6g}; the relaxed path's current stiffness "
             f"there is {stiff:.3g} of the initial, not below collapse_stiffness="
-            f"{path.settings.collapse_stiffness:g}, and the held load did not flow (displacement increments "
-            f"{failure.creep:.2g} of the previous), so this is not taken for a collapse)"
+            f"{path.settings.collapse_stiffness:g}, and the held load did not flow (flow stiffness "
+            f"{failure.flow_stiffness:.2g}), so this is not taken for a collapse)"
         )
     path.result.status = STOPPED
     raise NonConvergence(report, path.result)
@@ -514,6 +520,7 @@ class _Path:
         self.bar = SolverProgress(None, 1.0)  # silent until run() opens the real one
         self.step = settings.first_step * scale
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
+        self.flow = np.nan  # flow stiffness of the last relaxation stage that ended unsettled
 
     def save(self) -> "_Snapshot":
         """The committed path (result lists and current state), to return to with :meth:`restore`."""
