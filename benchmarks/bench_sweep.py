@@ -1,10 +1,10 @@
 """Benchmark of issue 15: throughput of ``ssi.sweep`` on this machine.
 
 Twenty-four scenes like chapter 14's (the chapter-11 foundation on a coarse mesh, 785 DOFs, with the zoo's
-RC strip section; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own solve time), then by a LocalCluster
-of 1 and of 2 worker processes (threads_per_worker=1). The cluster's start-up is timed separately: it is paid
-once per sweep, not per scene. The numba cache is warm (a first scene is solved before timing, and the
-workers load the same NUMBA_CACHE_DIR).
+RC strip section; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own
+solve time), then by a LocalCluster of 1 and of 2 worker processes (threads_per_worker=1). The cluster's
+start-up is timed separately: it is paid once per sweep, not per scene. The numba cache is warm (a first scene
+is solved before timing, and the workers load the same NUMBA_CACHE_DIR).
 
 Prints ``key: value`` lines: ``sweep_scenes_per_min_1w``, ``sweep_scenes_per_min_2w`` (scenes per minute of
 wall time from submission to the last result, cluster start excluded), ``sweep_overhead_per_task_s`` (1

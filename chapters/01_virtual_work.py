@@ -48,7 +48,8 @@
 #   = \underbrace{\textstyle\sum_e \int N^T b\, dV}_{F_b} + \underbrace{\textstyle\sum_s \int N^T p\, dS}_{F_p}.$$
 #
 # Term (a) gives the soil (and later plate) element stiffnesses, term (b) the interface stiffness, (c) and
-# (d) the load vectors. Taking δd = d itself turns (3.1) into an energy balance: dᵀK_V d + dᵀK_c d = dᵀ(F_b + F_p),
+# (d) the load vectors. Taking δd = d itself turns (3.1) into an energy balance: dᵀK_V d + dᵀK_c d = dᵀ(F_b +
+#     F_p),
 # the work done inside the bodies plus in the interface equals the work of the loads.
 #
 # | paper | code | meaning |
@@ -200,8 +201,8 @@ print(
 # %% [markdown]
 # ## Solving through `ssi` and by hand
 #
-# **By hand, case A.** Every horizontal section carries the same vertical stress; with M = E(1−ν)/((1+ν)(1−2ν))
-# the constrained modulus of a laterally confined layer and z measured up from the base,
+# **By hand, case A.** Every horizontal section carries the same vertical stress; with M =
+# E(1−ν)/((1+ν)(1−2ν)) the constrained modulus of a laterally confined layer and z measured up from the base,
 #
 # - upper block: σ_z(z) = −[p + γ₂(H₁ + H₂ − z)];  lower block: σ_z(z) = −[p + γ₂H₂ + γ₁(H₁ − z)];
 # - lower block: w(z) = ∫₀ᶻ σ_z/M₁ dz = −[(p + γ₂H₂ + γ₁H₁) z − γ₁z²/2] / M₁;

@@ -67,7 +67,8 @@
 #   + \frac{\partial\gamma}{\partial a_i}Q\Big)\,dx .$$
 #
 # Differentiating once more with N, M, Q linear in the strains gives the stiffness block of eq. (4.7a); the
-# membrane–bending coupling −Nᵢ′ z D₁ Nⱼ′ vanishes only if the section is symmetric about the reference surface.
+# membrane–bending coupling −Nᵢ′ z D₁ Nⱼ′ vanishes only if the section is symmetric about the reference
+# surface.
 #
 # **Layers (eq. 4.7b).** The section is a stack of layers n with mid-depth zₙ and thickness hₙ, each with its
 # own law: concrete, or steel smeared into a layer of *mechanically equivalent thickness* — the bar area per
@@ -77,8 +78,9 @@
 # **Internal force from layer stresses.** The nonlinear laws of §5 are *total*: the stress follows from the
 # total strain (and a history). The kernel calls each layer's law once, at its mid-depth zₙ, and takes the
 # stress as linear within the layer with a modulus eₙ — option `self_bending`: the chord through the stresses
-# the law gives at the layer's two faces (default, `"chord"`: $M_{self}=\frac{h_n^2}{12}(\sigma_{bot}-\sigma_{top})$),
-# the layer's tangent modulus (`"tangent"`), or its initial modulus e₀ₙ (its D₁, `"initial"`):
+# the law gives at the layer's two faces (default, `"chord"`:
+# $M_{self}=\frac{h_n^2}{12}(\sigma_{bot}-\sigma_{top})$), the layer's tangent modulus (`"tangent"`), or its
+# initial modulus e₀ₙ (its D₁, `"initial"`):
 #
 # $$N = \sum_n h_n\sigma_n,\qquad M = -\sum_n h_n z_n\sigma_n + \sum_n e_{n}\frac{h_n^3}{12}k .$$
 #
@@ -87,7 +89,8 @@
 # O(hₙ²) correction that vanishes as the layers get thinner. With e₀ₙ it keeps f continuous when a layer
 # cracks or yields and the consistent tangent exact, but a cracked or crushed layer keeps its elastic bending
 # stiffness; with the tangent modulus it follows the layer's state, but f jumps by O(hₙ³) when a layer changes
-# branch; the chord follows the state *and* keeps f continuous, with an exact (non-symmetric) tangent. The trade study at the end measures both and picks the default from the evidence (Fig. 2.6).
+# branch; the chord follows the state *and* keeps f continuous, with an exact (non-symmetric) tangent. The
+# trade study at the end measures both and picks the default from the evidence (Fig. 2.6).
 #
 # **Integration along the element (§10).** Three rules are options of the element:
 #
@@ -847,8 +850,9 @@ print(f"1/(1 - nu^2) - 1 = {1 / (1 - nu_c**2) - 1:.2%} (nu = {nu_c})")
 # section (1 + 7 + 1 concrete layers) has 49 mm thick cover layers; with the initial-modulus self-bending
 # term a cracked cover layer keeps its uncracked bending stiffness over its own thickness, which
 # over-estimates M by 1–3 % at these curvatures (the stars in Fig. 2.5b) and by up to 17 % beyond yield
-# (Fig. 2.6); the tangent option (the default) cuts that to about 1 %. Spreading ~30 concrete layers in proportion to the gaps brings either option to the 0.1 % level
-# at roughly 2–3× the cost of the 11-layer section — still only tens of µs per element evaluation.
+# (Fig. 2.6); the tangent option (the default) cuts that to about 1 %. Spreading ~30 concrete layers in
+# proportion to the gaps brings either option to the 0.1 % level at roughly 2–3× the cost of the 11-layer
+# section — still only tens of µs per element evaluation.
 
 # %% [markdown]
 # ## Verification

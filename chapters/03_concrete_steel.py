@@ -55,8 +55,8 @@
 # the origin (open choice) and recloses without resistance.
 #
 # **Tension stiffening (Fig. 5, dotted).** Between cracks the bars drag the concrete along; open default:
-# a second branch $\alpha_{ts}f_r(\varepsilon_y-\varepsilon)/(\varepsilon_y-\varepsilon_r)$ that vanishes at the
-# yield strain $\varepsilon_y$ of the reinforcement; the concrete carries the larger of the two. The paper
+# a second branch $\alpha_{ts}f_r(\varepsilon_y-\varepsilon)/(\varepsilon_y-\varepsilon_r)$ that vanishes at
+# the yield strain $\varepsilon_y$ of the reinforcement; the concrete carries the larger of the two. The paper
 # speaks of a "superposition" of softening and stiffening. Read as a sum, a point just past cracking would
 # carry $f_r(1+\alpha_{ts})$ — more than its strength — so we read it as the envelope of the two (the max),
 # which is continuous at $f_r$ only in the limit and never exceeds $f_r$. Where it acts is a modelling
@@ -65,9 +65,9 @@
 # `ssi.section.with_crack_spacing_band(..., tension_stiffening="effective_area")`), outside which the concrete
 # softens as plain concrete. Chapter 08 scores both against every measured point of a beam.
 #
-# **Cracked shear (Fig. 6).** $G_c=\beta G$, $\beta=\beta_0(1-\varepsilon_{max}/\varepsilon_y)$ after cracking,
-# never below a floor $\beta_{floor}$ that keeps the matrix regular. $\beta$ is taken from the crack state
-# committed at the start of the increment (see `ssi/materials/concrete.py` for why).
+# **Cracked shear (Fig. 6).** $G_c=\beta G$, $\beta=\beta_0(1-\varepsilon_{max}/\varepsilon_y)$ after
+# cracking, never below a floor $\beta_{floor}$ that keeps the matrix regular. $\beta$ is taken from the crack
+# state committed at the start of the increment (see `ssi/materials/concrete.py` for why).
 #
 # **Steel (§5.4).** Bilinear: $E_s$ to $f_y$, then hardening $E_H$; unloading with $E_s$ (linear kinematic
 # hardening with plastic modulus $H=E_sE_H/(E_s-E_H)$ produces exactly this curve).
@@ -309,8 +309,8 @@ plt.show()
 #
 # ## Summary
 #
-# * Eq. (5.1) has peak $f_c$ at $\varepsilon_c$, initial slope $E_0$ and zero slope at the peak (to round-off);
-#   both forms of (5.3) agree; unloading runs along $E_0$.
+# * Eq. (5.1) has peak $f_c$ at $\varepsilon_c$, initial slope $E_0$ and zero slope at the peak (to
+#   round-off); both forms of (5.3) agree; unloading runs along $E_0$.
 # * The crack band dissipates $G_f/l_s$ per unit volume (report row `crack_band_energy`); a band at or
 #   beyond $2E_0G_f/f_r^2$ is refused.
 # * Every branch of both laws has an exact tangent (FD checks above).

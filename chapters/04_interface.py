@@ -25,7 +25,8 @@
 #   open, re-closing — on a single material point driven along a gap path;
 # - check the consistent tangent against finite differences in every state;
 # - see, with an eigenvalue view and a traction-recovery experiment, why full Gauss integration couples
-#   neighbouring node pairs and makes a stiff interface oscillate, while the paper's Newton–Cotes rule does not.
+#   neighbouring node pairs and makes a stiff interface oscillate, while the paper's Newton–Cotes rule does
+#   not.
 
 # %% [markdown]
 # ## Theory
@@ -131,8 +132,8 @@ print(
 #
 # Stiffness k_t = 20 MPa/m, k_n = 50 MPa/m, c = 8 kPa, φ = 30°. The path first presses the contact
 # (g_n = −1 mm, σn = −50 kPa), slides it forward 3 mm and back 3 mm at that normal gap, then pulls the
-# contact open (g_n = +2 mm) and presses it shut again (g_n = −1 mm). We drive it twice: with the paper's associated rule (ψᵢ = φ) and
-# without dilation (ψᵢ = 0).
+# contact open (g_n = +2 mm) and presses it shut again (g_n = −1 mm). We drive it twice: with the paper's
+# associated rule (ψᵢ = φ) and without dilation (ψᵢ = 0).
 
 # %%
 KT, KN, C, PHI = 20e6, 50e6, 8e3, 30.0

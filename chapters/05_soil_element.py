@@ -239,7 +239,8 @@ Q, B_HALF, WINDOW = 100e3, 1.0, 4.0
 
 
 def strip_window(n, n_gauss, nu=NU, backend=BACKEND):
-    """Solve the half window with exact boundary tractions; return (n_dof, error, wall time, points, stress)."""
+    """Solve the half window with exact boundary tractions; return (n_dof, error, wall time, points,
+    stress)."""
     t0 = time.perf_counter()
     lines = np.linspace(0.0, WINDOW * B_HALF, int(WINDOW * n) + 1)
     m = structured_q8(lines, lines - WINDOW * B_HALF)
@@ -305,8 +306,8 @@ finest_err = conv[2][-1][2]
 #
 # Undrained clay behaves with ν → 0.5. The standard probe is Lamé's thick cylinder in plane strain (inner
 # radius a = 1, outer b = 2, internal pressure p), whose radial displacement
-# u_r = (1+ν) p a² / (E (b² − a²)) · [(1−2ν) r + b²/r] stays finite as ν → 0.5. A quarter of the ring is meshed
-# (symmetry supports on both straight edges), with curved element edges from the polar map, on a coarse
+# u_r = (1+ν) p a² / (E (b² − a²)) · [(1−2ν) r + b²/r] stays finite as ν → 0.5. A quarter of the ring is
+# meshed (symmetry supports on both straight edges), with curved element edges from the polar map, on a coarse
 # 2 × 4 mesh and a finer 4 × 8 one. The strip-load window of §3 is run too, at ν = 0.4999.
 
 # %%
@@ -465,9 +466,9 @@ print(
 # - `TOL_STRIP = 1e-3`: the finest-mesh stress error must be below 0.1 % of q, well inside what any soil
 #   parameter is known to.
 # - locking: reduced integration within 0.1 % of Lamé at every ν on the 4 × 8 mesh (the ν = 0.3 error sets
-#   the discretisation level, 3e-5); full integration more than 20 % too stiff at ν = 0.4999 on the coarse mesh.
-#   Strip window at ν = 0.4999: the full rule's mean-stress error at least 3× the reduced rule's; the reduced
-#   rule's deviatoric stress within 1 % of q (its ν = 0.3 level is 0.15 %), the full rule's not.
+#   the discretisation level, 3e-5); full integration more than 20 % too stiff at ν = 0.4999 on the coarse
+#   mesh. Strip window at ν = 0.4999: the full rule's mean-stress error at least 3× the reduced rule's; the
+#   reduced rule's deviatoric stress within 1 % of q (its ν = 0.3 level is 0.15 %), the full rule's not.
 # - Mohr–Coulomb point: after every plastic step |f| ≤ 1e-9 c (the return is exact up to round-off);
 #   consistent tangent = central differences within 1e-6 of the elastic modulus scale (h = 1e-9 on strains of
 #   2e-4: truncation ~1e-10, round-off ~1e-7 relative); asymmetric (> 1e-3) for ψ < φ and symmetric (< 1e-9)

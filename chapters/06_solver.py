@@ -196,9 +196,9 @@ print(f"modified Newton: residual contraction per iteration {contraction:.3f}")
 # pressure. The block (10 m × 5 m, bottom fixed, sides on rollers) is graded from h under the footing.
 # Prandtl's limit for this case is c N_c = 14.835 c = 148.35 kPa (the Prandtl study with error shrinking under
 # refinement is chapter 10; here the point is the solver). Both methods follow the same 20 equal increments
-# of settlement, with the default settings (ε_f = 1e-5, 300 iterations per increment, 6 cuts). In full mode the
-# footing is also run on a mesh twice as fine (h = 0.25 m), where modified Newton's slow contraction near the
-# limit load can exhaust the iteration budget — reported, not tuned away.
+# of settlement, with the default settings (ε_f = 1e-5, 300 iterations per increment, 6 cuts). In full mode
+# the footing is also run on a mesh twice as fine (h = 0.25 m), where modified Newton's slow contraction near
+# the limit load can exhaust the iteration budget — reported, not tuned away.
 
 # %%
 C_SOIL, PHI = 10e3, 20.0
@@ -547,8 +547,8 @@ report.save_figure(fig, "ch06_iterations_per_step")
 #   1: it needed thousands of iterations and several step cuts, while full Newton with the consistent
 #   tangent needed a handful per step and was an order of magnitude faster even though it refactorises
 #   every iteration; its fitted order on the plastic steps is ≈ 2 as well (the Mohr–Coulomb return mapping
-#   supplies a consistent tangent). Modified Newton keeps two virtues: one factorisation of a *symmetric* K0 (the paper's
-#   reason, non-associated flow) and robustness — it never needs the tangent.
+#   supplies a consistent tangent). Modified Newton keeps two virtues: one factorisation of a *symmetric* K0
+#   (the paper's reason, non-associated flow) and robustness — it never needs the tangent.
 # - An increment that fails is halved; if it still fails the analysis stops with a report naming the DOF,
 #   the node, the load factors and the reason — no silent result.
 #

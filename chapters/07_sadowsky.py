@@ -38,11 +38,11 @@
 # It is singular at the edges (the stress concentration that tests the interface) and independent of E and ν.
 # The settlement of a half-plane is undefined (logarithmic), so only the pressure *shape* is compared.
 #
-# **Model.** A block 20a wide and 10a deep (bottom fixed, sides on vertical rollers) stands for the half-plane.
-# The punch is a plate strip 0.5a thick with E_p = 10⁵ E: its bending stiffness is ~10³·E·a³, so it stays
-# flat to within 10⁻³ of its settlement. It rests on interface elements with k_t = 0 (a smooth punch, as in
-# Sadowsky's solution) and k_n·a/E = 10⁶ (a bonded, nearly rigid contact), and is loaded by P at its middle
-# node. The interface stays in compression everywhere, so the linear solve is exact for this law.
+# **Model.** A block 20a wide and 10a deep (bottom fixed, sides on vertical rollers) stands for the
+# half-plane. The punch is a plate strip 0.5a thick with E_p = 10⁵ E: its bending stiffness is ~10³·E·a³, so
+# it stays flat to within 10⁻³ of its settlement. It rests on interface elements with k_t = 0 (a smooth punch,
+# as in Sadowsky's solution) and k_n·a/E = 10⁶ (a bonded, nearly rigid contact), and is loaded by P at its
+# middle node. The interface stays in compression everywhere, so the linear solve is exact for this law.
 #
 # **Measures.** *Pressure error*: max |p_FE/p − 1| over the integration points with |x| ≤ 0.8a (beyond that
 # the singularity dominates every mesh). *Oscillation*: the total variation of the relative deviation

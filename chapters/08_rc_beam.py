@@ -335,7 +335,8 @@ print(
 # **Every measured point, and what the model lacks.** The table scores all ten points (full mode, 41 layers,
 # 8 elements, 100 steps; the printout above is the current mode's run). Tension stiffening on every cracked
 # layer: +75, +31, +13, +6.2, +6.6, +1.8, +0.3, −1.7, −4.7, −7.5 % at 1, 2.5, 5, 7.5, 10, 11.5, 15, 20, 30 and
-# 42 mm (before this chapter's defaults changed: +77, +32, +13, +6, +7, +1.8, +0.3, −1.7, −4.8, −7.6 %). Four points fall outside their reading tolerance, in two groups with two different causes:
+# 42 mm (before this chapter's defaults changed: +77, +32, +13, +6, +7, +1.8, +0.3, −1.7, −4.8, −7.6 %). Four
+# points fall outside their reading tolerance, in two groups with two different causes:
 #
 # * *Cracking, 1–2.5 mm* (+75 % against 67 %, +31 % against 24 %). At 1 mm the measured beam carries 6 kN m,
 #   40 % of what the uncracked beam would (15 kN m); it is already cracked at a moment well below the model's
@@ -455,13 +456,13 @@ print(f"reference (41 layers, {2 * ref_cfg['n_el']} elements, {ref_cfg['steps']}
 
 # %% [markdown]
 # **What the trade shows.** Through-thickness layering dominates the error, and how each layer's own bending
-# term $e\,h_n^3/12\,\kappa$ is evaluated matters more than anything else: with the strip's former default (the layer's
-# *initial* modulus, exact for elastic layers) a cracked or crushed layer keeps its full elastic bending
-# stiffness, an error that grows with the curvature — about 20 % of the moment at 42 mm with the paper's 11
-# layers, still about 1 % with 41. With the chord through the stresses at each layer's faces (the default
-# `self_bending="chord"`, chapter 02) 11 layers are within about 1 % and 41 within 0.1 % of the layer-free
-# section (row `fig12_layer_count`). Elements and load steps matter far less once a node sits at the
-# load point (the moment is piecewise linear and the strip integrates it well). Hence the main model:
+# term $e\,h_n^3/12\,\kappa$ is evaluated matters more than anything else: with the strip's former default
+# (the layer's *initial* modulus, exact for elastic layers) a cracked or crushed layer keeps its full elastic
+# bending stiffness, an error that grows with the curvature — about 20 % of the moment at 42 mm with the
+# paper's 11 layers, still about 1 % with 41. With the chord through the stresses at each layer's faces (the
+# default `self_bending="chord"`, chapter 02) 11 layers are within about 1 % and 41 within 0.1 % of the
+# layer-free section (row `fig12_layer_count`). Elements and load steps matter far less once a node sits at
+# the load point (the moment is piecewise linear and the strip integrates it well). Hence the main model:
 # 41 layers, chord self-bending.
 #
 # ## Verification

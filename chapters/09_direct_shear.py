@@ -41,8 +41,9 @@
 # The edge is the most stressed point, so slip starts there when τ(0) = τ_f, i.e. at
 # τ̄ = τ_f·tanh(λL)/(λL).
 #
-# *Partial slip* over 0 ≤ x ≤ s: there τ = τ_f, so N(x) = F − τ_f x falls linearly; beyond s the bar is elastic
-# with end force N(s) = F − τ_f s, and the front is where the elastic part reaches the slip gap, u(s) = τ_f/k_t:
+# *Partial slip* over 0 ≤ x ≤ s: there τ = τ_f, so N(x) = F − τ_f x falls linearly; beyond s the bar is
+# elastic with end force N(s) = F − τ_f s, and the front is where the elastic part reaches the slip gap, u(s)
+# = τ_f/k_t:
 # $$(F - \tau_f s)\,\lambda\coth\lambda(L-s) = \tau_f,$$
 # $$u(x) = \frac{(F-\tau_f s)\cosh\lambda(L-x)}{EA\,\lambda\sinh\lambda(L-s)}\ (x \ge s),\qquad
 #   u(x) = \frac{\tau_f}{k_t} + \frac{F(s-x) - \tau_f(s^2-x^2)/2}{EA}\ (x \le s).$$
@@ -254,7 +255,8 @@ point_ids = {
     for name, x in x_points.items()
 }
 res_sc = scene["result"]
-# displacements relative to the plate; the normal stress is an initial state, so step 1 (lambda = 0) is at rest
+# displacements relative to the plate; the normal stress is an initial state, so step 1 (lambda = 0) is at
+# rest
 disp = {name: res_sc.displacement([i], "u")[:, 0] for name, i in point_ids.items()}
 disp["edge"] = scene["u_edge"]
 tau_sc = scene["tau_bar"]

@@ -65,10 +65,10 @@
 #
 # **The footing test.** By symmetry, half of the footing (0 ≤ x ≤ B/2) on a block x ∈ [0, 6 m], z ∈ [−5 m, 0]
 # (u = 0 on x = 0 and x = 6 m, base fixed): for φ ≤ 20° the Prandtl mechanism stays within ≈ 3.5 m of the axis
-# and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also holds
-# u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and grow
-# by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking line
-# search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
+# and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also
+# holds u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and
+# grow by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking
+# line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
 # `ssi.bearing_capacity.push_footing`): plain Newton steps near the footing corner overshoot into a far
 # plastic state and diverge.
 #
@@ -290,8 +290,8 @@ print(
 # The claims: on each mesh the relaxed limit load changes by less than 1 % between 20, 40 and 80 steps
 # (`psi0_step_independence`); on h = 0.25 and 0.125 m the two settlements agree to 0.5 % (a plateau; on the
 # finest mesh of full mode the pressure still rises by 0.6 % per cm at 6 cm, reported); the h = 0.125 m value
-# is row `psi0_limit_h0125`. The limit load falls with h (first order, the rough corner) towards a value below the
-# associated one.
+# is row `psi0_limit_h0125`. The limit load falls with h (first order, the rough corner) towards a value below
+# the associated one.
 
 # %%
 PSI0_MESHES = [0.25, 0.125] if FAST else [0.25, 0.125, 0.0625]
@@ -425,13 +425,15 @@ for (name, n), out in trade.items():
 # ## Verification
 
 # %%
-# Prandtl: the error shrinks under refinement in every case; the 3 % claim is made on the named mesh (full mode)
+# Prandtl: the error shrinks under refinement in every case; the 3 % claim is made on the named mesh (full
+# mode)
 for phi, rough in CASES:
     errs = [abs(prandtl_runs[phi, rough, h]["err"]) for h in MESHES]
     assert all(a > b for a, b in zip(errs, errs[1:])), (phi, rough, errs)
     if not FAST:
         assert errs[-1] <= TOL_PRANDTL, (phi, rough, errs)
-# each push levelled off: the last two steps differ by < 0.1 % of the pressure (a limit, not a hardening curve)
+# each push levelled off: the last two steps differ by < 0.1 % of the pressure (a limit, not a hardening
+# curve)
 LEVEL_TOL = 1e-3
 for key, out in prandtl_runs.items():
     assert abs(out["q"][-1] - out["q"][-2]) <= LEVEL_TOL * out["q"][-1], key

@@ -42,10 +42,11 @@
 # displacements are those caused by the foundation. The concrete parameters E0, fr, Gf, εc come from fc by
 # the designer formulas of chapter 03 (`designer_concrete`). The strip takes the `Foundation` defaults, which
 # chapters 02 and 08 chose from evidence: each layer's own bending term
-# from the stresses at its faces (`self_bending="chord"`), and a crack band equal to the *fib* Model Code 2010 crack spacing s_r,max of the
-# nearest bars (`crack_band="spacing"`, `bar_diameter` = 16 mm here), which makes the cracked response
-# independent of the element size (chapter 08: 0.55 % spread over four meshes, against 21.5 % for the paper's
-# per-point band); the concrete layers are plane strain like the elastic ones (`plane_strain=True`, eq. 4.4). The band width 0.1 m given to `concrete_params` below is therefore replaced.
+# from the stresses at its faces (`self_bending="chord"`), and a crack band equal to the *fib* Model Code 2010
+# crack spacing s_r,max of the nearest bars (`crack_band="spacing"`, `bar_diameter` = 16 mm here), which makes
+# the cracked response independent of the element size (chapter 08: 0.55 % spread over four meshes, against
+# 21.5 % for the paper's per-point band); the concrete layers are plane strain like the elastic ones
+# (`plane_strain=True`, eq. 4.4). The band width 0.1 m given to `concrete_params` below is therefore replaced.
 #
 # The column load is 400 kN/m. (With the former defaults — initial-modulus self-bending and a 0.1 m band — the
 # chapter used 450 kN/m; the corrected strip is softer, and at 450 kN/m its top bars reach 497 of 500 MPa,
@@ -280,8 +281,8 @@ sizes = [1.0, 0.5, 0.25]
 
 
 def midspan_moment(o):
-    """Hogging moment at x = 0 [N m/m]: the quadratic through each adjacent element's three Gauss-point moments,
-    evaluated at the shared end, averaged over the two elements."""
+    """Hogging moment at x = 0 [N m/m]: the quadratic through each adjacent element's three Gauss-point
+    moments, evaluated at the shared end, averaged over the two elements."""
     p = o.built.plate
     r = p.resultants(o.u[-1][p.edofs], o.states[-1][o.built.model.groups.index(p)])
     ends = p._x[:, [0, 2]]
@@ -359,14 +360,15 @@ assert order_min > 0.0, (order_w, order_m)  # the changes shrink: the sequence c
 # ## Summary
 # A scene is a handful of components; `build()` makes only the groups it needs, `solve()` returns
 # settlements, contact pressures and zones, cracks and steel stresses; the steel stress is checked against an
-# independent layer-free section calculation (0.9 %), and settlement and moment converge under mesh refinement,
-# but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and the Richardson estimate
-# of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls below the h^(1/2) that the
-# punch-edge singularity alone would allow (row `ch11_mesh_order` fails). A likely cause, not isolated here:
-# the soil yields under the strip's edges and the contact slips and opens there, so the contact pressure that
-# bends the strip keeps changing with the mesh. A design moment from this scene needs a finer mesh than this
-# chapter can afford; the h = 0.125 m mesh stopped at 55 % of the load with full Newton (measured before the
-# plane-strain change). Full Newton and the paper's modified Newton–Raphson give the same answer; the measured
-# iteration counts and wall times above are the trade between them. Beyond steel yield this particular beam forms a
-# plastic hinge at mid-span; load control then stops with a `NonConvergence` report naming the node — use
-# `run_arc_length` or displacement control (chapter 06) to follow the path further.
+# independent layer-free section calculation (0.9 %), and settlement and moment converge under mesh
+# refinement, but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and the
+# Richardson estimate of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls below
+# the h^(1/2) that the punch-edge singularity alone would allow (row `ch11_mesh_order` fails). A likely cause,
+# not isolated here: the soil yields under the strip's edges and the contact slips and opens there, so the
+# contact pressure that bends the strip keeps changing with the mesh. A design moment from this scene needs a
+# finer mesh than this chapter can afford; the h = 0.125 m mesh stopped at 55 % of the load with full Newton
+# (measured before the plane-strain change). Full Newton and the paper's modified Newton–Raphson give the same
+# answer; the measured iteration counts and wall times above are the trade between them. Beyond steel yield
+# this particular beam forms a plastic hinge at mid-span; load control then stops with a `NonConvergence`
+# report naming the node — use `run_arc_length` or displacement control (chapter 06) to follow the path
+# further.

@@ -510,15 +510,15 @@ assert max(settle_err, p_err, equiv_err) < UNDRAINED_A_TOL
 # The strip's base lies D = 1 m below the ground in a trench; beside it is 1 m of backfill (γ = 18 kN/m³),
 # below it the cohesionless, weightless sand of section 1. In the geostatic state the strip carries the
 # vertical stress of its base level, γD, and the trench walls the horizontal one, so nothing moves. Terzaghi's
-# bearing-capacity formula counts the soil above the base as a surcharge q = γD without shear strength (Terzaghi
-# 1943, *Theoretical Soil Mechanics*, §46; the depth factors of Meyerhof 1963 add the backfill's strength):
-# q_u = γD N_q for a smooth strip on weightless sand. To compare with that reference the backfill must carry
-# its weight but (almost) no shear: we make it elastic and soft (E_b = 1 kPa, so its shear stresses stay a
-# kPa or two; the unit warning fires, and is intended). A stiffer backfill raises q_u, as the depth factors
-# say; the trend with E_b is shown. The same mesh with the backfill replaced by a surcharge q = γD (section
-# 1's scene) is the limit of a strengthless backfill: its error against γD N_q is this mesh's discretisation
-# error. The embedded q_u must approach it as E_b falls (within 2 % at E_b = 1 kPa), so the tolerance against
-# γD N_q is that mesh error plus 2 %.
+# bearing-capacity formula counts the soil above the base as a surcharge q = γD without shear strength
+# (Terzaghi 1943, *Theoretical Soil Mechanics*, §46; the depth factors of Meyerhof 1963 add the backfill's
+# strength): q_u = γD N_q for a smooth strip on weightless sand. To compare with that reference the backfill
+# must carry its weight but (almost) no shear: we make it elastic and soft (E_b = 1 kPa, so its shear stresses
+# stay a kPa or two; the unit warning fires, and is intended). A stiffer backfill raises q_u, as the depth
+# factors say; the trend with E_b is shown. The same mesh with the backfill replaced by a surcharge q = γD
+# (section 1's scene) is the limit of a strengthless backfill: its error against γD N_q is this mesh's
+# discretisation error. The embedded q_u must approach it as E_b falls (within 2 % at E_b = 1 kPa), so the
+# tolerance against γD N_q is that mesh error plus 2 %.
 
 # %%
 D, GAMMA_B = 1.0, 18e3

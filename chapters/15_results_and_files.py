@@ -272,8 +272,8 @@ record(
 #
 # - A TOML scene file maps key for key onto the `Scene` dataclasses — loads of every type, phases, contact
 #   segments, water table, embedment, undrained layers; unknown keys and load types are refused by name.
-# - `ssi run scene.toml` writes the result, a ParaView series, the figures and a summary; its numbers equal the
-#   Python API's for every example (`cli_example`).
+# - `ssi run scene.toml` writes the result, a ParaView series, the figures and a summary; its numbers equal
+#   the Python API's for every example (`cli_example`).
 # - `read_result` gives back a `SceneResult` whose every quantity equals the original exactly, phases and
 #   their solver records included (`result_roundtrip`, tolerance 0), so figures can be redrawn without the
 #   script.

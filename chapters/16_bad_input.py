@@ -32,8 +32,8 @@
 #
 # A call of the public API with one invalid argument has exactly one acceptable outcome: a `ValueError` (right
 # type, wrong value: NaN, ±∞, out of range, an unknown option, values that contradict each other) or a
-# `TypeError` (a string, `None`, a list or a complex number where a real number belongs) whose message contains
-# the parameter's name and the value given. Everything else is an **escape**:
+# `TypeError` (a string, `None`, a list or a complex number where a real number belongs) whose message
+# contains the parameter's name and the value given. Everything else is an **escape**:
 #
 # | outcome | meaning |
 # |---|---|

@@ -253,9 +253,9 @@ for row in efficiency:
 # The index of the scene *as given* (the coarsest of each triple: what a user solving that mesh is told) is
 # the claim, for every triple whose true error is at least three times the closed form's own model error
 # (the finest Hetényi triple of full mode is below it: there the reference measures the Mindlin strip's shear
-# flexibility, not the mesh); the finest level's index is printed too — it is less reliable, since there the power law is
-# extrapolated furthest and the other error sources (the Hetényi model error, the solver's tolerance) are
-# relatively largest.
+# flexibility, not the mesh); the finest level's index is printed too — it is less reliable, since there the
+# power law is extrapolated furthest and the other error sources (the Hetényi model error, the solver's
+# tolerance) are relatively largest.
 
 # %%
 EFFICIENCY_RANGE = (0.5, 2.0)  # the band: an estimate within a factor 2 of the true error

@@ -1,11 +1,11 @@
 """Closed-form elastic solutions for the soil element's verification (computed here, never stored).
 
-Uniform strip load on an elastic half-plane (Boussinesq/Flamant integrated over the strip; e.g. Poulos & Davis,
-*Elastic Solutions for Soil and Rock Mechanics*, 1974, §3.3). A pressure q acts downwards on the surface z = 0
-over -b <= x <= b. For a point at depth d = -z > 0 let theta_1 and theta_2 be the angles, measured from the
-downward vertical, of the lines from the point to the left (x = -b) and right (x = +b) edges,
-theta_i = atan2(x - x_i, d). With alpha = theta_1 - theta_2 (the angle the strip subtends at the point) and
-delta = theta_2, the textbook form (compression positive) is
+Uniform strip load on an elastic half-plane (Boussinesq/Flamant integrated over the strip; e.g. Poulos &
+Davis, *Elastic Solutions for Soil and Rock Mechanics*, 1974, §3.3). A pressure q acts downwards on the
+surface z = 0 over -b <= x <= b. For a point at depth d = -z > 0 let theta_1 and theta_2 be the angles,
+measured from the downward vertical, of the lines from the point to the left (x = -b) and right (x = +b)
+edges, theta_i = atan2(x - x_i, d). With alpha = theta_1 - theta_2 (the angle the strip subtends at the point)
+and delta = theta_2, the textbook form (compression positive) is
 
     sig_z = (q/pi) [alpha + sin(alpha) cos(alpha + 2 delta)]
     sig_x = (q/pi) [alpha - sin(alpha) cos(alpha + 2 delta)]
@@ -74,8 +74,8 @@ def strip_load_stresses(x, z, q, b, nu=None):
 
 def flamant_strip_quadrature(x, z, q, b, n=4000):
     """The same stresses by integrating Flamant's line-load solution over the strip (midpoint rule, ``n``
-    panels) -- an independent check of :func:`strip_load_stresses`. Flamant: a line load P (downwards) at x = s
-    gives a purely radial stress sig_rr = -2 P cos(theta) / (pi r) along e_r = (x - s, z) / r."""
+    panels) -- an independent check of :func:`strip_load_stresses`. Flamant: a line load P (downwards) at x =
+    s gives a purely radial stress sig_rr = -2 P cos(theta) / (pi r) along e_r = (x - s, z) / r."""
     s = -b + (np.arange(n) + 0.5) * (2.0 * b / n)
     dx = x - s
     r2 = dx * dx + z * z

@@ -1,8 +1,8 @@
 """The command line: ``ssi run scene.toml``, ``ssi show result.h5``, ``ssi schema``.
 
 ``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene_file`) and writes, next to it unless told
-otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` + ``<name>_steps/*.vtu``
-(ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
+otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` +
+``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
 ``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
 bending moment, the status, wall time). Nothing is overwritten without ``--overwrite``.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load

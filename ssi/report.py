@@ -3,8 +3,8 @@
 Chapters call :func:`record` (or :func:`record_empty` for a reference slot still waiting for data); each row
 lands in its own file under ``figures/report.d/`` so that chapters can run in any order or in parallel.
 ``python -m ssi.report`` merges them into ``figures/report.csv`` (``id,metric,value,tolerance,status``) and
-prints it. A FAIL row is a result, not a crash: the command still succeeds and names the FAIL rows (a chapter's
-own asserts are what stop ``make reproduce``).
+prints it. A FAIL row is a result, not a crash: the command still succeeds and names the FAIL rows (a
+chapter's own asserts are what stop ``make reproduce``).
 """
 
 import csv

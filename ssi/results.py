@@ -270,8 +270,8 @@ class StoredResult:
 
     def __getitem__(self, key):
         """Mapping access with the keys of the earlier dict reader (``model``, ``u``, ``load_factor``,
-        ``coords``, ``node_ndof``, ``f_int``, ``iterations``, ``settings``, ``state``: {group: (n_kept, ...)}),
-        so scripts written against it keep working."""
+        ``coords``, ``node_ndof``, ``f_int``, ``iterations``, ``settings``, ``state``: {group: (n_kept,
+        ...)}), so scripts written against it keep working."""
         if key == "state":
             return {name: np.stack([s[i] for s in self.states]) for i, name in enumerate(self.group_names)}
         if key == "settings":

@@ -22,9 +22,9 @@ throughout (m, N, Pa, N/m^3); forces of the plane-strain scene are per metre of 
 What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py``):
 
 * **Loads** (``Scene.loads`` and ``Phase.loads``): :class:`SurfacePressure` on the ground, with or without a
-  foundation; :class:`StripLoad` along the strip (uniform or linear); :class:`ColumnLoad` anywhere on the strip
-  (the mesh gets a node there); :class:`StripWeight` from the section depth; :class:`Settlement` of the strip
-  (push-over: rigid or at the columns, the contact force is the load).
+  foundation; :class:`StripLoad` along the strip (uniform or linear); :class:`ColumnLoad` anywhere on the
+  strip (the mesh gets a node there); :class:`StripWeight` from the section depth; :class:`Settlement` of the
+  strip (push-over: rigid or at the columns, the contact force is the load).
 * **The geostatic state** is in equilibrium with everything that acts before the structural loads: the soil's
   weight, the ``surcharge`` on the ground (a dead surface load, so nothing moves before the loads), the
   overburden of an embedded strip (the strip starts carrying the geostatic vertical stress of its base level,
@@ -76,9 +76,9 @@ class SoilLayer:
     """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi.
 
     Fields: ``thickness`` [m]; ``E`` Young's modulus [Pa] (drained, or undrained E_u); ``nu`` Poisson's ratio
-    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay) or
-    None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient [-]
-    on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
+    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay)
+    or None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient
+    [-] on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
     [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
     (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
     modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
@@ -99,8 +99,9 @@ class SoilLayer:
     nu_u: float = 0.495
 
     def k_water(self) -> float:
-        """K_w/n [Pa] of the pore water: 0 if drained; else K_u - K' with K_u the bulk modulus of the skeleton's
-        shear modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
+        """K_w/n [Pa] of the pore water: 0 if drained; else K_u - K' with K_u the bulk modulus of the
+        skeleton's shear modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2
+        nu_u))."""
         if self.drainage == "drained":
             return 0.0
         if self.drainage != "undrained_A":
@@ -235,9 +236,9 @@ class Contact:
     """Foundation--soil interface (Coulomb). ``phi_deg=None``: bonded and elastic (never slips or opens).
 
     Fields: ``kn``, ``kt`` normal and tangential stiffness [Pa/m]; ``phi_deg`` interface friction angle [deg];
-    ``c`` adhesion [Pa]; ``psi_deg`` dilation angle [deg] -- the default 0 (slip without dilation) is the usual
-    engineering choice for a concrete--soil contact, ``None`` gives the paper's associated rule (psi = phi);
-    ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss".
+    ``c`` adhesion [Pa]; ``psi_deg`` dilation angle [deg] -- the default 0 (slip without dilation) is the
+    usual engineering choice for a concrete--soil contact, ``None`` gives the paper's associated rule (psi =
+    phi); ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss".
     """
 
     kn: float
@@ -538,7 +539,8 @@ class Scene:
 
     def _mesh_layers(self):
         """[(thickness, layer, body-force unit weight)] with the layer that holds the water table split there:
-        gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective stress)."""
+        gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective
+        stress)."""
         d_w = math.inf if self.water_table is None else float(self.water_table)
         if self.water_table is not None and not (np.isfinite(d_w) and d_w >= 0.0):
             raise ValueError(
@@ -570,9 +572,9 @@ class Scene:
         return geostatic_stress(z, layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w)
 
     def _ground_loads(self, built):
-        """Dead loads that hold the geostatic state in place (without the soil's own weight, a body force of the
-        soil group): the surcharge on the ground beside the strip and the horizontal geostatic stress on the
-        walls of an embedded strip's trench."""
+        """Dead loads that hold the geostatic state in place (without the soil's own weight, a body force of
+        the soil group): the surcharge on the ground beside the strip and the horizontal geostatic stress on
+        the walls of an embedded strip's trench."""
         mesh, model = built.mesh, built.model
         f_vec = np.zeros(model.n_dof)
         half = 0.5 * self.width
@@ -879,14 +881,14 @@ class BuiltScene:
             self.model._fixed.pop(d, None)
 
     def pore_pressure(self) -> np.ndarray:
-        """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el, n_ip);
-        the total stress is the state's effective stress minus it on the normal components."""
+        """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el,
+        n_ip); the total stress is the state's effective stress minus it on the normal components."""
         z = self.soil.integration_points()[..., 1]
         return pore_pressure(z, self.scene.water_table, gamma_w=self.scene.gamma_w)
 
     def excess_pore_pressure(self, out, k=-1) -> np.ndarray:
-        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's integration
-        points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers."""
+        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's
+        integration points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers."""
         return self.soil.excess_pore_pressure(out.u[k][self.soil.edofs])
 
     def contact_force(self, out) -> np.ndarray:
@@ -1068,8 +1070,8 @@ class SceneResult:
         """Layer strains and stresses of the foundation at its axial sampling points.
 
         Returns a dict: ``x`` (n_el, n_ip), ``z`` (n_layer,) layer mid-depths above the reference surface,
-        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers whose
-        largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
+        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers
+        whose largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
         """
         plate = self.built.plate
         sec = plate.section

@@ -55,8 +55,8 @@ top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or a list 
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.section.rc_section` with ``bars = [[z, As],
 ...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``, see
-:func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.section.Section` fields themselves (z_mid, h,
-kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files store.
+:func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.section.Section` fields themselves (z_mid,
+h, kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files store.
 """
 
 import dataclasses

@@ -39,7 +39,8 @@ class Section:
 
     ``z_bottom``/``z_top`` are the faces relative to the reference surface (``z_bottom < 0 < z_top`` when the
     reference is inside the section). The interface element attaches to the bottom face: its upper nodes move
-    with ``u_g = u_b - z_bottom * alpha_b`` (paper eq. 6.1 with ``-z_bottom = h/2`` for a mid-depth reference).
+    with ``u_g = u_b - z_bottom * alpha_b`` (paper eq. 6.1 with ``-z_bottom = h/2`` for a mid-depth
+    reference).
     """
 
     z_mid: np.ndarray
@@ -324,20 +325,20 @@ def paper_rc_section(
 def with_crack_spacing_band(
     section: Section, bar_diameter: float, tension_stiffening: str = "all"
 ) -> tuple[Section, list]:
-    """Copy of an RC ``section`` whose concrete layers get the crack band width ls = s_r,max of *fib* Model Code
-    2010 (``ssi.materials.rc.crack_spacing_mc2010``): one band per crack, so that a band dissipates Gf per crack
-    whatever the element size (chapter 08).
+    """Copy of an RC ``section`` whose concrete layers get the crack band width ls = s_r,max of *fib* Model
+    Code 2010 (``ssi.materials.rc.crack_spacing_mc2010``): one band per crack, so that a band dissipates Gf
+    per crack whatever the element size (chapter 08).
 
-    The bars nearest each face set that face's spacing: concrete layers below mid-depth take the spacing of the
-    lowest bar layer, layers above that of the topmost one; a face with no bar layer in its half of the depth
-    takes the other face's spacing. Per face: c = clear cover to the bar surface, d = depth to the bar centroid
-    from the opposite face, As = the bar layer's equivalent thickness (per unit width), alpha_e = Es / E0.
-    ``tension_stiffening``: "all" keeps every concrete layer's alpha_ts (the rule of chapter 03: every cracked
-    layer stiffened); "effective_area" keeps it only in the layers whose mid-depth lies within the effective
-    tension depth h_c,ef (the same MC2010 / EC2 7.3.2 value, min(2.5 (h - d), (h - x)/3, h/2)) of a face that
-    has its own bars, where bond transfers stress from the bars into the concrete between cracks; the other
-    concrete layers soften to zero as plain concrete (alpha_ts = 0).
-    Returns ``(section, spacings)`` with one ``crack_spacing_mc2010`` dict per face used (bottom, top)."""
+    The bars nearest each face set that face's spacing: concrete layers below mid-depth take the spacing of
+    the lowest bar layer, layers above that of the topmost one; a face with no bar layer in its half of the
+    depth takes the other face's spacing. Per face: c = clear cover to the bar surface, d = depth to the bar
+    centroid from the opposite face, As = the bar layer's equivalent thickness (per unit width), alpha_e = Es
+    / E0. ``tension_stiffening``: "all" keeps every concrete layer's alpha_ts (the rule of chapter 03: every
+    cracked layer stiffened); "effective_area" keeps it only in the layers whose mid-depth lies within the
+    effective tension depth h_c,ef (the same MC2010 / EC2 7.3.2 value, min(2.5 (h - d), (h - x)/3, h/2)) of a
+    face that has its own bars, where bond transfers stress from the bars into the concrete between cracks;
+    the other concrete layers soften to zero as plain concrete (alpha_ts = 0). Returns ``(section, spacings)``
+    with one ``crack_spacing_mc2010`` dict per face used (bottom, top)."""
     from .materials.concrete import P_E0
     from .materials.layer_laws import CONCRETE, STEEL
     from .materials.rc import _positive, crack_spacing_mc2010, with_crack_band

@@ -59,7 +59,8 @@ _DESIRED_ITER = {"bfgs": 20, "modified": 60, "full": 8}
 
 @dataclass
 class Settings:
-    """Solver options. The defaults solve ordinary nonlinear scenes; :meth:`paper` gives the paper's algorithm.
+    """Solver options. The defaults solve ordinary nonlinear scenes; :meth:`paper` gives the paper's
+    algorithm.
 
     ``method``: ``"bfgs"`` (default) -- quasi-Newton (L-BFGS) updates of the one K0 factorisation with a line
     search; ``"modified"`` -- the paper's modified Newton-Raphson (K0 for every iteration); ``"full"`` --
@@ -877,7 +878,8 @@ def run_arc_length(
     increment ``first_increment``. With ``method="modified"`` both K0 solves (for the reference load and for
     the residual) reuse the one factorisation of K0. The sign of each predictor follows the previous step's
     direction, so the path turns over a limit point instead of stalling there. A step whose constraint has no
-    real root, or that does not converge, is retried with half the arc (down to ``min_arc_ratio`` of the first).
+    real root, or that does not converge, is retried with half the arc (down to ``min_arc_ratio`` of the
+    first).
 
     Only force loads (``Model.add_load``) are scaled; prescribed displacements are not supported here (use
     :func:`run`, i.e. displacement control, for those). Stops after ``n_steps`` steps or once the load factor

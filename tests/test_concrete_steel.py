@@ -244,9 +244,9 @@ def test_designer_values_mc2010():
 
 def test_crushing_regularised_by_energy():
     """Beyond eps_cu the stress falls linearly from f(eps_cu) to zero (no cliff); the energy dissipated past
-    eps_cu per unit volume is Gc / ls (trapezoid rule on a piecewise-linear curve: exact up to round-off and the
-    one step that straddles eps_cd, 1e-3 with 20 000 steps); Gc = 0 is the cliff; a crushed point carries no
-    tension on reloading."""
+    eps_cu per unit volume is Gc / ls (trapezoid rule on a piecewise-linear curve: exact up to round-off and
+    the one step that straddles eps_cd, 1e-3 with 20 000 steps); Gc = 0 is the cliff; a crushed point carries
+    no tension on reloading."""
     Gc = 20e3
     p = concrete(Gc=Gc)
     f_cu = compression_envelope(0.0035 * (1 - 1e-12), E0, FC, EPS_C, 0.0035)[0]
@@ -266,8 +266,8 @@ def test_crushing_regularised_by_energy():
 
 
 def test_plane_strain_concrete():
-    """Plane strain: the axial law's modulus is E0/(1 - nu^2) (the D1 of eq. 4.4, as for an ELASTIC layer), the
-    strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
+    """Plane strain: the axial law's modulus is E0/(1 - nu^2) (the D1 of eq. 4.4, as for an ELASTIC layer),
+    the strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
     nu = 0.2
     ps = concrete(plane_strain=True, nu=nu)
     sig, _, e_t, g_t = call(CONCRETE, ps, 1e-5, 1e-4)

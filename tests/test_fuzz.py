@@ -89,8 +89,8 @@ def test_every_relational_case_is_named():
 
 
 def test_soft_but_valid_si_input_is_accepted():
-    """Plausibility is another layer's job (warnings): E = 10 kPa soil, a 1 mm thin weightless layer and a huge
-    load are valid SI input and must not be refused."""
+    """Plausibility is another layer's job (warnings): E = 10 kPa soil, a 1 mm thin weightless layer and a
+    huge load are valid SI input and must not be refused."""
     scene = Scene(
         width=8.0,
         depth=4.0,

@@ -79,7 +79,8 @@ def test_params_defaults():
 
 # ---- material point -----------------------------------------------------------------------------------
 def test_driver_stick_then_slip_at_coulomb_limit():
-    """Constant normal closure, growing slip: tau = kt g_t until |tau| = c - sig_n tan(phi), then flat (psi=0)."""
+    """Constant normal closure, growing slip: tau = kt g_t until |tau| = c - sig_n tan(phi), then flat
+    (psi=0)."""
     p = interface_params(KT, KN, PHI, C, psi_deg=0.0)
     gn = -1e-3
     gt = np.linspace(0.0, 3e-3, 61)
@@ -406,7 +407,8 @@ def test_element_fd_tangent_with_mixed_states(rule, plate_h):
 
 def test_initial_traction_is_a_prestressed_committed_state():
     """A pre-compressed contact: at zero displacement f_el holds the consistent forces of the initial
-    traction (L (1/6, 2/3, 1/6) sig0 on the upper w-DOFs), and the first slip happens at tau = -sig0 tan(phi)."""
+    traction (L (1/6, 2/3, 1/6) sig0 on the upper w-DOFs), and the first slip happens at tau = -sig0
+    tan(phi)."""
     L, sig0 = 0.6, -40e3
     coords, edofs, _ = straight(n_el=1, L=L)
     g = Interface6(

@@ -301,7 +301,8 @@ def test_explicit_scheme_reaches_the_same_limit(n_sub, drift):
 
 
 def rotating_shear_path(kind, p, n):
-    """Simple shear under a vertical stress: principal axes rotate, so forward Euler drifts off the surface."""
+    """Simple shear under a vertical stress: principal axes rotate, so forward Euler drifts off the
+    surface."""
     sig0 = np.array([-50e3, -100e3, 0.0, -50e3])
     steps = np.tile([0.0, 0.0, 2e-2 / n, 0.0], (n, 1))
     return drive(kind, p, steps, sig0)[0]

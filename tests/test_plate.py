@@ -3,7 +3,8 @@
 References are independent of the element: Timoshenko closed forms, transformed-section formulas, finite
 differences of the element's own internal force (tangent check), statics (load resultants), and linear algebra
 (rank / rigid-body modes). Tolerances: round-off level (1e-10 relative) where the result is exact in exact
-arithmetic; the FD check tolerance follows from the central-difference truncation + round-off of the step used.
+arithmetic; the FD check tolerance follows from the central-difference truncation + round-off of the step
+used.
 """
 
 import numpy as np
@@ -163,7 +164,8 @@ def test_tangent_matches_finite_differences(integration, self_bending):
                 - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]
             ) / (2 * step)
         # round-off of the difference: 2e-16 |f| / step ~ 2e-16 * 1e8 / 1e-9 = 20, against |k| ~ 1e10
-        # (2e-9 relative); truncation step^2 |f'''| is far smaller; 1e-6 leaves room for neither kinks nor bugs
+        # (2e-9 relative); truncation step^2 |f'''| is far smaller; 1e-6 leaves room for neither kinks nor
+        # bugs
         assert np.abs(k_fd - k[0]).max() <= 1e-6 * np.abs(k[0]).max(), kap
 
 
@@ -296,8 +298,8 @@ def test_full_integration_locks_selective_does_not():
     """Thin strip (span/depth 1000, simply supported, uniform load, 4 elements). Fully integrated shear forces
     gamma = 0 at every point, i.e. alpha'' = 0 in each element (Prathap's spurious constraint): the strip can
     only bend with piecewise-constant curvature: a deflection deficit 4/(5 n^2) (5 % with 4 elements) that
-    does not vanish as the strip gets thinner, and wild shear-force oscillations. Selective integration is nodally
-    exact at any slenderness."""
+    does not vanish as the strip gets thinner, and wild shear-force oscillations. Selective integration is
+    nodally exact at any slenderness."""
     q, length, n_el = -1.0, 1000.0 * H, 4
     exact = 5 * q * length**4 / (384 * EI) + q * length**2 / (8 * KGA)
     out = {}

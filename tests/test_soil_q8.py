@@ -303,8 +303,8 @@ def test_bad_scene():
 # ---- the fast K0 kernel ---------------------------------------------------------------------------------
 @pytest.mark.parametrize("n_gauss", [2, 3])
 def test_fast_elastic_kernel_matches_the_element_group(n_gauss):
-    """q8_elastic_stiffness (SoilQ8's K0) must equal the generic law-dispatch kernel of SoilQ8.evaluate and the
-    dense reference on distorted elements with different materials per element."""
+    """q8_elastic_stiffness (SoilQ8's K0) must equal the generic law-dispatch kernel of SoilQ8.evaluate and
+    the dense reference on distorted elements with different materials per element."""
     m, xy = distorted_mesh(3)
     model = Model()
     model.add_nodes(xy, 2)

@@ -144,9 +144,9 @@ class Interface6:
     params : array (N_PARAMS,) or (n_el, N_PARAMS)
         Interface law parameters from :func:`ssi.materials.interface_law.interface_params`.
     offset : float or array (n_el,), optional
-        Plate variant only: lever arm e [m] from the plate nodes down to the bottom face, u_g = u_b + e alpha_b
-        (h/2 for mid-surface nodes; use ``PlateStrip.bottom_offset``). The plate nodes must lie e straight
-        above their lower nodes.
+        Plate variant only: lever arm e [m] from the plate nodes down to the bottom face, u_g = u_b + e
+        alpha_b (h/2 for mid-surface nodes; use ``PlateStrip.bottom_offset``). The plate nodes must lie e
+        straight above their lower nodes.
     rule : {"newton_cotes", "gauss"}
         Integration along the element (default the paper's Newton--Cotes / Simpson on the node pairs).
     n_gauss : int
@@ -357,8 +357,8 @@ def add_interface(
     """Build an :class:`Interface6` group from node ids and add it to ``model``.
 
     ``upper_conn`` (n_el, 3): plate-strip nodes (3 DOFs; then ``offset`` is required, e.g. the plate group's
-    ``bottom_offset``) or solid nodes (2 DOFs); ``lower_conn`` (n_el, 3): soil nodes, ordered so that the upper
-    body lies on the left when walking from the first to the third node. Returns the group.
+    ``bottom_offset``) or solid nodes (2 DOFs); ``lower_conn`` (n_el, 3): soil nodes, ordered so that the
+    upper body lies on the left when walking from the first to the third node. Returns the group.
     """
     upper_conn = np.atleast_2d(np.asarray(upper_conn, np.int64))
     lower_conn = np.atleast_2d(np.asarray(lower_conn, np.int64))

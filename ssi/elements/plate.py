@@ -19,7 +19,8 @@ layer, at its mid-depth z_n; inside the layer the stress is taken as linear with
 
     N = sum h_n sig_n
     M = -sum h_n z_n sig_n + sum e_n h_n^3/12 kap
-    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e_n h_n^2/12)
+    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e_n
+    h_n^2/12)
 
 with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``: K0, constant) modulus, and e_n the
 modulus of the layer's own bending (option ``self_bending``):
@@ -38,14 +39,15 @@ modulus of the layer's own bending (option ``self_bending``):
 
 For a linear law the stress is exactly linear within a layer, so both *are* the integral: f_int = K0 u_el with
 K0 of eq. (4.7b), for any number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For nonlinear
-layers the choice matters. Measured in chapter 02 (row ``section_selfbending``) on the Janney beam section with
-the paper's 11 layers, N = 0, against the layer-free reference (``ssi.section_analysis.layer_free_moment_curvature``,
-adaptive quadrature of the continuous stress profile): ``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 /
-+8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01 / 0.03 / 0.06 1/m (the error grows with the curvature, as more of
-the depth cracks and crushes); ``"tangent"`` stays within -0.2 ... +1.05 % and ``"chord"`` within 0 ... +1.05 %.
-The chord is the default: equally accurate, and its continuous f lets Newton converge where the tangent's jumps
-stop it (chapter 08, Janney beam with the crack-spacing band: 8 + 8 elements reached 6.9 mm with "tangent",
-32 mm with "chord"; chapter 11's h = 0.25 m scene: "tangent" stalls, "chord" converges).
+layers the choice matters. Measured in chapter 02 (row ``section_selfbending``) on the Janney beam section
+with the paper's 11 layers, N = 0, against the layer-free reference
+(``ssi.section_analysis.layer_free_moment_curvature``, adaptive quadrature of the continuous stress profile):
+``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 / +8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01 / 0.03 /
+0.06 1/m (the error grows with the curvature, as more of the depth cracks and crushes); ``"tangent"`` stays
+within -0.2 ... +1.05 % and ``"chord"`` within 0 ... +1.05 %. The chord is the default: equally accurate, and
+its continuous f lets Newton converge where the tangent's jumps stop it (chapter 08, Janney beam with the
+crack-spacing band: 8 + 8 elements reached 6.9 mm with "tangent", 32 mm with "chord"; chapter 11's h = 0.25 m
+scene: "tangent" stalls, "chord" converges).
 
 Integration along the element (option ``integration``): ``"selective"`` (default, paper §10): membrane and
 bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in shear for thin strips);
@@ -252,9 +254,9 @@ def plate_kernel(
 
     x_el (n_el, 3) nodal x; u_el (n_el, 9); state_old/state_new (n_el, n_ip, n_layer, N_LAYER_HIST);
     f_el (n_el, 9) and k_el (n_el, 9, 9) are overwritten; xi, wt (n_ip,), ax, sh (n_ip,) int8 flags;
-    z_mid, h, e0, g0 (n_layer,) (initial moduli: K0), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool;
-    band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the crack band
-    width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
+    z_mid, h, e0, g0 (n_layer,) (initial moduli: K0), kind (n_layer,) int64, params (n_layer, n_par), cshear
+    (n_layer,) bool; band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the
+    crack band width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
     """
     n_el = x_el.shape[0]
     nn = np.empty(3)

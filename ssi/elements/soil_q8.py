@@ -346,9 +346,9 @@ class SoilQ8:
         state_new[..., :N_STRESS] = (st_tr[..., :N_STRESS] + tau * state_new[..., :N_STRESS]) / (1.0 + tau)
 
     def elastic_stiffness(self):
-        """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start with
-        E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and keeping
-        it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
+        """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start
+        with E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and
+        keeping it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
         E = self.params[self.el_mat, 0]
         nu = self.params[self.el_mat, 1]
         k0 = q8_elastic_stiffness(self.coords, E, nu, self.n_gauss)

@@ -1,4 +1,5 @@
-"""Coulomb friction with separation at one point of a zero-thickness interface (paper §6.2, eqs. 6.2, 6.7-6.10).
+"""Coulomb friction with separation at one point of a zero-thickness interface (paper §6.2, eqs. 6.2,
+6.7-6.10).
 
 The "strain" of an interface point is its gap, the relative displacement of the upper body with respect to the
 lower one in the local frame, ``gap = [g_t, g_n]`` (tangential, normal; g_n > 0 opens the contact). The

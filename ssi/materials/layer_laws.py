@@ -6,7 +6,8 @@ Law kinds (``kind``) and their parameter vectors ``params`` (length <= N_LAYER_P
 * ``ELASTIC`` (0): [E, nu]; sig = E/(1-nu^2) eps (cylindrical bending), tau = E/(2(1+nu)) gam.
 * ``CONCRETE`` (1): [E0, nu, fc, eps_c, eps_cu, fr, Gf, ls, alpha_ts, eps_y, beta0, beta_floor] --
   eq. (5.1) in compression with irreversible strain (5.3), crack-band softening (5.4), tension
-  stiffening and cracked shear retention (Figs. 5-6). Uniaxial unless its plane-strain flag (index 13) is set. See ``concrete``.
+  stiffening and cracked shear retention (Figs. 5-6). Uniaxial unless its plane-strain flag (index 13) is set.
+  See ``concrete``.
 * ``STEEL`` (2): [Es, 0, fy, EH] -- bilinear with hardening EH, unloading Es, no shear. See ``steel``.
 
 Build the vectors with ``ssi.materials.rc.concrete_params`` / ``steel_params`` (they validate).
@@ -22,8 +23,9 @@ A model builder sets it per element and point (the params array may be per point
 given for all elements the law is a plain (mesh-dependent) strain-softening law.
 
 Numba cache: ``cache=True`` alone keys a kernel's cache on its *own* file, but ``layer_update`` and the plate
-kernels inline ``concrete_update`` / ``steel_update``. ``import ssi`` therefore points ``NUMBA_CACHE_DIR`` at a
-folder keyed on a hash of all package sources (``ssi/__init__.py``): any edit recompiles, nothing stale runs.
+kernels inline ``concrete_update`` / ``steel_update``. ``import ssi`` therefore points ``NUMBA_CACHE_DIR`` at
+a folder keyed on a hash of all package sources (``ssi/__init__.py``): any edit recompiles, nothing stale
+runs.
 
 History: N_LAYER_HIST = 4 floats per layer point (concrete uses 2: max compressive strain, max crack
 strain; steel uses 1: plastic strain). Unused entries are copied through.

@@ -306,7 +306,8 @@ def stress_on_axes(s, order, cc, ss, sig, q, R):
 
 @njit(cache=True)
 def elastic_fill(lam, mu, D):
-    """Fill ``D`` (4, 4) with the isotropic elastic matrix of Lamé constants (lam, mu), order [xx, zz, xz, yy]."""
+    """Fill ``D`` (4, 4) with the isotropic elastic matrix of Lamé constants (lam, mu), order [xx, zz, xz,
+    yy]."""
     D[:, :] = 0.0
     for i in (0, 1, 3):
         for j in (0, 1, 3):
