@@ -1,5 +1,6 @@
 """Benchmark of the numerical core (issues 2 and 16): Q8 element throughput, pattern, assembly, factorisation
-and solve at ~1e4, 1e5 and 1e6 DOFs, numba compile time, scikit-fem side by side, the elastic block end to end.
+and solve at ~1e4, 1e5 and 1e6 DOFs, numba compile time,
+scikit-fem side by side, the elastic block end to end.
 
 Run with ``make bench`` (installs the bench extras scikit-fem and pypardiso). Prints one ``key: value`` line
 per measured figure, and for keys with a goal the goal beside it. Unless a key says otherwise, times are
@@ -249,7 +250,8 @@ PUBLIC_SCRIPT = textwrap.dedent("""
     model = Model(); model.add_nodes(mesh.xy, 2)
     model.add_group(SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC],
                            [elastic_params({E}, {NU})]))
-    model.fix(mesh.bottom, "u"); model.fix(mesh.bottom, "w"); model.fix(mesh.left, "u"); model.fix(mesh.right, "u")
+    model.fix(mesh.bottom, "u"); model.fix(mesh.bottom, "w")
+    model.fix(mesh.left, "u"); model.fix(mesh.right, "u")
     model.add_load(mesh.nodes_between(-1.0, 1.0), "w", -100e3 * (20.0 / nx) / 2.0)
     out = model.solve_linear()
     print(out.u.size, out.u.min())
@@ -279,7 +281,8 @@ SKFEM_SCRIPT = textwrap.dedent("""
 
 
 def whole_processes(target=1e5, repeat=3):
-    """(ssi public, scikit-fem) whole-process wall times, fresh interpreters alternated, best of ``repeat``."""
+    """(ssi public, scikit-fem) whole-process wall times, fresh interpreters alternated, best of
+    ``repeat``."""
     _, nz = grid_for(target)
     scripts = {
         "ssi": PUBLIC_SCRIPT.format(nz=nz, E=E, NU=NU),

@@ -37,7 +37,7 @@ FLOPS_PLASTIC_EXTRA, TRANS_PLASTIC_EXTRA = 95, 1
 def _flop_loop(n, x):
     # 8 independent multiply-add chains: what a scalar kernel with some instruction-level parallelism gets
     a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
-    for i in range(n):
+    for _ in range(n):
         a0 = a0 * x + 1.0
         a1 = a1 * x + 2.0
         a2 = a2 * x + 3.0

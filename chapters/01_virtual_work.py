@@ -45,7 +45,8 @@
 #
 # $$\Big(\underbrace{\textstyle\sum_e \int B^T D B\, dV}_{K_V}
 #       + \underbrace{\textstyle\sum_c \int B_c^T D_c B_c\, dS}_{K_c}\Big)\, d
-#   = \underbrace{\textstyle\sum_e \int N^T b\, dV}_{F_b} + \underbrace{\textstyle\sum_s \int N^T p\, dS}_{F_p}.$$
+#   = \underbrace{\textstyle\sum_e \int N^T b\, dV}_{F_b}
+#     + \underbrace{\textstyle\sum_s \int N^T p\, dS}_{F_p}.$$
 #
 # Term (a) gives the soil (and later plate) element stiffnesses, term (b) the interface stiffness, (c) and
 # (d) the load vectors. Taking δd = d itself turns (3.1) into an energy balance: dᵀK_V d + dᵀK_c d = dᵀ(F_b +

@@ -45,7 +45,8 @@
 #
 # **Strains and stresses (eqs. 4.4–4.5).** With ε₀ = ū′ and the curvature k = α′,
 #
-# $$\varepsilon_x(z) = \varepsilon_0 - z\,k,\qquad \sigma_x = D_1\varepsilon_x,\ D_1 = \frac{E}{1-\nu^2},\qquad
+# $$\varepsilon_x(z) = \varepsilon_0 - z\,k,\qquad
+#   \sigma_x = D_1\varepsilon_x,\ D_1 = \frac{E}{1-\nu^2},\qquad
 #   \tau_{xz} = \kappa D_2\gamma,\ D_2 = \frac{E}{2(1+\nu)} .$$
 #
 # D₁ is the plane-strain (cylindrical bending) modulus. κ is the shear correction factor: the paper writes
@@ -55,7 +56,8 @@
 #
 # **Section forces** per unit width — with M positive in sagging:
 #
-# $$N = \int\sigma_x\,dz,\qquad M = -\int z\,\sigma_x\,dz,\qquad Q = \int_{\text{shear layers}}\tau_{xz}\,dz .$$
+# $$N = \int\sigma_x\,dz,\qquad M = -\int z\,\sigma_x\,dz,\qquad
+#   Q = \int_{\text{shear layers}}\tau_{xz}\,dz .$$
 #
 # The internal virtual work of the strip is then δW = ∫ (δε₀ N + δk M + δγ Q) dx.
 #

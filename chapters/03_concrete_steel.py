@@ -201,7 +201,8 @@ path_cr = -np.linspace(ecu, 1.05 * eps_cd, 20001)
 sig_cr = rc.drive(CONCRETE, p_c, path_cr)[0]
 crush_energy = abs(np.trapezoid(-sig_cr, -path_cr) / (p_c[concrete.P_GC] / LS) - 1)
 print(
-    f"crushing: f(eps_cu) = {f_cu / FC:.3f} fc, stress reaches zero at {eps_cd:.4f}; energy error {crush_energy:.1e}"
+    f"crushing: f(eps_cu) = {f_cu / FC:.3f} fc, stress reaches zero at {eps_cd:.4f}; "
+    f"energy error {crush_energy:.1e}"
 )
 assert abs(sig_cr[0] + f_cu) <= 1e-6 * FC and crush_energy <= 1e-3, crush_energy
 

@@ -34,7 +34,8 @@
 # are, for the corners (ξₐ, ηₐ = ±1) and the mid-sides,
 #
 # $$N_a = \tfrac14(1+\xi_a\xi)(1+\eta_a\eta)(\xi_a\xi+\eta_a\eta-1),\qquad
-#   N_a = \tfrac12(1-\xi^2)(1+\eta_a\eta)\ \ (\xi_a = 0),\qquad N_a = \tfrac12(1+\xi_a\xi)(1-\eta^2)\ \ (\eta_a=0).$$
+#   N_a = \tfrac12(1-\xi^2)(1+\eta_a\eta)\ \ (\xi_a = 0),\qquad
+#   N_a = \tfrac12(1+\xi_a\xi)(1-\eta^2)\ \ (\eta_a=0).$$
 #
 # They interpolate both the coordinates and the displacements (isoparametric): x = Σ Nₐ xₐ, u = Σ Nₐ uₐ. They
 # reproduce every complete quadratic in ξ, η plus ξ²η and ξη² — so a linear displacement field in x, z is
@@ -42,7 +43,8 @@
 #
 # **Strain and stress.** With z upwards and engineering shear, ε = [εxx, εzz, γxz] = B uₑ where node a
 # contributes the columns
-# $$B_a = \begin{bmatrix} \partial_x N_a & 0\\ 0 & \partial_z N_a\\ \partial_z N_a & \partial_x N_a\end{bmatrix},$$
+# $$B_a = \begin{bmatrix} \partial_x N_a & 0\\ 0 & \partial_z N_a\\
+#   \partial_z N_a & \partial_x N_a\end{bmatrix},$$
 # the physical derivatives coming from the Jacobian J = ∂(x, z)/∂(ξ, η). In plane strain εyy = 0 and the
 # out-of-plane stress σyy = ν(σxx + σzz) is kept in the state (the plastic laws need it). The elastic matrix
 # in the code's order [xx, zz, xz, yy] is λ on the normal–normal entries, λ + 2μ on their diagonal and μ for
@@ -212,7 +214,8 @@ for ng in (2, 3):
     stress_err = np.abs(group.stress(res.states[0]) - sig_exact).max() / np.abs(sig_exact).max()
     patch[ng] = (node_err, stress_err)
     print(
-        f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, max stress error / max |sig| = {stress_err:.2e}"
+        f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, "
+        f"max stress error / max |sig| = {stress_err:.2e}"
     )
 
 # %% [markdown]
@@ -439,7 +442,8 @@ for psi in (0.0, 10.0, 30.0):
 print(" psi  path                 branch        max|f|/c   |D - D_FD|   asymmetry   dev_p/gam_p  (sin psi)")
 for r in mc_rows:
     print(
-        f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} {r['f_max']:9.1e}   {r['fd_err']:9.1e}"
+        f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} "
+        f"{r['f_max']:9.1e}   {r['fd_err']:9.1e}"
         f"   {r['asym']:9.1e}   "
         + (
             f"{r['dilatancy']:8.4f}    ({math.sin(math.radians(r['psi'])):.4f})"
@@ -612,7 +616,7 @@ axes[0].set_title("thick cylinder: full integration locks")
 for ng, mk in ((2, "o"), (3, "s")):
     arr = np.array(conv[ng])
     axes[1].loglog(arr[:, 3], arr[:, 2], mk + "-", label=f"{ng}×{ng}")
-    for n, n_dof, err, wall in conv[ng]:
+    for _n, n_dof, err, wall in conv[ng]:
         axes[1].annotate(f"{n_dof}", (wall, err), fontsize=7, textcoords="offset points", xytext=(3, 3))
 axes[1].set_xlabel("wall time: mesh + assembly + factorisation + solve [s]")
 axes[1].set_ylabel("max |σ_FE − σ_exact| / q")

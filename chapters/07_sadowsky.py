@@ -191,7 +191,8 @@ for kr in SWEEP:
         sweep[(kr, rule)] = (err, tv, penetration, r["w_punch"])
 print(f"mesh n_under = {SWEEP_MESH}")
 print(
-    f"{'kn a/E':>8s} {'rule':>13s} {'max err':>8s} {'TV':>7s} {'gap/settlement':>15s} {'settlement [mm]':>16s}"
+    f"{'kn a/E':>8s} {'rule':>13s} {'max err':>8s} {'TV':>7s} "
+    f"{'gap/settlement':>15s} {'settlement [mm]':>16s}"
 )
 for (kr, rule), (err, tv, pen, w) in sweep.items():
     print(f"{kr:8.0e} {rule:>13s} {err:8.4f} {tv:7.3f} {pen:15.2e} {w * 1e3:16.4f}")

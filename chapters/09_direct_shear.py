@@ -210,7 +210,8 @@ def exact_check(n_x, H=0.01, n_steps=N_STEPS):
 # %%
 checks = {}
 print(
-    f"{'n_x':>4s} {'H [m]':>6s} {'beta':>7s} {'err s (s>=5cm)':>15s} {'err u(0)':>9s} {'|ds|/L (s<5cm)':>15s} "
+    f"{'n_x':>4s} {'H [m]':>6s} {'beta':>7s} {'err s (s>=5cm)':>15s} {'err u(0)':>9s} "
+    f"{'|ds|/L (s<5cm)':>15s} "
     f"{'iter':>5s} {'time [s]':>8s}"
 )
 for n_x in MESHES:

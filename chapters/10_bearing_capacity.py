@@ -57,7 +57,8 @@
 # **Prandtl's collapse pressure** of a strip footing on weightless soil (smooth or rough base — for γ = 0 both
 # give the same value):
 #
-# $$N_q = e^{\pi\tan\varphi}\tan^2(45^\circ+\varphi/2),\qquad N_c = (N_q-1)\cot\varphi\ (=2+\pi\ \text{for}\ \varphi=0),
+# $$N_q = e^{\pi\tan\varphi}\tan^2(45^\circ+\varphi/2),\qquad N_c = (N_q-1)\cot\varphi
+#   \ (=2+\pi\ \text{for}\ \varphi=0),
 #   \qquad q_u = c\,N_c + q\,N_q .$$
 #
 # It is exact for associated flow (ψ = φ). With ψ < φ no exact value exists; displacement-based FE gives
@@ -242,7 +243,8 @@ for psi in (20.0, 0.0) if FAST else (20.0, 10.0, 0.0):
     out = push_footing(scene, n_steps=N_STEPS, method="line_search")
     nonassoc[psi] = out
     print(
-        f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = {out['q_u'] / prandtl(C, 20.0)[0]:.4f} x Prandtl, "
+        f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = "
+        f"{out['q_u'] / prandtl(C, 20.0)[0]:.4f} x Prandtl, "
         f"iterations={out['n_iterations']}, per step max {max(out['iterations'])}, cuts={out['cuts']}, "
         f"time={out['wall_time']:.1f} s, stop: {out['failure']}"
     )
@@ -263,7 +265,8 @@ scene = rigid_footing(
 )
 coarse_steps = push_footing(scene, n_steps=12, method="line_search")
 print(
-    f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = {coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
+    f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = "
+    f"{coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
     f" x Prandtl, iterations={coarse_steps['n_iterations']}, cuts={coarse_steps['cuts']}, "
     f"stop: {coarse_steps['failure']}"
 )
@@ -318,7 +321,8 @@ for h in PSI0_MESHES:
         out = psi0_push(h, n)
         psi0[h, n] = out
         print(
-            f"psi=0, viscous + relaxed: h={h:6.4f} ({out['n_dof']} DOFs) {n:3d} steps: q_u = {out['q_end']:.4f} "
+            f"psi=0, viscous + relaxed: h={h:6.4f} ({out['n_dof']} DOFs) {n:3d} steps: "
+            f"q_u = {out['q_end']:.4f} "
             f"x Prandtl, {out['n_iterations']} iterations ({out['result'].relaxed_steps} relaxation steps), "
             f"{out['factorizations']} factorisation(s), {out['wall_time']:.1f} s, stop: {out['failure']}"
         )
@@ -331,7 +335,8 @@ step_change = max(
 )
 trend = [psi0[h, PSI0_STEPS[-1]]["q_end"] for h in PSI0_MESHES]
 print(
-    f"largest change of the psi=0 limit load between {PSI0_STEPS} steps over the meshes: {100 * step_change:.2f} %"
+    f"largest change of the psi=0 limit load between {PSI0_STEPS} steps over the meshes: "
+    f"{100 * step_change:.2f} %"
 )
 print("limit load / Prandtl (most steps) against h:", dict(zip(PSI0_MESHES, np.round(trend, 4))))
 

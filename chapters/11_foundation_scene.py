@@ -34,8 +34,9 @@
 # | soil block | 30 m × 10 m, bottom fixed, sides on rollers (Fig. 1) | `Scene(width, depth)` |
 # | layer 1 | 2 m soft clay: E = 10 MPa, ν = 0.3, γ = 18 kN/m³, c = 20 kPa, φ = 20°, ψ = 0 | `SoilLayer` |
 # | layer 2 | 8 m sand: E = 80 MPa, ν = 0.3, γ = 20 kN/m³, c = 1 kPa, φ = 35°, ψ = 5° | `SoilLayer` |
-# | foundation | 6 m long, 0.4 m deep RC strip, fc = 38 MPa, As = 1.5·10⁻³ m²/m (15 cm²/m) top and bottom at 5 cm cover, fy = 500 MPa | `Foundation`, `rc_section` |
-# | contact | kn = 4·10⁹ Pa/m, kt = 4·10⁸ Pa/m, φ_i = 25°, c_i = 0 (no tension: the beam may lift off) | `Contact` |
+# | foundation | 6 m long, 0.4 m deep RC strip, fc = 38 MPa, fy = 500 MPa | `Foundation`, `rc_section` |
+# | reinforcement | As = 1.5·10⁻³ m²/m (15 cm²/m) top and bottom at 5 cm cover | `rc_section` |
+# | contact | kn = 4·10⁹ Pa/m, kt = 4·10⁸ Pa/m, φ_i = 25°, c_i = 0, no tension (it may lift off) | `Contact` |
 # | loads | two columns at x = ±2.5 m, N = 400 kN/m each; self-weight of beam and soil | `ColumnLoad` |
 #
 # The soil starts from its geostatic stress (K0 = 1 − sin φ) in equilibrium with its weight, so the
@@ -159,7 +160,7 @@ ax[0].invert_yaxis()
 ax[0].set_ylabel("settlement [mm]")
 ax[0].legend()
 xc, sn = contact["x"].ravel(), contact["sig_n"].ravel()
-for name, code in zone_codes.items():
+for name in zone_codes:
     m = contact["zone"].ravel() == name
     ax[1].plot(xc[m], -sn[m] / 1e3, "o", ms=4, label=name)
 ax[1].set_ylabel("contact pressure [kPa]")
@@ -321,8 +322,8 @@ order_w, order_m = fitted_order(study[:, 2]), fitted_order(study[:, 3])
 est_w = abs(study[-1, 2] - study[-2, 2]) / (2**order_w - 1) / abs(study[-1, 2])
 est_m = abs(study[-1, 3] - study[-2, 3]) / (2**order_m - 1) / abs(study[-1, 3])
 print(
-    f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson estimate of the finest "
-    f"mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}"
+    f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson "
+    f"estimate of the finest mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}"
 )
 fig, ax = plt.subplots(1, 3, figsize=(13, 3.5))
 ax[0].plot(study[:, 1], study[:, 2], "o-")

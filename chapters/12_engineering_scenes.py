@@ -40,10 +40,10 @@
 # | q | surcharge on the ground [Pa] | `Scene.surcharge` |
 # | H, M | layer depth [m], constrained modulus E(1−ν)/((1+ν)(1−2ν)) [Pa] | |
 # | N_q | exp(π tan φ) tan²(45° + φ/2) | `ssi.bearing_capacity.prandtl` |
-# | q_u | collapse pressure: the largest mean contact pressure of a push-over [Pa] | `BuiltScene.contact_force / B` |
+# | q_u | largest mean contact pressure of a push-over [Pa] | `BuiltScene.contact_force / B` |
 # | d_w | depth of the water table [m] | `Scene.water_table` |
-# | γ, γ_sat, γ_w | unit weights above / below the table, of water [N/m³] | `unit_weight`, `unit_weight_sat`, `gamma_w` |
-# | σ'_v, σ'_h, p | effective vertical and horizontal stress, pore pressure [Pa] | soil state, `BuiltScene.pore_pressure()` |
+# | γ, γ_sat, γ_w | unit weight above, below the table; water [N/m³] | `unit_weight(_sat)`, `gamma_w` |
+# | σ'_v, σ'_h, p | effective vertical, horizontal stress; pore pressure [Pa] | state; `pore_pressure()` |
 # | s_u | undrained shear strength [Pa] | `SoilLayer.undrained(..., s_u=)` |
 # | D | embedment: depth of the strip's base below the ground [m] | `Scene.embedment` |
 
@@ -195,7 +195,8 @@ for h in MESHES:
     nq_half[h] = half["q_u"] / q_nq - 1
     print(
         f"h = {h:5.3f} m: q_u = {curves_nq[h][2] / 1e3:6.1f} kPa, q N_q = {q_nq / 1e3:6.1f} kPa, error "
-        f"{100 * nq_err[h]:+.2f} %; half-model footing {half['q_u'] / 1e3:6.1f} kPa (gap {100 * nq_gap[h]:+.2f} %)"
+        f"{100 * nq_err[h]:+.2f} %; half-model footing {half['q_u'] / 1e3:6.1f} kPa "
+        f"(gap {100 * nq_gap[h]:+.2f} %)"
         f"  [{time.perf_counter() - t0:.1f} s]"
     )
 h_fin = MESHES[-1]
@@ -323,9 +324,10 @@ plastic_built = plastic.build()
 plastic_out = plastic_built.solve(n_steps=4, settings=PUSH)
 pstep = {r["name"]: r["last"] for r in plastic_out.phases}
 residual = plastic_out.settlement(pstep["unload"])[1] - plastic_out.settlement(pstep["weight"])[1]
+loaded = plastic_out.settlement(pstep["building"])[1] - plastic_out.settlement(pstep["weight"])[1]
 print(
     f"plastic soil: settlement left after unloading {1e3 * residual.mean():.2f} mm "
-    f"(loaded {1e3 * (plastic_out.settlement(pstep['building'])[1] - plastic_out.settlement(pstep['weight'])[1]).mean():.2f} mm)"
+    f"(loaded {1e3 * loaded.mean():.2f} mm)"
 )
 assert residual.mean() > 0.0
 
@@ -500,7 +502,8 @@ u_a, u_u = strip_a.build().solve().u[-1], strip_u.build().solve().u[-1]
 equiv_err = np.abs(u_a - u_u).max() / np.abs(u_u).max()
 print(
     f"1D: settlement / (qH/M_u) - 1 = {settle_err:.1e}, pore pressure / (q K_w/n / M_u) - 1 = {p_err:.1e} "
-    f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A vs elastic (G, nu_u) {equiv_err:.1e}"
+    f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A "
+    f"vs elastic (G, nu_u) {equiv_err:.1e}"
 )
 assert max(settle_err, p_err, equiv_err) < UNDRAINED_A_TOL
 

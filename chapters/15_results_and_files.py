@@ -28,12 +28,14 @@
 #
 # ## What a result file holds
 #
-# | group | content | why |
-# |---|---|---|
-# | attributes | the scene (every layer, load, section layer), the solver settings, `complete`, `stop` | rebuild the scene, know whether the run finished |
-# | `/mesh` | node coordinates, each group's connectivity and DOF table, interface point positions and weights | plot and integrate without rebuilding |
-# | `/steps` | load factor, displacements and committed integration-point states of every step | every quantity at every step |
-# | `/solver` | internal forces, iterations, residual histories, cuts, wall time | how the answer was obtained |
+# - attributes: the scene (every layer, load, section layer), the solver settings, `complete`, `stop` — to
+#   rebuild the scene and know whether the run finished;
+# - `/mesh`: node coordinates, each group's connectivity and DOF table, interface point positions and
+#   weights — to plot and integrate without rebuilding;
+# - `/steps`: load factor, displacements and committed integration-point states of every step — every
+#   quantity at every step;
+# - `/solver`: internal forces, iterations, residual histories, cuts, wall time — how the answer was
+#   obtained.
 #
 # Reading a file rebuilds the scene from its description and checks that the rebuilt mesh equals the stored
 # coordinates, so a file written by an incompatible version is refused rather than misread. Files are

@@ -62,13 +62,19 @@
 # mode draws fewer examples than full mode. In `tests/test_fuzz.py` the same strategies run under `@given`,
 # where a failure is shrunk to its simplest invalid argument.
 #
-# | concept | code |
-# |---|---|
-# | type / finiteness / range checks | `ssi.validate.check_real`, `check_int`, `check_bool`, `check_choice`, `check_instance`, `check_array` |
-# | where they are called | `__post_init__` of `SoilLayer`, `Foundation`, `Contact`, `ColumnLoad`, `MeshSize`, `Scene`, `Section`, `Settings`; `BuiltScene.solve`; `soil_block`; `Model` loads/supports; footing builders; `ssi.analytical` |
-# | allowed sets, strategies, classifier, driver | `ssi.fuzz` (`invalid_cases`, `valid_scenes`, `classify_invalid`, `classify_valid`, `study`) |
-# | supports that leave a rigid motion free | `Model.check` (rank of the rigid motions on the constrained DOFs, per connected part) |
-# | a singular matrix otherwise | `ssi.linsolve.SingularMatrix` (names the rows of the null space), re-raised by `Model.solve_linear` as a `ValueError` naming the nodes and components |
+# Where each concept lives in the code:
+#
+# - type / finiteness / range checks: `ssi.validate.check_real`, `check_int`, `check_bool`, `check_choice`,
+#   `check_instance`, `check_array`;
+# - where they are called: `__post_init__` of `SoilLayer`, `Foundation`, `Contact`, `ColumnLoad`,
+#   `MeshSize`, `Scene`, `Section`, `Settings`; `BuiltScene.solve`; `soil_block`; `Model` loads/supports;
+#   footing builders; `ssi.analytical`;
+# - allowed sets, strategies, classifier, driver: `ssi.fuzz` (`invalid_cases`, `valid_scenes`,
+#   `classify_invalid`, `classify_valid`, `study`);
+# - supports that leave a rigid motion free: `Model.check` (rank of the rigid motions on the constrained
+#   DOFs, per connected part);
+# - a singular matrix otherwise: `ssi.linsolve.SingularMatrix` (names the rows of the null space), re-raised
+#   by `Model.solve_linear` as a `ValueError` naming the nodes and components.
 
 # %%
 import matplotlib.pyplot as plt
@@ -154,7 +160,7 @@ assert study["counts_valid"].get("solved", 0) > 0  # the valid population is not
 # **Before and after.** Before this layer existed (commit 87d2b94; the same driver, seeds and sizes, run on a
 # copy of that commit's `ssi` with only `ssi/fuzz.py` added) the studies gave:
 #
-# | study | invalid calls | named before | escapes before (unnamed / returned / other) | named after | escapes after |
+# | study | invalid calls | named before | escapes before (unnamed/returned/other) | named after | escapes |
 # |---|---|---|---|---|---|
 # | fast | 500 | 195 (39.0 %) | 305 (137 / 119 / 49) | 500 (100 %) | 0 |
 # | full | 5000 | 2929 (58.6 %) | 2071 (899 / 1073 / 99) | 5000 (100 %) | 0 |

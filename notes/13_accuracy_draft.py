@@ -235,7 +235,8 @@ for name, (levels, solve, exact) in cases.items():
             }
         )
 print(
-    f"closed-form studies: {time.perf_counter() - t0:.1f} s; Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}"
+    f"closed-form studies: {time.perf_counter() - t0:.1f} s; "
+    f"Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}"
 )
 print(
     f"{'case':28s} {'level':>7s} {'p':>6s} {'est. err':>10s} {'true err':>10s} {'index':>7s} "
@@ -503,7 +504,8 @@ assert finest["error"] < coarse["error"]
 true_base = abs(est11.value["max_settlement"] - s_ref) / abs(s_ref)
 est_base = est11.relative["max_settlement"]
 print(
-    f"chapter-11 scene as given: estimated error {est_base:.2%}, error against the reference {true_base:.2%}, "
+    f"chapter-11 scene as given: estimated error {est_base:.2%}, error against the "
+    f"reference {true_base:.2%}, "
     f"index {est_base / true_base:.2f} (the reference carries its own error: printed, not asserted)"
 )
 assert est_base > 0.0 and true_base > 0.0

@@ -29,7 +29,7 @@ __all__ = [
 ]
 
 
-# ---- Sadowsky ------------------------------------------------------------------------------------------------
+# ---- Sadowsky ----------------------------------------------------------------------------------------------
 def sadowsky_pressure(x, a, P):
     """Contact pressure p(x) = P / (pi sqrt(a^2 - x^2)) (compression positive) under a rigid smooth punch of
     half-width ``a`` pressed by ``P`` per unit length into an elastic half-plane; nan for |x| >= a."""
@@ -41,7 +41,7 @@ def sadowsky_pressure(x, a, P):
     return np.where(np.abs(x) < a, p, np.nan)
 
 
-# ---- Hetenyi ---------------------------------------------------------------------------------------------------
+# ---- Hetenyi -----------------------------------------------------------------------------------------------
 def _hetenyi_lambda(k, EI, P, x):
     check_real("k", k, lo=0.0, lo_open=True, unit="N/m^2")
     check_real("EI", EI, lo=0.0, lo_open=True, unit="N m^2")
@@ -66,7 +66,7 @@ def hetenyi_moment(x, P, k, EI):
     return P / (4.0 * lam) * np.exp(-r) * (np.cos(r) - np.sin(r))
 
 
-# ---- shear lag with slip -------------------------------------------------------------------------------------
+# ---- shear lag with slip -----------------------------------------------------------------------------------
 # A bar of axial stiffness EA (per unit width) lies on a rigid plate over 0 <= x <= L, is pushed by F at x = 0
 # and is free at x = L. The interface carries tau = kt u up to |tau| = tau_f. Equilibrium EA u'' = tau(u).
 # Elastic zone: u = A cosh(lam (L - x)), lam = sqrt(kt / EA). Slip zone 0 <= x <= s: tau = tau_f, so the axial

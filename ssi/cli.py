@@ -79,7 +79,8 @@ def summary_text(s: dict) -> str:
         lines += [
             (
                 f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
-                f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"
+                f"{s['x_max_contact_pressure']:.3f} m "
+                f"(contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"
             ),
             f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m",
         ]

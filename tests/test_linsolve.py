@@ -55,6 +55,7 @@ def test_pardiso_refactorisation_reuses_the_analysis(spd, symmetric):
 
     pattern, g = block_system()
     rhs = np.random.default_rng(1).normal(size=(pattern.n_free, 2))
+    first_handle = None
     for scale in (1.0, 3.0, 0.5):  # one pattern, three matrices: analysed once, refactorised twice
         k = pattern.matrix(pattern.assemble([scale * g.elastic_stiffness()]))
         fac = Factorization(k, symmetric, "pardiso", spd=spd)

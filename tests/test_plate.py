@@ -232,7 +232,7 @@ def test_layer_stresses_integrate_to_resultants():
     assert np.allclose(q_sum, res["Q"][0], rtol=1e-12, atol=0) and np.all(res["Q"][0] > 0)
 
 
-# ---- Timoshenko closed forms (global, through Model) --------------------------------------------------------
+# ---- Timoshenko closed forms (global, through Model) -------------------------------------------------------
 def strip(n_el, length=L, integration="selective", n_layers=1):
     m = Model()
     g, ids, _ = add_plate_strip(
@@ -335,14 +335,17 @@ def test_full_integration_locks_selective_does_not():
             assert err <= tol
 
 
-# ---- loads, meshes, sections, input checks -------------------------------------------------------------------
+# ---- loads, meshes, sections, input checks -----------------------------------------------------------------
 def test_distributed_load_resultants():
     """Equivalent nodal forces carry the load's resultant and its moment (linear and callable loads)."""
     xy, conn = beam_mesh_from_ends([0.0, 0.7, 2.0, 2.3])
     g = PlateStrip(xy[conn], np.arange(27).reshape(3, 9), homogeneous(H, E, NU))
     x = xy[:, 0]
     qa, qb = 3.0, -5.0
-    lin = lambda s: qa + (qb - qa) * s / 2.3
+
+    def lin(s):
+        return qa + (qb - qa) * s / 2.3
+
     ends = np.column_stack([lin(x[conn[:, 0]]), lin(x[conn[:, 2]])])
     total = 2.3 * (qa + qb) / 2
     moment = qa * 2.3**2 / 2 + (qb - qa) * 2.3**2 / 3

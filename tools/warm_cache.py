@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 t0 = time.perf_counter()
-import ssi  # noqa: F401  (first: keys numba's cache on the package sources)
+import ssi  # noqa: E402, F401  (first: keys numba's cache on the package sources)
 
 ROOT = Path(__file__).resolve().parent.parent
 

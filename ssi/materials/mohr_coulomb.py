@@ -414,8 +414,8 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     for i in range(3):
         for j in range(3):
             v = 0.0
-            for l in range(3):
-                v += H[i, l] * (lam + (2.0 * mu if l == j else 0.0))
+            for t in range(3):
+                v += H[i, t] * (lam + (2.0 * mu if t == j else 0.0))
             Cp[order[i], order[j]] = v
     C4[:, :] = 0.0
     idx = (0, 1, 3)
@@ -431,14 +431,14 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     for i in range(4):
         for j in range(4):
             v = 0.0
-            for l in range(4):
-                v += R[i, l] * C4[l, j]
+            for t in range(4):
+                v += R[i, t] * C4[t, j]
             T[i, j] = v
     for i in range(4):
         for j in range(4):
             v = 0.0
-            for l in range(4):
-                v += T[i, l] * R[j, l]
+            for t in range(4):
+                v += T[i, t] * R[j, t]
             D[i, j] = v
     return ST_PLASTIC
 
@@ -556,8 +556,8 @@ def _continuum_dep(sig, lam, mu, k, m, kc, apex, deps, Dep, use_deps):
         for i in range(n):
             for j in range(n):
                 v = 0.0
-                for l in range(4):
-                    v += Av[act[i], l] * DB[act[j], l]
+                for t in range(4):
+                    v += Av[act[i], t] * DB[act[j], t]
                 G[i, j] = v
         Gi = _small_inverse(G)
         if use_deps:
@@ -567,8 +567,8 @@ def _continuum_dep(sig, lam, mu, k, m, kc, apex, deps, Dep, use_deps):
                 v = 0.0
                 for j in range(n):
                     w = 0.0
-                    for l in range(4):
-                        w += DA[act[j], l] * deps[l]
+                    for t in range(4):
+                        w += DA[act[j], t] * deps[t]
                     v += Gi[i, j] * w
                 if v < 0.0:
                     planes[act[i]] = 0
