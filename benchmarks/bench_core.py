@@ -36,11 +36,12 @@ import scipy.sparse as sp
 
 from ssi.assembly import SparsePattern
 from ssi.elements.q8_elastic import q8_elastic_stiffness
-from ssi.elements.soil_q8 import SoilQ8, q8_kernel
+from ssi.elements.soil_q8 import q8_kernel
 from ssi.linsolve import Factorization, pardiso_available
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
+from ssi.supports import fix_block, soil_group
 
 E, NU = 30e6, 0.3
 GOALS = {
@@ -80,13 +81,8 @@ def block(nx, nz, width=20.0, depth=10.0):
     mesh = structured_q8(np.linspace(-0.5 * width, 0.5 * width, nx + 1), np.linspace(-depth, 0.0, nz + 1))
     model = Model()
     model.add_nodes(mesh.xy, 2)
-    group = model.add_group(
-        SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(E, NU)])
-    )
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
+    group = soil_group(model, mesh, [(ELASTIC, elastic_params(E, NU))])
+    fix_block(model, mesh)
     loaded = mesh.nodes_between(-1.0, 1.0)
     model.add_load(loaded, "w", -100e3 * (width / nx) / 2.0)  # ~100 kPa (lumped; the load is not benchmarked)
     return mesh, model, group

@@ -139,6 +139,7 @@ from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from ssi.model import Model
 from ssi.section import homogeneous, layered, paper_rc_section, rc_section
+from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 E, NU, H = 30.0e9, 0.2, 1.0  # Pa, -, m (depth 1 m: span/depth is the span in metres)
@@ -401,8 +402,8 @@ for n in n_list:
     err_m.append(np.abs(res["M"] - m_exact).max() / abs(Q * SPAN**2 / 8))
     err_q.append(np.abs(res["Q"] - Q * (SPAN / 2 - res["x_sh"])).max() / abs(Q * SPAN / 2))
 h_el = SPAN / np.array(n_list)
-rate_w = np.polyfit(np.log(h_el), np.log(err_w), 1)[0]
-rate_m = np.polyfit(np.log(h_el), np.log(err_m), 1)[0]
+rate_w = convergence_rate(h_el, err_w)
+rate_m = convergence_rate(h_el, err_m)
 print(
     f"fitted rates: deflection (all nodes) {rate_w:.3f}, moment at Gauss points {rate_m:.3f}; "
     f"max shear-force error {max(err_q):.1e}"
@@ -436,7 +437,7 @@ for rule in rules:
 # the mid-span point is the middle node, which is not nodally exact: 0.8 at every slenderness, for every rule)
 locking_worst = max(abs(ratio["selective", sd, n] - 1) for sd in slender for n in n_lock if n >= 2)
 full_thin = np.array([1 - ratio["full", slender[-1], n] for n in n_lock if n >= 2])
-rate_full = np.polyfit(np.log([n for n in n_lock if n >= 2]), np.log(full_thin), 1)[0]
+rate_full = convergence_rate([n for n in n_lock if n >= 2], full_thin)
 print(f"\nselective: worst |ratio - 1| = {locking_worst:.2e};  full, thin limit: error ~ n^{rate_full:.2f}")
 
 # %% [markdown]
@@ -682,7 +683,7 @@ for c in curvatures:
             " ".join(f"{e:.1e}" for e in layer_err[c, mode]),
             f"| paper 1+7+1: {paper_err[c, mode]:.1e}",
         )
-rate_layers = {c: np.polyfit(np.log(n_conc_list), np.log(layer_err[c, "initial"]), 1)[0] for c in curvatures}
+rate_layers = {c: convergence_rate(n_conc_list, layer_err[c, "initial"]) for c in curvatures}
 print("fitted rates (initial modulus):", {c: f"{v:.2f}" for c, v in rate_layers.items()})
 
 # wall time of one evaluation (internal force + consistent tangent) per element against layers

@@ -94,6 +94,7 @@ import numpy as np
 from ssi import report
 from ssi.materials import concrete, rc
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
+from ssi.verify import fd_jacobian
 
 t_start = time.perf_counter()
 FC, FY = 36.2e6, 333.0e6  # the substitute beam of chapter 08
@@ -228,15 +229,9 @@ def fd_error(kind, params, eps, hist):
     h0[: len(hist)] = hist
     h1 = np.zeros(N_LAYER_HIST)
     _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, 1)
-    d = 1e-9
-    e_fd = (
-        layer_update(kind, params, eps + d, 1e-4, h0, h1, 1)[0]
-        - layer_update(kind, params, eps - d, 1e-4, h0, h1, 1)[0]
-    ) / (2 * d)
-    g_fd = (
-        layer_update(kind, params, eps, 1e-4 + d, h0, h1, 1)[1]
-        - layer_update(kind, params, eps, 1e-4 - d, h0, h1, 1)[1]
-    ) / (2 * d)
+    # d sig / d eps and d tau / d gam by central differences (step 1e-9) at (eps, gam = 1e-4)
+    jac = fd_jacobian(lambda x: layer_update(kind, params, x[0], x[1], h0, h1, 1)[:2], [eps, 1e-4], 1e-9)
+    e_fd, g_fd = jac[0, 0], jac[1, 1]
     return max(abs(e_fd - e_t) / max(abs(e_t), 1e-3 * E0), abs(g_fd - g_t) / max(abs(g_t), 1e-6 * E0))
 
 

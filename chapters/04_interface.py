@@ -116,6 +116,7 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
+from ssi.verify import fd_jacobian
 
 t_chapter = time.perf_counter()
 
@@ -178,18 +179,8 @@ def point(prm, dgap, t_old, h_old, tangent=CONSISTENT):
 
 
 def fd_tangent(prm, dgap, t_old, h_old, h=1e-9):
-    cols = []
-    for j in range(2):
-        e = np.zeros(2)
-        e[j] = h
-        cols.append(
-            (
-                point(prm, np.asarray(dgap) + e, t_old, h_old)[1]
-                - point(prm, np.asarray(dgap) - e, t_old, h_old)[1]
-            )
-            / (2 * h)
-        )
-    return np.column_stack(cols)
+    """Central differences of the traction with respect to the gap increment (2 x 2)."""
+    return fd_jacobian(lambda d: point(prm, d, t_old, h_old)[1], dgap, h)
 
 
 p_assoc = interface_params(KT, KN, PHI, C)

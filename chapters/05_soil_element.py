@@ -80,13 +80,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.analytical_soil import edge_forces, lame_cylinder_displacement, strip_load_stresses
+from ssi.analytical_soil import lame_cylinder_displacement, strip_load_stresses
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.mohr_coulomb import B_APEX, B_EDGE12, B_EDGE23, B_PLANE, mc_yield
 from ssi.materials.soil_laws import ELASTIC, drive, elastic_matrix, elastic_params, mohr_coulomb_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.shapes import Q8_NODES, serendipity8
+from ssi.supports import edge_forces
+from ssi.verify import convergence_rate, dense_stiffness, distorted_q8_mesh, fd_jacobian, zero_energy_modes
 
 FAST = paths.FAST
 # Every system in this chapter is small (< 1e5 DOFs): SciPy's SuperLU factorises them in milliseconds, while
@@ -116,50 +118,26 @@ def q8_model(xy, conn, n_gauss, nu=NU):
     return model, group
 
 
-def dense_stiffness(model, group):
-    K = np.zeros((model.n_dof, model.n_dof))
-    for ed, ke in zip(group.edofs, group.elastic_stiffness()):
-        K[np.ix_(ed, ed)] += ke
-    return K
-
-
-def n_zero_modes(K, rel=1e-10):
-    ev = np.linalg.eigvalsh(K)
-    return int(np.sum(ev < rel * ev.max())), ev
-
-
-def distorted_mesh(n=3, seed=1, amplitude=0.18):
-    """n x n Q8 mesh of the unit square, interior corners moved at random, edges kept straight."""
-    m = structured_q8(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
-    rng = np.random.default_rng(seed)
-    xy, g = m.xy.copy(), m.grid
-    for i in range(2, 2 * n, 2):
-        for j in range(2, 2 * n, 2):
-            xy[g[i, j]] += amplitude / n * rng.uniform(-1, 1, 2)
-    for i in range(2 * n + 1):
-        for j in range(2 * n + 1):
-            if g[i, j] >= 0 and (i % 2) != (j % 2):
-                a, b = (g[i - 1, j], g[i + 1, j]) if i % 2 else (g[i, j - 1], g[i, j + 1])
-                xy[g[i, j]] = 0.5 * (xy[a] + xy[b])
-    return m, xy
+def q8_stiffness(xy, conn, n_gauss):
+    """The dense unsupported K0 of one Q8 group on ``conn`` (:func:`ssi.verify.dense_stiffness`)."""
+    model, group = q8_model(xy, conn, n_gauss)
+    return dense_stiffness(model.n_dof, [group])
 
 
 one_xy = Q8_NODES * [1.0, 0.75]
 one_conn = np.arange(8)[None]
 zero_single = {}
 for ng in (2, 3):
-    model, group = q8_model(one_xy, one_conn, ng)
-    zero_single[ng], ev = n_zero_modes(dense_stiffness(model, group))
+    zero_single[ng] = zero_energy_modes(q8_stiffness(one_xy, one_conn, ng))
     print(f"one element, {ng}x{ng}: {zero_single[ng]} zero-energy modes")
 
-mesh3, xy3 = distorted_mesh(3)
-model, group = q8_model(xy3, mesh3.conn, 2)
-zero_mesh, _ = n_zero_modes(dense_stiffness(model, group))
+mesh3, xy3 = distorted_q8_mesh(3)
+zero_mesh = zero_energy_modes(q8_stiffness(xy3, mesh3.conn, 2))
 print(f"unsupported distorted 3x3 mesh, 2x2: {zero_mesh} zero-energy modes")
 
 # the spurious mode of one element: the zero-energy space minus the rigid-body modes
-model, group = q8_model(one_xy, one_conn, 2)
-ev, vec = np.linalg.eigh(dense_stiffness(model, group))
+K_one = q8_stiffness(one_xy, one_conn, 2)
+ev, vec = np.linalg.eigh(K_one)
 null = vec[:, ev < 1e-10 * ev.max()]
 rigid = np.zeros((16, 3))
 rigid[0::2, 0] = 1.0
@@ -170,7 +148,7 @@ q_rigid, _ = np.linalg.qr(rigid)
 spurious = null - q_rigid @ (q_rigid.T @ null)
 spurious = spurious[:, np.argmax(np.linalg.norm(spurious, axis=0))]
 spurious /= np.abs(spurious).max()
-energy_spurious = spurious @ dense_stiffness(model, group) @ spurious
+energy_spurious = spurious @ K_one @ spurious
 print("spurious mode (u, w per node):", np.round(spurious.reshape(8, 2), 3).tolist())
 
 
@@ -300,7 +278,7 @@ rates = {}
 for ng in (2, 3):
     arr = np.array(conv[ng])
     fit = arr[arr[:, 0] >= 2]
-    rates[ng] = np.polyfit(np.log(1.0 / fit[:, 0]), np.log(fit[:, 2]), 1)[0]
+    rates[ng] = convergence_rate(1.0 / fit[:, 0], fit[:, 2])
     print(f"{ng}x{ng}: fitted rate of the stress error in h: {rates[ng]:.2f}")
 finest_err = conv[2][-1][2]
 
@@ -398,14 +376,7 @@ C_el = np.linalg.inv(D_el)
 
 def fd_tangent(kind, prm, deps, sig_old, h=1e-9):
     """Central differences of the updated stress with respect to the strain increment (4 x 4)."""
-    D = np.empty((4, 4))
-    for j in range(4):
-        e = np.zeros(4)
-        e[j] = h
-        sp = drive(kind, prm, [deps + e], sig_old)[0][1]
-        sm = drive(kind, prm, [deps - e], sig_old)[0][1]
-        D[:, j] = (sp - sm) / (2 * h)
-    return D
+    return fd_jacobian(lambda d: drive(kind, prm, [d], sig_old)[0][1], deps, h)
 
 
 mc_rows = []
@@ -553,19 +524,19 @@ axes[0].set_title("spurious zero-energy mode, one element, 2×2")
 n_show = 12
 axes[1].semilogy(
     np.arange(1, n_show + 1),
-    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 2))))[:n_show] + 1e-3,
+    np.abs(np.linalg.eigvalsh(q8_stiffness(one_xy, one_conn, 2)))[:n_show] + 1e-3,
     "o-",
     label="one element, 2×2",
 )
 axes[1].semilogy(
     np.arange(1, n_show + 1),
-    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 3))))[:n_show] + 1e-3,
+    np.abs(np.linalg.eigvalsh(q8_stiffness(one_xy, one_conn, 3)))[:n_show] + 1e-3,
     "s-",
     label="one element, 3×3",
 )
 axes[1].semilogy(
     np.arange(1, n_show + 1),
-    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(xy3, mesh3.conn, 2))))[:n_show] + 1e-3,
+    np.abs(np.linalg.eigvalsh(q8_stiffness(xy3, mesh3.conn, 2)))[:n_show] + 1e-3,
     "^-",
     label="3×3 mesh, 2×2",
 )

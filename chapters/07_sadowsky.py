@@ -77,12 +77,13 @@ from ssi import paths, report
 from ssi.analytical import hetenyi_deflection, sadowsky_pressure
 from ssi.elements.interface import add_interface
 from ssi.elements.plate import add_plate_strip
-from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.interface_law import interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block
 from ssi.model import Model
 from ssi.section import homogeneous
+from ssi.supports import fix_block, soil_group
+from ssi.verify import convergence_rate
 
 t_chapter = time.perf_counter()
 A, P = 1.0, 100e3
@@ -101,15 +102,7 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
     mesh = soil_block(WIDTH, DEPTH, foundation=(-A, A), h_fine=2 * A / n_under, h_coarse=2.0 * A, growth=1.3)
     m = Model()
     soil_ids = m.add_nodes(mesh.xy, 2)
-    m.add_group(
-        SoilQ8(
-            mesh.xy[mesh.conn],
-            m.element_dofs(soil_ids[mesh.conn]),
-            0,
-            [ELASTIC],
-            [elastic_params(E_SOIL, NU_SOIL)],
-        )
-    )
+    soil_group(m, mesh, [(ELASTIC, elastic_params(E_SOIL, NU_SOIL))], ids=soil_ids)
     contact = foundation_contact(mesh, -A, A, H_PLATE)
     plate, pids, pconn = add_plate_strip(
         m, contact.plate_xy[0::2, 0], homogeneous(H_PLATE, E_PLATE, 0.2), z=H_PLATE / 2
@@ -122,9 +115,7 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
         offset=plate.bottom_offset,
         rule=rule,
     )
-    for side in (mesh.bottom, mesh.left, mesh.right):
-        m.fix(soil_ids[side], "u")
-    m.fix(soil_ids[mesh.bottom], "w")
+    fix_block(m, mesh, soil_ids)
     mid = pids[len(pids) // 2]
     m.fix([mid], "u")  # k_t = 0: nothing else holds the punch sideways
     m.add_load([mid], "w", -P)
@@ -260,7 +251,7 @@ tv_nc = measures(runs[(NAMED_MESH, "newton_cotes")])[1]
 tv_g = measures(runs[(NAMED_MESH, "gauss")])[1]
 osc_ratio = tv_g / tv_nc
 h = np.array([2 * A / n for n in MESHES])
-rate = np.polyfit(np.log(h), np.log([err_nc[n] for n in MESHES]), 1)[0]
+rate = convergence_rate(h, [err_nc[n] for n in MESHES])
 print(f"Newton-Cotes max error at n_under = {NAMED_MESH}: {err_nc[NAMED_MESH]:.4f} (tol {PRESSURE_TOL})")
 print(f"fitted rate of the NC error in h: {rate:.2f}")
 print(f"oscillation TV: Gauss {tv_g:.3f}, Newton-Cotes {tv_nc:.3f}, ratio {osc_ratio:.1f} (>= {OSC_MARGIN})")

@@ -88,6 +88,7 @@ from ssi import rc_beam as rb
 from ssi import section_analysis as sa
 from ssi.materials.layer_laws import STEEL
 from ssi.solver import Settings
+from ssi.verify import convergence_rate
 
 t_start = time.perf_counter()
 FAST = paths.FAST
@@ -231,7 +232,7 @@ for n in conv_meshes:
     conv[n] = {"delta": out["delta"][ok], "err": np.abs(out["delta"][ok] / ref - 1), "M": out["M"][ok]}
     print(f"{2 * n:3d} elements: max relative deflection error before yield {conv[n]['err'].max():.2e}")
 err_ci = [conv[n]["err"].max() for n in conv_meshes]
-rate = np.polyfit(np.log(conv_meshes), np.log(err_ci), 1)[0]
+rate = convergence_rate(conv_meshes, err_ci)
 print(f"observed convergence rate in the element count: {-rate:.2f}")
 
 # (ii) the layer-free reference: kap(M) from adaptive quadrature of the continuous stress profile (no layers,

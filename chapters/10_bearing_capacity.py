@@ -91,6 +91,7 @@ import numpy as np
 from ssi import paths, report
 from ssi.bearing_capacity import prandtl, push_footing, read_reference, rigid_footing, sg61_scene
 from ssi.solver import NonConvergence, Settings, run
+from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 C = 10e3  # cohesion [Pa]
@@ -142,7 +143,7 @@ for phi, rough in CASES:
             TOL_PRANDTL,
             abs(errs[-1]) <= TOL_PRANDTL and all(abs(a) > abs(b) for a, b in zip(errs, errs[1:])),
         )
-    slope = np.polyfit(np.log(MESHES), np.log(np.abs(errs)), 1)[0]
+    slope = convergence_rate(MESHES, np.abs(errs))
     print(f"{rid:22s} errors {', '.join(f'{100 * e:+.2f} %' for e in errs)}   fitted order {slope:.2f}")
 
 # %% [markdown]

@@ -69,6 +69,7 @@ from ssi.results import read_result, write_result
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
 from ssi.section import rc_section
 from ssi.solver import Settings
+from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 fc, fy, Es = 38e6, 500e6, 200e9
@@ -315,7 +316,7 @@ study = np.array(study)
 
 def fitted_order(q):
     d = np.abs(np.diff(q))
-    return float(np.polyfit(np.log(study[:-1, 0]), np.log(d), 1)[0])
+    return convergence_rate(study[:-1, 0], d)
 
 
 order_w, order_m = fitted_order(study[:, 2]), fitted_order(study[:, 3])

@@ -20,11 +20,7 @@ adds syy = nu (sxx + szz).
 import numpy as np
 from scipy.integrate import quad
 
-from .quadrature import gauss_legendre
-from .shapes import lagrange3
-
 __all__ = [
-    "edge_forces",
     "flamant_strip_quadrature",
     "lame_cylinder_displacement",
     "strip_centreline_compression",
@@ -96,36 +92,6 @@ def strip_centreline_compression(depth, q, b, E, nu):
 
     val, _ = quad(eps_zz, -depth, -1e-300 * depth, epsabs=0.0, epsrel=1e-12, limit=200)
     return val
-
-
-def edge_forces(edge_xy, traction, n_gauss=4):
-    """Consistent nodal forces of a traction on quadratic (3-node) edges.
-
-    Parameters
-    ----------
-    edge_xy : (n_edge, 3, 2) node coordinates of each edge (end, middle, end)
-    traction : callable (x, z) -> (tx, tz), vectorised over arrays of points
-    n_gauss : Gauss points along each edge (4 integrates a quadratic traction on a straight edge exactly)
-
-    Returns
-    -------
-    (n_edge, 6) forces [fx0, fz0, fx1, fz1, fx2, fz2] per edge
-    """
-    edge_xy = np.asarray(edge_xy, dtype=np.float64)
-    pts, wts = gauss_legendre(n_gauss)
-    out = np.zeros((edge_xy.shape[0], 6))
-    for xi, wq in zip(pts, wts):
-        n, dn = getattr(lagrange3, "py_func", lagrange3)(float(xi))
-        p = np.einsum("a,eak->ek", n, edge_xy)
-        t = np.einsum("a,eak->ek", dn, edge_xy)
-        jac = np.hypot(t[:, 0], t[:, 1])
-        tx, tz = traction(p[:, 0], p[:, 1])
-        tx = np.broadcast_to(tx, jac.shape)
-        tz = np.broadcast_to(tz, jac.shape)
-        for a in range(3):
-            out[:, 2 * a] += wq * jac * n[a] * tx
-            out[:, 2 * a + 1] += wq * jac * n[a] * tz
-    return out
 
 
 def lame_cylinder_displacement(r, a, b, p, E, nu):

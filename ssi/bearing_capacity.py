@@ -17,10 +17,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .elements.soil_q8 import SoilQ8
-from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_params
-from .mesh import soil_block, structured_q8, surface_pressure_forces
+from .materials.soil_laws import mohr_coulomb_params, von_mises_params
+from .mesh import soil_block, structured_q8
 from .model import Model
 from .solver import NonConvergence, Settings, run
+from .supports import fix_block, soil_group, surface_pressure
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 
 
@@ -115,25 +116,18 @@ def rigid_footing(
             mohr_coulomb_params(lay[1], nu, lay[2], lay[3], lay[4], scheme=scheme, n_sub=n_sub, drift=drift)
             for lay in layers
         ]
-    kinds, params = material_table(mats)
-    soil = SoilQ8(
-        mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params, n_gauss=n_gauss
-    )
+    soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, n_gauss=n_gauss)
     if surcharge:
         s0 = np.zeros((soil.n_el, len(soil.gw), 4))
         s0[..., [0, 1, 3]] = -surcharge
         soil.initial_stress = s0
-    model.add_group(soil)
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
+    fix_block(model, mesh, ids)
     footing = mesh.nodes_between(0.0, 0.5 * B)
     model.prescribe(footing, "w", -settle)
     if rough:
         model.fix(footing, "u")
     if surcharge:
-        _surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, dead=True)
+        surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, ids=ids, dead=True)
     info = dict(
         B=B,
         c=c,
@@ -153,17 +147,6 @@ def rigid_footing(
         n_dof=model.n_dof,
     )
     return FootingScene(model, soil, footing, B, mesh, info)
-
-
-def _surface_pressure(model, mesh, x0, x1, p, dead=False):
-    """Load the surface x0..x1 with a pressure p [Pa] (down positive): the consistent nodal forces of
-    :func:`ssi.mesh.surface_pressure_forces`, as a dead or a reference load."""
-    nodes, f = surface_pressure_forces(mesh, x0, x1)
-    if dead:
-        model.add_dead_load(nodes, "w", -p * f)
-    else:
-        model.add_load(nodes, "w", -p * f)
-    return nodes, f
 
 
 def footing_pressure(scene: FootingScene, result):
@@ -250,14 +233,9 @@ def sg61_scene(law="von_mises", E=1e5 * 1e3, nu=0.3, cu=100e3, n_gauss=2, refine
         mat = mohr_coulomb_params(E, nu, cu, 0.0)
     else:
         raise ValueError(f"law must be 'von_mises' or 'tresca', got {law!r}")
-    kinds, params = material_table([mat])
-    soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), 0, kinds, params, n_gauss=n_gauss)
-    model.add_group(soil)
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
-    _surface_pressure(model, mesh, 0.0, 2.0, 1e3)  # 1 kPa per unit load factor
+    soil = soil_group(model, mesh, [mat], ids=ids, n_gauss=n_gauss)
+    fix_block(model, mesh, ids)
+    surface_pressure(model, mesh, 0.0, 2.0, 1e3, ids=ids)  # 1 kPa per unit load factor
     centre = mesh.nodes_between(0.0, 0.0)
     return FootingScene(model, soil, centre, 4.0, mesh, dict(law=law, refine=refine))
 

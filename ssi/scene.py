@@ -68,6 +68,7 @@ from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model
 from .section import Section
 from .solver import Settings, run
+from .supports import fix_block
 from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
 
 
@@ -499,10 +500,7 @@ class Scene:
         if weights.any() or self.surcharge:
             soil.initial_stress = self._geostatic(soil.integration_points()[..., 1])
         model.add_group(soil)
-        model.fix(mesh.bottom, "u")
-        model.fix(mesh.bottom, "w")
-        model.fix(mesh.left, "u")
-        model.fix(mesh.right, "u")
+        fix_block(model, mesh, soil_ids)
         built = BuiltScene(self, model, mesh, soil)
         built.geostatic_load = self._ground_loads(built)
         if f is not None:

@@ -143,10 +143,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
     """Two layers with different γ and K0 (default 1 − sin φ and a given one): the geostatic stress balances
     the self-weight exactly (2×2 Gauss integrates the linear stress and the body force exactly, layer
     boundaries are mesh lines), so the solver finds zero displacement and the law stays elastic."""
-    from ssi.elements.soil_q8 import SoilQ8
-    from ssi.materials.soil_laws import elastic_params, geostatic_stress, material_table, mohr_coulomb_params
+    from ssi.materials.soil_laws import elastic_params, geostatic_stress, mohr_coulomb_params
     from ssi.mesh import soil_block
     from ssi.model import Model
+    from ssi.supports import fix_block, soil_group
 
     mesh = soil_block(8.0, 6.0, [2.0, 4.0], foundation=(-1.0, 1.0), h_fine=0.5, h_coarse=1.0)
     model = Model()
@@ -158,22 +158,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
         ]
     else:
         mats = [(0, elastic_params(20e6, 0.3)), (0, elastic_params(50e6, 0.3))]
-    kinds, params = material_table(mats)
-    soil = SoilQ8(
-        mesh.xy[mesh.conn],
-        model.element_dofs(ids[mesh.conn]),
-        mesh.el_layer,
-        kinds,
-        params,
-        unit_weight=np.array([18e3, 20e3]),
-    )
+    soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, unit_weight=np.array([18e3, 20e3]))
     layers = [dict(thickness=2.0, gamma=18e3, phi_deg=30.0), dict(thickness=4.0, gamma=20e3, K0=0.6)]
     soil.initial_stress = geostatic_stress(soil.integration_points()[..., 1], layers)
-    model.add_group(soil)
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
+    fix_block(model, mesh, ids)
     res = run(model, [1.0], Settings(method="full", backend="superlu"))
     # displacement scale of an unbalanced weight would be γ H² / E ≈ 20e3 · 36 / 20e6 ≈ 4e-2 m
     assert np.abs(res.u[-1]).max() < 1e-10

@@ -20,6 +20,7 @@ from ssi.materials.concrete import (
     softening_modulus,
 )
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
+from ssi.verify import fd_jacobian
 
 FD_TOL = 1e-6
 H_FD = 1e-9
@@ -54,12 +55,8 @@ def call(kind, p, eps, gam=0.0, h=None, tangent=1):
 
 def fd_check(kind, p, eps, gam, h):
     _sig, _tau, e_t, g_t = call(kind, p, eps, gam, h)
-    s_p = call(kind, p, eps + H_FD, gam, h)[0]
-    s_m = call(kind, p, eps - H_FD, gam, h)[0]
-    t_p = call(kind, p, eps, gam + H_FD, h)[1]
-    t_m = call(kind, p, eps, gam - H_FD, h)[1]
-    e_fd = (s_p - s_m) / (2 * H_FD)
-    g_fd = (t_p - t_m) / (2 * H_FD)
+    jac = fd_jacobian(lambda x: call(kind, p, x[0], x[1], h)[:2], [eps, gam], H_FD)
+    e_fd, g_fd = jac[0, 0], jac[1, 1]  # d sig / d eps, d tau / d gam
     scale_e = max(abs(e_t), 1e-3 * E0)
     scale_g = max(abs(g_t), 1e-6 * E0)
     assert abs(e_fd - e_t) <= FD_TOL * scale_e, (eps, e_fd, e_t)
