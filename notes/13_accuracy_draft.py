@@ -61,7 +61,7 @@ import numpy as np
 
 from ssi import paths
 from ssi.analytical import hetenyi_deflection
-from ssi.analytical_soil import edge_forces, strip_centreline_compression, strip_load_stresses
+from ssi.analytical_soil import strip_centreline_compression, strip_load_stresses
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
 from ssi.elements.interface import add_interface
 from ssi.elements.plate import add_plate_strip
@@ -77,6 +77,7 @@ from ssi.report import record, save_figure
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
 from ssi.section import homogeneous, rc_section
 from ssi.solver import NonConvergence, Settings
+from ssi.supports import edge_forces
 
 FAST = paths.FAST
 print("fast mode" if FAST else "full mode")
