@@ -86,6 +86,7 @@ import numpy as np
 from ssi import paths, report
 from ssi import rc_beam as rb
 from ssi import section_analysis as sa
+from ssi.digitize import read_reference
 from ssi.materials.layer_laws import STEEL
 from ssi.solver import Settings
 from ssi.verify import convergence_rate
@@ -99,8 +100,9 @@ S_RM = rb.janney_crack_spacing()  # MC2010 s_r,max, the scene default band
 _, _, DES = rb.janney_materials()
 print({k: f"{v:.4g}" for k, v in DES.items()}, f"s_rm = {S_RM:.3f} m")
 
-ref_notes, _, JAN = rb.read_reference_csv("janney1956_beam.csv")
-mon_notes, _, MON = rb.read_reference_csv("monnier1970_fig12.csv")
+# the reference tables as (n, 4) arrays in their column order: delta, M or F, and the two uncertainties
+JAN = np.column_stack(list(read_reference("janney1956_beam.csv")[1].values()))
+MON = np.column_stack(list(read_reference("monnier1970_fig12.csv")[1].values()))
 
 # discretisations (fast mode: coarse, for CI)
 N_LAYERS = 41  # main model; the trade study below justifies it

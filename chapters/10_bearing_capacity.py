@@ -89,7 +89,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.bearing_capacity import prandtl, push_footing, read_reference, rigid_footing, sg61_scene
+from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.digitize import read_reference
 from ssi.solver import NonConvergence, Settings, run
 from ssi.verify import convergence_rate
 
@@ -156,7 +157,7 @@ for phi, rough in CASES:
 # points and their settlements differ by several per cent.
 
 # %%
-ref = read_reference("smith_griffiths_p61.csv")
+_, ref = read_reference("smith_griffiths_p61.csv")
 q_ref, d_ref = ref["q_kPa"], ref["delta_m"]
 path = [
     50.0,

@@ -248,15 +248,3 @@ def _refine_lines(lines, r):
     for a, b in zip(lines[:-1], lines[1:]):
         out.extend(a + (b - a) * np.arange(1, r + 1) / r)
     return np.array(out)
-
-
-def read_reference(name):
-    """Columns of ``reference_data/<name>`` (comment lines '#' skipped, first other line = header) as a dict
-    of float arrays."""
-    from . import paths
-
-    with open(paths.REFERENCE_DATA / name) as fh:
-        lines = [ln.strip() for ln in fh if ln.strip() and not ln.startswith("#")]
-    header = lines[0].split(",")
-    data = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]]).reshape(-1, len(header))
-    return {h: data[:, i] for i, h in enumerate(header)}

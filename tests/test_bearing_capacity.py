@@ -13,7 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from ssi.bearing_capacity import prandtl, push_footing, read_reference, rigid_footing, sg61_scene
+from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.digitize import read_reference
 from ssi.solver import Settings, run
 
 COARSE = dict(half_width=6.0, depth=5.0, h_fine=0.5, h_coarse=1.0, growth=1.25)
@@ -59,7 +60,7 @@ def test_bad_footing_input_raises():
 
 def test_smith_griffiths_program_6_1_within_3_percent_up_to_500_kpa():
     """Peer regression (trust B; the peer's own iteration tolerance is 1e-3, hence 3 % is a safe bound)."""
-    ref = read_reference("smith_griffiths_p61.csv")
+    _, ref = read_reference("smith_griffiths_p61.csv")
     scene = sg61_scene("von_mises")
     path = [100.0, 200.0, 300.0, 350.0, 400.0, 450.0, 480.0, 500.0]
     res = run(scene.model, path, Settings(method="full", stepping="fixed", backend="superlu"))
