@@ -139,6 +139,7 @@ from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from ssi.model import Model
 from ssi.section import homogeneous, layered, paper_rc_section, rc_section
+from ssi.shapes import lagrange3
 from ssi.verify import convergence_rate
 
 FAST = paths.FAST
@@ -304,7 +305,7 @@ u_s, s_s, _ = np.linalg.svd(spurious)
 spurious = u_s[:, : int(np.sum(s_s > 1e-8))]
 n_spurious = spurious.shape[1]
 xi = np.linspace(-1, 1, 101)
-shape = np.stack([0.5 * xi * (xi - 1), 1 - xi**2, 0.5 * xi * (xi + 1)])
+shape = np.array([lagrange3(s)[0] for s in xi]).T  # (3, 101) quadratic Lagrange N_i(xi)
 fig, axes = plt.subplots(1, n_spurious, figsize=(3.6 * n_spurious, 3.0), sharey=True)
 for j, ax in enumerate(np.atleast_1d(axes)):
     v = spurious[:, j] / np.abs(spurious[:, j]).max()

@@ -116,6 +116,7 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
+from ssi.shapes import lagrange3
 from ssi.verify import fd_jacobian
 
 t_chapter = time.perf_counter()
@@ -380,7 +381,7 @@ def recovered_tractions(n, a=1.0, P=1.0):
         t0, t1 = math.asin(x0 / a), math.asin(x1 / a)  # x = a sin(theta) removes the edge singularity
         T, W = 0.5 * (t1 - t0) * th + 0.5 * (t1 + t0), 0.5 * (t1 - t0) * wt
         xi = 2 * (a * np.sin(T) - x0) / (x1 - x0) - 1
-        for i, Ni in enumerate((0.5 * xi * (xi - 1), 1 - xi**2, 0.5 * xi * (xi + 1))):
+        for i, Ni in enumerate(np.array([lagrange3(s)[0] for s in xi]).T):  # quadratic Lagrange N_i(xi)
             f[2 * (2 * e + i) + 1] -= (Ni * P / math.pi * W).sum()  # p dx = (P / pi) dtheta, pushing down
     res = {}
     free = np.arange(2 * nn)

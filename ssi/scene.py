@@ -54,7 +54,7 @@ from .elements.plate import INTEGRATIONS, PlateStrip
 from .elements.soil_q8 import SoilQ8
 from .materials.concrete import P_E0, P_FR
 from .materials.interface_law import interface_params
-from .materials.layer_laws import CONCRETE, P_LS, STEEL, layer_update
+from .materials.layer_laws import CONCRETE, STEEL
 from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
 from .materials.soil_laws import (
     GAMMA_W,
@@ -67,6 +67,7 @@ from .materials.soil_laws import (
 from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model
 from .section import Section
+from .shapes import lagrange3
 from .solver import Settings, run
 from .supports import fix_block
 from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
@@ -605,7 +606,7 @@ class Scene:
         for i in range(0, len(nodes) - 2, 2):
             za = z[i : i + 3]
             for s, w in zip(xi, wt):
-                n = _lagrange_row(s)
+                n = lagrange3(s)[0]
                 sxx = self._geostatic(np.array([n @ za]))[0, 0]
                 f[i : i + 3] += n * sxx * normal * w * 0.5 * (za[2] - za[0])
         return nodes, f
@@ -1075,24 +1076,12 @@ class SceneResult:
         sec = plate.section
         u_el = self.u[k][plate.edofs]
         state = self._group_state(plate, k)
-        eps, gam = plate.layer_strains(u_el)
-        length = plate._x[:, 2] - plate._x[:, 0]
-        sig = np.zeros_like(eps)
+        eps, _ = plate.layer_strains(u_el)
+        sig, _ = plate.layer_stresses(u_el, state)
         cracked = np.zeros(eps.shape, bool)
-        h_new = np.zeros(state.shape[-1])
-        for e in range(plate.n_el):
-            for q in range(plate.n_ip):
-                for n in range(sec.n_layer):
-                    prm = sec.params[n].copy()
-                    if plate.band[n]:
-                        prm[P_LS] = 0.5 * plate.wt[q] * length[e]
-                    hist = state[e, q, n]
-                    sig[e, q, n] = layer_update(sec.kind[n], prm, eps[e, q, n], gam[e, q], hist, h_new, 0)[0]
-                    if sec.kind[n] == CONCRETE:
-                        cracked[e, q, n] = hist[1] > prm[P_FR] / prm[P_E0]
-        x_pts = np.array(
-            [[np.dot(_lagrange_row(xi), plate._x[e]) for xi in plate.xi] for e in range(plate.n_el)]
-        )
+        for n in np.flatnonzero(sec.kind == CONCRETE):  # history slot 1: the largest tensile strain
+            cracked[..., n] = state[..., n, 1] > sec.params[n, P_FR] / sec.params[n, P_E0]
+        x_pts = plate.point_x()
         axial = plate.ax.astype(bool)
         return {
             "x": x_pts[:, axial],
@@ -1196,7 +1185,3 @@ class SceneResult:
         total_n = sum(load.N for load in self.built.scene.loads if isinstance(load, ColumnLoad))
         settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
         return {"load_factor": lam, "column_load": lam * total_n, "settlement": settle}
-
-
-def _lagrange_row(xi):
-    return np.array([0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)])

@@ -63,7 +63,7 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
-from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, layer_update
+from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, crack_band_width, layer_update
 from ..quadrature import gauss_legendre
 from ..section import Section
 from ..shapes import lagrange3
@@ -280,7 +280,7 @@ def plate_kernel(
                 state_new[e, p, :, :] = state_old[e, p, :, :]
                 continue
             wj = wt[p] * jac
-            _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
+            _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
             for a in range(3):
                 be[3 * a] = bx[a]
                 bg[3 * a + 1] = bx[a]
@@ -359,7 +359,7 @@ def plate_resultants(
     for e in range(x_el.shape[0]):
         for p in range(xi.shape[0]):
             _point_b(x_el[e], xi[p], nn, bx)
-            _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
+            _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
             _section(
                 u_el[e],
                 nn,
@@ -397,7 +397,7 @@ def plate_layer_stresses(eps, gam, state, kind, params, band, ls_index, wt, leng
     scratch = np.empty(state.shape[3])
     for e in range(eps.shape[0]):
         for p in range(eps.shape[1]):
-            _crack_band(prm, band, ls_index, 0.5 * wt[p] * length[e])
+            _crack_band(prm, band, ls_index, crack_band_width(length[e], wt[p]))
             for n in range(eps.shape[2]):
                 s, t, _, _ = layer_update(
                     kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, 1
@@ -501,7 +501,7 @@ class PlateStrip:
             from ..materials.concrete import P_E0, P_FR, P_GF
             from ..materials.rc import check_crack_band
 
-            ls_max = 0.5 * self.wt.max() * length.max()
+            ls_max = crack_band_width(length.max(), self.wt.max())
             for n in np.flatnonzero(self.band):
                 prm = section.params[n]
                 check_crack_band(ls_max, prm[P_E0], prm[P_GF], prm[P_FR])
@@ -610,7 +610,7 @@ class PlateStrip:
         xi, wt = gauss_legendre(4)
         x = self._x
         # physical x of the Gauss points (quadratic map)
-        nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in xi])
+        nvals = np.array([lagrange3(float(s))[0] for s in xi])
         xq = x @ nvals.T  # (n_el, 4)
         if callable(q):
             q_pts = np.asarray(q(xq), np.float64) * np.ones_like(xq)
@@ -672,10 +672,19 @@ class PlateStrip:
             "Q": out[:, b, 3],
         }
 
+    def _shape_at_points(self):
+        """Quadratic Lagrange values and xi-derivatives (n_ip, 3) at the sampling points."""
+        shape = [lagrange3(float(s)) for s in self.xi]
+        return np.array([n for n, _ in shape]), np.array([dn for _, dn in shape])
+
+    def point_x(self) -> np.ndarray:
+        """x [m] of every sampling point (n_el, n_ip), axial and shear points alike (``self.ax``,
+        ``self.sh`` say which is which)."""
+        return self._x @ self._shape_at_points()[0].T
+
     def layer_strains(self, u_el):
         """Axial strain (n_el, n_ip, n_layer) at every layer's mid-depth and shear strain (n_el, n_ip)."""
-        nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in self.xi])
-        dvals = np.array([[s - 0.5, -2.0 * s, s + 0.5] for s in self.xi])
+        nvals, dvals = self._shape_at_points()
         jac = self._x @ dvals.T  # (n_el, n_ip)
         u = np.asarray(u_el).reshape(self.n_el, 3, 3)
         eps0 = (u[:, :, 0] @ dvals.T) / jac

@@ -54,9 +54,11 @@ __all__ = [
 ]
 
 
+@njit(cache=True)
 def crack_band_width(element_length: float, weight: float) -> float:
     """Length represented by a Gauss point of weight ``weight`` (on [-1, 1]) in an element of length
-    ``element_length``: the crack band width ls of eq. (5.4) for that point."""
+    ``element_length``: the crack band width ls of eq. (5.4) for that point. A numba kernel, callable from
+    Python as well (the plate strip's kernels and its snap-back check both use it)."""
     return 0.5 * weight * element_length
 
 
