@@ -41,6 +41,7 @@ from ssi.linsolve import Factorization, pardiso_available
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
+from ssi.protocol import K0_MATRIX
 from ssi.supports import fix_block, soil_group
 
 E, NU = 30e6, 0.3
@@ -179,7 +180,7 @@ def assembly_and_solve(label, model, group, factorise=True):
 
     def assemble_generic():  # the law-dispatch kernel of SoilQ8.evaluate (solve_linear, Newton iterations)
         zero = np.zeros((group.n_el, 16))
-        return pattern.assemble([group.evaluate(zero, zero, group.initial_state(), ELASTIC)[1]])
+        return pattern.assemble([group.evaluate(zero, zero, group.initial_state(), K0_MATRIX)[1]])
 
     assemble()
     t_asm, _ = best_of(assemble)

@@ -133,11 +133,11 @@ from ssi import paths, report
 from ssi import rc_beam as rb
 from ssi import section_analysis as sa
 from ssi.elements import plate as plate_module
-from ssi.elements.base import CONSISTENT
 from ssi.elements.plate import PlateStrip, add_plate_strip, beam_mesh
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from ssi.model import Model
+from ssi.protocol import CONSISTENT
 from ssi.section import homogeneous, layered, paper_rc_section, rc_section
 from ssi.shapes import lagrange3
 from ssi.verify import convergence_rate

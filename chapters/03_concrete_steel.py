@@ -94,6 +94,7 @@ import numpy as np
 from ssi import report
 from ssi.materials import concrete, rc
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
+from ssi.protocol import CONSISTENT
 from ssi.verify import fd_jacobian
 
 t_start = time.perf_counter()
@@ -145,9 +146,9 @@ beta = np.empty_like(path_t)
 h_old = np.zeros(N_LAYER_HIST)
 h_new = np.zeros(N_LAYER_HIST)
 for i, e in enumerate(path_t):
-    layer_update(CONCRETE, p_c, e, 0.0, h_old, h_new, 1)
+    layer_update(CONCRETE, p_c, e, 0.0, h_old, h_new, CONSISTENT)
     h_old[:] = h_new
-    beta[i] = layer_update(CONCRETE, p_c, e, 1e-6, h_old, h_new, 1)[3] / (E0 / (2 * 1.2))
+    beta[i] = layer_update(CONCRETE, p_c, e, 1e-6, h_old, h_new, CONSISTENT)[3] / (E0 / (2 * 1.2))
 
 ey_s = FY / 200e9
 path_s = np.concatenate(
@@ -228,9 +229,11 @@ def fd_error(kind, params, eps, hist):
     h0 = np.zeros(N_LAYER_HIST)
     h0[: len(hist)] = hist
     h1 = np.zeros(N_LAYER_HIST)
-    _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, 1)
+    _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, CONSISTENT)
     # d sig / d eps and d tau / d gam by central differences (step 1e-9) at (eps, gam = 1e-4)
-    jac = fd_jacobian(lambda x: layer_update(kind, params, x[0], x[1], h0, h1, 1)[:2], [eps, 1e-4], 1e-9)
+    jac = fd_jacobian(
+        lambda x: layer_update(kind, params, x[0], x[1], h0, h1, CONSISTENT)[:2], [eps, 1e-4], 1e-9
+    )
     e_fd, g_fd = jac[0, 0], jac[1, 1]
     return max(abs(e_fd - e_t) / max(abs(e_t), 1e-3 * E0), abs(g_fd - g_t) / max(abs(g_t), 1e-6 * E0))
 

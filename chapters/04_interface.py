@@ -104,7 +104,6 @@ import numpy as np
 
 from ssi import report
 from ssi.analytical import sadowsky_pressure
-from ssi.elements.base import CONSISTENT
 from ssi.elements.interface import Interface6
 from ssi.materials.interface_law import (
     N_HIST,
@@ -116,6 +115,7 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
+from ssi.protocol import CONSISTENT
 from ssi.shapes import lagrange3
 from ssi.verify import fd_jacobian
 

@@ -458,14 +458,6 @@ viscous = psi0_runs["BFGS + viscosity 1"]
 assert viscous["failure"] is None and 0.9 < viscous["q"][-1] / prandtl(10e3, 20.0)[0] < 1.1
 assert viscous["factorizations"] == 1
 report.record(
-    "contact_associated_c0",
-    "associated cohesionless contact (psi_i = phi_i = 25, c_i = 0) with "
-    "slipping edges, nu = 0.49, N = 400 kN/m, H = 60 kN/m: PASS when lambda = 1 is reached",
-    1.0 if contact_ok else 0.0,
-    1.0,
-    contact_ok,
-)
-report.record(
     "zoo_solved",
     f"fraction of {len(zoo)} random ordinary scenes (seed 1) reaching lambda = 1 or a "
     "detected limit load with Settings()",
@@ -473,7 +465,14 @@ report.record(
     1.0,
     solved == 1.0,
 )
-assert contact_ok
+report.check(
+    "contact_associated_c0",
+    "associated cohesionless contact (psi_i = phi_i = 25, c_i = 0) with "
+    "slipping edges, nu = 0.49, N = 400 kN/m, H = 60 kN/m: PASS when lambda = 1 is reached",
+    1.0 if contact_ok else 0.0,
+    1.0,
+    contact_ok,
+)
 
 # %% [markdown]
 # ## Figures

@@ -15,8 +15,8 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
-from .elements.base import ELASTIC, NO_MATRIX
 from .linsolve import Factorization, SingularMatrix
+from .protocol import FORCES_ONLY, K0_MATRIX
 from .validate import check_array, check_real
 
 COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
@@ -361,7 +361,7 @@ class System:
             gather_vector(g.edofs, u, u_el)
             gather_vector(g.edofs, du, du_el)
             if tangent is None:
-                flag = NO_MATRIX if getattr(g, "forces_only", False) else ELASTIC
+                flag = FORCES_ONLY if getattr(g, "forces_only", False) else K0_MATRIX
             else:
                 flag = tangent
             f_el, k_el, state_new = g.evaluate(u_el, du_el, state, flag)

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
+from .protocol import K0_MATRIX
 from .quadrature import layer_rule
 from .validate import check_array, check_int, check_real
 
@@ -138,7 +139,7 @@ class Section:
         hist0 = np.zeros(N_LAYER_HIST)
         hist1 = np.zeros(N_LAYER_HIST)
         for n in range(self.n_layer):
-            _, _, e0[n], g0[n] = layer_update(self.kind[n], self.params[n], 0.0, 0.0, hist0, hist1, 0)
+            _, _, e0[n], g0[n] = layer_update(self.kind[n], self.params[n], 0.0, 0.0, hist0, hist1, K0_MATRIX)
         return e0, g0
 
     def elastic_resultant_stiffness(self, kappa: float = 5.0 / 6.0) -> dict:

@@ -35,6 +35,7 @@ import numpy as np
 
 from .materials.concrete import P_LS
 from .materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
+from .protocol import CONSISTENT
 from .section import Section
 
 __all__ = [
@@ -277,10 +278,10 @@ def _envelope(kind, prm, eps):
 
     h0 = np.zeros(N_LAYER_HIST)
     h1 = np.zeros(N_LAYER_HIST)
-    sig = layer_update(kind, prm, eps, 0.0, h0, h1, 1)[0]
+    sig = layer_update(kind, prm, eps, 0.0, h0, h1, CONSISTENT)[0]
     if kind == CONCRETE:
         h0[H_XMAX], h0[H_EMAX] = max(-eps, 0.0), max(eps, 0.0)
-    g_t = layer_update(kind, prm, eps, 1.0, h0, h1, 1)[3]
+    g_t = layer_update(kind, prm, eps, 1.0, h0, h1, CONSISTENT)[3]
     return sig, g_t
 
 

@@ -39,10 +39,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .elements.base import CONSISTENT
 from .linsolve import BACKENDS, Factorization
 from .model import Model, System
 from .progress import SolverProgress, announce_compilation, log, solver_progress
+from .protocol import CONSISTENT
 from .validate import check_bool, check_choice, check_int, check_real
 
 METHODS = ("bfgs", "modified", "full")

@@ -20,6 +20,7 @@ from ssi.materials.concrete import (
     softening_modulus,
 )
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
+from ssi.protocol import CONSISTENT
 from ssi.verify import fd_jacobian
 
 FD_TOL = 1e-6
@@ -48,7 +49,7 @@ def hist(*values):
     return h
 
 
-def call(kind, p, eps, gam=0.0, h=None, tangent=1):
+def call(kind, p, eps, gam=0.0, h=None, tangent=CONSISTENT):
     h = hist() if h is None else h
     return layer_update(kind, p, eps, gam, h, np.zeros(N_LAYER_HIST), tangent)
 

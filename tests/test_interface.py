@@ -10,7 +10,6 @@ import math
 import numpy as np
 import pytest
 
-from ssi.elements.base import CONSISTENT, ELASTIC
 from ssi.elements.interface import V_GN, V_GT, V_STATUS, Interface6
 from ssi.materials.interface_law import (
     H_BROKEN,
@@ -24,6 +23,7 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
+from ssi.protocol import CONSISTENT, K0_MATRIX
 from ssi.verify import fd_jacobian, zero_energy_modes
 
 KT, KN = 2.0e7, 5.0e7  # Pa/m
@@ -158,8 +158,8 @@ def test_fd_tangent_in_every_state(name):
     assert code == expected
     # tolerance: round-off of the central difference, ~1e-7 * kn (see fd_tangent)
     np.testing.assert_allclose(D, fd_tangent(p, dgap, t_old, h_old), atol=1e-6 * KN)
-    # the ELASTIC flag always returns De = diag(kt, kn) (K0 of modified Newton-Raphson)
-    np.testing.assert_array_equal(update(p, dgap, t_old, h_old, tangent=ELASTIC)[3], np.diag([KT, KN]))
+    # the K0_MATRIX flag always returns De = diag(kt, kn) (K0 of modified Newton-Raphson)
+    np.testing.assert_array_equal(update(p, dgap, t_old, h_old, tangent=K0_MATRIX)[3], np.diag([KT, KN]))
 
 
 @pytest.mark.parametrize("psi_deg", [0.0, 15.0, PHI])

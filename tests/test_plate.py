@@ -10,12 +10,12 @@ used.
 import numpy as np
 import pytest
 
-from ssi.elements.base import CONSISTENT
 from ssi.elements.plate import PlateStrip, add_plate_strip, beam_mesh, beam_mesh_from_ends, integration_rule
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.layer_laws import ELASTIC as K_ELASTIC
 from ssi.model import Model
+from ssi.protocol import CONSISTENT, K0_MATRIX
 from ssi.section import homogeneous, layered, paper_rc_section, rc_section
 from ssi.verify import fd_jacobian, zero_energy_modes
 
@@ -180,8 +180,8 @@ def test_tangent_self_bending_exact_while_elastic():
 
 
 def test_force_independent_of_tangent_flag_and_K0_constant():
-    """Modified Newton needs f(u) whatever matrix is requested, and the ELASTIC matrix must be K0 in any state
-    (cracked, yielding): checked in a strongly nonlinear bending state with shear."""
+    """Modified Newton needs f(u) whatever matrix is requested, and the K0_MATRIX flag must give K0 in any
+    state (cracked, yielding): checked in a strongly nonlinear bending state with shear."""
     g = one_element(rc_test_section(), x=(0.0, 0.45, 1.0))
     rng = np.random.default_rng(7)
     x = g.coords[0, :, 0]
@@ -189,7 +189,7 @@ def test_force_independent_of_tangent_flag_and_K0_constant():
     u[0, 1::3] = 0.5 * 0.02 * x**2 + 1e-4 * rng.standard_normal(3)
     u[0, 2::3] = 0.02 * x
     f1, k1, s1 = g.evaluate(u, u, g.initial_state(), CONSISTENT)
-    f0, k0, s0 = g.evaluate(u, u, g.initial_state(), 0)
+    f0, k0, s0 = g.evaluate(u, u, g.initial_state(), K0_MATRIX)
     assert np.array_equal(f0, f1) and np.array_equal(s0, s1)
     assert np.array_equal(k0, g.elastic_stiffness())
     assert np.abs(k1 - k0).max() > 0.1 * np.abs(k0).max()  # the state is really nonlinear

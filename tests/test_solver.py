@@ -8,12 +8,12 @@ differences, or from the direct linear solve -- never from the solver under test
 import numpy as np
 import pytest
 
-from ssi.elements.base import CONSISTENT, ELASTIC
 from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring, spring_chain
 from ssi.materials.soil_laws import ELASTIC as SOIL_ELASTIC
 from ssi.materials.soil_laws import elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
+from ssi.protocol import CONSISTENT, K0_MATRIX
 from ssi.results import read_result, write_result
 from ssi.solver import LIMIT_LOAD, METHODS, NonConvergence, Settings, run
 from ssi.supports import fix_block, soil_group
@@ -47,7 +47,7 @@ def test_spring_tangent_matches_finite_differences(kind, params, d0, dd):
     assert abs(k[0, 1, 1] - fd) < 1e-6 * K0
     assert np.allclose(k[0], k[0, 1, 1] * np.array([[1, -1], [-1, 1]]))
     assert abs(f[0, 0] + f[0, 1]) == 0.0  # action = reaction
-    assert np.allclose(g.evaluate(np.zeros((1, 2)), np.zeros((1, 2)), st, ELASTIC)[1][0, 1, 1], K0)
+    assert np.allclose(g.evaluate(np.zeros((1, 2)), np.zeros((1, 2)), st, K0_MATRIX)[1][0, 1, 1], K0)
 
 
 def test_spring_bad_input():

@@ -33,9 +33,9 @@ import numpy as np
 from numba import njit
 
 from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, interface_update
+from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre, newton_cotes
 from ..shapes import lagrange3
-from .base import CONSISTENT, ELASTIC
 
 __all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 
@@ -265,8 +265,8 @@ class Interface6:
         return state
 
     def evaluate(self, u_el, du_el, state_old, tangent):
-        if tangent not in (ELASTIC, CONSISTENT):
-            raise ValueError(f"tangent must be ELASTIC (0) or CONSISTENT (1), got {tangent}")
+        if tangent not in (K0_MATRIX, CONSISTENT):
+            raise ValueError(f"tangent must be K0_MATRIX (0) or CONSISTENT (1), got {tangent}")
         du_el = np.ascontiguousarray(du_el, dtype=np.float64)
         if du_el.shape != self.edofs.shape:
             raise ValueError(f"du_el must have shape {self.edofs.shape}, got {du_el.shape}")
@@ -291,7 +291,7 @@ class Interface6:
 
     def elastic_stiffness(self) -> np.ndarray:
         z = np.zeros(self.edofs.shape)
-        return self.evaluate(z, z, self.initial_state(), ELASTIC)[1]
+        return self.evaluate(z, z, self.initial_state(), K0_MATRIX)[1]
 
     def body_force(self):
         return None

@@ -22,7 +22,7 @@ layer, at its mid-depth z_n; inside the layer the stress is taken as linear with
     dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e_n
     h_n^2/12)
 
-with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``: K0, constant) modulus, and e_n the
+with E_n the law's tangent (``CONSISTENT``) or initial (``K0_MATRIX``: K0, constant) modulus, and e_n the
 modulus of the layer's own bending (option ``self_bending``):
 
 * ``"chord"`` (default): the stress is taken linear between the stresses the law gives at the layer's two
@@ -55,7 +55,7 @@ bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in 
 layer histories: with selective integration point 0-2 are the axial (membrane/bending) points and 3-4 the
 shear points, so ``n_ip = 5``; when both rules coincide one set serves both (n_ip = n).
 
-Array layout (see ``ssi.elements.base``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
+Array layout (see ``ssi.protocol``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
 coords (n_el, 3, 2); state (n_el, n_ip, n_layer, N_LAYER_HIST) = the layer laws' history variables (total
 formulation: strains come from ``u_el``; ``du_el`` is not used).
 """
@@ -64,6 +64,7 @@ import numpy as np
 from numba import njit
 
 from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, crack_band_width, layer_update
+from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre
 from ..section import Section
 from ..shapes import lagrange3
@@ -154,8 +155,8 @@ def _section(
     """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
 
     Writes ``res`` (8,) = [N, M, Q, A, B, D, S, 0] with A = dN/deps0, B = dN/dkap = dM/deps0,
-    D = dM/dkap, S = dQ/dgam (tangent=1: the laws' tangent moduli; tangent=0: the initial moduli e0, g0,
-    i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
+    D = dM/dkap, S = dQ/dgam (tangent CONSISTENT: the laws' tangent moduli; K0_MATRIX: the initial moduli e0,
+    g0, i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
     (self_mode=0), the layer's tangent modulus (1) or the chord through the stresses at the layer's faces (2,
     evaluated with the layer's committed history; scratch (N_LAYER_HIST,) takes their unused new history).
     res[7] = dM/deps0 (differs from B only with the chord term)."""
@@ -177,14 +178,14 @@ def _section(
     for n in range(h.shape[0]):
         z = z_mid[n]
         hn = h[n]
-        # the law always returns its tangent; K0 (tangent=0) uses the initial moduli instead, so that the
+        # the law always returns its tangent; K0 (K0_MATRIX) uses the initial moduli instead, so that the
         # internal force never depends on which matrix the solver asks for
         sig, tau, e_t, g_t = layer_update(
             kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], 1
         )
         if do_ax:
             i_n = hn * hn * hn / 12.0  # exact within-layer bending, eq. (4.7b) h_n^2/12
-            e_k = e_t if tangent == 1 else e0[n]
+            e_k = e_t if tangent == CONSISTENT else e0[n]
             N += hn * sig
             M += -hn * z * sig
             A += hn * e_k
@@ -203,7 +204,7 @@ def _section(
                 )
                 c = hn * hn / 12.0
                 M += c * (s_b - s_t)
-                if tangent == 1:
+                if tangent == CONSISTENT:
                     B2 += c * (e_b - e_tp)
                     D += c * (z_t * e_tp - z_b * e_b)
                 else:
@@ -211,10 +212,10 @@ def _section(
             else:
                 e_self = e_t if self_mode == 1 else e0[n]
                 M += e_self * i_n * kap
-                D += (e_self if tangent == 1 else e0[n]) * i_n
+                D += (e_self if tangent == CONSISTENT else e0[n]) * i_n
         if do_sh and cshear[n]:
             Q += kappa * hn * tau
-            S += kappa * hn * (g_t if tangent == 1 else g0[n])
+            S += kappa * hn * (g_t if tangent == CONSISTENT else g0[n])
     res[0] = N
     res[1] = M
     res[2] = Q
@@ -446,7 +447,7 @@ class PlateStrip:
 
     Notes
     -----
-    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.elements.base``.
+    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.protocol``.
     Bottom face for the interface element: ``z_bottom`` (< 0, relative to the nodes) and ``bottom_offset =
     -z_bottom`` so that u_g = u_b + bottom_offset * alpha_b (eq. 6.1); ``thickness`` is the section depth.
     """
@@ -572,7 +573,7 @@ class PlateStrip:
     def elastic_stiffness(self) -> np.ndarray:
         if self._k0 is None:
             zero = np.zeros((self.n_el, 9))
-            self._k0 = self.evaluate(zero, zero, self.initial_state(), 0)[1]
+            self._k0 = self.evaluate(zero, zero, self.initial_state(), K0_MATRIX)[1]
         return self._k0
 
     def body_force(self):

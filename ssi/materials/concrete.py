@@ -67,6 +67,8 @@ import math
 
 from numba import njit
 
+from ..protocol import K0_MATRIX
+
 (
     P_E0,
     P_NU,
@@ -267,6 +269,6 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     hist_new[H_EMAX] = e_max
     g_t = beta * G
     tau = g_t * gam
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         return sig, tau, E0, G
     return sig, tau, e_t, g_t

@@ -64,8 +64,8 @@ def crack_band_width(element_length: float, weight: float) -> float:
 
 @njit(cache=True)
 def layer_update(kind, params, eps, gam, hist_old, hist_new, tangent):
-    """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (tangent=1) or initial (tangent=0)
-    moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
+    """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (``tangent`` CONSISTENT) or initial
+    (K0_MATRIX) moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
     hist_new[:] = hist_old
     if kind == CONCRETE:
         return concrete_update(params, eps, gam, hist_old, hist_new, tangent)

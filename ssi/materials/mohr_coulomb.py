@@ -39,6 +39,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..protocol import K0_MATRIX
+
 # branch codes stored in hist[1]
 B_ELASTIC = 0
 B_PLANE = 1
@@ -339,9 +341,9 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     2. Principal values of sB: in-plane pair (pa, pb) with axes n_a, n_b and the out-of-plane syy; order them.
     3. If f(sB) <= 0: elastic. Else return in principal space (:func:`mc_return_principal`).
     4. Rebuild σ on the unchanged principal axes.
-    5. Tangent (``tangent == 1``): in the principal frame of sB,
+    5. Tangent (``tangent == CONSISTENT``): in the principal frame of sB,
        C = H Dp for the normal components and G* = μ (σa - σb) / (sBa - sBb) for the in-plane shear
-       (rotation of the axes); rotate: D = R C Rᵀ. ``tangent == 0`` returns the elastic D.
+       (rotation of the axes); rotate: D = R C Rᵀ. ``tangent == K0_MATRIX`` returns the elastic D.
     """
     E = params[0]
     nu = params[1]
@@ -407,7 +409,7 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         ds[i] = sB[i] - s[i]
     hist_new[0] = hist_old[0] + _plastic_strain_norm(lam, mu, ds)
     hist_new[1] = branch
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         elastic_fill(lam, mu, D)
         return ST_PLASTIC
     # C (ordered) = H Dp, then permute to [a, b, y]
@@ -728,7 +730,7 @@ def mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         sig_new[i] = sig[i]
     hist_new[0] = hist_old[0] + ep
     hist_new[1] = branch
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         elastic_fill(lam, mu, D)
     else:
         _continuum_dep(sig, lam, mu, k, m, kc, apex, dsub, D, True)
@@ -774,7 +776,7 @@ def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     sig_new[3] += pm
     hist_new[0] = hist_old[0] + (nrm - math.sqrt(2.0) * cu) / (2.0 * mu)
     hist_new[1] = B_PLANE
-    if tangent != 0:
+    if tangent != K0_MATRIX:
         K = lam + 2.0 * mu / 3.0
         n = np.empty(4)
         for i in range(4):
