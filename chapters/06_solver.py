@@ -67,12 +67,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.elements.spring import TANH, spring_chain
+from ssi.elements.spring import TANH
 from ssi.materials.soil_laws import mohr_coulomb_params
 from ssi.mesh import soil_block
 from ssi.model import Model
 from ssi.solver import NonConvergence, Settings, run
-from ssi.supports import fix_block, soil_group
+from ssi.supports import fix_block, soil_group, spring_chain
 from ssi.verify import residual_order
 
 FAST = paths.FAST

@@ -8,6 +8,8 @@ in ``reference-data`` of the project notes and in each docstring. Units: SI (m, 
 * :func:`shear_lag_state`, :func:`shear_lag_from_slip`, :func:`shear_lag_slip_length`,
   :func:`shear_lag_displacement` -- an elastic bar pushed along a rigid plate through an elastic--perfectly
   plastic interface (the exact check behind Fig. 13).
+* :func:`timoshenko_simply_supported_uniform`, :func:`timoshenko_simply_supported_point`,
+  :func:`timoshenko_cantilever` -- shear-flexible beams (the plate strip's checks, chapter 02).
 """
 
 import math
@@ -26,6 +28,9 @@ __all__ = [
     "shear_lag_onset",
     "shear_lag_slip_length",
     "shear_lag_state",
+    "timoshenko_cantilever",
+    "timoshenko_simply_supported_point",
+    "timoshenko_simply_supported_uniform",
 ]
 
 
@@ -145,3 +150,24 @@ def shear_lag_state(tau_bar, EA, kt, L, tau_f):
     s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
     u0 = float(shear_lag_displacement(0.0, tau_bar, EA, kt, L, tau_f)) if s < L else math.inf
     return {"s": s, "u0": u0, "tau0": min(kt * u0, tau_f)}
+
+
+# ---- Timoshenko beams ------------------------------------------------------------------------------------
+# Shear-flexible (Timoshenko) beams: bending stiffness EI and shear stiffness kGA per unit width [N m^2/m,
+# N/m]; w positive up, so a downward load is negative. Each deflection is the Euler-Bernoulli one plus the
+# shear part w_s'' = -q / kGA (closed forms, e.g. Timoshenko & Gere, *Mechanics of Materials*).
+def timoshenko_simply_supported_uniform(x, span, q, EI, kGA):
+    """Deflection w(x) [m] of a simply supported beam of ``span`` under a uniform load ``q`` [N/m/m]."""
+    x = np.asarray(x, dtype=np.float64)
+    return q * x * (span**3 - 2 * span * x**2 + x**3) / (24 * EI) + q * x * (span - x) / (2 * kGA)
+
+
+def timoshenko_simply_supported_point(span, P, EI, kGA):
+    """Mid-span deflection [m] of a simply supported beam of ``span`` under a point load ``P`` at mid-span."""
+    return P * span**3 / (48 * EI) + P * span / (4 * kGA)
+
+
+def timoshenko_cantilever(x, span, P, EI, kGA):
+    """Deflection w(x) [m] of a cantilever (clamped at x = 0) of ``span`` under a tip load ``P``."""
+    x = np.asarray(x, dtype=np.float64)
+    return P * x**2 * (3 * span - x) / (6 * EI) + P * x / kGA

@@ -180,7 +180,9 @@ def _pad_params(params_list) -> np.ndarray:
     return out
 
 
-def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=()) -> Section:
+def layered(
+    thicknesses, kinds, params, carries_shear=None, z_ref: float | None = None, labels: tuple = ()
+) -> Section:
     """A section from layer thicknesses listed from the bottom face upwards.
 
     Parameters
@@ -225,7 +227,9 @@ def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=(
     )
 
 
-def homogeneous(thickness: float, E: float, nu: float, n_layers: int = 1, z_ref=None) -> Section:
+def homogeneous(
+    thickness: float, E: float, nu: float, n_layers: int = 1, z_ref: float | None = None
+) -> Section:
     """A linear-elastic homogeneous section split into ``n_layers`` equal layers."""
     thickness = check_real("thickness", thickness, lo=0.0, lo_open=True, unit="m")
     check_real("E", E, lo=0.0, lo_open=True, unit="Pa")
@@ -249,7 +253,7 @@ def _allocate(n_total: int, gaps: np.ndarray) -> np.ndarray:
     return n
 
 
-def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) -> Section:
+def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref: float | None = None) -> Section:
     """A reinforced-concrete section: concrete layers with smeared bar layers between them.
 
     Parameters

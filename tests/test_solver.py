@@ -8,7 +8,7 @@ differences, or from the direct linear solve -- never from the solver under test
 import numpy as np
 import pytest
 
-from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring, spring_chain
+from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring
 from ssi.materials.soil_laws import ELASTIC as SOIL_ELASTIC
 from ssi.materials.soil_laws import elastic_params
 from ssi.mesh import structured_q8
@@ -16,7 +16,7 @@ from ssi.model import Model
 from ssi.protocol import CONSISTENT, K0_MATRIX
 from ssi.results import read_result, write_result
 from ssi.solver import LIMIT_LOAD, METHODS, NonConvergence, Settings, run
-from ssi.supports import fix_block, soil_group
+from ssi.supports import fix_block, soil_group, spring_chain
 from ssi.verify import fd_jacobian, residual_order
 
 K0, FU = 1e6, 1e3  # spring stiffness [N/m], tanh plateau [N]

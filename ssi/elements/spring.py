@@ -158,30 +158,3 @@ class Spring:
             "kinds": [KIND_NAMES[int(k)] for k in self.kinds],
             "params": self.params.tolist(),
         }
-
-
-def spring_chain(kinds, params, name="spring"):
-    """A model of springs in series along x: node 0 (fixed) -- spring 0 -- node 1 -- ... -- node n.
-
-    Spring e acts between the u DOFs of nodes e and e + 1. Model nodes carry (u, w); every w is fixed, and the
-    w DOFs are joined by stiff linear springs only so that every DOF belongs to an element (they carry no
-    force). Load the chain with ``model.add_load(nodes[-1], "u", F)`` or ``model.prescribe(...)``.
-
-    Returns ``(model, group, nodes)``; ``group`` is the :class:`Spring` group (first n springs: the chain).
-    """
-    from ..model import Model
-
-    kinds = np.atleast_1d(np.asarray(kinds, np.int64))
-    n = kinds.size
-    params = np.broadcast_to(np.asarray(params, np.float64), (n, 3))
-    model = Model()
-    nodes = model.add_nodes(np.column_stack([np.arange(n + 1.0), np.zeros(n + 1)]), 2)
-    u = model.dof(nodes, "u")
-    w = model.dof(nodes, "w")
-    edofs = np.vstack([np.column_stack([u[:-1], u[1:]]), np.column_stack([w[:-1], w[1:]])])
-    all_kinds = np.concatenate([kinds, np.full(n, LINEAR)])
-    all_params = np.vstack([params, np.tile([params[:, 0].max(), 0.0, 0.0], (n, 1))])
-    group = model.add_group(Spring(edofs, all_kinds, all_params, name=name))
-    model.fix(nodes, "w")
-    model.fix(nodes[:1], "u")
-    return model, group, nodes

@@ -16,9 +16,9 @@ kinds are padded to ``N_SOIL_PARAMS`` by :func:`material_table`):
 History (``N_SOIL_HIST`` = 2): [accumulated plastic strain norm, branch of the last update
 (0 elastic, 1 plane, 2 edge s1 = s2, 3 edge s2 = s3, 4 apex)].
 
-Numba's on-disk cache keys a kernel on its own file only: after editing this file or
-``ssi/materials/mohr_coulomb.py``, clear the cached element kernel (``rm -rf .numba_cache`` or touch
-``ssi/elements/soil_q8.py``), otherwise the cached ``q8_kernel`` keeps running the old law.
+Numba's on-disk cache keys a kernel on its own file only, but the element kernels inline these laws;
+``import ssi`` therefore keys the whole cache on a hash of all package sources (``ssi/__init__.py``), so an
+edit of this file recompiles ``q8_kernel`` too and nothing stale runs.
 """
 
 import math
