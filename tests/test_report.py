@@ -32,11 +32,14 @@ def test_check_records_the_fail_row_before_it_raises(figures):
 
 
 def test_check_takes_the_condition_when_the_claim_is_not_a_bound(figures):
-    report.check("lower_bound", "ratio (pass if >= tolerance)", 3.0, 2.0, 3.0 >= 2.0)
-    assert row(figures, "lower_bound")[-1] == "PASS"
-    with pytest.raises(AssertionError):
-        report.check("lower_bound", "ratio (pass if >= tolerance)", 1.0, 2.0, 1.0 >= 2.0)
-    assert row(figures, "lower_bound")[-1] == "FAIL"
+    bound = 2.0
+    for ratio, status in ((3.0, "PASS"), (1.0, "FAIL")):  # |ratio| <= bound would give the opposite
+        if status == "PASS":
+            report.check("lower_bound", "ratio (pass if >= tolerance)", ratio, bound, ratio >= bound)
+        else:
+            with pytest.raises(AssertionError):
+                report.check("lower_bound", "ratio (pass if >= tolerance)", ratio, bound, ratio >= bound)
+        assert row(figures, "lower_bound")[-1] == status
 
 
 def test_record_alone_never_raises(figures):
