@@ -50,7 +50,7 @@
 # D₁ is the plane-strain (cylindrical bending) modulus. κ is the shear correction factor: the paper writes
 # eq. (4.4) with κ = 1; a uniform shear strain through the depth over-estimates the shear stiffness of a
 # rectangle, whose parabolic τ gives κ = 5/6 by energy. The code makes κ a named parameter, default 5/6
-# (its effect is measured below).
+# (its effect is measured in chapter 02c).
 #
 # **Section forces** per unit width — with M positive in sagging:
 #
@@ -90,7 +90,7 @@
 # cracks or yields and the consistent tangent exact, but a cracked or crushed layer keeps its elastic bending
 # stiffness; with the tangent modulus it follows the layer's state, but f jumps by O(hₙ³) when a layer changes
 # branch; the chord follows the state *and* keeps f continuous, with an exact (non-symmetric) tangent. The
-# trade study at the end measures both and picks the default from the evidence (Fig. 2.6).
+# trade study of chapter 02e measures both and picks the default from the evidence (Fig. 2.6).
 #
 # **Integration along the element (§10).** Three rules are options of the element:
 #
