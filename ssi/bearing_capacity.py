@@ -20,6 +20,7 @@ from .elements.soil_q8 import SoilQ8
 from .materials.soil_laws import mohr_coulomb_params, von_mises_params
 from .mesh import soil_block, structured_q8
 from .model import Model
+from .scene import SoilLayer
 from .solver import NonConvergence, Settings, run
 from .supports import fix_block, soil_group, surface_pressure
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
@@ -77,8 +78,9 @@ def rigid_footing(
 
     ``settle`` is the footing settlement at load factor 1 [m]. ``surcharge`` [Pa] acts on the ground surface
     beside the footing and, as an isotropic initial stress, everywhere (weightless soil in equilibrium).
-    ``layers``: optional list of (thickness, E, c, phi_deg, psi_deg) from the surface down, overriding the
-    single material (for the stiffness-contrast extreme).
+    ``layers``: optional list of :class:`ssi.scene.SoilLayer` from the surface down (Mohr--Coulomb: ``c`` set;
+    weightless: ``unit_weight`` 0), overriding the single material (for the stiffness-contrast extreme); their
+    thickness, E, nu, c, phi_deg and psi_deg are used (psi_deg None: associated, psi = phi).
     """
     B = check_real("B", B, lo=0.0, lo_open=True, unit="m")
     half_width = check_real("half_width", half_width, lo=0.0, lo_open=True, unit="m")
@@ -96,7 +98,15 @@ def rigid_footing(
     check_bool("rough", rough)
     check_bool("drift", drift)
     check_choice("n_gauss", n_gauss, (2, 3))
-    thick = None if layers is None else [lay[0] for lay in layers]
+    if layers is not None:
+        for i, lay in enumerate(layers):
+            check_instance(f"layers[{i}]", lay, SoilLayer)
+            if lay.c is None or lay.unit_weight != 0.0:
+                raise ValueError(
+                    f"layers[{i}] must be a weightless Mohr-Coulomb layer (c set, unit_weight 0) for the "
+                    f"rigid footing, got c={lay.c!r}, unit_weight={lay.unit_weight!r}"
+                )
+    thick = None if layers is None else [lay.thickness for lay in layers]
     mesh = soil_block(
         half_width,
         depth,
@@ -113,7 +123,9 @@ def rigid_footing(
         mats = [mohr_coulomb_params(E, nu, c, phi_deg, psi_deg, scheme=scheme, n_sub=n_sub, drift=drift)]
     else:
         mats = [
-            mohr_coulomb_params(lay[1], nu, lay[2], lay[3], lay[4], scheme=scheme, n_sub=n_sub, drift=drift)
+            mohr_coulomb_params(
+                lay.E, lay.nu, lay.c, lay.phi_deg, lay.psi_deg, scheme=scheme, n_sub=n_sub, drift=drift
+            )
             for lay in layers
         ]
     soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, n_gauss=n_gauss)

@@ -15,6 +15,7 @@ import pytest
 
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
 from ssi.digitize import read_reference
+from ssi.scene import SoilLayer
 from ssi.solver import Settings, run
 
 COARSE = dict(half_width=6.0, depth=5.0, h_fine=0.5, h_coarse=1.0, growth=1.25)
@@ -132,8 +133,10 @@ def test_phi_45_converges_or_reports():
 def test_stiffness_contrast_1e4():
     """A 2 m soft top layer on a 10⁴ times stiffer base (elastic-like: c = 100 MPa). The φ = 0 mechanism of a
     2 m footing reaches B/√2 ≈ 1.4 m deep, so the limit equals the homogeneous one on the same mesh."""
-    homog = q_u(c=C, phi_deg=0.0, layers=[(2.0, 20e6, C, 0.0, 0.0), (3.0, 20e6, C, 0.0, 0.0)])
-    layered = q_u(c=C, phi_deg=0.0, layers=[(2.0, 20e6, C, 0.0, 0.0), (3.0, 20e10, 1e8, 0.0, 0.0)])
+    top = SoilLayer(2.0, E=20e6, nu=0.3, c=C, phi_deg=0.0, psi_deg=0.0)
+    homog = q_u(c=C, phi_deg=0.0, layers=[top, SoilLayer(3.0, E=20e6, nu=0.3, c=C, phi_deg=0.0, psi_deg=0.0)])
+    base = SoilLayer(3.0, E=20e10, nu=0.3, c=1e8, phi_deg=0.0, psi_deg=0.0)
+    layered = q_u(c=C, phi_deg=0.0, layers=[top, base])
     assert layered["failure"] is None
     assert layered["q_u"] == pytest.approx(homog["q_u"], rel=0.01)
     assert math.isfinite(layered["q_u"])
@@ -206,3 +209,11 @@ def test_viscous_path_relaxes_to_the_rate_independent_limit():
     # two differ by 0.8 %; on chapter 10's finer meshes by 0.25 %
     assert viscous["q"][-1] == pytest.approx(plain["q"][-1], rel=1e-2)
     assert abs(viscous["q"][-1] / viscous["q"][-2] - 1.0) < 1e-4
+
+
+def test_rigid_footing_layers_are_weightless_mohr_coulomb_soil_layers():
+    """The layered rigid footing takes the scene's SoilLayer, nothing else, and names what it refuses."""
+    with pytest.raises((TypeError, ValueError), match=r"layers\[0\]"):
+        rigid_footing(layers=[(2.0, 20e6, C, 0.0, 0.0)])  # the former tuple form
+    with pytest.raises(ValueError, match=r"layers\[1\] must be a weightless Mohr-Coulomb layer"):
+        rigid_footing(layers=[SoilLayer(2.0, E=20e6, nu=0.3, c=C), SoilLayer(3.0, E=20e6, nu=0.3)])
