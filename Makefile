@@ -1,4 +1,5 @@
-# make test       -- unit tests and every chapter in fast mode (what CI runs)
+# make lint       -- ruff check + ruff format --check (rules in pyproject.toml) and the control-byte check
+# make test       -- unit tests and every chapter in fast mode (what CI runs, after make lint)
 # make reproduce  -- every chapter in full mode, the figures and figures/report.csv
 # make bench      -- benchmarks (installs the bench extras: scikit-fem, pypardiso)
 # make book       -- the executed notebooks of `make reproduce` as an HTML book in build/book (mkdocs +
@@ -18,7 +19,7 @@ export NUMBA_CACHE_DIR := $(CURDIR)/.numba_cache
 export OMP_WAIT_POLICY := PASSIVE
 export MPLBACKEND := Agg
 
-.PHONY: test reproduce bench book notebooks clean
+.PHONY: lint test reproduce bench book notebooks clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -33,6 +34,13 @@ build/notebooks/%.ipynb: chapters/%.py $(STAMP)
 	$(BIN)/jupytext --quiet --to ipynb -o $@ $<
 
 notebooks: $(NOTEBOOKS)
+
+LINT_PATHS := ssi tests chapters benchmarks tools
+
+lint: $(STAMP)
+	$(BIN)/ruff check $(LINT_PATHS)
+	$(BIN)/ruff format --check $(LINT_PATHS)
+	$(BIN)/python tools/check_control_chars.py chapters ssi
 
 test: $(STAMP) notebooks
 	SSI_FAST=1 $(BIN)/python -m pytest tests && \

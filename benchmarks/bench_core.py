@@ -1,5 +1,6 @@
 """Benchmark of the numerical core (issues 2 and 16): Q8 element throughput, pattern, assembly, factorisation
-and solve at ~1e4, 1e5 and 1e6 DOFs, numba compile time, scikit-fem side by side, the elastic block end to end.
+and solve at ~1e4, 1e5 and 1e6 DOFs, numba compile time,
+scikit-fem side by side, the elastic block end to end.
 
 Run with ``make bench`` (installs the bench extras scikit-fem and pypardiso). Prints one ``key: value`` line
 per measured figure, and for keys with a goal the goal beside it. Unless a key says otherwise, times are
@@ -35,11 +36,13 @@ import scipy.sparse as sp
 
 from ssi.assembly import SparsePattern
 from ssi.elements.q8_elastic import q8_elastic_stiffness
-from ssi.elements.soil_q8 import SoilQ8, q8_kernel
+from ssi.elements.soil_q8 import q8_kernel
 from ssi.linsolve import Factorization, pardiso_available
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
+from ssi.protocol import K0_MATRIX
+from ssi.supports import fix_block, soil_group
 
 E, NU = 30e6, 0.3
 GOALS = {
@@ -79,13 +82,8 @@ def block(nx, nz, width=20.0, depth=10.0):
     mesh = structured_q8(np.linspace(-0.5 * width, 0.5 * width, nx + 1), np.linspace(-depth, 0.0, nz + 1))
     model = Model()
     model.add_nodes(mesh.xy, 2)
-    group = model.add_group(
-        SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(E, NU)])
-    )
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
+    group = soil_group(model, mesh, [(ELASTIC, elastic_params(E, NU))])
+    fix_block(model, mesh)
     loaded = mesh.nodes_between(-1.0, 1.0)
     model.add_load(loaded, "w", -100e3 * (width / nx) / 2.0)  # ~100 kPa (lumped; the load is not benchmarked)
     return mesh, model, group
@@ -182,7 +180,7 @@ def assembly_and_solve(label, model, group, factorise=True):
 
     def assemble_generic():  # the law-dispatch kernel of SoilQ8.evaluate (solve_linear, Newton iterations)
         zero = np.zeros((group.n_el, 16))
-        return pattern.assemble([group.evaluate(zero, zero, group.initial_state(), ELASTIC)[1]])
+        return pattern.assemble([group.evaluate(zero, zero, group.initial_state(), K0_MATRIX)[1]])
 
     assemble()
     t_asm, _ = best_of(assemble)
@@ -249,7 +247,8 @@ PUBLIC_SCRIPT = textwrap.dedent("""
     model = Model(); model.add_nodes(mesh.xy, 2)
     model.add_group(SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC],
                            [elastic_params({E}, {NU})]))
-    model.fix(mesh.bottom, "u"); model.fix(mesh.bottom, "w"); model.fix(mesh.left, "u"); model.fix(mesh.right, "u")
+    model.fix(mesh.bottom, "u"); model.fix(mesh.bottom, "w")
+    model.fix(mesh.left, "u"); model.fix(mesh.right, "u")
     model.add_load(mesh.nodes_between(-1.0, 1.0), "w", -100e3 * (20.0 / nx) / 2.0)
     out = model.solve_linear()
     print(out.u.size, out.u.min())
@@ -279,7 +278,8 @@ SKFEM_SCRIPT = textwrap.dedent("""
 
 
 def whole_processes(target=1e5, repeat=3):
-    """(ssi public, scikit-fem) whole-process wall times, fresh interpreters alternated, best of ``repeat``."""
+    """(ssi public, scikit-fem) whole-process wall times, fresh interpreters alternated, best of
+    ``repeat``."""
     _, nz = grid_for(target)
     scripts = {
         "ssi": PUBLIC_SCRIPT.format(nz=nz, E=E, NU=NU),

@@ -74,7 +74,8 @@ def main():
             print(f"{key}_extrapolated_s: {wall + wall_fine:.3f}")
             print(f"{key}_extrapolated_ratio: {q_extra / Q_PRANDTL:.4f}")
             print(
-                f"# h = 0.125 m: {scene_fine.info['n_dof']} DOFs, q_u/Prandtl = {fine['q_u'] / Q_PRANDTL:.4f}, "
+                f"# h = 0.125 m: {scene_fine.info['n_dof']} DOFs, "
+                f"q_u/Prandtl = {fine['q_u'] / Q_PRANDTL:.4f}, "
                 f"{wall_fine:.2f} s",
                 file=sys.stderr,
             )

@@ -20,6 +20,7 @@ from numba import njit
 import ssi  # noqa: F401  (first: it keys numba's cache on the package sources before numba is imported)
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import material_table, mohr_coulomb_params
+from ssi.protocol import CONSISTENT, FORCES_ONLY
 
 N_EL = 50_000
 # Operation count of one 2x2-rule point of the forces-only kernel (additions and multiplications):
@@ -37,7 +38,7 @@ FLOPS_PLASTIC_EXTRA, TRANS_PLASTIC_EXTRA = 95, 1
 def _flop_loop(n, x):
     # 8 independent multiply-add chains: what a scalar kernel with some instruction-level parallelism gets
     a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
-    for i in range(n):
+    for _ in range(n):
         a0 = a0 * x + 1.0
         a1 = a1 * x + 2.0
         a2 = a2 * x + 3.0
@@ -99,11 +100,11 @@ def loaded_group():
 def main():
     group, du, state = loaded_group()
     n_gp = group.n_el * len(group.gw)
-    _, _, new = group.evaluate(du, du, state, -1)
+    _, _, new = group.evaluate(du, du, state, FORCES_ONLY)
     plastic = float(np.mean(new[:, :, 5] > 0))
-    t_forces = best(lambda: group.evaluate(du, du, state, -1)) / n_gp * 1e9
-    group.evaluate(du, du, state, 1)
-    t_consistent = best(lambda: group.evaluate(du, du, state, 1)) / n_gp * 1e9
+    t_forces = best(lambda: group.evaluate(du, du, state, FORCES_ONLY)) / n_gp * 1e9
+    group.evaluate(du, du, state, CONSISTENT)
+    t_consistent = best(lambda: group.evaluate(du, du, state, CONSISTENT)) / n_gp * 1e9
     t_flop, t_trans = machine_rates()
     arith = (
         FLOPS_ELASTIC * t_flop

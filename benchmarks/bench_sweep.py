@@ -2,10 +2,10 @@
 
 Twenty-four scenes like chapter 14's (``ssi.examples.chapter11_foundation`` on a coarse mesh: chapter 11's
 section and its 400 kN/m per column -- until the shared factory this benchmark used the zoo's 7-layer RC strip
-and 450 kN/m; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own solve time), then by a LocalCluster
-of 1 and of 2 worker processes (threads_per_worker=1). The cluster's start-up is timed separately: it is paid
-once per sweep, not per scene. The numba cache is warm (a first scene is solved before timing, and the
-workers load the same NUMBA_CACHE_DIR).
+and 450 kN/m; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own solve
+time), then by a LocalCluster of 1 and of 2 worker processes (threads_per_worker=1). The cluster's start-up is
+timed separately: it is paid once per sweep, not per scene. The numba cache is warm (a first scene is solved
+before timing, and the workers load the same NUMBA_CACHE_DIR).
 
 Prints ``key: value`` lines: ``sweep_scenes_per_min_1w``, ``sweep_scenes_per_min_2w`` (scenes per minute of
 wall time from submission to the last result, cluster start excluded), ``sweep_overhead_per_task_s`` (1
@@ -28,7 +28,8 @@ N_SCENES = 24
 
 
 def foundation_on(E, c, tan_phi):
-    """The chapter-11 foundation (400 kN/m per column), coarse, with the clay's E [Pa], c [Pa], tan(phi) [-]."""
+    """The chapter-11 foundation (400 kN/m per column), coarse, with the clay's E [Pa], c [Pa],
+    tan(phi) [-]."""
     return chapter11_foundation(
         1.0, clay_E=E, clay_c=c, clay_phi_deg=math.degrees(math.atan(tan_phi)), h_coarse=4.0
     )

@@ -55,8 +55,8 @@
 # the origin (open choice) and recloses without resistance.
 #
 # **Tension stiffening (Fig. 5, dotted).** Between cracks the bars drag the concrete along; open default:
-# a second branch $\alpha_{ts}f_r(\varepsilon_y-\varepsilon)/(\varepsilon_y-\varepsilon_r)$ that vanishes at the
-# yield strain $\varepsilon_y$ of the reinforcement; the concrete carries the larger of the two. The paper
+# a second branch $\alpha_{ts}f_r(\varepsilon_y-\varepsilon)/(\varepsilon_y-\varepsilon_r)$ that vanishes at
+# the yield strain $\varepsilon_y$ of the reinforcement; the concrete carries the larger of the two. The paper
 # speaks of a "superposition" of softening and stiffening. Read as a sum, a point just past cracking would
 # carry $f_r(1+\alpha_{ts})$ — more than its strength — so we read it as the envelope of the two (the max),
 # which is continuous at $f_r$ only in the limit and never exceeds $f_r$. Where it acts is a modelling
@@ -65,9 +65,9 @@
 # `ssi.section.with_crack_spacing_band(..., tension_stiffening="effective_area")`), outside which the concrete
 # softens as plain concrete. Chapter 08 scores both against every measured point of a beam.
 #
-# **Cracked shear (Fig. 6).** $G_c=\beta G$, $\beta=\beta_0(1-\varepsilon_{max}/\varepsilon_y)$ after cracking,
-# never below a floor $\beta_{floor}$ that keeps the matrix regular. $\beta$ is taken from the crack state
-# committed at the start of the increment (see `ssi/materials/concrete.py` for why).
+# **Cracked shear (Fig. 6).** $G_c=\beta G$, $\beta=\beta_0(1-\varepsilon_{max}/\varepsilon_y)$ after
+# cracking, never below a floor $\beta_{floor}$ that keeps the matrix regular. $\beta$ is taken from the crack
+# state committed at the start of the increment (see `ssi/materials/concrete.py` for why).
 #
 # **Steel (§5.4).** Bilinear: $E_s$ to $f_y$, then hardening $E_H$; unloading with $E_s$ (linear kinematic
 # hardening with plastic modulus $H=E_sE_H/(E_s-E_H)$ produces exactly this curve).
@@ -94,6 +94,8 @@ import numpy as np
 from ssi import report
 from ssi.materials import concrete, rc
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
+from ssi.protocol import CONSISTENT
+from ssi.verify import fd_jacobian
 
 t_start = time.perf_counter()
 FC, FY = 36.2e6, 333.0e6  # the substitute beam of chapter 08
@@ -144,9 +146,9 @@ beta = np.empty_like(path_t)
 h_old = np.zeros(N_LAYER_HIST)
 h_new = np.zeros(N_LAYER_HIST)
 for i, e in enumerate(path_t):
-    layer_update(CONCRETE, p_c, e, 0.0, h_old, h_new, 1)
+    layer_update(CONCRETE, p_c, e, 0.0, h_old, h_new, CONSISTENT)
     h_old[:] = h_new
-    beta[i] = layer_update(CONCRETE, p_c, e, 1e-6, h_old, h_new, 1)[3] / (E0 / (2 * 1.2))
+    beta[i] = layer_update(CONCRETE, p_c, e, 1e-6, h_old, h_new, CONSISTENT)[3] / (E0 / (2 * 1.2))
 
 ey_s = FY / 200e9
 path_s = np.concatenate(
@@ -201,7 +203,8 @@ path_cr = -np.linspace(ecu, 1.05 * eps_cd, 20001)
 sig_cr = rc.drive(CONCRETE, p_c, path_cr)[0]
 crush_energy = abs(np.trapezoid(-sig_cr, -path_cr) / (p_c[concrete.P_GC] / LS) - 1)
 print(
-    f"crushing: f(eps_cu) = {f_cu / FC:.3f} fc, stress reaches zero at {eps_cd:.4f}; energy error {crush_energy:.1e}"
+    f"crushing: f(eps_cu) = {f_cu / FC:.3f} fc, stress reaches zero at {eps_cd:.4f}; "
+    f"energy error {crush_energy:.1e}"
 )
 assert abs(sig_cr[0] + f_cu) <= 1e-6 * FC and crush_energy <= 1e-3, crush_energy
 
@@ -226,16 +229,12 @@ def fd_error(kind, params, eps, hist):
     h0 = np.zeros(N_LAYER_HIST)
     h0[: len(hist)] = hist
     h1 = np.zeros(N_LAYER_HIST)
-    _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, 1)
-    d = 1e-9
-    e_fd = (
-        layer_update(kind, params, eps + d, 1e-4, h0, h1, 1)[0]
-        - layer_update(kind, params, eps - d, 1e-4, h0, h1, 1)[0]
-    ) / (2 * d)
-    g_fd = (
-        layer_update(kind, params, eps, 1e-4 + d, h0, h1, 1)[1]
-        - layer_update(kind, params, eps, 1e-4 - d, h0, h1, 1)[1]
-    ) / (2 * d)
+    _s, _t, e_t, g_t = layer_update(kind, params, eps, 1e-4, h0, h1, CONSISTENT)
+    # d sig / d eps and d tau / d gam by central differences (step 1e-9) at (eps, gam = 1e-4)
+    jac = fd_jacobian(
+        lambda x: layer_update(kind, params, x[0], x[1], h0, h1, CONSISTENT)[:2], [eps, 1e-4], 1e-9
+    )
+    e_fd, g_fd = jac[0, 0], jac[1, 1]
     return max(abs(e_fd - e_t) / max(abs(e_t), 1e-3 * E0), abs(g_fd - g_t) / max(abs(g_t), 1e-6 * E0))
 
 
@@ -309,8 +308,8 @@ plt.show()
 #
 # ## Summary
 #
-# * Eq. (5.1) has peak $f_c$ at $\varepsilon_c$, initial slope $E_0$ and zero slope at the peak (to round-off);
-#   both forms of (5.3) agree; unloading runs along $E_0$.
+# * Eq. (5.1) has peak $f_c$ at $\varepsilon_c$, initial slope $E_0$ and zero slope at the peak (to
+#   round-off); both forms of (5.3) agree; unloading runs along $E_0$.
 # * The crack band dissipates $G_f/l_s$ per unit volume (report row `crack_band_energy`); a band at or
 #   beyond $2E_0G_f/f_r^2$ is refused.
 # * Every branch of both laws has an exact tangent (FD checks above).

@@ -25,7 +25,8 @@
 #   open, re-closing — on a single material point driven along a gap path;
 # - check the consistent tangent against finite differences in every state;
 # - see, with an eigenvalue view and a traction-recovery experiment, why full Gauss integration couples
-#   neighbouring node pairs and makes a stiff interface oscillate, while the paper's Newton–Cotes rule does not.
+#   neighbouring node pairs and makes a stiff interface oscillate, while the paper's Newton–Cotes rule does
+#   not.
 
 # %% [markdown]
 # ## Theory
@@ -33,7 +34,8 @@
 # **Kinematics (6.1).** The upper nodes of an element belong to the plate strip, whose nodes lie on its
 # reference (mid-)surface; the contact is the plate's *bottom* face. With the strip's kinematics
 # u(z) = u_b − z·α_b, the bottom face z = −e (e = h/2 for mid-surface nodes) moves by
-# $$u_g = u_b + e\,\alpha_b,\qquad w_g = w_b,\qquad\text{(6.1a)}\qquad u_d = u_s,\quad w_d = w_s\quad\text{(6.1b)}.$$
+# $$u_g = u_b + e\,\alpha_b,\qquad w_g = w_b,\qquad\text{(6.1a)}
+#   \qquad u_d = u_s,\quad w_d = w_s\quad\text{(6.1b)}.$$
 # With the quadratic Lagrange functions Nᵢ(ξ) of the three node pairs, u_g = Σ Nᵢ [u_i + e α_i, w_i] (6.3)
 # and u_d = Σ Nᵢ [u_i^s, w_i^s] (6.4). If the upper body is soil too (a soil–soil or soil–wall joint), the
 # upper nodes carry (u, w) only and e plays no role — the second variant of the element.
@@ -62,9 +64,11 @@
 # $$\dot{\mathbf t} = D_{ep}\,\dot{\mathbf g},\qquad D_{ep} = D - \frac{D\,m\,n^T D}{n^T D\,m}\qquad(6.9).$$
 # The paper takes g = f (associated flow), m = n. With D = diag(k_t, k_n), nᵀDn = k_t + k_n tan²φ,
 # Dn = [s k_t, k_n tan φ]:
-# $$D_{ep} = \frac{1}{k_t + k_n\tan^2\varphi}\begin{bmatrix} k_t(k_t+k_n\tan^2\varphi) - k_t^2 & -s k_t k_n\tan\varphi\\
+# $$D_{ep} = \frac{1}{k_t + k_n\tan^2\varphi}
+#   \begin{bmatrix} k_t(k_t+k_n\tan^2\varphi) - k_t^2 & -s k_t k_n\tan\varphi\\
 #   -s k_t k_n\tan\varphi & k_n(k_t + k_n\tan^2\varphi) - k_n^2\tan^2\varphi\end{bmatrix}
-#   = \frac{k_t k_n}{k_t + k_n\tan^2\varphi}\begin{bmatrix}\tan^2\varphi & -s\tan\varphi\\ -s\tan\varphi & 1\end{bmatrix}\quad(6.10).$$
+#   = \frac{k_t k_n}{k_t + k_n\tan^2\varphi}
+#   \begin{bmatrix}\tan^2\varphi & -s\tan\varphi\\ -s\tan\varphi & 1\end{bmatrix}\quad(6.10).$$
 # Associated flow opens the contact by tan φ per unit of slip (dilation), which for a joint in a confined
 # body means a growing normal compression. Our law has a **dilation angle ψᵢ** (g = |τ| + σn tan ψᵢ,
 # m = [s, tan ψᵢ]): ψᵢ = φ is the paper's rule, ψᵢ = 0 the usual engineering choice; then (6.9) is not
@@ -100,7 +104,6 @@ import numpy as np
 
 from ssi import report
 from ssi.analytical import sadowsky_pressure
-from ssi.elements.base import CONSISTENT
 from ssi.elements.interface import Interface6
 from ssi.materials.interface_law import (
     N_HIST,
@@ -112,6 +115,9 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
+from ssi.protocol import CONSISTENT
+from ssi.shapes import lagrange3
+from ssi.verify import fd_jacobian
 
 t_chapter = time.perf_counter()
 
@@ -131,8 +137,8 @@ print(
 #
 # Stiffness k_t = 20 MPa/m, k_n = 50 MPa/m, c = 8 kPa, φ = 30°. The path first presses the contact
 # (g_n = −1 mm, σn = −50 kPa), slides it forward 3 mm and back 3 mm at that normal gap, then pulls the
-# contact open (g_n = +2 mm) and presses it shut again (g_n = −1 mm). We drive it twice: with the paper's associated rule (ψᵢ = φ) and
-# without dilation (ψᵢ = 0).
+# contact open (g_n = +2 mm) and presses it shut again (g_n = −1 mm). We drive it twice: with the paper's
+# associated rule (ψᵢ = φ) and without dilation (ψᵢ = 0).
 
 # %%
 KT, KN, C, PHI = 20e6, 50e6, 8e3, 30.0
@@ -150,7 +156,7 @@ runs = {}
 for label, psi in (("ψᵢ = φ (paper, associated)", PHI), ("ψᵢ = 0 (no dilation)", 0.0)):
     prm = interface_params(KT, KN, PHI, C, psi_deg=psi)
     runs[label] = (prm, *drive_point(prm, path))
-for label, (prm, t, st, D, hist) in runs.items():
+for label, (_prm, t, st, _D, hist) in runs.items():
     print(
         f"{label:28s} states visited: {sorted({STATE_NAMES[int(s)] for s in st})}, "
         f"final sig_n = {t[-1, 1] / 1e3:.1f} kPa, slip = {hist[-1, 3] * 1e3:.2f} mm"
@@ -174,18 +180,8 @@ def point(prm, dgap, t_old, h_old, tangent=CONSISTENT):
 
 
 def fd_tangent(prm, dgap, t_old, h_old, h=1e-9):
-    cols = []
-    for j in range(2):
-        e = np.zeros(2)
-        e[j] = h
-        cols.append(
-            (
-                point(prm, np.asarray(dgap) + e, t_old, h_old)[1]
-                - point(prm, np.asarray(dgap) - e, t_old, h_old)[1]
-            )
-            / (2 * h)
-        )
-    return np.column_stack(cols)
+    """Central differences of the traction with respect to the gap increment (2 x 2)."""
+    return fd_jacobian(lambda d: point(prm, d, t_old, h_old)[1], dgap, h)
 
 
 p_assoc = interface_params(KT, KN, PHI, C)
@@ -226,7 +222,7 @@ for name, prm, dgap, t_old, h_old, expected in cases:
 
 # %%
 COULOMB_TOL = 1e-9  # relative; the return is exact for a straight yield line (round-off only)
-for label, (prm, t, st, D, hist) in runs.items():
+for _label, (_prm, t, st, _D, _hist) in runs.items():
     slip = st == SLIP
     assert slip.sum() > 10 and (st == OPEN).sum() > 5 and (st == STICK).sum() > 10
     np.testing.assert_allclose(np.abs(t[slip, 0]), C - t[slip, 1] * TAN, rtol=COULOMB_TOL)
@@ -252,7 +248,7 @@ print("all material-point checks passed")
 # %%
 fig, ax = plt.subplots(1, 3, figsize=(14, 4))
 colors = {STICK: "tab:blue", SLIP: "tab:red", OPEN: "tab:gray"}
-for (label, (prm, t, st, D, hist)), ls in zip(runs.items(), ("-", "--")):
+for (label, (_prm, t, _st, _D, _hist)), ls in zip(runs.items(), ("-", "--")):
     ax[0].plot(path[sliding, 0] * 1e3, t[sliding, 0] / 1e3, ls, label=label)
     ax[1].plot(np.arange(len(path)), t[:, 1] / 1e3, ls, label=label)
 prm, t, st, D, hist = runs["ψᵢ = 0 (no dilation)"]
@@ -385,7 +381,7 @@ def recovered_tractions(n, a=1.0, P=1.0):
         t0, t1 = math.asin(x0 / a), math.asin(x1 / a)  # x = a sin(theta) removes the edge singularity
         T, W = 0.5 * (t1 - t0) * th + 0.5 * (t1 + t0), 0.5 * (t1 - t0) * wt
         xi = 2 * (a * np.sin(T) - x0) / (x1 - x0) - 1
-        for i, Ni in enumerate((0.5 * xi * (xi - 1), 1 - xi**2, 0.5 * xi * (xi + 1))):
+        for i, Ni in enumerate(np.array([lagrange3(s)[0] for s in xi]).T):  # quadratic Lagrange N_i(xi)
             f[2 * (2 * e + i) + 1] -= (Ni * P / math.pi * W).sum()  # p dx = (P / pi) dtheta, pushing down
     res = {}
     free = np.arange(2 * nn)

@@ -34,7 +34,8 @@
 # are, for the corners (ξₐ, ηₐ = ±1) and the mid-sides,
 #
 # $$N_a = \tfrac14(1+\xi_a\xi)(1+\eta_a\eta)(\xi_a\xi+\eta_a\eta-1),\qquad
-#   N_a = \tfrac12(1-\xi^2)(1+\eta_a\eta)\ \ (\xi_a = 0),\qquad N_a = \tfrac12(1+\xi_a\xi)(1-\eta^2)\ \ (\eta_a=0).$$
+#   N_a = \tfrac12(1-\xi^2)(1+\eta_a\eta)\ \ (\xi_a = 0),\qquad
+#   N_a = \tfrac12(1+\xi_a\xi)(1-\eta^2)\ \ (\eta_a=0).$$
 #
 # They interpolate both the coordinates and the displacements (isoparametric): x = Σ Nₐ xₐ, u = Σ Nₐ uₐ. They
 # reproduce every complete quadratic in ξ, η plus ξ²η and ξη² — so a linear displacement field in x, z is
@@ -42,7 +43,8 @@
 #
 # **Strain and stress.** With z upwards and engineering shear, ε = [εxx, εzz, γxz] = B uₑ where node a
 # contributes the columns
-# $$B_a = \begin{bmatrix} \partial_x N_a & 0\\ 0 & \partial_z N_a\\ \partial_z N_a & \partial_x N_a\end{bmatrix},$$
+# $$B_a = \begin{bmatrix} \partial_x N_a & 0\\ 0 & \partial_z N_a\\
+#   \partial_z N_a & \partial_x N_a\end{bmatrix},$$
 # the physical derivatives coming from the Jacobian J = ∂(x, z)/∂(ξ, η). In plane strain εyy = 0 and the
 # out-of-plane stress σyy = ν(σxx + σzz) is kept in the state (the plastic laws need it). The elastic matrix
 # in the code's order [xx, zz, xz, yy] is λ on the normal–normal entries, λ + 2μ on their diagonal and μ for
@@ -78,13 +80,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.analytical_soil import edge_forces, lame_cylinder_displacement, strip_load_stresses
+from ssi.analytical_soil import lame_cylinder_displacement, strip_load_stresses
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.mohr_coulomb import B_APEX, B_EDGE12, B_EDGE23, B_PLANE, mc_yield
 from ssi.materials.soil_laws import ELASTIC, drive, elastic_matrix, elastic_params, mohr_coulomb_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.shapes import Q8_NODES, serendipity8
+from ssi.supports import edge_forces
+from ssi.verify import convergence_rate, dense_stiffness, distorted_q8_mesh, fd_jacobian, zero_energy_modes
 
 FAST = paths.FAST
 # Every system in this chapter is small (< 1e5 DOFs): SciPy's SuperLU factorises them in milliseconds, while
@@ -114,50 +118,26 @@ def q8_model(xy, conn, n_gauss, nu=NU):
     return model, group
 
 
-def dense_stiffness(model, group):
-    K = np.zeros((model.n_dof, model.n_dof))
-    for ed, ke in zip(group.edofs, group.elastic_stiffness()):
-        K[np.ix_(ed, ed)] += ke
-    return K
-
-
-def n_zero_modes(K, rel=1e-10):
-    ev = np.linalg.eigvalsh(K)
-    return int(np.sum(ev < rel * ev.max())), ev
-
-
-def distorted_mesh(n=3, seed=1, amplitude=0.18):
-    """n x n Q8 mesh of the unit square, interior corners moved at random, edges kept straight."""
-    m = structured_q8(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
-    rng = np.random.default_rng(seed)
-    xy, g = m.xy.copy(), m.grid
-    for i in range(2, 2 * n, 2):
-        for j in range(2, 2 * n, 2):
-            xy[g[i, j]] += amplitude / n * rng.uniform(-1, 1, 2)
-    for i in range(2 * n + 1):
-        for j in range(2 * n + 1):
-            if g[i, j] >= 0 and (i % 2) != (j % 2):
-                a, b = (g[i - 1, j], g[i + 1, j]) if i % 2 else (g[i, j - 1], g[i, j + 1])
-                xy[g[i, j]] = 0.5 * (xy[a] + xy[b])
-    return m, xy
+def q8_stiffness(xy, conn, n_gauss):
+    """The dense unsupported K0 of one Q8 group on ``conn`` (:func:`ssi.verify.dense_stiffness`)."""
+    model, group = q8_model(xy, conn, n_gauss)
+    return dense_stiffness(model.n_dof, [group])
 
 
 one_xy = Q8_NODES * [1.0, 0.75]
 one_conn = np.arange(8)[None]
 zero_single = {}
 for ng in (2, 3):
-    model, group = q8_model(one_xy, one_conn, ng)
-    zero_single[ng], ev = n_zero_modes(dense_stiffness(model, group))
+    zero_single[ng] = zero_energy_modes(q8_stiffness(one_xy, one_conn, ng))
     print(f"one element, {ng}x{ng}: {zero_single[ng]} zero-energy modes")
 
-mesh3, xy3 = distorted_mesh(3)
-model, group = q8_model(xy3, mesh3.conn, 2)
-zero_mesh, _ = n_zero_modes(dense_stiffness(model, group))
+mesh3, xy3 = distorted_q8_mesh(3)
+zero_mesh = zero_energy_modes(q8_stiffness(xy3, mesh3.conn, 2))
 print(f"unsupported distorted 3x3 mesh, 2x2: {zero_mesh} zero-energy modes")
 
 # the spurious mode of one element: the zero-energy space minus the rigid-body modes
-model, group = q8_model(one_xy, one_conn, 2)
-ev, vec = np.linalg.eigh(dense_stiffness(model, group))
+K_one = q8_stiffness(one_xy, one_conn, 2)
+ev, vec = np.linalg.eigh(K_one)
 null = vec[:, ev < 1e-10 * ev.max()]
 rigid = np.zeros((16, 3))
 rigid[0::2, 0] = 1.0
@@ -168,7 +148,7 @@ q_rigid, _ = np.linalg.qr(rigid)
 spurious = null - q_rigid @ (q_rigid.T @ null)
 spurious = spurious[:, np.argmax(np.linalg.norm(spurious, axis=0))]
 spurious /= np.abs(spurious).max()
-energy_spurious = spurious @ dense_stiffness(model, group) @ spurious
+energy_spurious = spurious @ K_one @ spurious
 print("spurious mode (u, w per node):", np.round(spurious.reshape(8, 2), 3).tolist())
 
 
@@ -212,7 +192,8 @@ for ng in (2, 3):
     stress_err = np.abs(group.stress(res.states[0]) - sig_exact).max() / np.abs(sig_exact).max()
     patch[ng] = (node_err, stress_err)
     print(
-        f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, max stress error / max |sig| = {stress_err:.2e}"
+        f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, "
+        f"max stress error / max |sig| = {stress_err:.2e}"
     )
 
 # %% [markdown]
@@ -239,7 +220,8 @@ Q, B_HALF, WINDOW = 100e3, 1.0, 4.0
 
 
 def strip_window(n, n_gauss, nu=NU, backend=BACKEND):
-    """Solve the half window with exact boundary tractions; return (n_dof, error, wall time, points, stress)."""
+    """Solve the half window with exact boundary tractions; return (n_dof, error, wall time, points,
+    stress)."""
     t0 = time.perf_counter()
     lines = np.linspace(0.0, WINDOW * B_HALF, int(WINDOW * n) + 1)
     m = structured_q8(lines, lines - WINDOW * B_HALF)
@@ -296,7 +278,7 @@ rates = {}
 for ng in (2, 3):
     arr = np.array(conv[ng])
     fit = arr[arr[:, 0] >= 2]
-    rates[ng] = np.polyfit(np.log(1.0 / fit[:, 0]), np.log(fit[:, 2]), 1)[0]
+    rates[ng] = convergence_rate(1.0 / fit[:, 0], fit[:, 2])
     print(f"{ng}x{ng}: fitted rate of the stress error in h: {rates[ng]:.2f}")
 finest_err = conv[2][-1][2]
 
@@ -305,8 +287,8 @@ finest_err = conv[2][-1][2]
 #
 # Undrained clay behaves with ν → 0.5. The standard probe is Lamé's thick cylinder in plane strain (inner
 # radius a = 1, outer b = 2, internal pressure p), whose radial displacement
-# u_r = (1+ν) p a² / (E (b² − a²)) · [(1−2ν) r + b²/r] stays finite as ν → 0.5. A quarter of the ring is meshed
-# (symmetry supports on both straight edges), with curved element edges from the polar map, on a coarse
+# u_r = (1+ν) p a² / (E (b² − a²)) · [(1−2ν) r + b²/r] stays finite as ν → 0.5. A quarter of the ring is
+# meshed (symmetry supports on both straight edges), with curved element edges from the polar map, on a coarse
 # 2 × 4 mesh and a finer 4 × 8 one. The strip-load window of §3 is run too, at ν = 0.4999.
 
 # %%
@@ -394,14 +376,7 @@ C_el = np.linalg.inv(D_el)
 
 def fd_tangent(kind, prm, deps, sig_old, h=1e-9):
     """Central differences of the updated stress with respect to the strain increment (4 x 4)."""
-    D = np.empty((4, 4))
-    for j in range(4):
-        e = np.zeros(4)
-        e[j] = h
-        sp = drive(kind, prm, [deps + e], sig_old)[0][1]
-        sm = drive(kind, prm, [deps - e], sig_old)[0][1]
-        D[:, j] = (sp - sm) / (2 * h)
-    return D
+    return fd_jacobian(lambda d: drive(kind, prm, [d], sig_old)[0][1], deps, h)
 
 
 mc_rows = []
@@ -438,7 +413,8 @@ for psi in (0.0, 10.0, 30.0):
 print(" psi  path                 branch        max|f|/c   |D - D_FD|   asymmetry   dev_p/gam_p  (sin psi)")
 for r in mc_rows:
     print(
-        f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} {r['f_max']:9.1e}   {r['fd_err']:9.1e}"
+        f"{r['psi']:4.0f}  {r['path']:20s} {BRANCH_NAMES[r['branch']]:12s} "
+        f"{r['f_max']:9.1e}   {r['fd_err']:9.1e}"
         f"   {r['asym']:9.1e}   "
         + (
             f"{r['dilatancy']:8.4f}    ({math.sin(math.radians(r['psi'])):.4f})"
@@ -465,9 +441,9 @@ print(
 # - `TOL_STRIP = 1e-3`: the finest-mesh stress error must be below 0.1 % of q, well inside what any soil
 #   parameter is known to.
 # - locking: reduced integration within 0.1 % of Lamé at every ν on the 4 × 8 mesh (the ν = 0.3 error sets
-#   the discretisation level, 3e-5); full integration more than 20 % too stiff at ν = 0.4999 on the coarse mesh.
-#   Strip window at ν = 0.4999: the full rule's mean-stress error at least 3× the reduced rule's; the reduced
-#   rule's deviatoric stress within 1 % of q (its ν = 0.3 level is 0.15 %), the full rule's not.
+#   the discretisation level, 3e-5); full integration more than 20 % too stiff at ν = 0.4999 on the coarse
+#   mesh. Strip window at ν = 0.4999: the full rule's mean-stress error at least 3× the reduced rule's; the
+#   reduced rule's deviatoric stress within 1 % of q (its ν = 0.3 level is 0.15 %), the full rule's not.
 # - Mohr–Coulomb point: after every plastic step |f| ≤ 1e-9 c (the return is exact up to round-off);
 #   consistent tangent = central differences within 1e-6 of the elastic modulus scale (h = 1e-9 on strains of
 #   2e-4: truncation ~1e-10, round-off ~1e-7 relative); asymmetric (> 1e-3) for ψ < φ and symmetric (< 1e-9)
@@ -548,19 +524,19 @@ axes[0].set_title("spurious zero-energy mode, one element, 2×2")
 n_show = 12
 axes[1].semilogy(
     np.arange(1, n_show + 1),
-    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 2))))[:n_show] + 1e-3,
+    np.abs(np.linalg.eigvalsh(q8_stiffness(one_xy, one_conn, 2)))[:n_show] + 1e-3,
     "o-",
     label="one element, 2×2",
 )
 axes[1].semilogy(
     np.arange(1, n_show + 1),
-    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(one_xy, one_conn, 3))))[:n_show] + 1e-3,
+    np.abs(np.linalg.eigvalsh(q8_stiffness(one_xy, one_conn, 3)))[:n_show] + 1e-3,
     "s-",
     label="one element, 3×3",
 )
 axes[1].semilogy(
     np.arange(1, n_show + 1),
-    np.abs(np.linalg.eigvalsh(dense_stiffness(*q8_model(xy3, mesh3.conn, 2))))[:n_show] + 1e-3,
+    np.abs(np.linalg.eigvalsh(q8_stiffness(xy3, mesh3.conn, 2)))[:n_show] + 1e-3,
     "^-",
     label="3×3 mesh, 2×2",
 )
@@ -611,7 +587,7 @@ axes[0].set_title("thick cylinder: full integration locks")
 for ng, mk in ((2, "o"), (3, "s")):
     arr = np.array(conv[ng])
     axes[1].loglog(arr[:, 3], arr[:, 2], mk + "-", label=f"{ng}×{ng}")
-    for n, n_dof, err, wall in conv[ng]:
+    for _n, n_dof, err, wall in conv[ng]:
         axes[1].annotate(f"{n_dof}", (wall, err), fontsize=7, textcoords="offset points", xytext=(3, 3))
 axes[1].set_xlabel("wall time: mesh + assembly + factorisation + solve [s]")
 axes[1].set_ylabel("max |σ_FE − σ_exact| / q")

@@ -38,11 +38,11 @@
 # It is singular at the edges (the stress concentration that tests the interface) and independent of E and ν.
 # The settlement of a half-plane is undefined (logarithmic), so only the pressure *shape* is compared.
 #
-# **Model.** A block 20a wide and 10a deep (bottom fixed, sides on vertical rollers) stands for the half-plane.
-# The punch is a plate strip 0.5a thick with E_p = 10⁵ E: its bending stiffness is ~10³·E·a³, so it stays
-# flat to within 10⁻³ of its settlement. It rests on interface elements with k_t = 0 (a smooth punch, as in
-# Sadowsky's solution) and k_n·a/E = 10⁶ (a bonded, nearly rigid contact), and is loaded by P at its middle
-# node. The interface stays in compression everywhere, so the linear solve is exact for this law.
+# **Model.** A block 20a wide and 10a deep (bottom fixed, sides on vertical rollers) stands for the
+# half-plane. The punch is a plate strip 0.5a thick with E_p = 10⁵ E: its bending stiffness is ~10³·E·a³, so
+# it stays flat to within 10⁻³ of its settlement. It rests on interface elements with k_t = 0 (a smooth punch,
+# as in Sadowsky's solution) and k_n·a/E = 10⁶ (a bonded, nearly rigid contact), and is loaded by P at its
+# middle node. The interface stays in compression everywhere, so the linear solve is exact for this law.
 #
 # **Measures.** *Pressure error*: max |p_FE/p − 1| over the integration points with |x| ≤ 0.8a (beyond that
 # the singularity dominates every mesh). *Oscillation*: the total variation of the relative deviation
@@ -77,13 +77,14 @@ from ssi import paths, report
 from ssi.analytical import hetenyi_deflection, sadowsky_pressure
 from ssi.elements.interface import add_interface
 from ssi.elements.plate import add_plate_strip
-from ssi.elements.soil_q8 import SoilQ8
 from ssi.examples import winkler_strip
 from ssi.materials.interface_law import interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block
 from ssi.model import Model
 from ssi.section import homogeneous
+from ssi.supports import fix_block, soil_group
+from ssi.verify import convergence_rate
 
 t_chapter = time.perf_counter()
 A, P = 1.0, 100e3
@@ -102,15 +103,7 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
     mesh = soil_block(WIDTH, DEPTH, foundation=(-A, A), h_fine=2 * A / n_under, h_coarse=2.0 * A, growth=1.3)
     m = Model()
     soil_ids = m.add_nodes(mesh.xy, 2)
-    m.add_group(
-        SoilQ8(
-            mesh.xy[mesh.conn],
-            m.element_dofs(soil_ids[mesh.conn]),
-            0,
-            [ELASTIC],
-            [elastic_params(E_SOIL, NU_SOIL)],
-        )
-    )
+    soil_group(m, mesh, [(ELASTIC, elastic_params(E_SOIL, NU_SOIL))], ids=soil_ids)
     contact = foundation_contact(mesh, -A, A, H_PLATE)
     plate, pids, pconn = add_plate_strip(
         m, contact.plate_xy[0::2, 0], homogeneous(H_PLATE, E_PLATE, 0.2), z=H_PLATE / 2
@@ -123,9 +116,7 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
         offset=plate.bottom_offset,
         rule=rule,
     )
-    for side in (mesh.bottom, mesh.left, mesh.right):
-        m.fix(soil_ids[side], "u")
-    m.fix(soil_ids[mesh.bottom], "w")
+    fix_block(m, mesh, soil_ids)
     mid = pids[len(pids) // 2]
     m.fix([mid], "u")  # k_t = 0: nothing else holds the punch sideways
     m.add_load([mid], "w", -P)
@@ -192,7 +183,8 @@ for kr in SWEEP:
         sweep[(kr, rule)] = (err, tv, penetration, r["w_punch"])
 print(f"mesh n_under = {SWEEP_MESH}")
 print(
-    f"{'kn a/E':>8s} {'rule':>13s} {'max err':>8s} {'TV':>7s} {'gap/settlement':>15s} {'settlement [mm]':>16s}"
+    f"{'kn a/E':>8s} {'rule':>13s} {'max err':>8s} {'TV':>7s} "
+    f"{'gap/settlement':>15s} {'settlement [mm]':>16s}"
 )
 for (kr, rule), (err, tv, pen, w) in sweep.items():
     print(f"{kr:8.0e} {rule:>13s} {err:8.4f} {tv:7.3f} {pen:15.2e} {w * 1e3:16.4f}")
@@ -246,7 +238,7 @@ tv_nc = measures(runs[(NAMED_MESH, "newton_cotes")])[1]
 tv_g = measures(runs[(NAMED_MESH, "gauss")])[1]
 osc_ratio = tv_g / tv_nc
 h = np.array([2 * A / n for n in MESHES])
-rate = np.polyfit(np.log(h), np.log([err_nc[n] for n in MESHES]), 1)[0]
+rate = convergence_rate(h, [err_nc[n] for n in MESHES])
 print(f"Newton-Cotes max error at n_under = {NAMED_MESH}: {err_nc[NAMED_MESH]:.4f} (tol {PRESSURE_TOL})")
 print(f"fitted rate of the NC error in h: {rate:.2f}")
 print(f"oscillation TV: Gauss {tv_g:.3f}, Newton-Cotes {tv_nc:.3f}, ratio {osc_ratio:.1f} (>= {OSC_MARGIN})")

@@ -41,8 +41,9 @@
 # The edge is the most stressed point, so slip starts there when τ(0) = τ_f, i.e. at
 # τ̄ = τ_f·tanh(λL)/(λL).
 #
-# *Partial slip* over 0 ≤ x ≤ s: there τ = τ_f, so N(x) = F − τ_f x falls linearly; beyond s the bar is elastic
-# with end force N(s) = F − τ_f s, and the front is where the elastic part reaches the slip gap, u(s) = τ_f/k_t:
+# *Partial slip* over 0 ≤ x ≤ s: there τ = τ_f, so N(x) = F − τ_f x falls linearly; beyond s the bar is
+# elastic with end force N(s) = F − τ_f s, and the front is where the elastic part reaches the slip gap, u(s)
+# = τ_f/k_t:
 # $$(F - \tau_f s)\,\lambda\coth\lambda(L-s) = \tau_f,$$
 # $$u(x) = \frac{(F-\tau_f s)\cosh\lambda(L-x)}{EA\,\lambda\sinh\lambda(L-s)}\ (x \ge s),\qquad
 #   u(x) = \frac{\tau_f}{k_t} + \frac{F(s-x) - \tau_f(s^2-x^2)/2}{EA}\ (x \le s).$$
@@ -78,12 +79,12 @@ from ssi import paths, report
 from ssi.analytical import shear_lag_from_slip, shear_lag_onset, shear_lag_state
 from ssi.digitize import read_reference
 from ssi.elements.interface import V_GT, Interface6, add_interface
-from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.interface_law import SLIP, interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.solver import Settings, run
+from ssi.supports import soil_group, surface_pressure
 
 t_chapter = time.perf_counter()
 EA, KT, L, TAU_F = 4000e3, 2e7, 0.6, 50e3
@@ -105,16 +106,7 @@ def shear_box(n_x, n_z, H, E, nu, params, u_max, n_steps, sigma0=0.0):
     # initial state (soil szz = interface sig_n = -sigma0) that the dead load on the top equilibrates exactly
     s0 = np.zeros((len(mesh.conn), 4, 4))
     s0[..., 1] = -sigma0
-    m.add_group(
-        SoilQ8(
-            mesh.xy[mesh.conn],
-            m.element_dofs(ids[mesh.conn]),
-            0,
-            [ELASTIC],
-            [elastic_params(E, nu)],
-            initial_stress=s0,
-        )
-    )
+    soil_group(m, mesh, [(ELASTIC, elastic_params(E, nu))], ids=ids, initial_stress=s0)
     soil_bottom = ids[mesh.bottom]  # ordered by x: the soil side of the contact
     plate = m.add_nodes(mesh.xy[mesh.bottom], 2)  # the concrete plate's nodes, fixed
     tri = np.column_stack(
@@ -127,13 +119,7 @@ def shear_box(n_x, n_z, H, E, nu, params, u_max, n_steps, sigma0=0.0):
     left = ids[mesh.left]
     m.prescribe(left, "u", u_max)
     if sigma0:
-        top = ids[mesh.surface]
-        xt = mesh.xy[mesh.surface, 0]
-        f = np.zeros(len(top))
-        for e in range(n_x):  # consistent nodal forces of a uniform pressure
-            le = xt[2 * e + 2] - xt[2 * e]
-            f[2 * e : 2 * e + 3] += -sigma0 * le * np.array([1.0, 4.0, 1.0]) / 6.0
-        m.add_dead_load(top, "w", f)
+        surface_pressure(m, mesh, 0.0, L, sigma0, z=H, ids=ids, dead=True)
     targets = np.linspace(0.0, 1.0, n_steps + 1) ** 2  # lambda = 0 first (dead load alone); finer early
     t0 = time.perf_counter()
     res = run(m, targets, SETTINGS)
@@ -209,7 +195,8 @@ def exact_check(n_x, H=0.01, n_steps=N_STEPS):
 # %%
 checks = {}
 print(
-    f"{'n_x':>4s} {'H [m]':>6s} {'beta':>7s} {'err s (s>=5cm)':>15s} {'err u(0)':>9s} {'|ds|/L (s<5cm)':>15s} "
+    f"{'n_x':>4s} {'H [m]':>6s} {'beta':>7s} {'err s (s>=5cm)':>15s} {'err u(0)':>9s} "
+    f"{'|ds|/L (s<5cm)':>15s} "
     f"{'iter':>5s} {'time [s]':>8s}"
 )
 for n_x in MESHES:
@@ -254,7 +241,8 @@ point_ids = {
     for name, x in x_points.items()
 }
 res_sc = scene["result"]
-# displacements relative to the plate; the normal stress is an initial state, so step 1 (lambda = 0) is at rest
+# displacements relative to the plate; the normal stress is an initial state, so step 1 (lambda = 0) is at
+# rest
 disp = {name: res_sc.displacement([i], "u")[:, 0] for name, i in point_ids.items()}
 disp["edge"] = scene["u_edge"]
 tau_sc = scene["tau_bar"]

@@ -57,7 +57,8 @@
 # **Prandtl's collapse pressure** of a strip footing on weightless soil (smooth or rough base — for γ = 0 both
 # give the same value):
 #
-# $$N_q = e^{\pi\tan\varphi}\tan^2(45^\circ+\varphi/2),\qquad N_c = (N_q-1)\cot\varphi\ (=2+\pi\ \text{for}\ \varphi=0),
+# $$N_q = e^{\pi\tan\varphi}\tan^2(45^\circ+\varphi/2),\qquad N_c = (N_q-1)\cot\varphi
+#   \ (=2+\pi\ \text{for}\ \varphi=0),
 #   \qquad q_u = c\,N_c + q\,N_q .$$
 #
 # It is exact for associated flow (ψ = φ). With ψ < φ no exact value exists; displacement-based FE gives
@@ -65,10 +66,10 @@
 #
 # **The footing test.** By symmetry, half of the footing (0 ≤ x ≤ B/2) on a block x ∈ [0, 6 m], z ∈ [−5 m, 0]
 # (u = 0 on x = 0 and x = 6 m, base fixed): for φ ≤ 20° the Prandtl mechanism stays within ≈ 3.5 m of the axis
-# and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also holds
-# u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and grow
-# by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking line
-# search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
+# and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also
+# holds u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and
+# grow by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking
+# line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
 # `ssi.bearing_capacity.push_footing`): plain Newton steps near the footing corner overshoot into a far
 # plastic state and diverge.
 #
@@ -88,8 +89,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.bearing_capacity import prandtl, push_footing, read_reference, rigid_footing, sg61_scene
+from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.digitize import read_reference
 from ssi.solver import NonConvergence, Settings, run
+from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 C = 10e3  # cohesion [Pa]
@@ -141,7 +144,7 @@ for phi, rough in CASES:
             TOL_PRANDTL,
             abs(errs[-1]) <= TOL_PRANDTL and all(abs(a) > abs(b) for a, b in zip(errs, errs[1:])),
         )
-    slope = np.polyfit(np.log(MESHES), np.log(np.abs(errs)), 1)[0]
+    slope = convergence_rate(MESHES, np.abs(errs))
     print(f"{rid:22s} errors {', '.join(f'{100 * e:+.2f} %' for e in errs)}   fitted order {slope:.2f}")
 
 # %% [markdown]
@@ -154,7 +157,7 @@ for phi, rough in CASES:
 # points and their settlements differ by several per cent.
 
 # %%
-ref = read_reference("smith_griffiths_p61.csv")
+_, ref = read_reference("smith_griffiths_p61.csv")
 q_ref, d_ref = ref["q_kPa"], ref["delta_m"]
 path = [
     50.0,
@@ -242,7 +245,8 @@ for psi in (20.0, 0.0) if FAST else (20.0, 10.0, 0.0):
     out = push_footing(scene, n_steps=N_STEPS, method="line_search")
     nonassoc[psi] = out
     print(
-        f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = {out['q_u'] / prandtl(C, 20.0)[0]:.4f} x Prandtl, "
+        f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = "
+        f"{out['q_u'] / prandtl(C, 20.0)[0]:.4f} x Prandtl, "
         f"iterations={out['n_iterations']}, per step max {max(out['iterations'])}, cuts={out['cuts']}, "
         f"time={out['wall_time']:.1f} s, stop: {out['failure']}"
     )
@@ -263,7 +267,8 @@ scene = rigid_footing(
 )
 coarse_steps = push_footing(scene, n_steps=12, method="line_search")
 print(
-    f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = {coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
+    f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = "
+    f"{coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
     f" x Prandtl, iterations={coarse_steps['n_iterations']}, cuts={coarse_steps['cuts']}, "
     f"stop: {coarse_steps['failure']}"
 )
@@ -290,8 +295,8 @@ print(
 # The claims: on each mesh the relaxed limit load changes by less than 1 % between 20, 40 and 80 steps
 # (`psi0_step_independence`); on h = 0.25 and 0.125 m the two settlements agree to 0.5 % (a plateau; on the
 # finest mesh of full mode the pressure still rises by 0.6 % per cm at 6 cm, reported); the h = 0.125 m value
-# is row `psi0_limit_h0125`. The limit load falls with h (first order, the rough corner) towards a value below the
-# associated one.
+# is row `psi0_limit_h0125`. The limit load falls with h (first order, the rough corner) towards a value below
+# the associated one.
 
 # %%
 PSI0_MESHES = [0.25, 0.125] if FAST else [0.25, 0.125, 0.0625]
@@ -318,7 +323,8 @@ for h in PSI0_MESHES:
         out = psi0_push(h, n)
         psi0[h, n] = out
         print(
-            f"psi=0, viscous + relaxed: h={h:6.4f} ({out['n_dof']} DOFs) {n:3d} steps: q_u = {out['q_end']:.4f} "
+            f"psi=0, viscous + relaxed: h={h:6.4f} ({out['n_dof']} DOFs) {n:3d} steps: "
+            f"q_u = {out['q_end']:.4f} "
             f"x Prandtl, {out['n_iterations']} iterations ({out['result'].relaxed_steps} relaxation steps), "
             f"{out['factorizations']} factorisation(s), {out['wall_time']:.1f} s, stop: {out['failure']}"
         )
@@ -331,7 +337,8 @@ step_change = max(
 )
 trend = [psi0[h, PSI0_STEPS[-1]]["q_end"] for h in PSI0_MESHES]
 print(
-    f"largest change of the psi=0 limit load between {PSI0_STEPS} steps over the meshes: {100 * step_change:.2f} %"
+    f"largest change of the psi=0 limit load between {PSI0_STEPS} steps over the meshes: "
+    f"{100 * step_change:.2f} %"
 )
 print("limit load / Prandtl (most steps) against h:", dict(zip(PSI0_MESHES, np.round(trend, 4))))
 
@@ -425,13 +432,15 @@ for (name, n), out in trade.items():
 # ## Verification
 
 # %%
-# Prandtl: the error shrinks under refinement in every case; the 3 % claim is made on the named mesh (full mode)
+# Prandtl: the error shrinks under refinement in every case; the 3 % claim is made on the named mesh (full
+# mode)
 for phi, rough in CASES:
     errs = [abs(prandtl_runs[phi, rough, h]["err"]) for h in MESHES]
     assert all(a > b for a, b in zip(errs, errs[1:])), (phi, rough, errs)
     if not FAST:
         assert errs[-1] <= TOL_PRANDTL, (phi, rough, errs)
-# each push levelled off: the last two steps differ by < 0.1 % of the pressure (a limit, not a hardening curve)
+# each push levelled off: the last two steps differ by < 0.1 % of the pressure (a limit, not a hardening
+# curve)
 LEVEL_TOL = 1e-3
 for key, out in prandtl_runs.items():
     assert abs(out["q"][-1] - out["q"][-2]) <= LEVEL_TOL * out["q"][-1], key

@@ -37,18 +37,20 @@
 # | soil block | 30 m × 10 m, bottom fixed, sides on rollers (Fig. 1) | `Scene(width, depth)` |
 # | layer 1 | 2 m soft clay: E = 10 MPa, ν = 0.3, γ = 18 kN/m³, c = 20 kPa, φ = 20°, ψ = 0 | `SoilLayer` |
 # | layer 2 | 8 m sand: E = 80 MPa, ν = 0.3, γ = 20 kN/m³, c = 1 kPa, φ = 35°, ψ = 5° | `SoilLayer` |
-# | foundation | 6 m long, 0.4 m deep RC strip, fc = 38 MPa, As = 1.5·10⁻³ m²/m (15 cm²/m) top and bottom at 5 cm cover, fy = 500 MPa | `Foundation`, `rc_section` |
-# | contact | kn = 4·10⁹ Pa/m, kt = 4·10⁸ Pa/m, φ_i = 25°, c_i = 0 (no tension: the beam may lift off) | `Contact` |
+# | foundation | 6 m long, 0.4 m deep RC strip, fc = 38 MPa, fy = 500 MPa | `Foundation`, `rc_section` |
+# | reinforcement | As = 1.5·10⁻³ m²/m (15 cm²/m) top and bottom at 5 cm cover | `rc_section` |
+# | contact | kn = 4·10⁹ Pa/m, kt = 4·10⁸ Pa/m, φ_i = 25°, c_i = 0, no tension (it may lift off) | `Contact` |
 # | loads | two columns at x = ±2.5 m, N = 400 kN/m each; self-weight of beam and soil | `ColumnLoad` |
 #
 # The soil starts from its geostatic stress (K0 = 1 − sin φ) in equilibrium with its weight, so the
-# displacements are those caused by the foundation. The concrete parameters E0, fr, Gf, εc come from fc by
-# the designer formulas of chapter 03 (`designer_concrete`). The strip takes the `Foundation` defaults, which
-# chapters 02 and 08 chose from evidence: each layer's own bending term
-# from the stresses at its faces (`self_bending="chord"`), and a crack band equal to the *fib* Model Code 2010 crack spacing s_r,max of the
+# displacements are those caused by the foundation. The concrete parameters E0, fr, Gf, εc come from fc by the
+# designer formulas of chapter 03 (`designer_concrete`). The strip takes the `Foundation` defaults, which
+# chapters 02 and 08 chose from evidence: each layer's own bending term from the stresses at its faces
+# (`self_bending="chord"`), and a crack band equal to the *fib* Model Code 2010 crack spacing s_r,max of the
 # nearest bars (`crack_band="spacing"`, `bar_diameter` = 16 mm here), which makes the cracked response
 # independent of the element size (chapter 08: 0.55 % spread over four meshes, against 21.5 % for the paper's
-# per-point band); the concrete layers are plane strain like the elastic ones (`plane_strain=True`, eq. 4.4). The band width 0.1 m given to `concrete_params` in the section is therefore replaced.
+# per-point band); the concrete layers are plane strain like the elastic ones (`plane_strain=True`, eq. 4.4).
+# The band width 0.1 m given to `concrete_params` in the section is therefore replaced.
 #
 # The column load is 400 kN/m. (With the former defaults — initial-modulus self-bending and a 0.1 m band — the
 # chapter used 450 kN/m; the corrected strip is softer, and at 450 kN/m its top bars reach 497 of 500 MPa,
@@ -72,6 +74,7 @@ from ssi.results import read_result, write_result
 from ssi.scene import Contact
 from ssi.section import homogeneous
 from ssi.solver import Settings
+from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 fy = 500e6
@@ -147,7 +150,7 @@ ax[0].invert_yaxis()
 ax[0].set_ylabel("settlement [mm]")
 ax[0].legend()
 xc, sn = contact["x"].ravel(), contact["sig_n"].ravel()
-for name, code in zone_codes.items():
+for name in zone_codes:
     m = contact["zone"].ravel() == name
     ax[1].plot(xc[m], -sn[m] / 1e3, "o", ms=4, label=name)
 ax[1].set_ylabel("contact pressure [kPa]")
@@ -316,8 +319,8 @@ sizes = [1.0, 0.5, 0.25]
 
 
 def midspan_moment(o):
-    """Hogging moment at x = 0 [N m/m]: the quadratic through each adjacent element's three Gauss-point moments,
-    evaluated at the shared end, averaged over the two elements."""
+    """Hogging moment at x = 0 [N m/m]: the quadratic through each adjacent element's three Gauss-point
+    moments, evaluated at the shared end, averaged over the two elements."""
     p = o.built.plate
     r = p.resultants(o.u[-1][p.edofs], o.states[-1][o.built.model.groups.index(p)])
     ends = p._x[:, [0, 2]]
@@ -349,15 +352,15 @@ study = np.array(study)
 
 def fitted_order(q):
     d = np.abs(np.diff(q))
-    return float(np.polyfit(np.log(study[:-1, 0]), np.log(d), 1)[0])
+    return convergence_rate(study[:-1, 0], d)
 
 
 order_w, order_m = fitted_order(study[:, 2]), fitted_order(study[:, 3])
 est_w = abs(study[-1, 2] - study[-2, 2]) / (2**order_w - 1) / abs(study[-1, 2])
 est_m = abs(study[-1, 3] - study[-2, 3]) / (2**order_m - 1) / abs(study[-1, 3])
 print(
-    f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson estimate of the finest "
-    f"mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}"
+    f"fitted order: settlement {order_w:.2f}, mid-span moment {order_m:.2f}; Richardson "
+    f"estimate of the finest mesh's relative error: settlement {est_w:.1%}, moment {est_m:.1%}"
 )
 fig, ax = plt.subplots(1, 3, figsize=(13, 3.5))
 ax[0].plot(study[:, 1], study[:, 2], "o-")
@@ -439,26 +442,24 @@ print(
 # the linear scene's settlement order rises with the finest halving: the row's meshes are pre-asymptotic
 assert successive[-1, 0] > successive[0, 0]
 
-# %% [markdown]
-# ## Summary
-# A scene is a handful of components; `build()` makes only the groups it needs, `solve()` returns
-# settlements, contact pressures and zones, cracks and steel stresses; the steel stress is checked against an
-# independent layer-free section calculation (0.9 %), and settlement and moment converge under mesh refinement,
-# but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and the Richardson estimate
-# of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls below the h^(1/2) that the
-# punch-edge singularity alone would allow (row `ch11_mesh_order` fails). The linear variant of the scene
-# (elastic soil, elastic strip, bonded contact), which can go one halving further, shows why: even without any
-# yield or cracking, h = 1, 0.5, 0.25 m are not yet in the asymptotic range — its settlement's successive
-# order rises from 0.55 (h = 1 → 0.25 m) to 1.16 (0.5 → 0.125 m), and its mid-span moment's changes first
-# grow (order −1.08) before they shrink at order 0.95. The row's fitted orders are those of a pre-asymptotic
-# sequence; it needs a fourth, finer mesh, and the nonlinear scene at h = 0.125 m does not finish in
-# reasonable time on this machine (full Newton cuts its steps from λ ≈ 0.4 on, the default BFGS crawls near
-# λ ≈ 0.76; measured). Yielding under the strip's edges and the contact's slip and opening may slow the
-# convergence further; that is not isolated here. A design moment from this scene needs a finer mesh than this
-# chapter can afford. An iterate stopped at 5 % residual still balances the loads in its contact resultant
-# and its base reaction to round-off (its residual is self-equilibrated), so that row is consistency only;
-# its settlement misses the converged one by 9·10⁻³, which the method check (10⁻³) catches.
-# Full Newton and the paper's modified Newton–Raphson give the same answer; the measured
-# iteration counts and wall times above are the trade between them. Beyond steel yield this particular beam forms a
-# plastic hinge at mid-span; load control then stops with a `NonConvergence` report naming the node — use
-# `run_arc_length` or displacement control (chapter 06) to follow the path further.
+# %% [markdown] ## Summary A scene is a handful of components; `build()` makes only the groups it needs,
+# `solve()` returns settlements, contact pressures and zones, cracks and steel stresses; the steel stress is
+# checked against an independent layer-free section calculation (0.9 %), and settlement and moment converge
+# under mesh refinement, but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and
+# the Richardson estimate of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls
+# below the h^(1/2) that the punch-edge singularity alone would allow (row `ch11_mesh_order` fails). The
+# linear variant of the scene (elastic soil, elastic strip, bonded contact), which can go one halving further,
+# shows why: even without any yield or cracking, h = 1, 0.5, 0.25 m are not yet in the asymptotic range — its
+# settlement's successive order rises from 0.55 (h = 1 → 0.25 m) to 1.16 (0.5 → 0.125 m), and its mid-span
+# moment's changes first grow (order −1.08) before they shrink at order 0.95. The row's fitted orders are
+# those of a pre-asymptotic sequence; it needs a fourth, finer mesh, and the nonlinear scene at h = 0.125 m
+# does not finish in reasonable time on this machine (full Newton cuts its steps from λ ≈ 0.4 on, the default
+# BFGS crawls near λ ≈ 0.76; measured). Yielding under the strip's edges and the contact's slip and opening
+# may slow the convergence further; that is not isolated here. A design moment from this scene needs a finer
+# mesh than this chapter can afford. An iterate stopped at 5 % residual still balances the loads in its
+# contact resultant and its base reaction to round-off (its residual is self-equilibrated), so that row is
+# consistency only; its settlement misses the converged one by 9·10⁻³, which the method check (10⁻³) catches.
+# Full Newton and the paper's modified Newton–Raphson give the same answer; the measured iteration counts and
+# wall times above are the trade between them. Beyond steel yield this particular beam forms a plastic hinge
+# at mid-span; load control then stops with a `NonConvergence` report naming the node — use `run_arc_length`
+# or displacement control (chapter 06) to follow the path further.

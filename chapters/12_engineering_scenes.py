@@ -43,14 +43,16 @@
 # | q | surcharge on the ground [Pa] | `Scene.surcharge` |
 # | H, M | layer depth [m], constrained modulus E(1−ν)/((1+ν)(1−2ν)) [Pa] | |
 # | N_q | exp(π tan φ) tan²(45° + φ/2) | `ssi.bearing_capacity.prandtl` |
-# | q_u | collapse pressure: the largest mean contact pressure of a push-over [Pa] | `BuiltScene.contact_force / B` |
+# | q_u | largest mean contact pressure of a push-over [Pa] | `BuiltScene.contact_force / B` |
 # | d_w | depth of the water table [m] | `Scene.water_table` |
-# | γ, γ_sat, γ_w | unit weights above / below the table, of water [N/m³] | `unit_weight`, `unit_weight_sat`, `gamma_w` |
-# | σ'_v, σ'_h, p | effective vertical and horizontal stress, pore pressure [Pa] | soil state, `BuiltScene.pore_pressure()` |
+# | γ, γ_sat, γ_w | unit weight above, below the table; water [N/m³] | `unit_weight(_sat)`, `gamma_w` |
+# | σ'_v, σ'_h, p | effective vertical, horizontal stress; pore pressure [Pa] | state; `pore_pressure()` |
 # | s_u | undrained shear strength [Pa] | `SoilLayer.undrained(..., s_u=)` |
 # | D | embedment: depth of the strip's base below the ground [m] | `Scene.embedment` |
-# | t, h | excavated thickness, depth of free water above the ground [m] | `Excavation.bottom`, `-Scene.water_table` |
-# | K_w/n, M' | pore-water penalty, constrained modulus K' + 4G/3 of the skeleton [Pa] | `SoilLayer.k_water()` |
+# | t, h | excavated thickness, depth of free water above the ground [m] | `Excavation.bottom`,
+# `-Scene.water_table` |
+# | K_w/n, M' | pore-water penalty, constrained modulus K' + 4G/3 of the skeleton [Pa] | `SoilLayer.k_water()`
+# |
 # | s', t, β | in-plane mean effective stress, deviator [Pa], (λ' + G)/(λ' + G + K_w/n) [-] | |
 
 # %%
@@ -204,7 +206,8 @@ for h in MESHES:
     nq_half[h] = half["q_u"] / q_nq - 1
     print(
         f"h = {h:5.3f} m: q_u = {curves_nq[h][2] / 1e3:6.1f} kPa, q N_q = {q_nq / 1e3:6.1f} kPa, error "
-        f"{100 * nq_err[h]:+.2f} %; half-model footing {half['q_u'] / 1e3:6.1f} kPa (gap {100 * nq_gap[h]:+.2f} %)"
+        f"{100 * nq_err[h]:+.2f} %; half-model footing {half['q_u'] / 1e3:6.1f} kPa "
+        f"(gap {100 * nq_gap[h]:+.2f} %)"
         f"  [{time.perf_counter() - t0:.1f} s]"
     )
 h_fin = MESHES[-1]
@@ -332,9 +335,10 @@ plastic_built = plastic.build()
 plastic_out = plastic_built.solve(n_steps=4, settings=PUSH)
 pstep = {r["name"]: r["last"] for r in plastic_out.phases}
 residual = plastic_out.settlement(pstep["unload"])[1] - plastic_out.settlement(pstep["weight"])[1]
+loaded = plastic_out.settlement(pstep["building"])[1] - plastic_out.settlement(pstep["weight"])[1]
 print(
     f"plastic soil: settlement left after unloading {1e3 * residual.mean():.2f} mm "
-    f"(loaded {1e3 * (plastic_out.settlement(pstep['building'])[1] - plastic_out.settlement(pstep['weight'])[1]).mean():.2f} mm)"
+    f"(loaded {1e3 * loaded.mean():.2f} mm)"
 )
 assert residual.mean() > 0.0
 
@@ -509,7 +513,8 @@ u_a, u_u = strip_a.build().solve().u[-1], strip_u.build().solve().u[-1]
 equiv_err = np.abs(u_a - u_u).max() / np.abs(u_u).max()
 print(
     f"1D: settlement / (qH/M_u) - 1 = {settle_err:.1e}, pore pressure / (q K_w/n / M_u) - 1 = {p_err:.1e} "
-    f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A vs elastic (G, nu_u) {equiv_err:.1e}"
+    f"(the water carries {100 * K_W / M_U:.1f} % of q); strip: undrained A "
+    f"vs elastic (G, nu_u) {equiv_err:.1e}"
 )
 assert max(settle_err, p_err, equiv_err) < UNDRAINED_A_TOL
 
@@ -519,15 +524,15 @@ assert max(settle_err, p_err, equiv_err) < UNDRAINED_A_TOL
 # The strip's base lies D = 1 m below the ground in a trench; beside it is 1 m of backfill (γ = 18 kN/m³),
 # below it the cohesionless, weightless sand of section 1. In the geostatic state the strip carries the
 # vertical stress of its base level, γD, and the trench walls the horizontal one, so nothing moves. Terzaghi's
-# bearing-capacity formula counts the soil above the base as a surcharge q = γD without shear strength (Terzaghi
-# 1943, *Theoretical Soil Mechanics*, §46; the depth factors of Meyerhof 1963 add the backfill's strength):
-# q_u = γD N_q for a smooth strip on weightless sand. To compare with that reference the backfill must carry
-# its weight but (almost) no shear: we make it elastic and soft (E_b = 1 kPa, so its shear stresses stay a
-# kPa or two; the unit warning fires, and is intended). A stiffer backfill raises q_u, as the depth factors
-# say; the trend with E_b is shown. The same mesh with the backfill replaced by a surcharge q = γD (section
-# 1's scene) is the limit of a strengthless backfill: its error against γD N_q is this mesh's discretisation
-# error. The embedded q_u must approach it as E_b falls (within 2 % at E_b = 1 kPa), so the tolerance against
-# γD N_q is that mesh error plus 2 %.
+# bearing-capacity formula counts the soil above the base as a surcharge q = γD without shear strength
+# (Terzaghi 1943, *Theoretical Soil Mechanics*, §46; the depth factors of Meyerhof 1963 add the backfill's
+# strength): q_u = γD N_q for a smooth strip on weightless sand. To compare with that reference the backfill
+# must carry its weight but (almost) no shear: we make it elastic and soft (E_b = 1 kPa, so its shear stresses
+# stay a kPa or two; the unit warning fires, and is intended). A stiffer backfill raises q_u, as the depth
+# factors say; the trend with E_b is shown. The same mesh with the backfill replaced by a surcharge q = γD
+# (section 1's scene) is the limit of a strengthless backfill: its error against γD N_q is this mesh's
+# discretisation error. The embedded q_u must approach it as E_b falls (within 2 % at E_b = 1 kPa), so the
+# tolerance against γD N_q is that mesh error plus 2 %.
 
 # %%
 D, GAMMA_B = 1.0, 18e3
@@ -698,7 +703,8 @@ err_sh = np.abs(d_sh / (NU / (1 - NU) * GAMMA_E * T_E) - 1).max()
 excavation_heave = max(err_heave, err_sv, err_sh)
 EXC_TOL = 1e-12
 print(
-    f"heave {1e3 * heave.mean():.4f} mm, hand gamma t (H - t)/M = {1e3 * heave_hand:.4f} mm; relative errors: "
+    f"heave {1e3 * heave.mean():.4f} mm, hand gamma t (H - t)/M = {1e3 * heave_hand:.4f} mm; "
+    "relative errors: "
     f"heave {err_heave:.1e}, d sigma_v {err_sv:.1e}, d sigma_h {err_sh:.1e}; removed elements' stress "
     f"{np.abs(sig_e[~kept]).max():.0f} Pa"
 )
@@ -766,8 +772,8 @@ record(
 # %% [markdown]
 # ## 9. A layer drained in one phase, undrained in the next
 #
-# `Phase(..., drainage={index: "undrained_A"})` makes layer `index` (0 = the top) undrained from that phase on:
-# its excess pore pressure p = −(K_w/n)(ε_v − ε_v,switch) counts the volume change from the phase's first
+# `Phase(..., drainage={index: "undrained_A"})` makes layer `index` (0 = the top) undrained from that phase
+# on: its excess pore pressure p = −(K_w/n)(ε_v − ε_v,switch) counts the volume change from the phase's first
 # state, so a consolidated state from construction is the start of a rapid loading. `"drained"` in a later
 # phase switches it back: the water force falls to zero over that phase (full consolidation), the skeleton
 # takes the load.
@@ -841,7 +847,8 @@ SWITCH_TOL = 1e-10
 print(
     f"undrained increment vs elastic (G, nu_u): {err_increment:.1e}; consolidated vs drained: "
     f"{err_consolidated:.1e}; 1D excess pore pressure {p_switch.mean() / 1e3:.4f} kPa = "
-    f"{Q_U1D / 1e3:g} kPa x {K_W / (K_W + M_SK):.4f} (error {err_p_switch:.1e}); excess after the drained fill "
+    f"{Q_U1D / 1e3:g} kPa x {K_W / (K_W + M_SK):.4f} (error {err_p_switch:.1e}); "
+    "excess after the drained fill "
     f"{np.abs(od_built.excess_pore_pressure(od_out, od_step['fill'])).max():.1f} Pa, after consolidation "
     f"{np.abs(sw_built.excess_pore_pressure(sw_out, sw_step['consolidation'])).max():.1f} Pa"
 )
@@ -886,7 +893,7 @@ for h_pond in (0.0, 1.0, 3.0):
 ref_built, ref_out = pond_runs[0.0]
 d_pond = -ref_built.soil.integration_points()[..., 1]
 pond_errors = []
-for h_pond, (b, o) in pond_runs.items():
+for h_pond, (_, o) in pond_runs.items():
     pond_errors += [
         np.abs(o.soil_stress() - ref_out.soil_stress()).max() / np.abs(ref_out.soil_stress()).max(),
         np.abs(o.u[-1] - ref_out.u[-1]).max() / np.abs(ref_out.u[-1]).max(),
@@ -895,7 +902,8 @@ for h_pond, (b, o) in pond_runs.items():
     ]
     print(
         f"h = {h_pond:3.1f} m: sigma'_v at the bottom {-o.soil_stress(1)[..., 1].min() / 1e3:6.2f} kPa, p "
-        f"{o.pore_pressure(1).max() / 1e3:6.2f} kPa, total sigma_v {-o.total_stress(1)[..., 1].min() / 1e3:6.2f} kPa;"
+        f"{o.pore_pressure(1).max() / 1e3:6.2f} kPa, "
+        f"total sigma_v {-o.total_stress(1)[..., 1].min() / 1e3:6.2f} kPa;"
         f" settlement under the load {1e3 * o.max_settlement()[1]:.3f} mm"
     )
 sub_scene = Scene(
@@ -1067,7 +1075,8 @@ record(
 # | embedment | Terzaghi's depth term γD N_q | `embedment_nq` |
 # | excavation, 1D | heave γt(H − t)/M, Δσ_v = γt, Δσ_h = ν/(1 − ν) γt | `excavation_heave` |
 # | excavation, pit | removed buoyant weight + surcharge (equilibrium) | `excavation_pit_reaction` |
-# | drained → undrained → drained | elastic (G, ν_u); Δu = Δσ_v K_w/n/(K_w/n + M'); drained end state | `undrained_switch` |
+# | drained → undrained → drained | elastic (G, ν_u); Δu = Δσ_v K_w/n/(K_w/n + M'); drained end state |
+# `undrained_switch` |
 # | ponding | σ', u independent of the pond; p, σ_v, buoyant strip by hand | `ponding_effective_stress` |
 # | undrained A, Mohr–Coulomb | t_u = (c cos φ + s'₀ sin φ − β t₀ sin φ)/(1 − β sin φ) | `undrained_a_su` |
 # | stopped phased run | completed phases kept (strip weight carried) | `phases_stopped_kept` |

@@ -61,7 +61,7 @@ import numpy as np
 
 from ssi import paths
 from ssi.analytical import hetenyi_deflection
-from ssi.analytical_soil import edge_forces, strip_centreline_compression, strip_load_stresses
+from ssi.analytical_soil import strip_centreline_compression, strip_load_stresses
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.estimate import RefinedSolver, richardson, solve_to_target
@@ -71,6 +71,7 @@ from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.report import record, save_figure
 from ssi.solver import NonConvergence, Settings
+from ssi.supports import edge_forces
 
 FAST = paths.FAST
 print("fast mode" if FAST else "full mode")
@@ -235,7 +236,8 @@ for name, (levels, solve, exact) in cases.items():
             }
         )
 print(
-    f"closed-form studies: {time.perf_counter() - t0:.1f} s; Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}"
+    f"closed-form studies: {time.perf_counter() - t0:.1f} s; "
+    f"Mindlin shear flexibility {SHEAR_FLEXIBILITY:.1e}"
 )
 print(
     f"{'case':28s} {'level':>7s} {'p':>6s} {'est. err':>10s} {'true err':>10s} {'index':>7s} "
@@ -253,14 +255,14 @@ for row in efficiency:
         )
     )
 
-# %% [markdown]
-# The index of the scene *as given* (the coarsest of each triple: what a user solving that mesh is told) is
-# the claim, for every triple the estimate does not flag itself and whose true error is at least three
-# times the closed form's own model error (the finest Hetényi triple of full mode is below it: there the
-# reference measures the Mindlin strip's shear flexibility, not the mesh; the finest strip-load triple of
-# full mode has an observed order of 5.5, so the tool flags it and tells the user not to extrapolate it); the finest level's index is printed too — it is less reliable, since there the
-# power law is extrapolated furthest and the other error sources (the Hetényi model error, the solver's
-# tolerance) are relatively largest.
+# %% [markdown] The index of the scene *as given* (the coarsest of each triple: what a user solving that mesh
+# is told) is the claim, for every triple the estimate does not flag itself and whose true error is at least
+# three times the closed form's own model error (the finest Hetényi triple of full mode is below it: there the
+# reference measures the Mindlin strip's shear flexibility, not the mesh; the finest strip-load triple of full
+# mode has an observed order of 5.5, so the tool flags it and tells the user not to extrapolate it); the
+# finest level's index is printed too — it is less reliable, since there the power law is extrapolated
+# furthest and the other error sources (the Hetényi model error, the solver's tolerance) are relatively
+# largest.
 
 # %%
 EFFICIENCY_RANGE = (0.5, 2.0)  # the band: an estimate within a factor 2 of the true error
@@ -348,7 +350,8 @@ else:
     record(
         "target_error_met",
         f"chapter-11 scene (h = 1 m, 4 m far), target_error={TARGET}: '{target.status}' (mesh order "
-        f"{p_mesh:.2f}, about {halvings_needed} halvings needed, 3 allowed; h = 0.125 m crawls at 76 % of the load); value: "
+        f"{p_mesh:.2f}, about {halvings_needed} halvings needed, 3 allowed; h = 0.125 m crawls at 76 % of "
+        "the load); value: "
         "estimated error of the finest copy solved (h/4)",
         finest_error,
         TARGET,

@@ -40,11 +40,11 @@
 # roughly 0.1–0.55, the effective friction angle's tangent 0.05–0.15, and deformation moduli 0.2–0.5 (these
 # are ranges of that compilation, not a fit to a site; a design would use the site's own data). The two
 # papers' titles, journal, volume and first pages (612, 625) were checked; the numeric ranges could not be
-# re-checked against their tables from the sources available to this project, so read them as approximate.
-# The three are sampled independently (no cross-correlation, no spatial field: each sample is a homogeneous layer —
-# the scatter of the *layer's* property, which overstates the variance of an average over a large
-# foundation). The lognormal keeps E and c positive; its parameters follow from the mean μ and CoV V as
-# σ_ln² = ln(1 + V²), μ_ln = ln μ − σ_ln²/2.
+# re-checked against their tables from the sources available to this project, so read them as approximate. The
+# three are sampled independently (no cross-correlation, no spatial field: each sample is a homogeneous layer
+# — the scatter of the *layer's* property, which overstates the variance of an average over a large
+# foundation). The lognormal keeps E and c positive; its parameters follow from the mean μ and CoV V as σ_ln²
+# = ln(1 + V²), μ_ln = ln μ − σ_ln²/2.
 #
 # The scene is the chapter-11 foundation (`ssi.examples.chapter11_foundation`) on a coarse mesh (h = 1 m under
 # the beam, 4 m far from it) with 450 kN/m per column, the load chapter 11 used before its strip was

@@ -28,12 +28,14 @@
 #
 # ## What a result file holds
 #
-# | group | content | why |
-# |---|---|---|
-# | attributes | the scene (every layer, load, section layer), the solver settings, `complete`, `stop` | rebuild the scene, know whether the run finished |
-# | `/mesh` | node coordinates, each group's connectivity and DOF table, interface point positions and weights | plot and integrate without rebuilding |
-# | `/steps` | load factor, displacements and committed integration-point states of every step | every quantity at every step |
-# | `/solver` | internal forces, iterations, residual histories, cuts, wall time | how the answer was obtained |
+# - attributes: the scene (every layer, load, section layer), the solver settings, `complete`, `stop` — to
+#   rebuild the scene and know whether the run finished;
+# - `/mesh`: node coordinates, each group's connectivity and DOF table, interface point positions and
+#   weights — to plot and integrate without rebuilding;
+# - `/steps`: load factor, displacements and committed integration-point states of every step — every
+#   quantity at every step;
+# - `/solver`: internal forces, iterations, residual histories, cuts, wall time — how the answer was
+#   obtained.
 #
 # Reading a file rebuilds the scene from its description and checks that the rebuilt mesh equals the stored
 # coordinates, so a file written by an incompatible version is refused rather than misread. Files are
@@ -272,8 +274,8 @@ record(
 #
 # - A TOML scene file maps key for key onto the `Scene` dataclasses — loads of every type, phases, contact
 #   segments, water table, embedment, undrained layers; unknown keys and load types are refused by name.
-# - `ssi run scene.toml` writes the result, a ParaView series, the figures and a summary; its numbers equal the
-#   Python API's for every example (`cli_example`).
+# - `ssi run scene.toml` writes the result, a ParaView series, the figures and a summary; its numbers equal
+#   the Python API's for every example (`cli_example`).
 # - `read_result` gives back a `SceneResult` whose every quantity equals the original exactly, phases and
 #   their solver records included (`result_roundtrip`, tolerance 0), so figures can be redrawn without the
 #   script.

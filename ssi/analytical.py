@@ -8,6 +8,8 @@ in ``reference-data`` of the project notes and in each docstring. Units: SI (m, 
 * :func:`shear_lag_state`, :func:`shear_lag_from_slip`, :func:`shear_lag_slip_length`,
   :func:`shear_lag_displacement` -- an elastic bar pushed along a rigid plate through an elastic--perfectly
   plastic interface (the exact check behind Fig. 13).
+* :func:`timoshenko_simply_supported_uniform`, :func:`timoshenko_simply_supported_point`,
+  :func:`timoshenko_cantilever` -- shear-flexible beams (the plate strip's checks, chapter 02).
 """
 
 import math
@@ -26,10 +28,13 @@ __all__ = [
     "shear_lag_onset",
     "shear_lag_slip_length",
     "shear_lag_state",
+    "timoshenko_cantilever",
+    "timoshenko_simply_supported_point",
+    "timoshenko_simply_supported_uniform",
 ]
 
 
-# ---- Sadowsky ------------------------------------------------------------------------------------------------
+# ---- Sadowsky ----------------------------------------------------------------------------------------------
 def sadowsky_pressure(x, a, P):
     """Contact pressure p(x) = P / (pi sqrt(a^2 - x^2)) (compression positive) under a rigid smooth punch of
     half-width ``a`` pressed by ``P`` per unit length into an elastic half-plane; nan for |x| >= a."""
@@ -41,7 +46,7 @@ def sadowsky_pressure(x, a, P):
     return np.where(np.abs(x) < a, p, np.nan)
 
 
-# ---- Hetenyi ---------------------------------------------------------------------------------------------------
+# ---- Hetenyi -----------------------------------------------------------------------------------------------
 def _hetenyi_lambda(k, EI, P, x):
     check_real("k", k, lo=0.0, lo_open=True, unit="N/m^2")
     check_real("EI", EI, lo=0.0, lo_open=True, unit="N m^2")
@@ -66,7 +71,7 @@ def hetenyi_moment(x, P, k, EI):
     return P / (4.0 * lam) * np.exp(-r) * (np.cos(r) - np.sin(r))
 
 
-# ---- shear lag with slip -------------------------------------------------------------------------------------
+# ---- shear lag with slip -----------------------------------------------------------------------------------
 # A bar of axial stiffness EA (per unit width) lies on a rigid plate over 0 <= x <= L, is pushed by F at x = 0
 # and is free at x = L. The interface carries tau = kt u up to |tau| = tau_f. Equilibrium EA u'' = tau(u).
 # Elastic zone: u = A cosh(lam (L - x)), lam = sqrt(kt / EA). Slip zone 0 <= x <= s: tau = tau_f, so the axial
@@ -145,3 +150,24 @@ def shear_lag_state(tau_bar, EA, kt, L, tau_f):
     s = shear_lag_slip_length(tau_bar, EA, kt, L, tau_f)
     u0 = float(shear_lag_displacement(0.0, tau_bar, EA, kt, L, tau_f)) if s < L else math.inf
     return {"s": s, "u0": u0, "tau0": min(kt * u0, tau_f)}
+
+
+# ---- Timoshenko beams ------------------------------------------------------------------------------------
+# Shear-flexible (Timoshenko) beams: bending stiffness EI and shear stiffness kGA per unit width [N m^2/m,
+# N/m]; w positive up, so a downward load is negative. Each deflection is the Euler-Bernoulli one plus the
+# shear part w_s'' = -q / kGA (closed forms, e.g. Timoshenko & Gere, *Mechanics of Materials*).
+def timoshenko_simply_supported_uniform(x, span, q, EI, kGA):
+    """Deflection w(x) [m] of a simply supported beam of ``span`` under a uniform load ``q`` [N/m/m]."""
+    x = np.asarray(x, dtype=np.float64)
+    return q * x * (span**3 - 2 * span * x**2 + x**3) / (24 * EI) + q * x * (span - x) / (2 * kGA)
+
+
+def timoshenko_simply_supported_point(span, P, EI, kGA):
+    """Mid-span deflection [m] of a simply supported beam of ``span`` under a point load ``P`` at mid-span."""
+    return P * span**3 / (48 * EI) + P * span / (4 * kGA)
+
+
+def timoshenko_cantilever(x, span, P, EI, kGA):
+    """Deflection w(x) [m] of a cantilever (clamped at x = 0) of ``span`` under a tip load ``P``."""
+    x = np.asarray(x, dtype=np.float64)
+    return P * x**2 * (3 * span - x) / (6 * EI) + P * x / kGA

@@ -1,11 +1,11 @@
 """Closed-form elastic solutions for the soil element's verification (computed here, never stored).
 
-Uniform strip load on an elastic half-plane (Boussinesq/Flamant integrated over the strip; e.g. Poulos & Davis,
-*Elastic Solutions for Soil and Rock Mechanics*, 1974, §3.3). A pressure q acts downwards on the surface z = 0
-over -b <= x <= b. For a point at depth d = -z > 0 let theta_1 and theta_2 be the angles, measured from the
-downward vertical, of the lines from the point to the left (x = -b) and right (x = +b) edges,
-theta_i = atan2(x - x_i, d). With alpha = theta_1 - theta_2 (the angle the strip subtends at the point) and
-delta = theta_2, the textbook form (compression positive) is
+Uniform strip load on an elastic half-plane (Boussinesq/Flamant integrated over the strip; e.g. Poulos &
+Davis, *Elastic Solutions for Soil and Rock Mechanics*, 1974, §3.3). A pressure q acts downwards on the
+surface z = 0 over -b <= x <= b. For a point at depth d = -z > 0 let theta_1 and theta_2 be the angles,
+measured from the downward vertical, of the lines from the point to the left (x = -b) and right (x = +b)
+edges, theta_i = atan2(x - x_i, d). With alpha = theta_1 - theta_2 (the angle the strip subtends at the point)
+and delta = theta_2, the textbook form (compression positive) is
 
     sig_z = (q/pi) [alpha + sin(alpha) cos(alpha + 2 delta)]
     sig_x = (q/pi) [alpha - sin(alpha) cos(alpha + 2 delta)]
@@ -20,11 +20,7 @@ adds syy = nu (sxx + szz).
 import numpy as np
 from scipy.integrate import quad
 
-from .quadrature import gauss_legendre
-from .shapes import lagrange3
-
 __all__ = [
-    "edge_forces",
     "flamant_strip_quadrature",
     "lame_cylinder_displacement",
     "strip_centreline_compression",
@@ -74,8 +70,8 @@ def strip_load_stresses(x, z, q, b, nu=None):
 
 def flamant_strip_quadrature(x, z, q, b, n=4000):
     """The same stresses by integrating Flamant's line-load solution over the strip (midpoint rule, ``n``
-    panels) -- an independent check of :func:`strip_load_stresses`. Flamant: a line load P (downwards) at x = s
-    gives a purely radial stress sig_rr = -2 P cos(theta) / (pi r) along e_r = (x - s, z) / r."""
+    panels) -- an independent check of :func:`strip_load_stresses`. Flamant: a line load P (downwards) at x =
+    s gives a purely radial stress sig_rr = -2 P cos(theta) / (pi r) along e_r = (x - s, z) / r."""
     s = -b + (np.arange(n) + 0.5) * (2.0 * b / n)
     dx = x - s
     r2 = dx * dx + z * z
@@ -96,36 +92,6 @@ def strip_centreline_compression(depth, q, b, E, nu):
 
     val, _ = quad(eps_zz, -depth, -1e-300 * depth, epsabs=0.0, epsrel=1e-12, limit=200)
     return val
-
-
-def edge_forces(edge_xy, traction, n_gauss=4):
-    """Consistent nodal forces of a traction on quadratic (3-node) edges.
-
-    Parameters
-    ----------
-    edge_xy : (n_edge, 3, 2) node coordinates of each edge (end, middle, end)
-    traction : callable (x, z) -> (tx, tz), vectorised over arrays of points
-    n_gauss : Gauss points along each edge (4 integrates a quadratic traction on a straight edge exactly)
-
-    Returns
-    -------
-    (n_edge, 6) forces [fx0, fz0, fx1, fz1, fx2, fz2] per edge
-    """
-    edge_xy = np.asarray(edge_xy, dtype=np.float64)
-    pts, wts = gauss_legendre(n_gauss)
-    out = np.zeros((edge_xy.shape[0], 6))
-    for xi, wq in zip(pts, wts):
-        n, dn = getattr(lagrange3, "py_func", lagrange3)(float(xi))
-        p = np.einsum("a,eak->ek", n, edge_xy)
-        t = np.einsum("a,eak->ek", dn, edge_xy)
-        jac = np.hypot(t[:, 0], t[:, 1])
-        tx, tz = traction(p[:, 0], p[:, 1])
-        tx = np.broadcast_to(tx, jac.shape)
-        tz = np.broadcast_to(tz, jac.shape)
-        for a in range(3):
-            out[:, 2 * a] += wq * jac * n[a] * tx
-            out[:, 2 * a + 1] += wq * jac * n[a] * tz
-    return out
 
 
 def lame_cylinder_displacement(r, a, b, p, E, nu):

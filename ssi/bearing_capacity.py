@@ -17,10 +17,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .elements.soil_q8 import SoilQ8
-from .materials.soil_laws import material_table, mohr_coulomb_params, von_mises_params
-from .mesh import soil_block, structured_q8, surface_pressure_forces
+from .materials.soil_laws import mohr_coulomb_params, von_mises_params
+from .mesh import soil_block, structured_q8
 from .model import Model
+from .scene import SoilLayer
 from .solver import NonConvergence, Settings, run
+from .supports import fix_block, soil_group, surface_pressure
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 
 
@@ -76,8 +78,9 @@ def rigid_footing(
 
     ``settle`` is the footing settlement at load factor 1 [m]. ``surcharge`` [Pa] acts on the ground surface
     beside the footing and, as an isotropic initial stress, everywhere (weightless soil in equilibrium).
-    ``layers``: optional list of (thickness, E, c, phi_deg, psi_deg) from the surface down, overriding the
-    single material (for the stiffness-contrast extreme).
+    ``layers``: optional list of :class:`ssi.scene.SoilLayer` from the surface down (Mohr--Coulomb: ``c`` set;
+    weightless: ``unit_weight`` 0), overriding the single material (for the stiffness-contrast extreme); their
+    thickness, E, nu, c, phi_deg and psi_deg are used (psi_deg None: associated, psi = phi).
     """
     B = check_real("B", B, lo=0.0, lo_open=True, unit="m")
     half_width = check_real("half_width", half_width, lo=0.0, lo_open=True, unit="m")
@@ -95,7 +98,15 @@ def rigid_footing(
     check_bool("rough", rough)
     check_bool("drift", drift)
     check_choice("n_gauss", n_gauss, (2, 3))
-    thick = None if layers is None else [lay[0] for lay in layers]
+    if layers is not None:
+        for i, lay in enumerate(layers):
+            check_instance(f"layers[{i}]", lay, SoilLayer)
+            if lay.c is None or lay.unit_weight != 0.0:
+                raise ValueError(
+                    f"layers[{i}] must be a weightless Mohr-Coulomb layer (c set, unit_weight 0) for the "
+                    f"rigid footing, got c={lay.c!r}, unit_weight={lay.unit_weight!r}"
+                )
+    thick = None if layers is None else [lay.thickness for lay in layers]
     mesh = soil_block(
         half_width,
         depth,
@@ -112,28 +123,23 @@ def rigid_footing(
         mats = [mohr_coulomb_params(E, nu, c, phi_deg, psi_deg, scheme=scheme, n_sub=n_sub, drift=drift)]
     else:
         mats = [
-            mohr_coulomb_params(lay[1], nu, lay[2], lay[3], lay[4], scheme=scheme, n_sub=n_sub, drift=drift)
+            mohr_coulomb_params(
+                lay.E, lay.nu, lay.c, lay.phi_deg, lay.psi_deg, scheme=scheme, n_sub=n_sub, drift=drift
+            )
             for lay in layers
         ]
-    kinds, params = material_table(mats)
-    soil = SoilQ8(
-        mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params, n_gauss=n_gauss
-    )
+    soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, n_gauss=n_gauss)
     if surcharge:
         s0 = np.zeros((soil.n_el, len(soil.gw), 4))
         s0[..., [0, 1, 3]] = -surcharge
         soil.initial_stress = s0
-    model.add_group(soil)
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
+    fix_block(model, mesh, ids)
     footing = mesh.nodes_between(0.0, 0.5 * B)
     model.prescribe(footing, "w", -settle)
     if rough:
         model.fix(footing, "u")
     if surcharge:
-        _surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, dead=True)
+        surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, ids=ids, dead=True)
     info = dict(
         B=B,
         c=c,
@@ -153,17 +159,6 @@ def rigid_footing(
         n_dof=model.n_dof,
     )
     return FootingScene(model, soil, footing, B, mesh, info)
-
-
-def _surface_pressure(model, mesh, x0, x1, p, dead=False):
-    """Load the surface x0..x1 with a pressure p [Pa] (down positive): the consistent nodal forces of
-    :func:`ssi.mesh.surface_pressure_forces`, as a dead or a reference load."""
-    nodes, f = surface_pressure_forces(mesh, x0, x1)
-    if dead:
-        model.add_dead_load(nodes, "w", -p * f)
-    else:
-        model.add_load(nodes, "w", -p * f)
-    return nodes, f
 
 
 def footing_pressure(scene: FootingScene, result):
@@ -250,14 +245,9 @@ def sg61_scene(law="von_mises", E=1e5 * 1e3, nu=0.3, cu=100e3, n_gauss=2, refine
         mat = mohr_coulomb_params(E, nu, cu, 0.0)
     else:
         raise ValueError(f"law must be 'von_mises' or 'tresca', got {law!r}")
-    kinds, params = material_table([mat])
-    soil = SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), 0, kinds, params, n_gauss=n_gauss)
-    model.add_group(soil)
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
-    _surface_pressure(model, mesh, 0.0, 2.0, 1e3)  # 1 kPa per unit load factor
+    soil = soil_group(model, mesh, [mat], ids=ids, n_gauss=n_gauss)
+    fix_block(model, mesh, ids)
+    surface_pressure(model, mesh, 0.0, 2.0, 1e3, ids=ids)  # 1 kPa per unit load factor
     centre = mesh.nodes_between(0.0, 0.0)
     return FootingScene(model, soil, centre, 4.0, mesh, dict(law=law, refine=refine))
 
@@ -270,15 +260,3 @@ def _refine_lines(lines, r):
     for a, b in zip(lines[:-1], lines[1:]):
         out.extend(a + (b - a) * np.arange(1, r + 1) / r)
     return np.array(out)
-
-
-def read_reference(name):
-    """Columns of ``reference_data/<name>`` (comment lines '#' skipped, first other line = header) as a dict
-    of float arrays."""
-    from . import paths
-
-    with open(paths.REFERENCE_DATA / name) as fh:
-        lines = [ln.strip() for ln in fh if ln.strip() and not ln.startswith("#")]
-    header = lines[0].split(",")
-    data = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]]).reshape(-1, len(header))
-    return {h: data[:, i] for i, h in enumerate(header)}

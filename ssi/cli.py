@@ -1,8 +1,8 @@
 """The command line: ``ssi run scene.toml``, ``ssi show result.h5``, ``ssi schema``.
 
 ``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene_file`) and writes, next to it unless told
-otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` + ``<name>_steps/*.vtu``
-(ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
+otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` +
+``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
 ``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
 bending moment, the status, wall time). Nothing is overwritten without ``--overwrite``.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
@@ -79,7 +79,8 @@ def summary_text(s: dict) -> str:
         lines += [
             (
                 f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
-                f"{s['x_max_contact_pressure']:.3f} m (contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"
+                f"{s['x_max_contact_pressure']:.3f} m "
+                f"(contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"
             ),
             f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m",
         ]

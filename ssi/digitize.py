@@ -175,9 +175,18 @@ def write_reference(path, meta: dict, columns: dict) -> None:
 
 
 def read_reference(path) -> tuple[dict, dict]:
-    """``(meta, columns)`` of a reference CSV; numeric columns become float arrays, others string arrays."""
+    """``(meta, columns)`` of a reference CSV; numeric columns become float arrays, others string arrays.
+
+    ``path``: a file, or the bare name of a file in ``reference_data/`` (``"janney1956_beam.csv"``). The one
+    reader of the project's reference files: ``# key: value`` comment lines (continued by ``#   ``) give
+    ``meta``, the first other line names the columns."""
+    path = Path(path)
+    if path.parent == Path(".") and not path.is_file():
+        from . import paths
+
+        path = paths.REFERENCE_DATA / path
     meta, body, last = {}, [], None
-    for line in Path(path).read_text(encoding="utf-8").splitlines():
+    for line in path.read_text(encoding="utf-8").splitlines():
         if line.startswith("#"):
             text = line[1:].strip()
             if line.startswith("#   ") and last is not None:

@@ -18,9 +18,9 @@ from .validate import check_array, check_int, check_real
 
 
 def biaxial_compression(layer, sig0, delta=0.02, n_steps=40, settings=None) -> dict:
-    """Biaxial compression of one element of ``layer`` (:class:`ssi.scene.SoilLayer`) from the effective stress
-    ``sig0`` = [sxx, szz, txz, syy] [Pa] (tension positive, txz = 0) by a top displacement ``delta`` [m] in
-    ``n_steps`` equal increments (``settings``: default full Newton).
+    """Biaxial compression of one element of ``layer`` (:class:`ssi.scene.SoilLayer`) from the effective
+    stress ``sig0`` = [sxx, szz, txz, syy] [Pa] (tension positive, txz = 0) by a top displacement
+    ``delta`` [m] in ``n_steps`` equal increments (``settings``: default full Newton).
 
     Returns a dict of per-step arrays (step 0 = the initial state): ``sig`` (n + 1, 4) effective stress
     [Pa], ``t`` = (sxx - szz) / 2 [Pa] (the in-plane deviator, > 0 in compression), ``s`` = -(sxx + szz) / 2

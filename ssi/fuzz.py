@@ -604,8 +604,8 @@ def study(n_invalid: int = 200, n_valid: int = 10, seed_value: int = 20261201) -
 
     Returns a dict: ``invalid`` (list of (case, outcome, detail)), ``valid`` (list of (case, outcome,
     detail)), ``named_fraction`` (named / invalid cases), ``escapes`` (invalid cases with any other outcome),
-    ``counts_invalid``, ``counts_valid`` (outcome -> count), ``wall_time`` [s] (after one warm-up run of the base
-    scene that compiles the kernels).
+    ``counts_invalid``, ``counts_valid`` (outcome -> count), ``wall_time`` [s] (after one warm-up run of the
+    base scene that compiles the kernels).
     """
     run_scene()  # compile the kernels first (numba's first call), so that no case's time limit counts it
     t0 = time.perf_counter()

@@ -34,13 +34,14 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 BACKENDS = ("auto", "superlu", "pardiso")
-# "auto" picks PARDISO (when installed) by the measured cost of the use, set-up included (MKL looked up once per
-# process, the symbolic analysis of a pattern kept across refactorisations). Same process, best of 3 / 10,
+# "auto" picks PARDISO (when installed) by the measured cost of the use, set-up included (MKL looked up once
+# per process, the symbolic analysis of a pattern kept across refactorisations). Same process, best of 3 / 10,
 # loaded 2-core machine (issue 16), factorisation + one back-substitution:
 #   K0 (spd, then many solves):   5.8e3 DOFs SuperLU 105 ms + 1.01 ms/solve, PARDISO 145 ms + 0.30 ms/solve;
 #                                 2.0e4 DOFs SuperLU 453 ms + 13.4 ms/solve, PARDISO 408 ms + 2.45 ms/solve
 #   K_T (refactorised each iteration, one solve): 3.1e3 DOFs SuperLU 67 + 0.3 ms, PARDISO 12 + 12 ms;
-#                                 5.8e3 DOFs 80 + 0.7 ms against 24 + 17 ms; 2.0e4 DOFs 455 + 15 against 177 + 51
+#                                 5.8e3 DOFs 80 + 0.7 ms against 24 + 17 ms; 2.0e4 DOFs 455 + 15 against 177 +
+#                                 51
 AUTO_PARDISO_MIN_DOFS = 5_000  # K0: from here the faster back-substitutions repay PARDISO's slower set-up
 AUTO_PARDISO_MIN_DOFS_REFACTORISED = 3_000  # other matrices: analysis kept, numeric phase only
 

@@ -15,8 +15,8 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
-from .elements.base import ELASTIC, NO_MATRIX
 from .linsolve import Factorization, SingularMatrix
+from .protocol import FORCES_ONLY, K0_MATRIX, ElementGroup
 from .validate import check_array, check_real
 
 COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
@@ -154,20 +154,20 @@ class Model:
         return np.ascontiguousarray(np.hstack(per_col))
 
     # ---- groups, supports, loads ----------------------------------------------------------------------
-    def add_group(self, group):
+    def add_group(self, group: ElementGroup) -> ElementGroup:
         if group.edofs.size and group.edofs.max() >= self.n_dof:
             raise ValueError(f"group {group.name!r} refers to DOFs that the model does not have")
         self.groups.append(group)
         return group
 
-    def fix(self, ids, comp, value=0.0):
+    def fix(self, ids, comp: str | int, value: float = 0.0) -> None:
         """Hold component ``comp`` of nodes ``ids`` at ``value`` (not scaled by the load factor)."""
         value = check_real("fix value", value, unit="m or rad")
         for d in self.dof(ids, comp):
             self._fixed[int(d)] = value
             self._prescribed.pop(int(d), None)
 
-    def prescribe(self, ids, comp, value):
+    def prescribe(self, ids, comp: str | int, value) -> None:
         """Prescribe displacement ``value`` of ``comp`` at ``ids``, scaled by the load factor
         (displacement control: the reaction there is the load measure)."""
         value = check_real("prescribed value", value, unit="m or rad")
@@ -175,17 +175,17 @@ class Model:
             self._prescribed[int(d)] = value
             self._fixed.pop(int(d), None)
 
-    def add_load(self, ids, comp, value):
+    def add_load(self, ids, comp: str | int, value) -> None:
         """Nodal force (or moment for 'alpha') per node, scaled by the load factor."""
         d = self.dof(ids, comp)
         self._loads.append((d, _nodal_values("load value", value, d.shape)))
 
-    def add_dead_load(self, ids, comp, value):
+    def add_dead_load(self, ids, comp: str | int, value) -> None:
         """Nodal force applied in full at every step (e.g. weight already carried by the initial stress)."""
         d = self.dof(ids, comp)
         self._dead_loads.append((d, _nodal_values("dead load value", value, d.shape)))
 
-    def add_element_load(self, edofs, f_el, dead=False):
+    def add_element_load(self, edofs: np.ndarray, f_el: np.ndarray, dead: bool = False) -> None:
         """Equivalent nodal forces of distributed loads, given per element (n_el, n_edof)."""
         target = self._dead_loads if dead else self._loads
         edofs = np.asarray(edofs).ravel()
@@ -197,7 +197,7 @@ class Model:
         target.append((edofs, f_el))
 
     # ---- what the solver needs ------------------------------------------------------------------------
-    def constrained(self):
+    def constrained(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(dofs, fixed values, prescribed reference values) of all constrained DOFs."""
         dofs = np.array(sorted(set(self._fixed) | set(self._prescribed)), np.int64)
         fixed = np.array([self._fixed.get(int(d), 0.0) for d in dofs])
@@ -209,7 +209,7 @@ class Model:
         free[self.constrained()[0]] = False
         return free
 
-    def load_vectors(self):
+    def load_vectors(self) -> tuple[np.ndarray, np.ndarray]:
         """(reference load F_ref, dead load F_dead) as global vectors; body forces of groups are dead."""
         f_ref = np.zeros(self.n_dof)
         f_dead = np.zeros(self.n_dof)
@@ -228,7 +228,7 @@ class Model:
                 scatter_vector(g.edofs, body, f_dead)
         return f_ref, f_dead
 
-    def check(self):
+    def check(self) -> None:
         """Raise ValueError for a scene that cannot be solved."""
         if not self.groups:
             raise ValueError("the scene is empty: add at least one element group")
@@ -290,7 +290,7 @@ class Model:
         }
 
     # ---- linear solution ------------------------------------------------------------------------------
-    def solve_linear(self, backend="auto"):
+    def solve_linear(self, backend: str = "auto") -> "LinearResult":
         """Solve the linear-elastic scene at load factor 1: one factorisation, one solve."""
         self.check()
         system = System(self)
@@ -319,7 +319,7 @@ class LinearResult:
     states: list
     model: Model
 
-    def at(self, ids, comp):
+    def at(self, ids, comp: str | int) -> np.ndarray:
         return self.u[self.model.dof(ids, comp)]
 
 
@@ -361,7 +361,7 @@ class System:
             gather_vector(g.edofs, u, u_el)
             gather_vector(g.edofs, du, du_el)
             if tangent is None:
-                flag = NO_MATRIX if getattr(g, "forces_only", False) else ELASTIC
+                flag = FORCES_ONLY if getattr(g, "forces_only", False) else K0_MATRIX
             else:
                 flag = tangent
             f_el, k_el, state_new = g.evaluate(u_el, du_el, state, flag)

@@ -1,7 +1,7 @@
 """Where the project keeps its inputs and outputs, and the fast/full switch.
 
-``SSI_FAST=1`` (set by ``make test`` and CI) makes chapters use coarse meshes; ``make reproduce`` runs the full
-meshes. ``SSI_ROOT`` overrides the project root (default: the folder above the installed package).
+``SSI_FAST=1`` (set by ``make test`` and CI) makes chapters use coarse meshes; ``make reproduce`` runs the
+full meshes. ``SSI_ROOT`` overrides the project root (default: the folder above the installed package).
 """
 
 import os

@@ -14,13 +14,11 @@ is driven by a prescribed deflection (displacement control, ``Model.prescribe``)
 load P per unit width; mid-span moment M = P a (per width).
 """
 
-import csv
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import paths
 from .elements.plate import add_plate_strip
 from .materials import rc
 from .materials.layer_laws import CONCRETE, ELASTIC, STEEL
@@ -37,7 +35,6 @@ __all__ = [
     "janney_materials",
     "janney_section",
     "load_path",
-    "read_reference_csv",
 ]
 
 JANNEY = {
@@ -191,25 +188,6 @@ def linear_compliance(beam: FourPointBeam):
     m.add_load([beam.load], "w", -1.0)
     lin = m.solve_linear()
     return -float(lin.at([beam.mid], "w")[0])
-
-
-def read_reference_csv(name):
-    """Read ``reference_data/<name>``: returns (header comment lines, column names, float array (n, k))."""
-    path = paths.REFERENCE_DATA / name
-    comments, rows, names = [], [], None
-    with open(path, newline="") as fh:
-        for line in fh:
-            if line.startswith("#"):
-                comments.append(line[1:].strip())
-                continue
-            if not line.strip():
-                continue
-            if names is None:
-                names = next(csv.reader([line]))
-                continue
-            rows.append([float(v) for v in next(csv.reader([line]))])
-    data = np.array(rows, np.float64).reshape(-1, len(names))
-    return comments, names, data
 
 
 JANNEY_BAR_DIAMETER = 0.0159  # No. 5 bar [m]

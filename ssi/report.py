@@ -1,10 +1,11 @@
 """The verification report: one row per checked claim, merged into ``figures/report.csv``.
 
-Chapters call :func:`record` (or :func:`record_empty` for a reference slot still waiting for data); each row
+Chapters call :func:`check` (record a claim and assert it), :func:`record` (record a number that is reported
+but not asserted) or :func:`record_empty` (a reference slot still waiting for data); each row
 lands in its own file under ``figures/report.d/`` so that chapters can run in any order or in parallel.
 ``python -m ssi.report`` merges them into ``figures/report.csv`` (``id,metric,value,tolerance,status``) and
-prints it. A FAIL row is a result, not a crash: the command still succeeds and names the FAIL rows (a chapter's
-own asserts are what stop ``make reproduce``).
+prints it. A FAIL row is a result, not a crash: the command still succeeds and names the FAIL rows (a
+chapter's own asserts are what stop ``make reproduce``).
 """
 
 import csv
@@ -32,6 +33,22 @@ def _write(row_id, metric, value, tolerance, status):
 def record(row_id: str, metric: str, value: float, tolerance: float, passed: bool) -> None:
     """Record a checked number: status PASS if ``passed`` else FAIL. ``metric`` says what ``value`` is."""
     _write(row_id, metric, f"{float(value):.6g}", f"{float(tolerance):.6g}", "PASS" if passed else "FAIL")
+
+
+def check(
+    row_id: str, metric: str, value: float, tolerance: float, passed: bool | None = None, note: str = ""
+) -> None:
+    """Record a claim and assert it, in one call: the row is written first (so a failing claim still shows
+    as FAIL in the report), then ``AssertionError`` names the row, its value and tolerance if it fails.
+
+    ``passed`` defaults to ``abs(value) <= tolerance``; pass the condition itself when the claim is another
+    (a lower bound, a monotone sequence, ...). ``note`` is added to the error message. Use :func:`record`
+    for a row that is reported but deliberately not asserted (a reproduced number outside its reference)."""
+    ok = abs(float(value)) <= float(tolerance) if passed is None else bool(passed)
+    record(row_id, metric, value, tolerance, ok)
+    if not ok:  # raised, not asserted: python -O must not turn a failed claim into a pass
+        message = f"{row_id}: value {float(value):.6g}, tolerance {float(tolerance):.6g} ({metric})"
+        raise AssertionError(f"{message} {note}".rstrip())
 
 
 def record_empty(row_id: str, metric: str) -> None:

@@ -53,7 +53,7 @@ _SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result", 
 
 # ---- atomic files ----------------------------------------------------------------------------------------
 @contextlib.contextmanager
-def atomic_path(path, overwrite=False):
+def atomic_path(path: str | os.PathLike, overwrite: bool = False):
     """Yield a temporary path in ``path``'s folder; on success it is fsynced and moved to ``path``.
 
     ``overwrite=False`` refuses an existing target (FileExistsError) before and, atomically (a hard link
@@ -103,7 +103,7 @@ def _fsync_dir(folder):
 
 
 # ---- writing ---------------------------------------------------------------------------------------------
-def group_names(model):
+def group_names(model) -> list[str]:
     """Unique name of every element group of ``model`` (a repeated name gets a suffix _2, _3, ...)."""
     names = []
     for g in model.groups:
@@ -114,7 +114,7 @@ def group_names(model):
     return names
 
 
-def element_nodes(model, edofs):
+def element_nodes(model, edofs: np.ndarray) -> np.ndarray:
     """(n_el, n_nodes_el) node ids of elements from their DOF table: each node's first DOF marks it."""
     start = np.concatenate([[0], np.cumsum(model.node_ndof)])
     node_of_dof = np.repeat(np.arange(model.n_nodes), model.node_ndof)
@@ -123,7 +123,14 @@ def element_nodes(model, edofs):
     return np.ascontiguousarray(nodes[:, first])
 
 
-def write_result(path, result, settings=None, overwrite=False, complete=None, stop=None) -> Path:
+def write_result(
+    path: str | os.PathLike,
+    result,
+    settings=None,
+    overwrite: bool = False,
+    complete: bool | None = None,
+    stop: dict | None = None,
+) -> Path:
     """Write ``result`` (SceneResult, solver Result or LinearResult) to the HDF5 file ``path``, atomically.
 
     ``complete``: whether the run reached the end of its load path; default: False if ``stop`` (the
@@ -270,8 +277,8 @@ class StoredResult:
 
     def __getitem__(self, key):
         """Mapping access with the keys of the earlier dict reader (``model``, ``u``, ``load_factor``,
-        ``coords``, ``node_ndof``, ``f_int``, ``iterations``, ``settings``, ``state``: {group: (n_kept, ...)}),
-        so scripts written against it keep working."""
+        ``coords``, ``node_ndof``, ``f_int``, ``iterations``, ``settings``, ``state``: {group: (n_kept,
+        ...)}), so scripts written against it keep working."""
         if key == "state":
             return {name: np.stack([s[i] for s in self.states]) for i, name in enumerate(self.group_names)}
         if key == "settings":
@@ -281,7 +288,7 @@ class StoredResult:
         raise KeyError(key)
 
 
-def read_info(path) -> dict:
+def read_info(path: str | os.PathLike) -> dict:
     """The file's description: format, ssi_version, kind, complete, stop, settings, scene, model, extra."""
     with h5py.File(path, "r") as h5:
         return _info(h5)
@@ -299,7 +306,7 @@ def _info(h5):
     return out
 
 
-def read_result(path):
+def read_result(path: str | os.PathLike):
     """Read a result file: a :class:`ssi.scene.SceneResult` (scene rebuilt from its description; its
     ``solver_result`` a :class:`ssi.solver.Result` when one was written) or a :class:`StoredResult`."""
     with h5py.File(path, "r") as h5:
@@ -516,7 +523,7 @@ def scene_quantities(result) -> dict:
     return out
 
 
-def solver_quantities(res, prefix="") -> dict:
+def solver_quantities(res, prefix: str = "") -> dict:
     """Every field of a :class:`ssi.solver.Result` as arrays keyed ``prefix + name`` (rows of ragged
     histories concatenated, with their lengths); None as NaN."""
     out = {}
@@ -540,7 +547,7 @@ def _number(value):
     return np.asarray(np.nan if value is None else value, np.float64)
 
 
-def max_difference(a, b, skip=()) -> tuple[float, str]:
+def max_difference(a, b, skip: tuple = ()) -> tuple[float, str]:
     """(largest absolute difference, the quantity where it occurs) between two SceneResults over
     :func:`scene_quantities`; inf for a quantity missing on one side, of another shape, or a differing
     non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity). ``skip``: parts

@@ -22,9 +22,9 @@ throughout (m, N, Pa, N/m^3); forces of the plane-strain scene are per metre of 
 What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py``):
 
 * **Loads** (``Scene.loads`` and ``Phase.loads``): :class:`SurfacePressure` on the ground, with or without a
-  foundation; :class:`StripLoad` along the strip (uniform or linear); :class:`ColumnLoad` anywhere on the strip
-  (the mesh gets a node there); :class:`StripWeight` from the section depth; :class:`Settlement` of the strip
-  (push-over: rigid or at the columns, the contact force is the load).
+  foundation; :class:`StripLoad` along the strip (uniform or linear); :class:`ColumnLoad` anywhere on the
+  strip (the mesh gets a node there); :class:`StripWeight` from the section depth; :class:`Settlement` of the
+  strip (push-over: rigid or at the columns, the contact force is the load).
 * **The geostatic state** is in equilibrium with everything that acts before the structural loads: the soil's
   weight, the ``surcharge`` on the ground (a dead surface load, so nothing moves before the loads), the
   overburden of an embedded strip (the strip starts carrying the geostatic vertical stress of its base level,
@@ -59,7 +59,7 @@ from .elements.plate import INTEGRATIONS, PlateStrip
 from .elements.soil_q8 import SoilQ8
 from .materials.concrete import P_E0, P_FR
 from .materials.interface_law import interface_params
-from .materials.layer_laws import CONCRETE, P_LS, STEEL, layer_update
+from .materials.layer_laws import CONCRETE, STEEL
 from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
 from .materials.soil_laws import (
     GAMMA_W,
@@ -72,7 +72,9 @@ from .materials.soil_laws import (
 from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model, System
 from .section import Section
+from .shapes import lagrange3
 from .solver import NonConvergence, Settings, run
+from .supports import fix_block
 from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
 
 
@@ -81,9 +83,9 @@ class SoilLayer:
     """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi.
 
     Fields: ``thickness`` [m]; ``E`` Young's modulus [Pa] (drained, or undrained E_u); ``nu`` Poisson's ratio
-    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay) or
-    None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient [-]
-    on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
+    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay)
+    or None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient
+    [-] on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
     [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
     (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
     modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
@@ -244,9 +246,9 @@ class Contact:
     """Foundation--soil interface (Coulomb). ``phi_deg=None``: bonded and elastic (never slips or opens).
 
     Fields: ``kn``, ``kt`` normal and tangential stiffness [Pa/m]; ``phi_deg`` interface friction angle [deg];
-    ``c`` adhesion [Pa]; ``psi_deg`` dilation angle [deg] -- the default 0 (slip without dilation) is the usual
-    engineering choice for a concrete--soil contact, ``None`` gives the paper's associated rule (psi = phi);
-    ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss".
+    ``c`` adhesion [Pa]; ``psi_deg`` dilation angle [deg] -- the default 0 (slip without dilation) is the
+    usual engineering choice for a concrete--soil contact, ``None`` gives the paper's associated rule (psi =
+    phi); ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss".
     """
 
     kn: float
@@ -553,10 +555,7 @@ class Scene:
         if weights.any() or self.surcharge:
             soil.initial_stress = self._geostatic(soil.integration_points()[..., 1])
         model.add_group(soil)
-        model.fix(mesh.bottom, "u")
-        model.fix(mesh.bottom, "w")
-        model.fix(mesh.left, "u")
-        model.fix(mesh.right, "u")
+        fix_block(model, mesh, soil_ids)
         built = BuiltScene(self, model, mesh, soil)
         owner = [next(i for i, lay in enumerate(self.layers) if lay is own) for _, own, _ in mesh_layers]
         built.element_layer = np.array(owner, np.int64)[mesh.el_layer]
@@ -596,7 +595,8 @@ class Scene:
 
     def _mesh_layers(self):
         """[(thickness, layer, body-force unit weight)] with the layer that holds the water table split there:
-        gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective stress)."""
+        gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective
+        stress)."""
         d_w = math.inf if self.water_table is None else float(self.water_table)
         if self.water_table is not None and not np.isfinite(d_w):
             raise ValueError(f"water_table must be a finite depth below the ground [m] or None, got {d_w}")
@@ -627,9 +627,9 @@ class Scene:
         return geostatic_stress(z, layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w)
 
     def _ground_loads(self, built):
-        """Dead loads that hold the geostatic state in place (without the soil's own weight, a body force of the
-        soil group): the surcharge on the ground beside the strip and the horizontal geostatic stress on the
-        walls of an embedded strip's trench."""
+        """Dead loads that hold the geostatic state in place (without the soil's own weight, a body force of
+        the soil group): the surcharge on the ground beside the strip and the horizontal geostatic stress on
+        the walls of an embedded strip's trench."""
         mesh, model = built.mesh, built.model
         f_vec = np.zeros(model.n_dof)
         half = 0.5 * self.width
@@ -662,7 +662,7 @@ class Scene:
         for i in range(0, len(nodes) - 2, 2):
             za = z[i : i + 3]
             for s, w in zip(xi, wt):
-                n = _lagrange_row(s)
+                n = lagrange3(s)[0]
                 sxx = self._geostatic(np.array([n @ za]))[0, 0]
                 f[i : i + 3] += n * sxx * normal * w * 0.5 * (za[2] - za[0])
         return nodes, f
@@ -998,8 +998,8 @@ class BuiltScene:
         return f_vec, held
 
     def _submerged_depth(self) -> float:
-        """Thickness [m] of the strip below the water level: the water pressure on its base exceeds that on its
-        top by gamma_w times it (the strip's buoyancy, netted in :class:`StripWeight`)."""
+        """Thickness [m] of the strip below the water level: the water pressure on its base exceeds that on
+        its top by gamma_w times it (the strip's buoyancy, netted in :class:`StripWeight`)."""
         if self.scene.water_table is None:
             return 0.0
         t = self.plate.section.thickness
@@ -1031,15 +1031,15 @@ class BuiltScene:
             self.model._fixed.pop(d, None)
 
     def pore_pressure(self) -> np.ndarray:
-        """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el, n_ip);
-        the total stress is the state's effective stress minus it on the normal components."""
+        """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el,
+        n_ip); the total stress is the state's effective stress minus it on the normal components."""
         z = self.soil.integration_points()[..., 1]
         return pore_pressure(z, self.scene.water_table, gamma_w=self.scene.gamma_w)
 
     def excess_pore_pressure(self, out, k=-1) -> np.ndarray:
-        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's integration
-        points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers (and in a layer's drained phases,
-        see ``Phase.drainage``) and in excavated elements."""
+        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's
+        integration points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers (and in a layer's
+        drained phases, see ``Phase.drainage``) and in excavated elements."""
         config = self.soil_configuration(out, k) if out.phases else None
         try:
             if config is not None:
@@ -1354,31 +1354,19 @@ class SceneResult:
         """Layer strains and stresses of the foundation at its axial sampling points.
 
         Returns a dict: ``x`` (n_el, n_ip), ``z`` (n_layer,) layer mid-depths above the reference surface,
-        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers whose
-        largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
+        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers
+        whose largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
         """
         plate = self.built.plate
         sec = plate.section
         u_el = self.u[k][plate.edofs]
         state = self._group_state(plate, k)
-        eps, gam = plate.layer_strains(u_el)
-        length = plate._x[:, 2] - plate._x[:, 0]
-        sig = np.zeros_like(eps)
+        eps, _ = plate.layer_strains(u_el)
+        sig, _ = plate.layer_stresses(u_el, state)
         cracked = np.zeros(eps.shape, bool)
-        h_new = np.zeros(state.shape[-1])
-        for e in range(plate.n_el):
-            for q in range(plate.n_ip):
-                for n in range(sec.n_layer):
-                    prm = sec.params[n].copy()
-                    if plate.band[n]:
-                        prm[P_LS] = 0.5 * plate.wt[q] * length[e]
-                    hist = state[e, q, n]
-                    sig[e, q, n] = layer_update(sec.kind[n], prm, eps[e, q, n], gam[e, q], hist, h_new, 0)[0]
-                    if sec.kind[n] == CONCRETE:
-                        cracked[e, q, n] = hist[1] > prm[P_FR] / prm[P_E0]
-        x_pts = np.array(
-            [[np.dot(_lagrange_row(xi), plate._x[e]) for xi in plate.xi] for e in range(plate.n_el)]
-        )
+        for n in np.flatnonzero(sec.kind == CONCRETE):  # history slot 1: the largest tensile strain
+            cracked[..., n] = state[..., n, 1] > sec.params[n, P_FR] / sec.params[n, P_E0]
+        x_pts = plate.point_x()
         axial = plate.ax.astype(bool)
         return {
             "x": x_pts[:, axial],
@@ -1496,7 +1484,3 @@ class SceneResult:
         total_n = sum(load.N for load in self.built.scene.loads if isinstance(load, ColumnLoad))
         settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
         return {"load_factor": lam, "column_load": lam * total_n, "settlement": settle}
-
-
-def _lagrange_row(xi):
-    return np.array([0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)])

@@ -44,9 +44,10 @@ A load table names its class with ``type`` (:data:`LOAD_TYPES`: ``ColumnLoad`` -
 without ``type`` is a column --, ``SurfacePressure``, ``StripLoad``, ``StripWeight``, ``Settlement``); its
 other keys are that class's fields. Phases are ``[[phases]]`` tables (``name``, ``factors = {earlier = 0.0}``,
 ``n_steps``, ``drainage = {1 = "undrained_A"}`` by layer index) with their loads in ``[[phases.loads]]`` and
-their excavations in ``[[phases.excavate]]`` (``x0``, ``x1``, ``bottom``, ``top`` [m]); ``embedment``, ``water_table`` and ``gamma_w`` are
-top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of
-:class:`ssi.scene.ContactSegment` tables (``x0``, ``x1`` and a ``[contact.contact]`` table)::
+their excavations in ``[[phases.excavate]]`` (``x0``, ``x1``, ``bottom``, ``top`` [m]); ``embedment``,
+``water_table`` and ``gamma_w`` are top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or
+a list ``[[contact]]`` of :class:`ssi.scene.ContactSegment` tables (``x0``, ``x1`` and a
+``[contact.contact]`` table)::
 
     [[contact]]
     x0 = -1.0
@@ -56,8 +57,8 @@ top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or a list 
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.section.rc_section` with ``bars = [[z, As],
 ...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``, see
-:func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.section.Section` fields themselves (z_mid, h,
-kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files store.
+:func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.section.Section` fields themselves (z_mid,
+h, kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files store.
 """
 
 import dataclasses

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
+from .protocol import K0_MATRIX
 from .quadrature import layer_rule
 from .validate import check_array, check_int, check_real
 
@@ -39,7 +40,8 @@ class Section:
 
     ``z_bottom``/``z_top`` are the faces relative to the reference surface (``z_bottom < 0 < z_top`` when the
     reference is inside the section). The interface element attaches to the bottom face: its upper nodes move
-    with ``u_g = u_b - z_bottom * alpha_b`` (paper eq. 6.1 with ``-z_bottom = h/2`` for a mid-depth reference).
+    with ``u_g = u_b - z_bottom * alpha_b`` (paper eq. 6.1 with ``-z_bottom = h/2`` for a mid-depth
+    reference).
     """
 
     z_mid: np.ndarray
@@ -137,7 +139,7 @@ class Section:
         hist0 = np.zeros(N_LAYER_HIST)
         hist1 = np.zeros(N_LAYER_HIST)
         for n in range(self.n_layer):
-            _, _, e0[n], g0[n] = layer_update(self.kind[n], self.params[n], 0.0, 0.0, hist0, hist1, 0)
+            _, _, e0[n], g0[n] = layer_update(self.kind[n], self.params[n], 0.0, 0.0, hist0, hist1, K0_MATRIX)
         return e0, g0
 
     def elastic_resultant_stiffness(self, kappa: float = 5.0 / 6.0) -> dict:
@@ -178,7 +180,9 @@ def _pad_params(params_list) -> np.ndarray:
     return out
 
 
-def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=()) -> Section:
+def layered(
+    thicknesses, kinds, params, carries_shear=None, z_ref: float | None = None, labels: tuple = ()
+) -> Section:
     """A section from layer thicknesses listed from the bottom face upwards.
 
     Parameters
@@ -223,7 +227,9 @@ def layered(thicknesses, kinds, params, carries_shear=None, z_ref=None, labels=(
     )
 
 
-def homogeneous(thickness: float, E: float, nu: float, n_layers: int = 1, z_ref=None) -> Section:
+def homogeneous(
+    thickness: float, E: float, nu: float, n_layers: int = 1, z_ref: float | None = None
+) -> Section:
     """A linear-elastic homogeneous section split into ``n_layers`` equal layers."""
     thickness = check_real("thickness", thickness, lo=0.0, lo_open=True, unit="m")
     check_real("E", E, lo=0.0, lo_open=True, unit="Pa")
@@ -247,7 +253,7 @@ def _allocate(n_total: int, gaps: np.ndarray) -> np.ndarray:
     return n
 
 
-def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref=None) -> Section:
+def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref: float | None = None) -> Section:
     """A reinforced-concrete section: concrete layers with smeared bar layers between them.
 
     Parameters
@@ -324,20 +330,20 @@ def paper_rc_section(
 def with_crack_spacing_band(
     section: Section, bar_diameter: float, tension_stiffening: str = "all"
 ) -> tuple[Section, list]:
-    """Copy of an RC ``section`` whose concrete layers get the crack band width ls = s_r,max of *fib* Model Code
-    2010 (``ssi.materials.rc.crack_spacing_mc2010``): one band per crack, so that a band dissipates Gf per crack
-    whatever the element size (chapter 08).
+    """Copy of an RC ``section`` whose concrete layers get the crack band width ls = s_r,max of *fib* Model
+    Code 2010 (``ssi.materials.rc.crack_spacing_mc2010``): one band per crack, so that a band dissipates Gf
+    per crack whatever the element size (chapter 08).
 
-    The bars nearest each face set that face's spacing: concrete layers below mid-depth take the spacing of the
-    lowest bar layer, layers above that of the topmost one; a face with no bar layer in its half of the depth
-    takes the other face's spacing. Per face: c = clear cover to the bar surface, d = depth to the bar centroid
-    from the opposite face, As = the bar layer's equivalent thickness (per unit width), alpha_e = Es / E0.
-    ``tension_stiffening``: "all" keeps every concrete layer's alpha_ts (the rule of chapter 03: every cracked
-    layer stiffened); "effective_area" keeps it only in the layers whose mid-depth lies within the effective
-    tension depth h_c,ef (the same MC2010 / EC2 7.3.2 value, min(2.5 (h - d), (h - x)/3, h/2)) of a face that
-    has its own bars, where bond transfers stress from the bars into the concrete between cracks; the other
-    concrete layers soften to zero as plain concrete (alpha_ts = 0).
-    Returns ``(section, spacings)`` with one ``crack_spacing_mc2010`` dict per face used (bottom, top)."""
+    The bars nearest each face set that face's spacing: concrete layers below mid-depth take the spacing of
+    the lowest bar layer, layers above that of the topmost one; a face with no bar layer in its half of the
+    depth takes the other face's spacing. Per face: c = clear cover to the bar surface, d = depth to the bar
+    centroid from the opposite face, As = the bar layer's equivalent thickness (per unit width), alpha_e = Es
+    / E0. ``tension_stiffening``: "all" keeps every concrete layer's alpha_ts (the rule of chapter 03: every
+    cracked layer stiffened); "effective_area" keeps it only in the layers whose mid-depth lies within the
+    effective tension depth h_c,ef (the same MC2010 / EC2 7.3.2 value, min(2.5 (h - d), (h - x)/3, h/2)) of a
+    face that has its own bars, where bond transfers stress from the bars into the concrete between cracks;
+    the other concrete layers soften to zero as plain concrete (alpha_ts = 0). Returns ``(section, spacings)``
+    with one ``crack_spacing_mc2010`` dict per face used (bottom, top)."""
     from .materials.concrete import P_E0
     from .materials.layer_laws import CONCRETE, STEEL
     from .materials.rc import _positive, crack_spacing_mc2010, with_crack_band

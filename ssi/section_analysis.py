@@ -3,19 +3,20 @@
 Two section analyses live here. :func:`moment_curvature` is the *discrete* section of the layered strip: the
 same layer laws (``ssi.materials.layer_laws.layer_update``), the same layers (``ssi.section.Section``) and the
 same self-bending term, but none of the element code -- it checks the element along the span.
-:func:`layer_free_moment_curvature` forgets the layers: it integrates the continuous stress profile through the
-depth by adaptive quadrature, so it also sees the error of the layer rule (chapter 02, row
-``section_selfbending``; chapter 08, ``fig12_curvature_integral``). For the discrete one: Plane sections remain plane,
+:func:`layer_free_moment_curvature` forgets the layers: it integrates the continuous stress profile through
+the depth by adaptive quadrature, so it also sees the error of the layer rule (chapter 02, row
+``section_selfbending``; chapter 08, ``fig12_curvature_integral``). For the discrete one: Plane sections
+remain plane,
 
     eps(z) = eps0 - z kap,      N = sum h_n sig_n = 0 (no axial force in a simply supported beam),
     M = -sum h_n z_n sig_n + sum e_n h_n^3/12 kap      (sagging positive, per unit width),
 
 the second term being the within-layer bending with the layer's initial (e_n = e0_n) or tangent modulus,
 the same discrete section model as the plate strip's ``self_bending`` option (see ``ssi.elements.plate``).
-The curvature is raised monotonically in small steps; at each step eps0 solves N = 0 (Newton on A = dN/deps0, bisection if Newton stalls) and
-the layer histories are committed, so the section follows the same loading path as a section of the
-beam whose moment grows monotonically. The shear stiffness of the section in that state is
-S = kappa_s sum_{shear layers} g_t,n h_n (cracked layers with their shear retention beta).
+The curvature is raised monotonically in small steps; at each step eps0 solves N = 0 (Newton on A = dN/deps0,
+bisection if Newton stalls) and the layer histories are committed, so the section follows the same loading
+path as a section of the beam whose moment grows monotonically. The shear stiffness of the section in that
+state is S = kappa_s sum_{shear layers} g_t,n h_n (cracked layers with their shear retention beta).
 
 For a statically determinate beam the deflection follows from virtual work without any element:
 
@@ -34,6 +35,7 @@ import numpy as np
 
 from .materials.concrete import P_LS
 from .materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
+from .protocol import CONSISTENT
 from .section import Section
 
 __all__ = [
@@ -276,10 +278,10 @@ def _envelope(kind, prm, eps):
 
     h0 = np.zeros(N_LAYER_HIST)
     h1 = np.zeros(N_LAYER_HIST)
-    sig = layer_update(kind, prm, eps, 0.0, h0, h1, 1)[0]
+    sig = layer_update(kind, prm, eps, 0.0, h0, h1, CONSISTENT)[0]
     if kind == CONCRETE:
         h0[H_XMAX], h0[H_EMAX] = max(-eps, 0.0), max(eps, 0.0)
-    g_t = layer_update(kind, prm, eps, 1.0, h0, h1, 1)[3]
+    g_t = layer_update(kind, prm, eps, 1.0, h0, h1, CONSISTENT)[3]
     return sig, g_t
 
 
@@ -300,9 +302,10 @@ def _axial_force(eps0, section, kap, ls, kappa_s, N_target):
 
 
 def layer_free_state(section: Section, kap: float, N: float = 0.0, ls=None, kappa_s=5.0 / 6.0):
-    """The layer-free section at curvature ``kap`` (either sign) carrying the axial force ``N`` (per unit width):
-    Brent's method on N(eps0) between the all-compressed and the all-tensile strain planes, then
-    :func:`layer_free_resultants`. Returns ``(eps0, M, S)``; raises ValueError if the section cannot carry N."""
+    """The layer-free section at curvature ``kap`` (either sign) carrying the axial force ``N`` (per unit
+    width): Brent's method on N(eps0) between the all-compressed and the all-tensile strain planes, then
+    :func:`layer_free_resultants`. Returns ``(eps0, M, S)``; raises ValueError if the section cannot carry
+    N."""
     from scipy.optimize import brentq
 
     if kap == 0.0:
@@ -333,8 +336,8 @@ def layer_free_resultants(
     section: Section, eps0: float, kap: float, ls=None, kappa_s=5.0 / 6.0, epsrel: float = 1e-10
 ):
     """N, M, S of the section at (eps0, kap) with every fibre loaded monotonically to its strain, by
-    adaptive quadrature (``scipy.integrate.quad``) of the continuous stress profile sig(eps0 - z kap) over each
-    material interval, with breakpoints where the strain crosses a kink of the law (cracking, end of
+    adaptive quadrature (``scipy.integrate.quad``) of the continuous stress profile sig(eps0 - z kap) over
+    each material interval, with breakpoints where the strain crosses a kink of the law (cracking, end of
     softening and of tension stiffening, crushing, steel yield). No layers and no self-bending term: the
     reference the layered rule converges to. Returns ``(N, M, S)`` per unit width."""
     from scipy.integrate import quad

@@ -39,10 +39,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .elements.base import CONSISTENT
 from .linsolve import BACKENDS, Factorization
 from .model import Model, System
 from .progress import SolverProgress, announce_compilation, log, solver_progress
+from .protocol import CONSISTENT
 from .validate import check_bool, check_choice, check_int, check_real
 
 METHODS = ("bfgs", "modified", "full")
@@ -59,7 +59,8 @@ _DESIRED_ITER = {"bfgs": 20, "modified": 60, "full": 8}
 
 @dataclass
 class Settings:
-    """Solver options. The defaults solve ordinary nonlinear scenes; :meth:`paper` gives the paper's algorithm.
+    """Solver options. The defaults solve ordinary nonlinear scenes; :meth:`paper` gives the paper's
+    algorithm.
 
     ``method``: ``"bfgs"`` (default) -- quasi-Newton (L-BFGS) updates of the one K0 factorisation with a line
     search; ``"modified"`` -- the paper's modified Newton-Raphson (K0 for every iteration); ``"full"`` --
@@ -226,8 +227,8 @@ class Result:
             return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
         if self.collapsed and self.limit_load_upper is not None:
             return (
-                f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent equilibrium "
-                f"found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
+                f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent "
+                f"equilibrium found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
             )
         if self.collapsed:
             return (
@@ -1084,7 +1085,8 @@ def run_arc_length(
     increment ``first_increment``. With ``method="modified"`` both K0 solves (for the reference load and for
     the residual) reuse the one factorisation of K0. The sign of each predictor follows the previous step's
     direction, so the path turns over a limit point instead of stalling there. A step whose constraint has no
-    real root, or that does not converge, is retried with half the arc (down to ``min_arc_ratio`` of the first).
+    real root, or that does not converge, is retried with half the arc (down to ``min_arc_ratio`` of the
+    first).
 
     Only force loads (``Model.add_load``) are scaled; prescribed displacements are not supported here (use
     :func:`run`, i.e. displacement control, for those). Stops after ``n_steps`` steps or once the load factor

@@ -11,6 +11,7 @@ import numpy as np
 
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import elastic_params, material_table, mohr_coulomb_params, von_mises_params
+from ssi.protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX
 
 DATA = Path(__file__).parent / "data" / "soil_kernel_v0.npz"
 N_EL = 120
@@ -51,7 +52,7 @@ def outputs():
     out = {}
     for n_gauss in (2, 3):
         group, du_el, state = case(n_gauss)
-        for tangent in (-1, 0, 1):
+        for tangent in (FORCES_ONLY, K0_MATRIX, CONSISTENT):  # tags t0, t1, t2 (flag + 1)
             f, k, new = group.evaluate(du_el, du_el, state, tangent)
             tag = f"g{n_gauss}_t{tangent + 1}"
             out[f"f_{tag}"] = f

@@ -4,11 +4,11 @@ Tresca footing instead of failing there as load control does."""
 import numpy as np
 import pytest
 
-from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import elastic_params, von_mises_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
 from ssi.solver import Settings, run, run_arc_length
+from ssi.supports import fix_block, soil_group, surface_pressure
 
 PRANDTL = 2.0 + np.pi  # q_u / c_u of a smooth strip footing on weightless Tresca soil
 
@@ -19,18 +19,9 @@ def footing(kind, params, q_ref):
     mesh = structured_q8([0.0, 1.0, 2.0, 3.0, 4.0, 5.5, 7.0, 9.0, 12.0], np.linspace(-5.0, 0.0, 5))
     model = Model()
     model.add_nodes(mesh.xy, 2)
-    model.add_group(SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [kind], [params]))
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
-    top = mesh.nodes_between(0.0, 2.0)
-    f = np.zeros(len(top))
-    for k in range(0, len(top) - 2, 2):  # consistent nodal forces of a uniform pressure on quadratic edges
-        f[k : k + 3] += (
-            -q_ref * (mesh.xy[top[k + 2], 0] - mesh.xy[top[k], 0]) * np.array([1.0, 4.0, 1.0]) / 6.0
-        )
-    model.add_load(top, "w", f)
+    soil_group(model, mesh, [(kind, params)])
+    fix_block(model, mesh)
+    top, _ = surface_pressure(model, mesh, 0.0, 2.0, q_ref)
     return model, top
 
 

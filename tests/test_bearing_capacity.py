@@ -13,7 +13,9 @@ import math
 import numpy as np
 import pytest
 
-from ssi.bearing_capacity import prandtl, push_footing, read_reference, rigid_footing, sg61_scene
+from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.digitize import read_reference
+from ssi.scene import SoilLayer
 from ssi.solver import Settings, run
 
 COARSE = dict(half_width=6.0, depth=5.0, h_fine=0.5, h_coarse=1.0, growth=1.25)
@@ -59,7 +61,7 @@ def test_bad_footing_input_raises():
 
 def test_smith_griffiths_program_6_1_within_3_percent_up_to_500_kpa():
     """Peer regression (trust B; the peer's own iteration tolerance is 1e-3, hence 3 % is a safe bound)."""
-    ref = read_reference("smith_griffiths_p61.csv")
+    _, ref = read_reference("smith_griffiths_p61.csv")
     scene = sg61_scene("von_mises")
     path = [100.0, 200.0, 300.0, 350.0, 400.0, 450.0, 480.0, 500.0]
     res = run(scene.model, path, Settings(method="full", stepping="fixed", backend="superlu"))
@@ -131,8 +133,10 @@ def test_phi_45_converges_or_reports():
 def test_stiffness_contrast_1e4():
     """A 2 m soft top layer on a 10⁴ times stiffer base (elastic-like: c = 100 MPa). The φ = 0 mechanism of a
     2 m footing reaches B/√2 ≈ 1.4 m deep, so the limit equals the homogeneous one on the same mesh."""
-    homog = q_u(c=C, phi_deg=0.0, layers=[(2.0, 20e6, C, 0.0, 0.0), (3.0, 20e6, C, 0.0, 0.0)])
-    layered = q_u(c=C, phi_deg=0.0, layers=[(2.0, 20e6, C, 0.0, 0.0), (3.0, 20e10, 1e8, 0.0, 0.0)])
+    top = SoilLayer(2.0, E=20e6, nu=0.3, c=C, phi_deg=0.0, psi_deg=0.0)
+    homog = q_u(c=C, phi_deg=0.0, layers=[top, SoilLayer(3.0, E=20e6, nu=0.3, c=C, phi_deg=0.0, psi_deg=0.0)])
+    base = SoilLayer(3.0, E=20e10, nu=0.3, c=1e8, phi_deg=0.0, psi_deg=0.0)
+    layered = q_u(c=C, phi_deg=0.0, layers=[top, base])
     assert layered["failure"] is None
     assert layered["q_u"] == pytest.approx(homog["q_u"], rel=0.01)
     assert math.isfinite(layered["q_u"])
@@ -143,10 +147,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
     """Two layers with different γ and K0 (default 1 − sin φ and a given one): the geostatic stress balances
     the self-weight exactly (2×2 Gauss integrates the linear stress and the body force exactly, layer
     boundaries are mesh lines), so the solver finds zero displacement and the law stays elastic."""
-    from ssi.elements.soil_q8 import SoilQ8
-    from ssi.materials.soil_laws import elastic_params, geostatic_stress, material_table, mohr_coulomb_params
+    from ssi.materials.soil_laws import elastic_params, geostatic_stress, mohr_coulomb_params
     from ssi.mesh import soil_block
     from ssi.model import Model
+    from ssi.supports import fix_block, soil_group
 
     mesh = soil_block(8.0, 6.0, [2.0, 4.0], foundation=(-1.0, 1.0), h_fine=0.5, h_coarse=1.0)
     model = Model()
@@ -158,22 +162,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
         ]
     else:
         mats = [(0, elastic_params(20e6, 0.3)), (0, elastic_params(50e6, 0.3))]
-    kinds, params = material_table(mats)
-    soil = SoilQ8(
-        mesh.xy[mesh.conn],
-        model.element_dofs(ids[mesh.conn]),
-        mesh.el_layer,
-        kinds,
-        params,
-        unit_weight=np.array([18e3, 20e3]),
-    )
+    soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, unit_weight=np.array([18e3, 20e3]))
     layers = [dict(thickness=2.0, gamma=18e3, phi_deg=30.0), dict(thickness=4.0, gamma=20e3, K0=0.6)]
     soil.initial_stress = geostatic_stress(soil.integration_points()[..., 1], layers)
-    model.add_group(soil)
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
-    model.fix(mesh.left, "u")
-    model.fix(mesh.right, "u")
+    fix_block(model, mesh, ids)
     res = run(model, [1.0], Settings(method="full", backend="superlu"))
     # displacement scale of an unbalanced weight would be γ H² / E ≈ 20e3 · 36 / 20e6 ≈ 4e-2 m
     assert np.abs(res.u[-1]).max() < 1e-10
@@ -217,3 +209,11 @@ def test_viscous_path_relaxes_to_the_rate_independent_limit():
     # two differ by 0.8 %; on chapter 10's finer meshes by 0.25 %
     assert viscous["q"][-1] == pytest.approx(plain["q"][-1], rel=1e-2)
     assert abs(viscous["q"][-1] / viscous["q"][-2] - 1.0) < 1e-4
+
+
+def test_rigid_footing_layers_are_weightless_mohr_coulomb_soil_layers():
+    """The layered rigid footing takes the scene's SoilLayer, nothing else, and names what it refuses."""
+    with pytest.raises((TypeError, ValueError), match=r"layers\[0\]"):
+        rigid_footing(layers=[(2.0, 20e6, C, 0.0, 0.0)])  # the former tuple form
+    with pytest.raises(ValueError, match=r"layers\[1\] must be a weightless Mohr-Coulomb layer"):
+        rigid_footing(layers=[SoilLayer(2.0, E=20e6, nu=0.3, c=C), SoilLayer(3.0, E=20e6, nu=0.3)])

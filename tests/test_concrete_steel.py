@@ -20,6 +20,8 @@ from ssi.materials.concrete import (
     softening_modulus,
 )
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
+from ssi.protocol import CONSISTENT
+from ssi.verify import fd_jacobian
 
 FD_TOL = 1e-6
 H_FD = 1e-9
@@ -47,19 +49,15 @@ def hist(*values):
     return h
 
 
-def call(kind, p, eps, gam=0.0, h=None, tangent=1):
+def call(kind, p, eps, gam=0.0, h=None, tangent=CONSISTENT):
     h = hist() if h is None else h
     return layer_update(kind, p, eps, gam, h, np.zeros(N_LAYER_HIST), tangent)
 
 
 def fd_check(kind, p, eps, gam, h):
     _sig, _tau, e_t, g_t = call(kind, p, eps, gam, h)
-    s_p = call(kind, p, eps + H_FD, gam, h)[0]
-    s_m = call(kind, p, eps - H_FD, gam, h)[0]
-    t_p = call(kind, p, eps, gam + H_FD, h)[1]
-    t_m = call(kind, p, eps, gam - H_FD, h)[1]
-    e_fd = (s_p - s_m) / (2 * H_FD)
-    g_fd = (t_p - t_m) / (2 * H_FD)
+    jac = fd_jacobian(lambda x: call(kind, p, x[0], x[1], h)[:2], [eps, gam], H_FD)
+    e_fd, g_fd = jac[0, 0], jac[1, 1]  # d sig / d eps, d tau / d gam
     scale_e = max(abs(e_t), 1e-3 * E0)
     scale_g = max(abs(g_t), 1e-6 * E0)
     assert abs(e_fd - e_t) <= FD_TOL * scale_e, (eps, e_fd, e_t)
@@ -244,9 +242,9 @@ def test_designer_values_mc2010():
 
 def test_crushing_regularised_by_energy():
     """Beyond eps_cu the stress falls linearly from f(eps_cu) to zero (no cliff); the energy dissipated past
-    eps_cu per unit volume is Gc / ls (trapezoid rule on a piecewise-linear curve: exact up to round-off and the
-    one step that straddles eps_cd, 1e-3 with 20 000 steps); Gc = 0 is the cliff; a crushed point carries no
-    tension on reloading."""
+    eps_cu per unit volume is Gc / ls (trapezoid rule on a piecewise-linear curve: exact up to round-off and
+    the one step that straddles eps_cd, 1e-3 with 20 000 steps); Gc = 0 is the cliff; a crushed point carries
+    no tension on reloading."""
     Gc = 20e3
     p = concrete(Gc=Gc)
     f_cu = compression_envelope(0.0035 * (1 - 1e-12), E0, FC, EPS_C, 0.0035)[0]
@@ -266,8 +264,8 @@ def test_crushing_regularised_by_energy():
 
 
 def test_plane_strain_concrete():
-    """Plane strain: the axial law's modulus is E0/(1 - nu^2) (the D1 of eq. 4.4, as for an ELASTIC layer), the
-    strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
+    """Plane strain: the axial law's modulus is E0/(1 - nu^2) (the D1 of eq. 4.4, as for an ELASTIC layer),
+    the strengths stay, G stays E0/(2(1 + nu)); the K0 modulus follows."""
     nu = 0.2
     ps = concrete(plane_strain=True, nu=nu)
     sig, _, e_t, g_t = call(CONCRETE, ps, 1e-5, 1e-4)

@@ -16,12 +16,14 @@ from hypothesis import HealthCheck, given, seed, settings
 from ssi import fuzz, linsolve
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.linsolve import Factorization, SingularMatrix
+from ssi.materials.soil_laws import ELASTIC as SOIL_ELASTIC
 from ssi.materials.soil_laws import elastic_params, material_table
 from ssi.mesh import soil_block
 from ssi.model import Model
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
 from ssi.section import homogeneous
 from ssi.solver import NonConvergence, Settings
+from ssi.supports import soil_group
 from ssi.validate import check_array, check_bool, check_choice, check_int, check_real
 
 FAST = os.environ.get("SSI_FAST", "1") != "0"
@@ -89,8 +91,8 @@ def test_every_relational_case_is_named():
 
 
 def test_soft_but_valid_si_input_is_accepted():
-    """Plausibility is another layer's job (warnings): E = 10 kPa soil, a 1 mm thin weightless layer and a huge
-    load are valid SI input and must not be refused."""
+    """Plausibility is another layer's job (warnings): E = 10 kPa soil, a 1 mm thin weightless layer and a
+    huge load are valid SI input and must not be refused."""
     scene = Scene(
         width=8.0,
         depth=4.0,
@@ -109,10 +111,7 @@ def _soil_model(support_u=True):
     mesh = soil_block(4.0, 2.0, foundation=(-1.0, 1.0), h_fine=1.0, h_coarse=1.0)
     model = Model()
     ids = model.add_nodes(mesh.xy, ndof=2)
-    kinds, params = material_table([(0, elastic_params(1e7, 0.3))])
-    model.add_group(
-        SoilQ8(mesh.xy[mesh.conn], model.element_dofs(ids[mesh.conn]), mesh.el_layer, kinds, params)
-    )
+    soil_group(model, mesh, [(SOIL_ELASTIC, elastic_params(1e7, 0.3))], ids=ids, el_mat=mesh.el_layer)
     model.fix(mesh.bottom, "w")
     if support_u:
         model.fix(mesh.bottom, "u")

@@ -1,9 +1,9 @@
 """The allocation-free soil kernels (issue 16) give the same numbers as the kernels they replaced.
 
 ``tests/data/soil_kernel_v0.npz`` holds the forces, element matrices and new states that the kernels of main
-08e0f11 (before the rewrite: shape functions per point, temporary arrays per point) computed for the fixed case
-of ``tests/kernel_regression_case.py``: every soil law, both Gauss rules, all three tangent flags, points in
-every return branch. The rewrite changes where intermediate values live, not the arithmetic, so the outputs
+08e0f11 (before the rewrite: shape functions per point, temporary arrays per point) computed for the fixed
+case of ``tests/kernel_regression_case.py``: every soil law, both Gauss rules, all three tangent flags, points
+in every return branch. The rewrite changes where intermediate values live, not the arithmetic, so the outputs
 must agree bit for bit; the comparison allows 1e-14 relative in case a compiler reorders a sum.
 """
 

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 from ssi.assembly import SparsePattern
-from ssi.elements.soil_q8 import SoilQ8
 from ssi.linsolve import Factorization, pardiso_available
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
+from ssi.supports import fix_block, soil_group
 
 TOL = 1e-10
 
@@ -20,11 +20,8 @@ def block_system():
     mesh = structured_q8(np.linspace(0, 4, 13), np.linspace(-2, 0, 7))
     model = Model()
     model.add_nodes(mesh.xy, 2)
-    g = model.add_group(
-        SoilQ8(mesh.xy[mesh.conn], model.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(30e6, 0.3)])
-    )
-    model.fix(mesh.bottom, "u")
-    model.fix(mesh.bottom, "w")
+    g = soil_group(model, mesh, [(ELASTIC, elastic_params(30e6, 0.3))])
+    fix_block(model, mesh, sides=False)
     free = model.free_mask()
     return SparsePattern([g.edofs], free), g
 
@@ -55,6 +52,7 @@ def test_pardiso_refactorisation_reuses_the_analysis(spd, symmetric):
 
     pattern, g = block_system()
     rhs = np.random.default_rng(1).normal(size=(pattern.n_free, 2))
+    first_handle = None
     for scale in (1.0, 3.0, 0.5):  # one pattern, three matrices: analysed once, refactorised twice
         k = pattern.matrix(pattern.assemble([scale * g.elastic_stiffness()]))
         fac = Factorization(k, symmetric, "pardiso", spd=spd)

@@ -32,6 +32,8 @@ from ssi.materials.soil_laws import (
     soil_update,
     von_mises_params,
 )
+from ssi.protocol import CONSISTENT
+from ssi.verify import fd_jacobian
 
 E, NU = 20e6, 0.3
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))
@@ -40,20 +42,15 @@ TOL_F = 1e-9  # relative yield-function residual after a return
 TOL_FD = 1e-6  # relative tangent error against central differences
 
 
-def update(kind, p, deps, sig0, tangent=1):
+def update(kind, p, deps, sig0, tangent=CONSISTENT):
     s, h, D = np.zeros(4), np.zeros(2), np.zeros((4, 4))
     st = soil_update(kind, p, np.asarray(deps, float), np.asarray(sig0, float), np.zeros(2), s, h, D, tangent)
     return st, s, h, D
 
 
 def fd_tangent(kind, p, deps, sig0, h=1e-9):
-    D = np.zeros((4, 4))
-    for j in range(3):  # in-plane strain components drive the plane-strain element
-        dp, dm = deps.copy(), deps.copy()
-        dp[j] += h
-        dm[j] -= h
-        D[:, j] = (update(kind, p, dp, sig0)[1] - update(kind, p, dm, sig0)[1]) / (2 * h)
-    return D
+    # in-plane strain components only: they drive the plane-strain element (column 3 stays zero)
+    return fd_jacobian(lambda d: update(kind, p, d, sig0)[1], deps, h, columns=range(3))
 
 
 def principal(sig):
@@ -252,7 +249,7 @@ def biaxial_path(kind, p, p_conf, n_steps, dez, sig0=None):
         deps = np.array([0.0, dez, 0.0, 0.0])
         for _ in range(50):
             s, h, D = np.zeros(4), np.zeros(2), np.zeros((4, 4))
-            soil_update(kind, p, deps, sig, hist, s, h, D, 1)
+            soil_update(kind, p, deps, sig, hist, s, h, D, CONSISTENT)
             r = s[0] + p_conf
             if abs(r) < 1e-9 * p_conf:
                 break
@@ -301,7 +298,8 @@ def test_explicit_scheme_reaches_the_same_limit(n_sub, drift):
 
 
 def rotating_shear_path(kind, p, n):
-    """Simple shear under a vertical stress: principal axes rotate, so forward Euler drifts off the surface."""
+    """Simple shear under a vertical stress: principal axes rotate, so forward Euler drifts off the
+    surface."""
     sig0 = np.array([-50e3, -100e3, 0.0, -50e3])
     steps = np.tile([0.0, 0.0, 2e-2 / n, 0.0], (n, 1))
     return drive(kind, p, steps, sig0)[0]
@@ -352,8 +350,17 @@ def test_phi_to_zero_is_continuous_with_tresca():
     np.testing.assert_allclose(D1, D0, atol=1e-6 * E)
 
 
-@pytest.mark.parametrize("phi, nu", [(45.0, 0.3), (30.0, 0.49), (45.0, 0.49), (1e-6, 0.49)])
-@pytest.mark.parametrize("branch", [1, 2, 3, 4])
+# every (phi, nu) with every return branch, except the apex (branch 4) at phi -> 0: the apex c cot(phi) then
+# lies beyond 1e10 Pa, a stress no soil reaches, so there is no apex return to check
+EXTREME_CASES = [
+    (phi, nu, branch)
+    for phi, nu in [(45.0, 0.3), (30.0, 0.49), (45.0, 0.49), (1e-6, 0.49)]
+    for branch in (1, 2, 3, 4)
+    if not (phi < 1e-3 and branch == 4)
+]
+
+
+@pytest.mark.parametrize("phi, nu, branch", EXTREME_CASES)
 def test_extreme_angles_and_near_incompressibility(phi, nu, branch):
     c = 10e3
     kind, p = mohr_coulomb_params(E, nu, c, phi, 0.0)
@@ -367,12 +374,9 @@ def test_extreme_angles_and_near_incompressibility(phi, nu, branch):
     }[branch]
     pr = np.array(base) * 1e3
     if branch == 4:
-        if apex > 1e7:
-            pytest.skip("apex at c cot(phi) > 10 MPa: physically unreachable for phi -> 0")
         pr = np.array(base) * 2 * apex
     sigB = stress_from_principal(pr[0], pr[2], pr[1], 0.4)
-    if k * pr[0] - pr[2] - 2 * c * math.sqrt(k) <= 0:
-        pytest.skip("trial inside")
+    assert k * pr[0] - pr[2] - 2 * c * math.sqrt(k) > 0, "the trial stress must lie outside the surface"
     st, s, h, D = update(kind, p, np.zeros(4), sigB)
     assert st == 1 and np.all(np.isfinite(s)) and np.all(np.isfinite(D))
     assert abs(mc_yield(s, c, math.radians(phi))) < TOL_F * np.abs(sigB).max()

@@ -3,19 +3,21 @@
 References are independent of the element: Timoshenko closed forms, transformed-section formulas, finite
 differences of the element's own internal force (tangent check), statics (load resultants), and linear algebra
 (rank / rigid-body modes). Tolerances: round-off level (1e-10 relative) where the result is exact in exact
-arithmetic; the FD check tolerance follows from the central-difference truncation + round-off of the step used.
+arithmetic; the FD check tolerance follows from the central-difference truncation + round-off of the step
+used.
 """
 
 import numpy as np
 import pytest
 
-from ssi.elements.base import CONSISTENT
 from ssi.elements.plate import PlateStrip, add_plate_strip, beam_mesh, beam_mesh_from_ends, integration_rule
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.layer_laws import ELASTIC as K_ELASTIC
 from ssi.model import Model
+from ssi.protocol import CONSISTENT, K0_MATRIX
 from ssi.section import homogeneous, layered, paper_rc_section, rc_section
+from ssi.verify import fd_jacobian, zero_energy_modes
 
 E, NU, H, L = 30.0e9, 0.2, 0.5, 5.0
 E1 = E / (1.0 - NU**2)  # D1 of eq. (4.4), cylindrical bending
@@ -55,11 +57,6 @@ def test_symmetric_stiffness(integration):
     assert np.abs(k - k.T).max() <= ROUND * np.abs(k).max()
 
 
-def n_zero_modes(k, rel=1e-10):
-    ev = np.linalg.eigvalsh(k)
-    return int(np.sum(ev < rel * ev.max()))
-
-
 @pytest.mark.parametrize("n_el", [1, 4])
 def test_rigid_body_modes_selective(n_el):
     """A free strip has exactly 3 zero-energy modes (u, w translations, rigid rotation w = theta x,
@@ -71,7 +68,7 @@ def test_rigid_body_modes_selective(n_el):
         kg = np.zeros((m.n_dof, m.n_dof))
         for e in range(g.n_el):
             kg[np.ix_(g.edofs[e], g.edofs[e])] += g.elastic_stiffness()[e]
-        assert n_zero_modes(kg) == expected, integration
+        assert zero_energy_modes(kg) == expected, integration
         # the rigid rotation is one of them: K r = 0
         x = m.coords[ids, 0]
         r = np.zeros(m.n_dof)
@@ -80,7 +77,7 @@ def test_rigid_body_modes_selective(n_el):
         assert np.abs(kg @ r).max() <= ROUND * np.abs(kg).max()
     # one point for everything: 3 spurious modes in one element (6 zero eigenvalues)
     g1 = one_element(sec, (1, 1))
-    assert n_zero_modes(g1.elastic_stiffness()[0]) == 6
+    assert zero_energy_modes(g1.elastic_stiffness()[0]) == 6
 
 
 @pytest.mark.parametrize("n_layers", [1, 2, 11, 50])
@@ -152,18 +149,10 @@ def test_tangent_matches_finite_differences(integration, self_bending):
         u[0, 1::3] = 0.5 * kap * x**2
         u[0, 2::3] = kap * x
         _f, k, _ = g.evaluate(u, u, g.initial_state(), CONSISTENT)
-        k_fd = np.empty((9, 9))
-        for j in range(9):
-            step = 1e-9
-            up, um = u.copy(), u.copy()
-            up[0, j] += step
-            um[0, j] -= step
-            k_fd[:, j] = (
-                g.evaluate(up, up, g.initial_state(), CONSISTENT)[0][0]
-                - g.evaluate(um, um, g.initial_state(), CONSISTENT)[0][0]
-            ) / (2 * step)
+        k_fd = fd_jacobian(lambda v, g=g: g.evaluate(v, v, g.initial_state(), CONSISTENT)[0][0], u, 1e-9)
         # round-off of the difference: 2e-16 |f| / step ~ 2e-16 * 1e8 / 1e-9 = 20, against |k| ~ 1e10
-        # (2e-9 relative); truncation step^2 |f'''| is far smaller; 1e-6 leaves room for neither kinks nor bugs
+        # (2e-9 relative); truncation step^2 |f'''| is far smaller; 1e-6 leaves room for neither kinks nor
+        # bugs
         assert np.abs(k_fd - k[0]).max() <= 1e-6 * np.abs(k[0]).max(), kap
 
 
@@ -191,8 +180,8 @@ def test_tangent_self_bending_exact_while_elastic():
 
 
 def test_force_independent_of_tangent_flag_and_K0_constant():
-    """Modified Newton needs f(u) whatever matrix is requested, and the ELASTIC matrix must be K0 in any state
-    (cracked, yielding): checked in a strongly nonlinear bending state with shear."""
+    """Modified Newton needs f(u) whatever matrix is requested, and the K0_MATRIX flag must give K0 in any
+    state (cracked, yielding): checked in a strongly nonlinear bending state with shear."""
     g = one_element(rc_test_section(), x=(0.0, 0.45, 1.0))
     rng = np.random.default_rng(7)
     x = g.coords[0, :, 0]
@@ -200,7 +189,7 @@ def test_force_independent_of_tangent_flag_and_K0_constant():
     u[0, 1::3] = 0.5 * 0.02 * x**2 + 1e-4 * rng.standard_normal(3)
     u[0, 2::3] = 0.02 * x
     f1, k1, s1 = g.evaluate(u, u, g.initial_state(), CONSISTENT)
-    f0, k0, s0 = g.evaluate(u, u, g.initial_state(), 0)
+    f0, k0, s0 = g.evaluate(u, u, g.initial_state(), K0_MATRIX)
     assert np.array_equal(f0, f1) and np.array_equal(s0, s1)
     assert np.array_equal(k0, g.elastic_stiffness())
     assert np.abs(k1 - k0).max() > 0.1 * np.abs(k0).max()  # the state is really nonlinear
@@ -230,7 +219,7 @@ def test_layer_stresses_integrate_to_resultants():
     assert np.allclose(q_sum, res["Q"][0], rtol=1e-12, atol=0) and np.all(res["Q"][0] > 0)
 
 
-# ---- Timoshenko closed forms (global, through Model) --------------------------------------------------------
+# ---- Timoshenko closed forms (global, through Model) -------------------------------------------------------
 def strip(n_el, length=L, integration="selective", n_layers=1):
     m = Model()
     g, ids, _ = add_plate_strip(
@@ -296,8 +285,8 @@ def test_full_integration_locks_selective_does_not():
     """Thin strip (span/depth 1000, simply supported, uniform load, 4 elements). Fully integrated shear forces
     gamma = 0 at every point, i.e. alpha'' = 0 in each element (Prathap's spurious constraint): the strip can
     only bend with piecewise-constant curvature: a deflection deficit 4/(5 n^2) (5 % with 4 elements) that
-    does not vanish as the strip gets thinner, and wild shear-force oscillations. Selective integration is nodally
-    exact at any slenderness."""
+    does not vanish as the strip gets thinner, and wild shear-force oscillations. Selective integration is
+    nodally exact at any slenderness."""
     q, length, n_el = -1.0, 1000.0 * H, 4
     exact = 5 * q * length**4 / (384 * EI) + q * length**2 / (8 * KGA)
     out = {}
@@ -333,14 +322,17 @@ def test_full_integration_locks_selective_does_not():
             assert err <= tol
 
 
-# ---- loads, meshes, sections, input checks -------------------------------------------------------------------
+# ---- loads, meshes, sections, input checks -----------------------------------------------------------------
 def test_distributed_load_resultants():
     """Equivalent nodal forces carry the load's resultant and its moment (linear and callable loads)."""
     xy, conn = beam_mesh_from_ends([0.0, 0.7, 2.0, 2.3])
     g = PlateStrip(xy[conn], np.arange(27).reshape(3, 9), homogeneous(H, E, NU))
     x = xy[:, 0]
     qa, qb = 3.0, -5.0
-    lin = lambda s: qa + (qb - qa) * s / 2.3
+
+    def lin(s):
+        return qa + (qb - qa) * s / 2.3
+
     ends = np.column_stack([lin(x[conn[:, 0]]), lin(x[conn[:, 2]])])
     total = 2.3 * (qa + qb) / 2
     moment = qa * 2.3**2 / 2 + (qb - qa) * 2.3**2 / 3

@@ -388,7 +388,10 @@ def test_toml_contact_segments_phases_and_settlement(tmp_path):
             "N",
         ),
         (
-            "width = 12.0\ndepth = 6.0\n[[phases]]\nname = 'a'\n[[phases.loads]]\ntype = 'StripWeight'\ngamma = 1.0\n",
+            (
+                "width = 12.0\ndepth = 6.0\n[[phases]]\nname = 'a'\n"
+                "[[phases.loads]]\ntype = 'StripWeight'\ngamma = 1.0\n"
+            ),
             "gamma",
         ),
         ("width = 12.0\ndepth = 6.0\n[[contact]]\nx0 = 0.0\nx1 = 1.0\nkn = 1e10\n", "kn"),

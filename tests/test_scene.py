@@ -126,7 +126,7 @@ def test_readme_scene_runs_as_written():
     assert set(np.unique(contact["zone"])) <= {"stick", "slip", "open"}
 
 
-# ---- issue 12: surcharge, loads, phases, groundwater, embedment, contact segments, units ----------------------
+# ---- issue 12: surcharge, loads, phases, groundwater, embedment, contact segments, units -------------------
 from ssi.materials.soil_laws import geostatic_stress, pore_pressure  # noqa: E402
 from ssi.scene import ContactSegment, Phase, Settlement, StripLoad, StripWeight, SurfacePressure  # noqa: E402
 

@@ -270,8 +270,8 @@ def test_undrained_A_mohr_coulomb_strength(k0):
     s0, t0 = -0.5 * (sig0[0] + sig0[1]), 0.5 * (sig0[0] - sig0[1])
     t_u = (c * np.cos(phi) + s0 * np.sin(phi) - beta * t0 * np.sin(phi)) / (1 - beta * np.sin(phi))
     assert t.max() == pytest.approx(t_u, rel=1e-12)
-    # a plateau, not a peak: the last of ~35 plastic increments, round-off of each return accumulating (5.7e-12
-    # measured for the isotropic start)
+    # a plateau, not a peak: the last of ~35 plastic increments, round-off of each return accumulating
+    # (5.7e-12 measured for the isotropic start)
     assert t[-1] == pytest.approx(t_u, rel=1e-10)
     # the K_w/n -> infinity form c cos phi + s'0 sin phi is below it by the penalty's share
     assert (

@@ -15,32 +15,16 @@ from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block, structured_q8
 from ssi.model import Model
+from ssi.protocol import K0_MATRIX
 from ssi.quadrature import gauss_2d, gauss_legendre, newton_cotes
 from ssi.shapes import LINE3_NODES, Q8_NODES, lagrange3, serendipity8
+from ssi.verify import dense_stiffness, distorted_q8_mesh, fd_jacobian, zero_energy_modes
 
 # Round-off tolerances: all quantities below are O(1) sums of at most a few hundred O(1) terms in float64,
 # so 1e-12 (relative) leaves a factor ~100 over the accumulated round-off; patch tests use the issue's 1e-10.
 TOL_ROUNDOFF = 1e-12
 TOL_PATCH = 1e-10
 E, NU = 30e6, 0.3
-
-
-def distorted_mesh(n=3, seed=1, amplitude=0.18):
-    """Q8 mesh of the unit square with n x n straight-sided, randomly distorted elements (mid-side nodes at
-    the middle of their edges)."""
-    m = structured_q8(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
-    rng = np.random.default_rng(seed)
-    xy = m.xy.copy()
-    g = m.grid
-    for i in range(2, 2 * n, 2):
-        for j in range(2, 2 * n, 2):
-            xy[g[i, j]] += amplitude / n * rng.uniform(-1, 1, 2)
-    for i in range(2 * n + 1):
-        for j in range(2 * n + 1):
-            if g[i, j] >= 0 and (i % 2) != (j % 2):
-                a, b = (g[i - 1, j], g[i + 1, j]) if i % 2 else (g[i, j - 1], g[i, j + 1])
-                xy[g[i, j]] = 0.5 * (xy[a] + xy[b])
-    return m, xy
 
 
 def q8_group(xy, conn, model, n_gauss=2, nu=NU):
@@ -77,9 +61,8 @@ def test_serendipity_identities():
         assert abs(n @ Q8_NODES[:, 0] - xi) < TOL_ROUNDOFF and abs(n @ Q8_NODES[:, 1] - eta) < TOL_ROUNDOFF
         # derivatives against central differences, truncation O(h^2) ~ 1e-12 with h = 1e-6 plus round-off
         h = 1e-6
-        fd_xi = (serendipity8(xi + h, eta)[0] - serendipity8(xi - h, eta)[0]) / (2 * h)
-        fd_eta = (serendipity8(xi, eta + h)[0] - serendipity8(xi, eta - h)[0]) / (2 * h)
-        assert np.abs(fd_xi - dn[:, 0]).max() < 1e-8 and np.abs(fd_eta - dn[:, 1]).max() < 1e-8
+        fd = fd_jacobian(lambda p: serendipity8(p[0], p[1])[0], [xi, eta], h)
+        assert np.abs(fd - dn).max() < 1e-8
     for a, (xi, eta) in enumerate(Q8_NODES):  # Kronecker property
         n, _ = serendipity8(xi, eta)
         assert np.abs(n - np.eye(8)[a]).max() < TOL_ROUNDOFF
@@ -128,7 +111,7 @@ def single_element(n_gauss, xy8=None):
 
 @pytest.mark.parametrize("n_gauss", [2, 3])
 def test_q8_stiffness_matches_dense_reference(n_gauss):
-    _, xy = distorted_mesh(1, amplitude=0.0)
+    _, xy = distorted_q8_mesh(1, amplitude=0.0)
     xy8 = xy[structured_q8([0, 1], [0, 1]).conn[0]] + np.array(
         [[0.1, 0.05], [-0.1, 0.0], [0.05, 0.1], [0, -0.12], [0, 0], [0.02, 0], [0, 0.03], [0, 0]]
     )
@@ -141,7 +124,7 @@ def test_q8_stiffness_matches_dense_reference(n_gauss):
 def test_zero_force_at_zero_state_and_rotation_covariance():
     g = single_element(2)
     z = np.zeros((1, 16))
-    f, _, s = g.evaluate(z, z, g.initial_state(), ELASTIC)
+    f, _, s = g.evaluate(z, z, g.initial_state(), K0_MATRIX)
     assert np.all(f == 0.0) and np.all(s == 0.0)
     # rotating the element by theta rotates K: K_rot = R K R^T with R = blockdiag(rot)
     theta = 0.7
@@ -153,30 +136,23 @@ def test_zero_force_at_zero_state_and_rotation_covariance():
     assert np.abs(K_rot - R @ K @ R.T).max() < TOL_ROUNDOFF * np.abs(K).max()
 
 
-def zero_modes(K):
-    ev = np.linalg.eigvalsh(K)
-    return int(np.sum(ev < 1e-10 * ev.max()))
-
-
 def test_zero_energy_modes():
     # one element: 3 rigid-body modes with 3x3, plus one spurious (hourglass) mode with 2x2
-    assert zero_modes(single_element(3).elastic_stiffness()[0]) == 3
-    assert zero_modes(single_element(2).elastic_stiffness()[0]) == 4
+    assert zero_energy_modes(single_element(3).elastic_stiffness()[0]) == 3
+    assert zero_energy_modes(single_element(2).elastic_stiffness()[0]) == 4
     # an unsupported mesh of several elements with 2x2: the spurious mode does not survive assembly
-    m, xy = distorted_mesh(3)
+    m, xy = distorted_q8_mesh(3)
     model = Model()
     model.add_nodes(xy, 2)
     g = q8_group(xy, m.conn, model, 2)
-    K = np.zeros((model.n_dof, model.n_dof))
-    for ed, ke in zip(g.edofs, g.elastic_stiffness()):
-        K[np.ix_(ed, ed)] += ke
-    assert zero_modes(K) == 3
+    K = dense_stiffness(model.n_dof, [g])
+    assert zero_energy_modes(K) == 3
 
 
 @pytest.mark.parametrize("n_gauss", [2, 3])
 def test_distorted_patch_test(n_gauss):
     """Linear displacement on the boundary -> the same linear field inside and a constant stress."""
-    m, xy = distorted_mesh(3)
+    m, xy = distorted_q8_mesh(3)
     model = Model()
     ids = model.add_nodes(xy, 2)
     g = model.add_group(q8_group(xy, m.conn, model, n_gauss))
@@ -207,13 +183,11 @@ def test_distorted_patch_test(n_gauss):
 
 # ---- assembly and supports ------------------------------------------------------------------------------
 def test_csr_assembly_matches_dense():
-    m, xy = distorted_mesh(3)
+    m, xy = distorted_q8_mesh(3)
     model = Model()
     model.add_nodes(xy, 2)
     g = q8_group(xy, m.conn, model, 3)
-    K = np.zeros((model.n_dof, model.n_dof))
-    for ed, ke in zip(g.edofs, g.elastic_stiffness()):
-        K[np.ix_(ed, ed)] += ke
+    K = dense_stiffness(model.n_dof, [g])
     free = np.ones(model.n_dof, bool)
     free[model.dof(m.bottom, "w")] = False
     free[model.dof(m.left, "u")] = False
@@ -231,7 +205,7 @@ def test_csr_assembly_matches_dense():
 
 
 def test_elimination_with_prescribed_displacements_matches_dense_solve():
-    m, xy = distorted_mesh(3)
+    m, xy = distorted_q8_mesh(3)
     model = Model()
     model.add_nodes(xy, 2)
     g = model.add_group(q8_group(xy, m.conn, model, 2))
@@ -240,9 +214,7 @@ def test_elimination_with_prescribed_displacements_matches_dense_solve():
     model.prescribe(m.surface[:3], "w", -2e-3)  # prescribed, scaled by the load factor (1 here)
     model.add_load(m.right, "u", 5e3)
     res = model.solve_linear()
-    K = np.zeros((model.n_dof, model.n_dof))
-    for ed, ke in zip(g.edofs, g.elastic_stiffness()):
-        K[np.ix_(ed, ed)] += ke
+    K = dense_stiffness(model.n_dof, [g])
     dofs, fixed, ref = model.constrained()
     u = np.zeros(model.n_dof)
     u[dofs] = fixed + ref
@@ -303,9 +275,9 @@ def test_bad_scene():
 # ---- the fast K0 kernel ---------------------------------------------------------------------------------
 @pytest.mark.parametrize("n_gauss", [2, 3])
 def test_fast_elastic_kernel_matches_the_element_group(n_gauss):
-    """q8_elastic_stiffness (SoilQ8's K0) must equal the generic law-dispatch kernel of SoilQ8.evaluate and the
-    dense reference on distorted elements with different materials per element."""
-    m, xy = distorted_mesh(3)
+    """q8_elastic_stiffness (SoilQ8's K0) must equal the generic law-dispatch kernel of SoilQ8.evaluate and
+    the dense reference on distorted elements with different materials per element."""
+    m, xy = distorted_q8_mesh(3)
     model = Model()
     model.add_nodes(xy, 2)
     el_mat = np.arange(len(m.conn)) % 2
@@ -315,7 +287,7 @@ def test_fast_elastic_kernel_matches_the_element_group(n_gauss):
     K = q8_elastic_stiffness(g.coords, params[el_mat, 0], params[el_mat, 1], n_gauss, out)
     assert K is out
     zero = np.zeros((g.n_el, 16))
-    K_ref = g.evaluate(zero, zero, g.initial_state(), ELASTIC)[1]  # the generic kernel (law dispatch)
+    K_ref = g.evaluate(zero, zero, g.initial_state(), K0_MATRIX)[1]  # the generic kernel (law dispatch)
     assert np.abs(K - K_ref).max() < TOL_ROUNDOFF * np.abs(K_ref).max()
     assert np.abs(g.elastic_stiffness() - K_ref).max() < TOL_ROUNDOFF * np.abs(K_ref).max()
     K_dense = dense_q8_stiffness(g.coords[4], n_gauss, *params[el_mat[4], :2])

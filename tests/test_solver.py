@@ -5,29 +5,21 @@ Expected values come from the laws' closed forms (atanh of the load, the hardeni
 differences, or from the direct linear solve -- never from the solver under test.
 """
 
-import itertools
-
 import numpy as np
 import pytest
 
-from ssi.elements.base import CONSISTENT, ELASTIC
-from ssi.elements.soil_q8 import SoilQ8
-from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring, spring_chain
+from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring
+from ssi.materials.soil_laws import ELASTIC as SOIL_ELASTIC
 from ssi.materials.soil_laws import elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
+from ssi.protocol import CONSISTENT, K0_MATRIX
 from ssi.results import read_result, write_result
 from ssi.solver import LIMIT_LOAD, METHODS, NonConvergence, Settings, run
+from ssi.supports import fix_block, soil_group, spring_chain
+from ssi.verify import fd_jacobian, residual_order
 
 K0, FU = 1e6, 1e3  # spring stiffness [N/m], tanh plateau [N]
-
-
-def fitted_order(residuals, lo=1e-13, hi=5e-2):
-    """Slope p of log e_{k+1} = p log e_k + c over consecutive residuals inside (lo, hi)."""
-    e = np.asarray(residuals)
-    pairs = [(a, b) for a, b in itertools.pairwise(e) if lo < a < hi and lo < b]
-    x, y = np.log([p[0] for p in pairs]), np.log([p[1] for p in pairs])
-    return np.polyfit(x, y, 1)[0], len(pairs)
 
 
 # ---- the spring group itself ----------------------------------------------------------------------------
@@ -51,11 +43,11 @@ def test_spring_tangent_matches_finite_differences(kind, params, d0, dd):
         return g.evaluate(u, du, st, CONSISTENT)
 
     f, k, _ = force(0.0)
-    fd = (force(h)[0][0, 1] - force(-h)[0][0, 1]) / (2 * h)
+    fd = fd_jacobian(lambda d: force(d[0])[0][0, 1], [0.0], h)[0, 0]
     assert abs(k[0, 1, 1] - fd) < 1e-6 * K0
     assert np.allclose(k[0], k[0, 1, 1] * np.array([[1, -1], [-1, 1]]))
     assert abs(f[0, 0] + f[0, 1]) == 0.0  # action = reaction
-    assert np.allclose(g.evaluate(np.zeros((1, 2)), np.zeros((1, 2)), st, ELASTIC)[1][0, 1, 1], K0)
+    assert np.allclose(g.evaluate(np.zeros((1, 2)), np.zeros((1, 2)), st, K0_MATRIX)[1][0, 1, 1], K0)
 
 
 def test_spring_bad_input():
@@ -74,9 +66,8 @@ def test_linear_problem_converges_in_one_iteration():
     m = structured_q8(np.linspace(0, 2, 5), np.linspace(-1, 0, 3))
     model = Model()
     model.add_nodes(m.xy, 2)
-    model.add_group(SoilQ8(m.xy[m.conn], model.element_dofs(m.conn), 0, [0], [elastic_params(20e6, 0.3)]))
-    model.fix(m.bottom, "u")
-    model.fix(m.bottom, "w")
+    soil_group(model, m, [(SOIL_ELASTIC, elastic_params(20e6, 0.3))])
+    fix_block(model, m, sides=False)
     model.add_load(m.surface, "w", -1e4)
     model.prescribe(m.surface[:1], "u", 1e-4)
     direct = model.solve_linear()
@@ -103,7 +94,7 @@ def test_tanh_spring_load_control_and_convergence_orders():
             Settings(method=method, stepping="fixed", force_tol=1e-12, energy_tol=1e-12, max_iter=400),
         )
         assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-9 * exact
-        orders[method], n_pairs = fitted_order(res.residuals[1])
+        orders[method], n_pairs = residual_order(res.residuals[1])
         assert n_pairs >= 3
     # tolerances: the asymptotic orders are 2 and 1; the fit over the last few iterates is within ~0.2
     assert orders["full"] > 1.8, orders
@@ -161,7 +152,7 @@ def test_untrustworthy_tangent_solve_falls_back_to_k0(monkeypatch):
     res = run(model, [1.0], Settings(method="full", force_tol=1e-10, energy_tol=1e-12, max_iter=400))
     assert calls and all(c is None for c in calls)  # every tangent correction was refused
     assert abs(res.displacement(nodes[-1], "u")[-1, 0] - exact) < 1e-8 * exact
-    assert abs(fitted_order(res.residuals[1])[0] - 1.0) < 0.05  # K0 iterations: linear, as modified Newton
+    assert abs(residual_order(res.residuals[1])[0] - 1.0) < 0.05  # K0 iterations: linear, as modified Newton
 
 
 def test_displacement_control_and_committed_plastic_state():

@@ -63,7 +63,8 @@ def prepare(notebooks: Path, source: Path) -> Path:
     (docs / "index.md").write_text("\n".join(lines) + "\n")
     (source / "mkdocs.yml").write_text(
         "site_name: ssi\ndocs_dir: docs\nnav:\n" + "\n".join(nav) + "\nplugins:\n  - mkdocs-jupyter:\n"
-        f'      execute: false\n      cache: false\n      include_source: false\n      custom_mathjax_url: "{MATHJAX_URL}"\n'
+        "      execute: false\n      cache: false\n      include_source: false\n"
+        f'      custom_mathjax_url: "{MATHJAX_URL}"\n'
     )
     return source / "mkdocs.yml"
 

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 t0 = time.perf_counter()
-import ssi  # noqa: F401  (first: keys numba's cache on the package sources)
+import ssi  # noqa: E402, F401  (first: keys numba's cache on the package sources)
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -42,19 +42,16 @@ def main():
     push_footing(scene, n_steps=2)
     import numpy as np
 
-    from ssi.elements.soil_q8 import SoilQ8
     from ssi.materials.soil_laws import ELASTIC, elastic_params
     from ssi.mesh import structured_q8
     from ssi.model import Model
+    from ssi.supports import fix_block, soil_group
 
     mesh = structured_q8(np.linspace(0.0, 2.0, 3), np.linspace(-1.0, 0.0, 2))
     m = Model()
     m.add_nodes(mesh.xy, 2)
-    m.add_group(
-        SoilQ8(mesh.xy[mesh.conn], m.element_dofs(mesh.conn), 0, [ELASTIC], [elastic_params(1e7, 0.3)])
-    )
-    m.fix(mesh.bottom, "u")
-    m.fix(mesh.bottom, "w")
+    soil_group(m, mesh, [(ELASTIC, elastic_params(1e7, 0.3))])
+    fix_block(m, mesh, sides=False)
     m.add_load(mesh.surface, "w", -1.0)
     m.solve_linear()
     print(f"warm_cache_s: {time.perf_counter() - t0:.1f}")

@@ -33,9 +33,9 @@ import numpy as np
 from numba import njit
 
 from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, STICK, interface_update
+from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre, newton_cotes
 from ..shapes import lagrange3
-from .base import CONSISTENT, ELASTIC
 
 __all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 
@@ -144,9 +144,9 @@ class Interface6:
     params : array (N_PARAMS,) or (n_el, N_PARAMS)
         Interface law parameters from :func:`ssi.materials.interface_law.interface_params`.
     offset : float or array (n_el,), optional
-        Plate variant only: lever arm e [m] from the plate nodes down to the bottom face, u_g = u_b + e alpha_b
-        (h/2 for mid-surface nodes; use ``PlateStrip.bottom_offset``). The plate nodes must lie e straight
-        above their lower nodes.
+        Plate variant only: lever arm e [m] from the plate nodes down to the bottom face, u_g = u_b + e
+        alpha_b (h/2 for mid-surface nodes; use ``PlateStrip.bottom_offset``). The plate nodes must lie e
+        straight above their lower nodes.
     rule : {"newton_cotes", "gauss"}
         Integration along the element (default the paper's Newton--Cotes / Simpson on the node pairs).
     n_gauss : int
@@ -271,8 +271,8 @@ class Interface6:
         return state
 
     def evaluate(self, u_el, du_el, state_old, tangent):
-        if tangent not in (ELASTIC, CONSISTENT):
-            raise ValueError(f"tangent must be ELASTIC (0) or CONSISTENT (1), got {tangent}")
+        if tangent not in (K0_MATRIX, CONSISTENT):
+            raise ValueError(f"tangent must be K0_MATRIX (0) or CONSISTENT (1), got {tangent}")
         du_el = np.ascontiguousarray(du_el, dtype=np.float64)
         if du_el.shape != self.edofs.shape:
             raise ValueError(f"du_el must have shape {self.edofs.shape}, got {du_el.shape}")
@@ -323,7 +323,7 @@ class Interface6:
 
     def elastic_stiffness(self) -> np.ndarray:
         z = np.zeros(self.edofs.shape)
-        return self.evaluate(z, z, self.initial_state(), ELASTIC)[1]
+        return self.evaluate(z, z, self.initial_state(), K0_MATRIX)[1]
 
     def body_force(self):
         return None
@@ -389,8 +389,8 @@ def add_interface(
     """Build an :class:`Interface6` group from node ids and add it to ``model``.
 
     ``upper_conn`` (n_el, 3): plate-strip nodes (3 DOFs; then ``offset`` is required, e.g. the plate group's
-    ``bottom_offset``) or solid nodes (2 DOFs); ``lower_conn`` (n_el, 3): soil nodes, ordered so that the upper
-    body lies on the left when walking from the first to the third node. Returns the group.
+    ``bottom_offset``) or solid nodes (2 DOFs); ``lower_conn`` (n_el, 3): soil nodes, ordered so that the
+    upper body lies on the left when walking from the first to the third node. Returns the group.
     """
     upper_conn = np.atleast_2d(np.asarray(upper_conn, np.int64))
     lower_conn = np.atleast_2d(np.asarray(lower_conn, np.int64))

@@ -19,9 +19,10 @@ layer, at its mid-depth z_n; inside the layer the stress is taken as linear with
 
     N = sum h_n sig_n
     M = -sum h_n z_n sig_n + sum e_n h_n^3/12 kap
-    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e_n h_n^2/12)
+    dN/deps0 = sum h_n E_n,  dN/dkap = dM/deps0 = -sum h_n z_n E_n,  dM/dkap = sum h_n (z_n^2 E_n + e_n
+    h_n^2/12)
 
-with E_n the law's tangent (``CONSISTENT``) or initial (``ELASTIC``: K0, constant) modulus, and e_n the
+with E_n the law's tangent (``CONSISTENT``) or initial (``K0_MATRIX``: K0, constant) modulus, and e_n the
 modulus of the layer's own bending (option ``self_bending``):
 
 * ``"chord"`` (default): the stress is taken linear between the stresses the law gives at the layer's two
@@ -38,14 +39,15 @@ modulus of the layer's own bending (option ``self_bending``):
 
 For a linear law the stress is exactly linear within a layer, so both *are* the integral: f_int = K0 u_el with
 K0 of eq. (4.7b), for any number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For nonlinear
-layers the choice matters. Measured in chapter 02 (row ``section_selfbending``) on the Janney beam section with
-the paper's 11 layers, N = 0, against the layer-free reference (``ssi.section_analysis.layer_free_moment_curvature``,
-adaptive quadrature of the continuous stress profile): ``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 /
-+8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01 / 0.03 / 0.06 1/m (the error grows with the curvature, as more of
-the depth cracks and crushes); ``"tangent"`` stays within -0.2 ... +1.05 % and ``"chord"`` within 0 ... +1.05 %.
-The chord is the default: equally accurate, and its continuous f lets Newton converge where the tangent's jumps
-stop it (chapter 08, Janney beam with the crack-spacing band: 8 + 8 elements reached 6.9 mm with "tangent",
-32 mm with "chord"; chapter 11's h = 0.25 m scene: "tangent" stalls, "chord" converges).
+layers the choice matters. Measured in chapter 02 (row ``section_selfbending``) on the Janney beam section
+with the paper's 11 layers, N = 0, against the layer-free reference
+(``ssi.section_analysis.layer_free_moment_curvature``, adaptive quadrature of the continuous stress profile):
+``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 / +8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01 / 0.03 /
+0.06 1/m (the error grows with the curvature, as more of the depth cracks and crushes); ``"tangent"`` stays
+within -0.2 ... +1.05 % and ``"chord"`` within 0 ... +1.05 %. The chord is the default: equally accurate, and
+its continuous f lets Newton converge where the tangent's jumps stop it (chapter 08, Janney beam with the
+crack-spacing band: 8 + 8 elements reached 6.9 mm with "tangent", 32 mm with "chord"; chapter 11's h = 0.25 m
+scene: "tangent" stalls, "chord" converges).
 
 Integration along the element (option ``integration``): ``"selective"`` (default, paper §10): membrane and
 bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in shear for thin strips);
@@ -53,7 +55,7 @@ bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in 
 layer histories: with selective integration point 0-2 are the axial (membrane/bending) points and 3-4 the
 shear points, so ``n_ip = 5``; when both rules coincide one set serves both (n_ip = n).
 
-Array layout (see ``ssi.elements.base``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
+Array layout (see ``ssi.protocol``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
 coords (n_el, 3, 2); state (n_el, n_ip, n_layer, N_LAYER_HIST) = the layer laws' history variables (total
 formulation: strains come from ``u_el``; ``du_el`` is not used).
 """
@@ -61,7 +63,8 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
-from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, layer_update
+from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, crack_band_width, layer_update
+from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre
 from ..section import Section
 from ..shapes import lagrange3
@@ -152,8 +155,8 @@ def _section(
     """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
 
     Writes ``res`` (8,) = [N, M, Q, A, B, D, S, 0] with A = dN/deps0, B = dN/dkap = dM/deps0,
-    D = dM/dkap, S = dQ/dgam (tangent=1: the laws' tangent moduli; tangent=0: the initial moduli e0, g0,
-    i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
+    D = dM/dkap, S = dQ/dgam (tangent CONSISTENT: the laws' tangent moduli; K0_MATRIX: the initial moduli e0,
+    g0, i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
     (self_mode=0), the layer's tangent modulus (1) or the chord through the stresses at the layer's faces (2,
     evaluated with the layer's committed history; scratch (N_LAYER_HIST,) takes their unused new history).
     res[7] = dM/deps0 (differs from B only with the chord term)."""
@@ -175,14 +178,14 @@ def _section(
     for n in range(h.shape[0]):
         z = z_mid[n]
         hn = h[n]
-        # the law always returns its tangent; K0 (tangent=0) uses the initial moduli instead, so that the
+        # the law always returns its tangent; K0 (K0_MATRIX) uses the initial moduli instead, so that the
         # internal force never depends on which matrix the solver asks for
         sig, tau, e_t, g_t = layer_update(
             kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], 1
         )
         if do_ax:
             i_n = hn * hn * hn / 12.0  # exact within-layer bending, eq. (4.7b) h_n^2/12
-            e_k = e_t if tangent == 1 else e0[n]
+            e_k = e_t if tangent == CONSISTENT else e0[n]
             N += hn * sig
             M += -hn * z * sig
             A += hn * e_k
@@ -201,7 +204,7 @@ def _section(
                 )
                 c = hn * hn / 12.0
                 M += c * (s_b - s_t)
-                if tangent == 1:
+                if tangent == CONSISTENT:
                     B2 += c * (e_b - e_tp)
                     D += c * (z_t * e_tp - z_b * e_b)
                 else:
@@ -209,10 +212,10 @@ def _section(
             else:
                 e_self = e_t if self_mode == 1 else e0[n]
                 M += e_self * i_n * kap
-                D += (e_self if tangent == 1 else e0[n]) * i_n
+                D += (e_self if tangent == CONSISTENT else e0[n]) * i_n
         if do_sh and cshear[n]:
             Q += kappa * hn * tau
-            S += kappa * hn * (g_t if tangent == 1 else g0[n])
+            S += kappa * hn * (g_t if tangent == CONSISTENT else g0[n])
     res[0] = N
     res[1] = M
     res[2] = Q
@@ -252,9 +255,9 @@ def plate_kernel(
 
     x_el (n_el, 3) nodal x; u_el (n_el, 9); state_old/state_new (n_el, n_ip, n_layer, N_LAYER_HIST);
     f_el (n_el, 9) and k_el (n_el, 9, 9) are overwritten; xi, wt (n_ip,), ax, sh (n_ip,) int8 flags;
-    z_mid, h, e0, g0 (n_layer,) (initial moduli: K0), kind (n_layer,) int64, params (n_layer, n_par), cshear (n_layer,) bool;
-    band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the crack band
-    width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
+    z_mid, h, e0, g0 (n_layer,) (initial moduli: K0), kind (n_layer,) int64, params (n_layer, n_par), cshear
+    (n_layer,) bool; band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the
+    crack band width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
     """
     n_el = x_el.shape[0]
     nn = np.empty(3)
@@ -278,7 +281,7 @@ def plate_kernel(
                 state_new[e, p, :, :] = state_old[e, p, :, :]
                 continue
             wj = wt[p] * jac
-            _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
+            _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
             for a in range(3):
                 be[3 * a] = bx[a]
                 bg[3 * a + 1] = bx[a]
@@ -357,7 +360,7 @@ def plate_resultants(
     for e in range(x_el.shape[0]):
         for p in range(xi.shape[0]):
             _point_b(x_el[e], xi[p], nn, bx)
-            _crack_band(prm, band, ls_index, 0.5 * wt[p] * (x_el[e, 2] - x_el[e, 0]))
+            _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
             _section(
                 u_el[e],
                 nn,
@@ -395,7 +398,7 @@ def plate_layer_stresses(eps, gam, state, kind, params, band, ls_index, wt, leng
     scratch = np.empty(state.shape[3])
     for e in range(eps.shape[0]):
         for p in range(eps.shape[1]):
-            _crack_band(prm, band, ls_index, 0.5 * wt[p] * length[e])
+            _crack_band(prm, band, ls_index, crack_band_width(length[e], wt[p]))
             for n in range(eps.shape[2]):
                 s, t, _, _ = layer_update(
                     kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, 1
@@ -444,7 +447,7 @@ class PlateStrip:
 
     Notes
     -----
-    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.elements.base``.
+    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.protocol``.
     Bottom face for the interface element: ``z_bottom`` (< 0, relative to the nodes) and ``bottom_offset =
     -z_bottom`` so that u_g = u_b + bottom_offset * alpha_b (eq. 6.1); ``thickness`` is the section depth.
     """
@@ -499,7 +502,7 @@ class PlateStrip:
             from ..materials.concrete import P_E0, P_FR, P_GF
             from ..materials.rc import check_crack_band
 
-            ls_max = 0.5 * self.wt.max() * length.max()
+            ls_max = crack_band_width(length.max(), self.wt.max())
             for n in np.flatnonzero(self.band):
                 prm = section.params[n]
                 check_crack_band(ls_max, prm[P_E0], prm[P_GF], prm[P_FR])
@@ -570,7 +573,7 @@ class PlateStrip:
     def elastic_stiffness(self) -> np.ndarray:
         if self._k0 is None:
             zero = np.zeros((self.n_el, 9))
-            self._k0 = self.evaluate(zero, zero, self.initial_state(), 0)[1]
+            self._k0 = self.evaluate(zero, zero, self.initial_state(), K0_MATRIX)[1]
         return self._k0
 
     def body_force(self):
@@ -608,7 +611,7 @@ class PlateStrip:
         xi, wt = gauss_legendre(4)
         x = self._x
         # physical x of the Gauss points (quadratic map)
-        nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in xi])
+        nvals = np.array([lagrange3(float(s))[0] for s in xi])
         xq = x @ nvals.T  # (n_el, 4)
         if callable(q):
             q_pts = np.asarray(q(xq), np.float64) * np.ones_like(xq)
@@ -670,10 +673,19 @@ class PlateStrip:
             "Q": out[:, b, 3],
         }
 
+    def _shape_at_points(self):
+        """Quadratic Lagrange values and xi-derivatives (n_ip, 3) at the sampling points."""
+        shape = [lagrange3(float(s)) for s in self.xi]
+        return np.array([n for n, _ in shape]), np.array([dn for _, dn in shape])
+
+    def point_x(self) -> np.ndarray:
+        """x [m] of every sampling point (n_el, n_ip), axial and shear points alike (``self.ax``,
+        ``self.sh`` say which is which)."""
+        return self._x @ self._shape_at_points()[0].T
+
     def layer_strains(self, u_el):
         """Axial strain (n_el, n_ip, n_layer) at every layer's mid-depth and shear strain (n_el, n_ip)."""
-        nvals = np.array([[0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)] for s in self.xi])
-        dvals = np.array([[s - 0.5, -2.0 * s, s + 0.5] for s in self.xi])
+        nvals, dvals = self._shape_at_points()
         jac = self._x @ dvals.T  # (n_el, n_ip)
         u = np.asarray(u_el).reshape(self.n_el, 3, 3)
         eps0 = (u[:, :, 0] @ dvals.T) / jac

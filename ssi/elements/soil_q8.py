@@ -12,6 +12,7 @@ import numpy as np
 from numba import njit
 
 from ..materials.soil_laws import N_SOIL_HIST, soil_update
+from ..protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS
 from ..quadrature import gauss_2d
 from ..shapes import serendipity8
 from .q8_elastic import q8_elastic_stiffness
@@ -60,7 +61,7 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
 
     coords (n_el, 8, 2); du_el (n_el, 16); el_mat (n_el,) material index into kinds (n_mat,), params
     (n_mat, n_par); gp (n_ip, 2), gw (n_ip,); state_old/state_new (n_el, n_ip, N_SOIL_STATE);
-    f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten (k_el is left alone when tangent < 0).
+    f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten (k_el is left alone when tangent is FORCES_ONLY).
     """
     n_el = coords.shape[0]
     n_ip = gp.shape[0]
@@ -77,7 +78,7 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
     for e in range(n_el):
         for i in range(16):
             f_el[e, i] = 0.0
-        if tangent >= 0:
+        if tangent != FORCES_ONLY:
             k_el[e, :, :] = 0.0
         m = el_mat[e]
         for a in range(8):
@@ -103,7 +104,17 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
                 sig_old[i] = state_old[e, q, i]
             for i in range(N_SOIL_HIST):
                 hist_old[i] = state_old[e, q, N_STRESS + i]
-            status = soil_update(kinds[m], params[m], deps, sig_old, hist_old, sig, hist, D, max(tangent, 0))
+            status = soil_update(
+                kinds[m],
+                params[m],
+                deps,
+                sig_old,
+                hist_old,
+                sig,
+                hist,
+                D,
+                K0_MATRIX if tangent == FORCES_ONLY else tangent,
+            )
             if status < 0:
                 failures += 1
             for i in range(N_STRESS):
@@ -116,7 +127,7 @@ def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new
                 # B_a^T sigma for rows (exx, ezz, gxz): u-row (bx, 0, bz), w-row (0, bz, bx)
                 f_el[e, 2 * a] += (bx * sig[0] + bz * sig[2]) * wdet
                 f_el[e, 2 * a + 1] += (bz * sig[1] + bx * sig[2]) * wdet
-                if tangent < 0:  # forces only (modified Newton: the matrix is K0, kept factorised)
+                if tangent == FORCES_ONLY:  # forces only (modified Newton: the matrix is K0, kept factorised)
                     continue
                 # D B_b for both columns of node b, then B_a^T (D B_b)
                 for b in range(8):
@@ -227,7 +238,7 @@ class SoilQ8:
     """
 
     name = "soil_q8"
-    forces_only = True  # accepts the NO_MATRIX flag
+    forces_only = True  # accepts the FORCES_ONLY flag
 
     def __init__(
         self,
@@ -346,10 +357,14 @@ class SoilQ8:
         return self._scatter(f_s, (16,)), k_el, state_new
 
     def evaluate(self, u_el, du_el, state_old, tangent):
+        if tangent not in TANGENT_FLAGS:
+            raise ValueError(
+                f"tangent must be K0_MATRIX (0), CONSISTENT (1) or FORCES_ONLY (-1), got {tangent}"
+            )
         if self._phase is not None:
             return self._evaluate_phase(u_el, du_el, state_old, tangent)
         f_el = np.empty((self.n_el, 16))
-        k_el = np.empty((self.n_el, 16, 16) if tangent >= 0 else (1, 16, 16))
+        k_el = np.empty((self.n_el, 16, 16) if tangent != FORCES_ONLY else (1, 16, 16))
         state_new = np.empty_like(state_old)
         failures = q8_kernel(
             self.coords,
@@ -382,9 +397,9 @@ class SoilQ8:
                 self.gw,
                 f_el,
                 k_el,
-                tangent >= 0,
+                tangent != FORCES_ONLY,
             )
-        return f_el, (k_el if tangent >= 0 else None), state_new
+        return f_el, (k_el if tangent != FORCES_ONLY else None), state_new
 
     def _blend_with_trial(self, du_el, state_old, state_new, f_el, k_el, tangent):
         """Duvaut--Lions: forces, tangent and stress become (trial + tau inviscid) / (1 + tau); the history
@@ -408,14 +423,14 @@ class SoilQ8:
         )
         tau = self.viscosity
         f_el[...] = (f_tr + tau * f_el) / (1.0 + tau)
-        if tangent >= 0:
+        if tangent != FORCES_ONLY:
             k_el[...] = (k_tr + tau * k_el) / (1.0 + tau)
         state_new[..., :N_STRESS] = (st_tr[..., :N_STRESS] + tau * state_new[..., :N_STRESS]) / (1.0 + tau)
 
     def elastic_stiffness(self):
-        """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start with
-        E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and keeping
-        it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
+        """K0 per element (n_el, 16, 16), from the dedicated elastic kernel (every soil law's params start
+        with E, nu). Computed afresh on each call and not kept: the solver assembles K0 once per run, and
+        keeping it would hold 2 kB per element (343 MB at 1e6 DOFs) for the whole analysis."""
         if self._phase is not None:
             return self._scatter(self._phase["group"].elastic_stiffness(), (16, 16))
         E = self.params[self.el_mat, 0]

@@ -2,7 +2,7 @@
 
 A spring joins two global DOFs i and j (edofs (n_el, 2)) and carries a force F(d) along them, d = u_j - u_i
 (ground a spring by fixing DOF i). Element vectors follow the protocol of ``base``:
-f_el = [-F, +F], k_el = k [[1, -1], [-1, 1]] with k the elastic stiffness k0 (``tangent`` ELASTIC) or
+f_el = [-F, +F], k_el = k [[1, -1], [-1, 1]] with k the elastic stiffness k0 (``tangent`` K0_MATRIX) or
 dF/dd (CONSISTENT).
 
 Laws (``kinds``, ``params`` (n_el, 3)):
@@ -21,7 +21,7 @@ full Newton quadratic (``tests/test_solver.py`` checks them by finite difference
 import numpy as np
 from numba import njit
 
-from .base import CONSISTENT, ELASTIC
+from ..protocol import CONSISTENT, K0_MATRIX
 
 __all__ = ["ELASTOPLASTIC", "LINEAR", "TANH", "Spring", "spring_force"]
 
@@ -79,7 +79,7 @@ def _springs(kinds, params, u_el, du_el, state_old, tangent, f_el, k_el, state_n
             state_old[e, 0, 1],
             out,
         )
-        k = params[e, 0] if tangent == ELASTIC else out[1]
+        k = params[e, 0] if tangent == K0_MATRIX else out[1]
         f_el[e, 0] = -out[0]
         f_el[e, 1] = out[0]
         k_el[e, 0, 0] = k
@@ -126,8 +126,8 @@ class Spring:
         return np.zeros((self.n_el, 1, N_VAR))
 
     def evaluate(self, u_el, du_el, state_old, tangent):
-        if tangent not in (ELASTIC, CONSISTENT):
-            raise ValueError(f"tangent must be ELASTIC (0) or CONSISTENT (1), got {tangent}")
+        if tangent not in (K0_MATRIX, CONSISTENT):
+            raise ValueError(f"tangent must be K0_MATRIX (0) or CONSISTENT (1), got {tangent}")
         f_el = np.empty((self.n_el, 2))
         k_el = np.empty((self.n_el, 2, 2))
         state_new = np.empty_like(state_old)
@@ -146,7 +146,7 @@ class Spring:
 
     def elastic_stiffness(self):
         z = np.zeros((self.n_el, 2))
-        return self.evaluate(z, z, self.initial_state(), ELASTIC)[1]
+        return self.evaluate(z, z, self.initial_state(), K0_MATRIX)[1]
 
     def body_force(self):
         return None
@@ -158,30 +158,3 @@ class Spring:
             "kinds": [KIND_NAMES[int(k)] for k in self.kinds],
             "params": self.params.tolist(),
         }
-
-
-def spring_chain(kinds, params, name="spring"):
-    """A model of springs in series along x: node 0 (fixed) -- spring 0 -- node 1 -- ... -- node n.
-
-    Spring e acts between the u DOFs of nodes e and e + 1. Model nodes carry (u, w); every w is fixed, and the
-    w DOFs are joined by stiff linear springs only so that every DOF belongs to an element (they carry no
-    force). Load the chain with ``model.add_load(nodes[-1], "u", F)`` or ``model.prescribe(...)``.
-
-    Returns ``(model, group, nodes)``; ``group`` is the :class:`Spring` group (first n springs: the chain).
-    """
-    from ..model import Model
-
-    kinds = np.atleast_1d(np.asarray(kinds, np.int64))
-    n = kinds.size
-    params = np.broadcast_to(np.asarray(params, np.float64), (n, 3))
-    model = Model()
-    nodes = model.add_nodes(np.column_stack([np.arange(n + 1.0), np.zeros(n + 1)]), 2)
-    u = model.dof(nodes, "u")
-    w = model.dof(nodes, "w")
-    edofs = np.vstack([np.column_stack([u[:-1], u[1:]]), np.column_stack([w[:-1], w[1:]])])
-    all_kinds = np.concatenate([kinds, np.full(n, LINEAR)])
-    all_params = np.vstack([params, np.tile([params[:, 0].max(), 0.0, 0.0], (n, 1))])
-    group = model.add_group(Spring(edofs, all_kinds, all_params, name=name))
-    model.fix(nodes, "w")
-    model.fix(nodes[:1], "u")
-    return model, group, nodes

@@ -20,7 +20,8 @@ idx   name        meaning
 9     eps_y       yield strain of the reinforcement crossing the crack (fy / Es of the section)
 10    beta0       shear retention just after cracking (open, default 0.25)
 11    beta_floor  smallest shear retention (open, default 1e-4: keeps the matrix non-singular)
-12    Gc          compressive (crushing) fracture energy beyond eps_cu [N/m]; 0: the cliff (stress 0 at eps_cu)
+12    Gc          compressive (crushing) fracture energy beyond eps_cu [N/m]; 0: the cliff (stress 0
+                  at eps_cu)
 13    plane       1: plane strain (a strip of a long foundation): the axial law uses E0 / (1 - nu^2), the D1
                   of eq. (4.4), in place of E0; 0: uniaxial (plane stress, a beam). G = E0 / (2 (1 + nu))
 ====  ==========  =============================================================================
@@ -43,7 +44,8 @@ History (``hist``, first ``N_CONCRETE_HIST`` entries of the layer history)
 
 Algorithm of :func:`concrete_update` (one call, total formulation)
 -------------------------------------------------------------------
-1. Crushed through (``max(x_max, x) >= eps_cd``): sig = 0 (shear retention beta_floor from the next increment).
+1. Crushed through (``max(x_max, x) >= eps_cd``): sig = 0 (shear retention beta_floor from the next
+   increment).
 2. Compression loading (``x > x_max``): sig = -f(x) on the envelope: eq. (5.1) up to eps_cu, then the
    regularised crushing branch (below), x_max <- x.
 3. Otherwise shift by the irreversible strain eps_p = x_max - f(x_max)/E0 (eq. 5.3):
@@ -64,6 +66,8 @@ Algorithm of :func:`concrete_update` (one call, total formulation)
 import math
 
 from numba import njit
+
+from ..protocol import K0_MATRIX
 
 (
     P_E0,
@@ -103,8 +107,8 @@ def compression_envelope(x, E0, fc, eps_c, eps_cu):
 
 @njit(cache=True)
 def crushing_end(E0, fc, eps_c, eps_cu, Gc, ls):
-    """Return ``(f_cu, eps_cd)``: the stress of eq. (5.1) at eps_cu and the strain where the regularised crushing
-    branch reaches zero, eps_cu + 2 Gc / (f_cu ls) (eps_cd = eps_cu for Gc = 0: the cliff)."""
+    """Return ``(f_cu, eps_cd)``: the stress of eq. (5.1) at eps_cu and the strain where the regularised
+    crushing branch reaches zero, eps_cu + 2 Gc / (f_cu ls) (eps_cd = eps_cu for Gc = 0: the cliff)."""
     a = E0 * eps_c / fc
     r = eps_cu / eps_c
     f_cu = E0 * eps_cu / (1.0 + (a - 2.0) * r + r * r)
@@ -117,8 +121,9 @@ def crushing_end(E0, fc, eps_c, eps_cu, Gc, ls):
 def crushing_envelope(x, E0, fc, eps_c, eps_cu, Gc, ls):
     """Compression envelope with regularised crushing, in magnitudes: return ``(f, df/dx)``.
 
-    Eq. (5.1) below eps_cu; then f_cu (eps_cd - x) / (eps_cd - eps_cu) down to zero at eps_cd (``crushing_end``);
-    zero beyond. With Gc = 0 it is :func:`compression_envelope` (zero at and beyond eps_cu)."""
+    Eq. (5.1) below eps_cu; then f_cu (eps_cd - x) / (eps_cd - eps_cu) down to zero at eps_cd
+    (``crushing_end``); zero beyond. With Gc = 0 it is :func:`compression_envelope` (zero at and
+    beyond eps_cu)."""
     if x < eps_cu:
         return compression_envelope(x, E0, fc, eps_c, eps_cu)
     f_cu, eps_cd = crushing_end(E0, fc, eps_c, eps_cu, Gc, ls)
@@ -264,6 +269,6 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     hist_new[H_EMAX] = e_max
     g_t = beta * G
     tau = g_t * gam
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         return sig, tau, E0, G
     return sig, tau, e_t, g_t

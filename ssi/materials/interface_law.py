@@ -1,4 +1,5 @@
-"""Coulomb friction with separation at one point of a zero-thickness interface (paper §6.2, eqs. 6.2, 6.7-6.10).
+"""Coulomb friction with separation at one point of a zero-thickness interface (paper §6.2, eqs. 6.2,
+6.7-6.10).
 
 The "strain" of an interface point is its gap, the relative displacement of the upper body with respect to the
 lower one in the local frame, ``gap = [g_t, g_n]`` (tangential, normal; g_n > 0 opens the contact). The
@@ -28,7 +29,8 @@ The update (one call per integration point and iteration), in numbered steps
    sig_n further into compression, so the return never crosses the apex sig_n = c / tan(phi).
    When the trial came from a re-closing step (1), the tangent is chained with d t_tr / d dgap.
 
-``tangent == 0`` (ELASTIC) returns D = De in every state: the K0 of modified Newton-Raphson (paper §8).
+``tangent == K0_MATRIX`` (:mod:`ssi.protocol`) returns D = De in every state: the K0 of modified
+Newton-Raphson (paper §8).
 
 Parameter vector ``params`` (build it with :func:`interface_params`), indices ``P_*``:
 [kt, kn, c, tan_phi, tan_psi, sig_t].
@@ -41,6 +43,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from ..protocol import K0_MATRIX
 
 __all__ = [
     "N_HIST",
@@ -220,7 +224,7 @@ def _slip_lands_closed(tau_tr, sig_tr, kt, kn, c, tan_phi, tan_psi, sig_t):
 
 @njit(cache=True)
 def _set_tangent(D, tangent, kt, kn, d00, d01, d10, d11):
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         D[0, 0] = kt
         D[0, 1] = 0.0
         D[1, 0] = 0.0

@@ -6,7 +6,8 @@ Law kinds (``kind``) and their parameter vectors ``params`` (length <= N_LAYER_P
 * ``ELASTIC`` (0): [E, nu]; sig = E/(1-nu^2) eps (cylindrical bending), tau = E/(2(1+nu)) gam.
 * ``CONCRETE`` (1): [E0, nu, fc, eps_c, eps_cu, fr, Gf, ls, alpha_ts, eps_y, beta0, beta_floor] --
   eq. (5.1) in compression with irreversible strain (5.3), crack-band softening (5.4), tension
-  stiffening and cracked shear retention (Figs. 5-6). Uniaxial unless its plane-strain flag (index 13) is set. See ``concrete``.
+  stiffening and cracked shear retention (Figs. 5-6). Uniaxial unless its plane-strain flag (index 13) is set.
+  See ``concrete``.
 * ``STEEL`` (2): [Es, 0, fy, EH] -- bilinear with hardening EH, unloading Es, no shear. See ``steel``.
 
 Build the vectors with ``ssi.materials.rc.concrete_params`` / ``steel_params`` (they validate).
@@ -22,8 +23,9 @@ A model builder sets it per element and point (the params array may be per point
 given for all elements the law is a plain (mesh-dependent) strain-softening law.
 
 Numba cache: ``cache=True`` alone keys a kernel's cache on its *own* file, but ``layer_update`` and the plate
-kernels inline ``concrete_update`` / ``steel_update``. ``import ssi`` therefore points ``NUMBA_CACHE_DIR`` at a
-folder keyed on a hash of all package sources (``ssi/__init__.py``): any edit recompiles, nothing stale runs.
+kernels inline ``concrete_update`` / ``steel_update``. ``import ssi`` therefore points ``NUMBA_CACHE_DIR`` at
+a folder keyed on a hash of all package sources (``ssi/__init__.py``): any edit recompiles, nothing stale
+runs.
 
 History: N_LAYER_HIST = 4 floats per layer point (concrete uses 2: max compressive strain, max crack
 strain; steel uses 1: plastic strain). Unused entries are copied through.
@@ -52,16 +54,18 @@ __all__ = [
 ]
 
 
+@njit(cache=True)
 def crack_band_width(element_length: float, weight: float) -> float:
     """Length represented by a Gauss point of weight ``weight`` (on [-1, 1]) in an element of length
-    ``element_length``: the crack band width ls of eq. (5.4) for that point."""
+    ``element_length``: the crack band width ls of eq. (5.4) for that point. A numba kernel, callable from
+    Python as well (the plate strip's kernels and its snap-back check both use it)."""
     return 0.5 * weight * element_length
 
 
 @njit(cache=True)
 def layer_update(kind, params, eps, gam, hist_old, hist_new, tangent):
-    """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (tangent=1) or initial (tangent=0)
-    moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
+    """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (``tangent`` CONSISTENT) or initial
+    (K0_MATRIX) moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
     hist_new[:] = hist_old
     if kind == CONCRETE:
         return concrete_update(params, eps, gam, hist_old, hist_new, tangent)

@@ -39,6 +39,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..protocol import K0_MATRIX
+
 # branch codes stored in hist[1]
 B_ELASTIC = 0
 B_PLANE = 1
@@ -306,7 +308,8 @@ def stress_on_axes(s, order, cc, ss, sig, q, R):
 
 @njit(cache=True)
 def elastic_fill(lam, mu, D):
-    """Fill ``D`` (4, 4) with the isotropic elastic matrix of Lamé constants (lam, mu), order [xx, zz, xz, yy]."""
+    """Fill ``D`` (4, 4) with the isotropic elastic matrix of Lamé constants (lam, mu), order [xx, zz, xz,
+    yy]."""
     D[:, :] = 0.0
     for i in (0, 1, 3):
         for j in (0, 1, 3):
@@ -338,9 +341,9 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     2. Principal values of sB: in-plane pair (pa, pb) with axes n_a, n_b and the out-of-plane syy; order them.
     3. If f(sB) <= 0: elastic. Else return in principal space (:func:`mc_return_principal`).
     4. Rebuild σ on the unchanged principal axes.
-    5. Tangent (``tangent == 1``): in the principal frame of sB,
+    5. Tangent (``tangent == CONSISTENT``): in the principal frame of sB,
        C = H Dp for the normal components and G* = μ (σa - σb) / (sBa - sBb) for the in-plane shear
-       (rotation of the axes); rotate: D = R C Rᵀ. ``tangent == 0`` returns the elastic D.
+       (rotation of the axes); rotate: D = R C Rᵀ. ``tangent == K0_MATRIX`` returns the elastic D.
     """
     E = params[0]
     nu = params[1]
@@ -406,15 +409,15 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         ds[i] = sB[i] - s[i]
     hist_new[0] = hist_old[0] + _plastic_strain_norm(lam, mu, ds)
     hist_new[1] = branch
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         elastic_fill(lam, mu, D)
         return ST_PLASTIC
     # C (ordered) = H Dp, then permute to [a, b, y]
     for i in range(3):
         for j in range(3):
             v = 0.0
-            for l in range(3):
-                v += H[i, l] * (lam + (2.0 * mu if l == j else 0.0))
+            for t in range(3):
+                v += H[i, t] * (lam + (2.0 * mu if t == j else 0.0))
             Cp[order[i], order[j]] = v
     C4[:, :] = 0.0
     idx = (0, 1, 3)
@@ -430,14 +433,14 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     for i in range(4):
         for j in range(4):
             v = 0.0
-            for l in range(4):
-                v += R[i, l] * C4[l, j]
+            for t in range(4):
+                v += R[i, t] * C4[t, j]
             T[i, j] = v
     for i in range(4):
         for j in range(4):
             v = 0.0
-            for l in range(4):
-                v += T[i, l] * R[j, l]
+            for t in range(4):
+                v += T[i, t] * R[j, t]
             D[i, j] = v
     return ST_PLASTIC
 
@@ -555,8 +558,8 @@ def _continuum_dep(sig, lam, mu, k, m, kc, apex, deps, Dep, use_deps):
         for i in range(n):
             for j in range(n):
                 v = 0.0
-                for l in range(4):
-                    v += Av[act[i], l] * DB[act[j], l]
+                for t in range(4):
+                    v += Av[act[i], t] * DB[act[j], t]
                 G[i, j] = v
         Gi = _small_inverse(G)
         if use_deps:
@@ -566,8 +569,8 @@ def _continuum_dep(sig, lam, mu, k, m, kc, apex, deps, Dep, use_deps):
                 v = 0.0
                 for j in range(n):
                     w = 0.0
-                    for l in range(4):
-                        w += DA[act[j], l] * deps[l]
+                    for t in range(4):
+                        w += DA[act[j], t] * deps[t]
                     v += Gi[i, j] * w
                 if v < 0.0:
                     planes[act[i]] = 0
@@ -727,7 +730,7 @@ def mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         sig_new[i] = sig[i]
     hist_new[0] = hist_old[0] + ep
     hist_new[1] = branch
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         elastic_fill(lam, mu, D)
     else:
         _continuum_dep(sig, lam, mu, k, m, kc, apex, dsub, D, True)
@@ -773,7 +776,7 @@ def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     sig_new[3] += pm
     hist_new[0] = hist_old[0] + (nrm - math.sqrt(2.0) * cu) / (2.0 * mu)
     hist_new[1] = B_PLANE
-    if tangent != 0:
+    if tangent != K0_MATRIX:
         K = lam + 2.0 * mu / 3.0
         n = np.empty(4)
         for i in range(4):

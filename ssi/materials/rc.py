@@ -96,7 +96,8 @@ def concrete_params(
     shear retention vanish there). ``alpha_ts`` = 0 turns tension stiffening off. ``Gc``: compressive fracture
     energy beyond eps_cu [N/m] (None: the designer value 8.8 sqrt(fc / MPa) N/mm of Nakamura & Higai; 0: the
     stress cliff at eps_cu). ``plane_strain``: the axial law uses E0 / (1 - nu^2) (a layer of a plane-strain
-    strip, eq. 4.4); False: uniaxial (a beam). Scenes set it for their foundation (``Foundation.plane_strain``).
+    strip, eq. 4.4); False: uniaxial (a beam). Scenes set it for their foundation
+    (``Foundation.plane_strain``).
     """
     fc = _positive("fc", fc)
     E0 = _positive("E0", E0)
@@ -231,9 +232,9 @@ def crack_spacing_mc2010(
     (MC2010 Fig. 7.6-4), x the neutral-axis depth of the cracked elastic section in pure bending,
     x = d alpha_e rho (sqrt(1 + 2 / (alpha_e rho)) - 1), rho = As / (b d), alpha_e = Es / E0.
 
-    c: clear cover to the bar surface, phi: bar diameter, As: bar area over the width b, h: depth, d: effective
-    depth [m]. Returns a dict with ``s_r_max``, ``l_s_max``, ``h_c_ef``, ``rho_s_ef``, ``x``. Used as the crack
-    band width of a reinforced strip (one band per crack; chapter 08)."""
+    c: clear cover to the bar surface, phi: bar diameter, As: bar area over the width b, h: depth, d:
+    effective depth [m]. Returns a dict with ``s_r_max``, ``l_s_max``, ``h_c_ef``, ``rho_s_ef``, ``x``. Used
+    as the crack band width of a reinforced strip (one band per crack; chapter 08)."""
     for name, v in (("c", c), ("phi", phi), ("As", As), ("b", b), ("h", h), ("d", d), ("alpha_e", alpha_e)):
         _positive(name, v)
     if not d < h:

@@ -16,9 +16,9 @@ kinds are padded to ``N_SOIL_PARAMS`` by :func:`material_table`):
 History (``N_SOIL_HIST`` = 2): [accumulated plastic strain norm, branch of the last update
 (0 elastic, 1 plane, 2 edge s1 = s2, 3 edge s2 = s3, 4 apex)].
 
-Numba's on-disk cache keys a kernel on its own file only: after editing this file or
-``ssi/materials/mohr_coulomb.py``, clear the cached element kernel (``rm -rf .numba_cache`` or touch
-``ssi/elements/soil_q8.py``), otherwise the cached ``q8_kernel`` keeps running the old law.
+Numba's on-disk cache keys a kernel on its own file only, but the element kernels inline these laws;
+``import ssi`` therefore keys the whole cache on a hash of all package sources (``ssi/__init__.py``), so an
+edit of this file recompiles ``q8_kernel`` too and nothing stale runs.
 """
 
 import math
@@ -26,6 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..protocol import CONSISTENT
 from .mohr_coulomb import elastic_fill, lame, mc_explicit, mc_implicit, vm_implicit
 
 ELASTIC = 0
@@ -54,7 +55,8 @@ def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tan
     """Update the stress of one point for the strain increment ``deps``; return a status code.
 
     Writes ``sig_new`` (4,), ``hist_new`` (N_SOIL_HIST,) and ``D`` (4, 4): the elastic matrix when
-    ``tangent == 0``, else the consistent tangent. Status 0 = elastic, 1 = plastic, < 0 = failure.
+    ``tangent == K0_MATRIX`` (0, :mod:`ssi.protocol`), else the consistent tangent. Status 0 = elastic, 1 =
+    plastic, < 0 = failure.
     """
     if kind == MOHR_COULOMB:
         return mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
@@ -243,7 +245,7 @@ def pore_pressure(z, water_table=None, z_surface=0.0, gamma_w=GAMMA_W):
 # ---------------------------------------------------------------------------------------------------------
 # material-point driver (plain Python; for tests and chapters)
 # ---------------------------------------------------------------------------------------------------------
-def drive(kind, params, deps_path, sig0=None, tangent=1):
+def drive(kind, params, deps_path, sig0=None, tangent=CONSISTENT):
     """Drive one point along strain increments ``deps_path`` (n, 4); return (sig (n+1, 4), hist (n+1, 2),
     status (n,), D (n, 4, 4)). Each increment is committed before the next (as the solver does)."""
     deps_path = np.atleast_2d(np.asarray(deps_path, np.float64))

@@ -17,6 +17,8 @@ Return mapping (one call, from the committed eps_p):
 
 from numba import njit
 
+from ..protocol import K0_MATRIX
+
 S_ES, S_NU, S_FY, S_EH = range(4)
 N_STEEL_PARAMS = 4
 N_STEEL_HIST = 1
@@ -43,6 +45,6 @@ def steel_update(params, eps, gam, hist_old, hist_new, tangent):
     dg = f / (Es + H)
     hist_new[0] = eps_p + dg * sgn
     sig = s_tr - Es * dg * sgn
-    if tangent == 0:
+    if tangent == K0_MATRIX:
         return sig, 0.0, Es, 0.0
     return sig, 0.0, EH, 0.0
