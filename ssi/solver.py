@@ -305,6 +305,7 @@ RELAX_STAGES = 4  # ... over this many stages, then the last stage is rate indep
 RELAX_STEPS = 8  # increments at most per stage
 RELAX_TOL = 1e-5  # a stage ends when the load measure changes by less than this (relative)
 RELAX_MIN_GROWTH = 1.5  # a failing stage is retried with a smaller growth of tau, down to this
+FLOW_MIN = 10.0 * RELAX_TOL  # a held increment smaller than this (relative to delta) is not flow but noise
 BRACKET_TOL = 0.01  # a limit load found by relaxation is bracketed to 1 % of its load factor ...
 BRACKET_REFINEMENTS = 4  # ... with at most this many extra relaxations
 
@@ -322,9 +323,11 @@ def _flow_stiffness(deltas, tau):
     """Current stiffness parameter of a held load's flow mode, from the loaded displacement of its last three
     increments at viscosity ``tau``: a mode of stiffness s (relative to the elastic one) relaxes by
     1 / (1 + tau s) per increment, so s = (1/r - 1) / tau with r the ratio of the last two displacement
-    increments. nan when unknown (fewer than three, tau = 0, no motion)."""
+    increments. nan when unknown (fewer than three, tau = 0, no motion beyond ``FLOW_MIN``)."""
     if len(deltas) < 3 or tau <= 0.0 or deltas[-2] == deltas[-3]:
         return np.nan
+    if abs(deltas[-1] - deltas[-2]) <= FLOW_MIN * abs(deltas[-1]):
+        return np.nan  # motion at the level of the convergence tolerance says nothing about a mechanism
     r = abs(deltas[-1] - deltas[-2]) / abs(deltas[-2] - deltas[-3])
     return (1.0 / r - 1.0) / tau if r > 0.0 else np.inf
 
