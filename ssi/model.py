@@ -294,15 +294,12 @@ class Model:
         """Solve the linear-elastic scene at load factor 1: one factorisation, one solve."""
         self.check()
         system = System(self)
-        u = system.apply_constraints(np.zeros(self.n_dof), 1.0)
-        states = [g.initial_state() for g in self.groups]
+        u, states = system.start(1.0)
         f_ref, f_dead = self.load_vectors()
         f_int, _, _ = system.evaluate(u, u, states, None)
         residual = (f_ref + f_dead - f_int)[system.free]
-        k0 = system.pattern.assemble([g.elastic_stiffness() for g in self.groups])
         try:
-            fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
-            u[system.free] += fac.solve(residual)
+            u[system.free] += system.factorize_k0(backend).solve(residual)
         except SingularMatrix as err:
             raise ValueError(
                 f"supports: the stiffness matrix is singular (a rigid-body mode is not held); "
@@ -325,6 +322,17 @@ class LinearResult:
 
 class System:
     """Assembly machinery of a model: free-DOF pattern, gather/scatter, evaluation of all groups."""
+
+    def start(self, load_factor: float = 0.0) -> tuple[np.ndarray, list]:
+        """The state an analysis starts from: displacement zero except the constrained DOFs at
+        ``load_factor``, and every group's initial (committed) state."""
+        u = self.apply_constraints(np.zeros(self.model.n_dof), load_factor)
+        return u, [g.initial_state() for g in self.model.groups]
+
+    def factorize_k0(self, backend: str = "auto") -> "Factorization":
+        """The one factorisation of the initial elastic stiffness K0 over the free DOFs (SPD)."""
+        k0 = self.pattern.assemble([g.elastic_stiffness() for g in self.model.groups])
+        return Factorization(self.pattern.matrix(k0), symmetric=True, backend=backend, spd=True)
 
     def __init__(self, model: Model):
         self.model = model

@@ -749,8 +749,7 @@ def _start(model, settings, start=None, loads=None):
     if f_ref.shape != (model.n_dof,) or f_dead.shape != (model.n_dof,):
         raise ValueError(f"loads must be two vectors of length n_dof = {model.n_dof}")
     if start is None:
-        states = [g.initial_state() for g in model.groups]
-        u = system.apply_constraints(np.zeros(model.n_dof), 0.0)
+        u, states = system.start(0.0)
     else:
         if start.model is not model:
             raise ValueError("start must be a Result of the same model")
@@ -763,8 +762,7 @@ def _start(model, settings, start=None, loads=None):
         result.u_origin, result.f_int_origin = start.u_origin, start.f_int_origin
     _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
     result.stiffness.append(np.nan)
-    k0 = system.pattern.assemble([g.elastic_stiffness() for g in model.groups])
-    fac_k0 = Factorization(system.pattern.matrix(k0), symmetric=True, backend=settings.backend, spd=True)
+    fac_k0 = system.factorize_k0(settings.backend)
     result.factorizations = 1
     return system, f_ref, f_dead, states, u, result, fac_k0
 
