@@ -509,6 +509,9 @@ class _Snapshot:
         return self.lists["stiffness"]
 
 
+FALLBACK_LEADS = 8  # increments the fallback leads after it converged where the settings' method failed
+
+
 class _Path:
     """The incremental-iterative state of one run: committed (u, states, lambda) and the machinery."""
 
@@ -525,6 +528,7 @@ class _Path:
         self.step = settings.first_step * scale
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
         self.flow = np.nan  # flow stiffness of the last relaxation stage that ended unsettled
+        self.fallback_leads = 0  # increments for which the fallback method is tried first
 
     def save(self) -> "_Snapshot":
         """The committed path (result lists and current state), to return to with :meth:`restore`."""
@@ -597,11 +601,29 @@ class _Path:
             pending.append(0.5 * (self.lam + lam_next))
 
     def _increment(self, lam_next):
-        """One increment with the settings' method, retried with the fallback method before a step cut."""
+        """One increment with the leading method, retried with the other one (the settings' method and its
+        fallback) before a step cut. When the fallback converges where the settings' method failed, it leads
+        the next ``FALLBACK_LEADS`` increments: on a stretch where the K0-based update stalls (cracking
+        strip, flipping plastic points) every increment would otherwise pay a stalled BFGS run first
+        (measured on chapter 11's h = 0.125 m mesh: 139 such failures, 61 % of its time)."""
         s = self.settings
-        outcome = _increment(
+        first = s.method if self.fallback_leads == 0 or not s.fallback else s.fallback
+        outcome = self._attempt(lam_next, first)
+        other = s.fallback if first == s.method else s.method
+        if not outcome["converged"] and s.fallback and s.fallback != s.method:
+            retry = self._attempt(lam_next, other)
+            retry["iterations"] += outcome["iterations"]
+            if retry["converged"]:
+                self.fallback_leads = FALLBACK_LEADS if other == s.fallback else 0
+                return retry
+            return outcome
+        self.fallback_leads = max(0, self.fallback_leads - 1) if first != s.method else 0
+        return outcome
+
+    def _attempt(self, lam_next, method):
+        return _increment(
             self.system,
-            s,
+            self.settings,
             self.fac_k0,
             self.u,
             self.states,
@@ -609,24 +631,8 @@ class _Path:
             self.f_ref,
             self.f_dead,
             self.result,
-            s.method,
+            method,
         )
-        if not outcome["converged"] and s.fallback and s.fallback != s.method:
-            retry = _increment(
-                self.system,
-                s,
-                self.fac_k0,
-                self.u,
-                self.states,
-                lam_next,
-                self.f_ref,
-                self.f_dead,
-                self.result,
-                s.fallback,
-            )
-            retry["iterations"] += outcome["iterations"]
-            outcome = retry if retry["converged"] else outcome
-        return outcome
 
     def _commit(self, lam, outcome):
         self.u, self.states, self.lam = outcome["u"], outcome["states"], lam
