@@ -39,13 +39,20 @@ import dataclasses
 import json
 import os
 import tempfile
+from collections.abc import Iterator
 from dataclasses import asdict, dataclass, field, is_dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import h5py
 import numpy as np
 
 from . import __version__
+
+if TYPE_CHECKING:  # for annotations only: the functions import ssi.scene and ssi.solver lazily
+    from .model import LinearResult, Model
+    from .scene import SceneResult
+    from .solver import Result, Settings
 
 FORMAT = "ssi-result-1"
 _SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result", "phases")
@@ -53,7 +60,7 @@ _SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result", 
 
 # ---- atomic files ----------------------------------------------------------------------------------------
 @contextlib.contextmanager
-def atomic_path(path: str | os.PathLike, overwrite: bool = False):
+def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Path]:
     """Yield a temporary path in ``path``'s folder; on success it is fsynced and moved to ``path``.
 
     ``overwrite=False`` refuses an existing target (FileExistsError) before and, atomically (a hard link
@@ -103,7 +110,7 @@ def _fsync_dir(folder):
 
 
 # ---- writing ---------------------------------------------------------------------------------------------
-def group_names(model) -> list[str]:
+def group_names(model: "Model") -> list[str]:
     """Unique name of every element group of ``model`` (a repeated name gets a suffix _2, _3, ...)."""
     names = []
     for g in model.groups:
@@ -114,7 +121,7 @@ def group_names(model) -> list[str]:
     return names
 
 
-def element_nodes(model, edofs: np.ndarray) -> np.ndarray:
+def element_nodes(model: "Model", edofs: np.ndarray) -> np.ndarray:
     """(n_el, n_nodes_el) node ids of elements from their DOF table: each node's first DOF marks it."""
     start = np.concatenate([[0], np.cumsum(model.node_ndof)])
     node_of_dof = np.repeat(np.arange(model.n_nodes), model.node_ndof)
@@ -125,8 +132,8 @@ def element_nodes(model, edofs: np.ndarray) -> np.ndarray:
 
 def write_result(
     path: str | os.PathLike,
-    result,
-    settings=None,
+    result: "SceneResult | Result | LinearResult",
+    settings: "Settings | dict | None" = None,
     overwrite: bool = False,
     complete: bool | None = None,
     stop: dict | None = None,
@@ -135,7 +142,8 @@ def write_result(
 
     ``complete``: whether the run reached the end of its load path; default: False if ``stop`` (the
     solver's failure report, e.g. ``NonConvergence.report``) is given or the result's ``status`` field says
-    otherwise, else True. ``settings``: the solver Settings to record. Returns the path."""
+    otherwise, else True. ``settings``: the solver Settings (or a JSON-able dict) to record. Returns the
+    path."""
     path = Path(path)
     if complete is None:
         # a run that ended at a detected limit load is complete: the collapse is its answer, and its status
@@ -306,7 +314,7 @@ def _info(h5):
     return out
 
 
-def read_result(path: str | os.PathLike):
+def read_result(path: str | os.PathLike) -> "SceneResult | StoredResult":
     """Read a result file: a :class:`ssi.scene.SceneResult` (scene rebuilt from its description; its
     ``solver_result`` a :class:`ssi.solver.Result` when one was written) or a :class:`StoredResult`."""
     with h5py.File(path, "r") as h5:
@@ -469,7 +477,7 @@ def _jsonable(obj):
 
 
 # ---- comparing results -----------------------------------------------------------------------------------
-def scene_quantities(result) -> dict:
+def scene_quantities(result: "SceneResult") -> dict[str, np.ndarray]:
     """Every number a :class:`ssi.scene.SceneResult` answers, at every step it holds states for, as flat
     arrays keyed by name: what a file must give back unchanged (``max_difference``). With the status and
     limit load, the solver result (``solver.*``) and of a phased result every phase's name, step range and
@@ -523,7 +531,7 @@ def scene_quantities(result) -> dict:
     return out
 
 
-def solver_quantities(res, prefix: str = "") -> dict:
+def solver_quantities(res: "Result", prefix: str = "") -> dict[str, np.ndarray]:
     """Every field of a :class:`ssi.solver.Result` as arrays keyed ``prefix + name`` (rows of ragged
     histories concatenated, with their lengths); None as NaN."""
     out = {}
@@ -547,7 +555,7 @@ def _number(value):
     return np.asarray(np.nan if value is None else value, np.float64)
 
 
-def max_difference(a, b, skip: tuple = ()) -> tuple[float, str]:
+def max_difference(a: "SceneResult", b: "SceneResult", skip: tuple = ()) -> tuple[float, str]:
     """(largest absolute difference, the quantity where it occurs) between two SceneResults over
     :func:`scene_quantities`; inf for a quantity missing on one side, of another shape, or a differing
     non-numeric array (zones, flags). NaN equals NaN (points that do not carry a quantity). ``skip``: parts

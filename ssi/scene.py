@@ -48,8 +48,10 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 
 import math
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from itertools import pairwise
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -73,9 +75,12 @@ from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model, System
 from .section import Section
 from .shapes import lagrange3
-from .solver import NonConvergence, Settings, run
+from .solver import NonConvergence, Result, Settings, run
 from .supports import fix_block
 from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
+
+if TYPE_CHECKING:  # for annotations only: ssi.estimate imports this module
+    from .estimate import TargetResult
 
 
 @dataclass(frozen=True)
@@ -125,10 +130,20 @@ class SoilLayer:
         return 2.0 * shear * (1.0 + self.nu_u) / (3.0 * (1.0 - 2.0 * self.nu_u)) - k_skeleton
 
     @classmethod
-    def undrained(cls, thickness, E_u, s_u, unit_weight=0.0, nu_u=0.495, K0=None, unit_weight_sat=None):
+    def undrained(
+        cls,
+        thickness: float,
+        E_u: float,
+        s_u: float,
+        unit_weight: float = 0.0,
+        nu_u: float = 0.495,
+        K0: float | None = None,
+        unit_weight_sat: float | None = None,
+    ) -> "SoilLayer":
         """Total-stress undrained clay (Tresca: phi = 0, c = s_u [Pa]) with the undrained modulus E_u [Pa] and
         nu_u close to 0.5 (nearly incompressible). phi = 0 makes the strength independent of the mean stress,
-        so the hydrostatic pore pressure the scene separates does not change it."""
+        so the hydrostatic pore pressure the scene separates does not change it. ``thickness`` [m], unit
+        weights [N/m^3] as in :class:`SoilLayer`."""
         return cls(
             thickness,
             E=E_u,
@@ -161,7 +176,7 @@ class SoilLayer:
                 "phi_deg > 0 (or c=None for an elastic layer)"
             )
 
-    def law(self):
+    def law(self) -> tuple[int, np.ndarray]:
         if self.c is None:
             return 0, elastic_params(self.E, self.nu)
         return mohr_coulomb_params(self.E, self.nu, self.c, self.phi_deg, self.psi_deg, scheme=self.scheme)
@@ -277,7 +292,7 @@ class Contact:
         check_choice("Contact.rule", self.rule, ("newton_cotes", "gauss"))
         self.params()  # the interface law's own checks of the combination (sig_t below the apex)
 
-    def params(self):
+    def params(self) -> np.ndarray:
         if self.phi_deg is None:
             return interface_params(kt=self.kt, kn=self.kn, phi_deg=0.0, c=np.inf, psi_deg=None, sig_t=np.inf)
         return interface_params(
@@ -900,7 +915,7 @@ class PhaseNonConvergence(NonConvergence):
     solver result (as for any :class:`~ssi.solver.NonConvergence`); ``report`` is the solver's report with
     ``phase`` (the failing phase's name) and ``completed_phases`` ("name (steps first-last)") added."""
 
-    def __init__(self, report: dict, result, scene_result: "SceneResult"):
+    def __init__(self, report: dict, result: Result, scene_result: "SceneResult") -> None:
         super().__init__(report, result)
         self.scene_result = scene_result
         solver = ", ".join(f"{k}={v}" for k, v in report.items() if k not in ("phase", "completed_phases"))
@@ -944,7 +959,7 @@ class BuiltScene:
     base_pressure: float = 0.0  # geostatic vertical stress [Pa] the strip's base starts with
     element_layer: np.ndarray | None = None  # (n_el,) index in scene.layers of every soil element
 
-    def plate_node_at(self, x, tol=1e-6):
+    def plate_node_at(self, x: float, tol: float = 1e-6) -> np.integer:
         xs = self.model.coords[self.plate_nodes, 0]
         i = int(np.argmin(np.abs(xs - x)))
         if abs(xs[i] - x) > tol * max(1.0, abs(x)):
@@ -963,7 +978,9 @@ class BuiltScene:
         return soil_linear and plate_linear and contact_linear
 
     # ---- loads -----------------------------------------------------------------------------------------
-    def load_effect(self, load):
+    def load_effect(
+        self, load: "SurfacePressure | ColumnLoad | StripLoad | StripWeight | Settlement"
+    ) -> tuple[np.ndarray, dict[int, float]]:
         """(force vector (n_dof,) [N/m], {dof: prescribed displacement increment [m]}) of one load."""
         model, f_vec, held = self.model, np.zeros(self.model.n_dof), {}
         if isinstance(load, SurfacePressure):
@@ -1036,7 +1053,7 @@ class BuiltScene:
         z = self.soil.integration_points()[..., 1]
         return pore_pressure(z, self.scene.water_table, gamma_w=self.scene.gamma_w)
 
-    def excess_pore_pressure(self, out, k=-1) -> np.ndarray:
+    def excess_pore_pressure(self, out: "SceneResult", k: int = -1) -> np.ndarray:
         """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's
         integration points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers (and in a layer's
         drained phases, see ``Phase.drainage``) and in excavated elements."""
@@ -1048,7 +1065,7 @@ class BuiltScene:
         finally:
             self.soil.configure()
 
-    def total_stress(self, out, k=-1) -> np.ndarray:
+    def total_stress(self, out: "SceneResult", k: int = -1) -> np.ndarray:
         """(n_el, n_ip, 4) total stress [sxx, szz, txz, syy] [Pa] (tension positive) at step ``k`` of ``out``:
         the effective stress of the state minus the pore pressure (hydrostatic from the water level, ponding
         included, plus the excess of undrained layers) on the normal components."""
@@ -1056,7 +1073,7 @@ class BuiltScene:
         sig = out.soil_stress(k)
         return sig - p[..., None] * np.array([1.0, 1.0, 0.0, 1.0])
 
-    def contact_force(self, out) -> np.ndarray:
+    def contact_force(self, out: "SceneResult") -> np.ndarray:
         """Vertical force [N/m] the strip presses on the soil (> 0 compression) at every step of ``out``:
         -integral of sig_n along the contact. Of a push-over it is the load."""
         k = self.model.groups.index(self.interface)
@@ -1071,8 +1088,8 @@ class BuiltScene:
         *,
         estimate_error: bool = False,
         target_error: float | None = None,
-        quantities=("max_settlement",),
-    ):
+        quantities: Sequence[str] = ("max_settlement",),
+    ) -> "SceneResult | TargetResult":
         """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear and
         has no phases.
 
@@ -1244,7 +1261,7 @@ class BuiltScene:
             out |= (xc[:, 0] > ex.x0) & (xc[:, 0] < ex.x1) & (depth > ex.top) & (depth < ex.bottom)
         return out
 
-    def soil_configuration(self, out, k=-1) -> dict:
+    def soil_configuration(self, out: "SceneResult", k: int = -1) -> dict[str, np.ndarray]:
         """The soil configuration at step ``k`` of ``out``: ``active`` (n_el,) elements present (False:
         excavated), ``k_water`` (n_el,) K_w/n [Pa] (0: drained), ``reference`` (n_el, 16) displacement [m]
         from which each undrained element's pore water counts. Replayed from the phases of ``out``."""
@@ -1326,12 +1343,12 @@ class SceneResult:
     def _group_state(self, group, k):
         return self.states[k][self.built.model.groups.index(group)]
 
-    def settlement(self, k=-1):
+    def settlement(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x, settlement) along the foundation's nodes, settlement positive downwards."""
         ids = self.built.plate_nodes
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
-    def contact(self, k=-1):
+    def contact(self, k: int = -1) -> dict[str, np.ndarray]:
         """Interface points: dict of x, normal stress sig_n (< 0 compression), shear tau and the zone name
         ('stick', 'slip', 'open') at each integration point."""
         iface = self.built.interface
@@ -1339,7 +1356,7 @@ class SceneResult:
         names = np.array(["stick", "slip", "open"])[Interface6.status(st)]
         return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": names}
 
-    def surface(self, k=-1):
+    def surface(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x, settlement) of the soil surface, positive downwards; after an excavation the ground as it is at
         step ``k`` (the pit's bottom and walls' tops)."""
         ids = self.built.mesh.surface
@@ -1350,7 +1367,7 @@ class SceneResult:
             ids = np.array([col[(col >= 0) & used[np.maximum(col, 0)]][-1] for col in mesh.grid], np.int64)
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
-    def plate_layers(self, k=-1):
+    def plate_layers(self, k: int = -1) -> dict[str, np.ndarray]:
         """Layer strains and stresses of the foundation at its axial sampling points.
 
         Returns a dict: ``x`` (n_el, n_ip), ``z`` (n_layer,) layer mid-depths above the reference surface,
@@ -1383,19 +1400,19 @@ class SceneResult:
         """Number of converged load steps after the initial state (row 0 is lambda = 0)."""
         return len(self.load_factor) - 1
 
-    def max_settlement(self, k=-1):
+    def max_settlement(self, k: int = -1) -> tuple[float, float]:
         """(x [m], settlement [m]) of the foundation node that settles most at step ``k`` (positive down);
         the soil surface's if the scene has no foundation."""
         x, s = self.settlement(k) if self.built.plate is not None else self.surface(k)
         i = int(np.argmax(s))
         return float(x[i]), float(s[i])
 
-    def contact_weights(self):
+    def contact_weights(self) -> np.ndarray:
         """(n_el, n_ip) integration weight of every contact point times the line Jacobian [m]: the contact
         length each point represents (their sum is the foundation width)."""
         return self.built.interface.ip_weights()
 
-    def contact_resultant(self, k=-1):
+    def contact_resultant(self, k: int = -1) -> dict[str, float]:
         """Resultant of the contact tractions at step ``k`` per unit length of the strip: ``N`` [N/m]
         (compression positive, = the vertical load the soil carries), ``H`` [N/m] (shear, +x), ``M``
         [N m/m] (moment of the tractions about x = 0, counter-clockwise positive) and the foundation's
@@ -1408,7 +1425,7 @@ class SceneResult:
         M = float(np.sum(pressure * w * c["x"]))
         return {"N": N, "H": H, "M": M, "eccentricity": M / N if N else float("nan")}
 
-    def strip_forces(self, k=-1):
+    def strip_forces(self, k: int = -1) -> dict[str, np.ndarray]:
         """Stress resultants of the foundation strip per unit width at step ``k``, from
         ``PlateStrip.resultants``: ``x_ax`` (n_el, n_ax) [m] with normal force ``N`` [N/m] and bending moment
         ``M`` [N m/m] (positive sagging: tension at the bottom), ``x_sh`` (n_el, n_sh) [m] with shear force
@@ -1416,7 +1433,7 @@ class SceneResult:
         plate = self.built.plate
         return plate.resultants(self.u[k][plate.edofs], self._group_state(plate, k))
 
-    def steel_stress(self, k=-1):
+    def steel_stress(self, k: int = -1) -> dict[str, np.ndarray]:
         """Stress [Pa] in every steel layer at the strip's axial points at step ``k``: ``x`` (n_el, n_ax) [m],
         ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
         ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
@@ -1434,49 +1451,49 @@ class SceneResult:
             "yielded": np.abs(sig) >= fy * (1.0 - 1e-9),
         }
 
-    def crack_map(self, k=-1):
+    def crack_map(self, k: int = -1) -> dict[str, np.ndarray]:
         """Cracked concrete layer points at step ``k``: ``x`` (n_el, n_ax) [m], ``z`` (n_layer,) [m],
         ``cracked`` (n_el, n_ax, n_layer) bool (largest tensile strain beyond fr/E0; see ``plate_layers``)."""
         layers = self.plate_layers(k)
         return {"x": layers["x"], "z": layers["z"], "cracked": layers["cracked"]}
 
-    def soil_points(self):
+    def soil_points(self) -> np.ndarray:
         """(n_el, n_ip, 2) coordinates (x, z) [m] of the soil integration points."""
         return self.built.soil.integration_points()
 
-    def soil_stress(self, k=-1):
+    def soil_stress(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip, 4) soil stress [sxx, szz, txz, syy] [Pa] (tension positive; geostatic included)."""
         return self.built.soil.stress(self._group_state(self.built.soil, k)).copy()
 
-    def total_stress(self, k=-1):
+    def total_stress(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip, 4) total soil stress [sxx, szz, txz, syy] [Pa] (tension positive) at step ``k``: see
         :meth:`BuiltScene.total_stress`."""
         return self.built.total_stress(self, k)
 
-    def pore_pressure(self, k=-1):
+    def pore_pressure(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) pore pressure [Pa] (compression positive) at step ``k``: hydrostatic from the water
         level (ponding included) plus the excess pore pressure of undrained layers."""
         return self.built.pore_pressure() + self.built.excess_pore_pressure(self, k)
 
-    def active_elements(self, k=-1):
+    def active_elements(self, k: int = -1) -> np.ndarray:
         """(n_el,) bool: the soil elements present at step ``k`` (False: excavated in an earlier phase)."""
         return self.built.soil_configuration(self, k)["active"]
 
-    def plastic_points(self, k=-1):
+    def plastic_points(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
         surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
         from .elements.soil_q8 import N_STRESS
 
         return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
 
-    def plastic_strain(self, k=-1):
+    def plastic_strain(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
         (history slot 0; zero for elastic layers)."""
         from .elements.soil_q8 import N_STRESS
 
         return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
 
-    def load_settlement(self):
+    def load_settlement(self) -> dict[str, np.ndarray]:
         """The load--settlement path over every converged step (also of a stopped run): ``load_factor``
         (n_steps + 1,) [-], ``column_load`` (n_steps + 1,) [N/m] = lambda * sum of the column forces N,
         ``settlement`` (n_steps + 1,) [m] the largest settlement at each step (positive down)."""

@@ -20,9 +20,11 @@ layer thicknesses add up to the section depth. With the paper's beam (§9.2): 9 
 steel layers give 11 layers, steel in layers 2 and 10 (counted from the bottom), see :func:`rc_section`.
 """
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
 from .protocol import K0_MATRIX
@@ -181,7 +183,12 @@ def _pad_params(params_list) -> np.ndarray:
 
 
 def layered(
-    thicknesses, kinds, params, carries_shear=None, z_ref: float | None = None, labels: tuple = ()
+    thicknesses: ArrayLike,
+    kinds: ArrayLike,
+    params: ArrayLike | Sequence[ArrayLike],
+    carries_shear: ArrayLike | None = None,
+    z_ref: float | None = None,
+    labels: tuple = (),
 ) -> Section:
     """A section from layer thicknesses listed from the bottom face upwards.
 
@@ -253,7 +260,14 @@ def _allocate(n_total: int, gaps: np.ndarray) -> np.ndarray:
     return n
 
 
-def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref: float | None = None) -> Section:
+def rc_section(
+    depth: float,
+    bars: Sequence[tuple[float, float]],
+    concrete: tuple[int, ArrayLike],
+    steel: tuple[int, ArrayLike] | Sequence[tuple[int, ArrayLike]],
+    n_concrete: int | Sequence[int] = 9,
+    z_ref: float | None = None,
+) -> Section:
     """A reinforced-concrete section: concrete layers with smeared bar layers between them.
 
     Parameters
@@ -314,7 +328,13 @@ def rc_section(depth: float, bars, concrete, steel, n_concrete=9, z_ref: float |
 
 
 def paper_rc_section(
-    depth: float, cover: float, as_bottom: float, as_top: float, concrete, steel, n_concrete: int = 9
+    depth: float,
+    cover: float,
+    as_bottom: float,
+    as_top: float,
+    concrete: tuple[int, ArrayLike],
+    steel: tuple[int, ArrayLike] | Sequence[tuple[int, ArrayLike]],
+    n_concrete: int = 9,
 ) -> Section:
     """The paper's doubly reinforced section (§9.2): bars at ``cover`` (to the bar centroid) from each face;
     with the default 9 concrete layers (1 + 7 + 1) there are 11 layers, steel in layers 2 and 10."""

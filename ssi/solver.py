@@ -38,6 +38,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .linsolve import BACKENDS, Factorization
 from .model import Model, System
@@ -148,7 +149,7 @@ class Settings:
         check_real("Settings.line_search_min", self.line_search_min, lo=0.0, hi=1.0, lo_open=True)
 
     @classmethod
-    def paper(cls, **overrides) -> "Settings":
+    def paper(cls, **overrides: object) -> "Settings":
         """The paper's algorithm (§8): modified Newton--Raphson on K0 in the given, equal increments, without
         the viscous fallback.
 
@@ -160,7 +161,7 @@ class Settings:
 class NonConvergence(RuntimeError):
     """An increment failed after all step cuts; ``report`` says what, where and at which load."""
 
-    def __init__(self, report: dict, result: "Result"):
+    def __init__(self, report: dict, result: "Result") -> None:
         self.report = report
         self.result = result  # the converged steps before the failure, for inspection only
         text = ", ".join(f"{k}={v}" for k, v in report.items())
@@ -201,24 +202,25 @@ class Result:
     f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
 
     @property
-    def n_steps(self):
+    def n_steps(self) -> int:
         return len(self.load_factor) - 1
 
     @property
     def collapsed(self) -> bool:
         return self.status == LIMIT_LOAD
 
-    def displacement(self, ids, comp):
-        """(n_steps + 1, n_ids) history of a displacement component."""
+    def displacement(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
+        """(n_steps + 1, n_ids) history of a displacement component [m] (rad for "alpha")."""
         return np.array(self.u)[:, self.model.dof(ids, comp)]
 
-    def reaction(self, ids, comp):
-        """(n_steps + 1,) summed internal force (= support reaction) over ``ids`` in ``comp``."""
+    def reaction(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
+        """(n_steps + 1,) summed internal force (= support reaction) over ``ids`` in ``comp`` [N/m] (N m/m for
+        "alpha")."""
         d = self.model.dof(ids, comp)
         return np.array(self.f_int)[:, d].sum(axis=1)
 
     @property
-    def final_state(self):
+    def final_state(self) -> list[np.ndarray]:
         return self.states[-1]
 
     @property
@@ -246,7 +248,7 @@ class Result:
 
 def run(
     model: Model,
-    load_factors=(1.0,),
+    load_factors: ArrayLike = (1.0,),
     settings: Settings | None = None,
     *,
     start: "Result | None" = None,
