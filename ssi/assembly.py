@@ -16,19 +16,19 @@ from numba import njit
 
 
 @njit(cache=True)
-def _incidence(dofs, el_ptr, free_of, n_free):
-    """CSR incidence free DOF -> elements holding it: for each, the element ``e`` and the position ``k`` of
-    the DOF in the flat element-DOF list (its local index is ``k - el_ptr[e]``)."""
-    count = np.zeros(n_free + 1, np.int64)
+def _incidence(dofs, el_ptr, free_of, inc_ptr, inc_el, inc_entry):
+    """Fill the CSR incidence free DOF -> elements holding it (``inc_ptr`` zeros of n_free + 1; ``inc_el`` and
+    ``inc_entry`` of at least ``dofs.size``): for each, the element ``e`` and the position ``k`` of the DOF in
+    the flat element-DOF list (its local index is ``k - el_ptr[e]``). The arrays come from the caller: numpy
+    backs large ones with huge pages, a kernel's own allocation does not (6x the page faults)."""
+    n_free = inc_ptr.size - 1
     for k in range(dofs.size):
         f = free_of[dofs[k]]
         if f >= 0:
-            count[f + 1] += 1
+            inc_ptr[f + 1] += 1
     for i in range(n_free):
-        count[i + 1] += count[i]
-    inc_el = np.empty(count[n_free], np.int64)
-    inc_entry = np.empty(count[n_free], np.int64)
-    fill = count[:-1].copy()
+        inc_ptr[i + 1] += inc_ptr[i]
+    fill = inc_ptr[:-1].copy()
     for e in range(el_ptr.size - 1):
         for k in range(el_ptr[e], el_ptr[e + 1]):
             f = free_of[dofs[k]]
@@ -36,7 +36,6 @@ def _incidence(dofs, el_ptr, free_of, n_free):
                 inc_el[fill[f]] = e
                 inc_entry[fill[f]] = k
                 fill[f] += 1
-    return count, inc_el, inc_entry
 
 
 @njit(cache=True)
@@ -53,19 +52,24 @@ def _same_elements(inc_ptr, inc_el, row):
 
 
 @njit(cache=True)
-def _pattern(dofs, el_ptr, free_of, n_free, inc_ptr, inc_el):
-    """Row pointers and sorted column indices of the union of element couplings over the free DOFs.
+def _run_length(inc_ptr, inc_el, row):
+    """How many rows from ``row`` on lie in the same elements as ``row`` (the free DOFs of one node do)."""
+    run = 1
+    while row + run < inc_ptr.size - 1 and _same_elements(inc_ptr, inc_el, row + run):
+        run += 1
+    return run
 
-    Two passes over each row's elements and no sort: the first counts the row's distinct columns, the second
-    appends the row to the list of each of its columns. The couplings are symmetric (row i holds column j iff
-    row j holds column i), so visiting the rows in increasing order fills every list in increasing order. A
-    row in the same elements as the row before it reuses that row's columns instead of visiting them."""
+
+@njit(cache=True)
+def _row_pointers(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr):
+    """Fill ``indptr`` (zeros of n_free + 1) with the row pointers of the union of element couplings over the
+    free DOFs: each row's distinct columns counted with a marker. Consecutive rows in the same elements (one
+    node's DOFs) have the same columns and are counted once."""
+    n_free = inc_ptr.size - 1
     marker = np.full(n_free, -1, np.int64)
-    indptr = np.zeros(n_free + 1, np.int64)
-    for row in range(n_free):
-        if _same_elements(inc_ptr, inc_el, row):
-            indptr[row + 1] = 2 * indptr[row] - indptr[row - 1]
-            continue
+    row = 0
+    while row < n_free:
+        run = _run_length(inc_ptr, inc_el, row)
         n = 0
         for k in range(inc_ptr[row], inc_ptr[row + 1]):
             e = inc_el[k]
@@ -74,36 +78,33 @@ def _pattern(dofs, el_ptr, free_of, n_free, inc_ptr, inc_el):
                 if col >= 0 and marker[col] != row:
                     marker[col] = row
                     n += 1
-        indptr[row + 1] = indptr[row] + n
-    indices = np.empty(indptr[n_free], np.int32)
-    fill = indptr[:-1].copy()
-    marker[:] = -1
-    cols = np.empty(max_row_length(indptr), np.int64)  # the columns of the last row visited
-    n = 0
-    for row in range(n_free):
-        if not _same_elements(inc_ptr, inc_el, row):
-            n = 0
-            for k in range(inc_ptr[row], inc_ptr[row + 1]):
-                e = inc_el[k]
-                for b in range(el_ptr[e], el_ptr[e + 1]):
-                    col = free_of[dofs[b]]
-                    if col >= 0 and marker[col] != row:
-                        marker[col] = row
-                        cols[n] = col
-                        n += 1
-        for j in range(n):
-            col = cols[j]
-            indices[fill[col]] = row
-            fill[col] += 1
-    return indptr, indices
+        for t in range(run):
+            indptr[row + t + 1] = indptr[row + t] + n
+        row += run
 
 
 @njit(cache=True)
-def max_row_length(indptr):
-    longest = 0
-    for row in range(indptr.size - 1):
-        longest = max(longest, indptr[row + 1] - indptr[row])
-    return longest
+def _column_indices(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, indices):
+    """Fill ``indices`` (nnz) with the sorted column indices of every row, without a sort: each row is
+    appended to the list of each of its columns. The couplings are symmetric (row i holds column j iff row j
+    holds column i), so visiting the rows in increasing order fills every list in increasing order."""
+    n_free = inc_ptr.size - 1
+    marker = np.full(n_free, -1, np.int64)
+    fill = indptr[:-1].copy()
+    row = 0
+    while row < n_free:
+        run = _run_length(inc_ptr, inc_el, row)
+        for k in range(inc_ptr[row], inc_ptr[row + 1]):
+            e = inc_el[k]
+            for b in range(el_ptr[e], el_ptr[e + 1]):
+                col = free_of[dofs[b]]
+                if col >= 0 and marker[col] != row:
+                    marker[col] = row
+                    start = fill[col]
+                    for t in range(run):  # the run's rows, in order, side by side in column col's list
+                        indices[start + t] = row + t
+                    fill[col] = start + run
+        row += run
 
 
 @njit(cache=True)
@@ -174,6 +175,24 @@ def gather_vector(edofs, u, out):
             out[e, a] = u[edofs[e, a]]
 
 
+def _flat_elements(edofs_list):
+    """Every group's element-DOF lists in one flat array, so that one pass over all groups builds the union
+    of their couplings: (dofs, el_ptr, smap_ptr), element e's DOFs ``dofs[el_ptr[e]:el_ptr[e + 1]]`` and its
+    n_e x n_e scatter-map block at ``smap_ptr[e]``."""
+    if len(edofs_list) == 1:
+        dofs = edofs_list[0].ravel()  # a view: one group needs no copy
+    else:
+        dofs = np.concatenate([ed.ravel() for ed in edofs_list] + [np.zeros(0, np.int64)])
+    n_per_el = np.concatenate(
+        [np.full(ed.shape[0], ed.shape[1], np.int64) for ed in edofs_list] + [np.zeros(0, np.int64)]
+    )
+    el_ptr = np.zeros(n_per_el.size + 1, np.int64)
+    np.cumsum(n_per_el, out=el_ptr[1:])
+    smap_ptr = np.zeros(n_per_el.size + 1, np.int64)
+    np.cumsum(n_per_el**2, out=smap_ptr[1:])
+    return dofs, el_ptr, smap_ptr
+
+
 class SparsePattern:
     """CSR pattern of K_ff over the free DOFs of several element groups, with one scatter map per group.
 
@@ -190,21 +209,16 @@ class SparsePattern:
         self.n_free = self.free_dofs.size
         self.free_of = np.full(self.n_dof, -1, np.int64)
         self.free_of[self.free_dofs] = np.arange(self.n_free)
-        # every group's element-DOF lists in one flat array: one pass over all groups builds the union
         edofs_list = [np.ascontiguousarray(ed, np.int64) for ed in edofs_list]
-        if len(edofs_list) == 1:
-            dofs = edofs_list[0].ravel()  # a view: one group needs no copy
-        else:
-            dofs = np.concatenate([ed.ravel() for ed in edofs_list] + [np.zeros(0, np.int64)])
-        sizes = [np.full(ed.shape[0], ed.shape[1], np.int64) for ed in edofs_list]
-        n_per_el = np.concatenate(sizes) if sizes else np.zeros(0, np.int64)
-        el_ptr = np.zeros(n_per_el.size + 1, np.int64)
-        np.cumsum(n_per_el, out=el_ptr[1:])
-        smap_ptr = np.zeros(n_per_el.size + 1, np.int64)
-        np.cumsum(n_per_el**2, out=smap_ptr[1:])
-        inc_ptr, inc_el, inc_entry = _incidence(dofs, el_ptr, self.free_of, self.n_free)
-        indptr, self.indices = _pattern(dofs, el_ptr, self.free_of, self.n_free, inc_ptr, inc_el)
+        dofs, el_ptr, smap_ptr = _flat_elements(edofs_list)
+        inc_ptr = np.zeros(self.n_free + 1, np.int64)
+        inc_el, inc_entry = np.empty(dofs.size, np.int64), np.empty(dofs.size, np.int64)
+        _incidence(dofs, el_ptr, self.free_of, inc_ptr, inc_el, inc_entry)
+        indptr = np.zeros(self.n_free + 1, np.int64)
+        _row_pointers(dofs, el_ptr, self.free_of, inc_ptr, inc_el, indptr)
         self.nnz = int(indptr[-1])
+        self.indices = np.empty(self.nnz, np.int32)
+        _column_indices(dofs, el_ptr, self.free_of, inc_ptr, inc_el, indptr, self.indices)
         # int32 row pointers and scatter maps where the entries fit (half the memory of int64; the CSR
         # matrices built on this pattern then share its index arrays instead of casting a copy each time)
         index_dtype = np.int32 if self.nnz < np.iinfo(np.int32).max else np.int64
