@@ -70,7 +70,8 @@ def soil_update_among(
         for j in range(4):
             s += D[i, j] * deps[j]
         sig_new[i] = s
-    hist_new[:] = hist_old
+    for i in range(hist_old.size):  # a loop, not hist_new[:] = hist_old (see layer_update)
+        hist_new[i] = hist_old[i]
     return 0
 
 
