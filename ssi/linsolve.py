@@ -28,6 +28,7 @@ import os
 import sys
 import tempfile
 import weakref
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
@@ -141,7 +142,7 @@ def _drain_scratch() -> str:
 
 @functools.cache
 def pardiso_available() -> bool:
-    """pypardiso importable and MKL found (looked up once per process)."""
+    """MKL's PARDISO found (the ``fast`` extra installs it with pypardiso; looked up once per process)."""
     try:
         _mkl_pardiso()
     except (ImportError, OSError):
@@ -248,9 +249,45 @@ def _superlu_factor(matrix, trap_solves=True):
 _MAX_IDLE_HANDLES = 4  # idle analysed handles kept per process (each holds one pattern's analysis)
 
 
+def _mkl_runtime_path():
+    """MKL's runtime library: ``PYPARDISO_MKL_RT`` if set, else the one the ``mkl`` wheel (pypardiso's
+    dependency) puts in this environment's library folder, else None. pypardiso itself searches the whole
+    environment tree for it, once on import and again for every solver it creates (0.37 s each, measured on
+    this project's venv): a user's process paid 0.74 s before its first factorisation."""
+    if os.environ.get("PYPARDISO_MKL_RT"):
+        return os.environ["PYPARDISO_MKL_RT"]
+    for folder in (Path(sys.prefix) / "lib", Path(sys.prefix) / "Library" / "bin"):
+        candidates = (
+            sorted(folder.glob("*mkl_rt*"), key=lambda path: len(path.name)) if folder.is_dir() else []
+        )
+        if candidates:
+            return str(candidates[0])
+    return None
+
+
+_PARDISO_ARGTYPES = (
+    [ctypes.POINTER(ctypes.c_int64)]  # pt
+    + [ctypes.POINTER(ctypes.c_int32)] * 5  # maxfct, mnum, mtype, phase, n
+    + [ctypes.c_void_p]  # a
+    + [ctypes.POINTER(ctypes.c_int32)] * 5  # ia, ja, perm, nrhs, iparm
+    + [ctypes.POINTER(ctypes.c_int32), ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(ctypes.c_int32)]
+)  # msglvl, b, x, error -- the signature pypardiso declares
+
+
 @functools.cache
 def _mkl_pardiso():
-    """The ``pardiso`` entry point of MKL with its ctypes signature, found once per process."""
+    """The ``pardiso`` entry point of MKL with its ctypes signature, found once per process: loaded from
+    the library :func:`_mkl_runtime_path` names, or through pypardiso's own search when that fails."""
+    path = _mkl_runtime_path()
+    if path is not None:
+        try:
+            entry = ctypes.CDLL(path).pardiso
+        except (OSError, AttributeError):
+            entry = None
+        if entry is not None:
+            entry.argtypes = _PARDISO_ARGTYPES
+            entry.restype = None
+            return entry
     import pypardiso
 
     return pypardiso.PyPardisoSolver()._mkl_pardiso
