@@ -46,7 +46,9 @@ def _free_rigid_motion(coords, start, nodes, dofs):
     m[:, 2] = np.where(comp == 0, -z, np.where(comp == 1, x, 1.0 / size))
     if point_like:
         m = m[:, :2]
-    _, sv, vt = np.linalg.svd(m, full_matrices=True)
+    # the full V^T (3 x 3) is needed only when there are fewer rows than modes; the full U (n x n) never is
+    # (at 1e6 DOFs it made this check cost 0.9 s)
+    _, sv, vt = np.linalg.svd(m, full_matrices=m.shape[0] < m.shape[1])
     sv = np.concatenate([sv, np.zeros(m.shape[1] - len(sv))])
     if sv[-1] > 1e-10 * sv[0]:
         return None
