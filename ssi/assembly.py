@@ -16,11 +16,13 @@ from numba import njit
 
 
 @njit(cache=True)
-def _incidence(dofs, el_ptr, free_of, inc_ptr, inc_el, inc_entry):
+def _incidence(dofs, el_ptr, free_of, inc_ptr, inc_el, inc_entry, fill):
     """Fill the CSR incidence free DOF -> elements holding it (``inc_ptr`` zeros of n_free + 1; ``inc_el`` and
     ``inc_entry`` of at least ``dofs.size``): for each, the element ``e`` and the position ``k`` of the DOF in
     the flat element-DOF list (its local index is ``k - el_ptr[e]``). The arrays come from the caller: numpy
-    backs large ones with huge pages, a kernel's own allocation does not (6x the page faults)."""
+    backs large ones with huge pages, a kernel's own allocation does not (6x the page faults); ``fill`` (>=
+    n_free) is scratch. No kernel here allocates: each allocation would compile one more numpy overload into
+    a cold first run."""
     n_free = inc_ptr.size - 1
     for k in range(dofs.size):
         f = free_of[dofs[k]]
@@ -28,7 +30,8 @@ def _incidence(dofs, el_ptr, free_of, inc_ptr, inc_el, inc_entry):
             inc_ptr[f + 1] += 1
     for i in range(n_free):
         inc_ptr[i + 1] += inc_ptr[i]
-    fill = inc_ptr[:-1].copy()
+    for i in range(n_free):
+        fill[i] = inc_ptr[i]
     for e in range(el_ptr.size - 1):
         for k in range(el_ptr[e], el_ptr[e + 1]):
             f = free_of[dofs[k]]
@@ -61,12 +64,13 @@ def _run_length(inc_ptr, inc_el, row):
 
 
 @njit(cache=True)
-def _row_pointers(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr):
+def _row_pointers(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, marker):
     """Fill ``indptr`` (zeros of n_free + 1) with the row pointers of the union of element couplings over the
     free DOFs: each row's distinct columns counted with a marker. Consecutive rows in the same elements (one
-    node's DOFs) have the same columns and are counted once."""
+    node's DOFs) have the same columns and are counted once. ``marker`` (>= n_free) is scratch."""
     n_free = inc_ptr.size - 1
-    marker = np.full(n_free, -1, np.int64)
+    for i in range(n_free):
+        marker[i] = -1
     row = 0
     while row < n_free:
         run = _run_length(inc_ptr, inc_el, row)
@@ -84,13 +88,15 @@ def _row_pointers(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr):
 
 
 @njit(cache=True)
-def _column_indices(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, indices):
+def _column_indices(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, indices, marker, fill):
     """Fill ``indices`` (nnz) with the sorted column indices of every row, without a sort: each row is
     appended to the list of each of its columns. The couplings are symmetric (row i holds column j iff row j
-    holds column i), so visiting the rows in increasing order fills every list in increasing order."""
+    holds column i), so visiting the rows in increasing order fills every list in increasing order.
+    ``marker`` and ``fill`` (>= n_free) are scratch."""
     n_free = inc_ptr.size - 1
-    marker = np.full(n_free, -1, np.int64)
-    fill = indptr[:-1].copy()
+    for i in range(n_free):
+        marker[i] = -1
+        fill[i] = indptr[i]
     row = 0
     while row < n_free:
         run = _run_length(inc_ptr, inc_el, row)
@@ -108,17 +114,20 @@ def _column_indices(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, indices):
 
 
 @njit(cache=True)
-def _scatter_map(dofs, el_ptr, smap_ptr, free_of, indptr, indices, inc_ptr, inc_el, inc_entry, smap):
+def _scatter_map(
+    dofs, el_ptr, smap_ptr, free_of, indptr, indices, inc_ptr, inc_el, inc_entry, smap, position
+):
     """Fill the flat scatter map ``smap`` (element e's n_e x n_e block, row-major, at ``smap_ptr[e]``) with
     CSR data positions, -1 where the row or the column is constrained. Row by row: the row's columns are
     spread into a position table once, then every element holding the row reads its block row from it; a row
-    with the same columns as the row before it shifts that row's block rows instead."""
+    with the same columns as the row before it shifts that row's block rows instead. ``position`` (>= n_free)
+    is scratch."""
     for e in range(el_ptr.size - 1):  # rows of constrained DOFs are not in the incidence
         n_e = el_ptr[e + 1] - el_ptr[e]
         for a in range(n_e):
             if free_of[dofs[el_ptr[e] + a]] < 0:
-                smap[smap_ptr[e] + a * n_e : smap_ptr[e] + (a + 1) * n_e] = -1
-    position = np.empty(free_of.size, np.int64)  # free_of.size >= n_free: any free column fits
+                for b in range(n_e):
+                    smap[smap_ptr[e] + a * n_e + b] = -1
     for row in range(indptr.size - 1):
         if _same_elements(inc_ptr, inc_el, row):
             shift = indptr[row] - indptr[row - 1]
@@ -213,12 +222,13 @@ class SparsePattern:
         dofs, el_ptr, smap_ptr = _flat_elements(edofs_list)
         inc_ptr = np.zeros(self.n_free + 1, np.int64)
         inc_el, inc_entry = np.empty(dofs.size, np.int64), np.empty(dofs.size, np.int64)
-        _incidence(dofs, el_ptr, self.free_of, inc_ptr, inc_el, inc_entry)
+        scratch = np.empty((2, self.n_free + 1), np.int64)
+        _incidence(dofs, el_ptr, self.free_of, inc_ptr, inc_el, inc_entry, scratch[0])
         indptr = np.zeros(self.n_free + 1, np.int64)
-        _row_pointers(dofs, el_ptr, self.free_of, inc_ptr, inc_el, indptr)
+        _row_pointers(dofs, el_ptr, self.free_of, inc_ptr, inc_el, indptr, scratch[0])
         self.nnz = int(indptr[-1])
         self.indices = np.empty(self.nnz, np.int32)
-        _column_indices(dofs, el_ptr, self.free_of, inc_ptr, inc_el, indptr, self.indices)
+        _column_indices(dofs, el_ptr, self.free_of, inc_ptr, inc_el, indptr, self.indices, *scratch)
         # int32 row pointers and scatter maps where the entries fit (half the memory of int64; the CSR
         # matrices built on this pattern then share its index arrays instead of casting a copy each time)
         index_dtype = np.int32 if self.nnz < np.iinfo(np.int32).max else np.int64
@@ -227,7 +237,17 @@ class SparsePattern:
             self.indices = self.indices.astype(np.int64)
         smap = np.empty(smap_ptr[-1], index_dtype)
         _scatter_map(
-            dofs, el_ptr, smap_ptr, self.free_of, indptr, self.indices, inc_ptr, inc_el, inc_entry, smap
+            dofs,
+            el_ptr,
+            smap_ptr,
+            self.free_of,
+            indptr,
+            self.indices,
+            inc_ptr,
+            inc_el,
+            inc_entry,
+            smap,
+            scratch[0],
         )
         # one (n_el, n_edof * n_edof) view per group into the flat map
         self.scatter_maps, start = [], 0
