@@ -28,7 +28,9 @@ def _reference_derivatives(gp):
     dn_ref = np.empty((gp.shape[0], 8, 2))
     for q in range(gp.shape[0]):
         _, dn = serendipity8(gp[q, 0], gp[q, 1])
-        dn_ref[q] = dn
+        for a in range(8):  # loops, not dn_ref[q] = dn: no array-to-slice copy to compile
+            dn_ref[q, a, 0] = dn[a, 0]
+            dn_ref[q, a, 1] = dn[a, 1]
     return dn_ref
 
 
