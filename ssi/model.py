@@ -301,7 +301,7 @@ class Model:
         f_ref, f_dead = self.load_vectors()
         f_int, _, _ = system.evaluate(u, u, states, None)
         residual = (f_ref + f_dead - f_int)[system.free]
-        k0 = system.pattern.assemble([g.elastic_stiffness() for g in self.groups])
+        k0 = system.pattern.assemble_elastic(self.groups)
         try:
             fac = Factorization(system.pattern.matrix(k0), True, backend, spd=True)
             u[system.free] += fac.solve(residual)

@@ -13,10 +13,11 @@ import functools
 import numpy as np
 from numba import njit
 
+from ..assembly import scatter_matrix
 from ..materials.soil_laws import N_SOIL_HIST, laws_used, soil_update_among
 from ..quadrature import gauss_2d
 from ..shapes import serendipity8
-from .q8_elastic import q8_elastic_stiffness
+from .q8_elastic import q8_elastic_assemble, q8_elastic_stiffness
 
 N_STRESS = 4
 N_SOIL_STATE = N_STRESS + N_SOIL_HIST
@@ -392,6 +393,17 @@ class SoilQ8:
                 self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(), k0, True
             )
         return k0
+
+    def assemble_elastic_stiffness(self, smap, data):
+        """Add K0 into CSR values ``data`` through this group's scatter map ``smap`` without keeping the
+        element matrices (the same sums as scattering :meth:`elastic_stiffness`); undrained groups (pore-water
+        term) scatter the stored matrices."""
+        if self.k_water is not None:
+            scatter_matrix(smap, self.elastic_stiffness(), data)
+            return data
+        E = self.params[self.el_mat, 0]
+        nu = self.params[self.el_mat, 1]
+        return q8_elastic_assemble(self.coords, E, nu, self.n_gauss, smap, data)
 
     def excess_pore_pressure(self, u_el) -> np.ndarray:
         """Excess pore pressure [Pa] (compression positive) at the integration points (n_el, n_ip) of the
