@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from numba import njit
 
 BACKENDS = ("auto", "superlu", "pardiso")
 # "auto" picks PARDISO (when installed) by the measured cost of the use, set-up included (MKL looked up once per
@@ -293,11 +294,39 @@ def _mkl_pardiso():
     return pypardiso.PyPardisoSolver()._mkl_pardiso
 
 
+@njit(cache=True)
+def _kept_rows(indptr, indices, upper_only, start, ia):
+    """Per row of a CSR matrix with sorted indices: ``start`` (n,) the first entry PARDISO takes (the
+    diagonal or the first entry right of it when ``upper_only``, the row's first entry otherwise) and ``ia``
+    (n + 1,) the 1-based row pointers of the kept entries."""
+    n = indptr.size - 1
+    ia[0] = 1
+    for row in range(n):
+        k = indptr[row]
+        if upper_only:
+            while k < indptr[row + 1] and indices[k] < row:
+                k += 1
+        start[row] = k
+        ia[row + 1] = ia[row] + (indptr[row + 1] - k)
+
+
+@njit(cache=True)
+def _gather_kept(indptr, start, ia, source, out):
+    """``out[ia[r] - 1 + j] = source[start[r] + j]`` over the kept entries of every row: the kept column
+    indices (``source = indices``, then + 1) or values (``source = data``)."""
+    for row in range(indptr.size - 1):
+        base = ia[row] - 1 - start[row]
+        for k in range(start[row], indptr[row + 1]):
+            out[base + k] = source[k]
+
+
 class _PardisoHandle:
     """One PARDISO instance (its ``pt`` handle) bound to one sparsity pattern and matrix type.
 
-    ``upper`` (nnz_kept,) are the positions in the full CSR ``data`` of the entries PARDISO takes (the upper
-    triangle for symmetric types, all for unsymmetric ones), so a refactorisation gathers the values only.
+    ``start`` (n,) holds each row's first entry PARDISO takes (upper triangle for symmetric types, all for
+    unsymmetric ones; the indices are sorted, so the kept entries of a row are one contiguous run), so a
+    refactorisation gathers the values only. Two passes over the pattern, no temporaries of its size (the
+    numpy version built row numbers, masks and positions of every entry: 1.9 s at 1e6 DOFs).
     """
 
     def __init__(self, matrix, mtype, spd):
@@ -309,17 +338,13 @@ class _PardisoHandle:
             self.iparm[0] = 1
             self.iparm[1] = 0
         # otherwise iparm 1 = 0: MKL's defaults for every entry (what pypardiso passed)
-        indptr = matrix.indptr
-        indices = matrix.indices
-        rows = np.repeat(np.arange(self.n, dtype=np.int64), np.diff(indptr))
-        keep = indices >= rows if mtype != 11 else np.ones(indices.size, bool)
-        self.upper = np.flatnonzero(keep)
-        counts = np.bincount(rows[keep], minlength=self.n)
+        self.indptr = matrix.indptr
+        self.start = np.empty(self.n, np.int64)
         self.ia = np.empty(self.n + 1, np.int32)
-        self.ia[0] = 1
-        np.cumsum(counts, out=self.ia[1:])
-        self.ia[1:] += 1
-        self.ja = (indices[keep] + 1).astype(np.int32)
+        _kept_rows(matrix.indptr, matrix.indices, mtype != 11, self.start, self.ia)
+        self.ja = np.empty(self.ia[-1] - 1, np.int32)
+        _gather_kept(matrix.indptr, self.start, self.ia, matrix.indices, self.ja)
+        self.ja += 1
         self.pattern_key = _pattern_key(matrix)
         self.analysed = False
         self.a = np.empty(self.ja.size)
@@ -353,7 +378,7 @@ class _PardisoHandle:
     def factorize(self, data):
         """Numeric factorisation of the matrix with full CSR values ``data``; the symbolic analysis of the
         pattern is done on the first call only."""
-        np.take(data, self.upper, out=self.a)
+        _gather_kept(self.indptr, self.start, self.ia, data, self.a)
         self._call(22 if self.analysed else 12, self._dummy, self._dummy)
         self.analysed = True
 
