@@ -58,7 +58,21 @@ def main():
     m.add_load(mesh.surface, "w", -1.0)
     m.solve_linear()
     warm_soil_law_kernels()
+    warm_pardiso_kernels(m)
     print(f"warm_cache_s: {time.perf_counter() - t0:.1f}")
+
+
+def warm_pardiso_kernels(model):
+    """The kernels that hand a pattern to PARDISO (the scenes above are small enough for SuperLU)."""
+    from ssi.linsolve import Factorization, pardiso_available
+    from ssi.model import System
+
+    if not pardiso_available():
+        return
+    system = System(model)
+    k0 = system.pattern.matrix(system.pattern.assemble_elastic(model.groups))
+    for spd, symmetric in ((True, True), (False, False)):
+        Factorization(k0, symmetric, "pardiso", spd=spd)
 
 
 def warm_soil_law_kernels():
