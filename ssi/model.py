@@ -299,7 +299,10 @@ class Model:
         u = system.apply_constraints(np.zeros(self.n_dof), 1.0)
         states = [g.initial_state() for g in self.groups]
         f_ref, f_dead = self.load_vectors()
-        f_int, _, _ = system.evaluate(u, u, states, None)
+        if u.any() or any(state.any() for state in states):
+            f_int, _, _ = system.evaluate(u, u, states, None)
+        else:  # nothing displaced, nothing stressed: no internal force (spares a pass over every element)
+            f_int = np.zeros(self.n_dof)
         residual = (f_ref + f_dead - f_int)[system.free]
         k0 = system.pattern.assemble_elastic(self.groups)
         try:
