@@ -17,6 +17,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from goals import verdict
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -43,10 +45,7 @@ def main():
         cold, cold_cpu = timed_process(code, cache)
         warm, warm_cpu = min(timed_process(code, cache) for _ in range(3))
     goal = 5.0 * warm + 10.0
-    print(
-        f"first_run_cold_s: {cold:.2f}   (goal <= 5 x readme_scene_s + 10 = {goal:.1f} -> "
-        f"{'MET' if cold <= goal else 'MISSED'})"
-    )
+    print(f"first_run_cold_s: {cold:.2f}{verdict(cold, '<=', goal, ' s = 5 x readme_scene_s + 10 s')}")
     print(f"readme_scene_s: {warm:.2f}   (best of 3)")
     print(f"first_run_cold_cpu_s: {cold_cpu:.2f}")
     print(f"readme_scene_cpu_s: {warm_cpu:.2f}")

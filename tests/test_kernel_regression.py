@@ -37,3 +37,31 @@ def test_case_covers_every_return_branch(stored):
     # hist[1] of the new states: 0 elastic, 1 plane, 2 and 3 edges, 4 apex -- all reached
     branches = set(np.unique(stored["state_g2_t2"][:, :, 5]).astype(int))
     assert {0, 1, 2, 3, 4} <= branches
+
+
+@pytest.mark.parametrize("laws", [(0,), (0, 1)])
+def test_law_specialised_kernels_give_the_stored_outputs(stored, laws):
+    """A group whose table holds only some laws runs a kernel compiled for those laws alone
+    (``q8_kernel_for``): on the elements of those laws it must reproduce the stored outputs bit for bit."""
+    from kernel_regression_case import case
+
+    from ssi.elements.soil_q8 import SoilQ8, q8_kernel, q8_kernel_for
+    from ssi.materials.soil_laws import laws_used
+
+    for n_gauss in (2, 3):
+        full, du_el, state = case(n_gauss)
+        mats = np.flatnonzero(np.isin(full.kinds, laws))
+        sel = np.flatnonzero(np.isin(full.el_mat, mats))
+        el_mat = np.searchsorted(mats, full.el_mat[sel])
+        group = SoilQ8(
+            full.coords[sel], full.edofs[sel], el_mat, full.kinds[mats], full.params[mats], n_gauss
+        )
+        assert group.kernel is q8_kernel_for(*laws_used(laws)) and group.kernel is not q8_kernel
+        for tangent in (-1, 0, 1):
+            f, k, new = group.evaluate(du_el[sel], du_el[sel], state[sel], tangent)
+            tag = f"g{n_gauss}_t{tangent + 1}"
+            for name, value in (("f", f), ("state", new), ("k", k)):
+                if value is None:
+                    continue
+                ref = stored[f"{name}_{tag}"][sel]
+                assert np.max(np.abs(value - ref)) <= TOL * np.abs(ref).max(), (laws, name, tag)

@@ -381,3 +381,26 @@ def test_readme_phased_scene_runs_as_written():
     unloaded = out.settlement(step["unload"])[1].max()
     reloaded = out.settlement(step["reload"])[1].max()
     assert 0.0 < unloaded < loaded and reloaded == pytest.approx(loaded, rel=0.05)
+
+
+@pytest.mark.parametrize("section", ["elastic", "rc"])
+def test_no_internal_force_before_anything_is_displaced_or_stressed(section):
+    """``Model.solve_linear`` skips the internal-force pass when u = 0 and every group's state is zero: that
+    is exact only if every element type gives exactly zero force there, checked here for the soil, plate
+    (elastic and RC layers) and interface groups, with tangents off and on."""
+    from ssi.materials.layer_laws import CONCRETE, STEEL
+    from ssi.materials.rc import concrete_params, steel_params
+    from ssi.model import System
+    from ssi.section import rc_section
+
+    changes = {}
+    if section == "rc":
+        concrete = (CONCRETE, concrete_params(30e6, 30e9, 2e-3, 2.9e6, 100.0, 0.1, 2.5e-3))
+        rc = rc_section(0.5, [(0.05, 1e-3), (0.45, 1e-3)], concrete, (STEEL, steel_params(500e6, 200e9)))
+        changes["foundation"] = Foundation(x0=-1.0, x1=1.0, section=rc)
+    model = strip_scene(**changes).build().model  # (its soil starts geostatic: the states are zeroed here)
+    states = [np.zeros_like(g.initial_state()) for g in model.groups]
+    zero = np.zeros(model.n_dof)
+    for tangent in (None, 1):
+        f_int, _, _ = System(model).evaluate(zero, zero, states, tangent)
+        assert not f_int.any()

@@ -54,7 +54,51 @@ def main():
     fix_block(m, mesh, sides=False)
     m.add_load(mesh.surface, "w", -1.0)
     m.solve_linear()
+    warm_soil_law_kernels()
+    warm_pardiso_kernels(m)
     print(f"warm_cache_s: {time.perf_counter() - t0:.1f}")
+
+
+def warm_pardiso_kernels(model):
+    """The kernels that hand a pattern to PARDISO (the scenes above are small enough for SuperLU)."""
+    from ssi.linsolve import Factorization, pardiso_available
+    from ssi.model import System
+
+    if not pardiso_available():
+        return
+    system = System(model)
+    k0 = system.pattern.matrix(system.pattern.assemble_elastic(model.groups))
+    for spd, symmetric in ((True, True), (False, False)):
+        Factorization(k0, symmetric, "pardiso", spd=spd)
+
+
+def warm_soil_law_kernels():
+    """The soil kernel is compiled per set of laws a group uses (``q8_kernel_for``): besides the sets the
+    scenes above use (elastic; Mohr-Coulomb with elastic layers), the chapters and tests use von Mises, the
+    explicit Mohr-Coulomb scheme and tables of every law -- compile those here too."""
+    import numpy as np
+
+    from ssi.elements.soil_q8 import SoilQ8
+    from ssi.materials.soil_laws import (
+        elastic_params,
+        material_table,
+        mohr_coulomb_params,
+        von_mises_params,
+    )
+
+    elastic = (0, elastic_params(1e7, 0.3))
+    tables = [
+        [von_mises_params(1e7, 0.3, 1e4)],
+        [mohr_coulomb_params(1e7, 0.3, 1e4, 20.0, scheme="explicit")],
+        [elastic, mohr_coulomb_params(1e7, 0.3, 1e4, 20.0), von_mises_params(1e7, 0.3, 1e4)]
+        + [mohr_coulomb_params(1e7, 0.3, 1e4, 20.0, scheme="explicit")],
+    ]
+    ref = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1], [0, -1], [1, 0], [0, 1], [-1, 0]], float)
+    for materials in tables:
+        kinds, params = material_table(materials)
+        group = SoilQ8(ref[None], np.arange(16).reshape(1, 16), 0, kinds, params)
+        zero = np.zeros((1, 16))
+        group.evaluate(zero, zero, group.initial_state(), 1)
 
 
 if __name__ == "__main__":

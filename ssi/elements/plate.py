@@ -278,7 +278,9 @@ def plate_kernel(
             jac = _point_b(x_el[e], xi[p], nn, bx)
             if jac <= 0.0:
                 bad += 1
-                state_new[e, p, :, :] = state_old[e, p, :, :]
+                for n in range(state_old.shape[2]):  # loops: no array-to-slice copy to compile
+                    for i in range(state_old.shape[3]):
+                        state_new[e, p, n, i] = state_old[e, p, n, i]
                 continue
             wj = wt[p] * jac
             _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))

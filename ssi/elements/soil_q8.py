@@ -8,14 +8,17 @@ history), shape (n_el, n_ip, 4 + N_SOIL_HIST). The law is applied incrementally:
 from the strain increment ``B du_el`` since the last converged state (paper §8, incremental formulation).
 """
 
+import functools
+
 import numpy as np
 from numba import njit
 
-from ..materials.soil_laws import N_SOIL_HIST, soil_update
+from ..assembly import scatter_matrix
+from ..materials.soil_laws import N_SOIL_HIST, laws_used, soil_update_among
 from ..protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS
 from ..quadrature import gauss_2d
 from ..shapes import serendipity8
-from .q8_elastic import q8_elastic_stiffness
+from .q8_elastic import q8_elastic_assemble, q8_elastic_stiffness
 
 N_STRESS = 4
 N_SOIL_STATE = N_STRESS + N_SOIL_HIST
@@ -27,7 +30,9 @@ def _reference_derivatives(gp):
     dn_ref = np.empty((gp.shape[0], 8, 2))
     for q in range(gp.shape[0]):
         _, dn = serendipity8(gp[q, 0], gp[q, 1])
-        dn_ref[q] = dn
+        for a in range(8):  # loops, not dn_ref[q] = dn: no array-to-slice copy to compile
+            dn_ref[q, a, 0] = dn[a, 0]
+            dn_ref[q, a, 1] = dn[a, 1]
     return dn_ref
 
 
@@ -55,96 +60,112 @@ def _shape_gradients(xy, xi, eta, dndx):
     return n, _physical_gradients(xy, dn, dndx)
 
 
-@njit(cache=True)
-def q8_kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new, f_el, k_el, tangent):
-    """Internal forces and stiffness of all Q8 elements; returns the number of points that failed.
+@functools.cache
+def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
+    """The Q8 kernel compiled for the soil laws flagged (see ``soil_update_among``; ELASTIC always): a scene
+    compiles only the laws its materials use -- all four laws take ~11 s to compile, an elastic-only
+    kernel a fraction of that. Each specialisation is a closure over its flags, which numba caches on disk
+    under a key that includes them."""
 
-    coords (n_el, 8, 2); du_el (n_el, 16); el_mat (n_el,) material index into kinds (n_mat,), params
-    (n_mat, n_par); gp (n_ip, 2), gw (n_ip,); state_old/state_new (n_el, n_ip, N_SOIL_STATE);
-    f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten (k_el is left alone when tangent is FORCES_ONLY).
-    """
-    n_el = coords.shape[0]
-    n_ip = gp.shape[0]
-    dndx = np.empty((8, 2))
-    deps = np.zeros(4)
-    sig = np.empty(4)
-    hist = np.empty(N_SOIL_HIST)
-    D = np.empty((4, 4))
-    sig_old = np.empty(4)  # the point's committed state, copied into scratch (no views built per point)
-    hist_old = np.empty(N_SOIL_HIST)
-    xy = np.empty((8, 2))
-    dn_ref = _reference_derivatives(gp)
-    failures = 0
-    for e in range(n_el):
-        for i in range(16):
-            f_el[e, i] = 0.0
-        if tangent != FORCES_ONLY:
-            k_el[e, :, :] = 0.0
-        m = el_mat[e]
-        for a in range(8):
-            xy[a, 0] = coords[e, a, 0]
-            xy[a, 1] = coords[e, a, 1]
-        for q in range(n_ip):
-            det = _physical_gradients(xy, dn_ref[q], dndx)
-            if det <= 0.0:
-                failures += 1
-                continue
-            wdet = gw[q] * det
-            exx = ezz = gxz = 0.0
+    @njit(cache=True)
+    def kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new, f_el, k_el, tangent):
+        """Internal forces and stiffness of all Q8 elements; returns the number of points that failed.
+
+        coords (n_el, 8, 2); du_el (n_el, 16); el_mat (n_el,) material index into kinds (n_mat,), params
+        (n_mat, n_par); gp (n_ip, 2), gw (n_ip,); state_old/state_new (n_el, n_ip, N_SOIL_STATE);
+        f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten (k_el is left alone when tangent is
+        FORCES_ONLY).
+        """
+        n_el = coords.shape[0]
+        n_ip = gp.shape[0]
+        dndx = np.empty((8, 2))
+        deps = np.zeros(4)
+        sig = np.empty(4)
+        hist = np.empty(N_SOIL_HIST)
+        D = np.empty((4, 4))
+        sig_old = np.empty(4)  # the point's committed state, copied into scratch (no views built per point)
+        hist_old = np.empty(N_SOIL_HIST)
+        xy = np.empty((8, 2))
+        dn_ref = _reference_derivatives(gp)
+        failures = 0
+        for e in range(n_el):
+            for i in range(16):
+                f_el[e, i] = 0.0
+            if tangent != FORCES_ONLY:
+                k_el[e, :, :] = 0.0
+            m = el_mat[e]
             for a in range(8):
-                du = du_el[e, 2 * a]
-                dw = du_el[e, 2 * a + 1]
-                exx += dndx[a, 0] * du
-                ezz += dndx[a, 1] * dw
-                gxz += dndx[a, 1] * du + dndx[a, 0] * dw
-            deps[0] = exx
-            deps[1] = ezz
-            deps[2] = gxz
-            for i in range(N_STRESS):
-                sig_old[i] = state_old[e, q, i]
-            for i in range(N_SOIL_HIST):
-                hist_old[i] = state_old[e, q, N_STRESS + i]
-            status = soil_update(
-                kinds[m],
-                params[m],
-                deps,
-                sig_old,
-                hist_old,
-                sig,
-                hist,
-                D,
-                K0_MATRIX if tangent == FORCES_ONLY else tangent,
-            )
-            if status < 0:
-                failures += 1
-            for i in range(N_STRESS):
-                state_new[e, q, i] = sig[i]
-            for i in range(N_SOIL_HIST):
-                state_new[e, q, N_STRESS + i] = hist[i]
-            for a in range(8):
-                bx = dndx[a, 0]
-                bz = dndx[a, 1]
-                # B_a^T sigma for rows (exx, ezz, gxz): u-row (bx, 0, bz), w-row (0, bz, bx)
-                f_el[e, 2 * a] += (bx * sig[0] + bz * sig[2]) * wdet
-                f_el[e, 2 * a + 1] += (bz * sig[1] + bx * sig[2]) * wdet
-                if tangent == FORCES_ONLY:  # forces only (modified Newton: the matrix is K0, kept factorised)
+                xy[a, 0] = coords[e, a, 0]
+                xy[a, 1] = coords[e, a, 1]
+            for q in range(n_ip):
+                det = _physical_gradients(xy, dn_ref[q], dndx)
+                if det <= 0.0:
+                    failures += 1
                     continue
-                # D B_b for both columns of node b, then B_a^T (D B_b)
-                for b in range(8):
-                    cx = dndx[b, 0]
-                    cz = dndx[b, 1]
-                    # columns: u_b -> strain (cx, 0, cz); w_b -> strain (0, cz, cx)
-                    du0 = D[0, 0] * cx + D[0, 2] * cz
-                    du1 = D[1, 0] * cx + D[1, 2] * cz
-                    du2 = D[2, 0] * cx + D[2, 2] * cz
-                    dw0 = D[0, 1] * cz + D[0, 2] * cx
-                    dw1 = D[1, 1] * cz + D[1, 2] * cx
-                    dw2 = D[2, 1] * cz + D[2, 2] * cx
-                    k_el[e, 2 * a, 2 * b] += (bx * du0 + bz * du2) * wdet
-                    k_el[e, 2 * a, 2 * b + 1] += (bx * dw0 + bz * dw2) * wdet
-                    k_el[e, 2 * a + 1, 2 * b] += (bz * du1 + bx * du2) * wdet
-                    k_el[e, 2 * a + 1, 2 * b + 1] += (bz * dw1 + bx * dw2) * wdet
-    return failures
+                wdet = gw[q] * det
+                exx = ezz = gxz = 0.0
+                for a in range(8):
+                    du = du_el[e, 2 * a]
+                    dw = du_el[e, 2 * a + 1]
+                    exx += dndx[a, 0] * du
+                    ezz += dndx[a, 1] * dw
+                    gxz += dndx[a, 1] * du + dndx[a, 0] * dw
+                deps[0] = exx
+                deps[1] = ezz
+                deps[2] = gxz
+                for i in range(N_STRESS):
+                    sig_old[i] = state_old[e, q, i]
+                for i in range(N_SOIL_HIST):
+                    hist_old[i] = state_old[e, q, N_STRESS + i]
+                status = soil_update_among(
+                    has_mc,
+                    has_mc_explicit,
+                    has_vm,
+                    kinds[m],
+                    params[m],
+                    deps,
+                    sig_old,
+                    hist_old,
+                    sig,
+                    hist,
+                    D,
+                    K0_MATRIX if tangent == FORCES_ONLY else tangent,
+                )
+                if status < 0:
+                    failures += 1
+                for i in range(N_STRESS):
+                    state_new[e, q, i] = sig[i]
+                for i in range(N_SOIL_HIST):
+                    state_new[e, q, N_STRESS + i] = hist[i]
+                for a in range(8):
+                    bx = dndx[a, 0]
+                    bz = dndx[a, 1]
+                    # B_a^T sigma for rows (exx, ezz, gxz): u-row (bx, 0, bz), w-row (0, bz, bx)
+                    f_el[e, 2 * a] += (bx * sig[0] + bz * sig[2]) * wdet
+                    f_el[e, 2 * a + 1] += (bz * sig[1] + bx * sig[2]) * wdet
+                    if tangent == FORCES_ONLY:  # modified Newton: the matrix is K0, kept factorised
+                        continue
+                    # D B_b for both columns of node b, then B_a^T (D B_b)
+                    for b in range(8):
+                        cx = dndx[b, 0]
+                        cz = dndx[b, 1]
+                        # columns: u_b -> strain (cx, 0, cz); w_b -> strain (0, cz, cx)
+                        du0 = D[0, 0] * cx + D[0, 2] * cz
+                        du1 = D[1, 0] * cx + D[1, 2] * cz
+                        du2 = D[2, 0] * cx + D[2, 2] * cz
+                        dw0 = D[0, 1] * cz + D[0, 2] * cx
+                        dw1 = D[1, 1] * cz + D[1, 2] * cx
+                        dw2 = D[2, 1] * cz + D[2, 2] * cx
+                        k_el[e, 2 * a, 2 * b] += (bx * du0 + bz * du2) * wdet
+                        k_el[e, 2 * a, 2 * b + 1] += (bx * dw0 + bz * dw2) * wdet
+                        k_el[e, 2 * a + 1, 2 * b] += (bz * du1 + bx * du2) * wdet
+                        k_el[e, 2 * a + 1, 2 * b + 1] += (bz * dw1 + bx * dw2) * wdet
+        return failures
+
+    return kernel
+
+
+q8_kernel = q8_kernel_for()  # every law (any material table)
 
 
 @njit(cache=True)
@@ -286,6 +307,11 @@ class SoilQ8:
     def n_el(self):
         return self.coords.shape[0]
 
+    @property
+    def kernel(self):
+        """The Q8 kernel specialised to this group's soil laws (compiled, or loaded, on first use)."""
+        return q8_kernel_for(*laws_used(self.kinds))
+
     def initial_state(self):
         state = np.zeros((self.n_el, len(self.gw), N_SOIL_STATE))
         if self.initial_stress is not None:
@@ -366,7 +392,7 @@ class SoilQ8:
         f_el = np.empty((self.n_el, 16))
         k_el = np.empty((self.n_el, 16, 16) if tangent != FORCES_ONLY else (1, 16, 16))
         state_new = np.empty_like(state_old)
-        failures = q8_kernel(
+        failures = self.kernel(
             self.coords,
             np.ascontiguousarray(du_el),
             self.el_mat,
@@ -407,7 +433,7 @@ class SoilQ8:
         f_tr = np.empty_like(f_el)
         k_tr = np.empty_like(k_el)
         st_tr = np.empty_like(state_old)
-        q8_kernel(
+        self.kernel(  # every kind taken as ELASTIC: the group's own kernel serves
             self.coords,
             np.ascontiguousarray(du_el),
             self.el_mat,
@@ -442,6 +468,18 @@ class SoilQ8:
                 self.coords, zero, self.el_mat, self.k_water, self.gp, self.gw, zero.copy(), k0, True
             )
         return k0
+
+    def assemble_elastic_stiffness(self, smap, data):
+        """Add K0 into CSR values ``data`` through this group's scatter map ``smap`` without keeping the
+        element matrices (the same sums as scattering :meth:`elastic_stiffness`); undrained groups (pore-water
+        term) and a group configured for a phase (excavated elements, a drainage switch) scatter the
+        matrices of :meth:`elastic_stiffness`, which knows that configuration."""
+        if self.k_water is not None or self._phase is not None:
+            scatter_matrix(smap, self.elastic_stiffness(), data)
+            return data
+        E = self.params[self.el_mat, 0]
+        nu = self.params[self.el_mat, 1]
+        return q8_elastic_assemble(self.coords, E, nu, self.n_gauss, smap, data)
 
     def excess_pore_pressure(self, u_el) -> np.ndarray:
         """Excess pore pressure [Pa] (compression positive) at the integration points (n_el, n_ip) of the

@@ -66,7 +66,8 @@ def crack_band_width(element_length: float, weight: float) -> float:
 def layer_update(kind, params, eps, gam, hist_old, hist_new, tangent):
     """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (``tangent`` CONSISTENT) or initial
     (K0_MATRIX) moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
-    hist_new[:] = hist_old
+    for i in range(hist_old.size):  # a loop, not hist_new[:] = hist_old: numba compiles an array-to-slice
+        hist_new[i] = hist_old[i]  # copy with its shape-checking error path, seconds per signature
     if kind == CONCRETE:
         return concrete_update(params, eps, gam, hist_old, hist_new, tangent)
     if kind == STEEL:

@@ -50,6 +50,32 @@ def elastic_matrix(E, nu, D):
     elastic_fill(lam, mu, D)
 
 
+@njit(cache=True, inline="always")
+def soil_update_among(
+    has_mc, has_mc_explicit, has_vm, kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent
+):
+    """:func:`soil_update` restricted to the laws flagged ``has_*`` (a kind not flagged is taken as ELASTIC).
+
+    Inlined into its caller: where the flags are compile-time constants (the law-specialised kernels of
+    ``ssi.elements.soil_q8.q8_kernel_for``), numba drops the branches of the laws not flagged before typing
+    them, so a scene compiles only the laws its materials use."""
+    if has_mc and kind == MOHR_COULOMB:
+        return mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+    if has_mc_explicit and kind == MOHR_COULOMB_EXPLICIT:
+        return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+    if has_vm and kind == VON_MISES:
+        return vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+    elastic_matrix(params[0], params[1], D)
+    for i in range(4):
+        s = sig_old[i]
+        for j in range(4):
+            s += D[i, j] * deps[j]
+        sig_new[i] = s
+    for i in range(hist_old.size):  # a loop, not hist_new[:] = hist_old (see layer_update)
+        hist_new[i] = hist_old[i]
+    return 0
+
+
 @njit(cache=True)
 def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     """Update the stress of one point for the strain increment ``deps``; return a status code.
@@ -58,20 +84,15 @@ def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tan
     ``tangent == K0_MATRIX`` (0, :mod:`ssi.protocol`), else the consistent tangent. Status 0 = elastic, 1 =
     plastic, < 0 = failure.
     """
-    if kind == MOHR_COULOMB:
-        return mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
-    if kind == MOHR_COULOMB_EXPLICIT:
-        return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
-    if kind == VON_MISES:
-        return vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
-    elastic_matrix(params[0], params[1], D)
-    for i in range(4):
-        s = sig_old[i]
-        for j in range(4):
-            s += D[i, j] * deps[j]
-        sig_new[i] = s
-    hist_new[:] = hist_old
-    return 0
+    return soil_update_among(
+        True, True, True, kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent
+    )
+
+
+def laws_used(kinds) -> tuple[bool, bool, bool]:
+    """The ``has_*`` flags of :func:`soil_update_among` for a material table's ``kinds``."""
+    present = {int(k) for k in np.atleast_1d(kinds)}
+    return MOHR_COULOMB in present, MOHR_COULOMB_EXPLICIT in present, VON_MISES in present
 
 
 # ---------------------------------------------------------------------------------------------------------
