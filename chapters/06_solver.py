@@ -384,9 +384,9 @@ print("all checks passed")
 
 # %%
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing  # noqa: E402
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer  # noqa: E402
+from ssi.scene import ColumnLoad, Contact, Foundation, Scene, SoilLayer  # noqa: E402
 from ssi.section import homogeneous  # noqa: E402
-from ssi.zoo import random_scenes, solve_zoo  # noqa: E402
+from ssi.zoo import light_footing_on_deep_block, random_scenes, solve_zoo  # noqa: E402
 
 over = run(over_model, [1.0])  # (a) default settings
 print(f"(a) {over.message}; F / F_u at the limit = {1.2 * over.limit_load_factor:.4f}")
@@ -496,15 +496,7 @@ report.check(
 # (E = 2 MPa), against the same scene converged 10⁴ times tighter.
 
 # %%
-deep = Scene(
-    width=120.0,
-    depth=60.0,
-    layers=[SoilLayer(60.0, E=2e6, nu=0.3, unit_weight=20e3, c=0.0, phi_deg=30.0, psi_deg=0.0)],
-    foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-    contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
-    loads=[ColumnLoad(x=0.0, N=10e3, H=1e3)],
-    mesh=MeshSize(h_fine=0.5, h_coarse=7.5),
-)
+deep = light_footing_on_deep_block()
 
 
 def deep_settlement(**kw):

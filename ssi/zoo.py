@@ -202,6 +202,21 @@ def phased_scenes() -> list[tuple[str, Scene]]:
     return [("phased, embedded, water table", embedded), ("excavation beside a strip", pit)]
 
 
+def light_footing_on_deep_block() -> Scene:
+    """A 10 kN/m strip (H = 1 kN/m) on 60 m of soft, heavy sand: the geostatic forces dwarf the structural
+    load -- the scene on which the old convergence measure (``convergence_reference="total"``) accepts an
+    unconverged state (chapter 06, tests/test_solver.py)."""
+    return Scene(
+        width=120.0,
+        depth=60.0,
+        layers=[SoilLayer(60.0, E=2e6, nu=0.3, unit_weight=20e3, c=0.0, phi_deg=30.0, psi_deg=0.0)],
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+        loads=[ColumnLoad(x=0.0, N=10e3, H=1e3)],
+        mesh=MeshSize(h_fine=0.5, h_coarse=7.5),
+    )
+
+
 def random_scenes(n: int, seed: int = 0) -> list[tuple[str, Scene]]:
     """``n`` scenes drawn uniformly within the zoo's ranges (seeded)."""
     rng = np.random.default_rng(seed)

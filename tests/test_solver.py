@@ -271,18 +271,9 @@ def test_old_convergence_measure_accepted_a_wrong_state_the_structural_one_does_
     |F_int|), energy relative to |u . F_int|, geostatic state included) accepts a state whose settlement is
     0.1 % off; the structural measure, with the same tolerances, lands within 1e-4. The reference is the same
     scene converged 1e4 times tighter (force_tol 1e-9)."""
-    from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-    from ssi.section import homogeneous
+    from ssi.zoo import light_footing_on_deep_block
 
-    scene = Scene(
-        width=120.0,
-        depth=60.0,
-        layers=[SoilLayer(60.0, E=2e6, nu=0.3, unit_weight=20e3, c=0.0, phi_deg=30.0, psi_deg=0.0)],
-        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
-        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
-        loads=[ColumnLoad(x=0.0, N=10e3, H=1e3)],
-        mesh=MeshSize(h_fine=0.5, h_coarse=7.5),
-    )
+    scene = light_footing_on_deep_block()
 
     def settlement(**kw):
         return scene.build().solve(settings=Settings(**kw)).max_settlement()[1]
