@@ -418,6 +418,7 @@ def _bracket_limit(path, saved, failure):
     hi = res.n_steps
     best = None
     relaxed = [path.measure.point(lo)]  # (load measure, loaded displacement) of rate-independent states
+    failures = [failure]  # every held load that did not relax (any of them may show the flow)
     while hi - lo > 1:  # bisection over the committed viscous steps
         mid = (lo + hi) // 2
         path.restore(saved, mid)
@@ -426,7 +427,8 @@ def _bracket_limit(path, saved, failure):
             best, lo = path.save(), mid
             relaxed.append(path.measure.point(path.result.n_steps))
         except _RelaxationFailed as nearer:
-            hi, failure = mid, nearer
+            hi = mid
+            failures.append(nearer)
     if best is None:  # only the state before the viscous fallback (rate independent already)
         path.restore(saved, lo)
     else:
@@ -449,15 +451,18 @@ def _bracket_limit(path, saved, failure):
             relaxed.append(path.measure.point(path.result.n_steps))
         except _RelaxationFailed as nearer:
             path.restore(here)
-            lam_hi, failure = lam_mid, nearer
+            lam_hi = lam_mid
+            failures.append(nearer)
     path.tau = 0.0
     _set_viscosity(path.model, 0.0)
     stiff = _secant_stiffness(path.measure, relaxed)
-    flowing = failure.flow_stiffness < path.settings.collapse_stiffness  # False for nan
+    flows = [f for f in failures if f.flow_stiffness < path.settings.collapse_stiffness]  # nan: no
+    flowing = bool(flows)
+    failure = flows[-1] if flowing else failures[-1]  # the nearest held load that flowed, or failed
     if flowing or (np.isfinite(stiff) and stiff < path.settings.collapse_stiffness):
         res.status, res.limit_load_factor, res.limit_load_upper = LIMIT_LOAD, float(lam_lo), float(lam_hi)
         res.limit_evidence = (
-            f"held at lambda = {lam_hi:.6g} the body kept flowing, its current stiffness "
+            f"held at lambda = {failure.lam:.6g} the body kept flowing, its current stiffness "
             f"{failure.flow_stiffness:.2g} of the initial"
             if flowing
             else f"the relaxed path's current stiffness fell to {stiff:.3g} of the initial"
