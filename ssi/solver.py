@@ -195,7 +195,8 @@ class Result:
     limit_load_upper: float | None = None  # limit found by relaxing a viscous path: the smallest load
     # factor at which no rate-independent equilibrium was found (the limit lies in [factor, upper])
     limit_evidence: str = ""  # why the stop was taken for a collapse (viscous path)
-    relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target
+    relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
+    # when the path was cut back to a bracketed limit load)
     viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
     # viscous (rate-dependent) states; the last step is relaxed
     u_origin: np.ndarray | None = None  # displacement and internal force of the state the structural
@@ -399,7 +400,7 @@ def relax(path: "_Path") -> bool:
     except _RelaxationFailed as failure:
         path.restore(saved)
         _bracket_limit(path, saved, failure)
-        path.result.relaxed_steps = path.result.n_steps - first
+        path.result.relaxed_steps = None  # the path was cut back to the limit: its end is the relaxed state
         path.tau = 0.0
         return False
     path.result.relaxed_steps = path.result.n_steps - first
