@@ -28,8 +28,9 @@ Q_PRANDTL = prandtl(10e3, 20.0)[0]
 VISCOUS = Settings(viscosity=1.0, stepping="fixed", backend="superlu")
 
 
-def footing(psi_deg, n_steps=12, h_fine=0.25):
-    scene = rigid_footing(
+def footing_scene(psi_deg, h_fine=0.25):
+    """The benchmark footing (module docstring); ``bench_nonlinear`` pushes the same one."""
+    return rigid_footing(
         B=2.0,
         c=10e3,
         phi_deg=20.0,
@@ -44,6 +45,10 @@ def footing(psi_deg, n_steps=12, h_fine=0.25):
         growth=1.25,
         settle=0.08,
     )
+
+
+def footing(psi_deg, n_steps=12, h_fine=0.25):
+    scene = footing_scene(psi_deg, h_fine)
     t0 = time.perf_counter()
     if psi_deg == 0.0:
         out = push_footing(scene, n_steps=20, settings=VISCOUS)

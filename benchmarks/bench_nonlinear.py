@@ -24,11 +24,12 @@ import time
 from pathlib import Path
 from typing import ClassVar
 
+from bench_footing import footing_scene
 from goals import verdict
 
 import ssi  # noqa: F401  (first: keys numba's cache before numba is imported)
 from ssi import assembly, linsolve, model, solver
-from ssi.bearing_capacity import push_footing, rigid_footing
+from ssi.bearing_capacity import push_footing
 
 ROOT = Path(__file__).resolve().parent.parent
 REPEAT = int(os.environ.get("SSI_BENCH_REPEAT", "3"))
@@ -143,22 +144,7 @@ def main():
     report("ch11_h0125_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
 
     def footing(h):
-        scene = rigid_footing(
-            B=2.0,
-            c=10e3,
-            phi_deg=20.0,
-            psi_deg=0.0,
-            E=20e6,
-            nu=0.3,
-            rough=True,
-            half_width=10.0,
-            depth=10.0,
-            h_fine=h,
-            h_coarse=2.0,
-            growth=1.25,
-            settle=0.08,
-        )
-        return push_footing(scene, n_steps=12)
+        return push_footing(footing_scene(0.0, h), n_steps=12)
 
     footing(0.5)
     report("footing_mc_psi0_h0125_s", lambda: footing(0.125), lambda out: int(out["n_iterations"]))
