@@ -434,7 +434,7 @@ def _bracket_limit(path, saved, failure):
         path.restore(saved, lo)
     else:
         path.restore(best)
-    lam_hi = saved.load_factor[hi]
+    lam_hi = saved.lists["load_factor"][hi]
     lam_lo = path.lam
     for _ in range(BRACKET_REFINEMENTS):  # bisection over lambda from the relaxed state at lam_lo
         if lam_hi - lam_lo <= BRACKET_TOL * abs(lam_hi):
@@ -497,24 +497,14 @@ def _raise_relaxation_failure(path, failure, lam_lo, stiff):
 
 @dataclass
 class _Snapshot:
+    """A committed path (see :meth:`_Path.save`): copies of the result's per-step lists and the state."""
+
     LISTS = ("load_factor", "u", "f_int", "states", "iterations", "residuals", "energies", "stiffness")
     lists: dict
     u: np.ndarray
     states: list
     lam: float
     step: float
-
-    @property
-    def n_steps(self):
-        return len(self.lists["load_factor"]) - 1
-
-    @property
-    def load_factor(self):
-        return self.lists["load_factor"]
-
-    @property
-    def stiffness(self):
-        return self.lists["stiffness"]
 
 
 FALLBACK_LEADS = 8  # increments the fallback leads after it converged where the settings' method failed
