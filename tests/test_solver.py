@@ -283,3 +283,20 @@ def test_old_convergence_measure_accepted_a_wrong_state_the_structural_one_does_
     new = settlement()
     assert abs(old / reference - 1) > 5e-4, old / reference - 1
     assert abs(new / reference - 1) < 1e-4, new / reference - 1
+
+
+def test_a_path_crawls_only_when_a_third_of_its_recent_attempts_failed_and_it_hardly_advanced():
+    """The crawl test of the auto stepping (see ``_Path._crawling``): the numbers the docstring states."""
+    from ssi.solver import CRAWL_WINDOW, _Path
+
+    path = _Path.__new__(_Path)  # the test reads only the attempt history, the settings and the scale
+    path.settings, path.scale = Settings(), 1.0
+    small = 0.5 * Settings().first_step / CRAWL_WINDOW
+    path.advances = [small] * (CRAWL_WINDOW - 4) + [0.0] * 4
+    assert path._crawling()
+    path.advances = [small] * (CRAWL_WINDOW - 3) + [0.0] * 3  # fewer than a third failed
+    assert not path._crawling()
+    path.advances = [Settings().first_step] * (CRAWL_WINDOW - 4) + [0.0] * 4  # it still advances
+    assert not path._crawling()
+    path.advances = [0.0] * (CRAWL_WINDOW - 1)  # too few attempts to judge
+    assert not path._crawling()
