@@ -313,9 +313,10 @@ print("stored:", path.name, "| groups:", list(back["state"]), "| steps:", len(ba
 # The wall time is measured beside it.
 
 # %%
-# both modes: h = 0.125 m stopped at 55 % of the load with full Newton and its K0 retry (measured),
-# so three meshes, the least a fitted order needs
-sizes = [1.0, 0.5, 0.25]
+# the default solver (BFGS on K0, its viscous fallback when the path crawls): 0.5 / 0.9 / 4.9 / 41 s on
+# h = 1 / 0.5 / 0.25 / 0.125 m (measured, loaded machine), full Newton in 10 steps 2.7 / 30 / 233 s on the
+# first three; fast mode stops at three meshes, the least a fitted order needs
+sizes = [1.0, 0.5, 0.25] if FAST else [1.0, 0.5, 0.25, 0.125]
 
 
 def midspan_moment(o):
@@ -337,7 +338,7 @@ study = []
 for h in sizes:
     b = foundation_scene(h).build()
     t0 = time.perf_counter()
-    o = b.solve(n_steps=10, settings=Settings(method="full"))
+    o = b.solve()
     wall = time.perf_counter() - t0
     x_pl, s_pl = o.settlement()
     study.append(
@@ -395,12 +396,12 @@ record(
 assert order_min > 0.0, (order_w, order_m)  # the changes shrink: the sequence converges
 
 # %% [markdown]
-# **Is the low order the edge singularity, the nonlinearity, or coarse meshes?** The nonlinear scene cannot
-# go to h = 0.125 m here (full Newton cuts its steps from λ ≈ 0.4 on, the default BFGS crawls near λ ≈ 0.76 —
-# minutes per mesh on this machine). The same scene made linear — elastic soil (`c=None`), a homogeneous
+# **Why four meshes: the edge singularity, the nonlinearity, or coarse meshes?** With the three coarse
+# meshes alone (fast mode) the moment's fitted order was 0.36–0.40, below the singularity's 1/2. The same
+# scene made linear — elastic soil (`c=None`), a homogeneous
 # elastic strip with the concrete's E0, a bonded linear contact — solves in about a second per mesh, so its
 # order can be read over four meshes, one more halving. Successive orders p_i = log2(d_i / d_(i+1)) of the
-# column settlement show whether the three meshes of the row are in the asymptotic range at all.
+# column settlement show whether the three coarse meshes are in the asymptotic range at all.
 
 # %%
 E0 = designer_concrete(38e6)["E0"]
@@ -442,21 +443,21 @@ print(
 # the linear scene's settlement order rises with the finest halving: the row's meshes are pre-asymptotic
 assert successive[-1, 0] > successive[0, 0]
 
-# %% [markdown] ## Summary A scene is a handful of components; `build()` makes only the groups it needs,
-# `solve()` returns settlements, contact pressures and zones, cracks and steel stresses; the steel stress is
-# checked against an independent layer-free section calculation (0.9 %), and settlement and moment converge
-# under mesh refinement, but slowly: the fitted orders are 0.71 (settlement) and 0.40 (mid-span moment), and
-# the Richardson estimate of the finest mesh's error (h = 0.25 m) is 6 % and 10 %. The moment's order falls
-# below the h^(1/2) that the punch-edge singularity alone would allow (row `ch11_mesh_order` fails). The
-# linear variant of the scene (elastic soil, elastic strip, bonded contact), which can go one halving further,
-# shows why: even without any yield or cracking, h = 1, 0.5, 0.25 m are not yet in the asymptotic range — its
-# settlement's successive order rises from 0.55 (h = 1 → 0.25 m) to 1.16 (0.5 → 0.125 m), and its mid-span
-# moment's changes first grow (order −1.08) before they shrink at order 0.95. The row's fitted orders are
-# those of a pre-asymptotic sequence; it needs a fourth, finer mesh, and the nonlinear scene at h = 0.125 m
-# does not finish in reasonable time on this machine (full Newton cuts its steps from λ ≈ 0.4 on, the default
-# BFGS crawls near λ ≈ 0.76; measured). Yielding under the strip's edges and the contact's slip and opening
-# may slow the convergence further; that is not isolated here. A design moment from this scene needs a finer
-# mesh than this chapter can afford. An iterate stopped at 5 % residual still balances the loads in its
+# %% [markdown]
+# ## Summary
+# A scene is a handful of components; `build()` makes only the groups it needs, `solve()` returns settlements,
+# contact pressures and zones, cracks and steel stresses; the steel stress is checked against an independent
+# layer-free section calculation (0.9 %). Settlement and moment converge under mesh refinement, but slowly.
+# Over the four meshes h = 1 … 0.125 m (full mode; the default solver, 41 s for the finest on a loaded
+# machine) the successive orders of the column settlement are 0.70 and 0.67 and those of the mid-span moment
+# 0.39 and 0.69; the fitted orders are 0.68 and 0.54, so the row `ch11_mesh_order` passes its h^(1/2) bound,
+# and the Richardson estimate of the finest mesh's error is about 4 % (settlement) and 4.5 % (moment). The
+# three coarse meshes of fast mode alone give a moment order below 1/2: they are pre-asymptotic, as the linear
+# variant shows without any yield or cracking — its settlement's successive order rises from 0.55
+# (h = 1 → 0.25 m) to 1.16 (0.5 → 0.125 m), and its mid-span moment's changes first grow (order −1.08) before
+# they shrink at order 0.95. Yielding under the strip's edges and the contact's slip and opening may slow the
+# convergence further; that is not isolated here. A design moment to a few per cent needs h = 0.125 m or a
+# Richardson extrapolation (chapter 13). An iterate stopped at 5 % residual still balances the loads in its
 # contact resultant and its base reaction to round-off (its residual is self-equilibrated), so that row is
 # consistency only; its settlement misses the converged one by 9·10⁻³, which the method check (10⁻³) catches.
 # Full Newton and the paper's modified Newton–Raphson give the same answer; the measured iteration counts and
