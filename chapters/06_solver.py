@@ -374,6 +374,14 @@ print("all checks passed")
 #   5 % — or the relaxed path's secant stiffness is below 5 %. Otherwise it raises `NonConvergence`. The
 #   test `test_a_viscous_path_past_the_limit_load_ends_as_a_bracketed_limit` checks the bracket against the
 #   rate-independent limit of an associated scene.
+# - **A crawl goes viscous early.** A path can also advance, but hardly: on chapter 11's foundation at
+#   h = 0.125 m the increments shrank to 10⁻³ near λ = 0.75 and took 75 increments and 50 cuts to λ = 0.96
+#   before they reached `min_step` (440 s). So when, of the last 12 attempts, at least 4 failed and together
+#   they gained less than one first step, the viscous fallback starts there (the same scene: 41 s, the
+#   settlement 0.06 % from the crawled one). The viscosity regularises soil and contact, not a cracking strip:
+#   a viscous path that a crawl started and that gets stuck in its turn returns to where it started and
+#   follows the rate-independent law down to `min_step` as before (chapter 11's full-Newton run at
+#   h = 0.25 m takes that way).
 #
 # (a) The tanh spring loaded to 1.2 F_u, now with the defaults. (b) The rough footing of chapter 10 with
 # ψ = 0 (c = 10 kPa, φ = 20°), 20 displacement increments to 6 cm, with each strategy; the viscous one
