@@ -290,19 +290,27 @@ print(
 # The path is viscous (rate dependent), so at the end the settlement is held while τ grows tenfold per stage
 # and, last, τ = 0: the overstress decays by 1/(1 + τ) per increment and the final state is an equilibrium of
 # the rate-independent law, converged to the usual tolerances. Its pressure is the limit load if the
-# mechanism has formed: checked by relaxing at two settlements (5 and 6 cm) on each mesh.
+# mechanism has formed, i.e. if the load no longer rises: checked by relaxing at two settlements (5 and 6 cm)
+# on each mesh. It need not stay level: with ψ = 0 the relaxed pressure peaks and then falls slowly (on
+# h = 0.0625 m, measured in 20 steps: 0.867, 0.981, 0.973, 0.967, 0.960, 0.955 × Prandtl at 3, 4, 5, 6, 8,
+# 10 cm; on h = 0.125 m 0.3 % per cm after 5 cm) — the non-associated flow rule lets the footing's response
+# soften although the material does not, the loss of uniqueness that also stops the rate-independent
+# iteration. So the check is one-sided: from 5 to 6 cm the pressure rises by less than 0.5 %. The reported
+# limit is the pressure at 6 cm (a fixed point of the path, where the step counts are compared); the peak of
+# the relaxed pressures scanned at earlier settlements is printed beside it and lies 0.5 % (h = 0.125 m) to
+# 1.4 % (h = 0.0625 m) above it (measured).
 #
 # The claims: on each mesh the relaxed limit load changes by less than 1 % between 20, 40 and 80 steps
-# (`psi0_step_independence`); on h = 0.25 and 0.125 m the two settlements agree to 0.5 % (a plateau; on the
-# finest mesh of full mode the pressure still rises by 0.6 % per cm at 6 cm, reported); the h = 0.125 m value
-# is row `psi0_limit_h0125`. The limit load falls with h (first order, the rough corner) towards a value below
-# the associated one.
+# (`psi0_step_independence`); on every mesh the load no longer rises between 5 and 6 cm (a plateau or a
+# peak passed); the h = 0.125 m value is row `psi0_limit_h0125`. The limit load falls with h (first order,
+# the rough corner) towards a value below the associated one.
 
 # %%
 PSI0_MESHES = [0.25, 0.125] if FAST else [0.25, 0.125, 0.0625]
 PSI0_STEPS = [20, 40] if FAST else [20, 40, 80]
 VISCOUS = dict(viscosity=1.0, stepping="fixed", backend="superlu")
-PLATEAU_TOL = 0.005  # relaxed pressure at 5 and 6 cm of settlement
+PLATEAU_TOL = 0.005  # largest rise of the relaxed pressure from 5 to 6 cm of settlement
+PSI0_SCAN_CM = [4.0, 5.0] if FAST else [3.0, 3.5, 4.0, 4.5, 5.0, 5.5]  # earlier settlements relaxed [cm]
 STEP_TOL = 0.01  # the bound on the step-count dependence
 
 
@@ -328,9 +336,19 @@ for h in PSI0_MESHES:
             f"x Prandtl, {out['n_iterations']} iterations ({out['result'].relaxed_steps} relaxation steps), "
             f"{out['factorizations']} factorisation(s), {out['wall_time']:.1f} s, stop: {out['failure']}"
         )
-    early = psi0_push(h, PSI0_STEPS[0] * 5 // 6, settle=SETTLE[20.0] * 5 / 6)
-    psi0[h, "plateau"] = abs(early["q_end"] / psi0[h, PSI0_STEPS[0]]["q_end"] - 1.0)
-    print(f"   plateau: relaxed q at 5 cm / at 6 cm - 1 = {psi0[h, 'plateau']:.2e}")
+    # the relaxed pressure at earlier settlements, each pushed in increments of the 20-step push's size
+    scan = {SETTLE[20.0]: psi0[h, PSI0_STEPS[0]]["q_end"]}
+    for cm in PSI0_SCAN_CM:
+        n_scan = round(PSI0_STEPS[0] * cm / (100 * SETTLE[20.0]))
+        scan[cm / 100] = psi0_push(h, n_scan, settle=cm / 100)["q_end"]
+    psi0[h, "scan"] = dict(sorted(scan.items()))
+    psi0[h, "plateau"] = scan[SETTLE[20.0]] / scan[0.05] - 1.0  # > 0: still rising from 5 to 6 cm
+    psi0[h, "peak"] = max(scan.values())
+    print(
+        "   relaxed q against settlement: "
+        + ", ".join(f"{100 * k:.1f} cm {v:.4f}" for k, v in psi0[h, "scan"].items())
+        + f"; rise from 5 to 6 cm {psi0[h, 'plateau']:+.2e}"
+    )
 step_change = max(
     max(psi0[h, n]["q_end"] for n in PSI0_STEPS) / min(psi0[h, n]["q_end"] for n in PSI0_STEPS) - 1.0
     for h in PSI0_MESHES
@@ -341,12 +359,20 @@ print(
     f"{100 * step_change:.2f} %"
 )
 print("limit load / Prandtl (most steps) against h:", dict(zip(PSI0_MESHES, np.round(trend, 4))))
+fig, ax = plt.subplots(figsize=(6, 3.5))
+for h in PSI0_MESHES:
+    ax.plot(100 * np.array(list(psi0[h, "scan"])), list(psi0[h, "scan"].values()), "o-", label=f"h = {h} m")
+ax.set(
+    xlabel="settlement [cm]",
+    ylabel="relaxed q / Prandtl",
+    title="ψ = 0: relaxed pressure, 20-step increments",
+)
+ax.legend(fontsize=8)
+report.save_figure(fig, "fig10_psi0_relaxed_path")
 
 # %%
 assert all(psi0[h, n]["failure"] is None for h in PSI0_MESHES for n in PSI0_STEPS)
-# the plateau claim is made on h = 0.25 and 0.125 m; on the finest mesh (full mode) the relaxed pressure still
-# rises by 0.6 % from 5 to 6 cm of settlement (measured): printed above, reported, not asserted
-assert all(psi0[h, "plateau"] < PLATEAU_TOL for h in PSI0_MESHES if h >= 0.125)
+assert all(psi0[h, "plateau"] < PLATEAU_TOL for h in PSI0_MESHES)  # the load no longer rises, every mesh
 assert step_change < STEP_TOL
 assert all(a > b for a, b in zip(trend, trend[1:]))  # falls with h (first-order corner error)
 assert psi0[H_NA, PSI0_STEPS[-1]]["q_end"] < nonassoc[20.0]["q_u"] / q_p20_na  # below psi = phi, same mesh
@@ -354,7 +380,8 @@ plateau_ok = psi0[0.125, "plateau"] < PLATEAU_TOL and psi0[0.125, PSI0_STEPS[0]]
 report.record(
     "psi0_limit_h0125",
     "q_u/Prandtl, rough footing, psi=0, h=0.125 m, viscous path relaxed to the "
-    "rate-independent state (PASS: plateau reached, relaxed q at 5 and 6 cm within 0.5 %)",
+    "rate-independent state, at 6 cm (PASS: limit reached, the relaxed q rises by less than 0.5 % from 5 to "
+    f"6 cm); largest relaxed q of the settlement scan {psi0[0.125, 'peak']:.4f}",
     psi0[0.125, PSI0_STEPS[-1]]["q_end"],
     PLATEAU_TOL,
     plateau_ok,
