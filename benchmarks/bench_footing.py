@@ -54,7 +54,7 @@ def footing(psi_deg, n_steps=12, h_fine=0.25):
         out = push_footing(scene, n_steps=20, settings=VISCOUS)
         out["q_u"] = out["q"][-1]  # the relaxed plateau pressure
     else:
-        out = push_footing(scene, n_steps=n_steps, method="line_search")
+        out = push_footing(scene, n_steps=n_steps)
     return time.perf_counter() - t0, out, scene
 
 

@@ -69,9 +69,9 @@
 # and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also
 # holds u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and
 # grow by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking
-# line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
-# `ssi.bearing_capacity.push_footing`): plain Newton steps near the footing corner overshoot into a far
-# plastic state and diverge.
+# line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`: the default settings of
+# `ssi.bearing_capacity.push_footing`, `footing_settings()`): plain Newton steps near the footing corner
+# overshoot into a far plastic state and diverge.
 #
 # | paper / text | code | meaning |
 # |---|---|---|
@@ -118,7 +118,7 @@ for phi, rough in CASES:
         scene = rigid_footing(
             B=2.0, c=C, phi_deg=phi, E=E, nu=NU, rough=rough, h_fine=h, settle=SETTLE[phi], **BLOCK
         )
-        out = push_footing(scene, n_steps=N_STEPS, method="line_search")
+        out = push_footing(scene, n_steps=N_STEPS)
         if out["failure"]:
             raise RuntimeError(f"phi={phi} rough={rough} h={h}: {out['failure']}")
         out["err"] = out["q_u"] / q_exact - 1.0
@@ -242,7 +242,7 @@ for psi in (20.0, 0.0) if FAST else (20.0, 10.0, 0.0):
         settle=SETTLE[20.0],
         **BLOCK,
     )
-    out = push_footing(scene, n_steps=N_STEPS, method="line_search")
+    out = push_footing(scene, n_steps=N_STEPS)
     nonassoc[psi] = out
     print(
         f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = "
@@ -265,7 +265,7 @@ else:
 scene = rigid_footing(
     B=2.0, c=C, phi_deg=20.0, psi_deg=0.0, E=E, nu=NU, rough=True, h_fine=H_NA, settle=SETTLE[20.0], **BLOCK
 )
-coarse_steps = push_footing(scene, n_steps=12, method="line_search")
+coarse_steps = push_footing(scene, n_steps=12)
 print(
     f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = "
     f"{coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
@@ -410,12 +410,12 @@ for name, kw, method in variants:
                 ),
             )
         else:
-            out = push_footing(scene, n_steps=n, method=method)
+            out = push_footing(scene, n_steps=n)  # footing_settings(): full Newton with line search
         trade[name, n] = out
 ref_scene = rigid_footing(
     B=2.0, c=C, phi_deg=20.0, E=E, nu=NU, rough=True, h_fine=H_TRADE, settle=SETTLE[20.0], **BLOCK
 )
-q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1], method="line_search")["q_u"]
+q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1])["q_u"]
 for (name, n), out in trade.items():
     out["trade_err"] = abs(out["q_u"] - q_ref_trade) / q_p20
     stop = (

@@ -168,32 +168,36 @@ def footing_pressure(scene: FootingScene, result):
     return -w, q
 
 
-def push_footing(scene: FootingScene, n_steps=20, method="line_search", grading=1.0, settings=None, **kw):
-    """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
-    first steps smaller: lambda_i = (i/n)^grading). Returns a dict with settlement, q, q_u (the largest
-    pressure reached), iterations per step, wall time, and the failure report if the solver stopped.
+def footing_settings(**overrides: object) -> Settings:
+    """The solver settings :func:`push_footing` uses unless given others: full Newton with the consistent
+    tangent and a backtracking line search, the K0 retry of a failed increment (``Settings``' fallback for
+    full Newton), and each of the ``n_steps`` settlement increments taken as one increment (the increments
+    are the study's variable), halved up to 8 times on failure. Plain Newton steps near the footing corner
+    overshoot into a far plastic state and diverge; the line search stops that.
 
-    ``method="line_search"`` (default): ``ssi.solver.run`` with full Newton, the consistent tangent, a
-    backtracking line search and the K0 retry of a failed increment — plain Newton steps near the footing
-    corner overshoot into a far plastic state and diverge. SuperLU is the default backend here: at a few
-    thousand DOFs PARDISO's set-up costs 0.3–0.5 s per factorisation against SuperLU's 0.01–0.03 s.
-    Other methods ("full", "modified") or an explicit ``settings`` are passed to ``ssi.solver.run``.
+    SuperLU is the backend: at a few thousand DOFs PARDISO's set-up costs 0.3-0.5 s per factorisation
+    against SuperLU's 0.01-0.03 s. ``overrides`` are further :class:`ssi.solver.Settings` fields."""
+    return Settings(
+        **{"method": "full", "line_search": True, "stepping": "fixed", "max_cuts": 8, "backend": "superlu"}
+        | overrides
+    )
+
+
+def push_footing(
+    scene: FootingScene, n_steps: int = 20, grading: float = 1.0, settings: Settings | None = None
+) -> dict:
+    """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
+    first steps smaller: lambda_i = (i/n)^grading) with ``ssi.solver.run`` and ``settings`` (default
+    :func:`footing_settings`). Returns a dict with settlement [m], q [Pa], q_u (the largest pressure
+    reached) [Pa], iterations per step, wall time [s], and the failure report if the solver stopped.
     """
     check_instance("scene", scene, FootingScene)
     n_steps = check_int("n_steps", n_steps, lo=1)
     grading = check_real("grading", grading, lo=0.0, lo_open=True)
     check_instance("settings", settings, Settings, optional=True)
     if settings is None:
-        check_choice("method", method, ("line_search", "full", "modified"))
+        settings = footing_settings()
     lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
-    if settings is None:
-        # the n_steps displacement increments are the study's variable: each is one increment (halved on
-        # failure), not subdivided by automatic stepping
-        if method == "line_search":
-            kw = {"backend": "superlu", "max_cuts": 8, "stepping": "fixed", **kw}
-            settings = Settings(method="full", line_search=True, **kw)
-        else:
-            settings = Settings(**{"method": method, "stepping": "fixed", **kw})
     t0 = time.perf_counter()
     failure = None
     try:

@@ -26,7 +26,7 @@ def q_u(**kw):
     settle = kw.pop("settle", 0.04)
     n = kw.pop("n_steps", 20)
     scene = rigid_footing(B=2.0, settle=settle, **{**COARSE, **kw})
-    out = push_footing(scene, n_steps=n, method="line_search")
+    out = push_footing(scene, n_steps=n)
     return out
 
 
@@ -57,6 +57,15 @@ def test_bad_footing_input_raises():
         rigid_footing(settle=0.0)
     with pytest.raises(ValueError, match="psi_deg"):
         rigid_footing(phi_deg=20.0, psi_deg=25.0)
+
+
+def test_push_footing_takes_solver_options_only_as_settings():
+    """Settings is the one solver vocabulary: the former method word is refused, a non-Settings is named."""
+    scene = rigid_footing(B=2.0, settle=0.04, **COARSE)
+    with pytest.raises(TypeError, match="method"):
+        push_footing(scene, n_steps=2, method="line_search")
+    with pytest.raises(TypeError, match="settings"):
+        push_footing(scene, n_steps=2, settings={"method": "full"})
 
 
 def test_smith_griffiths_program_6_1_within_3_percent_up_to_500_kpa():
