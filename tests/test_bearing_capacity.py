@@ -172,7 +172,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
     else:
         mats = [(0, elastic_params(20e6, 0.3)), (0, elastic_params(50e6, 0.3))]
     soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, unit_weight=np.array([18e3, 20e3]))
-    layers = [dict(thickness=2.0, gamma=18e3, phi_deg=30.0), dict(thickness=4.0, gamma=20e3, K0=0.6)]
+    layers = [  # E, nu, c are the soil group's business here; geostatic_stress reads the weight and K0
+        SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, phi_deg=30.0),
+        SoilLayer(4.0, E=50e6, nu=0.3, unit_weight=20e3, K0=0.6),
+    ]
     soil.initial_stress = geostatic_stress(soil.integration_points()[..., 1], layers)
     fix_block(model, mesh, ids)
     res = run(model, [1.0], Settings(method="full", backend="superlu"))

@@ -236,15 +236,15 @@ def test_water_table_geostatic_state_against_hand_calculation():
 def test_geostatic_stress_water_table_function():
     sig = geostatic_stress(
         np.array([-1.0, -3.0]),
-        [{"thickness": 2.0, "gamma": 18e3, "gamma_sat": 20e3, "K0": 0.5}],
+        [SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)],
         water_table=1.0,
         gamma_w=10e3,
     )
     assert sig[:, 1] == pytest.approx([-18e3, -(18e3 + 2 * 10e3)])
-    with pytest.raises(ValueError, match="gamma_sat"):
+    with pytest.raises(ValueError, match="unit_weight_sat"):
         geostatic_stress(
             np.array([-1.0]),
-            [{"thickness": 1.0, "gamma": 18e3, "gamma_sat": 5e3, "K0": 0.5}],
+            [SoilLayer(1.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=5e3, K0=0.5)],
             water_table=0.5,
         )
 
