@@ -67,12 +67,12 @@ import numpy as np
 from ssi import paths
 from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
 from ssi.element_test import biaxial_compression
+from ssi.examples import excavated_column, excavated_column_errors, pit_beside_strip, pit_reaction_drop
 from ssi.report import record, save_figure
 from ssi.scene import (
     ColumnLoad,
     Contact,
     ContactSegment,
-    Excavation,
     Foundation,
     MeshSize,
     Phase,
@@ -679,36 +679,20 @@ assert len(caught) == 2
 # (tolerance 1e-12, measured about 1e-15).
 
 # %%
-GAMMA_E, H_E, T_E, K0_E = 18e3, 6.0, 2.0, 0.5
-dig = Scene(
-    width=4.0,
-    depth=H_E,
-    layers=[SoilLayer(H_E, E=E, nu=NU, unit_weight=GAMMA_E, K0=K0_E)],
-    mesh=MeshSize(h_fine=0.5, h_coarse=1.0, growth=1.2),
-    phases=[Phase("dig", excavate=(Excavation(-2.0, 2.0, bottom=T_E),), n_steps=1)],
-)
-dig_built = dig.build()
-dig_out = dig_built.solve()
-new_surface = np.flatnonzero(np.abs(dig_built.mesh.xy[:, 1] + T_E) < 1e-9)
-heave = dig_out.u[-1][dig_built.model.dof(new_surface, "w")]
-heave_hand = GAMMA_E * T_E * (H_E - T_E) / M_OED
-kept = dig_out.active_elements()
-z_e = dig_built.soil.integration_points()[..., 1]
-sig_e = dig_out.soil_stress()
-d_sv = sig_e[kept][..., 1] - GAMMA_E * z_e[kept]
-d_sh = sig_e[kept][..., 0] - K0_E * GAMMA_E * z_e[kept]
-err_heave = np.abs(heave / heave_hand - 1).max()
-err_sv = np.abs(d_sv / (GAMMA_E * T_E) - 1).max()
-err_sh = np.abs(d_sh / (NU / (1 - NU) * GAMMA_E * T_E) - 1).max()
+# the scene and the comparison live in `ssi.examples` (`tests/test_scene_phases.py` checks the same claim)
+dig = excavated_column(t=2.0, depth=6.0, E=E, nu=NU, unit_weight=18e3, K0=0.5)
+dig_check = excavated_column_errors(dig)
+err_heave, err_sv, err_sh = dig_check["heave"], dig_check["sigma_v"], dig_check["sigma_h"]
+removed_stress = dig_check["stress"][~dig_check["kept"]]
 excavation_heave = max(err_heave, err_sv, err_sh)
 EXC_TOL = 1e-12
 print(
-    f"heave {1e3 * heave.mean():.4f} mm, hand gamma t (H - t)/M = {1e3 * heave_hand:.4f} mm; "
-    "relative errors: "
+    f"heave {1e3 * dig_check['heave_nodes'].mean():.4f} mm, hand gamma t (H - t)/M = "
+    f"{1e3 * dig_check['heave_hand']:.4f} mm; relative errors: "
     f"heave {err_heave:.1e}, d sigma_v {err_sv:.1e}, d sigma_h {err_sh:.1e}; removed elements' stress "
-    f"{np.abs(sig_e[~kept]).max():.0f} Pa"
+    f"{np.abs(removed_stress).max():.0f} Pa"
 )
-assert excavation_heave < EXC_TOL and np.all(sig_e[~kept] == 0.0)
+assert excavation_heave < EXC_TOL and np.all(removed_stress == 0.0)
 record(
     "excavation_heave",
     "max rel. error of heave gamma t (H-t)/M and of d sigma_v = gamma t, d sigma_h = nu/(1-nu) gamma t "
@@ -727,30 +711,10 @@ record(
 # load (a norm); its sum over the bottom nodes may be larger, so the tolerance is 1e-4.
 
 # %%
-pit = Scene(
-    width=20.0,
-    depth=8.0,
-    layers=[
-        SoilLayer(
-            3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=30.0, psi_deg=0.0
-        ),
-        SoilLayer(5.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
-    ],
-    water_table=1.0,
-    surcharge=10e3,
-    foundation=Foundation(x0=-5.0, x1=-3.0, section=STRIP),
-    contact=Contact(kn=1e10, kt=1e9),
-    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.3),
-    phases=[
-        Phase("building", loads=(ColumnLoad(-4.0, N=300e3),)),
-        Phase("pit", excavate=(Excavation(-1.3, 3.7, bottom=1.5),)),
-    ],
-)
+pit = pit_beside_strip(section=STRIP)  # the scene and the hand value: ssi.examples (and the unit tests)
 pit_built = pit.build()
 pit_out = pit_built.solve()
-bottom_w = pit_built.model.dof(pit_built.mesh.bottom, "w")
-reaction = [np.array(r["result"].f_int)[-1][bottom_w].sum() for r in pit_out.phases]
-removed_weight = 5.0 * (18e3 * 1.0 + (20e3 - gw) * 0.5) + 10e3 * 5.0
+reaction, removed_weight = pit_reaction_drop(pit_built, pit_out)
 excavation_pit_reaction = abs((reaction[1] - reaction[2]) / removed_weight - 1)
 PIT_TOL = 1e-4
 pstep_pit = {r["name"]: r["last"] for r in pit_out.phases}

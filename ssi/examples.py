@@ -6,6 +6,11 @@
 * :func:`winkler_strip` -- a plate strip on an interface bed over a rigid base under a point load: the finite
   element model of Hetenyi's beam on a Winkler foundation (chapters 07 and 13 compare it with
   :func:`ssi.analytical.hetenyi_deflection`).
+* :func:`excavated_column` and :func:`excavated_column_errors` -- chapter 12's one-dimensional excavation
+  check (the top layer removed over the full width) against its hand calculation; also
+  ``tests/test_scene_phases.py``.
+* :func:`pit_beside_strip` and :func:`pit_reaction_drop` -- chapter 12's pit dug beside a loaded strip and its
+  equilibrium check (the bottom reaction falls by the removed weight); also ``tests/test_scene_phases.py``.
 """
 
 import math
@@ -17,12 +22,33 @@ from .elements.plate import add_plate_strip
 from .materials.interface_law import interface_params
 from .materials.layer_laws import CONCRETE, STEEL
 from .materials.rc import concrete_params, designer_concrete, steel_params
+from .materials.soil_laws import GAMMA_W
 from .model import Model
-from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from .scene import (
+    BuiltScene,
+    ColumnLoad,
+    Contact,
+    Excavation,
+    Foundation,
+    MeshSize,
+    Phase,
+    Scene,
+    SceneResult,
+    SoilLayer,
+)
 from .section import Section, homogeneous, rc_section
 from .validate import check_int, check_real
 
-__all__ = ["chapter11_foundation", "chapter11_section", "winkler_strip"]
+__all__ = [
+    "chapter11_foundation",
+    "chapter11_section",
+    "excavated_column",
+    "excavated_column_errors",
+    "pit_beside_strip",
+    "pit_reaction_drop",
+    "winkler_strip",
+]
+
 
 CHAPTER11_COLUMN_LOAD = 400e3  # [N/m] per column (chapter 11: the cracked, elastic service state)
 
@@ -107,3 +133,103 @@ def winkler_strip(n_el: int, depth: float, E: float, nu: float, k: float, P: flo
     m.add_load([mid], "w", -P)
     res = m.solve_linear(backend="superlu")
     return m.coords[pids, 0], -res.at(pids, "w")
+
+
+def excavated_column(
+    t: float = 2.0,
+    depth: float = 6.0,
+    E: float = 20e6,
+    nu: float = 0.3,
+    unit_weight: float = 18e3,
+    K0: float = 0.5,
+) -> Scene:
+    """Chapter 12's one-dimensional excavation: an elastic block 4 m wide and ``depth`` [m] deep (bottom
+    fixed, sides on rollers) of modulus ``E`` [Pa], Poisson's ratio ``nu``, ``unit_weight`` [N/m^3] and
+    at-rest coefficient ``K0``, whose top ``t`` [m] is excavated over the full width in one phase of one
+    step."""
+    return Scene(
+        width=4.0,
+        depth=depth,
+        layers=[SoilLayer(depth, E=E, nu=nu, unit_weight=unit_weight, K0=K0)],
+        mesh=MeshSize(h_fine=0.5, h_coarse=1.0, growth=1.2),
+        phases=[Phase("dig", excavate=(Excavation(-2.0, 2.0, bottom=t),), n_steps=1)],
+    )
+
+
+def excavated_column_errors(scene: Scene) -> dict:
+    """Solve an :func:`excavated_column` scene and compare it with the hand calculation of chapter 12:
+    removing the top layer (thickness t) unloads the remaining column uniformly and laterally confined, so
+    the new surface heaves gamma t (H - t) / M with M = E (1 - nu) / ((1 + nu)(1 - 2 nu)), sigma_v rises by
+    gamma t and sigma_h by nu / (1 - nu) gamma t (tension positive).
+
+    Returns the largest relative errors ``heave``, ``sigma_v``, ``sigma_h`` [-], the FE heave of the new
+    surface's nodes ``heave_nodes`` [m] and the hand value ``heave_hand`` [m], ``kept`` (the elements that
+    remain, (n_el,) bool), the integration points' ``z`` [m] and ``stress`` [Pa] after the phase, and the
+    ``built`` scene and its result ``out``."""
+    layer, dig = scene.layers[0], scene.phases[0].excavate[0]
+    t, depth, gamma, k0 = dig.bottom, scene.depth, layer.unit_weight, layer.K0
+    m_oed = layer.E * (1 - layer.nu) / ((1 + layer.nu) * (1 - 2 * layer.nu))
+    built = scene.build()
+    out = built.solve()
+    new_surface = np.flatnonzero(np.abs(built.mesh.xy[:, 1] + t) < 1e-9)
+    heave = out.u[-1][built.model.dof(new_surface, "w")]
+    heave_hand = gamma * t * (depth - t) / m_oed
+    kept = out.active_elements()
+    z = built.soil.integration_points()[..., 1]
+    sig = out.soil_stress()
+    d_sv = sig[kept][..., 1] - gamma * z[kept]
+    d_sh = sig[kept][..., 0] - k0 * gamma * z[kept]
+    return dict(
+        heave=np.abs(heave / heave_hand - 1).max(),
+        sigma_v=np.abs(d_sv / (gamma * t) - 1).max(),
+        sigma_h=np.abs(d_sh / (layer.nu / (1 - layer.nu) * gamma * t) - 1).max(),
+        heave_nodes=heave,
+        heave_hand=heave_hand,
+        kept=kept,
+        z=z,
+        stress=sig,
+        built=built,
+        out=out,
+    )
+
+
+PIT_STRIP_LOAD = 300e3  # [N/m] the column on the strip beside the pit
+
+
+def pit_beside_strip(section: Section | None = None) -> Scene:
+    """Chapter 12's pit beside a loaded strip, default solver settings: a Mohr--Coulomb top layer (3 m) over
+    an elastic one (5 m), water table at 1 m, a 10 kPa surcharge, a strip at x = -5..-3 m (``section``,
+    default a stiff 0.5 m homogeneous one) carrying 300 kN/m in phase "building", then phase "pit" digs a
+    5 m wide, 1.5 m deep pit from x = -1.3 m (neither end on the regular mesh) on a 20 m x 8 m block."""
+    return Scene(
+        width=20.0,
+        depth=8.0,
+        layers=[
+            SoilLayer(
+                3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=30.0, psi_deg=0.0
+            ),
+            SoilLayer(5.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
+        ],
+        water_table=1.0,
+        surcharge=10e3,
+        foundation=Foundation(
+            x0=-5.0, x1=-3.0, section=homogeneous(0.5, 30e9, 0.2) if section is None else section
+        ),
+        contact=Contact(kn=1e10, kt=1e9),
+        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.3),
+        phases=[
+            Phase("building", loads=(ColumnLoad(-4.0, N=PIT_STRIP_LOAD),)),
+            Phase("pit", excavate=(Excavation(-1.3, 3.7, bottom=1.5),)),
+        ],
+    )
+
+
+def pit_reaction_drop(built: BuiltScene, out: SceneResult) -> tuple[list[float], float]:
+    """(bottom reaction [N/m] at the end of each phase of a solved :func:`pit_beside_strip`, the load the pit
+    removes [N/m]). Equilibrium: from the building phase to the pit phase the reaction falls by the removed
+    buoyant weight plus the surcharge that stood on the pit, 5 (18 kN/m^3 x 1 m + (20 - 9.81) kN/m^3 x 0.5 m)
+    + 10 kPa x 5 m = 165.5 kN/m; the building phase raises it by the strip's load."""
+    bottom_w = built.model.dof(built.mesh.bottom, "w")
+    reaction = [np.array(r["result"].f_int)[-1][bottom_w].sum() for r in out.phases]
+    removed = 5.0 * (18e3 * 1.0 + (20e3 - GAMMA_W) * 0.5) + 10e3 * 5.0
+    return reaction, removed

@@ -9,6 +9,13 @@ import numpy as np
 import pytest
 
 from ssi.element_test import biaxial_compression
+from ssi.examples import (
+    PIT_STRIP_LOAD,
+    excavated_column,
+    excavated_column_errors,
+    pit_beside_strip,
+    pit_reaction_drop,
+)
 from ssi.results import read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
@@ -28,82 +35,45 @@ from ssi.section import homogeneous
 from ssi.solver import NonConvergence, Settings
 
 E, NU, GAMMA, GW = 20e6, 0.3, 18e3, 9.81e3
-M_OED = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
-COARSE = MeshSize(h_fine=0.5, h_coarse=1.0, growth=1.2)
 STRIP = homogeneous(0.5, 30e9, 0.2)
 
 
-def excavated_block(t=2.0, depth=6.0):
-    return Scene(
-        width=4.0,
-        depth=depth,
-        layers=[SoilLayer(depth, E=E, nu=NU, unit_weight=GAMMA, K0=0.5)],
-        mesh=COARSE,
-        phases=[Phase("dig", excavate=(Excavation(-2.0, 2.0, bottom=t),), n_steps=1)],
-    )
-
-
 def test_excavating_the_top_layer_unloads_the_column_in_1d():
-    """Heave gamma t (H - t) / M at the new surface; sigma_v rises by gamma t, sigma_h by nu/(1-nu) of it.
-    The remaining column's change is a uniform 1D state, which quadratic elements represent exactly:
-    round-off (1e-12)."""
-    t, depth = 2.0, 6.0
-    built = excavated_block(t, depth).build()
-    out = built.solve()
-    new_surface = np.flatnonzero(np.abs(built.mesh.xy[:, 1] + t) < 1e-9)
-    heave = out.u[-1][built.model.dof(new_surface, "w")]
-    assert heave == pytest.approx(GAMMA * t * (depth - t) / M_OED, rel=1e-12)
-    active = out.active_elements()
-    z = built.soil.integration_points()[..., 1]
-    sig = out.soil_stress()
-    sv0 = GAMMA * z  # geostatic sigma_v (tension positive), K0 = 0.5
-    assert np.allclose(sig[active][..., 1] - sv0[active], GAMMA * t, rtol=1e-12, atol=0)
-    assert np.allclose(sig[active][..., 0] - 0.5 * sv0[active], NU / (1 - NU) * GAMMA * t, rtol=1e-12, atol=0)
-    assert np.all(sig[~active] == 0.0)  # removed soil carries nothing
-    assert np.all(-z[~active] < t) and np.all(-z[active] > t)
+    """Chapter 12's claim ``excavation_heave`` (the scene and its hand calculation in ``ssi.examples``): heave
+    gamma t (H - t) / M at the new surface; sigma_v rises by gamma t, sigma_h by nu/(1-nu) of it. The
+    remaining column's change is a uniform 1D state, which quadratic elements represent exactly: round-off
+    (1e-12)."""
+    t = 2.0
+    check = excavated_column_errors(excavated_column(t=t, depth=6.0, E=E, nu=NU, unit_weight=GAMMA, K0=0.5))
+    assert check["heave"] < 1e-12 and check["sigma_v"] < 1e-12 and check["sigma_h"] < 1e-12
+    kept, z = check["kept"], check["z"]
+    assert np.all(check["stress"][~kept] == 0.0)  # removed soil carries nothing
+    assert np.all(-z[~kept] < t) and np.all(-z[kept] > t)
 
 
 def test_a_pit_next_to_a_loaded_strip_runs_with_the_defaults():
-    """Mohr--Coulomb soil, water table, surcharge, a strip under load, then a pit beside it, all default
-    settings: the bottom reaction falls by the removed buoyant weight plus the surcharge over the pit
-    (equilibrium, to the solver's force tolerance 1e-5 of the structural load; 1e-4 allows for its sum over
-    the nodes)."""
-    scene = Scene(
-        width=20.0,
-        depth=8.0,
-        layers=[
-            SoilLayer(
-                3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=30.0, psi_deg=0.0
-            ),
-            SoilLayer(5.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
-        ],
-        water_table=1.0,
-        surcharge=10e3,
-        foundation=Foundation(x0=-5.0, x1=-3.0, section=STRIP),
-        contact=Contact(kn=1e10, kt=1e9),
-        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.3),
-        phases=[
-            Phase("building", loads=(ColumnLoad(-4.0, N=300e3),)),
-            Phase("pit", excavate=(Excavation(-1.3, 3.7, bottom=1.5),)),
-        ],
-    )
-    built = scene.build()
+    """Chapter 12's claim ``excavation_pit_reaction`` (scene and hand value in ``ssi.examples``):
+    Mohr--Coulomb soil, water table, surcharge, a strip under load, then a pit beside it, all default
+    settings: the bottom reaction rises by the strip's load and falls by the removed buoyant weight plus the
+    surcharge over the pit (equilibrium, to the solver's force tolerance 1e-5 of the structural load; 1e-4
+    allows for its sum over the nodes)."""
+    built = pit_beside_strip(section=STRIP).build()
     assert np.any(np.abs(built.mesh.x_lines - (-1.3)) < 1e-12) and np.any(
         np.abs(built.mesh.x_lines - 3.7) < 1e-12
     )
     out = built.solve()
     assert out.status == "completed"
-    bottom = built.model.dof(built.mesh.bottom, "w")
-    reaction = [np.array(r["result"].f_int)[-1][bottom].sum() for r in out.phases]
-    removed = 5.0 * (18e3 * 1.0 + (20e3 - GW) * 0.5) + 10e3 * 5.0
-    assert reaction[1] - reaction[0] == pytest.approx(300e3, rel=1e-4)
+    reaction, removed = pit_reaction_drop(built, out)
+    # by hand: 5 m x (18 kN/m^3 x 1 m + (20 - 9.81) kN/m^3 x 0.5 m) + 10 kPa x 5 m = 165.475 kN/m
+    assert removed == pytest.approx(165.475e3, rel=1e-12)
+    assert reaction[1] - reaction[0] == pytest.approx(PIT_STRIP_LOAD, rel=1e-4)
     assert reaction[1] - reaction[2] == pytest.approx(removed, rel=1e-4)
     pit = out.phases[-1]
     assert out.active_elements(pit["first"] - 1).all() and not out.active_elements(pit["last"]).all()
 
 
 def test_excavation_round_trips_through_the_scene_record_and_the_result_file(tmp_path):
-    scene = excavated_block()
+    scene = excavated_column()
     assert scene_from_dict(scene_to_dict(scene)) == scene
     out = scene.build().solve()
     back = read_result(write_result(tmp_path / "dig.h5", out))
