@@ -6,6 +6,8 @@
 * :func:`winkler_strip` -- a plate strip on an interface bed over a rigid base under a point load: the finite
   element model of Hetenyi's beam on a Winkler foundation (chapters 07 and 13 compare it with
   :func:`ssi.analytical.hetenyi_deflection`).
+* :class:`ElasticStrip` / ``CHAPTER02_STRIP`` -- the elastic plate strip of chapter 02's closed-form studies
+  (02a to 02d) with its stiffnesses.
 * :func:`excavated_column` and :func:`excavated_column_errors` -- chapter 12's one-dimensional excavation
   check (the top layer removed over the full width) against its hand calculation; also
   ``tests/test_scene_phases.py``.
@@ -14,6 +16,7 @@
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -40,6 +43,8 @@ from .section import Section, homogeneous, rc_section
 from .validate import check_int, check_real
 
 __all__ = [
+    "CHAPTER02_STRIP",
+    "ElasticStrip",
     "chapter11_foundation",
     "chapter11_section",
     "excavated_column",
@@ -49,6 +54,44 @@ __all__ = [
     "winkler_strip",
 ]
 
+
+@dataclass(frozen=True)
+class ElasticStrip:
+    """A homogeneous elastic plate strip: Young's modulus ``E`` [Pa], Poisson's ratio ``nu`` [-], depth ``h``
+    [m], shear correction factor ``kappa`` [-]; per metre of width (plane strain across it)."""
+
+    E: float = 30.0e9
+    nu: float = 0.2
+    h: float = 1.0
+    kappa: float = 5.0 / 6.0
+
+    @property
+    def E1(self) -> float:
+        """D1 = E / (1 - nu^2) [Pa], the plane-strain modulus of the fibre (chapter 02a)."""
+        return self.E / (1.0 - self.nu**2)
+
+    @property
+    def G(self) -> float:
+        """D2 = E / (2 (1 + nu)) [Pa], the shear modulus."""
+        return self.E / (2.0 * (1.0 + self.nu))
+
+    @property
+    def EI(self) -> float:
+        """Bending stiffness D1 h^3 / 12 [N m^2/m]."""
+        return self.E1 * self.h**3 / 12.0
+
+    @property
+    def kGA(self) -> float:
+        """Shear stiffness kappa G h [N/m]."""
+        return self.kappa * self.G * self.h
+
+    def section(self) -> Section:
+        """The strip's :class:`~ssi.section.Section` (:func:`ssi.section.homogeneous`, its default layers)."""
+        return homogeneous(self.h, self.E, self.nu)
+
+
+# chapter 02's strip: depth 1 m, so that span/depth is the span in metres
+CHAPTER02_STRIP = ElasticStrip()
 
 CHAPTER11_COLUMN_LOAD = 400e3  # [N/m] per column (chapter 11: the cracked, elastic service state)
 
