@@ -89,15 +89,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.bearing_capacity import CHAPTER10_FOOTING, chapter10_footing, prandtl, push_footing, sg61_scene
 from ssi.digitize import read_reference
 from ssi.solver import NonConvergence, Settings, run
 from ssi.verify import convergence_rate
 
 FAST = paths.FAST
-C = 10e3  # cohesion [Pa]
-E, NU = 20e6, 0.3  # the limit load does not depend on them
-BLOCK = dict(half_width=6.0, depth=5.0, h_coarse=1.0, growth=1.25)
+# the footing test above, `ssi.bearing_capacity.chapter10_footing`: B = 2 m, c = 10 kPa, phi = 20° unless
+# varied, E = 20 MPa and nu = 0.3 (the limit load does not depend on them), the 6 m x 5 m half block
+C = CHAPTER10_FOOTING["c"]  # cohesion [Pa]
 MESHES = [0.5, 0.25] if FAST else [0.25, 0.125, 0.0625]  # element size under the footing [m]
 H_NAMED = 0.0625  # the mesh on which the 3 % claim is made (16 elements under the half footing)
 TOL_PRANDTL = 0.03  # issue 4: within 3 % of the exact value on the named mesh
@@ -115,9 +115,7 @@ t_all = time.perf_counter()
 for phi, rough in CASES:
     q_exact = prandtl(C, phi)[0]
     for h in MESHES:
-        scene = rigid_footing(
-            B=2.0, c=C, phi_deg=phi, E=E, nu=NU, rough=rough, h_fine=h, settle=SETTLE[phi], **BLOCK
-        )
+        scene = chapter10_footing(phi_deg=phi, rough=rough, h_fine=h, settle=SETTLE[phi])
         out = push_footing(scene, n_steps=N_STEPS)
         if out["failure"]:
             raise RuntimeError(f"phi={phi} rough={rough} h={h}: {out['failure']}")
@@ -230,18 +228,7 @@ print(f"largest relative settlement error up to 500 kPa: {100 * sg_max:.2f} %")
 H_NA = MESHES[-2] if not FAST else MESHES[-1]
 nonassoc = {}
 for psi in (20.0, 0.0) if FAST else (20.0, 10.0, 0.0):
-    scene = rigid_footing(
-        B=2.0,
-        c=C,
-        phi_deg=20.0,
-        psi_deg=psi,
-        E=E,
-        nu=NU,
-        rough=True,
-        h_fine=H_NA,
-        settle=SETTLE[20.0],
-        **BLOCK,
-    )
+    scene = chapter10_footing(psi_deg=psi, h_fine=H_NA, settle=SETTLE[20.0])
     out = push_footing(scene, n_steps=N_STEPS)
     nonassoc[psi] = out
     print(
@@ -262,9 +249,7 @@ else:
         f"(settlement {1e3 * nonassoc[0.0]['settlement'][-1]:.1f} mm): {nonassoc[0.0]['failure']}"
     )
 # the same psi = 0 push with fewer, larger steps: a different path through the unstable range
-scene = rigid_footing(
-    B=2.0, c=C, phi_deg=20.0, psi_deg=0.0, E=E, nu=NU, rough=True, h_fine=H_NA, settle=SETTLE[20.0], **BLOCK
-)
+scene = chapter10_footing(psi_deg=0.0, h_fine=H_NA, settle=SETTLE[20.0])
 coarse_steps = push_footing(scene, n_steps=12)
 print(
     f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = "
@@ -307,9 +292,7 @@ STEP_TOL = 0.01  # the issue's bound on the step-count dependence
 
 
 def psi0_push(h, n_steps, settle=SETTLE[20.0]):
-    scene = rigid_footing(
-        B=2.0, c=C, phi_deg=20.0, psi_deg=0.0, E=E, nu=NU, rough=True, h_fine=h, settle=settle, **BLOCK
-    )
+    scene = chapter10_footing(psi_deg=0.0, h_fine=h, settle=settle)
     out = push_footing(scene, n_steps=n_steps, settings=Settings(**VISCOUS))
     out["q_end"] = out["q"][-1] / q_p20_na
     out["n_dof"] = scene.info["n_dof"]
@@ -389,18 +372,7 @@ for name, kw, method in variants:
     for n in step_counts:
         if (method == "modified" or "sub-steps" in name) and n != step_counts[-1]:
             continue
-        scene = rigid_footing(
-            B=2.0,
-            c=C,
-            phi_deg=20.0,
-            E=E,
-            nu=NU,
-            rough=True,
-            h_fine=H_TRADE,
-            settle=SETTLE[20.0],
-            **BLOCK,
-            **kw,
-        )
+        scene = chapter10_footing(h_fine=H_TRADE, settle=SETTLE[20.0], **kw)
         if method == "modified":
             out = push_footing(
                 scene,
@@ -412,9 +384,7 @@ for name, kw, method in variants:
         else:
             out = push_footing(scene, n_steps=n)  # footing_settings(): full Newton with line search
         trade[name, n] = out
-ref_scene = rigid_footing(
-    B=2.0, c=C, phi_deg=20.0, E=E, nu=NU, rough=True, h_fine=H_TRADE, settle=SETTLE[20.0], **BLOCK
-)
+ref_scene = chapter10_footing(h_fine=H_TRADE, settle=SETTLE[20.0])
 q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1])["q_u"]
 for (name, n), out in trade.items():
     out["trade_err"] = abs(out["q_u"] - q_ref_trade) / q_p20

@@ -65,7 +65,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
+from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing
 from ssi.element_test import biaxial_compression
 from ssi.examples import excavated_column, excavated_column_errors, pit_beside_strip, pit_reaction_drop
 from ssi.report import record, save_figure
@@ -185,19 +185,8 @@ for h in MESHES:
     t0 = time.perf_counter()
     curves_nq[h] = push_over(scene)
     half = push_footing(
-        rigid_footing(
-            B=B,
-            c=0.0,
-            phi_deg=PHI,
-            E=E,
-            nu=NU,
-            rough=False,
-            h_fine=h,
-            settle=0.15,
-            surcharge=Q_NQ,
-            half_width=6.0,
-            depth=5.0,
-            h_coarse=1.0,
+        chapter10_footing(  # chapter 10's half block, this section's soil
+            B=B, c=0.0, phi_deg=PHI, E=E, nu=NU, rough=False, h_fine=h, settle=0.15, surcharge=Q_NQ
         ),
         n_steps=30,
     )
@@ -432,18 +421,8 @@ for h in MESHES:
     )
     curves_u[h] = push_over(scene)
     half = push_footing(
-        rigid_footing(
-            B=B,
-            c=S_U,
-            phi_deg=0.0,
-            E=10e6,
-            nu=0.49,
-            rough=False,
-            h_fine=h,
-            settle=0.05,
-            half_width=6.0,
-            depth=5.0,
-            h_coarse=1.0,
+        chapter10_footing(  # chapter 10's half block, the undrained clay
+            B=B, c=S_U, phi_deg=0.0, E=10e6, nu=0.49, rough=False, h_fine=h, settle=0.05
         ),
         n_steps=30,
     )

@@ -161,6 +161,31 @@ def rigid_footing(
     return FootingScene(model, soil, footing, B, mesh, info)
 
 
+# chapter 10's footing: B = 2 m, c = 10 kPa, phi = 20 deg, E = 20 MPa, nu = 0.3, rough, 6 m x 5 m half block
+CHAPTER10_FOOTING = dict(
+    B=2.0,
+    c=10e3,
+    phi_deg=20.0,
+    E=20e6,
+    nu=0.3,
+    rough=True,
+    half_width=6.0,
+    depth=5.0,
+    h_coarse=1.0,
+    growth=1.25,
+    settle=0.06,
+)
+
+
+def chapter10_footing(**overrides: object) -> FootingScene:
+    """Chapter 10's rigid rough strip footing, B = 2 m on weightless Mohr--Coulomb soil (c = 10 kPa,
+    phi = 20 deg, associated unless ``psi_deg`` is given; E = 20 MPa, nu = 0.3 -- the limit load does not
+    depend on them): the half model on a block 6 m wide and 5 m deep, elements ``h_fine`` (default 0.25 m)
+    under the footing growing by 1.25 up to 1 m, pushed to 6 cm. ``overrides``: any other
+    :func:`rigid_footing` arguments (chapters 06 and 12, the benchmarks and the tests vary it)."""
+    return rigid_footing(**(CHAPTER10_FOOTING | overrides))
+
+
 def footing_pressure(scene: FootingScene, result):
     """(settlement [m, positive down], pressure q [Pa]) histories of a rigid-footing run."""
     w = result.displacement(scene.footing[:1], "w")[:, 0]

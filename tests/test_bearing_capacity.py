@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing, rigid_footing, sg61_scene
 from ssi.digitize import read_reference
 from ssi.scene import SoilLayer
 from ssi.solver import Settings, run
@@ -193,19 +193,7 @@ def test_viscous_path_relaxes_to_the_rate_independent_limit():
     from ssi.solver import Settings
 
     def scene():
-        return rigid_footing(
-            B=2.0,
-            c=10e3,
-            phi_deg=20.0,
-            psi_deg=20.0,
-            E=20e6,
-            nu=0.3,
-            h_fine=0.5,
-            settle=0.06,
-            half_width=6.0,
-            depth=5.0,
-            h_coarse=1.0,
-        )
+        return chapter10_footing(psi_deg=20.0, h_fine=0.5, settle=0.06)
 
     plain = push_footing(scene(), n_steps=20, settings=Settings(stepping="fixed", backend="superlu"))
     viscous = push_footing(
