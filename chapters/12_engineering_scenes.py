@@ -67,7 +67,14 @@ import numpy as np
 from ssi import paths
 from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing
 from ssi.element_test import biaxial_compression
-from ssi.examples import excavated_column, excavated_column_errors, pit_beside_strip, pit_reaction_drop
+from ssi.examples import (
+    drainage_switch_errors,
+    excavated_column,
+    excavated_column_errors,
+    pit_beside_strip,
+    pit_reaction_drop,
+    switched_layer_pore_pressure,
+)
 from ssi.report import record, save_figure
 from ssi.scene import (
     ColumnLoad,
@@ -730,73 +737,24 @@ record(
 # remember the path). All three are linear solves: round-off, tolerance 1e-10.
 
 # %%
-lay_sw = SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, unit_weight=18e3, unit_weight_sat=20e3, nu_u=NU_U)
-sw_common = {
-    "width": 12.0,
-    "depth": H_LAYER,
-    "foundation": Foundation(x0=-1.0, x1=1.0, section=STRIP),
-    "contact": Contact(kn=1e10, kt=1e9),
-    "mesh": MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-    "water_table": 1.0,
-}
-first_load, second_load = ColumnLoad(0.0, N=200e3), ColumnLoad(0.3, N=150e3, H=20e3)
-switch = Scene(
-    layers=[lay_sw],
-    phases=[
-        Phase("construction", loads=(first_load,)),
-        Phase("rapid", loads=(second_load,), drainage={0: "undrained_A"}),
-        Phase("consolidation", drainage={0: "drained"}),
-    ],
-    **sw_common,
-)
-sw_built = switch.build()
-sw_out = sw_built.solve(n_steps=1)
-sw_step = {r["name"]: r["last"] for r in sw_out.phases}
-u_nu_u = (
-    Scene(
-        layers=[SoilLayer(H_LAYER, E=2 * G_SK * (1 + NU_U), nu=NU_U, unit_weight=18e3, unit_weight_sat=20e3)],
-        loads=[second_load],
-        **sw_common,
-    )
-    .build()
-    .solve()
-    .u[-1]
-)
-u_drained = Scene(layers=[lay_sw], loads=[first_load, second_load], **sw_common).build().solve().u[-1]
-err_increment = (
-    np.abs(sw_out.u[sw_step["rapid"]] - sw_out.u[sw_step["construction"]] - u_nu_u).max()
-    / np.abs(u_nu_u).max()
-)
-err_consolidated = np.abs(sw_out.u[sw_step["consolidation"]] - u_drained).max() / np.abs(u_drained).max()
+# the scenes and closed forms live in `ssi.examples` (`tests/test_scene_phases.py` checks the same claims)
+sw = drainage_switch_errors(E=E_SK, nu=NU_SK, nu_u=NU_U, depth=H_LAYER, section=STRIP)
+od = switched_layer_pore_pressure(E=E_SK, nu=NU_SK, nu_u=NU_U, depth=H_LAYER, dq=Q_U1D)
+err_increment, err_consolidated, err_p_switch = sw["increment"], sw["consolidated"], od["error"]
 M_SK = E_SK / (3 * (1 - 2 * NU_SK)) + 4 * G_SK / 3
-one_d_switch = Scene(
-    width=12.0,
-    depth=H_LAYER,
-    layers=[lay_sw],
-    water_table=1.0,
-    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-    phases=[
-        Phase("fill", loads=(SurfacePressure(-6.0, 6.0, 20e3),)),
-        Phase("rapid", loads=(SurfacePressure(-6.0, 6.0, Q_U1D),), drainage={0: "undrained_A"}),
-    ],
-)
-od_built = one_d_switch.build()
-od_out = od_built.solve(n_steps=1)
-od_step = {r["name"]: r["last"] for r in od_out.phases}
-p_switch = od_built.excess_pore_pressure(od_out, od_step["rapid"])
-err_p_switch = np.abs(p_switch / (Q_U1D * K_W / (K_W + M_SK)) - 1).max()
 undrained_switch = max(err_increment, err_consolidated, err_p_switch)
 SWITCH_TOL = 1e-10
+p_after_fill = od["built"].excess_pore_pressure(od["out"], od["step"]["fill"])
+p_consolidated = sw["built"].excess_pore_pressure(sw["out"], sw["step"]["consolidation"])
 print(
     f"undrained increment vs elastic (G, nu_u): {err_increment:.1e}; consolidated vs drained: "
-    f"{err_consolidated:.1e}; 1D excess pore pressure {p_switch.mean() / 1e3:.4f} kPa = "
+    f"{err_consolidated:.1e}; 1D excess pore pressure {od['p'].mean() / 1e3:.4f} kPa = "
     f"{Q_U1D / 1e3:g} kPa x {K_W / (K_W + M_SK):.4f} (error {err_p_switch:.1e}); "
-    "excess after the drained fill "
-    f"{np.abs(od_built.excess_pore_pressure(od_out, od_step['fill'])).max():.1f} Pa, after consolidation "
-    f"{np.abs(sw_built.excess_pore_pressure(sw_out, sw_step['consolidation'])).max():.1f} Pa"
+    f"excess after the drained fill {np.abs(p_after_fill).max():.1f} Pa, after consolidation "
+    f"{np.abs(p_consolidated).max():.1f} Pa"
 )
 assert undrained_switch < SWITCH_TOL
-assert np.all(od_built.excess_pore_pressure(od_out, od_step["fill"]) == 0.0)
+assert np.all(p_after_fill == 0.0)
 record(
     "undrained_switch",
     "max rel. error: undrained increment vs elastic (G, nu_u); 1D excess p vs dq Kw/(Kw + M'); consolidated "

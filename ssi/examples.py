@@ -13,6 +13,9 @@
   ``tests/test_scene_phases.py``.
 * :func:`pit_beside_strip` and :func:`pit_reaction_drop` -- chapter 12's pit dug beside a loaded strip and its
   equilibrium check (the bottom reaction falls by the removed weight); also ``tests/test_scene_phases.py``.
+* :func:`drainage_switch_scene`, :func:`drainage_switch_errors` and :func:`switched_layer_pore_pressure` --
+  chapter 12's layer switched drained -> undrained -> drained and its closed forms; also
+  ``tests/test_scene_phases.py``.
 """
 
 import math
@@ -38,6 +41,7 @@ from .scene import (
     Scene,
     SceneResult,
     SoilLayer,
+    SurfacePressure,
 )
 from .section import Section, homogeneous, rc_section
 from .validate import check_int, check_real
@@ -47,10 +51,13 @@ __all__ = [
     "ElasticStrip",
     "chapter11_foundation",
     "chapter11_section",
+    "drainage_switch_errors",
+    "drainage_switch_scene",
     "excavated_column",
     "excavated_column_errors",
     "pit_beside_strip",
     "pit_reaction_drop",
+    "switched_layer_pore_pressure",
     "winkler_strip",
 ]
 
@@ -276,3 +283,92 @@ def pit_reaction_drop(built: BuiltScene, out: SceneResult) -> tuple[list[float],
     reaction = [np.array(r["result"].f_int)[-1][bottom_w].sum() for r in out.phases]
     removed = 5.0 * (18e3 * 1.0 + (20e3 - GAMMA_W) * 0.5) + 10e3 * 5.0
     return reaction, removed
+
+
+def drainage_switch_scene(layer: SoilLayer, section: Section | None = None, **changes: object) -> Scene:
+    """Chapter 12's drainage-switch block: ``layer`` (its thickness is the block's depth) 12 m wide, water
+    table at 1 m, a strip at x = -1..1 m (``section``, default a stiff 0.5 m homogeneous one) on a contact
+    kn = 1e10 Pa/m, kt = 1e9 Pa/m; ``changes``: other :class:`~ssi.scene.Scene` fields (loads, phases,
+    foundation=None...)."""
+    fields = {
+        "width": 12.0,
+        "depth": layer.thickness,
+        "layers": [layer],
+        "foundation": Foundation(
+            x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2) if section is None else section
+        ),
+        "contact": Contact(kn=1e10, kt=1e9),
+        "mesh": MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+        "water_table": 1.0,
+    }
+    return Scene(**(fields | changes))
+
+
+def drainage_switch_errors(
+    E: float = 20e6, nu: float = 0.3, nu_u: float = 0.495, depth: float = 6.0, section: Section | None = None
+) -> dict:
+    """Chapter 12's drained -> undrained -> drained check on :func:`drainage_switch_scene` (elastic skeleton
+    ``E`` [Pa], ``nu``; undrained Poisson's ratio ``nu_u``; ``depth`` [m]): a column of 200 kN/m at x = 0
+    drained ("construction"), a second one (150 kN/m, 20 kN/m horizontal, x = 0.3 m) undrained_A ("rapid"),
+    then drained again ("consolidation"). Closed forms: the undrained increment is that of an elastic soil
+    with the skeleton's G and nu_u under the second column; the consolidated state is the drained response
+    to both columns (an elastic skeleton does not remember the path).
+
+    Returns the relative errors ``increment`` and ``consolidated`` [-] (max |difference| / max |reference|),
+    the phased ``built`` scene, its result ``out`` and ``step`` {phase name: last step}."""
+    layer = SoilLayer(depth, E=E, nu=nu, unit_weight=18e3, unit_weight_sat=20e3, nu_u=nu_u)
+    first_load, second_load = ColumnLoad(0.0, N=200e3), ColumnLoad(0.3, N=150e3, H=20e3)
+    switch = drainage_switch_scene(
+        layer,
+        section,
+        phases=[
+            Phase("construction", loads=(first_load,)),
+            Phase("rapid", loads=(second_load,), drainage={0: "undrained_A"}),
+            Phase("consolidation", drainage={0: "drained"}),
+        ],
+    )
+    built = switch.build()
+    out = built.solve(n_steps=1)
+    step = {r["name"]: r["last"] for r in out.phases}
+    shear = E / (2 * (1 + nu))
+    undrained_layer = SoilLayer(
+        depth, E=2 * shear * (1 + nu_u), nu=nu_u, unit_weight=18e3, unit_weight_sat=20e3
+    )
+    u_nu_u = drainage_switch_scene(undrained_layer, section, loads=[second_load]).build().solve().u[-1]
+    u_drained = drainage_switch_scene(layer, section, loads=[first_load, second_load]).build().solve().u[-1]
+    increment = (
+        np.abs(out.u[step["rapid"]] - out.u[step["construction"]] - u_nu_u).max() / np.abs(u_nu_u).max()
+    )
+    consolidated = np.abs(out.u[step["consolidation"]] - u_drained).max() / np.abs(u_drained).max()
+    return dict(increment=increment, consolidated=consolidated, built=built, out=out, step=step)
+
+
+def switched_layer_pore_pressure(
+    E: float = 20e6, nu: float = 0.3, nu_u: float = 0.495, depth: float = 6.0, dq: float = 10e3
+) -> dict:
+    """Chapter 12's one-dimensional drainage switch: a drained fill of 20 kPa over the whole width of
+    :func:`drainage_switch_scene` (no strip), then ``dq`` [Pa] with the layer undrained_A. Closed form
+    (eps_x = 0): the excess pore pressure is dq (K_w/n) / (K_w/n + M') with M' = K' + 4G/3 and
+    K_w/n = K_u - K', K_u = 2G (1 + nu_u) / (3 (1 - 2 nu_u)), from zero at the switch.
+
+    Returns the largest relative ``error`` [-], the excess pore pressure ``p`` [Pa] at the integration points
+    after the undrained phase, the closed form ``p_hand`` [Pa], ``built``, ``out`` and ``step``."""
+    layer = SoilLayer(depth, E=E, nu=nu, unit_weight=18e3, unit_weight_sat=20e3, nu_u=nu_u)
+    shear = E / (2 * (1 + nu))
+    k_water = 2 * shear * (1 + nu_u) / (3 * (1 - 2 * nu_u)) - E / (3 * (1 - 2 * nu))
+    m_skeleton = E / (3 * (1 - 2 * nu)) + 4 * shear / 3
+    scene = drainage_switch_scene(
+        layer,
+        foundation=None,
+        contact=None,
+        phases=[
+            Phase("fill", loads=(SurfacePressure(-6.0, 6.0, 20e3),)),
+            Phase("rapid", loads=(SurfacePressure(-6.0, 6.0, dq),), drainage={0: "undrained_A"}),
+        ],
+    )
+    built = scene.build()
+    out = built.solve(n_steps=1)
+    step = {r["name"]: r["last"] for r in out.phases}
+    p = built.excess_pore_pressure(out, step["rapid"])
+    p_hand = dq * k_water / (k_water + m_skeleton)
+    return dict(error=np.abs(p / p_hand - 1).max(), p=p, p_hand=p_hand, built=built, out=out, step=step)

@@ -11,21 +11,20 @@ import pytest
 from ssi.element_test import biaxial_compression
 from ssi.examples import (
     PIT_STRIP_LOAD,
+    drainage_switch_errors,
+    drainage_switch_scene,
     excavated_column,
     excavated_column_errors,
     pit_beside_strip,
     pit_reaction_drop,
+    switched_layer_pore_pressure,
 )
 from ssi.results import read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
-    Contact,
     Excavation,
-    Foundation,
-    MeshSize,
     Phase,
     PhaseNonConvergence,
-    Scene,
     SoilLayer,
     StripWeight,
     SurfacePressure,
@@ -82,76 +81,29 @@ def test_excavation_round_trips_through_the_scene_record_and_the_result_file(tmp
     assert np.array_equal(back.u[-1], out.u[-1])
 
 
-def drainage_scene(layers, **changes):
-    kwargs = {
-        "width": 12.0,
-        "depth": 6.0,
-        "layers": layers,
-        "foundation": Foundation(x0=-1.0, x1=1.0, section=STRIP),
-        "contact": Contact(kn=1e10, kt=1e9),
-        "mesh": MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-        "water_table": 1.0,
-    }
-    kwargs.update(changes)
-    return Scene(**kwargs)
-
-
 def test_drained_then_undrained_then_consolidated():
-    """Elastic soil drained under the first column, undrained ("A") under the second, then drained again.
-    The undrained increment is that of an elastic soil with G and nu_u; after consolidation the state is the
-    drained response to both loads (elastic: path independent); round-off (1e-10)."""
-    nu_u = 0.495
-    G = E / (2 * (1 + NU))
-    layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3)
-    first, second = ColumnLoad(0.0, N=200e3), ColumnLoad(0.3, N=150e3, H=20e3)
-    phased = drainage_scene(
-        [layer],
-        phases=[
-            Phase("construction", loads=(first,)),
-            Phase("rapid", loads=(second,), drainage={0: "undrained_A"}),
-            Phase("consolidation", drainage={0: "drained"}),
-        ],
-    )
-    built = phased.build()
-    out = built.solve(n_steps=1)
-    step = {r["name"]: r["last"] for r in out.phases}
-    undrained = drainage_scene(
-        [SoilLayer(6.0, E=2 * G * (1 + nu_u), nu=nu_u, unit_weight=18e3, unit_weight_sat=20e3)],
-        loads=[second],
-    )
-    u_u = undrained.build().solve().u[-1]
-    increment = out.u[step["rapid"]] - out.u[step["construction"]]
-    assert np.abs(increment - u_u).max() < 1e-10 * np.abs(u_u).max()
-    u_d = drainage_scene([layer], loads=[first, second]).build().solve().u[-1]
-    assert np.abs(out.u[step["consolidation"]] - u_d).max() < 1e-10 * np.abs(u_d).max()
+    """Chapter 12's claim ``undrained_switch`` (scenes and closed forms in ``ssi.examples``): elastic soil
+    drained under the first column, undrained ("A") under the second, then drained again. The undrained
+    increment is that of an elastic soil with G and nu_u; after consolidation the state is the drained
+    response to both loads (elastic: path independent); round-off (1e-10)."""
+    check = drainage_switch_errors(E=E, nu=NU, nu_u=0.495, depth=6.0, section=STRIP)
+    assert check["increment"] < 1e-10 and check["consolidated"] < 1e-10
+    built, out, step = check["built"], check["out"], check["step"]
     assert np.all(built.excess_pore_pressure(out, step["construction"]) == 0.0)
     assert built.excess_pore_pressure(out, step["rapid"]).max() > 1e3
     assert np.all(built.excess_pore_pressure(out, step["consolidation"]) == 0.0)
 
 
 def test_switched_layer_1d_excess_pore_pressure():
-    """A pressure dq over the whole width on a layer switched to undrained after a drained fill: the excess
-    pore pressure is dq (K_w/n) / (K_w/n + M'), M' = K' + 4G/3 (1D: eps_x = 0), from zero at the switch."""
-    nu_u = 0.495
-    G, K = E / (2 * (1 + NU)), E / (3 * (1 - 2 * NU))
-    k_w = 2 * G * (1 + nu_u) / (3 * (1 - 2 * nu_u)) - K
-    layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, nu_u=nu_u)
-    scene = drainage_scene(
-        [layer],
-        foundation=None,
-        contact=None,
-        phases=[
-            Phase("fill", loads=(SurfacePressure(-6.0, 6.0, 20e3),)),
-            Phase("rapid", loads=(SurfacePressure(-6.0, 6.0, 10e3),), drainage={0: "undrained_A"}),
-        ],
-    )
-    built = scene.build()
-    out = built.solve(n_steps=1)
-    step = {r["name"]: r["last"] for r in out.phases}
-    p = built.excess_pore_pressure(out, step["rapid"])
-    assert p == pytest.approx(10e3 * k_w / (k_w + K + 4 * G / 3), rel=1e-10)
+    """Chapter 12's 1D part of ``undrained_switch``: a pressure dq over the whole width on a layer switched
+    to undrained after a drained fill: the excess pore pressure is dq (K_w/n) / (K_w/n + M'), M' = K' + 4G/3
+    (1D: eps_x = 0), from zero at the switch; round-off (1e-10)."""
+    check = switched_layer_pore_pressure(E=E, nu=NU, nu_u=0.495, depth=6.0, dq=10e3)
+    assert check["error"] < 1e-10
+    built, out, step = check["built"], check["out"], check["step"]
     assert np.all(built.excess_pore_pressure(out, step["fill"]) == 0.0)
     total = out.total_stress(step["rapid"])
+    p = check["p"]
     assert np.allclose(total[..., 1] - out.soil_stress(step["rapid"])[..., 1], -(built.pore_pressure() + p))
 
 
@@ -169,7 +121,7 @@ def test_switched_layer_1d_excess_pore_pressure():
     ],
 )
 def test_bad_phase_soil_is_named(phase, word):
-    scene = drainage_scene([SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3)], phases=[phase])
+    scene = drainage_switch_scene(SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3), phases=[phase])
     with pytest.raises(ValueError, match=word):
         scene.build()
 
@@ -182,8 +134,8 @@ def test_bad_excavation_and_drainage_values_are_named():
     with pytest.raises(ValueError, match="drainage"):
         Phase("a", drainage={0: "partly"})
     with pytest.raises(ValueError, match="nu_u"):
-        drainage_scene(
-            [SoilLayer(6.0, E=E, nu=0.495, unit_weight=18e3)],
+        drainage_switch_scene(
+            SoilLayer(6.0, E=E, nu=0.495, unit_weight=18e3),
             phases=[Phase("a", drainage={0: "undrained_A"})],
         ).build()
 
@@ -196,8 +148,8 @@ def test_ponding_changes_pore_pressure_not_effective_stress(h_pond):
     layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
 
     def scene(water_table):
-        return drainage_scene(
-            [layer],
+        return drainage_switch_scene(
+            layer,
             foundation=None,
             contact=None,
             water_table=water_table,
@@ -215,8 +167,8 @@ def test_ponding_changes_pore_pressure_not_effective_stress(h_pond):
 
 def test_submerged_strip_weight_is_buoyant():
     """A strip under 2 m of free water: StripWeight carries (gamma_c - gamma_w) t (hand calculation)."""
-    scene = drainage_scene(
-        [SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3)],
+    scene = drainage_switch_scene(
+        SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3),
         water_table=-2.0,
         phases=[Phase("weight", loads=(StripWeight(25e3),))],
     )
@@ -255,8 +207,8 @@ def test_stopped_phased_run_reports_every_completed_phase(tmp_path):
     """Far beyond the bearing capacity with the paper's equal steps and one cut allowed, the last phase stops:
     the error names it and the completed phases, and carries a SceneResult of all of them."""
     layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0)
-    scene = drainage_scene(
-        [layer],
+    scene = drainage_switch_scene(
+        layer,
         water_table=None,
         phases=[
             Phase("weight", loads=(StripWeight(25e3),)),
