@@ -73,6 +73,8 @@ from ssi.examples import (
     excavated_column_errors,
     pit_beside_strip,
     pit_reaction_drop,
+    ponding_errors,
+    submerged_strip_error,
     switched_layer_pore_pressure,
 )
 from ssi.report import record, save_figure
@@ -778,48 +780,20 @@ record(
 # a 0.5 m concrete strip under water rests on the soil with (25 − 9.81) kN/m³ × 0.5 m.
 
 # %%
-pond_layer = SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
-pond_runs = {}
-for h_pond in (0.0, 1.0, 3.0):
-    pond_scene = Scene(
-        width=12.0,
-        depth=H_LAYER,
-        layers=[pond_layer],
-        water_table=-h_pond,
-        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-        phases=[Phase("load", loads=(SurfacePressure(-1.0, 1.0, 50e3),))],
-    )
-    pond_built = pond_scene.build()
-    pond_runs[h_pond] = (pond_built, pond_built.solve(n_steps=1))
-ref_built, ref_out = pond_runs[0.0]
-d_pond = -ref_built.soil.integration_points()[..., 1]
+# the scenes and hand calculations live in `ssi.examples` (`tests/test_scene_phases.py` checks the same)
+pond_runs = ponding_errors((0.0, 1.0, 3.0), depth=H_LAYER, E=E, nu=NU)
 pond_errors = []
-for h_pond, (_, o) in pond_runs.items():
-    pond_errors += [
-        np.abs(o.soil_stress() - ref_out.soil_stress()).max() / np.abs(ref_out.soil_stress()).max(),
-        np.abs(o.u[-1] - ref_out.u[-1]).max() / np.abs(ref_out.u[-1]).max(),
-        np.abs(o.pore_pressure(1) / (gw * (h_pond + d_pond)) - 1).max(),
-        np.abs(o.total_stress(1)[..., 1] / -(gw * h_pond + 20e3 * d_pond) - 1).max(),
-    ]
+for h_pond, pond in pond_runs.items():
+    pond_errors += [pond["stress"], pond["u"], pond["pore_pressure"], pond["total_stress"]]
+    o = pond["out"]
     print(
         f"h = {h_pond:3.1f} m: sigma'_v at the bottom {-o.soil_stress(1)[..., 1].min() / 1e3:6.2f} kPa, p "
         f"{o.pore_pressure(1).max() / 1e3:6.2f} kPa, "
         f"total sigma_v {-o.total_stress(1)[..., 1].min() / 1e3:6.2f} kPa;"
         f" settlement under the load {1e3 * o.max_settlement()[1]:.3f} mm"
     )
-sub_scene = Scene(
-    width=12.0,
-    depth=H_LAYER,
-    layers=[pond_layer],
-    water_table=-2.0,
-    foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
-    contact=Contact(kn=1e10, kt=1e9),
-    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-    phases=[Phase("weight", loads=(StripWeight(25e3),))],
-)
-sub_built = sub_scene.build()
-sub_force = sub_built.contact_force(sub_built.solve(n_steps=1))[-1]
-pond_errors.append(abs(sub_force / ((25e3 - gw) * 0.5 * 2.0) - 1))
+sub_error, sub_force = submerged_strip_error(depth=H_LAYER, E=E, nu=NU)
+pond_errors.append(sub_error)
 ponding_effective_stress = max(pond_errors)
 POND_TOL = 1e-12
 print(

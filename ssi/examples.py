@@ -16,6 +16,8 @@
 * :func:`drainage_switch_scene`, :func:`drainage_switch_errors` and :func:`switched_layer_pore_pressure` --
   chapter 12's layer switched drained -> undrained -> drained and its closed forms; also
   ``tests/test_scene_phases.py``.
+* :func:`ponding_scene`, :func:`ponding_errors` and :func:`submerged_strip_error` -- chapter 12's free water
+  above the ground and its hand calculations; also ``tests/test_scene_phases.py``.
 """
 
 import math
@@ -41,6 +43,7 @@ from .scene import (
     Scene,
     SceneResult,
     SoilLayer,
+    StripWeight,
     SurfacePressure,
 )
 from .section import Section, homogeneous, rc_section
@@ -57,6 +60,9 @@ __all__ = [
     "excavated_column_errors",
     "pit_beside_strip",
     "pit_reaction_drop",
+    "ponding_errors",
+    "ponding_scene",
+    "submerged_strip_error",
     "switched_layer_pore_pressure",
     "winkler_strip",
 ]
@@ -372,3 +378,60 @@ def switched_layer_pore_pressure(
     p = built.excess_pore_pressure(out, step["rapid"])
     p_hand = dq * k_water / (k_water + m_skeleton)
     return dict(error=np.abs(p / p_hand - 1).max(), p=p, p_hand=p_hand, built=built, out=out, step=step)
+
+
+def ponding_scene(h_pond: float, depth: float = 6.0, E: float = 20e6, nu: float = 0.3) -> Scene:
+    """Chapter 12's ponding scene: an elastic layer (``E`` [Pa], ``nu``, 18/20 kN/m^3 above/below the table,
+    K0 = 0.5) ``depth`` [m] deep and 12 m wide under free water ``h_pond`` [m] above the ground
+    (``water_table = -h_pond``), loaded by 50 kPa on x = -1..1 m in one phase."""
+    layer = SoilLayer(depth, E=E, nu=nu, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
+    return drainage_switch_scene(
+        layer,
+        foundation=None,
+        contact=None,
+        water_table=-h_pond,
+        phases=[Phase("load", loads=(SurfacePressure(-1.0, 1.0, 50e3),))],
+    )
+
+
+def ponding_errors(
+    h_ponds: tuple = (0.0, 1.0, 3.0), depth: float = 6.0, E: float = 20e6, nu: float = 0.3
+) -> dict:
+    """Solve :func:`ponding_scene` for every pond depth in ``h_ponds`` [m] (the first is the reference, 0: the
+    table at the ground) and compare with chapter 12's closed forms: the effective stress and the
+    displacements do not depend on the pond (the skeleton does not see it), the pore pressure is
+    gamma_w (h + d) and the total vertical stress -(gamma_w h + gamma_sat d) at depth d.
+
+    Returns {h: {"stress", "u", "pore_pressure", "total_stress": largest relative errors [-], "built",
+    "out"}}."""
+    runs = {}
+    for h_pond in h_ponds:
+        built = ponding_scene(h_pond, depth, E, nu).build()
+        runs[h_pond] = (built, built.solve(n_steps=1))
+    ref_built, ref_out = runs[h_ponds[0]]
+    d = -ref_built.soil.integration_points()[..., 1]
+    errors = {}
+    for h_pond, (built, out) in runs.items():
+        errors[h_pond] = dict(
+            stress=np.abs(out.soil_stress() - ref_out.soil_stress()).max()
+            / np.abs(ref_out.soil_stress()).max(),
+            u=np.abs(out.u[-1] - ref_out.u[-1]).max() / np.abs(ref_out.u[-1]).max(),
+            pore_pressure=np.abs(out.pore_pressure(1) / (GAMMA_W * (h_pond + d)) - 1).max(),
+            total_stress=np.abs(out.total_stress(1)[..., 1] / -(GAMMA_W * h_pond + 20e3 * d) - 1).max(),
+            built=built,
+            out=out,
+        )
+    return errors
+
+
+def submerged_strip_error(depth: float = 6.0, E: float = 20e6, nu: float = 0.3) -> tuple[float, float]:
+    """Chapter 12's 0.5 m strip, 2 m wide, under 2 m of free water on :func:`ponding_scene`'s layer, loaded by
+    its ``StripWeight`` of 25 kN/m^3: the contact force is the buoyant weight (25e3 - gamma_w) x 0.5 m x 2 m
+    (hand calculation). Returns (relative error [-], contact force [N/m])."""
+    layer = SoilLayer(depth, E=E, nu=nu, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
+    scene = drainage_switch_scene(
+        layer, water_table=-2.0, phases=[Phase("weight", loads=(StripWeight(25e3),))]
+    )
+    built = scene.build()
+    force = built.contact_force(built.solve(n_steps=1))[-1]
+    return abs(force / ((25e3 - GAMMA_W) * 0.5 * 2.0) - 1), force

@@ -17,6 +17,8 @@ from ssi.examples import (
     excavated_column_errors,
     pit_beside_strip,
     pit_reaction_drop,
+    ponding_errors,
+    submerged_strip_error,
     switched_layer_pore_pressure,
 )
 from ssi.results import read_info, read_result, write_result
@@ -142,39 +144,22 @@ def test_bad_excavation_and_drainage_values_are_named():
 
 @pytest.mark.parametrize("h_pond", [0.0, 2.0])
 def test_ponding_changes_pore_pressure_not_effective_stress(h_pond):
-    """Free water h above the ground: sigma' and the displacements under a load are those of the table at
-    the ground (the effective-stress problem does not see the pond); p = gamma_w (h + d) and
-    sigma_v = -(gamma_w h + gamma_sat d) (hand calculation, round-off)."""
-    layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
-
-    def scene(water_table):
-        return drainage_switch_scene(
-            layer,
-            foundation=None,
-            contact=None,
-            water_table=water_table,
-            phases=[Phase("load", loads=(SurfacePressure(-1.0, 1.0, 50e3),))],
-        )
-
-    ref_built, pond_built = scene(0.0).build(), scene(-h_pond).build()
-    ref, pond = ref_built.solve(n_steps=1), pond_built.solve(n_steps=1)
-    assert np.abs(pond.u[-1] - ref.u[-1]).max() <= 1e-12 * np.abs(ref.u[-1]).max()
-    assert np.array_equal(pond.soil_stress(1), ref.soil_stress(1))  # geostatic: identical effective stress
-    d = -pond_built.soil.integration_points()[..., 1]
-    assert pond.pore_pressure(1) == pytest.approx(GW * (h_pond + d), rel=1e-12)
-    assert pond.total_stress(1)[..., 1] == pytest.approx(-(GW * h_pond + 20e3 * d), rel=1e-12)
+    """Chapter 12's claim ``ponding_effective_stress`` (scenes and hand calculations in ``ssi.examples``):
+    free water h above the ground: sigma' and the displacements under a load are those of the table at the
+    ground (the effective-stress problem does not see the pond); p = gamma_w (h + d) and
+    sigma_v = -(gamma_w h + gamma_sat d) (hand calculation, round-off 1e-12)."""
+    errors = ponding_errors((0.0, h_pond), depth=6.0, E=E, nu=NU)
+    pond = errors[h_pond]
+    assert pond["u"] <= 1e-12 and pond["pore_pressure"] < 1e-12 and pond["total_stress"] < 1e-12
+    # geostatic: the effective stress is not just close, it is the same
+    assert np.array_equal(pond["out"].soil_stress(1), errors[0.0]["out"].soil_stress(1))
 
 
 def test_submerged_strip_weight_is_buoyant():
     """A strip under 2 m of free water: StripWeight carries (gamma_c - gamma_w) t (hand calculation)."""
-    scene = drainage_switch_scene(
-        SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3),
-        water_table=-2.0,
-        phases=[Phase("weight", loads=(StripWeight(25e3),))],
-    )
-    built = scene.build()
-    out = built.solve(n_steps=1)
-    assert built.contact_force(out)[-1] == pytest.approx((25e3 - GW) * 0.5 * 2.0, rel=1e-10)
+    error, force = submerged_strip_error(depth=6.0, E=E, nu=NU)
+    assert error < 1e-10
+    assert force == pytest.approx((25e3 - GW) * 0.5 * 2.0, rel=1e-10)
 
 
 @pytest.mark.parametrize("k0", [1.0, 0.6])
