@@ -16,6 +16,8 @@
 * :func:`drainage_switch_scene`, :func:`drainage_switch_errors` and :func:`switched_layer_pore_pressure` --
   chapter 12's layer switched drained -> undrained -> drained and its closed forms; also
   ``tests/test_scene_phases.py``.
+* :func:`surcharge_heave` -- chapter 12's surcharge that must not move the ground; also
+  ``tests/test_scene.py``.
 * :func:`ponding_scene`, :func:`ponding_errors` and :func:`submerged_strip_error` -- chapter 12's free water
   above the ground and its hand calculations; also ``tests/test_scene_phases.py``.
 """
@@ -63,6 +65,7 @@ __all__ = [
     "ponding_errors",
     "ponding_scene",
     "submerged_strip_error",
+    "surcharge_heave",
     "switched_layer_pore_pressure",
     "winkler_strip",
 ]
@@ -435,3 +438,27 @@ def submerged_strip_error(depth: float = 6.0, E: float = 20e6, nu: float = 0.3) 
     built = scene.build()
     force = built.contact_force(built.solve(n_steps=1))[-1]
     return abs(force / ((25e3 - GAMMA_W) * 0.5 * 2.0) - 1), force
+
+
+def surcharge_heave(
+    with_strip: bool, q: float = 10e3, depth: float = 6.0, E: float = 20e6, nu: float = 0.3
+) -> tuple[float, BuiltScene, SceneResult]:
+    """Chapter 12's surcharge check: only the surcharge ``q`` [Pa] on an elastic layer (``E`` [Pa], ``nu``,
+    18 kN/m^3) ``depth`` [m] deep and 12 m wide, with or without the stiff 0.5 m strip at x = -1..1 m, in one
+    phase. The geostatic state carries the surcharge, so nothing may move; the measure is the largest
+    surface displacement over the heave q H / M that a block out of equilibrium by q would show (M the
+    constrained modulus). Returns (that ratio [-], the built scene, its result)."""
+    scene = Scene(
+        width=12.0,
+        depth=depth,
+        layers=[SoilLayer(depth, E=E, nu=nu, unit_weight=18e3)],
+        surcharge=q,
+        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
+        foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)) if with_strip else None,
+        contact=Contact(kn=1e10, kt=1e9) if with_strip else None,
+        phases=[Phase("surcharge only")],
+    )
+    m_oed = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+    built = scene.build()
+    out = built.solve(n_steps=1)
+    return np.abs(out.surface()[1]).max() / (q * depth / m_oed), built, out
