@@ -5,7 +5,8 @@
   The scene is taken from the chapter's own source (its definitions up to the first solve), not retyped.
   Goal <= 3 s.
 * ``footing_mc_psi0_h0125_s``: chapter 10's rigid rough strip footing on Mohr–Coulomb soil (c = 10 kPa,
-  phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement steps, ``push_footing``'s default method.
+  phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement steps, ``push_footing``'s default settings
+  (``footing_settings``).
 
 Each is the wall time of the solve in this process after a JIT warm-up on a coarse mesh, best of 3
 (``SSI_BENCH_REPEAT``), with the split of that best run, measured by timers around the solver's calls

@@ -128,6 +128,7 @@ import numpy as np
 from ssi import paths, report
 from ssi.elements import plate as plate_module
 from ssi.elements.plate import PlateStrip
+from ssi.examples import CHAPTER02_STRIP
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.protocol import CONSISTENT
@@ -137,7 +138,7 @@ from ssi.supports import plate_strip_model
 from ssi.verify import dense_stiffness, zero_energy_modes
 
 FAST = paths.FAST
-E, NU, H = 30.0e9, 0.2, 1.0  # Pa, -, m (depth 1 m: span/depth is the span in metres)
+E, NU, H = CHAPTER02_STRIP.E, CHAPTER02_STRIP.nu, CHAPTER02_STRIP.h  # 30 GPa, 0.2, 1 m (span/depth = span)
 print(f"fast mode: {FAST}")
 
 # %% [markdown]

@@ -31,18 +31,14 @@ import numpy as np
 
 from ssi import paths, report
 from ssi.analytical import timoshenko_simply_supported_uniform
-from ssi.section import homogeneous
+from ssi.examples import CHAPTER02_STRIP
 from ssi.supports import simply_supported_strip
 from ssi.verify import convergence_rate
 
 FAST = paths.FAST
-E, NU, H = 30.0e9, 0.2, 1.0  # Pa, -, m (depth 1 m: span/depth is the span in metres)
-KAPPA = 5.0 / 6.0
-E1 = E / (1.0 - NU**2)  # D1
-G = E / (2.0 * (1.0 + NU))  # D2
-EI = E1 * H**3 / 12.0
-KGA = KAPPA * G * H
-SECTION = homogeneous(H, E, NU)  # the elastic strip of the closed-form checks
+STRIP = CHAPTER02_STRIP  # chapter 02b's elastic strip: 30 GPa, nu = 0.2, kappa = 5/6
+H, G = STRIP.h, STRIP.G  # depth 1 m (span/depth is the span in metres), shear modulus D2 [Pa]
+EI, KGA, SECTION = STRIP.EI, STRIP.kGA, STRIP.section()  # bending, shear stiffness (kappa G h)
 BACKEND = "superlu"  # many tiny systems: SuperLU's set-up is the cheapest
 print(f"fast mode: {FAST};  EI = {EI:.4e} N m^2/m,  kappa G h = {KGA:.4e} N/m")
 

@@ -32,13 +32,14 @@ import numpy as np
 
 from ssi import paths, report
 from ssi.elements.plate import PlateStrip
+from ssi.examples import CHAPTER02_STRIP
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from ssi.section import homogeneous, layered, paper_rc_section
 from ssi.supports import cantilever_strip
 
 FAST = paths.FAST
-E, NU, H = 30.0e9, 0.2, 1.0  # Pa, -, m (depth 1 m: span/depth is the span in metres)
+E, NU, H = CHAPTER02_STRIP.E, CHAPTER02_STRIP.nu, CHAPTER02_STRIP.h  # 30 GPa, 0.2, 1 m (span/depth = span)
 BACKEND = "superlu"  # many tiny systems: SuperLU's set-up is the cheapest
 print(f"fast mode: {FAST}")
 

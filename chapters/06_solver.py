@@ -391,7 +391,7 @@ print("all checks passed")
 # direction (chapter 04's law). (d) The zoo of random ordinary scenes (`ssi.zoo.random_scenes`).
 
 # %%
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing  # noqa: E402
+from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing  # noqa: E402
 from ssi.scene import ColumnLoad, Contact, Foundation, Scene, SoilLayer  # noqa: E402
 from ssi.section import homogeneous  # noqa: E402
 from ssi.zoo import light_footing_on_deep_block, random_scenes, solve_zoo  # noqa: E402
@@ -408,21 +408,7 @@ strategies = {
 }
 psi0_runs = {}
 for name, kw in strategies.items():
-    scene = rigid_footing(
-        B=2.0,
-        c=10e3,
-        phi_deg=20.0,
-        psi_deg=0.0,
-        E=20e6,
-        nu=0.3,
-        rough=True,
-        h_fine=H_PSI0,
-        settle=0.06,
-        half_width=6.0,
-        depth=5.0,
-        h_coarse=1.0,
-        growth=1.25,
-    )
+    scene = chapter10_footing(psi_deg=0.0, h_fine=H_PSI0, settle=0.06)
     out = push_footing(scene, n_steps=20, settings=Settings(stepping="fixed", backend="superlu", **kw))
     psi0_runs[name] = out
     stop = "" if out["failure"] is None else f"  STOPPED: {out['failure']['reason']}"

@@ -69,9 +69,9 @@
 # and ≈ 2 m deep. The footing nodes get a prescribed settlement (displacement control); a rough base also
 # holds u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and
 # grow by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking
-# line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`, via
-# `ssi.bearing_capacity.push_footing`): plain Newton steps near the footing corner overshoot into a far
-# plastic state and diverge.
+# line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`: the default settings of
+# `ssi.bearing_capacity.push_footing`, `footing_settings()`): plain Newton steps near the footing corner
+# overshoot into a far plastic state and diverge.
 #
 # | paper / text | code | meaning |
 # |---|---|---|
@@ -89,15 +89,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths, report
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.bearing_capacity import CHAPTER10_FOOTING, chapter10_footing, prandtl, push_footing, sg61_scene
 from ssi.digitize import read_reference
 from ssi.solver import NonConvergence, Settings, run
 from ssi.verify import convergence_rate
 
 FAST = paths.FAST
-C = 10e3  # cohesion [Pa]
-E, NU = 20e6, 0.3  # the limit load does not depend on them
-BLOCK = dict(half_width=6.0, depth=5.0, h_coarse=1.0, growth=1.25)
+# the footing test above, `ssi.bearing_capacity.chapter10_footing`: B = 2 m, c = 10 kPa, phi = 20° unless
+# varied, E = 20 MPa and nu = 0.3 (the limit load does not depend on them), the 6 m x 5 m half block
+C = CHAPTER10_FOOTING["c"]  # cohesion [Pa]
 MESHES = [0.5, 0.25] if FAST else [0.25, 0.125, 0.0625]  # element size under the footing [m]
 H_NAMED = 0.0625  # the mesh on which the 3 % claim is made (16 elements under the half footing)
 TOL_PRANDTL = 0.03  # issue 4: within 3 % of the exact value on the named mesh
@@ -115,10 +115,8 @@ t_all = time.perf_counter()
 for phi, rough in CASES:
     q_exact = prandtl(C, phi)[0]
     for h in MESHES:
-        scene = rigid_footing(
-            B=2.0, c=C, phi_deg=phi, E=E, nu=NU, rough=rough, h_fine=h, settle=SETTLE[phi], **BLOCK
-        )
-        out = push_footing(scene, n_steps=N_STEPS, method="line_search")
+        scene = chapter10_footing(phi_deg=phi, rough=rough, h_fine=h, settle=SETTLE[phi])
+        out = push_footing(scene, n_steps=N_STEPS)
         if out["failure"]:
             raise RuntimeError(f"phi={phi} rough={rough} h={h}: {out['failure']}")
         out["err"] = out["q_u"] / q_exact - 1.0
@@ -230,19 +228,8 @@ print(f"largest relative settlement error up to 500 kPa: {100 * sg_max:.2f} %")
 H_NA = MESHES[-2] if not FAST else MESHES[-1]
 nonassoc = {}
 for psi in (20.0, 0.0) if FAST else (20.0, 10.0, 0.0):
-    scene = rigid_footing(
-        B=2.0,
-        c=C,
-        phi_deg=20.0,
-        psi_deg=psi,
-        E=E,
-        nu=NU,
-        rough=True,
-        h_fine=H_NA,
-        settle=SETTLE[20.0],
-        **BLOCK,
-    )
-    out = push_footing(scene, n_steps=N_STEPS, method="line_search")
+    scene = chapter10_footing(psi_deg=psi, h_fine=H_NA, settle=SETTLE[20.0])
+    out = push_footing(scene, n_steps=N_STEPS)
     nonassoc[psi] = out
     print(
         f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = "
@@ -262,10 +249,8 @@ else:
         f"(settlement {1e3 * nonassoc[0.0]['settlement'][-1]:.1f} mm): {nonassoc[0.0]['failure']}"
     )
 # the same psi = 0 push with fewer, larger steps: a different path through the unstable range
-scene = rigid_footing(
-    B=2.0, c=C, phi_deg=20.0, psi_deg=0.0, E=E, nu=NU, rough=True, h_fine=H_NA, settle=SETTLE[20.0], **BLOCK
-)
-coarse_steps = push_footing(scene, n_steps=12, method="line_search")
+scene = chapter10_footing(psi_deg=0.0, h_fine=H_NA, settle=SETTLE[20.0])
+coarse_steps = push_footing(scene, n_steps=12)
 print(
     f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = "
     f"{coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
@@ -315,9 +300,7 @@ STEP_TOL = 0.01  # the issue's bound on the step-count dependence
 
 
 def psi0_push(h, n_steps, settle=SETTLE[20.0]):
-    scene = rigid_footing(
-        B=2.0, c=C, phi_deg=20.0, psi_deg=0.0, E=E, nu=NU, rough=True, h_fine=h, settle=settle, **BLOCK
-    )
+    scene = chapter10_footing(psi_deg=0.0, h_fine=h, settle=settle)
     out = push_footing(scene, n_steps=n_steps, settings=Settings(**VISCOUS))
     out["q_end"] = out["q"][-1] / q_p20_na
     out["n_dof"] = scene.info["n_dof"]
@@ -416,18 +399,7 @@ for name, kw, method in variants:
     for n in step_counts:
         if (method == "modified" or "sub-steps" in name) and n != step_counts[-1]:
             continue
-        scene = rigid_footing(
-            B=2.0,
-            c=C,
-            phi_deg=20.0,
-            E=E,
-            nu=NU,
-            rough=True,
-            h_fine=H_TRADE,
-            settle=SETTLE[20.0],
-            **BLOCK,
-            **kw,
-        )
+        scene = chapter10_footing(h_fine=H_TRADE, settle=SETTLE[20.0], **kw)
         if method == "modified":
             out = push_footing(
                 scene,
@@ -437,12 +409,10 @@ for name, kw, method in variants:
                 ),
             )
         else:
-            out = push_footing(scene, n_steps=n, method=method)
+            out = push_footing(scene, n_steps=n)  # footing_settings(): full Newton with line search
         trade[name, n] = out
-ref_scene = rigid_footing(
-    B=2.0, c=C, phi_deg=20.0, E=E, nu=NU, rough=True, h_fine=H_TRADE, settle=SETTLE[20.0], **BLOCK
-)
-q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1], method="line_search")["q_u"]
+ref_scene = chapter10_footing(h_fine=H_TRADE, settle=SETTLE[20.0])
+q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1])["q_u"]
 for (name, n), out in trade.items():
     out["trade_err"] = abs(out["q_u"] - q_ref_trade) / q_p20
     stop = (

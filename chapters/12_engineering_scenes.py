@@ -65,14 +65,24 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ssi import paths
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
+from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing
 from ssi.element_test import biaxial_compression
+from ssi.examples import (
+    drainage_switch_errors,
+    excavated_column,
+    excavated_column_errors,
+    pit_beside_strip,
+    pit_reaction_drop,
+    ponding_errors,
+    submerged_strip_error,
+    surcharge_heave,
+    switched_layer_pore_pressure,
+)
 from ssi.report import record, save_figure
 from ssi.scene import (
     ColumnLoad,
     Contact,
     ContactSegment,
-    Excavation,
     Foundation,
     MeshSize,
     Phase,
@@ -124,21 +134,10 @@ def push_over(scene, n_steps=30):
 
 # %%
 E, NU, H_LAYER, Q = 20e6, 0.3, 6.0, 10e3
-M_OED = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
 heave = []
 for with_strip in (False, True):
-    scene = Scene(
-        width=12.0,
-        depth=H_LAYER,
-        layers=[SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3)],
-        surcharge=Q,
-        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-        foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP) if with_strip else None,
-        contact=Contact(kn=1e10, kt=1e9) if with_strip else None,
-        phases=[Phase("surcharge only")],
-    )
-    out = scene.build().solve(n_steps=1)
-    heave.append(np.abs(out.surface()[1]).max() / (Q * H_LAYER / M_OED))
+    # the scene and the measure live in `ssi.examples` (`tests/test_scene.py` checks the same claim)
+    heave.append(surcharge_heave(with_strip, q=Q, depth=H_LAYER, E=E, nu=NU)[0])
     print(
         f"{'with' if with_strip else 'without'} strip: max |surface displacement| / (qH/M) = {heave[-1]:.2e}"
     )
@@ -185,19 +184,8 @@ for h in MESHES:
     t0 = time.perf_counter()
     curves_nq[h] = push_over(scene)
     half = push_footing(
-        rigid_footing(
-            B=B,
-            c=0.0,
-            phi_deg=PHI,
-            E=E,
-            nu=NU,
-            rough=False,
-            h_fine=h,
-            settle=0.15,
-            surcharge=Q_NQ,
-            half_width=6.0,
-            depth=5.0,
-            h_coarse=1.0,
+        chapter10_footing(  # chapter 10's half block, this section's soil
+            B=B, c=0.0, phi_deg=PHI, E=E, nu=NU, rough=False, h_fine=h, settle=0.15, surcharge=Q_NQ
         ),
         n_steps=30,
     )
@@ -432,18 +420,8 @@ for h in MESHES:
     )
     curves_u[h] = push_over(scene)
     half = push_footing(
-        rigid_footing(
-            B=B,
-            c=S_U,
-            phi_deg=0.0,
-            E=10e6,
-            nu=0.49,
-            rough=False,
-            h_fine=h,
-            settle=0.05,
-            half_width=6.0,
-            depth=5.0,
-            h_coarse=1.0,
+        chapter10_footing(  # chapter 10's half block, the undrained clay
+            B=B, c=S_U, phi_deg=0.0, E=10e6, nu=0.49, rough=False, h_fine=h, settle=0.05
         ),
         n_steps=30,
     )
@@ -679,36 +657,20 @@ assert len(caught) == 2
 # (tolerance 1e-12, measured about 1e-15).
 
 # %%
-GAMMA_E, H_E, T_E, K0_E = 18e3, 6.0, 2.0, 0.5
-dig = Scene(
-    width=4.0,
-    depth=H_E,
-    layers=[SoilLayer(H_E, E=E, nu=NU, unit_weight=GAMMA_E, K0=K0_E)],
-    mesh=MeshSize(h_fine=0.5, h_coarse=1.0, growth=1.2),
-    phases=[Phase("dig", excavate=(Excavation(-2.0, 2.0, bottom=T_E),), n_steps=1)],
-)
-dig_built = dig.build()
-dig_out = dig_built.solve()
-new_surface = np.flatnonzero(np.abs(dig_built.mesh.xy[:, 1] + T_E) < 1e-9)
-heave = dig_out.u[-1][dig_built.model.dof(new_surface, "w")]
-heave_hand = GAMMA_E * T_E * (H_E - T_E) / M_OED
-kept = dig_out.active_elements()
-z_e = dig_built.soil.integration_points()[..., 1]
-sig_e = dig_out.soil_stress()
-d_sv = sig_e[kept][..., 1] - GAMMA_E * z_e[kept]
-d_sh = sig_e[kept][..., 0] - K0_E * GAMMA_E * z_e[kept]
-err_heave = np.abs(heave / heave_hand - 1).max()
-err_sv = np.abs(d_sv / (GAMMA_E * T_E) - 1).max()
-err_sh = np.abs(d_sh / (NU / (1 - NU) * GAMMA_E * T_E) - 1).max()
+# the scene and the comparison live in `ssi.examples` (`tests/test_scene_phases.py` checks the same claim)
+dig = excavated_column(t=2.0, depth=6.0, E=E, nu=NU, unit_weight=18e3, K0=0.5)
+dig_check = excavated_column_errors(dig)
+err_heave, err_sv, err_sh = dig_check["heave"], dig_check["sigma_v"], dig_check["sigma_h"]
+removed_stress = dig_check["stress"][~dig_check["kept"]]
 excavation_heave = max(err_heave, err_sv, err_sh)
 EXC_TOL = 1e-12
 print(
-    f"heave {1e3 * heave.mean():.4f} mm, hand gamma t (H - t)/M = {1e3 * heave_hand:.4f} mm; "
-    "relative errors: "
+    f"heave {1e3 * dig_check['heave_nodes'].mean():.4f} mm, hand gamma t (H - t)/M = "
+    f"{1e3 * dig_check['heave_hand']:.4f} mm; relative errors: "
     f"heave {err_heave:.1e}, d sigma_v {err_sv:.1e}, d sigma_h {err_sh:.1e}; removed elements' stress "
-    f"{np.abs(sig_e[~kept]).max():.0f} Pa"
+    f"{np.abs(removed_stress).max():.0f} Pa"
 )
-assert excavation_heave < EXC_TOL and np.all(sig_e[~kept] == 0.0)
+assert excavation_heave < EXC_TOL and np.all(removed_stress == 0.0)
 record(
     "excavation_heave",
     "max rel. error of heave gamma t (H-t)/M and of d sigma_v = gamma t, d sigma_h = nu/(1-nu) gamma t "
@@ -727,30 +689,10 @@ record(
 # load (a norm); its sum over the bottom nodes may be larger, so the tolerance is 1e-4.
 
 # %%
-pit = Scene(
-    width=20.0,
-    depth=8.0,
-    layers=[
-        SoilLayer(
-            3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=30.0, psi_deg=0.0
-        ),
-        SoilLayer(5.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
-    ],
-    water_table=1.0,
-    surcharge=10e3,
-    foundation=Foundation(x0=-5.0, x1=-3.0, section=STRIP),
-    contact=Contact(kn=1e10, kt=1e9),
-    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.3),
-    phases=[
-        Phase("building", loads=(ColumnLoad(-4.0, N=300e3),)),
-        Phase("pit", excavate=(Excavation(-1.3, 3.7, bottom=1.5),)),
-    ],
-)
+pit = pit_beside_strip(section=STRIP)  # the scene and the hand value: ssi.examples (and the unit tests)
 pit_built = pit.build()
 pit_out = pit_built.solve()
-bottom_w = pit_built.model.dof(pit_built.mesh.bottom, "w")
-reaction = [np.array(r["result"].f_int)[-1][bottom_w].sum() for r in pit_out.phases]
-removed_weight = 5.0 * (18e3 * 1.0 + (20e3 - gw) * 0.5) + 10e3 * 5.0
+reaction, removed_weight = pit_reaction_drop(pit_built, pit_out)
 excavation_pit_reaction = abs((reaction[1] - reaction[2]) / removed_weight - 1)
 PIT_TOL = 1e-4
 pstep_pit = {r["name"]: r["last"] for r in pit_out.phases}
@@ -787,73 +729,24 @@ record(
 # remember the path). All three are linear solves: round-off, tolerance 1e-10.
 
 # %%
-lay_sw = SoilLayer(H_LAYER, E=E_SK, nu=NU_SK, unit_weight=18e3, unit_weight_sat=20e3, nu_u=NU_U)
-sw_common = {
-    "width": 12.0,
-    "depth": H_LAYER,
-    "foundation": Foundation(x0=-1.0, x1=1.0, section=STRIP),
-    "contact": Contact(kn=1e10, kt=1e9),
-    "mesh": MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-    "water_table": 1.0,
-}
-first_load, second_load = ColumnLoad(0.0, N=200e3), ColumnLoad(0.3, N=150e3, H=20e3)
-switch = Scene(
-    layers=[lay_sw],
-    phases=[
-        Phase("construction", loads=(first_load,)),
-        Phase("rapid", loads=(second_load,), drainage={0: "undrained_A"}),
-        Phase("consolidation", drainage={0: "drained"}),
-    ],
-    **sw_common,
-)
-sw_built = switch.build()
-sw_out = sw_built.solve(n_steps=1)
-sw_step = {r["name"]: r["last"] for r in sw_out.phases}
-u_nu_u = (
-    Scene(
-        layers=[SoilLayer(H_LAYER, E=2 * G_SK * (1 + NU_U), nu=NU_U, unit_weight=18e3, unit_weight_sat=20e3)],
-        loads=[second_load],
-        **sw_common,
-    )
-    .build()
-    .solve()
-    .u[-1]
-)
-u_drained = Scene(layers=[lay_sw], loads=[first_load, second_load], **sw_common).build().solve().u[-1]
-err_increment = (
-    np.abs(sw_out.u[sw_step["rapid"]] - sw_out.u[sw_step["construction"]] - u_nu_u).max()
-    / np.abs(u_nu_u).max()
-)
-err_consolidated = np.abs(sw_out.u[sw_step["consolidation"]] - u_drained).max() / np.abs(u_drained).max()
+# the scenes and closed forms live in `ssi.examples` (`tests/test_scene_phases.py` checks the same claims)
+sw = drainage_switch_errors(E=E_SK, nu=NU_SK, nu_u=NU_U, depth=H_LAYER, section=STRIP)
+od = switched_layer_pore_pressure(E=E_SK, nu=NU_SK, nu_u=NU_U, depth=H_LAYER, dq=Q_U1D)
+err_increment, err_consolidated, err_p_switch = sw["increment"], sw["consolidated"], od["error"]
 M_SK = E_SK / (3 * (1 - 2 * NU_SK)) + 4 * G_SK / 3
-one_d_switch = Scene(
-    width=12.0,
-    depth=H_LAYER,
-    layers=[lay_sw],
-    water_table=1.0,
-    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-    phases=[
-        Phase("fill", loads=(SurfacePressure(-6.0, 6.0, 20e3),)),
-        Phase("rapid", loads=(SurfacePressure(-6.0, 6.0, Q_U1D),), drainage={0: "undrained_A"}),
-    ],
-)
-od_built = one_d_switch.build()
-od_out = od_built.solve(n_steps=1)
-od_step = {r["name"]: r["last"] for r in od_out.phases}
-p_switch = od_built.excess_pore_pressure(od_out, od_step["rapid"])
-err_p_switch = np.abs(p_switch / (Q_U1D * K_W / (K_W + M_SK)) - 1).max()
 undrained_switch = max(err_increment, err_consolidated, err_p_switch)
 SWITCH_TOL = 1e-10
+p_after_fill = od["built"].excess_pore_pressure(od["out"], od["step"]["fill"])
+p_consolidated = sw["built"].excess_pore_pressure(sw["out"], sw["step"]["consolidation"])
 print(
     f"undrained increment vs elastic (G, nu_u): {err_increment:.1e}; consolidated vs drained: "
-    f"{err_consolidated:.1e}; 1D excess pore pressure {p_switch.mean() / 1e3:.4f} kPa = "
+    f"{err_consolidated:.1e}; 1D excess pore pressure {od['p'].mean() / 1e3:.4f} kPa = "
     f"{Q_U1D / 1e3:g} kPa x {K_W / (K_W + M_SK):.4f} (error {err_p_switch:.1e}); "
-    "excess after the drained fill "
-    f"{np.abs(od_built.excess_pore_pressure(od_out, od_step['fill'])).max():.1f} Pa, after consolidation "
-    f"{np.abs(sw_built.excess_pore_pressure(sw_out, sw_step['consolidation'])).max():.1f} Pa"
+    f"excess after the drained fill {np.abs(p_after_fill).max():.1f} Pa, after consolidation "
+    f"{np.abs(p_consolidated).max():.1f} Pa"
 )
 assert undrained_switch < SWITCH_TOL
-assert np.all(od_built.excess_pore_pressure(od_out, od_step["fill"]) == 0.0)
+assert np.all(p_after_fill == 0.0)
 record(
     "undrained_switch",
     "max rel. error: undrained increment vs elastic (G, nu_u); 1D excess p vs dq Kw/(Kw + M'); consolidated "
@@ -877,48 +770,20 @@ record(
 # a 0.5 m concrete strip under water rests on the soil with (25 − 9.81) kN/m³ × 0.5 m.
 
 # %%
-pond_layer = SoilLayer(H_LAYER, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
-pond_runs = {}
-for h_pond in (0.0, 1.0, 3.0):
-    pond_scene = Scene(
-        width=12.0,
-        depth=H_LAYER,
-        layers=[pond_layer],
-        water_table=-h_pond,
-        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-        phases=[Phase("load", loads=(SurfacePressure(-1.0, 1.0, 50e3),))],
-    )
-    pond_built = pond_scene.build()
-    pond_runs[h_pond] = (pond_built, pond_built.solve(n_steps=1))
-ref_built, ref_out = pond_runs[0.0]
-d_pond = -ref_built.soil.integration_points()[..., 1]
+# the scenes and hand calculations live in `ssi.examples` (`tests/test_scene_phases.py` checks the same)
+pond_runs = ponding_errors((0.0, 1.0, 3.0), depth=H_LAYER, E=E, nu=NU)
 pond_errors = []
-for h_pond, (_, o) in pond_runs.items():
-    pond_errors += [
-        np.abs(o.soil_stress() - ref_out.soil_stress()).max() / np.abs(ref_out.soil_stress()).max(),
-        np.abs(o.u[-1] - ref_out.u[-1]).max() / np.abs(ref_out.u[-1]).max(),
-        np.abs(o.pore_pressure(1) / (gw * (h_pond + d_pond)) - 1).max(),
-        np.abs(o.total_stress(1)[..., 1] / -(gw * h_pond + 20e3 * d_pond) - 1).max(),
-    ]
+for h_pond, pond in pond_runs.items():
+    pond_errors += [pond["stress"], pond["u"], pond["pore_pressure"], pond["total_stress"]]
+    o = pond["out"]
     print(
         f"h = {h_pond:3.1f} m: sigma'_v at the bottom {-o.soil_stress(1)[..., 1].min() / 1e3:6.2f} kPa, p "
         f"{o.pore_pressure(1).max() / 1e3:6.2f} kPa, "
         f"total sigma_v {-o.total_stress(1)[..., 1].min() / 1e3:6.2f} kPa;"
         f" settlement under the load {1e3 * o.max_settlement()[1]:.3f} mm"
     )
-sub_scene = Scene(
-    width=12.0,
-    depth=H_LAYER,
-    layers=[pond_layer],
-    water_table=-2.0,
-    foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
-    contact=Contact(kn=1e10, kt=1e9),
-    mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-    phases=[Phase("weight", loads=(StripWeight(25e3),))],
-)
-sub_built = sub_scene.build()
-sub_force = sub_built.contact_force(sub_built.solve(n_steps=1))[-1]
-pond_errors.append(abs(sub_force / ((25e3 - gw) * 0.5 * 2.0) - 1))
+sub_error, sub_force = submerged_strip_error(depth=H_LAYER, E=E, nu=NU)
+pond_errors.append(sub_error)
 ponding_effective_stress = max(pond_errors)
 POND_TOL = 1e-12
 print(

@@ -62,7 +62,7 @@ import numpy as np
 from ssi import paths
 from ssi.analytical import hetenyi_deflection
 from ssi.analytical_soil import strip_centreline_compression, strip_load_stresses
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing
+from ssi.bearing_capacity import footing_settings, prandtl, push_footing, rigid_footing
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.estimate import RefinedSolver, richardson, solve_to_target
 from ssi.examples import chapter11_foundation, winkler_strip
@@ -166,8 +166,8 @@ FOOTING = {
 # the footing's two solvers: full Newton with a line search (chapter 10's) and BFGS on K0 (the scenes'
 # default), both on the footing's fixed displacement increments
 FOOTING_SOLVERS = {
-    "line_search": {"method": "line_search"},
-    "bfgs": {"settings": Settings(method="bfgs", stepping="fixed", backend="superlu", max_cuts=8)},
+    "line_search": footing_settings(),
+    "bfgs": Settings(method="bfgs", stepping="fixed", backend="superlu", max_cuts=8),
 }
 footing_runs = {}  # (h, n_steps, solver) -> (q_u [Pa] or None, wall time [s]); each setting solved once
 
@@ -177,7 +177,9 @@ def footing_capacity(h, n_steps=30, solver="line_search"):
     with element size h [m] under it."""
     key = (h, n_steps, solver)
     if key not in footing_runs:
-        out = push_footing(rigid_footing(h_fine=h, **FOOTING), n_steps=n_steps, **FOOTING_SOLVERS[solver])
+        out = push_footing(
+            rigid_footing(h_fine=h, **FOOTING), n_steps=n_steps, settings=FOOTING_SOLVERS[solver]
+        )
         if out["failure"]:
             print(f"footing h={h}, {n_steps} steps, {solver}: stopped ({out['failure'].get('reason')})")
         footing_runs[key] = (None if out["failure"] else out["q_u"], out["wall_time"])

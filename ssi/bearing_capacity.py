@@ -161,6 +161,31 @@ def rigid_footing(
     return FootingScene(model, soil, footing, B, mesh, info)
 
 
+# chapter 10's footing: B = 2 m, c = 10 kPa, phi = 20 deg, E = 20 MPa, nu = 0.3, rough, 6 m x 5 m half block
+CHAPTER10_FOOTING = dict(
+    B=2.0,
+    c=10e3,
+    phi_deg=20.0,
+    E=20e6,
+    nu=0.3,
+    rough=True,
+    half_width=6.0,
+    depth=5.0,
+    h_coarse=1.0,
+    growth=1.25,
+    settle=0.06,
+)
+
+
+def chapter10_footing(**overrides: object) -> FootingScene:
+    """Chapter 10's rigid rough strip footing, B = 2 m on weightless Mohr--Coulomb soil (c = 10 kPa,
+    phi = 20 deg, associated unless ``psi_deg`` is given; E = 20 MPa, nu = 0.3 -- the limit load does not
+    depend on them): the half model on a block 6 m wide and 5 m deep, elements ``h_fine`` (default 0.25 m)
+    under the footing growing by 1.25 up to 1 m, pushed to 6 cm. ``overrides``: any other
+    :func:`rigid_footing` arguments (chapters 06 and 12, the benchmarks and the tests vary it)."""
+    return rigid_footing(**(CHAPTER10_FOOTING | overrides))
+
+
 def footing_pressure(scene: FootingScene, result):
     """(settlement [m, positive down], pressure q [Pa]) histories of a rigid-footing run."""
     w = result.displacement(scene.footing[:1], "w")[:, 0]
@@ -168,32 +193,36 @@ def footing_pressure(scene: FootingScene, result):
     return -w, q
 
 
-def push_footing(scene: FootingScene, n_steps=20, method="line_search", grading=1.0, settings=None, **kw):
-    """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
-    first steps smaller: lambda_i = (i/n)^grading). Returns a dict with settlement, q, q_u (the largest
-    pressure reached), iterations per step, wall time, and the failure report if the solver stopped.
+def footing_settings(**overrides: object) -> Settings:
+    """The solver settings :func:`push_footing` uses unless given others: full Newton with the consistent
+    tangent and a backtracking line search, the K0 retry of a failed increment (``Settings``' fallback for
+    full Newton), and each of the ``n_steps`` settlement increments taken as one increment (the increments
+    are the study's variable), halved up to 8 times on failure. Plain Newton steps near the footing corner
+    overshoot into a far plastic state and diverge; the line search stops that.
 
-    ``method="line_search"`` (default): ``ssi.solver.run`` with full Newton, the consistent tangent, a
-    backtracking line search and the K0 retry of a failed increment — plain Newton steps near the footing
-    corner overshoot into a far plastic state and diverge. SuperLU is the default backend here: at a few
-    thousand DOFs PARDISO's set-up costs 0.3–0.5 s per factorisation against SuperLU's 0.01–0.03 s.
-    Other methods ("full", "modified") or an explicit ``settings`` are passed to ``ssi.solver.run``.
+    SuperLU is the backend: at a few thousand DOFs PARDISO's set-up costs 0.3-0.5 s per factorisation
+    against SuperLU's 0.01-0.03 s. ``overrides`` are further :class:`ssi.solver.Settings` fields."""
+    return Settings(
+        **{"method": "full", "line_search": True, "stepping": "fixed", "max_cuts": 8, "backend": "superlu"}
+        | overrides
+    )
+
+
+def push_footing(
+    scene: FootingScene, n_steps: int = 20, grading: float = 1.0, settings: Settings | None = None
+) -> dict:
+    """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
+    first steps smaller: lambda_i = (i/n)^grading) with ``ssi.solver.run`` and ``settings`` (default
+    :func:`footing_settings`). Returns a dict with settlement [m], q [Pa], q_u (the largest pressure
+    reached) [Pa], iterations per step, wall time [s], and the failure report if the solver stopped.
     """
     check_instance("scene", scene, FootingScene)
     n_steps = check_int("n_steps", n_steps, lo=1)
     grading = check_real("grading", grading, lo=0.0, lo_open=True)
     check_instance("settings", settings, Settings, optional=True)
     if settings is None:
-        check_choice("method", method, ("line_search", "full", "modified"))
+        settings = footing_settings()
     lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
-    if settings is None:
-        # the n_steps displacement increments are the study's variable: each is one increment (halved on
-        # failure), not subdivided by automatic stepping
-        if method == "line_search":
-            kw = {"backend": "superlu", "max_cuts": 8, "stepping": "fixed", **kw}
-            settings = Settings(method="full", line_search=True, **kw)
-        else:
-            settings = Settings(**{"method": method, "stepping": "fixed", **kw})
     t0 = time.perf_counter()
     failure = None
     try:

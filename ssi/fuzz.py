@@ -115,7 +115,7 @@ BASE_RIGID = dict(
     scheme="implicit",
     rough=True,
 )
-BASE_PUSH = dict(n_steps=1, grading=1.0, method="line_search")
+BASE_PUSH = dict(n_steps=1, grading=1.0)  # solver options: Settings, fuzzed as its own target
 BASE_PRANDTL = dict(c=10e3, phi_deg=20.0, q=0.0)
 BASE_SADOWSKY = dict(a=1.0, P=1e5)
 BASE_HETENYI = dict(P=1e5, k=1e7, EI=1e8)
@@ -199,7 +199,7 @@ RIGID_SPEC = dict(
     scheme=Choice(("implicit", "explicit")),
     rough=Flag(),
 )
-PUSH_SPEC = dict(n_steps=Integer(lo=1), grading=POSITIVE, method=Choice(("line_search", "full", "modified")))
+PUSH_SPEC = dict(n_steps=Integer(lo=1), grading=POSITIVE)
 PRANDTL_SPEC = dict(c=NON_NEGATIVE, phi_deg=ANGLE, q=NON_NEGATIVE)
 SADOWSKY_SPEC = dict(a=POSITIVE, P=ANY_REAL)
 HETENYI_SPEC = dict(P=ANY_REAL, k=POSITIVE, EI=POSITIVE)

@@ -64,11 +64,11 @@ from .materials.interface_law import interface_params
 from .materials.layer_laws import CONCRETE, STEEL
 from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
 from .materials.soil_laws import (
+    DRAINAGE,
     GAMMA_W,
-    elastic_params,
+    SoilLayer,
     geostatic_stress,
     material_table,
-    mohr_coulomb_params,
     pore_pressure,
 )
 from .mesh import foundation_contact, soil_block, surface_pressure_forces
@@ -81,105 +81,6 @@ from .validate import check_choice, check_instance, check_int, check_optional_re
 
 if TYPE_CHECKING:  # for annotations only: ssi.estimate imports this module
     from .estimate import TargetResult
-
-
-@dataclass(frozen=True)
-class SoilLayer:
-    """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi.
-
-    Fields: ``thickness`` [m]; ``E`` Young's modulus [Pa] (drained, or undrained E_u); ``nu`` Poisson's ratio
-    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay)
-    or None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient
-    [-] on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
-    [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
-    (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
-    modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
-    pressure is ``BuiltScene.excess_pore_pressure``).
-    """
-
-    thickness: float
-    E: float
-    nu: float
-    unit_weight: float = 0.0
-    c: float | None = None
-    phi_deg: float = 0.0
-    psi_deg: float | None = None
-    K0: float | None = None
-    scheme: str = "implicit"
-    unit_weight_sat: float | None = None
-    drainage: str = "drained"
-    nu_u: float = 0.495
-
-    def k_water(self) -> float:
-        """K_w/n [Pa] of the pore water: 0 if drained; else :meth:`undrained_k_water`."""
-        if self.drainage == "drained":
-            return 0.0
-        if self.drainage != "undrained_A":
-            raise ValueError(f"drainage must be 'drained' or 'undrained_A', got {self.drainage!r}")
-        return self.undrained_k_water()
-
-    def undrained_k_water(self) -> float:
-        """K_w/n [Pa] of the layer when undrained: K_u - K' with K_u the bulk modulus of the skeleton's shear
-        modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
-        if not (self.nu < self.nu_u < 0.5):
-            raise ValueError(
-                f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}"
-            )
-        shear = self.E / (2.0 * (1.0 + self.nu))
-        k_skeleton = self.E / (3.0 * (1.0 - 2.0 * self.nu))
-        return 2.0 * shear * (1.0 + self.nu_u) / (3.0 * (1.0 - 2.0 * self.nu_u)) - k_skeleton
-
-    @classmethod
-    def undrained(
-        cls,
-        thickness: float,
-        E_u: float,
-        s_u: float,
-        unit_weight: float = 0.0,
-        nu_u: float = 0.495,
-        K0: float | None = None,
-        unit_weight_sat: float | None = None,
-    ) -> "SoilLayer":
-        """Total-stress undrained clay (Tresca: phi = 0, c = s_u [Pa]) with the undrained modulus E_u [Pa] and
-        nu_u close to 0.5 (nearly incompressible). phi = 0 makes the strength independent of the mean stress,
-        so the hydrostatic pore pressure the scene separates does not change it. ``thickness`` [m], unit
-        weights [N/m^3] as in :class:`SoilLayer`."""
-        return cls(
-            thickness,
-            E=E_u,
-            nu=nu_u,
-            unit_weight=unit_weight,
-            c=s_u,
-            phi_deg=0.0,
-            K0=K0,
-            unit_weight_sat=unit_weight_sat,
-        )
-
-    def __post_init__(self):
-        check_real("SoilLayer.thickness", self.thickness, lo=0.0, lo_open=True, unit="m")
-        check_real("SoilLayer.E", self.E, lo=0.0, lo_open=True, unit="Pa")
-        check_real("SoilLayer.nu", self.nu, lo=-1.0, hi=0.5, lo_open=True, hi_open=True)
-        check_real("SoilLayer.unit_weight", self.unit_weight, lo=0.0, unit="N/m^3")
-        check_optional_real("SoilLayer.c", self.c, lo=0.0, unit="Pa")
-        check_real("SoilLayer.phi_deg", self.phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
-        check_optional_real(
-            "SoilLayer.psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="degrees (<= phi_deg)"
-        )
-        check_optional_real("SoilLayer.K0", self.K0, lo=0.0, hi=10.0, hi_open=True)
-        check_choice("SoilLayer.scheme", self.scheme, ("implicit", "explicit"))
-        check_optional_real("SoilLayer.unit_weight_sat", self.unit_weight_sat, lo=0.0, unit="N/m^3")
-        check_choice("SoilLayer.drainage", self.drainage, DRAINAGE)
-        check_real("SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, hi_open=True, unit="(nu <= nu_u < 0.5)")
-        if self.c == 0.0 and self.phi_deg == 0.0:
-            raise ValueError(
-                "SoilLayer: c=0 and phi_deg=0 give a soil without strength; need c > 0 or "
-                "phi_deg > 0 (or c=None for an elastic layer)"
-            )
-
-    def law(self) -> tuple[int, np.ndarray]:
-        if self.c is None:
-            return 0, elastic_params(self.E, self.nu)
-        return mohr_coulomb_params(self.E, self.nu, self.c, self.phi_deg, self.psi_deg, scheme=self.scheme)
 
 
 @dataclass(frozen=True)
@@ -630,16 +531,9 @@ class Scene:
 
     def _geostatic(self, z):
         """Effective geostatic stress (n, ..., 4) at the points z [m] (see ``geostatic_stress``)."""
-        layers = [
-            {
-                "thickness": lay.thickness,
-                "gamma": lay.unit_weight,
-                "gamma_sat": lay.unit_weight_sat,
-                **({"K0": lay.K0} if lay.K0 is not None else {"phi_deg": lay.phi_deg}),
-            }
-            for lay in self.layers
-        ]
-        return geostatic_stress(z, layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w)
+        return geostatic_stress(
+            z, self.layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w
+        )
 
     def _ground_loads(self, built):
         """Dead loads that hold the geostatic state in place (without the soil's own weight, a body force of
@@ -853,8 +747,6 @@ def _warn_implausible_units(scene):
         elif isinstance(load, StripWeight):
             warn("StripWeight.unit_weight", load.unit_weight, "N/m^3", "unit_weight")
 
-
-DRAINAGE = ("drained", "undrained_A")
 
 # what Scene.loads (and a Phase's loads) may hold, and the per-segment contact type of a list Scene.contact
 LOAD_TYPES = (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from ssi.bearing_capacity import prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing, rigid_footing, sg61_scene
 from ssi.digitize import read_reference
 from ssi.scene import SoilLayer
 from ssi.solver import Settings, run
@@ -26,7 +26,7 @@ def q_u(**kw):
     settle = kw.pop("settle", 0.04)
     n = kw.pop("n_steps", 20)
     scene = rigid_footing(B=2.0, settle=settle, **{**COARSE, **kw})
-    out = push_footing(scene, n_steps=n, method="line_search")
+    out = push_footing(scene, n_steps=n)
     return out
 
 
@@ -57,6 +57,15 @@ def test_bad_footing_input_raises():
         rigid_footing(settle=0.0)
     with pytest.raises(ValueError, match="psi_deg"):
         rigid_footing(phi_deg=20.0, psi_deg=25.0)
+
+
+def test_push_footing_takes_solver_options_only_as_settings():
+    """Settings is the one solver vocabulary: the former method word is refused, a non-Settings is named."""
+    scene = rigid_footing(B=2.0, settle=0.04, **COARSE)
+    with pytest.raises(TypeError, match="method"):
+        push_footing(scene, n_steps=2, method="line_search")
+    with pytest.raises(TypeError, match="settings"):
+        push_footing(scene, n_steps=2, settings={"method": "full"})
 
 
 def test_smith_griffiths_program_6_1_within_3_percent_up_to_500_kpa():
@@ -163,7 +172,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
     else:
         mats = [(0, elastic_params(20e6, 0.3)), (0, elastic_params(50e6, 0.3))]
     soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, unit_weight=np.array([18e3, 20e3]))
-    layers = [dict(thickness=2.0, gamma=18e3, phi_deg=30.0), dict(thickness=4.0, gamma=20e3, K0=0.6)]
+    layers = [  # E, nu, c are the soil group's business here; geostatic_stress reads the weight and K0
+        SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, phi_deg=30.0),
+        SoilLayer(4.0, E=50e6, nu=0.3, unit_weight=20e3, K0=0.6),
+    ]
     soil.initial_stress = geostatic_stress(soil.integration_points()[..., 1], layers)
     fix_block(model, mesh, ids)
     res = run(model, [1.0], Settings(method="full", backend="superlu"))
@@ -181,19 +193,7 @@ def test_viscous_path_relaxes_to_the_rate_independent_limit():
     from ssi.solver import Settings
 
     def scene():
-        return rigid_footing(
-            B=2.0,
-            c=10e3,
-            phi_deg=20.0,
-            psi_deg=20.0,
-            E=20e6,
-            nu=0.3,
-            h_fine=0.5,
-            settle=0.06,
-            half_width=6.0,
-            depth=5.0,
-            h_coarse=1.0,
-        )
+        return chapter10_footing(psi_deg=20.0, h_fine=0.5, settle=0.06)
 
     plain = push_footing(scene(), n_steps=20, settings=Settings(stepping="fixed", backend="superlu"))
     viscous = push_footing(

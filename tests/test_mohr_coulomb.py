@@ -22,6 +22,7 @@ from ssi.materials.soil_laws import (
     MOHR_COULOMB,
     MOHR_COULOMB_EXPLICIT,
     VON_MISES,
+    SoilLayer,
     drive,
     elastic_matrix,
     elastic_params,
@@ -418,7 +419,10 @@ def test_von_mises_return_and_tangent():
 
 # ------------------------------------------------------------------------------------------------ geostatic
 def test_geostatic_stress_layers_and_k0():
-    layers = [dict(thickness=2.0, gamma=18e3, phi_deg=30.0), dict(thickness=3.0, gamma=20e3, K0=0.8)]
+    layers = [
+        SoilLayer(2.0, E=E, nu=NU, unit_weight=18e3, phi_deg=30.0),
+        SoilLayer(3.0, E=E, nu=NU, unit_weight=20e3, K0=0.8),
+    ]
     z = np.array([0.0, -1.0, -2.0, -4.0, -10.0])
     s = geostatic_stress(z, layers, surcharge=10e3)
     szz = -np.array([10e3, 10e3 + 18e3, 10e3 + 36e3, 10e3 + 36e3 + 40e3, 10e3 + 36e3 + 160e3])
@@ -432,12 +436,15 @@ def test_geostatic_stress_layers_and_k0():
         geostatic_stress(z, layers, surcharge=-1.0)
     with pytest.raises(ValueError, match="surface"):
         geostatic_stress(np.array([1.0]), layers)
+    with pytest.raises(TypeError, match=r"layers\[0\] must be a SoilLayer"):
+        geostatic_stress(z, [dict(thickness=2.0, gamma=18e3, phi_deg=30.0)])  # the former dict form
 
 
 def test_geostatic_stress_is_inside_the_mohr_coulomb_surface():
     """With K0 = 1 - sin φ and c >= 0 the at-rest state never violates Mohr–Coulomb (K0 > Ka)."""
     for phi in (10.0, 20.0, 30.0, 45.0):
-        s = geostatic_stress(np.linspace(0, -20, 41), [dict(thickness=1.0, gamma=19e3, phi_deg=phi)])
+        layer = SoilLayer(1.0, E=E, nu=NU, unit_weight=19e3, phi_deg=phi)
+        s = geostatic_stress(np.linspace(0, -20, 41), [layer])
         for row in s:
             assert mc_yield(row, 0.0, math.radians(phi)) <= 1e-9 * (abs(row[1]) + 1.0)
 

@@ -7,6 +7,7 @@ import pytest
 from ssi.elements.interface import Interface6
 from ssi.elements.plate import PlateStrip
 from ssi.elements.soil_q8 import SoilQ8
+from ssi.examples import surcharge_heave
 from ssi.results import read_result, write_result
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
 from ssi.section import homogeneous
@@ -136,18 +137,11 @@ M_OED = E_SOIL * (1 - NU_SOIL) / ((1 + NU_SOIL) * (1 - 2 * NU_SOIL))
 
 @pytest.mark.parametrize("with_strip", [False, True])
 def test_surcharge_alone_does_not_heave(with_strip):
-    """The old scene heaved q H / M under the surcharge alone; now the geostatic state is in equilibrium."""
-    q, depth = 10e3, 6.0
-    scene = strip_scene(
-        layers=[SoilLayer(depth, E=E_SOIL, nu=NU_SOIL, unit_weight=18e3)],
-        surcharge=q,
-        loads=[],
-        phases=[Phase("nothing")],
-        **({} if with_strip else dict(foundation=None, contact=None)),
-    )
-    built = scene.build()
-    out = built.solve(n_steps=1)
-    assert np.abs(out.surface()[1]).max() < 1e-8 * q * depth / M_OED
+    """Chapter 12's claim ``surcharge_no_heave`` (``ssi.examples.surcharge_heave``): the old scene heaved
+    q H / M under the surcharge alone; now the geostatic state is in equilibrium (round-off, 1e-8)."""
+    q = 10e3
+    ratio, built, out = surcharge_heave(with_strip, q=q, depth=6.0, E=E_SOIL, nu=NU_SOIL)
+    assert ratio < 1e-8
     if with_strip:  # the strip carries the surcharge over its width from the start
         assert built.contact_force(out)[-1] == pytest.approx(q * 2.0, rel=1e-12)
 
@@ -236,15 +230,15 @@ def test_water_table_geostatic_state_against_hand_calculation():
 def test_geostatic_stress_water_table_function():
     sig = geostatic_stress(
         np.array([-1.0, -3.0]),
-        [{"thickness": 2.0, "gamma": 18e3, "gamma_sat": 20e3, "K0": 0.5}],
+        [SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)],
         water_table=1.0,
         gamma_w=10e3,
     )
     assert sig[:, 1] == pytest.approx([-18e3, -(18e3 + 2 * 10e3)])
-    with pytest.raises(ValueError, match="gamma_sat"):
+    with pytest.raises(ValueError, match="unit_weight_sat"):
         geostatic_stress(
             np.array([-1.0]),
-            [{"thickness": 1.0, "gamma": 18e3, "gamma_sat": 5e3, "K0": 0.5}],
+            [SoilLayer(1.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=5e3, K0=0.5)],
             water_table=0.5,
         )
 

@@ -9,16 +9,24 @@ import numpy as np
 import pytest
 
 from ssi.element_test import biaxial_compression
+from ssi.examples import (
+    PIT_STRIP_LOAD,
+    drainage_switch_errors,
+    drainage_switch_scene,
+    excavated_column,
+    excavated_column_errors,
+    pit_beside_strip,
+    pit_reaction_drop,
+    ponding_errors,
+    submerged_strip_error,
+    switched_layer_pore_pressure,
+)
 from ssi.results import read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
-    Contact,
     Excavation,
-    Foundation,
-    MeshSize,
     Phase,
     PhaseNonConvergence,
-    Scene,
     SoilLayer,
     StripWeight,
     SurfacePressure,
@@ -28,82 +36,45 @@ from ssi.section import homogeneous
 from ssi.solver import NonConvergence, Settings
 
 E, NU, GAMMA, GW = 20e6, 0.3, 18e3, 9.81e3
-M_OED = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
-COARSE = MeshSize(h_fine=0.5, h_coarse=1.0, growth=1.2)
 STRIP = homogeneous(0.5, 30e9, 0.2)
 
 
-def excavated_block(t=2.0, depth=6.0):
-    return Scene(
-        width=4.0,
-        depth=depth,
-        layers=[SoilLayer(depth, E=E, nu=NU, unit_weight=GAMMA, K0=0.5)],
-        mesh=COARSE,
-        phases=[Phase("dig", excavate=(Excavation(-2.0, 2.0, bottom=t),), n_steps=1)],
-    )
-
-
 def test_excavating_the_top_layer_unloads_the_column_in_1d():
-    """Heave gamma t (H - t) / M at the new surface; sigma_v rises by gamma t, sigma_h by nu/(1-nu) of it.
-    The remaining column's change is a uniform 1D state, which quadratic elements represent exactly:
-    round-off (1e-12)."""
-    t, depth = 2.0, 6.0
-    built = excavated_block(t, depth).build()
-    out = built.solve()
-    new_surface = np.flatnonzero(np.abs(built.mesh.xy[:, 1] + t) < 1e-9)
-    heave = out.u[-1][built.model.dof(new_surface, "w")]
-    assert heave == pytest.approx(GAMMA * t * (depth - t) / M_OED, rel=1e-12)
-    active = out.active_elements()
-    z = built.soil.integration_points()[..., 1]
-    sig = out.soil_stress()
-    sv0 = GAMMA * z  # geostatic sigma_v (tension positive), K0 = 0.5
-    assert np.allclose(sig[active][..., 1] - sv0[active], GAMMA * t, rtol=1e-12, atol=0)
-    assert np.allclose(sig[active][..., 0] - 0.5 * sv0[active], NU / (1 - NU) * GAMMA * t, rtol=1e-12, atol=0)
-    assert np.all(sig[~active] == 0.0)  # removed soil carries nothing
-    assert np.all(-z[~active] < t) and np.all(-z[active] > t)
+    """Chapter 12's claim ``excavation_heave`` (the scene and its hand calculation in ``ssi.examples``): heave
+    gamma t (H - t) / M at the new surface; sigma_v rises by gamma t, sigma_h by nu/(1-nu) of it. The
+    remaining column's change is a uniform 1D state, which quadratic elements represent exactly: round-off
+    (1e-12)."""
+    t = 2.0
+    check = excavated_column_errors(excavated_column(t=t, depth=6.0, E=E, nu=NU, unit_weight=GAMMA, K0=0.5))
+    assert check["heave"] < 1e-12 and check["sigma_v"] < 1e-12 and check["sigma_h"] < 1e-12
+    kept, z = check["kept"], check["z"]
+    assert np.all(check["stress"][~kept] == 0.0)  # removed soil carries nothing
+    assert np.all(-z[~kept] < t) and np.all(-z[kept] > t)
 
 
 def test_a_pit_next_to_a_loaded_strip_runs_with_the_defaults():
-    """Mohr--Coulomb soil, water table, surcharge, a strip under load, then a pit beside it, all default
-    settings: the bottom reaction falls by the removed buoyant weight plus the surcharge over the pit
-    (equilibrium, to the solver's force tolerance 1e-5 of the structural load; 1e-4 allows for its sum over
-    the nodes)."""
-    scene = Scene(
-        width=20.0,
-        depth=8.0,
-        layers=[
-            SoilLayer(
-                3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=10e3, phi_deg=30.0, psi_deg=0.0
-            ),
-            SoilLayer(5.0, E=60e6, nu=0.3, unit_weight=19e3, unit_weight_sat=21e3),
-        ],
-        water_table=1.0,
-        surcharge=10e3,
-        foundation=Foundation(x0=-5.0, x1=-3.0, section=STRIP),
-        contact=Contact(kn=1e10, kt=1e9),
-        mesh=MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.3),
-        phases=[
-            Phase("building", loads=(ColumnLoad(-4.0, N=300e3),)),
-            Phase("pit", excavate=(Excavation(-1.3, 3.7, bottom=1.5),)),
-        ],
-    )
-    built = scene.build()
+    """Chapter 12's claim ``excavation_pit_reaction`` (scene and hand value in ``ssi.examples``):
+    Mohr--Coulomb soil, water table, surcharge, a strip under load, then a pit beside it, all default
+    settings: the bottom reaction rises by the strip's load and falls by the removed buoyant weight plus the
+    surcharge over the pit (equilibrium, to the solver's force tolerance 1e-5 of the structural load; 1e-4
+    allows for its sum over the nodes)."""
+    built = pit_beside_strip(section=STRIP).build()
     assert np.any(np.abs(built.mesh.x_lines - (-1.3)) < 1e-12) and np.any(
         np.abs(built.mesh.x_lines - 3.7) < 1e-12
     )
     out = built.solve()
     assert out.status == "completed"
-    bottom = built.model.dof(built.mesh.bottom, "w")
-    reaction = [np.array(r["result"].f_int)[-1][bottom].sum() for r in out.phases]
-    removed = 5.0 * (18e3 * 1.0 + (20e3 - GW) * 0.5) + 10e3 * 5.0
-    assert reaction[1] - reaction[0] == pytest.approx(300e3, rel=1e-4)
+    reaction, removed = pit_reaction_drop(built, out)
+    # by hand: 5 m x (18 kN/m^3 x 1 m + (20 - 9.81) kN/m^3 x 0.5 m) + 10 kPa x 5 m = 165.475 kN/m
+    assert removed == pytest.approx(165.475e3, rel=1e-12)
+    assert reaction[1] - reaction[0] == pytest.approx(PIT_STRIP_LOAD, rel=1e-4)
     assert reaction[1] - reaction[2] == pytest.approx(removed, rel=1e-4)
     pit = out.phases[-1]
     assert out.active_elements(pit["first"] - 1).all() and not out.active_elements(pit["last"]).all()
 
 
 def test_excavation_round_trips_through_the_scene_record_and_the_result_file(tmp_path):
-    scene = excavated_block()
+    scene = excavated_column()
     assert scene_from_dict(scene_to_dict(scene)) == scene
     out = scene.build().solve()
     back = read_result(write_result(tmp_path / "dig.h5", out))
@@ -112,76 +83,29 @@ def test_excavation_round_trips_through_the_scene_record_and_the_result_file(tmp
     assert np.array_equal(back.u[-1], out.u[-1])
 
 
-def drainage_scene(layers, **changes):
-    kwargs = {
-        "width": 12.0,
-        "depth": 6.0,
-        "layers": layers,
-        "foundation": Foundation(x0=-1.0, x1=1.0, section=STRIP),
-        "contact": Contact(kn=1e10, kt=1e9),
-        "mesh": MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5),
-        "water_table": 1.0,
-    }
-    kwargs.update(changes)
-    return Scene(**kwargs)
-
-
 def test_drained_then_undrained_then_consolidated():
-    """Elastic soil drained under the first column, undrained ("A") under the second, then drained again.
-    The undrained increment is that of an elastic soil with G and nu_u; after consolidation the state is the
-    drained response to both loads (elastic: path independent); round-off (1e-10)."""
-    nu_u = 0.495
-    G = E / (2 * (1 + NU))
-    layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3)
-    first, second = ColumnLoad(0.0, N=200e3), ColumnLoad(0.3, N=150e3, H=20e3)
-    phased = drainage_scene(
-        [layer],
-        phases=[
-            Phase("construction", loads=(first,)),
-            Phase("rapid", loads=(second,), drainage={0: "undrained_A"}),
-            Phase("consolidation", drainage={0: "drained"}),
-        ],
-    )
-    built = phased.build()
-    out = built.solve(n_steps=1)
-    step = {r["name"]: r["last"] for r in out.phases}
-    undrained = drainage_scene(
-        [SoilLayer(6.0, E=2 * G * (1 + nu_u), nu=nu_u, unit_weight=18e3, unit_weight_sat=20e3)],
-        loads=[second],
-    )
-    u_u = undrained.build().solve().u[-1]
-    increment = out.u[step["rapid"]] - out.u[step["construction"]]
-    assert np.abs(increment - u_u).max() < 1e-10 * np.abs(u_u).max()
-    u_d = drainage_scene([layer], loads=[first, second]).build().solve().u[-1]
-    assert np.abs(out.u[step["consolidation"]] - u_d).max() < 1e-10 * np.abs(u_d).max()
+    """Chapter 12's claim ``undrained_switch`` (scenes and closed forms in ``ssi.examples``): elastic soil
+    drained under the first column, undrained ("A") under the second, then drained again. The undrained
+    increment is that of an elastic soil with G and nu_u; after consolidation the state is the drained
+    response to both loads (elastic: path independent); round-off (1e-10)."""
+    check = drainage_switch_errors(E=E, nu=NU, nu_u=0.495, depth=6.0, section=STRIP)
+    assert check["increment"] < 1e-10 and check["consolidated"] < 1e-10
+    built, out, step = check["built"], check["out"], check["step"]
     assert np.all(built.excess_pore_pressure(out, step["construction"]) == 0.0)
     assert built.excess_pore_pressure(out, step["rapid"]).max() > 1e3
     assert np.all(built.excess_pore_pressure(out, step["consolidation"]) == 0.0)
 
 
 def test_switched_layer_1d_excess_pore_pressure():
-    """A pressure dq over the whole width on a layer switched to undrained after a drained fill: the excess
-    pore pressure is dq (K_w/n) / (K_w/n + M'), M' = K' + 4G/3 (1D: eps_x = 0), from zero at the switch."""
-    nu_u = 0.495
-    G, K = E / (2 * (1 + NU)), E / (3 * (1 - 2 * NU))
-    k_w = 2 * G * (1 + nu_u) / (3 * (1 - 2 * nu_u)) - K
-    layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, nu_u=nu_u)
-    scene = drainage_scene(
-        [layer],
-        foundation=None,
-        contact=None,
-        phases=[
-            Phase("fill", loads=(SurfacePressure(-6.0, 6.0, 20e3),)),
-            Phase("rapid", loads=(SurfacePressure(-6.0, 6.0, 10e3),), drainage={0: "undrained_A"}),
-        ],
-    )
-    built = scene.build()
-    out = built.solve(n_steps=1)
-    step = {r["name"]: r["last"] for r in out.phases}
-    p = built.excess_pore_pressure(out, step["rapid"])
-    assert p == pytest.approx(10e3 * k_w / (k_w + K + 4 * G / 3), rel=1e-10)
+    """Chapter 12's 1D part of ``undrained_switch``: a pressure dq over the whole width on a layer switched
+    to undrained after a drained fill: the excess pore pressure is dq (K_w/n) / (K_w/n + M'), M' = K' + 4G/3
+    (1D: eps_x = 0), from zero at the switch; round-off (1e-10)."""
+    check = switched_layer_pore_pressure(E=E, nu=NU, nu_u=0.495, depth=6.0, dq=10e3)
+    assert check["error"] < 1e-10
+    built, out, step = check["built"], check["out"], check["step"]
     assert np.all(built.excess_pore_pressure(out, step["fill"]) == 0.0)
     total = out.total_stress(step["rapid"])
+    p = check["p"]
     assert np.allclose(total[..., 1] - out.soil_stress(step["rapid"])[..., 1], -(built.pore_pressure() + p))
 
 
@@ -199,7 +123,7 @@ def test_switched_layer_1d_excess_pore_pressure():
     ],
 )
 def test_bad_phase_soil_is_named(phase, word):
-    scene = drainage_scene([SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3)], phases=[phase])
+    scene = drainage_switch_scene(SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3), phases=[phase])
     with pytest.raises(ValueError, match=word):
         scene.build()
 
@@ -212,47 +136,30 @@ def test_bad_excavation_and_drainage_values_are_named():
     with pytest.raises(ValueError, match="drainage"):
         Phase("a", drainage={0: "partly"})
     with pytest.raises(ValueError, match="nu_u"):
-        drainage_scene(
-            [SoilLayer(6.0, E=E, nu=0.495, unit_weight=18e3)],
+        drainage_switch_scene(
+            SoilLayer(6.0, E=E, nu=0.495, unit_weight=18e3),
             phases=[Phase("a", drainage={0: "undrained_A"})],
         ).build()
 
 
 @pytest.mark.parametrize("h_pond", [0.0, 2.0])
 def test_ponding_changes_pore_pressure_not_effective_stress(h_pond):
-    """Free water h above the ground: sigma' and the displacements under a load are those of the table at
-    the ground (the effective-stress problem does not see the pond); p = gamma_w (h + d) and
-    sigma_v = -(gamma_w h + gamma_sat d) (hand calculation, round-off)."""
-    layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3, K0=0.5)
-
-    def scene(water_table):
-        return drainage_scene(
-            [layer],
-            foundation=None,
-            contact=None,
-            water_table=water_table,
-            phases=[Phase("load", loads=(SurfacePressure(-1.0, 1.0, 50e3),))],
-        )
-
-    ref_built, pond_built = scene(0.0).build(), scene(-h_pond).build()
-    ref, pond = ref_built.solve(n_steps=1), pond_built.solve(n_steps=1)
-    assert np.abs(pond.u[-1] - ref.u[-1]).max() <= 1e-12 * np.abs(ref.u[-1]).max()
-    assert np.array_equal(pond.soil_stress(1), ref.soil_stress(1))  # geostatic: identical effective stress
-    d = -pond_built.soil.integration_points()[..., 1]
-    assert pond.pore_pressure(1) == pytest.approx(GW * (h_pond + d), rel=1e-12)
-    assert pond.total_stress(1)[..., 1] == pytest.approx(-(GW * h_pond + 20e3 * d), rel=1e-12)
+    """Chapter 12's claim ``ponding_effective_stress`` (scenes and hand calculations in ``ssi.examples``):
+    free water h above the ground: sigma' and the displacements under a load are those of the table at the
+    ground (the effective-stress problem does not see the pond); p = gamma_w (h + d) and
+    sigma_v = -(gamma_w h + gamma_sat d) (hand calculation, round-off 1e-12)."""
+    errors = ponding_errors((0.0, h_pond), depth=6.0, E=E, nu=NU)
+    pond = errors[h_pond]
+    assert pond["u"] <= 1e-12 and pond["pore_pressure"] < 1e-12 and pond["total_stress"] < 1e-12
+    # geostatic: the effective stress is not just close, it is the same
+    assert np.array_equal(pond["out"].soil_stress(1), errors[0.0]["out"].soil_stress(1))
 
 
 def test_submerged_strip_weight_is_buoyant():
     """A strip under 2 m of free water: StripWeight carries (gamma_c - gamma_w) t (hand calculation)."""
-    scene = drainage_scene(
-        [SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, unit_weight_sat=20e3)],
-        water_table=-2.0,
-        phases=[Phase("weight", loads=(StripWeight(25e3),))],
-    )
-    built = scene.build()
-    out = built.solve(n_steps=1)
-    assert built.contact_force(out)[-1] == pytest.approx((25e3 - GW) * 0.5 * 2.0, rel=1e-10)
+    error, force = submerged_strip_error(depth=6.0, E=E, nu=NU)
+    assert error < 1e-10
+    assert force == pytest.approx((25e3 - GW) * 0.5 * 2.0, rel=1e-10)
 
 
 @pytest.mark.parametrize("k0", [1.0, 0.6])
@@ -285,8 +192,8 @@ def test_stopped_phased_run_reports_every_completed_phase(tmp_path):
     """Far beyond the bearing capacity with the paper's equal steps and one cut allowed, the last phase stops:
     the error names it and the completed phases, and carries a SceneResult of all of them."""
     layer = SoilLayer(6.0, E=E, nu=NU, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0)
-    scene = drainage_scene(
-        [layer],
+    scene = drainage_switch_scene(
+        layer,
         water_table=None,
         phases=[
             Phase("weight", loads=(StripWeight(25e3),)),

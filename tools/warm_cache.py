@@ -17,27 +17,15 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def main():
-    from ssi.bearing_capacity import push_footing, rigid_footing
+    from ssi.bearing_capacity import chapter10_footing, push_footing
     from ssi.progress import announce_compilation
 
     announce_compilation()
     code = re.search(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.DOTALL).group(1)
     code = code.replace("print(", "(")  # quiet
     exec(compile(code, "README.md", "exec"), {"__name__": "warm"})  # noqa: S102
-    scene = rigid_footing(
-        B=2.0,
-        c=10e3,
-        phi_deg=20.0,
-        psi_deg=0.0,
-        E=20e6,
-        nu=0.3,
-        rough=True,
-        half_width=5.0,
-        depth=5.0,
-        h_fine=1.0,
-        h_coarse=2.0,
-        growth=1.5,
-        settle=0.02,
+    scene = chapter10_footing(  # coarse: it only compiles the kernels
+        psi_deg=0.0, half_width=5.0, h_fine=1.0, h_coarse=2.0, growth=1.5, settle=0.02
     )
     push_footing(scene, n_steps=2)
     import numpy as np

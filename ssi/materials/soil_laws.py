@@ -16,17 +16,22 @@ kinds are padded to ``N_SOIL_PARAMS`` by :func:`material_table`):
 History (``N_SOIL_HIST`` = 2): [accumulated plastic strain norm, branch of the last update
 (0 elastic, 1 plane, 2 edge s1 = s2, 3 edge s2 = s3, 4 apex)].
 
+:class:`SoilLayer` (re-exported by ``ssi.scene``) is the one description of a horizontal soil layer -- its
+law, weight and at-rest state -- that the scene, the rigid footing and :func:`geostatic_stress` all take.
+
 Numba's on-disk cache keys a kernel on its own file only, but the element kernels inline these laws;
 ``import ssi`` therefore keys the whole cache on a hash of all package sources (``ssi/__init__.py``), so an
 edit of this file recompiles ``q8_kernel`` too and nothing stale runs.
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from ..protocol import CONSISTENT
+from ..validate import check_choice, check_instance, check_optional_real, check_real
 from .mohr_coulomb import elastic_fill, lame, mc_explicit, mc_implicit, vm_implicit
 
 ELASTIC = 0
@@ -170,6 +175,111 @@ def material_table(materials):
 
 
 # ---------------------------------------------------------------------------------------------------------
+# a soil layer: the material of a horizontal layer, its weight and its at-rest state
+# ---------------------------------------------------------------------------------------------------------
+DRAINAGE = ("drained", "undrained_A")
+
+
+@dataclass(frozen=True)
+class SoilLayer:
+    """One horizontal soil layer. ``c=None``: linear elastic; else Mohr--Coulomb with c, phi, psi.
+
+    Fields: ``thickness`` [m]; ``E`` Young's modulus [Pa] (drained, or undrained E_u); ``nu`` Poisson's ratio
+    [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay)
+    or None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient
+    [-] on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
+    [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
+    (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
+    modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
+    pressure is ``BuiltScene.excess_pore_pressure``).
+    """
+
+    thickness: float
+    E: float
+    nu: float
+    unit_weight: float = 0.0
+    c: float | None = None
+    phi_deg: float = 0.0
+    psi_deg: float | None = None
+    K0: float | None = None
+    scheme: str = "implicit"
+    unit_weight_sat: float | None = None
+    drainage: str = "drained"
+    nu_u: float = 0.495
+
+    def k_water(self) -> float:
+        """K_w/n [Pa] of the pore water: 0 if drained; else :meth:`undrained_k_water`."""
+        if self.drainage == "drained":
+            return 0.0
+        if self.drainage != "undrained_A":
+            raise ValueError(f"drainage must be 'drained' or 'undrained_A', got {self.drainage!r}")
+        return self.undrained_k_water()
+
+    def undrained_k_water(self) -> float:
+        """K_w/n [Pa] of the layer when undrained: K_u - K' with K_u the bulk modulus of the skeleton's shear
+        modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
+        if not (self.nu < self.nu_u < 0.5):
+            raise ValueError(
+                f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}"
+            )
+        shear = self.E / (2.0 * (1.0 + self.nu))
+        k_skeleton = self.E / (3.0 * (1.0 - 2.0 * self.nu))
+        return 2.0 * shear * (1.0 + self.nu_u) / (3.0 * (1.0 - 2.0 * self.nu_u)) - k_skeleton
+
+    @classmethod
+    def undrained(
+        cls,
+        thickness: float,
+        E_u: float,
+        s_u: float,
+        unit_weight: float = 0.0,
+        nu_u: float = 0.495,
+        K0: float | None = None,
+        unit_weight_sat: float | None = None,
+    ) -> "SoilLayer":
+        """Total-stress undrained clay (Tresca: phi = 0, c = s_u [Pa]) with the undrained modulus E_u [Pa] and
+        nu_u close to 0.5 (nearly incompressible). phi = 0 makes the strength independent of the mean stress,
+        so the hydrostatic pore pressure the scene separates does not change it. ``thickness`` [m], unit
+        weights [N/m^3] as in :class:`SoilLayer`."""
+        return cls(
+            thickness,
+            E=E_u,
+            nu=nu_u,
+            unit_weight=unit_weight,
+            c=s_u,
+            phi_deg=0.0,
+            K0=K0,
+            unit_weight_sat=unit_weight_sat,
+        )
+
+    def __post_init__(self):
+        check_real("SoilLayer.thickness", self.thickness, lo=0.0, lo_open=True, unit="m")
+        check_real("SoilLayer.E", self.E, lo=0.0, lo_open=True, unit="Pa")
+        check_real("SoilLayer.nu", self.nu, lo=-1.0, hi=0.5, lo_open=True, hi_open=True)
+        check_real("SoilLayer.unit_weight", self.unit_weight, lo=0.0, unit="N/m^3")
+        check_optional_real("SoilLayer.c", self.c, lo=0.0, unit="Pa")
+        check_real("SoilLayer.phi_deg", self.phi_deg, lo=0.0, hi=90.0, hi_open=True, unit="degrees")
+        check_optional_real(
+            "SoilLayer.psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="degrees (<= phi_deg)"
+        )
+        check_optional_real("SoilLayer.K0", self.K0, lo=0.0, hi=10.0, hi_open=True)
+        check_choice("SoilLayer.scheme", self.scheme, ("implicit", "explicit"))
+        check_optional_real("SoilLayer.unit_weight_sat", self.unit_weight_sat, lo=0.0, unit="N/m^3")
+        check_choice("SoilLayer.drainage", self.drainage, DRAINAGE)
+        check_real("SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, hi_open=True, unit="(nu <= nu_u < 0.5)")
+        if self.c == 0.0 and self.phi_deg == 0.0:
+            raise ValueError(
+                "SoilLayer: c=0 and phi_deg=0 give a soil without strength; need c > 0 or "
+                "phi_deg > 0 (or c=None for an elastic layer)"
+            )
+
+    def law(self) -> tuple[int, np.ndarray]:
+        if self.c is None:
+            return ELASTIC, elastic_params(self.E, self.nu)
+        return mohr_coulomb_params(self.E, self.nu, self.c, self.phi_deg, self.psi_deg, scheme=self.scheme)
+
+
+# ---------------------------------------------------------------------------------------------------------
 # geostatic initial stress
 # ---------------------------------------------------------------------------------------------------------
 def k0_jaky(phi_deg):
@@ -180,15 +290,22 @@ def k0_jaky(phi_deg):
 GAMMA_W = 9.81e3  # unit weight of water [N/m^3]
 
 
-def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, gamma_w=GAMMA_W):
+def geostatic_stress(
+    z,
+    layers: list[SoilLayer],
+    surcharge: float = 0.0,
+    z_surface: float = 0.0,
+    water_table: float | None = None,
+    gamma_w: float = GAMMA_W,
+) -> np.ndarray:
     """Geostatic (effective) stress [sxx, szz, txz, syy] (tension positive) at ``z`` (any shape, z upwards).
 
     Parameters
     ----------
     z : array of z coordinates of the points (e.g. ``SoilQ8.integration_points()[..., 1]``), <= z_surface
-    layers : list of dicts from the surface down, each with ``thickness`` [m], ``gamma`` [N/m^3], optionally
-        ``gamma_sat`` [N/m^3] (unit weight below the water table; default ``gamma``) and either ``K0`` or
-        ``phi_deg`` (then K0 = 1 - sin φ); the last layer extends downwards without limit
+    layers : list of :class:`SoilLayer` from the surface down; used are ``thickness`` [m], ``unit_weight``
+        [N/m^3], ``unit_weight_sat`` [N/m^3] (below the water table; None: ``unit_weight``) and ``K0`` (None:
+        1 - sin φ from ``phi_deg``); the last layer extends downwards without limit
     surcharge : uniform vertical pressure on the surface [Pa] (>= 0, compression)
     z_surface : z of the ground surface [m]
     water_table : depth of the water table below the surface [m], or None (dry); negative: free water
@@ -218,27 +335,18 @@ def geostatic_stress(z, layers, surcharge=0.0, z_surface=0.0, water_table=None, 
     k0 = np.zeros(z.shape)
     top = 0.0
     for i, lay in enumerate(layers):
-        gamma = float(lay["gamma"])
-        gamma_sat = float(lay.get("gamma_sat") if lay.get("gamma_sat") is not None else gamma)
-        if gamma < 0.0 or gamma_sat < 0.0:
-            raise ValueError(
-                f"layers[{i}] gamma and gamma_sat must be >= 0 (unit weights, N/m^3), got "
-                f"{gamma}, {gamma_sat}"
-            )
+        # a SoilLayer has checked its own ranges (unit weights >= 0, thickness > 0, 0 <= K0 < 10)
+        check_instance(f"layers[{i}]", lay, SoilLayer)
+        gamma = float(lay.unit_weight)
+        gamma_sat = float(gamma if lay.unit_weight_sat is None else lay.unit_weight_sat)
         if water_table is not None and gamma_sat < gamma_w:
             raise ValueError(
-                f"layers[{i}]['gamma_sat'] = {gamma_sat} N/m^3 is below the unit weight of water "
+                f"layers[{i}].unit_weight_sat = {gamma_sat} N/m^3 is below the unit weight of water "
                 f"{gamma_w}: the buoyant weight would be negative"
             )
-        K0 = lay.get("K0")
-        if K0 is None:
-            K0 = k0_jaky(lay["phi_deg"])
-        if not (0.0 <= K0 < 10.0):
-            raise ValueError(f"layers[{i}] K0 must lie in [0, 10), got {K0}")
+        K0 = k0_jaky(lay.phi_deg) if lay.K0 is None else lay.K0
         last = i == len(layers) - 1
-        t = math.inf if last else float(lay["thickness"])
-        if not last and t <= 0.0:
-            raise ValueError(f"layers[{i}]['thickness'] must be > 0, got {t}")
+        t = math.inf if last else float(lay.thickness)
         inside = (depth >= top - 1e-12) & ((depth <= top + t) if last else (depth < top + t))
         # dry part of the layer above the table, buoyant part below it
         dry = np.clip(np.minimum(depth, d_w) - top, 0.0, t)
