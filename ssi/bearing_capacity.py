@@ -213,8 +213,9 @@ def push_footing(
 ) -> dict:
     """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
     first steps smaller: lambda_i = (i/n)^grading) with ``ssi.solver.run`` and ``settings`` (default
-    :func:`footing_settings`). Returns a dict with settlement [m], q [Pa], q_u (the largest pressure
-    reached) [Pa], iterations per step, wall time [s], and the failure report if the solver stopped.
+    :func:`footing_settings`). Returns a dict with settlement [m], q [Pa], q_u [Pa] (the largest pressure
+    reached by a state of the rate-independent law, see ``Result.rate_independent_steps``), iterations per
+    step, wall time [s], and the failure report if the solver stopped.
     """
     check_instance("scene", scene, FootingScene)
     n_steps = check_int("n_steps", n_steps, lo=1)
@@ -235,7 +236,7 @@ def push_footing(
     return dict(
         settlement=s,
         q=q,
-        q_u=float(q.max()),
+        q_u=float(q[res.rate_independent_steps()].max()),  # a viscous state's overstress is not capacity
         iterations=list(res.iterations[1:]),
         n_iterations=int(sum(res.iterations[1:])),
         wall_time=wall,

@@ -21,8 +21,8 @@ Layout::
     /steps/state/<group>            (n_kept, ...) committed integration-point states
     /steps/state_step               (n_kept,) the step each kept state belongs to
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
-            load_factor, u_origin, f_int_origin; attrs cuts, wall_time, factorizations, status,
-            limit_load_factor            (only when the result had a solver result)
+            step_viscosity, load_factor, u_origin, f_int_origin; attrs cuts, wall_time, factorizations,
+            status, limit_load_factor    (only when the result had a solver result)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
     /phases/<i>                     a phased SceneResult's phase i: attrs name, first, last (step indices);
@@ -247,6 +247,7 @@ def _write_solver(grp, res, u, states, names):
     for key in ("cuts", "wall_time", "factorizations"):
         grp.attrs[key] = getattr(res, key)
     grp["stiffness"] = np.asarray(res.stiffness, np.float64)
+    grp["step_viscosity"] = np.asarray(res.step_viscosity, np.float64)
     grp.attrs["status"] = res.status
     grp.attrs["limit_load_factor"] = np.nan if res.limit_load_factor is None else res.limit_load_factor
     for key in ("u_origin", "f_int_origin"):
@@ -453,6 +454,8 @@ def _solver_result(model, rec, lam, u, states):
         residuals=_split(rec["residuals"], rec["residuals_counts"]),
         energies=_split(rec["energies"], rec["energies_counts"]),
         stiffness=list(rec.get("stiffness", [])),
+        # a file written before the field existed: its steps read as rate independent, as they were then
+        step_viscosity=list(rec.get("step_viscosity", np.zeros(len(rec["iterations"])))),
         cuts=int(rec["cuts"]),
         wall_time=float(rec["wall_time"]),
         factorizations=int(rec["factorizations"]),

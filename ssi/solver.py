@@ -187,6 +187,8 @@ class Result:
     residuals: list = field(default_factory=list)  # per step: relative force norm of every iteration
     energies: list = field(default_factory=list)  # per step: relative energy norm of every iteration
     stiffness: list = field(default_factory=list)  # per step: current stiffness parameter (step 0: nan)
+    step_viscosity: list = field(default_factory=list)  # per step: the Duvaut-Lions tau it was solved with
+    # (0: a state of the rate-independent law; > 0: a viscous state, which carries overstress)
     cuts: int = 0
     wall_time: float = 0.0
     factorizations: int = 0
@@ -209,6 +211,14 @@ class Result:
     @property
     def collapsed(self) -> bool:
         return self.status == LIMIT_LOAD
+
+    def rate_independent_steps(self) -> np.ndarray:
+        """Indices of the steps that are equilibrium states of the rate-independent law: all of them, except
+        the viscous states of a viscous path (its fallback stretch and its relaxation stages before the last).
+        Read extreme values of a path (the largest load reached) over these only: a viscous state's
+        overstress carries load the material cannot (measured: chapter 10's psi = 0 push, 1.62 x Prandtl on
+        its viscous stretch against 0.993 relaxed)."""
+        return np.flatnonzero(np.asarray(self.step_viscosity) == 0.0)
 
     def displacement(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
         """(n_steps + 1, n_ids) history of a displacement component [m] (rad for "alpha")."""
@@ -295,6 +305,10 @@ def run(
 
 def _has_viscosity(model) -> bool:
     return any(hasattr(g, "viscosity") for g in model.groups)
+
+
+def _viscosity_in_force(model) -> float:
+    return max((g.viscosity for g in model.groups if hasattr(g, "viscosity")), default=0.0)
 
 
 def _set_viscosity(model, tau):
@@ -499,7 +513,17 @@ def _raise_relaxation_failure(path, failure, lam_lo, stiff):
 class _Snapshot:
     """A committed path (see :meth:`_Path.save`): copies of the result's per-step lists and the state."""
 
-    LISTS = ("load_factor", "u", "f_int", "states", "iterations", "residuals", "energies", "stiffness")
+    LISTS = (
+        "load_factor",
+        "u",
+        "f_int",
+        "states",
+        "iterations",
+        "residuals",
+        "energies",
+        "stiffness",
+        "step_viscosity",
+    )
     lists: dict
     u: np.ndarray
     states: list
@@ -652,6 +676,7 @@ class _Path:
             outcome["residuals"],
             outcome["energies"],
             self.settings,
+            _viscosity_in_force(self.model),
         )
         self.result.stiffness.append(self.measure.stiffness())
         residual = outcome["residuals"][-1] if outcome["residuals"] else 0.0
@@ -821,8 +846,9 @@ def _start(model, settings, start=None, loads=None):
     return system, f_ref, f_dead, states, u, result, fac_k0
 
 
-def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings):
+def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings, viscosity=0.0):
     result.load_factor.append(lam)
+    result.step_viscosity.append(float(viscosity))
     result.u.append(u.copy())
     result.f_int.append(f_int.copy())
     if settings.keep_states or not result.states:
@@ -1184,6 +1210,7 @@ def run_arc_length(
             outcome["residuals"],
             outcome["energies"],
             settings,
+            _viscosity_in_force(model),
         )
         result.stiffness.append(np.nan)
         if settings.verbose:

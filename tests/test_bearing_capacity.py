@@ -217,3 +217,16 @@ def test_rigid_footing_layers_are_weightless_mohr_coulomb_soil_layers():
         rigid_footing(layers=[(2.0, 20e6, C, 0.0, 0.0)])  # the former tuple form
     with pytest.raises(ValueError, match=r"layers\[1\] must be a weightless Mohr-Coulomb layer"):
         rigid_footing(layers=[SoilLayer(2.0, E=20e6, nu=0.3, c=C), SoilLayer(3.0, E=20e6, nu=0.3)])
+
+
+def test_the_largest_pressure_of_a_viscous_push_is_read_over_rate_independent_states_only():
+    """A viscous path carries overstress: its intermediate pressures are not capacity. q_u is the largest
+    pressure of the states solved with tau = 0 (here: the initial and the relaxed final state)."""
+    scene = chapter10_footing(psi_deg=0.0, h_fine=0.25, settle=0.06)
+    out = push_footing(scene, n_steps=20, settings=Settings(viscosity=1.0, stepping="fixed"))
+    res = out["result"]
+    assert out["failure"] is None
+    assert np.all(np.asarray(res.step_viscosity)[1:-1] > 0.0)  # every step but the relaxed last is viscous
+    assert res.rate_independent_steps().tolist() == [0, res.n_steps]
+    assert out["q"].max() > 1.02 * out["q"][-1]  # the viscous stretch overshoots the relaxed pressure ...
+    assert out["q_u"] == out["q"][-1]  # ... and q_u does not take it
