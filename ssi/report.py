@@ -26,7 +26,11 @@ def _row_file(row_id: str):
 def _write(row_id, metric, value, tolerance, status):
     if not row_id.replace("_", "").isalnum():
         raise ValueError(f"report id must be alphanumeric with underscores, got {row_id!r}")
-    with open(_row_file(row_id), "w", newline="") as fh:
+    from .results import atomic_path
+
+    # written whole or not at all: `make test` runs chapters in parallel processes, and a row file cut short
+    # by a crash must not be merged as a truncated row
+    with atomic_path(_row_file(row_id), overwrite=True) as tmp, open(tmp, "w", newline="") as fh:
         csv.writer(fh).writerow([row_id, metric, value, tolerance, status])
 
 
