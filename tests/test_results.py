@@ -101,6 +101,15 @@ def nonlinear():
 
 
 @pytest.fixture(scope="module")
+def viscous():
+    """A viscous path relaxed at the end (tau = 1 per increment): its per-step viscosities and its relaxation
+    count belong to the result as much as its displacements."""
+    out = mc_scene().build().solve(n_steps=4, settings=Settings(viscosity=1.0))
+    assert out.solver_result.relaxed_steps is not None and max(out.solver_result.step_viscosity) > 0.0
+    return out
+
+
+@pytest.fixture(scope="module")
 def linear():
     scene = mc_scene()
     scene.layers[0] = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3)
@@ -131,7 +140,7 @@ def test_strip_forces_and_paths(nonlinear):
 
 
 # ---- result files --------------------------------------------------------------------------------------
-@pytest.mark.parametrize("which", ["nonlinear", "linear", "phased"])
+@pytest.mark.parametrize("which", ["nonlinear", "linear", "phased", "viscous", "collapsed"])
 def test_result_file_round_trip_is_exact(which, request, tmp_path):
     result = request.getfixturevalue(which)
     path = write_result(tmp_path / "r.h5", result, Settings())
