@@ -53,12 +53,16 @@ lint: $(STAMP)
 SLOW_FIRST := 11_foundation_scene 13_accuracy 10_bearing_capacity 15_results_and_files 06_solver \
 	12_engineering_scenes 08_rc_beam 02e_trade 14_uncertainty
 SLOW_TEST_FILES := tests/test_zoo.py tests/test_results.py tests/test_sweep.py
-TEST_ORDER := $(filter $(NOTEBOOKS),$(patsubst %,build/notebooks/%.ipynb,$(SLOW_FIRST))) \
-	$(filter-out $(patsubst %,build/notebooks/%.ipynb,$(SLOW_FIRST)),$(NOTEBOOKS)) \
+# the notebooks of the chapters named in $(1) first, in that order, then the others
+notebooks_slow_first = $(filter $(NOTEBOOKS),$(patsubst %,build/notebooks/%.ipynb,$(1))) \
+	$(filter-out $(patsubst %,build/notebooks/%.ipynb,$(1)),$(NOTEBOOKS))
+TEST_ORDER := $(call notebooks_slow_first,$(SLOW_FIRST)) \
 	$(SLOW_TEST_FILES) $(filter-out $(SLOW_TEST_FILES),$(sort $(wildcard tests/test_*.py)))
+# two worker processes, each fed one test at a time in the order given
+XDIST := -n 2 --dist load --maxschedchunk 1
 
 test: $(STAMP) notebooks
-	SSI_FAST=1 $(BIN)/python -m pytest -n 2 --dist load --maxschedchunk 1 --durations=15 \
+	SSI_FAST=1 $(BIN)/python -m pytest $(XDIST) --durations=15 \
 	--nbmake --nbmake-timeout=900 $(TEST_ORDER); \
 	status=$$?; echo "make_test_s: $(ELAPSED)   (budget 240 s)"; exit $$status
 
@@ -66,12 +70,11 @@ test: $(STAMP) notebooks
 # mode, measured: 06 ~600 s, 13 ~300 s, 10 ~210 s, 08 ~120 s, 11 ~100 s); report rows are one file per id,
 # written atomically, so the workers cannot mix them
 FULL_SLOW_FIRST := 06_solver 13_accuracy 10_bearing_capacity 08_rc_beam 11_foundation_scene
-REPRODUCE_ORDER := $(filter $(NOTEBOOKS),$(patsubst %,build/notebooks/%.ipynb,$(FULL_SLOW_FIRST))) \
-	$(filter-out $(patsubst %,build/notebooks/%.ipynb,$(FULL_SLOW_FIRST)),$(NOTEBOOKS))
+REPRODUCE_ORDER := $(call notebooks_slow_first,$(FULL_SLOW_FIRST))
 
 reproduce: $(STAMP) notebooks
 	rm -rf figures/report.d
-	SSI_FAST=0 $(BIN)/python -m pytest -n 2 --dist load --maxschedchunk 1 --durations=0 \
+	SSI_FAST=0 $(BIN)/python -m pytest $(XDIST) --durations=0 \
 	--nbmake --nbmake-timeout=3600 --overwrite $(REPRODUCE_ORDER); \
 	status=$$?; $(BIN)/python -m ssi.report; report=$$?; \
 	echo "make_reproduce_s: $(ELAPSED)   (budget 360 s)"; \
