@@ -35,6 +35,7 @@ reference on purpose: in a deep or heavy block they would make a small structura
 """
 
 import time
+from collections import deque
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -552,7 +553,8 @@ class _Path:
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
         self.flow = np.nan  # flow stiffness of the last relaxation stage that ended unsettled
         self.fallback_leads = 0  # increments for which the fallback method is tried first
-        self.advances = []  # auto stepping: |delta lambda| of every attempt (0 for a failed one)
+        self.advances = deque(maxlen=CRAWL_WINDOW)  # auto stepping: |delta lambda| of the last attempts (0
+        # for a failed one)
         self.crawl_may_go_viscous = True  # a crawling path may try the viscous fallback (see _stuck)
         self.crawl_start = None  # the committed path where a crawl went viscous, to come back to
 
@@ -602,8 +604,9 @@ class _Path:
             self.advances.append(0.0)
             self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
             self.step = 0.5 * abs(lam_next - self.lam)
-            crawling = self.crawl_may_go_viscous and self._crawling() and self._can_go_viscous()
-            crawling = crawling and not self._at_limit()  # a flattened path crawls on to min_step
+            # a crawl on a flattened path goes on to min_step (see _at_limit)
+            crawling = self.crawl_may_go_viscous and self._crawling()
+            crawling = crawling and self._can_go_viscous() and not self._at_limit()
             if crawling or self.step < s.min_step * self.scale * (1.0 - 1e-9):
                 if not self._stuck(outcome, lam_next, crawling):
                     return
@@ -716,7 +719,7 @@ class _Path:
         Measured on chapter 11's foundation at h = 0.125 m: from lambda = 0.75 to 0.96 the path took 75
         increments and 50 cuts (each a stalled full-Newton run, 5 s) before it reached ``min_step``; the
         viscous path then went to lambda = 1 and relaxed in 16 increments."""
-        recent = self.advances[-CRAWL_WINDOW:]
+        recent = self.advances
         return (
             len(recent) == CRAWL_WINDOW
             and recent.count(0.0) >= CRAWL_WINDOW // 3
