@@ -40,6 +40,10 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
   the layer(s) above depth D (the backfill).
 * **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
+* **A rigid footing and the half model**: ``foundation`` may be a :class:`RigidFooting` (no plate, no
+  interface: the soil nodes under it pushed by a ``Settlement``, rough or smooth), and ``symmetric=True``
+  models only the half x >= 0 of a scene symmetric about x = 0 (u = 0 on the axis) -- the bearing-capacity
+  scenes of ``ssi.bearing_capacity`` are such scenes.
 * **Phases that change the soil**: ``Phase.excavate`` removes :class:`Excavation` regions (the forces the
   removed soil exerted fall to zero over the phase), ``Phase.drainage`` switches a layer between drained and
   undrained_A; ``water_table < 0`` is free water above the ground (pore pressure, not effective stress). A
@@ -167,7 +171,6 @@ class RigidFooting:
     footing carries a ``Scene.surcharge`` over its own width through that reaction; it takes no other load
     (a column, a strip load or the strip's weight needs a plate :class:`Foundation`) and no ``embedment``.
     """
-
 
     x0: float
     x1: float
