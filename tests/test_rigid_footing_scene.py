@@ -15,6 +15,7 @@ import pytest
 
 from ssi.bearing_capacity import footing_scene, footing_settings, push_footing, rigid_footing
 from ssi.model import System
+from ssi.results import max_difference, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
     Contact,
@@ -298,3 +299,14 @@ def test_a_rigid_footing_at_rest_holds_its_base():
     footing_up = -built.contact_force(out)[-1]
     assert bottom_up + footing_up == pytest.approx(50e3 * 2.0, rel=1e-9)
     assert footing_up > 0.0  # the ground loaded beside drags the held base down: the footing holds it up
+
+
+def test_a_rigid_footing_result_file_reads_back_unchanged(tmp_path):
+    """The scene record of a symmetric rigid-footing scene rebuilds it: every quantity read back is the
+    written one (difference exactly 0) and the footing's reaction is the same."""
+    built = footing_scene(**CASES["smooth_surcharge"]).build()
+    out = built.solve(n_steps=3, settings=footing_settings())
+    back = read_result(write_result(tmp_path / "footing.h5", out))
+    assert max_difference(out, back) == (0.0, "")
+    assert back.built.scene.symmetric and isinstance(back.built.scene.foundation, RigidFooting)
+    assert np.array_equal(back.built.contact_force(back), built.contact_force(out))
