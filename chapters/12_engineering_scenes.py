@@ -160,10 +160,11 @@ record(
 # (`Settlement`, displacement control) until the pressure levels off; q_u is the largest mean contact
 # pressure. The finite-element value lies above the exact one by the mesh's discretisation error, which must
 # shrink with h. As a second, independent model on each mesh we run chapter 10's half-model footing
-# (`rigid_footing`: soil nodes pushed directly, no plate, no interface, half the mesh). Its error against
-# q N_q is an independent measure of this element size's discretisation error: the scene must agree with it
-# to 1 % (plate, interface and full model add no error of their own), so the tolerance of the recorded error
-# is the half model's error on the finest mesh plus 1 %, and the error must fall with h.
+# (`rigid_footing`, a `Scene` with a `RigidFooting` and `symmetric=True`: soil nodes pushed directly, no
+# plate, no interface, half the mesh). Its error against q N_q is an independent measure of this element
+# size's discretisation error: the scene must agree with it to 1 % (plate, interface and full model add no
+# error of their own), so the tolerance of the recorded error is the half model's error on the finest mesh
+# plus 1 %, and the error must fall with h.
 
 # %%
 PHI, Q_NQ = 30.0, 20e3

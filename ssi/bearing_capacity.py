@@ -7,20 +7,23 @@ Used by ``chapters/10_bearing_capacity.py``, ``tests/test_bearing_capacity.py`` 
 Geometry of the rigid footing: by symmetry only the half x >= 0 is modelled (u = 0 on x = 0): a block
 ``half_width`` wide and ``depth`` deep, the footing on 0 <= x <= B/2. The footing nodes get a prescribed
 settlement (w = -lambda * settle) and, for a rough base, u = 0; smooth: u free. The footing pressure is
-q = 2 R / B with R the vertical reaction of the half footing.
+q = 2 R / B with R the vertical reaction of the half footing. The model is a :class:`ssi.scene.Scene`
+(:func:`footing_scene`: ``symmetric=True``, a :class:`ssi.scene.RigidFooting`, a ``Settlement``), so the
+scene builder is the only place a soil block is set up.
 """
 
+import inspect
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .elements.soil_q8 import SoilQ8
 from .materials.soil_laws import mohr_coulomb_params, von_mises_params
-from .mesh import soil_block, structured_q8
+from .mesh import structured_q8
 from .model import Model
-from .scene import SoilLayer
+from .scene import BuiltScene, MeshSize, RigidFooting, Scene, Settlement, SoilLayer
 from .solver import NonConvergence, Settings, run
 from .supports import fix_block, soil_group, surface_pressure
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
@@ -45,15 +48,45 @@ def prandtl(c, phi_deg, q=0.0):
 
 @dataclass
 class FootingScene:
+    """A built footing model and what :func:`push_footing` reads off it: ``footing`` the node ids under the
+    (half) footing, ``B`` the footing width [m], ``info`` its parameters; ``built`` the
+    :class:`ssi.scene.BuiltScene` it came from (None for :func:`sg61_scene`, built by hand)."""
+
     model: Model
     soil: SoilQ8
     footing: np.ndarray  # node ids under the (half) footing
     B: float
     mesh: object
     info: dict
+    built: BuiltScene | None = None
 
 
-def rigid_footing(
+def rigid_footing(**options: object) -> FootingScene:
+    """Half model of a rigid strip footing of width ``B`` [m] on a weightless Mohr–Coulomb block: the scene of
+    :func:`footing_scene` (same keyword arguments ``options``, same defaults), built.
+
+    ``settle`` is the footing settlement at load factor 1 [m]. ``surcharge`` [Pa] acts on the ground surface
+    beside the footing and, as an isotropic initial stress (K0 = 1), everywhere (weightless soil in
+    equilibrium). ``layers``: optional list of :class:`ssi.scene.SoilLayer` from the surface down
+    (Mohr--Coulomb: ``c`` set; weightless: ``unit_weight`` 0), overriding the single material (for the
+    stiffness-contrast extreme); their thickness, E, nu, c, phi_deg and psi_deg are used (psi_deg None:
+    associated, psi = phi), with this function's ``scheme``, ``n_sub``, ``drift`` and K0 = 1.
+    """
+    args = inspect.signature(footing_scene).bind(**options)
+    args.apply_defaults()
+    p = args.arguments
+    built = footing_scene(**p).build()
+    info = {k: p[k] for k in _INFO_KEYS} | {"psi_deg": p["phi_deg"] if p["psi_deg"] is None else p["psi_deg"]}
+    info |= {"n_el": len(built.mesh.conn), "n_dof": built.model.n_dof}
+    return FootingScene(built.model, built.soil, built.footing_nodes, p["B"], built.mesh, info, built)
+
+
+# the arguments of footing_scene that FootingScene.info repeats (with psi_deg resolved, n_el and n_dof)
+_INFO_KEYS = ("B", "c", "phi_deg", "psi_deg", "E", "nu", "rough", "half_width", "depth", "h_fine", "scheme")
+_INFO_KEYS += ("n_sub", "drift", "surcharge")
+
+
+def footing_scene(
     B=2.0,
     c=10e3,
     phi_deg=20.0,
@@ -73,15 +106,11 @@ def rigid_footing(
     settle=0.1,
     n_gauss=2,
     layers=None,
-):
-    """Half model of a rigid strip footing of width ``B`` on a weightless Mohr–Coulomb block.
-
-    ``settle`` is the footing settlement at load factor 1 [m]. ``surcharge`` [Pa] acts on the ground surface
-    beside the footing and, as an isotropic initial stress, everywhere (weightless soil in equilibrium).
-    ``layers``: optional list of :class:`ssi.scene.SoilLayer` from the surface down (Mohr--Coulomb: ``c`` set;
-    weightless: ``unit_weight`` 0), overriding the single material (for the stiffness-contrast extreme); their
-    thickness, E, nu, c, phi_deg and psi_deg are used (psi_deg None: associated, psi = phi).
-    """
+) -> Scene:
+    """The :class:`ssi.scene.Scene` of :func:`rigid_footing` (same arguments, same units): a symmetric scene
+    (only the half x >= 0 modelled) ``2 half_width`` wide and ``depth`` deep, a :class:`RigidFooting` from
+    -B/2 to B/2 (``rough``) pushed by ``Settlement(settle)``, weightless layers with K0 = 1 (isotropic
+    initial stress under the ``surcharge``), the mesh ``MeshSize(h_fine, h_coarse, growth, n_gauss)``."""
     B = check_real("B", B, lo=0.0, lo_open=True, unit="m")
     half_width = check_real("half_width", half_width, lo=0.0, lo_open=True, unit="m")
     depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
@@ -98,67 +127,27 @@ def rigid_footing(
     check_bool("rough", rough)
     check_bool("drift", drift)
     check_choice("n_gauss", n_gauss, (2, 3))
-    if layers is not None:
-        for i, lay in enumerate(layers):
-            check_instance(f"layers[{i}]", lay, SoilLayer)
-            if lay.c is None or lay.unit_weight != 0.0:
-                raise ValueError(
-                    f"layers[{i}] must be a weightless Mohr-Coulomb layer (c set, unit_weight 0) for the "
-                    f"rigid footing, got c={lay.c!r}, unit_weight={lay.unit_weight!r}"
-                )
-    thick = None if layers is None else [lay.thickness for lay in layers]
-    mesh = soil_block(
-        half_width,
-        depth,
-        thick,
-        foundation=(0.0, 0.5 * B),
-        h_fine=h_fine,
-        h_coarse=h_coarse,
-        growth=growth,
-        x_left=0.0,
-    )
-    model = Model()
-    ids = model.add_nodes(mesh.xy, ndof=2)
     if layers is None:
-        mats = [mohr_coulomb_params(E, nu, c, phi_deg, psi_deg, scheme=scheme, n_sub=n_sub, drift=drift)]
-    else:
-        mats = [
-            mohr_coulomb_params(
-                lay.E, lay.nu, lay.c, lay.phi_deg, lay.psi_deg, scheme=scheme, n_sub=n_sub, drift=drift
+        mohr_coulomb_params(E, nu, c, phi_deg, psi_deg, scheme=scheme, n_sub=n_sub, drift=drift)  # its checks
+        layers = [SoilLayer(depth, E=E, nu=nu, c=c, phi_deg=phi_deg, psi_deg=psi_deg)]
+    for i, lay in enumerate(layers):
+        check_instance(f"layers[{i}]", lay, SoilLayer)
+        if lay.c is None or lay.unit_weight != 0.0:
+            raise ValueError(
+                f"layers[{i}] must be a weightless Mohr-Coulomb layer (c set, unit_weight 0) for the "
+                f"rigid footing, got c={lay.c!r}, unit_weight={lay.unit_weight!r}"
             )
-            for lay in layers
-        ]
-    soil = soil_group(model, mesh, mats, ids=ids, el_mat=mesh.el_layer, n_gauss=n_gauss)
-    if surcharge:
-        s0 = np.zeros((soil.n_el, len(soil.gw), 4))
-        s0[..., [0, 1, 3]] = -surcharge
-        soil.initial_stress = s0
-    fix_block(model, mesh, ids)
-    footing = mesh.nodes_between(0.0, 0.5 * B)
-    model.prescribe(footing, "w", -settle)
-    if rough:
-        model.fix(footing, "u")
-    if surcharge:
-        surface_pressure(model, mesh, 0.5 * B, half_width, surcharge, ids=ids, dead=True)
-    info = dict(
-        B=B,
-        c=c,
-        phi_deg=phi_deg,
-        psi_deg=phi_deg if psi_deg is None else psi_deg,
-        E=E,
-        nu=nu,
-        rough=rough,
-        half_width=half_width,
+    layers = [replace(lay, K0=1.0, scheme=scheme, n_sub=n_sub, drift=drift) for lay in layers]
+    return Scene(
+        width=2.0 * half_width,
         depth=depth,
-        h_fine=h_fine,
-        scheme=scheme,
-        n_sub=n_sub,
-        drift=drift,
+        layers=layers,
+        foundation=RigidFooting(-0.5 * B, 0.5 * B, rough=rough),
+        loads=[Settlement(settle)],
+        mesh=MeshSize(h_fine=h_fine, h_coarse=h_coarse, growth=growth, n_gauss=n_gauss),
         surcharge=surcharge,
-        n_el=len(mesh.conn),
-        n_dof=model.n_dof,
+        symmetric=True,
     )
-    return FootingScene(model, soil, footing, B, mesh, info)
 
 
 # chapter 10's footing: B = 2 m, c = 10 kPa, phi = 20 deg, E = 20 MPa, nu = 0.3, rough, 6 m x 5 m half block

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .scene import Foundation
 from .section import Section, layered
 from .solver import Settings
 
@@ -140,7 +141,7 @@ def refined_scene(scene, mesh: int = 0, layers: int = 0):
         scene,
         mesh=replace(scene.mesh, h_fine=scene.mesh.h_fine / 2**mesh, h_coarse=scene.mesh.h_coarse / 2**mesh),
     )
-    if layers and scene.foundation is not None:
+    if layers and isinstance(scene.foundation, Foundation):  # a plate strip: split its layers
         out = replace(
             out,
             foundation=replace(scene.foundation, section=split_section(scene.foundation.section, 2**layers)),
@@ -287,7 +288,7 @@ def _check_refine(refine, scene):
     bad = [r for r in refine if r not in REFINEMENTS]
     if bad or not refine:
         raise ValueError(f"refine must be a non-empty subset of {REFINEMENTS}, got {refine}")
-    if scene.foundation is None:
+    if not isinstance(scene.foundation, Foundation):  # no plate strip: no layers to split
         refine = tuple(r for r in refine if r != "layers")
     return refine
 

@@ -40,6 +40,10 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
   the layer(s) above depth D (the backfill).
 * **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
+* **A rigid footing and the half model**: ``foundation`` may be a :class:`RigidFooting` (no plate, no
+  interface: the soil nodes under it pushed by a ``Settlement``, rough or smooth), and ``symmetric=True``
+  models only the half x >= 0 of a scene symmetric about x = 0 (u = 0 on the axis) -- the bearing-capacity
+  scenes of ``ssi.bearing_capacity`` are such scenes.
 * **Phases that change the soil**: ``Phase.excavate`` removes :class:`Excavation` regions (the forces the
   removed soil exerted fall to zero over the phase), ``Phase.drainage`` switches a layer between drained and
   undrained_A; ``water_table < 0`` is free water above the ground (pore pressure, not effective stress). A
@@ -77,7 +81,7 @@ from .section import Section
 from .shapes import lagrange3
 from .solver import NonConvergence, Result, Settings, run
 from .supports import fix_block
-from .validate import check_choice, check_instance, check_int, check_optional_real, check_real
+from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 
 if TYPE_CHECKING:  # for annotations only: ssi.estimate imports this module
     from .estimate import TargetResult
@@ -155,6 +159,29 @@ class Foundation:
         check_real("Foundation.kappa", self.kappa, lo=0.0, hi=1.0, lo_open=True)
         _check_integration("Foundation.integration", self.integration)
         check_real("Foundation.self_weight", self.self_weight, lo=0.0, unit="N/m^2")
+
+
+@dataclass(frozen=True)
+class RigidFooting:
+    """A rigid strip footing from ``x0`` to ``x1`` [m] on the ground, without a plate or an interface: the
+    soil nodes under it are its base, held at rest (w = 0) until a :class:`Settlement` (``x=None``) moves
+    them all by the same w -- a displacement-controlled push, whose reaction is the footing's load
+    (:meth:`BuiltScene.contact_force`). ``rough=True``: the base also holds the soil horizontally (u = 0,
+    the full adhesion of a rough base); ``rough=False``: smooth, u free (no shear on the base). The
+    footing carries a ``Scene.surcharge`` over its own width through that reaction; it takes no other load
+    (a column, a strip load or the strip's weight needs a plate :class:`Foundation`) and no ``embedment``.
+    """
+
+    x0: float
+    x1: float
+    rough: bool = True
+
+    def __post_init__(self):
+        x0 = check_real("RigidFooting.x0", self.x0, unit="m")
+        x1 = check_real("RigidFooting.x1", self.x1, unit="m")
+        if not x0 < x1:
+            raise ValueError(f"RigidFooting.x0 must be < x1, got x0={self.x0!r}, x1={self.x1!r}")
+        check_bool("RigidFooting.rough", self.rough)
 
 
 @dataclass(frozen=True)
@@ -363,13 +390,32 @@ class Scene:
     strip carries it over its own width); ``phases`` after ``loads``; ``embedment`` D [m] of the strip's base
     below the ground (a layer boundary); ``water_table`` [m] depth of the water table below the ground (None:
     dry; negative: free water stands -water_table above the ground, ponding); ``gamma_w`` [N/m^3] unit weight
-    of water.
+    of water; ``symmetric``: model only the half x >= 0 (see below).
+
+    ``foundation`` is a plate :class:`Foundation` (resting on the soil through ``contact``) or a
+    :class:`RigidFooting` (its base is the soil's surface nodes, pushed by a :class:`Settlement`; no contact).
+
+    ``symmetric=True``: the scene is symmetric about x = 0 and only its half x >= 0 is modelled, the block
+    [0, width/2] with the axis x = 0 on vertical rollers (u = 0 and no shear across it: the conditions of a
+    displacement field symmetric about the axis), like the block's far side. ``width`` and the foundation's
+    x0, x1 describe the whole scene; the foundation must be centred on the axis (x0 = -x1) and be a
+    RigidFooting (a plate strip's half would need its rotation held on the axis: not built) or absent;
+    loads and excavations are given on the modelled half (their mirror images act on the other). The model's
+    forces are those of the half; :meth:`BuiltScene.contact_force` reports the whole footing's.
+
+    Initial stress of weightless soil: a layer with ``unit_weight`` 0 under a ``surcharge`` q starts from the
+    uniform stress szz = -q, sxx = syy = K0 szz, txz = 0. Without body forces every uniform stress is in
+    equilibrium with a uniform pressure on the ground, so the horizontal stress is the modeller's choice,
+    made through the layer's ``K0`` (default Jaky's 1 - sin phi, the ratio of a soil consolidated under its
+    own weight): ``K0=1`` starts the soil isotropic, on the hydrostatic axis and as far from the
+    Mohr--Coulomb surface as that mean stress allows (the start of the rigid-footing bearing-capacity scenes,
+    :func:`ssi.bearing_capacity.rigid_footing`).
     """
 
     width: float
     depth: float
     layers: list
-    foundation: Foundation | None = None
+    foundation: "Foundation | RigidFooting | None" = None
     contact: Contact | list | None = None
     loads: list = field(default_factory=list)
     mesh: MeshSize = field(default_factory=MeshSize)
@@ -378,6 +424,7 @@ class Scene:
     embedment: float = 0.0
     water_table: float | None = None
     gamma_w: float = GAMMA_W
+    symmetric: bool = False
 
     def __post_init__(self):
         width = check_real("Scene.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -385,7 +432,8 @@ class Scene:
         check_real("Scene.surcharge", self.surcharge, lo=0.0, unit="Pa")
         _check_list("Scene.layers", self.layers, SoilLayer, min_len=1)
         _check_list("Scene.loads", self.loads, LOAD_TYPES)
-        check_instance("Scene.foundation", self.foundation, Foundation, optional=True)
+        check_instance("Scene.foundation", self.foundation, (Foundation, RigidFooting), optional=True)
+        check_bool("Scene.symmetric", self.symmetric)
         if isinstance(self.contact, list | tuple) and CONTACT_SEGMENT_TYPES:
             _check_list("Scene.contact", self.contact, CONTACT_SEGMENT_TYPES, min_len=1)
         else:
@@ -410,10 +458,14 @@ class Scene:
                 f"Scene.foundation (x0={f.x0!r}, x1={f.x1!r}) must lie within the block "
                 f"[-width/2, width/2] = [{-0.5 * width:g}, {0.5 * width:g}] (Scene.width={self.width!r})"
             )
-        if self.mesh.h_fine > x1 - x0:
+        if self.symmetric:
+            _check_symmetric(self)
+        a, b = self._footprint()
+        if self.mesh.h_fine > b - a:
             raise ValueError(
                 f"MeshSize.h_fine={self.mesh.h_fine!r} must be <= the foundation width x1 - x0 = "
-                f"{x1 - x0:g} m (at least one element under the foundation)"
+                f"{b - a:g} m{' of the modelled half' if self.symmetric else ''} (at least one element under "
+                "the foundation)"
             )
         for i, load in enumerate(self.loads):
             if isinstance(load, ColumnLoad) and f is not None and not x0 <= load.x <= x1:
@@ -425,8 +477,10 @@ class Scene:
         """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads."""
         if not self.layers:
             raise ValueError("layers: the scene needs at least one soil layer")
-        if self.foundation is not None and self.contact is None:
+        if isinstance(self.foundation, Foundation) and self.contact is None:
             raise ValueError("contact: a foundation needs a Contact (interface) to rest on the soil")
+        if isinstance(self.foundation, RigidFooting):
+            _check_rigid_footing(self)
         strip_loads = [ld for ld in self._all_loads() if not isinstance(ld, SurfacePressure)]
         if self.foundation is None and strip_loads:
             raise ValueError(
@@ -438,16 +492,16 @@ class Scene:
         _check_phases(self)
         _warn_implausible_units(self)
         f = self.foundation
-        x0, x1 = (f.x0, f.x1) if f else (-0.25 * self.width, 0.25 * self.width)
         mesh_layers = self._mesh_layers()
         mesh = soil_block(
-            self.width,
+            0.5 * self.width if self.symmetric else self.width,
             self.depth,
             [t for t, _, _ in mesh_layers],
-            (x0, x1),
+            self._footprint(),
             self.mesh.h_fine,
             self.mesh.h_coarse,
             self.mesh.growth,
+            x_left=self._block()[0],
             breaks=self._breaks(),
             embedment=self.embedment,
             edges=sorted({v for ph in self.phases for ex in ph.excavate for v in (ex.x0, ex.x1)}),
@@ -476,13 +530,27 @@ class Scene:
         owner = [next(i for i, lay in enumerate(self.layers) if lay is own) for _, own, _ in mesh_layers]
         built.element_layer = np.array(owner, np.int64)[mesh.el_layer]
         built.geostatic_load = self._ground_loads(built)
-        if f is not None:
+        if isinstance(f, Foundation):
             self._add_foundation(built)
+        elif isinstance(f, RigidFooting):
+            self._add_rigid_footing(built, soil_ids)
         model.add_element_load(np.arange(model.n_dof)[None], built.geostatic_load[None], dead=True)
         _check_excavations(built)
         for load in self.loads:
             built._register(load)
         return built
+
+    def _block(self) -> tuple[float, float]:
+        """(x_left, x_right) [m] of the modelled block: the whole width centred on x = 0, or its half x >= 0
+        of a symmetric scene."""
+        return (0.0 if self.symmetric else -0.5 * self.width), 0.5 * self.width
+
+    def _footprint(self) -> tuple[float, float]:
+        """(x0, x1) [m] of the foundation in the modelled block (of a symmetric scene: its half x >= 0);
+        without a foundation the middle half of the ground, where the mesh is finest."""
+        f = self.foundation
+        x0, x1 = (f.x0, f.x1) if f else (-0.25 * self.width, 0.25 * self.width)
+        return (max(x0, 0.0) if self.symmetric else x0), x1
 
     def _all_loads(self):
         return list(self.loads) + [ld for ph in self.phases for ld in ph.loads]
@@ -500,12 +568,12 @@ class Scene:
                 out += [v for v in (load.x0, load.x1) if v is not None]
             elif isinstance(load, Settlement) and load.x is not None:
                 out += list(load.x)
-        bad = [x for x in out if not (-0.5 * self.width <= x <= 0.5 * self.width)]
+        lo, hi = self._block()
+        bad = [x for x in out if not (lo <= x <= hi)]
         if bad:
-            raise ValueError(
-                f"loads: x={bad[0]} lies outside the block [{-0.5 * self.width}, {0.5 * self.width}] m"
-            )
-        if f is not None:
+            half = " (the modelled half of a symmetric scene)" if self.symmetric else ""
+            raise ValueError(f"loads: x={bad[0]} lies outside the block [{lo}, {hi}] m{half}")
+        if isinstance(f, Foundation):
             out += [v for seg in _segments(self) for v in (seg.x0, seg.x1)]
         return out
 
@@ -541,13 +609,10 @@ class Scene:
         the walls of an embedded strip's trench."""
         mesh, model = built.mesh, built.model
         f_vec = np.zeros(model.n_dof)
-        half = 0.5 * self.width
+        lo, hi = self._block()
         if self.surcharge:
-            ranges = (
-                [(-half, half)]
-                if self.foundation is None
-                else [(-half, self.foundation.x0), (self.foundation.x1, half)]
-            )
+            a, b = self._footprint()
+            ranges = [(lo, hi)] if self.foundation is None else [(lo, a), (b, hi)]
             for a, b in ranges:
                 if b - a > 1e-12:
                     nodes, f = surface_pressure_forces(mesh, a, b)
@@ -609,6 +674,15 @@ class Scene:
         if p0:
             scatter_vector(plate.edofs, plate.distributed_load(-p0, comp="w"), built.geostatic_load)
 
+    def _add_rigid_footing(self, built, soil_ids):
+        """The soil nodes under a :class:`RigidFooting` are its base: held at rest (w = 0; rough: u = 0 too)
+        until a Settlement prescribes their w (:meth:`BuiltScene.load_effect`)."""
+        nodes = soil_ids[built.mesh.nodes_between(*self._footprint())]
+        if self.foundation.rough:
+            built.model.fix(nodes, "u")
+        built.model.fix(nodes, "w")
+        built.footing_nodes = nodes
+
     def _has_geostatic_stress(self):
         return bool(self.surcharge) or any(lay.unit_weight or lay.unit_weight_sat for lay in self.layers)
 
@@ -639,6 +713,39 @@ def _segment_at(segments, x):
         if seg.x0 <= x <= seg.x1:
             return seg
     raise ValueError(f"x={x}: no contact segment covers this point of the strip")
+
+
+def _check_symmetric(scene):
+    """A symmetric scene: a RigidFooting (or no foundation) centred on the axis x = 0."""
+    f = scene.foundation
+    if isinstance(f, Foundation):
+        raise ValueError(
+            "Scene.symmetric=True models the half x >= 0 of a rigid footing or of bare ground; a plate "
+            "Foundation's half model (its rotation held on the axis) is not built: use symmetric=False"
+        )
+    if f is not None and abs(f.x0 + f.x1) > 1e-9 * max(1.0, f.x1 - f.x0):
+        raise ValueError(
+            f"Scene.symmetric=True needs the foundation centred on the axis x = 0 (x0 = -x1), got "
+            f"x0={f.x0!r}, x1={f.x1!r}"
+        )
+
+
+def _check_rigid_footing(scene):
+    """A RigidFooting rests on the ground without an interface and takes only its settlement."""
+    if scene.contact is not None:
+        raise ValueError(
+            "contact: a RigidFooting has no interface (its base is the soil's surface nodes); leave contact "
+            "None, or use a plate Foundation"
+        )
+    if scene.embedment:
+        raise ValueError(f"embedment={scene.embedment}: a RigidFooting sits on the ground (embedment 0)")
+    for load in scene._all_loads():
+        if isinstance(load, SurfacePressure) or (isinstance(load, Settlement) and load.x is None):
+            continue
+        raise ValueError(
+            f"loads: a RigidFooting takes only Settlement(w) (x=None: it settles as a whole) and the ground "
+            f"SurfacePressure; {load!r} needs a plate Foundation"
+        )
 
 
 def _check_phases(scene):
@@ -696,13 +803,13 @@ def _check_phase_soil(scene, k, ph):
                 scene.layers[key].undrained_k_water()
             except ValueError as err:
                 raise ValueError(f"{where}: drainage[{key}] = 'undrained_A': {err}") from err
-    half = 0.5 * scene.width
+    lo, hi = scene._block()
     pressures = [ld for p in scene.phases for ld in p.loads if isinstance(ld, SurfacePressure)]
     pressures += [ld for ld in scene.loads if isinstance(ld, SurfacePressure)]
     for j, ex in enumerate(ph.excavate):
         name = f"{where}.excavate[{j}]"
-        if ex.x0 < -half - 1e-9 or ex.x1 > half + 1e-9:
-            raise ValueError(f"{name}: x0={ex.x0}, x1={ex.x1} must lie in the block [{-half:g}, {half:g}] m")
+        if ex.x0 < lo - 1e-9 or ex.x1 > hi + 1e-9:
+            raise ValueError(f"{name}: x0={ex.x0}, x1={ex.x1} must lie in the block [{lo:g}, {hi:g}] m")
         if ex.bottom >= scene.depth:
             raise ValueError(f"{name}: bottom={ex.bottom} m must be < the block depth {scene.depth:g} m")
         for ld in pressures:
@@ -850,6 +957,7 @@ class BuiltScene:
     geostatic_load: np.ndarray | None = None  # (n_dof,) dead loads [N/m] holding the geostatic state
     base_pressure: float = 0.0  # geostatic vertical stress [Pa] the strip's base starts with
     element_layer: np.ndarray | None = None  # (n_el,) index in scene.layers of every soil element
+    footing_nodes: np.ndarray | None = None  # soil node ids under a RigidFooting (its base), ordered by x
 
     def plate_node_at(self, x: float, tol: float = 1e-6) -> np.integer:
         xs = self.model.coords[self.plate_nodes, 0]
@@ -895,6 +1003,8 @@ class BuiltScene:
         elif isinstance(load, StripWeight):
             q = load.unit_weight * self.plate.section.thickness - self.scene.gamma_w * self._submerged_depth()
             scatter_vector(self.plate.edofs, self.plate.distributed_load(-q, comp="w"), f_vec)
+        elif isinstance(load, Settlement) and self.footing_nodes is not None:  # a RigidFooting's base
+            held.update({int(d): -float(load.w) for d in model.dof(self.footing_nodes, "w")})
         elif isinstance(load, Settlement):
             ids = self.plate_nodes if load.x is None else np.array([self.plate_node_at(x) for x in load.x])
             held.update({int(d): -float(load.w) for d in model.dof(ids, "w")})
@@ -967,10 +1077,32 @@ class BuiltScene:
 
     def contact_force(self, out: "SceneResult") -> np.ndarray:
         """Vertical force [N/m] the strip presses on the soil (> 0 compression) at every step of ``out``:
-        -integral of sig_n along the contact. Of a push-over it is the load."""
+        -integral of sig_n along the contact. Of a push-over it is the load. Of a :class:`RigidFooting`: the
+        reaction of its base nodes (of a symmetric scene: twice the modelled half's, the whole footing's)."""
+        if self.footing_nodes is not None:
+            return self._footing_reaction(out)
         k = self.model.groups.index(self.interface)
         w = self.interface.ip_weights()
         return np.array([-np.sum(st[k][..., V_SIG] * w) for st in out.states])
+
+    def _footing_reaction(self, out: "SceneResult") -> np.ndarray:
+        """Downward reaction [N/m] of a RigidFooting's base at every step of a single-phase solve: the
+        internal force of the soil at the base's w DOFs minus the external force there (the ground loads
+        that share the footing's edge node), summed, doubled for a symmetric scene."""
+        if out.phases:
+            raise ValueError(
+                "contact_force: the reaction of a RigidFooting is read from a single-phase solve (its "
+                "Settlement in Scene.loads); of a phased solve it is not built"
+            )
+        system = System(self.model)
+        f_ref, f_dead = self.model.load_vectors()
+        base = self.model.dof(self.footing_nodes, "w")
+        whole = 2.0 if self.scene.symmetric else 1.0
+        out_force = []
+        for lam, u, states in zip(out.load_factor, out.u, out.states):
+            f_int = system.evaluate(u, np.zeros_like(u), states, None)[0]
+            out_force.append(-whole * float(np.sum((f_int - lam * f_ref - f_dead)[base])))
+        return np.array(out_force)
 
     # ---- solution --------------------------------------------------------------------------------------
     def solve(
@@ -1236,8 +1368,9 @@ class SceneResult:
         return self.states[k][self.built.model.groups.index(group)]
 
     def settlement(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
-        """(x, settlement) along the foundation's nodes, settlement positive downwards."""
-        ids = self.built.plate_nodes
+        """(x, settlement) along the foundation's nodes (a RigidFooting's: its base), settlement positive
+        downwards."""
+        ids = self.built.plate_nodes if self.built.footing_nodes is None else self.built.footing_nodes
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
     def contact(self, k: int = -1) -> dict[str, np.ndarray]:

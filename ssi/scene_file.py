@@ -45,9 +45,10 @@ without ``type`` is a column --, ``SurfacePressure``, ``StripLoad``, ``StripWeig
 other keys are that class's fields. Phases are ``[[phases]]`` tables (``name``, ``factors = {earlier = 0.0}``,
 ``n_steps``, ``drainage = {1 = "undrained_A"}`` by layer index) with their loads in ``[[phases.loads]]`` and
 their excavations in ``[[phases.excavate]]`` (``x0``, ``x1``, ``bottom``, ``top`` [m]); ``embedment``,
-``water_table`` and ``gamma_w`` are top-level keys; ``contact`` is one table (:class:`ssi.scene.Contact`) or
-a list ``[[contact]]`` of :class:`ssi.scene.ContactSegment` tables (``x0``, ``x1`` and a
-``[contact.contact]`` table)::
+``water_table``, ``gamma_w`` and ``symmetric`` are top-level keys; a ``[foundation]`` table with
+``type = "RigidFooting"`` is a :class:`ssi.scene.RigidFooting` (``x0``, ``x1``, ``rough``); ``contact`` is
+one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of :class:`ssi.scene.ContactSegment` tables
+(``x0``, ``x1`` and a ``[contact.contact]`` table)::
 
     [[contact]]
     x0 = -1.0
@@ -76,6 +77,7 @@ from .scene import (
     Foundation,
     MeshSize,
     Phase,
+    RigidFooting,
     Scene,
     Settlement,
     SoilLayer,
@@ -91,7 +93,7 @@ UNITS = {
         "width": "m",
         "depth": "m",
         "layers": "list of SoilLayer tables, from the surface down",
-        "foundation": "Foundation table (leave out: no foundation)",
+        "foundation": "Foundation table, or a RigidFooting table (type = 'RigidFooting'); leave out: none",
         "contact": "Contact table, or a list of ContactSegment tables tiling the strip",
         "loads": "list of load tables (type = ...) of the first phase",
         "mesh": "MeshSize table",
@@ -100,6 +102,7 @@ UNITS = {
         "embedment": "m (depth of the strip's base)",
         "water_table": "m (depth below the ground; < 0: free water above it, ponding; leave out: dry)",
         "gamma_w": "N/m^3",
+        "symmetric": "bool (true: model the half x >= 0 of a scene symmetric about x = 0)",
     },
     "SoilLayer": {
         "thickness": "m",
@@ -114,6 +117,8 @@ UNITS = {
         "unit_weight_sat": "N/m^3",
         "drainage": "'drained' | 'undrained_A'",
         "nu_u": "-",
+        "n_sub": "- (sub-steps of the explicit scheme)",
+        "drift": "bool (drift correction of the explicit scheme)",
     },
     "Foundation": {
         "x0": "m",
@@ -128,6 +133,7 @@ UNITS = {
         "plane_strain": "bool",
         "tension_stiffening": "'all' | 'effective_area'",
     },
+    "RigidFooting": {"x0": "m", "x1": "m", "rough": "bool (true: u = 0 under the base; false: smooth)"},
     "Contact": {
         "kn": "Pa/m",
         "kt": "Pa/m",
@@ -204,7 +210,8 @@ def _to_plain(obj):
         return {"layers": {name: _to_plain(getattr(obj, name)) for name in _SECTION_FIELDS}}
     if dataclasses.is_dataclass(obj):
         plain = {f.name: _to_plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
-        return {"type": type(obj).__name__, **plain} if type(obj) in LOAD_TYPES.values() else plain
+        tagged = type(obj) in LOAD_TYPES.values() or type(obj) is RigidFooting
+        return {"type": type(obj).__name__, **plain} if tagged else plain
     if isinstance(obj, dict):
         return {str(k): _to_plain(v) for k, v in obj.items()}
     if isinstance(obj, np.ndarray):
@@ -232,7 +239,9 @@ def _build(cls, data, where):
     kwargs = {}
     for key, value in data.items():
         nested = _NESTED.get((cls, key))
-        if cls is Foundation and key == "section":
+        if cls is Scene and key == "foundation" and isinstance(value, dict) and "type" in value:
+            kwargs[key] = _foundation(value, f"{where}.foundation")
+        elif cls is Foundation and key == "section":
             kwargs[key] = section_from_dict(value, f"{where}.section")
         elif cls is Scene and key == "contact" and value is not None:
             kwargs[key] = _contact(value, f"{where}.contact")
@@ -274,6 +283,16 @@ def _load(data, where):
     if kind not in LOAD_TYPES:
         raise ValueError(f"{where}: unknown load type {kind!r}; allowed: {sorted(LOAD_TYPES)}")
     return _build(LOAD_TYPES[kind], fields, where)
+
+
+def _foundation(data, where):
+    """A foundation table that names its class with ``type``: "Foundation" (the default) or "RigidFooting"."""
+    fields = dict(data)
+    kind = fields.pop("type")
+    kinds = {"Foundation": Foundation, "RigidFooting": RigidFooting}
+    if kind not in kinds:
+        raise ValueError(f"{where}: unknown foundation type {kind!r}; allowed: {sorted(kinds)}")
+    return _build(kinds[kind], fields, where)
 
 
 def _contact(value, where):

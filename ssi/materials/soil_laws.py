@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from ..protocol import CONSISTENT
-from ..validate import check_choice, check_instance, check_optional_real, check_real
+from ..validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 from .mohr_coulomb import elastic_fill, lame, mc_explicit, mc_implicit, vm_implicit
 
 ELASTIC = 0
@@ -186,12 +186,15 @@ class SoilLayer:
 
     Fields: ``thickness`` [m]; ``E`` Young's modulus [Pa] (drained, or undrained E_u); ``nu`` Poisson's ratio
     [-]; ``unit_weight`` [N/m^3] (bulk, above the water table); ``c`` cohesion [Pa] (s_u for undrained clay)
-    or None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` at-rest coefficient
-    [-] on effective stress (default 1 - sin phi); ``scheme`` "implicit" or "explicit"; ``unit_weight_sat``
-    [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or "undrained_A"
-    (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water adds a bulk
-    modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the excess pore
-    pressure is ``BuiltScene.excess_pore_pressure``).
+    or None (elastic); ``phi_deg``, ``psi_deg`` friction and dilation angles [deg]; ``K0`` ratio [-] of the
+    horizontal to the vertical initial effective stress (default 1 - sin phi, Jaky's at-rest value of a soil
+    consolidated under its own weight; a weightless layer under a surcharge is in equilibrium with any
+    uniform stress, and K0 = 1 makes it isotropic); ``scheme`` "implicit" or "explicit" stress update, with
+    ``n_sub`` sub-steps [-] and ``drift`` correction for "explicit" (see :func:`mohr_coulomb_params`);
+    ``unit_weight_sat`` [N/m^3] below the water table (default ``unit_weight``); ``drainage`` "drained" or
+    "undrained_A" (effective-stress undrained: E, nu, c, phi are the drained parameters and the pore water
+    adds a bulk modulus K_w/n = K_u - K' chosen so that the undrained Poisson's ratio is ``nu_u`` [-]; the
+    excess pore pressure is ``BuiltScene.excess_pore_pressure``).
     """
 
     thickness: float
@@ -206,6 +209,8 @@ class SoilLayer:
     unit_weight_sat: float | None = None
     drainage: str = "drained"
     nu_u: float = 0.495
+    n_sub: int = 1
+    drift: bool = False
 
     def k_water(self) -> float:
         """K_w/n [Pa] of the pore water: 0 if drained; else :meth:`undrained_k_water`."""
@@ -264,6 +269,8 @@ class SoilLayer:
         )
         check_optional_real("SoilLayer.K0", self.K0, lo=0.0, hi=10.0, hi_open=True)
         check_choice("SoilLayer.scheme", self.scheme, ("implicit", "explicit"))
+        check_int("SoilLayer.n_sub", self.n_sub, lo=1)
+        check_bool("SoilLayer.drift", self.drift)
         check_optional_real("SoilLayer.unit_weight_sat", self.unit_weight_sat, lo=0.0, unit="N/m^3")
         check_choice("SoilLayer.drainage", self.drainage, DRAINAGE)
         check_real("SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, hi_open=True, unit="(nu <= nu_u < 0.5)")
@@ -276,7 +283,16 @@ class SoilLayer:
     def law(self) -> tuple[int, np.ndarray]:
         if self.c is None:
             return ELASTIC, elastic_params(self.E, self.nu)
-        return mohr_coulomb_params(self.E, self.nu, self.c, self.phi_deg, self.psi_deg, scheme=self.scheme)
+        return mohr_coulomb_params(
+            self.E,
+            self.nu,
+            self.c,
+            self.phi_deg,
+            self.psi_deg,
+            scheme=self.scheme,
+            n_sub=self.n_sub,
+            drift=self.drift,
+        )
 
 
 # ---------------------------------------------------------------------------------------------------------

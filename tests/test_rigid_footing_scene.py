@@ -1,0 +1,312 @@
+"""``rigid_footing`` is a :class:`ssi.scene.Scene`: a symmetric half model with a :class:`RigidFooting`
+pushed by a ``Settlement`` and weightless layers with K0 = 1.
+
+The first two tests hold the model and the push to what the former hand-built ``rigid_footing`` produced:
+the expected values below were captured by running :func:`fingerprint` (this file's) and ``push_footing`` on
+the former builder, at main commit 158509f, before it became a Scene. The rest check the new options
+against independent references: the full model (no symmetry condition) of the same symmetric problem, and
+the hand value of the footing's reaction under a surcharge.
+"""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from ssi.bearing_capacity import footing_scene, footing_settings, push_footing, rigid_footing
+from ssi.model import System
+from ssi.results import max_difference, read_result, write_result
+from ssi.scene import (
+    ColumnLoad,
+    Contact,
+    Foundation,
+    MeshSize,
+    Phase,
+    RigidFooting,
+    Scene,
+    Settlement,
+    SoilLayer,
+    SurfacePressure,
+)
+from ssi.scene_file import scene_from_dict, scene_to_dict
+from ssi.section import homogeneous
+
+COARSE = dict(B=2.0, half_width=6.0, depth=5.0, h_fine=0.5, h_coarse=1.0)
+CASES = {
+    "rough": dict(COARSE, settle=0.05),
+    "smooth_surcharge": dict(COARSE, c=0.0, phi_deg=30.0, rough=False, settle=0.1, surcharge=20e3),
+    "layers_psi0_gauss3": dict(
+        COARSE,
+        psi_deg=0.0,
+        n_gauss=3,
+        layers=[
+            SoilLayer(2.0, E=10e6, nu=0.3, c=10e3, phi_deg=20.0, psi_deg=5.0),
+            SoilLayer(3.0, E=80e6, nu=0.25, c=15e3, phi_deg=25.0),
+        ],
+    ),
+    "explicit": dict(COARSE, scheme="explicit", n_sub=8, drift=True, settle=0.05),
+}
+
+
+def weighted(a):
+    """(sum, sum weighted by (index mod 7) + 1) of an array: a change of any value or of their order shows."""
+    a = np.asarray(a, np.float64).ravel()
+    return [float(a.sum()), float(np.dot(a, np.arange(a.size) % 7 + 1.0))]
+
+
+def fingerprint(scene):
+    """What defines the model of a FootingScene: mesh, DOFs, constraints, loads, materials, initial stress."""
+    model = scene.model
+    soil = model.groups[0]
+    dofs, fixed, ref = model.constrained()
+    f_ref, f_dead = model.load_vectors()
+    arrays = dict(
+        coords=model.coords,
+        conn_edofs=soil.edofs,
+        el_coords=soil.coords,
+        el_mat=soil.el_mat,
+        kinds=soil.kinds,
+        params=soil.params,
+        constrained=dofs,
+        fixed=fixed,
+        ref=ref,
+        f_ref=f_ref,
+        f_dead=f_dead,
+    )
+    out = {k: weighted(v) for k, v in arrays.items()}
+    out["s0"] = None if soil.initial_stress is None else weighted(soil.initial_stress)
+    out |= dict(
+        n_nodes=model.n_nodes,
+        n_dof=model.n_dof,
+        n_el=soil.n_el,
+        n_gauss=len(soil.gw),
+        n_constrained=len(dofs),
+        n_groups=len(model.groups),
+        footing=[int(v) for v in scene.footing],
+    )
+    return out
+
+
+MESH = dict(
+    n_nodes=173,
+    n_dof=346,
+    n_el=48,
+    n_groups=1,
+    footing=[12, 19, 32, 39, 52],
+    coords=[58.236000000000004, 230.24000000000004],
+    conn_edofs=[132480.0, 529961.0],
+    el_coords=[127.2959999999999, 520.7839999999997],
+)
+NO_LOADS = dict(fixed=[0.0, 0.0], f_ref=[0.0, 0.0], f_dead=[0.0, 0.0], s0=None)
+ROUGH_SUPPORTS = dict(n_constrained=67, constrained=[10302.0, 40442.0])
+# captured from the former rigid_footing (see the module docstring)
+FORMER = {
+    "rough": MESH
+    | NO_LOADS
+    | ROUGH_SUPPORTS
+    | dict(
+        n_gauss=4,
+        el_mat=[0.0, 0.0],
+        kinds=[1.0, 1.0],
+        params=[20010001.998131704, 20030009.741592657],
+        ref=[-0.25, -0.8500000000000001],
+    ),
+    "smooth_surcharge": MESH
+    | dict(
+        n_gauss=4,
+        n_constrained=63,
+        el_mat=[0.0, 0.0],
+        kinds=[1.0, 1.0],
+        params=[20000002.34719755, 20000011.31238898],
+        constrained=[10018.0, 41469.0],
+        fixed=[0.0, 0.0],
+        ref=[-0.5, -2.1],
+        f_ref=[0.0, 0.0],
+        f_dead=[-100000.00000000001, -438746.6666666666],
+        s0=[-11520000.0, -45940000.0],
+    ),
+    "layers_psi0_gauss3": MESH
+    | NO_LOADS
+    | ROUGH_SUPPORTS
+    | dict(
+        n_gauss=9,
+        coords=[54.05213114754096, 213.581442622951],
+        el_coords=[116.99724590163922, 479.73927868852434],
+        el_mat=[24.0, 90.0],
+        kinds=[2.0, 3.0],
+        params=[90025003.85899694, 170090020.98225117],
+        ref=[-0.5, -1.7000000000000002],
+    ),
+    "explicit": MESH
+    | NO_LOADS
+    | ROUGH_SUPPORTS
+    | dict(
+        n_gauss=4,
+        el_mat=[0.0, 0.0],
+        kinds=[2.0, 2.0],
+        params=[20010009.998131704, 20030058.741592657],
+        ref=[-0.25, -0.8500000000000001],
+    ),
+}
+# footing pressure q [Pa] of push_footing(rigid_footing(**CASES[case]), n_steps=6), the former builder
+FORMER_Q = {
+    "rough": [
+        0.0,
+        71660.25147706999,
+        117417.37488428192,
+        154653.70739455783,
+        167074.8794610442,
+        169361.62913656607,
+        170249.57641938608,
+    ],
+    "smooth_surcharge": [
+        21706.66666666667,
+        167201.41040993412,
+        283588.68248561904,
+        366919.2087548944,
+        389465.5599333218,
+        390591.23786789394,
+        391116.6624293004,
+    ],
+}
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_the_scene_builds_the_former_model(case):
+    """Same nodes, connectivity, DOFs, constraints, prescribed values, loads, materials and initial stress.
+    Tolerance 1e-12 relative: round-off of the sums only (the builds are identical operations)."""
+    got = fingerprint(rigid_footing(**CASES[case]))
+    want = FORMER[case]
+    assert set(got) == set(want)
+    for key, value in want.items():
+        if isinstance(value, list) and value and isinstance(value[0], float):
+            assert got[key] == pytest.approx(value, rel=1e-12, abs=1e-9), key
+        else:
+            assert got[key] == value, key
+
+
+@pytest.mark.parametrize("case", sorted(FORMER_Q))
+def test_the_push_gives_the_former_pressures(case):
+    """The whole load path, not only the first state: tolerance 1e-9 relative, far above round-off of an
+    identical model and far below any change of the model (a node moved by 1 mm changes q by ~1e-3)."""
+    out = push_footing(rigid_footing(**CASES[case]), n_steps=6)
+    assert out["q"] == pytest.approx(FORMER_Q[case], rel=1e-9, abs=1e-6)
+
+
+@pytest.mark.parametrize("rough", [True, False])
+def test_the_half_model_is_the_full_model_of_a_symmetric_scene(rough):
+    """symmetric=True (u = 0 on the axis) against the whole block without that condition: the full model's
+    solution of the symmetric problem is symmetric, so the footing forces agree. Tolerance 1e-9 relative:
+    both are Newton solutions of the same equations (measured: 2e-15)."""
+    half = footing_scene(**{**CASES["smooth_surcharge"], "rough": rough})
+    full = replace(half, symmetric=False)
+    forces = []
+    for scene in (half, full):
+        built = scene.build()
+        forces.append(built.contact_force(built.solve(n_steps=6, settings=footing_settings())))
+    assert half.build().model.n_dof < full.build().model.n_dof
+    assert forces[0] == pytest.approx(forces[1], rel=1e-9)
+    assert forces[0][-1] > 15 * forces[0][0]  # the push went far into the plastic range
+
+
+def test_the_footing_reaction_carries_the_surcharge_over_its_width():
+    """Hand value: at rest under the surcharge q on weightless soil (isotropic stress -q), the footing
+    presses q B on the soil; the Scene's reaction is q B to round-off. push_footing's pressure also counts
+    the surcharge's consistent force on the footing's edge node (q L/6 over B/2, L the next element): a
+    constant offset along the push, measured here so that a change of either shows."""
+    kw = CASES["smooth_surcharge"]
+    built = footing_scene(**kw).build()
+    out = built.solve(n_steps=6, settings=footing_settings())
+    force = built.contact_force(out)
+    q, b = kw["surcharge"], kw["B"]
+    assert force[0] == pytest.approx(q * b, rel=1e-12)
+    x = built.mesh.xy[:, 0]
+    surface = np.sort(x[np.abs(built.mesh.xy[:, 1]) < 1e-12])
+    edge = np.flatnonzero(surface > b / 2 + 1e-9)[1]  # the next element's corner (skip its mid-side node)
+    offset = q * (surface[edge] - b / 2) / 6.0 / (b / 2)
+    pushed = push_footing(rigid_footing(**kw), n_steps=6)["q"]
+    assert pushed - force / b == pytest.approx(np.full(len(force), offset), rel=1e-9)
+
+
+def test_a_rigid_footing_without_surcharge_reports_the_push_pressure():
+    """Nothing else acts on the base: the Scene's reaction over B is push_footing's pressure (same model,
+    same steps and settings; tolerance 1e-12 relative, round-off)."""
+    built = footing_scene(**CASES["rough"]).build()
+    out = built.solve(n_steps=6, settings=footing_settings())
+    assert built.contact_force(out) / 2.0 == pytest.approx(FORMER_Q["rough"], rel=1e-12, abs=1e-6)
+    x, s = out.settlement()
+    assert np.all(x <= 1.0 + 1e-12) and s == pytest.approx(np.full(len(s), 0.05))
+
+
+def test_a_rigid_footing_scene_file_round_trips():
+    scene = footing_scene(**CASES["layers_psi0_gauss3"])
+    again = scene_from_dict(scene_to_dict(scene))
+    assert again == scene and isinstance(again.foundation, RigidFooting)
+    assert again.layers[0].n_sub == 1 and again.layers[0].K0 == 1.0
+
+
+LAYER = SoilLayer(5.0, E=20e6, nu=0.3, c=10e3, phi_deg=20.0)
+
+
+def scene(**kw):
+    base = dict(width=12.0, depth=5.0, layers=[LAYER], mesh=MeshSize(h_fine=0.5, h_coarse=1.0))
+    return Scene(**(base | kw))
+
+
+def test_bad_rigid_footing_and_symmetry_input_names_what_is_wrong():
+    strip = Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2))
+    with pytest.raises(ValueError, match="RigidFooting.x0 must be < x1"):
+        RigidFooting(1.0, -1.0)
+    with pytest.raises(TypeError, match="RigidFooting.rough"):
+        RigidFooting(-1.0, 1.0, rough="yes")
+    with pytest.raises(TypeError, match="Scene.symmetric"):
+        scene(symmetric=1)
+    with pytest.raises(ValueError, match="plate Foundation's half model"):
+        scene(foundation=strip, contact=Contact(kn=1e10, kt=0.0), symmetric=True)
+    with pytest.raises(ValueError, match="centred on the axis"):
+        scene(foundation=RigidFooting(0.0, 1.0), symmetric=True)
+    with pytest.raises(ValueError, match="outside the block"):
+        scene(symmetric=True, loads=[SurfacePressure(-2.0, -1.0, 10e3)]).build()
+    with pytest.raises(ValueError, match="RigidFooting has no interface"):
+        scene(foundation=RigidFooting(-1.0, 1.0), contact=Contact(kn=1e10, kt=0.0)).build()
+    with pytest.raises(ValueError, match="needs a plate Foundation"):
+        scene(foundation=RigidFooting(-1.0, 1.0), loads=[ColumnLoad(0.0, N=1e5)]).build()
+    with pytest.raises(ValueError, match="needs a plate Foundation"):
+        scene(foundation=RigidFooting(-1.0, 1.0), phases=[Phase("p", (Settlement(0.01, x=(0.0,)),))]).build()
+    with pytest.raises(ValueError, match="must be <= the foundation width"):
+        scene(foundation=RigidFooting(-0.4, 0.4), symmetric=True)  # 0.4 m of the half under h = 0.5 m
+    with pytest.raises(ValueError, match="SoilLayer.n_sub"):
+        SoilLayer(5.0, E=20e6, nu=0.3, c=10e3, n_sub=0)
+
+
+def test_a_rigid_footing_at_rest_holds_its_base():
+    """Without a Settlement the footing stays put: its base nodes are held (w = 0, rough: u = 0). Its
+    reaction closes the global vertical equilibrium with the block's bottom: the upward reactions on the
+    soil sum to the pressure's resultant q (x1 - x0) (tolerance 1e-9 relative: round-off; the scene is
+    linear elastic here, one solve)."""
+    elastic = SoilLayer(5.0, E=20e6, nu=0.3)
+    built = scene(
+        layers=[elastic], foundation=RigidFooting(-1.0, 1.0), loads=[SurfacePressure(2.0, 4.0, 50e3)]
+    )
+    built = built.build()
+    out = built.solve()
+    base = built.footing_nodes
+    assert np.all(out.u[-1][built.model.dof(base, "w")] == 0.0)
+    assert np.all(out.u[-1][built.model.dof(base, "u")] == 0.0)
+    u = out.u[-1]
+    f_int = System(built.model).evaluate(u, np.zeros_like(u), out.states[-1], None)[0]
+    bottom_up = f_int[built.model.dof(built.mesh.bottom, "w")].sum()  # no load acts on the bottom nodes
+    footing_up = -built.contact_force(out)[-1]
+    assert bottom_up + footing_up == pytest.approx(50e3 * 2.0, rel=1e-9)
+    assert footing_up > 0.0  # the ground loaded beside drags the held base down: the footing holds it up
+
+
+def test_a_rigid_footing_result_file_reads_back_unchanged(tmp_path):
+    """The scene record of a symmetric rigid-footing scene rebuilds it: every quantity read back is the
+    written one (difference exactly 0) and the footing's reaction is the same."""
+    built = footing_scene(**CASES["smooth_surcharge"]).build()
+    out = built.solve(n_steps=3, settings=footing_settings())
+    back = read_result(write_result(tmp_path / "footing.h5", out))
+    assert max_difference(out, back) == (0.0, "")
+    assert back.built.scene.symmetric and isinstance(back.built.scene.foundation, RigidFooting)
+    assert np.array_equal(back.built.contact_force(back), built.contact_force(out))
