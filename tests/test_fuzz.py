@@ -210,7 +210,7 @@ def _readme_scene():
 
 
 def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypatch):
-    """The README scene with full Newton and no line search (the README says it stalls) factorises a nearly
+    """The README scene with full Newton, no line search and no retry (it stalls) factorises a nearly
     singular tangent on which SuperLU calls BLAS's DGEMV with an illegal dimension; unpatched, BLAS printed
     "On entry to DGEMV parameter number 2 had an illegal value" four times (on file descriptor 1, from C).
     The run must still stop with NonConvergence, the refusal must have happened (else this test proves
@@ -221,7 +221,9 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     with pytest.raises(NonConvergence):
         _readme_scene().build().solve(
             n_steps=10,
-            settings=Settings(method="full", stepping="fixed", viscous_fallback=False, backend="superlu"),
+            settings=Settings(
+                method="full", stepping="fixed", viscous_fallback=False, fallback=None, backend="superlu"
+            ),
         )
     ctypes.CDLL(None).fflush(None)  # C's stdout is block-buffered: anything printed must reach capfd now
     out, err = capfd.readouterr()
