@@ -230,8 +230,9 @@ class Result:
         return np.array(self.u)[:, self.model.dof(ids, comp)]
 
     def reaction(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
-        """(n_steps + 1,) summed internal force (= support reaction) over ``ids`` in ``comp`` [N/m] (N m/m for
-        "alpha")."""
+        """(n_steps + 1,) summed internal force over ``ids`` in ``comp`` [N/m] (N m/m for "alpha"): the
+        support reaction where no external load acts on those DOFs (else subtract it, as
+        ``ssi.bearing_capacity.footing_pressure`` does)."""
         d = self.model.dof(ids, comp)
         return np.array(self.f_int)[:, d].sum(axis=1)
 

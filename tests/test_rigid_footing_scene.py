@@ -188,9 +188,13 @@ def test_the_scene_builds_the_former_model(case):
 @pytest.mark.parametrize("case", sorted(FORMER_Q))
 def test_the_push_gives_the_former_pressures(case):
     """The whole load path, not only the first state: tolerance 1e-9 relative, far above round-off of an
-    identical model and far below any change of the model (a node moved by 1 mm changes q by ~1e-3)."""
-    out = push_footing(rigid_footing(**CASES[case]), n_steps=6)
-    assert out["q"] == pytest.approx(FORMER_Q[case], rel=1e-9, abs=1e-6)
+    identical model and far below any change of the model (a node moved by 1 mm changes q by ~1e-3). The
+    former pressure was the internal force at the footing nodes over B/2 (the surcharge's share on the edge
+    node included, see the next test): that is what is compared."""
+    footing = rigid_footing(**CASES[case])
+    out = push_footing(footing, n_steps=6)
+    former_measure = -out["result"].reaction(footing.footing, "w") / (0.5 * footing.B)
+    assert former_measure == pytest.approx(FORMER_Q[case], rel=1e-9, abs=1e-6)
 
 
 @pytest.mark.parametrize("rough", [True, False])
@@ -211,9 +215,9 @@ def test_the_half_model_is_the_full_model_of_a_symmetric_scene(rough):
 
 def test_the_footing_reaction_carries_the_surcharge_over_its_width():
     """Hand value: at rest under the surcharge q on weightless soil (isotropic stress -q), the footing
-    presses q B on the soil; the Scene's reaction is q B to round-off. push_footing's pressure also counts
-    the surcharge's consistent force on the footing's edge node (q L/6 over B/2, L the next element): a
-    constant offset along the push, measured here so that a change of either shows."""
+    presses q B on the soil; the Scene's reaction is q B to round-off. push_footing's pressure is the same
+    reaction: the surcharge's consistent force on the footing's edge node (q L/6 over B/2, L the next
+    element) is an external load there, not footing pressure (it used to be counted: the offset below)."""
     kw = CASES["smooth_surcharge"]
     built = footing_scene(**kw).build()
     out = built.solve(n_steps=6, settings=footing_settings())
@@ -224,8 +228,13 @@ def test_the_footing_reaction_carries_the_surcharge_over_its_width():
     surface = np.sort(x[np.abs(built.mesh.xy[:, 1]) < 1e-12])
     edge = np.flatnonzero(surface > b / 2 + 1e-9)[1]  # the next element's corner (skip its mid-side node)
     offset = q * (surface[edge] - b / 2) / 6.0 / (b / 2)
-    pushed = push_footing(rigid_footing(**kw), n_steps=6)["q"]
-    assert pushed - force / b == pytest.approx(np.full(len(force), offset), rel=1e-9)
+    footing = rigid_footing(**kw)
+    out_push = push_footing(footing, n_steps=6)
+    pushed = out_push["q"]
+    assert pushed[0] == pytest.approx(q, rel=1e-12)
+    assert pushed == pytest.approx(force / b, rel=1e-12)
+    internal_only = -out_push["result"].reaction(footing.footing, "w") / (b / 2)
+    assert internal_only - pushed == pytest.approx(np.full(len(force), offset), rel=1e-9)
 
 
 def test_a_rigid_footing_without_surcharge_reports_the_push_pressure():
