@@ -1,9 +1,9 @@
 """Result files (HDF5, h5py): write any result, read it back as an object that answers and replots.
 
-``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped), a
-solver :class:`ssi.solver.Result` or a :class:`ssi.model.LinearResult`. ``read_result(path)`` gives back a
-``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult`` method and every
-``ssi.plot`` function works without the original script) or, for a bare model, a :class:`StoredResult`.
+``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped) or
+a :class:`ssi.solution.Result` (of ``ssi.solver.run`` or ``Model.solve_linear``). ``read_result(path)`` gives
+back a ``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult`` method and
+every ``ssi.plot`` function works without the original script) or, for a bare model, a :class:`StoredResult`.
 
 Layout::
 
@@ -21,8 +21,9 @@ Layout::
     /steps/state/<group>            (n_kept, ...) committed integration-point states
     /steps/state_step               (n_kept,) the step each kept state belongs to
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
-            step_viscosity, load_factor, u_origin, f_int_origin; attrs cuts, wall_time, factorizations,
-            status, limit_load_factor, limit_load_upper, limit_evidence, relaxed_steps, viscous_from
+            step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
+            with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_load_upper,
+            limit_evidence, relaxed_steps, viscous_from
                                     (only when the result had a solver result)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
@@ -51,9 +52,10 @@ import numpy as np
 from . import __version__
 
 if TYPE_CHECKING:  # for annotations only: the functions import ssi.scene and ssi.solver lazily
-    from .model import LinearResult, Model
+    from .model import Model
     from .scene import SceneResult
-    from .solver import Result, Settings
+    from .solution import Result
+    from .solver import Settings
 
 FORMAT = "ssi-result-1"
 _SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result", "phases")
@@ -133,13 +135,13 @@ def element_nodes(model: "Model", edofs: np.ndarray) -> np.ndarray:
 
 def write_result(
     path: str | os.PathLike,
-    result: "SceneResult | Result | LinearResult",
+    result: "SceneResult | Result",
     settings: "Settings | dict | None" = None,
     overwrite: bool = False,
     complete: bool | None = None,
     stop: dict | None = None,
 ) -> Path:
-    """Write ``result`` (SceneResult, solver Result or LinearResult) to the HDF5 file ``path``, atomically.
+    """Write ``result`` (SceneResult or Result) to the HDF5 file ``path``, atomically.
 
     ``complete``: whether the run reached the end of its load path; default: False if ``stop`` (the
     solver's failure report, e.g. ``NonConvergence.report``) is given or the result's ``status`` field says
@@ -197,14 +199,9 @@ def _write_scene_result(h5, result):
 def _write_model_result(h5, result):
     model = result.model
     h5.attrs["kind"] = "model"
-    if hasattr(result, "load_factor"):
-        _write_mesh(h5, model)
-        _write_steps(h5, model, result.load_factor, result.u, result.states)
-        _write_solver(h5.create_group("solver"), result, result.u, result.states, group_names(model))
-    else:  # LinearResult: the unloaded state and the solution at load factor 1
-        _write_mesh(h5, model)
-        _write_steps(h5, model, [0.0, 1.0], [np.zeros_like(result.u), result.u], [result.states])
-        h5["solver/reactions"] = result.reactions
+    _write_mesh(h5, model)
+    _write_steps(h5, model, result.load_factor, result.u, result.states)
+    _write_solver(h5.create_group("solver"), result, result.u, result.states, group_names(model))
 
 
 def _write_mesh(h5, model):
@@ -257,7 +254,7 @@ def _write_solver(grp, res, u, states, names):
     grp.attrs["limit_evidence"] = res.limit_evidence
     for key in ("relaxed_steps", "viscous_from"):
         grp.attrs[key] = -1 if getattr(res, key) is None else getattr(res, key)
-    for key in ("u_origin", "f_int_origin"):
+    for key in ("u_origin", "f_int_origin", "f_ref", "f_dead"):
         if getattr(res, key, None) is not None:
             grp[key] = np.asarray(getattr(res, key), np.float64)
     u_at = {id(row): r for r, row in enumerate(u)}
@@ -449,7 +446,7 @@ def _scene_result(info, lam, u, states, solver, phases, coords):
 def _solver_result(model, rec, lam, u, states):
     """A :class:`ssi.solver.Result` from its stored record; its u and state rows are the scene result's
     where the file says so (files without the row tables: the scene result's rows themselves)."""
-    from .solver import Result
+    from .solution import Result
 
     u_rows = rec.get("u_rows", np.arange(len(lam)))
     state_rows = rec.get("state_rows", np.arange(len(states)))
@@ -478,6 +475,8 @@ def _solver_result(model, rec, lam, u, states):
         viscous_from=_optional_count(rec.get("viscous_from")),
         u_origin=rec.get("u_origin"),
         f_int_origin=rec.get("f_int_origin"),
+        f_ref=rec.get("f_ref"),  # files written before the loads were kept: None
+        f_dead=rec.get("f_dead"),
     )
 
 

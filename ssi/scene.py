@@ -1158,7 +1158,11 @@ class BuiltScene:
         if self.is_linear:
             lin = self.model.solve_linear(backend=(settings or Settings()).backend)
             return SceneResult(
-                self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None
+                self,
+                [0.0, 1.0],
+                [np.zeros_like(lin.u[-1]), lin.u[-1]],
+                [lin.final_state, lin.final_state],
+                None,
             )
         res = _run_phase(self.model, _load_levels(n_steps), settings)
         return SceneResult(self, res.load_factor, res.u, res.states, res)

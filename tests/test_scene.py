@@ -78,7 +78,7 @@ def test_scene_result_roundtrip(tmp_path):
     lin = built.model.solve_linear()
     path = write_result(tmp_path / "scene.h5", lin)
     back = read_result(path)  # a bare model result (no SceneResult): arrays as stored
-    assert np.array_equal(back.u[-1], lin.u)
+    assert np.array_equal(back.u, np.array(lin.u))
     assert back.model["scene"]["foundation"]["x0"] == -1.0
     with pytest.raises(FileExistsError):
         write_result(path, lin)
