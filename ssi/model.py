@@ -296,9 +296,9 @@ class Model:
     def solve_linear(self, backend: str = "auto") -> Result:
         """Solve the linear-elastic scene at load factor 1: one factorisation, one solve.
 
-        Returns a :class:`ssi.solution.Result` with two rows, the initial state (load factor 0) and the
-        solution (load factor 1), each with its internal force; ``reactions()`` gives the support reactions.
-        Its iteration record is that of one direct solve (iterations [0, 1], no residual history)."""
+        Returns a :class:`ssi.solution.Result` (:meth:`~ssi.solution.Result.of_linear_solve`) with two rows,
+        the initial state (load factor 0) and the solution (load factor 1), each with its internal force;
+        ``reactions()`` gives the support reactions."""
         t_start = time.perf_counter()
         self.check()
         system = System(self)
@@ -319,23 +319,8 @@ class Model:
                 f"{system.describe_dofs(err.rows)}"
             ) from err
         f_int, _, states = system.evaluate(u, u, states0, None)
-        return Result(
-            model=self,
-            load_factor=[0.0, 1.0],
-            u=[u0, u],
-            f_int=[f_int0, f_int],
-            states=[states0, states],
-            iterations=[0, 1],
-            residuals=[[], []],
-            energies=[[], []],
-            stiffness=[np.nan, 1.0],
-            step_viscosity=[0.0, 0.0],
-            wall_time=time.perf_counter() - t_start,
-            factorizations=1,
-            u_origin=u0,
-            f_int_origin=f_int0,
-            f_ref=f_ref,
-            f_dead=f_dead,
+        return Result.of_linear_solve(
+            self, [u0, u], [f_int0, f_int], [states0, states], f_ref, f_dead, time.perf_counter() - t_start
         )
 
 

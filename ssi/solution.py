@@ -61,6 +61,38 @@ class Result:
     f_ref: np.ndarray | None = None  # (n_dof,) reference load [N/m], scaled by the load factor
     f_dead: np.ndarray | None = None  # (n_dof,) dead load [N/m], constant
 
+    @classmethod
+    def of_linear_solve(
+        cls,
+        model: "Model",
+        u: list,
+        f_int: list,
+        states: list,
+        f_ref: np.ndarray | None,
+        f_dead: np.ndarray | None,
+        wall_time: float = 0.0,
+    ) -> "Result":
+        """The record of one direct linear solve: rows [initial, solved] at load factors 0 and 1 (``u``,
+        ``f_int``, ``states`` the two rows), one factorisation, iterations [0, 1], no residual history."""
+        return cls(
+            model=model,
+            load_factor=[0.0, 1.0],
+            u=list(u),
+            f_int=list(f_int),
+            states=list(states),
+            iterations=[0, 1],
+            residuals=[[], []],
+            energies=[[], []],
+            stiffness=[np.nan, 1.0],
+            step_viscosity=[0.0, 0.0],
+            wall_time=wall_time,
+            factorizations=1,
+            u_origin=u[0],
+            f_int_origin=f_int[0],
+            f_ref=f_ref,
+            f_dead=f_dead,
+        )
+
     @property
     def n_steps(self) -> int:
         return len(self.load_factor) - 1

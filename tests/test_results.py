@@ -155,7 +155,14 @@ def test_result_file_round_trip_is_exact(which, request, tmp_path):
         assert back.solver_result.residuals == result.solver_result.residuals
     if which == "phased":
         assert [r["name"] for r in back.phases] == ["geostatic", "weight", "building", "half_unload"]
-        assert back.solver_result is back.phases[-1]["result"]
+        # the scene's own result joins the phases' rows (each phase's after its first, its first being the
+        # previous phase's last), f_int included; its status is the last phase's
+        joined = back.solver_result
+        assert joined.u is back.u and joined.status == back.phases[-1]["result"].status
+        for record in back.phases[1:]:
+            rows = joined.f_int[record["first"] : record["last"] + 1]
+            assert len(rows) == record["result"].n_steps
+            assert all(a is b for a, b in zip(rows, record["result"].f_int[1:]))
         # the geostatic phase's intermediate steps are not SceneResult rows: they came back from the file
         assert back.phases[0]["result"].n_steps == result.phases[0]["result"].n_steps > 1
 
@@ -218,7 +225,7 @@ def test_stopped_run_is_written_incomplete(tmp_path):
     with pytest.raises(NonConvergence) as info:
         built.solve(n_steps=2, settings=Settings.paper(max_iter=40, max_cuts=1))
     r = info.value.result
-    partial = SceneResult(built, r.load_factor, r.u, r.states, r)
+    partial = SceneResult(built, r)
     path = write_result(tmp_path / "stop.h5", partial, stop=info.value.report)
     meta = read_info(path)
     assert meta["complete"] is False and meta["stop"]["reason"] == info.value.report["reason"]
@@ -614,3 +621,4 @@ def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     assert info["complete"] is False and info["stop"]["reason"]
     s = json.loads((tmp_path / "overload_summary.json").read_text())
     assert s["stopped_at_column_load"] < 3e6 and s["stop_reason"] == info["stop"]["reason"]
+
