@@ -79,7 +79,8 @@ from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model, System
 from .section import Section
 from .shapes import lagrange3
-from .solver import NonConvergence, Result, Settings, run
+from .solution import Result
+from .solver import NonConvergence, Settings, run
 from .supports import fix_block
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 
