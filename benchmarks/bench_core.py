@@ -272,7 +272,7 @@ PUBLIC_SCRIPT = textwrap.dedent("""
     model.fix(mesh.left, "u"); model.fix(mesh.right, "u")
     model.add_load(mesh.nodes_between(-1.0, 1.0), "w", -100e3 * (20.0 / nx) / 2.0)
     out = model.solve_linear()
-    print(out.u.size, out.u.min())
+    print(out.u[-1].size, out.u[-1].min())
 """)
 
 SKFEM_SCRIPT = textwrap.dedent("""

@@ -60,7 +60,7 @@
 # | ∫ δuᵀ b dV | `SoilQ8(..., unit_weight=γ).body_force()` | term (c): self-weight, b = (0, −γ) |
 # | ∫ δuᵀ p dS | `edge_forces(...)` → `Model.add_element_load` | term (d): surface tractions |
 # | k_t, k_n | `interface_params(kt, kn, ...)` | interface stiffness (eq. 6.2) |
-# | d | `LinearResult.u` | nodal displacements |
+# | d | `Result.u[-1]` (of `Model.solve_linear`) | nodal displacements |
 
 # %%
 import matplotlib.pyplot as plt
@@ -229,15 +229,15 @@ for case in ("A", "B"):
     res = model.solve_linear()
     z_low, z_up = model.coords[lids, 1], model.coords[uids, 1]
     if case == "A":
-        fe = np.concatenate([res.at(lids, "w"), res.at(uids, "w")])
-        other = np.concatenate([res.at(lids, "u"), res.at(uids, "u")])
+        fe = np.concatenate([res.displacement(lids, "w")[-1], res.displacement(uids, "w")[-1]])
+        other = np.concatenate([res.displacement(lids, "u")[-1], res.displacement(uids, "u")[-1]])
         hand = np.concatenate([hand_case_a(z_low, False), hand_case_a(z_up, True)])
     else:
-        fe = np.concatenate([res.at(lids, "u"), res.at(uids, "u")])
-        other = np.concatenate([res.at(lids, "w"), res.at(uids, "w")])
+        fe = np.concatenate([res.displacement(lids, "u")[-1], res.displacement(uids, "u")[-1]])
+        other = np.concatenate([res.displacement(lids, "w")[-1], res.displacement(uids, "w")[-1]])
         hand = np.concatenate([hand_case_b(z_low, False), hand_case_b(z_up, True)])
     # the terms of (3.1) with delta d = d: work inside the blocks, in the interface, and of the loads
-    d = res.u
+    d = res.u[-1]
     work = {}
     for name, g in zip(("blocks", "interface"), (groups[:2], groups[2:])):
         w = 0.0

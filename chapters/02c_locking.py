@@ -58,9 +58,9 @@ for rule in rules:
         span = sd * H
         for n in n_lock:
             m, g, ids, r = simply_supported_strip(n, span, SECTION, ("uniform", -1.0), rule, backend=BACKEND)
-            ratio[rule, sd, n] = r.at(ids[len(ids) // 2], "w")[0] / timoshenko_simply_supported_uniform(
-                span / 2, span, -1.0, EI, KGA
-            )
+            ratio[rule, sd, n] = r.displacement(ids[len(ids) // 2], "w")[
+                -1, 0
+            ] / timoshenko_simply_supported_uniform(span / 2, span, -1.0, EI, KGA)
 
 for rule in rules:
     print(f"\n{rule} integration: w(L/2) / w_Timoshenko")
@@ -131,7 +131,7 @@ ax.plot(xs, -1.0 * (span_q / 2 - xs), "k-", lw=1, label="exact Q = q (L/2 − x)
 q_osc = {}
 for rule, style in (("full", "C3o"), ("selective", "C0s")):
     m, g, ids, r = simply_supported_strip(n_q, span_q, SECTION, ("uniform", -1.0), rule, backend=BACKEND)
-    res = g.resultants(r.u[g.edofs])
+    res = g.resultants(r.u[-1][g.edofs])
     ax.plot(res["x_sh"].ravel(), res["Q"].ravel(), style, ms=4, label=f"{rule} (shear points)")
     q_osc[rule] = np.abs(res["Q"] - (-1.0) * (span_q / 2 - res["x_sh"])).max() / (span_q / 2)
 ax.set_xlabel("x [m]")
@@ -155,7 +155,7 @@ for sd in (2.0, 5.0, 10.0, 100.0):
     w56 = simply_supported_strip(4, span, SECTION, ("uniform", -1.0), kappa=5 / 6, backend=BACKEND)[3]
     w1 = simply_supported_strip(4, span, SECTION, ("uniform", -1.0), kappa=1.0, backend=BACKEND)[3]
     ids_mid = 4  # node at mid-span of 4 elements
-    ratio_fe = w1.u[w1.model.dof(ids_mid, "w")][0] / w56.u[w56.model.dof(ids_mid, "w")][0]
+    ratio_fe = w1.displacement(ids_mid, "w")[-1, 0] / w56.displacement(ids_mid, "w")[-1, 0]
     ratio_exact = timoshenko_simply_supported_uniform(
         span / 2, span, -1.0, EI, G * H
     ) / timoshenko_simply_supported_uniform(span / 2, span, -1.0, EI, KGA)

@@ -79,9 +79,9 @@ ei_tr = Ec * (hc**3 / 12 + hc * (zc - z_na) ** 2) + Es * (hs**3 / 12 + hs * (zs 
 props = composite.elastic_resultant_stiffness()
 span_c, P_c = 3.0, -1.0e4
 m, g, ids, r = cantilever_strip(6, span_c, composite, P_c, backend=BACKEND)
-w_tip = r.at(ids[-1], "w")[0]
+w_tip = r.displacement(ids[-1], "w")[-1, 0]
 w_tip_exact = P_c * span_c**3 / (3 * ei_tr) + P_c * span_c / props["S"]
-u_tip, a_tip = r.at(ids[-1], "u")[0], r.at(ids[-1], "alpha")[0]
+u_tip, a_tip = r.displacement(ids[-1], "u")[-1, 0], r.displacement(ids[-1], "alpha")[-1, 0]
 composite_err = {
     "neutral axis": abs(props["z_na"] - z_na) / (hc + hs),
     "EI about the neutral axis": abs(props["D_na"] - ei_tr) / ei_tr,
@@ -126,9 +126,9 @@ ax.set_xticks([])
 ax.set_ylabel("z [m] (reference surface at 0)")
 ax.set_title("(a) paper section: 11 layers, steel 2 and 10")
 ax = axes[1]
-eps_a, gam_a = g.layer_strains(r.u[g.edofs])
+eps_a, gam_a = g.layer_strains(r.u[-1][g.edofs])
 e0c, _ = composite.initial_moduli()
-x_pt = g.resultants(r.u[g.edofs])["x_ax"][0, 0]
+x_pt = g.resultants(r.u[-1][g.edofs])["x_ax"][0, 0]
 zz = np.linspace(composite.z_bottom, composite.z_top, 200)
 kap0 = (eps_a[0, 0, 1] - eps_a[0, 0, 0]) / (composite.z_mid[0] - composite.z_mid[1])
 eps_line = eps_a[0, 0, 0] - (zz - composite.z_mid[0]) * kap0

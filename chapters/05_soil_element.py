@@ -187,9 +187,9 @@ for ng in (2, 3):
         model.fix([node], "w", ub[k, 1])
     res = model.solve_linear(backend=BACKEND)
     ids = np.arange(model.n_nodes)
-    u = np.column_stack([res.at(ids, "u"), res.at(ids, "w")])
+    u = np.column_stack([res.displacement(ids, "u")[-1], res.displacement(ids, "w")[-1]])
     node_err = np.abs(u - linear_field(xy3)).max() / np.abs(linear_field(xy3)).max()
-    stress_err = np.abs(group.stress(res.states[0]) - sig_exact).max() / np.abs(sig_exact).max()
+    stress_err = np.abs(group.stress(res.final_state[0]) - sig_exact).max() / np.abs(sig_exact).max()
     patch[ng] = (node_err, stress_err)
     print(
         f"{ng}x{ng}: max nodal error / max |u| = {node_err:.2e}, "
@@ -250,7 +250,7 @@ def strip_window(n, n_gauss, nu=NU, backend=BACKEND):
     res = model.solve_linear(backend=backend if model.n_dof < 20000 else "auto")
     wall = time.perf_counter() - t0
     pts = group.integration_points()
-    sig = group.stress(res.states[0])
+    sig = group.stress(res.final_state[0])
     depth, x = -pts[..., 1], pts[..., 0]
     sel = (depth >= 0.5 * B_HALF) & (depth <= 2.5 * B_HALF) & (x <= 2.0 * B_HALF)
     exact = np.stack(strip_load_stresses(x[sel], pts[..., 1][sel], Q, B_HALF, nu), axis=-1)
@@ -309,7 +309,9 @@ def thick_cylinder(nr, nt, nu, n_gauss):
     f = edge_forces(xy[edges], lambda x, z: (P_IN * x / np.hypot(x, z), P_IN * z / np.hypot(x, z)))
     model.add_element_load(model.element_dofs(edges), f)
     res = model.solve_linear(backend=BACKEND)
-    return res.at(inner[0], "u")[0] / float(lame_cylinder_displacement(A_IN, A_IN, B_OUT, P_IN, E, nu))
+    return res.displacement(inner[0], "u")[-1, 0] / float(
+        lame_cylinder_displacement(A_IN, A_IN, B_OUT, P_IN, E, nu)
+    )
 
 
 locking = {

@@ -123,7 +123,7 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
     t0 = time.perf_counter()
     res = m.solve_linear(backend="superlu")
     wall = time.perf_counter() - t0
-    st = res.states[m.groups.index(itf)]
+    st = res.final_state[m.groups.index(itf)]
     xq = itf.ip_coords()[..., 0].ravel()
     p = -st[..., 1].ravel()
     o = np.argsort(xq, kind="stable")
@@ -132,7 +132,7 @@ def punch(n_under, rule="newton_cotes", kn_ratio=KN_RATIO):
         "x": xq[o],
         "p": p[o],
         "gap": gap,
-        "w_punch": -res.at([mid], "w")[0],
+        "w_punch": -res.displacement([mid], "w")[-1, 0],
         "n_dof": m.n_dof,
         "wall": wall,
         "force": float((itf.ip_weights().ravel() * p).sum()),

@@ -121,7 +121,7 @@ def strip_compression(n):
     on_axis = np.abs(m.xy[:, 0]) < 1e-9
     top = np.flatnonzero(on_axis & (np.abs(m.xy[:, 1]) < 1e-9))
     low = np.flatnonzero(on_axis & (np.abs(m.xy[:, 1] + 2.0 * B_HALF) < 1e-9))
-    return float(res.at(top, "w")[0] - res.at(low, "w")[0])
+    return float(res.displacement(top, "w")[-1, 0] - res.displacement(low, "w")[-1, 0])
 
 
 # %% [markdown]

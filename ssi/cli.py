@@ -132,8 +132,7 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     except NonConvergence as err:
         # the converged steps before the failure; of a phased scene every completed phase and the failing
         # phase's steps (PhaseNonConvergence.scene_result)
-        r = err.result
-        result = getattr(err, "scene_result", None) or SceneResult(built, r.load_factor, r.u, r.states, r)
+        result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
         stop = err.report
     wall = time.perf_counter() - t0
     complete = stop is None
@@ -158,10 +157,7 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     path = Path(path)
     result = read_result(path)
     info = read_info(path)
-    if result.phases:
-        wall = sum(record["result"].wall_time for record in result.phases)
-    else:
-        wall = None if result.solver_result is None else result.solver_result.wall_time
+    wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
     s = summary(result, wall, info["complete"], info["stop"])
     s["wall_time_of"] = "the solver, as stored in the file"
     written = []

@@ -191,7 +191,7 @@ def winkler_strip(n_el: int, depth: float, E: float, nu: float, k: float, P: flo
     m.fix([mid], "u")
     m.add_load([mid], "w", -P)
     res = m.solve_linear(backend="superlu")
-    return m.coords[pids, 0], -res.at(pids, "w")
+    return m.coords[pids, 0], -res.displacement(pids, "w")[-1]
 
 
 def excavated_column(

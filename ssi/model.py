@@ -8,7 +8,7 @@ Only what the scene contains is instantiated: element groups are added one by on
 nonlinear laws is solved by :meth:`Model.solve_linear` -- one factorisation, one solve.
 """
 
-from dataclasses import dataclass
+import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -17,6 +17,7 @@ from scipy.sparse.csgraph import connected_components
 from .assembly import SparsePattern, gather_vector, scatter_vector
 from .linsolve import Factorization, SingularMatrix
 from .protocol import FORCES_ONLY, K0_MATRIX, ElementGroup
+from .solution import Result
 from .validate import check_array, check_real
 
 COMPONENTS = {"u": 0, "w": 1, "alpha": 2}
@@ -292,16 +293,23 @@ class Model:
         }
 
     # ---- linear solution ------------------------------------------------------------------------------
-    def solve_linear(self, backend: str = "auto") -> "LinearResult":
-        """Solve the linear-elastic scene at load factor 1: one factorisation, one solve."""
+    def solve_linear(self, backend: str = "auto") -> Result:
+        """Solve the linear-elastic scene at load factor 1: one factorisation, one solve.
+
+        Returns a :class:`ssi.solution.Result` (:meth:`~ssi.solution.Result.of_linear_solve`) with two rows,
+        the initial state (load factor 0) and the solution (load factor 1), each with its internal force;
+        ``reactions()`` gives the support reactions."""
+        t_start = time.perf_counter()
         self.check()
         system = System(self)
-        u, states = system.start(1.0)
+        u0, states0 = system.start(0.0)
         f_ref, f_dead = self.load_vectors()
-        if u.any() or any(state.any() for state in states):
-            f_int, _, _ = system.evaluate(u, u, states, None)
+        if u0.any() or any(state.any() for state in states0):
+            f_int0, _, _ = system.evaluate(u0, u0, states0, None)
         else:  # nothing displaced, nothing stressed: no internal force (spares a pass over every element)
-            f_int = np.zeros(self.n_dof)
+            f_int0 = np.zeros(self.n_dof)
+        u = system.apply_constraints(u0.copy(), 1.0)
+        f_int = f_int0 if np.array_equal(u, u0) else system.evaluate(u, u, states0, None)[0]
         residual = (f_ref + f_dead - f_int)[system.free]
         try:
             u[system.free] += system.factorize_k0(backend).solve(residual)
@@ -310,19 +318,10 @@ class Model:
                 f"supports: the stiffness matrix is singular (a rigid-body mode is not held); "
                 f"{system.describe_dofs(err.rows)}"
             ) from err
-        f_int, _, states = system.evaluate(u, u, states, None)
-        return LinearResult(u=u, reactions=f_int - f_ref - f_dead, states=states, model=self)
-
-
-@dataclass
-class LinearResult:
-    u: np.ndarray
-    reactions: np.ndarray
-    states: list
-    model: Model
-
-    def at(self, ids, comp: str | int) -> np.ndarray:
-        return self.u[self.model.dof(ids, comp)]
+        f_int, _, states = system.evaluate(u, u, states0, None)
+        return Result.of_linear_solve(
+            self, [u0, u], [f_int0, f_int], [states0, states], f_ref, f_dead, time.perf_counter() - t_start
+        )
 
 
 class System:

@@ -187,7 +187,7 @@ def linear_compliance(beam: FourPointBeam):
     m = beam.model
     m.add_load([beam.load], "w", -1.0)
     lin = m.solve_linear()
-    return -float(lin.at([beam.mid], "w")[0])
+    return -float(lin.displacement([beam.mid], "w")[-1, 0])
 
 
 JANNEY_BAR_DIAMETER = 0.0159  # No. 5 bar [m]

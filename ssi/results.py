@@ -1,9 +1,9 @@
 """Result files (HDF5, h5py): write any result, read it back as an object that answers and replots.
 
-``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped), a
-solver :class:`ssi.solver.Result` or a :class:`ssi.model.LinearResult`. ``read_result(path)`` gives back a
-``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult`` method and every
-``ssi.plot`` function works without the original script) or, for a bare model, a :class:`StoredResult`.
+``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped) or
+a :class:`ssi.solution.Result` (of ``ssi.solver.run`` or ``Model.solve_linear``). ``read_result(path)`` gives
+back a ``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult`` method and
+every ``ssi.plot`` function works without the original script) or, for a bare model, a :class:`StoredResult`.
 
 Layout::
 
@@ -21,14 +21,20 @@ Layout::
     /steps/state/<group>            (n_kept, ...) committed integration-point states
     /steps/state_step               (n_kept,) the step each kept state belongs to
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
-            step_viscosity, load_factor, u_origin, f_int_origin; attrs cuts, wall_time, factorizations,
-            status, limit_load_factor, limit_load_upper, limit_evidence, relaxed_steps, viscous_from
-                                    (only when the result had a solver result)
+            step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
+            with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_load_upper,
+            limit_evidence, relaxed_steps, viscous_from
+                                    (the result's; of a SceneResult its solver_result, except of a phased one)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
     /phases/<i>                     a phased SceneResult's phase i: attrs name, first, last (step indices);
-                                    its solver result laid out as /solver (attrs solver_phase of the file:
-                                    the phase whose result is the SceneResult's solver_result)
+                                    its solver result laid out as /solver. The SceneResult's own result is
+                                    the phases' joined (ssi.scene.join_phases), rebuilt on reading.
+
+Files of earlier versions read too: without f_ref/f_dead (a scene's result then gets the rebuilt scene's
+loads), a linear scene's without /solver (its Result is rebuilt from /steps, f_int evaluated from each row),
+a bare linear model's with /solver/reactions only (read as a StoredResult without f_int), a phased scene's
+with the attribute solver_phase (ignored: the phases are joined as for a new file).
 
 Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, then
 moved over the target), and an existing file is never replaced unless ``overwrite=True``. A run that stopped
@@ -51,12 +57,13 @@ import numpy as np
 from . import __version__
 
 if TYPE_CHECKING:  # for annotations only: the functions import ssi.scene and ssi.solver lazily
-    from .model import LinearResult, Model
+    from .model import Model
     from .scene import SceneResult
-    from .solver import Result, Settings
+    from .solution import Result
+    from .solver import Settings
 
 FORMAT = "ssi-result-1"
-_SCENE_RESULT_FIELDS = ("built", "load_factor", "u", "states", "solver_result", "phases")
+_SCENE_RESULT_FIELDS = ("built", "solver_result", "phases")
 
 
 # ---- atomic files ----------------------------------------------------------------------------------------
@@ -133,13 +140,13 @@ def element_nodes(model: "Model", edofs: np.ndarray) -> np.ndarray:
 
 def write_result(
     path: str | os.PathLike,
-    result: "SceneResult | Result | LinearResult",
+    result: "SceneResult | Result",
     settings: "Settings | dict | None" = None,
     overwrite: bool = False,
     complete: bool | None = None,
     stop: dict | None = None,
 ) -> Path:
-    """Write ``result`` (SceneResult, solver Result or LinearResult) to the HDF5 file ``path``, atomically.
+    """Write ``result`` (SceneResult or Result) to the HDF5 file ``path``, atomically.
 
     ``complete``: whether the run reached the end of its load path; default: False if ``stop`` (the
     solver's failure report, e.g. ``NonConvergence.report``) is given or the result's ``status`` field says
@@ -179,32 +186,22 @@ def _write_scene_result(h5, result):
     _write_mesh(h5, built.model)
     _write_steps(h5, built.model, result.load_factor, result.u, result.states)
     names = group_names(built.model)
-    own = None
     for i, record in enumerate(result.phases or []):
         grp = h5.create_group(f"phases/{i}")
         for key, value in record.items():
             if key != "result":
                 grp.attrs[key] = json.dumps(value, default=_jsonable)
         _write_solver(grp, record["result"], result.u, result.states, names)
-        if record["result"] is result.solver_result:
-            own = i
-    if own is not None:
-        h5.attrs["solver_phase"] = own
-    elif result.solver_result is not None:
+    if not result.phases:  # a phased result's own is its phases' joined (scene.join_phases): rebuilt
         _write_solver(h5.create_group("solver"), result.solver_result, result.u, result.states, names)
 
 
 def _write_model_result(h5, result):
     model = result.model
     h5.attrs["kind"] = "model"
-    if hasattr(result, "load_factor"):
-        _write_mesh(h5, model)
-        _write_steps(h5, model, result.load_factor, result.u, result.states)
-        _write_solver(h5.create_group("solver"), result, result.u, result.states, group_names(model))
-    else:  # LinearResult: the unloaded state and the solution at load factor 1
-        _write_mesh(h5, model)
-        _write_steps(h5, model, [0.0, 1.0], [np.zeros_like(result.u), result.u], [result.states])
-        h5["solver/reactions"] = result.reactions
+    _write_mesh(h5, model)
+    _write_steps(h5, model, result.load_factor, result.u, result.states)
+    _write_solver(h5.create_group("solver"), result, result.u, result.states, group_names(model))
 
 
 def _write_mesh(h5, model):
@@ -257,7 +254,7 @@ def _write_solver(grp, res, u, states, names):
     grp.attrs["limit_evidence"] = res.limit_evidence
     for key in ("relaxed_steps", "viscous_from"):
         grp.attrs[key] = -1 if getattr(res, key) is None else getattr(res, key)
-    for key in ("u_origin", "f_int_origin"):
+    for key in ("u_origin", "f_int_origin", "f_ref", "f_dead"):
         if getattr(res, key, None) is not None:
             grp[key] = np.asarray(getattr(res, key), np.float64)
     u_at = {id(row): r for r, row in enumerate(u)}
@@ -421,7 +418,7 @@ def _optional_count(value):
 
 
 def _scene_result(info, lam, u, states, solver, phases, coords):
-    from .scene import SceneResult
+    from .scene import SceneResult, join_phases
     from .scene_file import scene_from_dict
 
     built = scene_from_dict(info["scene"]).build()
@@ -434,22 +431,38 @@ def _scene_result(info, lam, u, states, solver, phases, coords):
     records = [
         {**meta, "result": _solver_result(built.model, rec, lam, u_rows, states)} for rec, meta in phases
     ]
-    if "solver_phase" in info:
-        solver_result = records[int(info["solver_phase"])]["result"]
-    else:
-        solver_result = None if solver is None else _solver_result(built.model, solver, lam, u_rows, states)
+    if records:
+        solver_result = join_phases(built.model, records)
+    elif solver is not None:
+        solver_result = _solver_result(built.model, solver, lam, u_rows, states)
+        if solver_result.f_ref is None:  # a file written before the loads were kept: the scene's own
+            solver_result.f_ref, solver_result.f_dead = built.model.load_vectors()
+    else:  # a linear scene's file written before its solve was a Result: its rows, f_int re-evaluated
+        solver_result = _linear_result(built.model, u_rows, states)
     extra = {
         k: v
         for k, v in info.get("extra", {}).items()
         if k in {f.name for f in dataclasses.fields(SceneResult)}
     }
-    return SceneResult(built, list(lam), u_rows, states, solver_result, phases=records or None, **extra)
+    return SceneResult(built, solver_result, phases=records or None, **extra)
+
+
+def _linear_result(model, u, states):
+    """The Result of a linear solve from its two stored rows ``u`` and ``states`` (files of linear scenes
+    written before Model.solve_linear returned one: the solved state stored on both rows), its internal
+    force evaluated from each row; the solve's wall time was not stored (nan)."""
+    from .model import System
+    from .solution import Result
+
+    system = System(model)
+    f_int = [system.evaluate(row, np.zeros_like(row), st, None)[0] for row, st in zip(u, states)]
+    return Result.of_linear_solve(model, u, f_int, states, *model.load_vectors(), wall_time=float("nan"))
 
 
 def _solver_result(model, rec, lam, u, states):
     """A :class:`ssi.solver.Result` from its stored record; its u and state rows are the scene result's
     where the file says so (files without the row tables: the scene result's rows themselves)."""
-    from .solver import Result
+    from .solution import Result
 
     u_rows = rec.get("u_rows", np.arange(len(lam)))
     state_rows = rec.get("state_rows", np.arange(len(states)))
@@ -478,6 +491,8 @@ def _solver_result(model, rec, lam, u, states):
         viscous_from=_optional_count(rec.get("viscous_from")),
         u_origin=rec.get("u_origin"),
         f_int_origin=rec.get("f_int_origin"),
+        f_ref=rec.get("f_ref"),  # files written before the loads were kept: None
+        f_dead=rec.get("f_dead"),
     )
 
 
@@ -508,8 +523,7 @@ def scene_quantities(result: "SceneResult") -> dict[str, np.ndarray]:
         "limit_load_factor": _number(result.limit_load_factor),
         "n_phases": np.asarray(-1 if result.phases is None else len(result.phases)),
     }
-    if result.solver_result is not None:
-        out.update(solver_quantities(result.solver_result, "solver."))
+    out.update(solver_quantities(result.solver_result, "solver."))
     for i, record in enumerate(result.phases or []):
         for key, value in record.items():
             if key == "result":

@@ -79,7 +79,8 @@ from .mesh import foundation_contact, soil_block, surface_pressure_forces
 from .model import Model, System
 from .section import Section
 from .shapes import lagrange3
-from .solver import NonConvergence, Result, Settings, run
+from .solution import Result
+from .solver import NonConvergence, Settings, run
 from .supports import fix_block
 from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 
@@ -923,18 +924,74 @@ class PhaseNonConvergence(NonConvergence):
         self.args = (text + " (all in .scene_result)",)
 
 
-def _phase_failure(built, err, name, records, lam, u, states, index):
-    """The PhaseNonConvergence of phase ``name`` (phase time ``index`` .. index + 1) from the solver's
-    NonConvergence ``err``, with the completed phases' ``records`` and rows ``lam``, ``u``, ``states``."""
+def _phase_failure(built, err, name, records):
+    """The PhaseNonConvergence of phase ``name`` from the solver's NonConvergence ``err``, with the completed
+    phases' ``records``."""
     partial = err.result
-    first = len(lam)
-    lam = lam + [index + v for v in partial.load_factor[1:]]
-    u = u + partial.u[1:]
-    states = states + partial.states[1:]
-    records = records + [{"name": name, "first": first, "last": len(lam) - 1, "result": partial}]
+    records = records + [_phase_record(name, records, partial)]
     done = [f"{r['name']} (steps {r['first']}-{r['last']})" for r in records[:-1]]
     report = {"phase": name, "completed_phases": done, **err.report}
-    return PhaseNonConvergence(report, partial, SceneResult(built, lam, u, states, partial, phases=records))
+    scene_result = SceneResult(built, join_phases(built.model, records), phases=records)
+    return PhaseNonConvergence(report, partial, scene_result)
+
+
+def _phase_record(name, records, result):
+    """The record of a phase solved after ``records``: its rows follow theirs (its row 0 is their last)."""
+    first = records[-1]["last"] + 1
+    return {"name": name, "first": first, "last": first + result.n_steps - 1, "result": result}
+
+
+def join_phases(model: Model, records: list[dict]) -> Result:
+    """The one :class:`~ssi.solution.Result` of a phased solve from its phases' ``records`` (``name``,
+    ``first``, ``last``, ``result``; the geostatic phase first): on the phase time (the geostatic phase's
+    first and last rows at 0, phase i's rows at i - 1 + its load factor), each phase's rows after its first
+    (its first is the previous phase's last); the per-row records come along, the counts and times are
+    summed, the status and limit (shifted onto the phase time) are the last phase's. Its ``f_ref`` and
+    ``f_dead`` are None: each phase has its own loads (``records[i]["result"]``)."""
+    geo = records[0]["result"]
+    rows = {
+        "load_factor": [0.0, 0.0],
+        **{key: [getattr(geo, key)[0], getattr(geo, key)[-1]] for key in _ROW_FIELDS if key != "load_factor"},
+    }
+    for i, record in enumerate(records[1:]):
+        res = record["result"]
+        rows["load_factor"] += [i + v for v in res.load_factor[1:]]
+        for key in _ROW_FIELDS[1:]:
+            rows[key] += getattr(res, key)[1:]
+    last, i_last = records[-1]["result"], len(records) - 2
+
+    def phase_time(value):  # a load factor of the last phase on the phase time
+        return None if value is None else i_last + value
+
+    return Result(
+        model=model,
+        **rows,
+        cuts=sum(r["result"].cuts for r in records),
+        wall_time=sum(r["result"].wall_time for r in records),
+        factorizations=sum(r["result"].factorizations for r in records),
+        status=last.status,
+        limit_load_factor=phase_time(last.limit_load_factor),
+        limit_load_upper=phase_time(last.limit_load_upper),
+        limit_evidence=last.limit_evidence,
+        relaxed_steps=last.relaxed_steps,
+        viscous_from=None if last.viscous_from is None else records[-1]["first"] + last.viscous_from - 1,
+        u_origin=geo.u_origin,
+        f_int_origin=geo.f_int_origin,
+    )
+
+
+# the per-row records of a Result (states: every step's, or the last only, as the phases kept them)
+_ROW_FIELDS = (
+    "load_factor",
+    "u",
+    "f_int",
+    "states",
+    "iterations",
+    "residuals",
+    "energies",
+    "stiffness",
+    "step_viscosity",
+)
 
 
 def _hold(model, dofs, start, increment):
@@ -1087,22 +1144,17 @@ class BuiltScene:
 
     def _footing_reaction(self, out: "SceneResult") -> np.ndarray:
         """Downward reaction [N/m] of a RigidFooting's base at every step of a single-phase solve: the
-        internal force of the soil at the base's w DOFs minus the external force there (the ground loads
-        that share the footing's edge node), summed, doubled for a symmetric scene."""
+        support reactions (internal force minus the ground loads that share the footing's edge node) at the
+        base's w DOFs, summed, doubled for a symmetric scene."""
         if out.phases:
             raise ValueError(
                 "contact_force: the reaction of a RigidFooting is read from a single-phase solve (its "
                 "Settlement in Scene.loads); of a phased solve it is not built"
             )
-        system = System(self.model)
-        f_ref, f_dead = self.model.load_vectors()
+        res = out.solver_result
         base = self.model.dof(self.footing_nodes, "w")
         whole = 2.0 if self.scene.symmetric else 1.0
-        out_force = []
-        for lam, u, states in zip(out.load_factor, out.u, out.states):
-            f_int = system.evaluate(u, np.zeros_like(u), states, None)[0]
-            out_force.append(-whole * float(np.sum((f_int - lam * f_ref - f_dead)[base])))
-        return np.array(out_force)
+        return np.array([-whole * float(np.sum(res.reactions(k)[base])) for k in range(res.n_steps + 1)])
 
     # ---- solution --------------------------------------------------------------------------------------
     def solve(
@@ -1127,7 +1179,7 @@ class BuiltScene:
         first, named "loads"); a phase that reaches a limit load ends the analysis. Of a phased solve,
         ``out.load_factor`` is the phase time (phase i runs from i - 1 to i; the geostatic phase is at 0),
         ``out.phases`` lists each phase's name, first and last step index and solver result, and
-        ``out.solver_result`` is the last phase's.
+        ``out.solver_result`` joins their rows (:func:`join_phases`).
 
         ``estimate_error=True``: also re-solve systematically refined copies (mesh h/2, steps x2, layers x2)
         and attach a Richardson estimate of each headline quantity's error as ``out.error_estimate``
@@ -1156,12 +1208,8 @@ class BuiltScene:
         if self.scene.phases:
             return self._solve_phases(n_steps, settings)
         if self.is_linear:
-            lin = self.model.solve_linear(backend=(settings or Settings()).backend)
-            return SceneResult(
-                self, [0.0, 1.0], [np.zeros_like(lin.u), lin.u], [lin.states, lin.states], None
-            )
-        res = _run_phase(self.model, _load_levels(n_steps), settings)
-        return SceneResult(self, res.load_factor, res.u, res.states, res)
+            return SceneResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
+        return SceneResult(self, _run_phase(self.model, _load_levels(n_steps), settings))
 
     def _solve_phases(self, n_steps, settings):
         scene, model = self.scene, self.model
@@ -1183,7 +1231,6 @@ class BuiltScene:
         try:
             res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_geo))
             records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
-            lam, u, states = [0.0, 0.0], [res.u[0], res.u[-1]], [res.states[0], res.states[-1]]
             effects, factors, held_from = {}, {}, {}
             f_prev = np.zeros(n)
             config = self._initial_soil()
@@ -1226,14 +1273,10 @@ class BuiltScene:
                         loads=(f_end - f_prev - g, f_geo + f_prev + g),
                     )
                 except NonConvergence as err:
-                    raise _phase_failure(self, err, ph.name, records, lam, u, states, i) from err
+                    raise _phase_failure(self, err, ph.name, records) from err
                 _hold(model, dofs, np.array([target[d] for d in dofs]), np.zeros(len(dofs)))
                 f_prev = f_end
-                first = len(lam)
-                lam += [i + v for v in res.load_factor[1:]]
-                u += res.u[1:]
-                states += res.states[1:]
-                records.append({"name": ph.name, "first": first, "last": len(lam) - 1, "result": res})
+                records.append(_phase_record(ph.name, records, res))
                 if res.collapsed:
                     break
         finally:
@@ -1242,7 +1285,7 @@ class BuiltScene:
             model._prescribed.clear()
             model._prescribed.update(saved[1])
             self.soil.configure()
-        return SceneResult(self, lam, u, states, res, phases=records)
+        return SceneResult(self, join_phases(model, records), phases=records)
 
     # ---- phases that change the soil: excavation, drainage switch ---------------------------------------
     def _phase_list(self):
@@ -1345,24 +1388,48 @@ class BuiltScene:
 
 @dataclass
 class SceneResult:
-    """What a foundation engineer reads off a scene, at step ``k`` (default: the last)."""
+    """What a foundation engineer reads off a scene, at step ``k`` (default: the last): a view of one
+    :class:`~ssi.solution.Result`, ``solver_result``, whose rows (load_factor, u, f_int, states) it reads.
+
+    Of a linear scene that result is :meth:`Model.solve_linear`'s (rows [unloaded, solved]); of a phased
+    solve it is its phases' rows joined on the phase time (:func:`join_phases`), and ``phases`` lists each
+    phase's name, first and last row and its own result."""
 
     built: BuiltScene
-    load_factor: list
-    u: list
-    states: list
-    solver_result: object
+    solver_result: Result
     phases: list | None = None  # phased solve: [{"name", "first", "last" (step indices), "result"}]
+
+    @property
+    def load_factor(self) -> list:
+        """Load factor of every row (of a phased solve: the phase time)."""
+        return self.solver_result.load_factor
+
+    @property
+    def u(self) -> list:
+        """(n_dof,) displacement [m, rad] of every row."""
+        return self.solver_result.u
+
+    @property
+    def f_int(self) -> list:
+        """(n_dof,) internal force [N/m] of every row."""
+        return self.solver_result.f_int
+
+    @property
+    def states(self) -> list:
+        """Committed states of every row (or of the last only, ``Settings.keep_states=False``)."""
+        return self.solver_result.states
 
     @property
     def status(self) -> str:
         """ "completed" (load factor 1 reached) or "limit load reached" (collapse detected before it)."""
-        return "completed" if self.solver_result is None else self.solver_result.status
+        return self.solver_result.status
 
     @property
     def limit_load_factor(self) -> float | None:
-        """Load factor of the detected collapse (fraction of the scene's loads), None if completed."""
-        return None if self.solver_result is None else self.solver_result.limit_load_factor
+        """Load factor of the detected collapse (fraction of the scene's loads; of a phased solve, of the
+        last phase's), None if completed."""
+        last = self.phases[-1]["result"] if self.phases else self.solver_result
+        return last.limit_load_factor
 
     def _group_state(self, group, k):
         return self.states[k][self.built.model.groups.index(group)]

@@ -36,7 +36,7 @@ reference on purpose: in a deep or heavy block they would make a small structura
 
 import time
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -45,14 +45,12 @@ from .linsolve import BACKENDS, Factorization
 from .model import Model, System
 from .progress import SolverProgress, announce_compilation, log, solver_progress
 from .protocol import CONSISTENT
+from .solution import COMPLETED, LIMIT_LOAD, STOPPED, Result  # noqa: F401 (Result and the statuses live there)
 from .validate import check_bool, check_choice, check_int, check_real
 
 METHODS = ("bfgs", "modified", "full")
 STEPPINGS = ("auto", "fixed")
 REFERENCES = ("structural", "total")
-COMPLETED = "completed"
-LIMIT_LOAD = "limit load reached"
-STOPPED = "stopped"  # the status of the partial result a NonConvergence carries
 
 # per method: default iteration cap of an increment and the iteration count automatic stepping aims at
 _MAX_ITER = {"bfgs": 100, "modified": 300, "full": 30}
@@ -171,96 +169,6 @@ class NonConvergence(RuntimeError):
         self.result = result  # the converged steps before the failure, for inspection only
         text = ", ".join(f"{k}={v}" for k, v in report.items())
         super().__init__(f"increment did not converge: {text}")
-
-
-@dataclass
-class Result:
-    """Converged steps of an analysis. Row 0 is the initial state (lambda = 0, or where ``start`` ended).
-
-    ``status`` is ``"completed"`` (every target reached) or ``"limit load reached"``: the path stopped rising
-    at ``limit_load_factor`` (the last converged step); its steps up to there are all converged. The partial
-    result that a :class:`NonConvergence` carries says ``"stopped"``.
-    ``stiffness`` holds the current stiffness parameter of each step (1 for the first, -> 0 at a limit).
-    """
-
-    model: Model
-    load_factor: list = field(default_factory=list)
-    u: list = field(default_factory=list)
-    f_int: list = field(default_factory=list)
-    states: list = field(default_factory=list)
-    iterations: list = field(default_factory=list)
-    residuals: list = field(default_factory=list)  # per step: relative force norm of every iteration
-    energies: list = field(default_factory=list)  # per step: relative energy norm of every iteration
-    stiffness: list = field(default_factory=list)  # per step: current stiffness parameter (step 0: nan)
-    step_viscosity: list = field(default_factory=list)  # per step: the Duvaut-Lions tau it was solved with
-    # (0: a state of the rate-independent law; > 0: a viscous state, which carries overstress)
-    cuts: int = 0
-    wall_time: float = 0.0
-    factorizations: int = 0
-    status: str = COMPLETED
-    limit_load_factor: float | None = None
-    limit_load_upper: float | None = None  # limit found by relaxing a viscous path: the smallest load
-    # factor at which no rate-independent equilibrium was found (the limit lies in [factor, upper])
-    limit_evidence: str = ""  # why the stop was taken for a collapse (viscous path)
-    relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
-    # when the path was cut back to a bracketed limit load)
-    viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
-    # viscous (rate-dependent) states; the last step is relaxed
-    u_origin: np.ndarray | None = None  # displacement and internal force of the state the structural
-    f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
-
-    @property
-    def n_steps(self) -> int:
-        return len(self.load_factor) - 1
-
-    @property
-    def collapsed(self) -> bool:
-        return self.status == LIMIT_LOAD
-
-    def rate_independent_steps(self) -> np.ndarray:
-        """Indices of the steps that are equilibrium states of the rate-independent law: all of them, except
-        the viscous states of a viscous path (its fallback stretch and its relaxation stages before the last).
-        Read extreme values of a path (the largest load reached) over these only: a viscous state's
-        overstress carries load the material cannot (measured: chapter 10's psi = 0 push, 1.62 x Prandtl on
-        its viscous stretch against 0.993 relaxed)."""
-        return np.flatnonzero(np.asarray(self.step_viscosity) == 0.0)
-
-    def displacement(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
-        """(n_steps + 1, n_ids) history of a displacement component [m] (rad for "alpha")."""
-        return np.array(self.u)[:, self.model.dof(ids, comp)]
-
-    def reaction(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
-        """(n_steps + 1,) summed internal force over ``ids`` in ``comp`` [N/m] (N m/m for "alpha"): the
-        support reaction where no external load acts on those DOFs (else subtract it, as
-        ``ssi.bearing_capacity.footing_pressure`` does)."""
-        d = self.model.dof(ids, comp)
-        return np.array(self.f_int)[:, d].sum(axis=1)
-
-    @property
-    def final_state(self) -> list[np.ndarray]:
-        return self.states[-1]
-
-    @property
-    def message(self) -> str:
-        if self.status == STOPPED:
-            return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
-        if self.collapsed and self.limit_load_upper is not None:
-            return (
-                f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent "
-                f"equilibrium found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
-            )
-        if self.collapsed:
-            return (
-                f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
-                f"current stiffness {self.stiffness[-1]:.3g} of the initial)"
-            )
-        text = f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
-        if self.viscous_from is not None:
-            text += (
-                f" (viscous fallback from step {self.viscous_from}, relaxed to the rate-independent state "
-                f"in the last {self.relaxed_steps} steps)"
-            )
-        return text
 
 
 def run(
@@ -842,7 +750,7 @@ def _start(model, settings, start=None, loads=None):
             raise ValueError("start must be a Result of the same model")
         states, u = start.final_state, start.u[-1].copy()
     f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
-    result = Result(model=model)
+    result = Result(model=model, f_ref=f_ref, f_dead=f_dead)
     if start is None:
         result.u_origin, result.f_int_origin = u.copy(), f_int0.copy()
     else:

@@ -133,7 +133,7 @@ def simply_supported_strip(
     """A strip pinned at x = 0 (u, w) and on a roller at x = ``span`` (w), solved linearly.
 
     ``load``: ``("uniform", q)`` [N/m per m, positive up] on every element (consistent nodal forces) or
-    ``("point", P)`` [N/m, positive up] at the middle node. Returns ``(model, group, ids, LinearResult)``."""
+    ``("point", P)`` [N/m, positive up] at the middle node. Returns ``(model, group, ids, Result)``."""
     model, group, ids = plate_strip_model(n_el, span, section, integration, kappa)
     model.fix(ids[0], "u")
     model.fix(ids[0], "w")
@@ -150,7 +150,7 @@ def simply_supported_strip(
 
 def cantilever_strip(n_el: int, span: float, section, P: float, integration="selective", backend="auto"):
     """A strip clamped at x = 0 (u, w, alpha) with a tip load ``P`` [N/m, positive up] at x = ``span``,
-    solved linearly. Returns ``(model, group, ids, LinearResult)``."""
+    solved linearly. Returns ``(model, group, ids, Result)``."""
     model, group, ids = plate_strip_model(n_el, span, section, integration)
     for comp in ("u", "w", "alpha"):
         model.fix(ids[0], comp)

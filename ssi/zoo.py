@@ -269,10 +269,7 @@ def solve_zoo(scenes, settings: Settings | None = None) -> list[ZooOutcome]:
         t0 = time.perf_counter()
         try:
             out = scene.build().solve(settings=settings)
-            res = out.solver_result
-            status = res.status if res is not None else "completed"
-            lam = out.load_factor[-1]
-            message = res.message if res is not None else "linear"
+            status, lam, message = out.status, out.load_factor[-1], out.solver_result.message
         except NonConvergence as err:
             status, lam, message = "failed", err.result.load_factor[-1], str(err)
         outcomes.append(ZooOutcome(name, status, float(lam), time.perf_counter() - t0, message))

@@ -30,7 +30,7 @@ def test_arc_length_is_exact_on_a_linear_problem():
     res = run_arc_length(model, 4, 0.25)
     lin = model.solve_linear()
     assert np.allclose(res.load_factor, [0.0, 0.25, 0.5, 0.75, 1.0], rtol=1e-12)
-    assert np.allclose(res.u[-1], lin.u, rtol=1e-9, atol=1e-15)
+    assert np.allclose(res.u[-1], lin.u[-1], rtol=1e-9, atol=1e-15)
     assert max(res.iterations) <= 2
 
 

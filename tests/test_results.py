@@ -7,6 +7,7 @@ applied loads (statics of the contact resultant), a hand-built Scene (the TOML m
 import json
 import os
 
+import h5py
 import matplotlib
 import meshio
 import numpy as np
@@ -155,7 +156,14 @@ def test_result_file_round_trip_is_exact(which, request, tmp_path):
         assert back.solver_result.residuals == result.solver_result.residuals
     if which == "phased":
         assert [r["name"] for r in back.phases] == ["geostatic", "weight", "building", "half_unload"]
-        assert back.solver_result is back.phases[-1]["result"]
+        # the scene's own result joins the phases' rows (each phase's after its first, its first being the
+        # previous phase's last), f_int included; its status is the last phase's
+        joined = back.solver_result
+        assert joined.u is back.u and joined.status == back.phases[-1]["result"].status
+        for record in back.phases[1:]:
+            rows = joined.f_int[record["first"] : record["last"] + 1]
+            assert len(rows) == record["result"].n_steps
+            assert all(a is b for a, b in zip(rows, record["result"].f_int[1:]))
         # the geostatic phase's intermediate steps are not SceneResult rows: they came back from the file
         assert back.phases[0]["result"].n_steps == result.phases[0]["result"].n_steps > 1
 
@@ -218,7 +226,7 @@ def test_stopped_run_is_written_incomplete(tmp_path):
     with pytest.raises(NonConvergence) as info:
         built.solve(n_steps=2, settings=Settings.paper(max_iter=40, max_cuts=1))
     r = info.value.result
-    partial = SceneResult(built, r.load_factor, r.u, r.states, r)
+    partial = SceneResult(built, r)
     path = write_result(tmp_path / "stop.h5", partial, stop=info.value.report)
     meta = read_info(path)
     assert meta["complete"] is False and meta["stop"]["reason"] == info.value.report["reason"]
@@ -614,3 +622,60 @@ def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     assert info["complete"] is False and info["stop"]["reason"]
     s = json.loads((tmp_path / "overload_summary.json").read_text())
     assert s["stopped_at_column_load"] < 3e6 and s["stop_reason"] == info["stop"]["reason"]
+
+
+# ---- files of the earlier layout -----------------------------------------------------------------------
+OLD_RESULTS = os.path.join(os.path.dirname(__file__), "data", "old_results")
+OLD_MESH = MeshSize(h_fine=1.0, h_coarse=3.0, growth=2.0)
+
+
+def old_linear_scene():
+    """The linear scene of tests/data/old_results (see its README)."""
+    scene = mc_scene()
+    scene.layers[0] = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3)
+    scene.contact = Contact(kn=1e10, kt=1e9)
+    scene.mesh = OLD_MESH
+    return scene
+
+
+def stored(name, *keys):
+    with h5py.File(os.path.join(OLD_RESULTS, name), "r") as h5:
+        return [h5[k][...] for k in keys]
+
+
+def test_files_of_the_earlier_layout_still_read(tmp_path):
+    """Files written before a linear solve and a scene result were solver Results (commit 3ddd0b2,
+    tests/data/old_results/README.md) read: their stored rows come back bit for bit; what the old layout did
+    not store is rebuilt and checked against independent references -- a fresh linear solve of the same
+    scene (one factorisation each: round-off, 1e-9 of the largest value), the statics of the loads (the
+    column's 300 kN/m; each phase's loads as in test_phased_file_keeps_the_phase_loads, rel 1e-4, the
+    solver's force tolerance) -- and the upgraded result writes and reads back exactly."""
+    fresh = old_linear_scene().build().model.solve_linear()
+    # a bare model's LinearResult: the arrays as stored (it kept no internal force)
+    back = read_result(os.path.join(OLD_RESULTS, "linear_model.h5"))
+    u, reactions = stored("linear_model.h5", "steps/u", "solver/reactions")
+    assert np.array_equal(back.u, u) and back.f_int is None and list(back.load_factor) == [0.0, 1.0]
+    assert np.abs(u[-1] - fresh.u[-1]).max() <= 1e-9 * np.abs(fresh.u[-1]).max()
+    assert np.abs(reactions - fresh.reactions()).max() <= 1e-9 * np.abs(fresh.f_int[-1]).max()
+    # a linear scene without a /solver group: a linear solve's Result, its internal force evaluated
+    back = read_result(os.path.join(OLD_RESULTS, "linear_scene.h5"))
+    (u,) = stored("linear_scene.h5", "steps/u")
+    res = back.solver_result
+    assert np.array_equal(np.array(back.u), u) and res.load_factor == [0.0, 1.0] and res.iterations == [0, 1]
+    assert np.abs(res.f_int[-1] - fresh.f_int[-1]).max() <= 1e-9 * np.abs(fresh.f_int[-1]).max()
+    assert np.abs(res.reactions() - fresh.reactions()).max() <= 1e-9 * np.abs(fresh.f_int[-1]).max()
+    assert back.contact_resultant()["N"] == pytest.approx(300e3, rel=1e-9)
+    again = read_result(write_result(tmp_path / "linear.h5", back))
+    assert max_difference(back, again) == (0.0, "")  # the unstored wall time reads as nan both times
+    # a phased scene with the attribute solver_phase: its phases joined as for a new file
+    back = read_result(os.path.join(OLD_RESULTS, "phased_scene.h5"))
+    lam, u = stored("phased_scene.h5", "steps/load_factor", "steps/u")
+    assert np.array_equal(back.load_factor, lam) and np.array_equal(np.array(back.u), u)
+    assert [r["name"] for r in back.phases] == ["geostatic", "weight", "building", "half_unload"]
+    assert back.status == "completed" and back.solver_result.u is back.u
+    expected = {"geostatic": 36e3, "weight": 61e3, "building": 311e3, "half_unload": 186e3}
+    force = back.built.contact_force(back)
+    for record in back.phases:
+        assert force[record["last"]] == pytest.approx(expected[record["name"]], rel=1e-4), record["name"]
+    again = read_result(write_result(tmp_path / "phased.h5", back))
+    assert max_difference(back, again) == (0.0, "")

@@ -169,7 +169,7 @@ def test_distorted_patch_test(n_gauss):
         model.fix([node], "u", ue[k, 0])
         model.fix([node], "w", ue[k, 1])
     res = model.solve_linear()
-    u = np.column_stack([res.at(ids, "u"), res.at(ids, "w")])
+    u = np.column_stack([res.displacement(ids, "u")[-1], res.displacement(ids, "w")[-1]])
     assert np.abs(u - exact(xy)).max() < TOL_PATCH * np.abs(a).max()
     lam = E * NU / ((1 + NU) * (1 - 2 * NU))
     mu = E / (2 * (1 + NU))
@@ -177,7 +177,7 @@ def test_distorted_patch_test(n_gauss):
     sig = np.array(
         [lam * (exx + ezz) + 2 * mu * exx, lam * (exx + ezz) + 2 * mu * ezz, mu * gxz, lam * (exx + ezz)]
     )
-    s = g.stress(res.states[0])
+    s = g.stress(res.final_state[0])
     assert np.abs(s - sig).max() < TOL_PATCH * np.abs(sig).max()
 
 
@@ -221,9 +221,16 @@ def test_elimination_with_prescribed_displacements_matches_dense_solve():
     f = model.load_vectors()[0]
     free = model.free_mask()
     u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free] - K[np.ix_(free, ~free)] @ u[~free])
-    assert np.abs(res.u - u).max() < 1e-10 * np.abs(u).max()
+    assert np.abs(res.u[-1] - u).max() < 1e-10 * np.abs(u).max()
     # reactions balance the applied load: sum over all DOFs of K u - f is zero on free DOFs
-    assert np.abs(res.reactions[free]).max() < 1e-8 * np.abs(f).max()
+    assert np.abs(res.reactions()[free]).max() < 1e-8 * np.abs(f).max()
+    # the two rows of a linear solve: the state at load factor 0 (the fixed value, nothing prescribed yet) and
+    # the solution, each with its internal force K u (the dense K above: round-off of a sum of ~50 terms)
+    u0 = np.zeros(model.n_dof)
+    u0[dofs] = fixed
+    assert res.load_factor == [0.0, 1.0] and np.array_equal(res.u[0], u0)
+    for row, u_row in zip(res.f_int, (u0, u)):
+        assert np.abs(row - K @ u_row).max() < 1e-10 * np.abs(K @ u).max()
 
 
 # ---- the closed form used by the chapter ----------------------------------------------------------------

@@ -1,0 +1,156 @@
+"""The result of an analysis: its converged steps, linear (:meth:`ssi.model.Model.solve_linear`, rows
+[initial, solved]) or incremental (:func:`ssi.solver.run`, one row per converged step), with the solver's
+diagnostics. :class:`ssi.scene.SceneResult` is a view of one; ``ssi.results`` writes and reads it.
+
+Below the model and the solver: it imports neither (``model`` is only read through ``Model.dof``).
+"""
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:  # for annotations only: the model imports this module
+    from .model import Model
+
+COMPLETED = "completed"
+LIMIT_LOAD = "limit load reached"
+STOPPED = "stopped"  # the status of the partial result a NonConvergence carries
+
+
+@dataclass
+class Result:
+    """Converged steps of an analysis. Row 0 is the initial state (lambda = 0, or where ``start`` ended).
+
+    ``status`` is ``"completed"`` (every target reached) or ``"limit load reached"``: the path stopped rising
+    at ``limit_load_factor`` (the last converged step); its steps up to there are all converged. The partial
+    result that a :class:`~ssi.solver.NonConvergence` carries says ``"stopped"``.
+    ``stiffness`` holds the current stiffness parameter of each step (1 for the first, -> 0 at a limit).
+    ``states`` holds every step's committed states, or only the last (``Settings.keep_states=False``).
+    ``f_ref``, ``f_dead``: the loads it was solved with (F_ext = lambda f_ref + f_dead), which
+    :meth:`reactions` subtracts; None where one set of loads does not describe the rows (a phased scene's
+    joined result, whose phases each keep their own).
+    """
+
+    model: "Model"
+    load_factor: list = field(default_factory=list)
+    u: list = field(default_factory=list)
+    f_int: list = field(default_factory=list)
+    states: list = field(default_factory=list)
+    iterations: list = field(default_factory=list)
+    residuals: list = field(default_factory=list)  # per step: relative force norm of every iteration
+    energies: list = field(default_factory=list)  # per step: relative energy norm of every iteration
+    stiffness: list = field(default_factory=list)  # per step: current stiffness parameter (step 0: nan)
+    step_viscosity: list = field(default_factory=list)  # per step: the Duvaut-Lions tau it was solved with
+    # (0: a state of the rate-independent law; > 0: a viscous state, which carries overstress)
+    cuts: int = 0
+    wall_time: float = 0.0
+    factorizations: int = 0
+    status: str = COMPLETED
+    limit_load_factor: float | None = None
+    limit_load_upper: float | None = None  # limit found by relaxing a viscous path: the smallest load
+    # factor at which no rate-independent equilibrium was found (the limit lies in [factor, upper])
+    limit_evidence: str = ""  # why the stop was taken for a collapse (viscous path)
+    relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
+    # when the path was cut back to a bracketed limit load)
+    viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
+    # viscous (rate-dependent) states; the last step is relaxed
+    u_origin: np.ndarray | None = None  # displacement and internal force of the state the structural
+    f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
+    f_ref: np.ndarray | None = None  # (n_dof,) reference load [N/m], scaled by the load factor
+    f_dead: np.ndarray | None = None  # (n_dof,) dead load [N/m], constant
+
+    @classmethod
+    def of_linear_solve(
+        cls,
+        model: "Model",
+        u: list,
+        f_int: list,
+        states: list,
+        f_ref: np.ndarray | None,
+        f_dead: np.ndarray | None,
+        wall_time: float = 0.0,
+    ) -> "Result":
+        """The record of one direct linear solve: rows [initial, solved] at load factors 0 and 1 (``u``,
+        ``f_int``, ``states`` the two rows), one factorisation, iterations [0, 1], no residual history."""
+        return cls(
+            model=model,
+            load_factor=[0.0, 1.0],
+            u=list(u),
+            f_int=list(f_int),
+            states=list(states),
+            iterations=[0, 1],
+            residuals=[[], []],
+            energies=[[], []],
+            stiffness=[np.nan, 1.0],
+            step_viscosity=[0.0, 0.0],
+            wall_time=wall_time,
+            factorizations=1,
+            u_origin=u[0],
+            f_int_origin=f_int[0],
+            f_ref=f_ref,
+            f_dead=f_dead,
+        )
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.load_factor) - 1
+
+    @property
+    def collapsed(self) -> bool:
+        return self.status == LIMIT_LOAD
+
+    def rate_independent_steps(self) -> np.ndarray:
+        """Indices of the steps that are equilibrium states of the rate-independent law: all of them, except
+        the viscous states of a viscous path (its fallback stretch and its relaxation stages before the last).
+        Read extreme values of a path (the largest load reached) over these only: a viscous state's
+        overstress carries load the material cannot (measured: chapter 10's psi = 0 push, 1.62 x Prandtl on
+        its viscous stretch against 0.993 relaxed)."""
+        return np.flatnonzero(np.asarray(self.step_viscosity) == 0.0)
+
+    def displacement(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
+        """(n_steps + 1, n_ids) history of a displacement component [m] (rad for "alpha")."""
+        return np.array(self.u)[:, self.model.dof(ids, comp)]
+
+    def reaction(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
+        """(n_steps + 1,) summed internal force (= support reaction where no load acts on those DOFs) over
+        ``ids`` in ``comp`` [N/m] (N m/m for "alpha"). With loads on them, see :meth:`reactions`."""
+        d = self.model.dof(ids, comp)
+        return np.array(self.f_int)[:, d].sum(axis=1)
+
+    def reactions(self, k: int = -1) -> np.ndarray:
+        """(n_dof,) support reactions [N/m] at step ``k``: the internal force minus the applied load,
+        F_int - (lambda f_ref + f_dead); zero on the free DOFs up to the equilibrium residual."""
+        if self.f_ref is None or self.f_dead is None:
+            raise ValueError(
+                "reactions: this result does not record the loads it was solved with (f_ref, f_dead); of a "
+                "phased scene read each phase's result (out.phases[i]['result'])"
+            )
+        return self.f_int[k] - (self.load_factor[k] * self.f_ref + self.f_dead)
+
+    @property
+    def final_state(self) -> list[np.ndarray]:
+        return self.states[-1]
+
+    @property
+    def message(self) -> str:
+        if self.status == STOPPED:
+            return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
+        if self.collapsed and self.limit_load_upper is not None:
+            return (
+                f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent "
+                f"equilibrium found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
+            )
+        if self.collapsed:
+            return (
+                f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
+                f"current stiffness {self.stiffness[-1]:.3g} of the initial)"
+            )
+        text = f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
+        if self.viscous_from is not None:
+            text += (
+                f" (viscous fallback from step {self.viscous_from}, relaxed to the rate-independent state "
+                f"in the last {self.relaxed_steps} steps)"
+            )
+        return text
