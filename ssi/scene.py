@@ -951,12 +951,12 @@ def join_phases(model: Model, records: list[dict]) -> Result:
     geo = records[0]["result"]
     rows = {
         "load_factor": [0.0, 0.0],
-        **{key: [getattr(geo, key)[0], getattr(geo, key)[-1]] for key in _ROW_FIELDS if key != "load_factor"},
+        **{key: [getattr(geo, key)[0], getattr(geo, key)[-1]] for key in Result.ROWS if key != "load_factor"},
     }
     for i, record in enumerate(records[1:]):
         res = record["result"]
         rows["load_factor"] += [i + v for v in res.load_factor[1:]]
-        for key in _ROW_FIELDS[1:]:
+        for key in Result.ROWS[1:]:  # states: every step's, or the last only, as the phases kept them
             rows[key] += getattr(res, key)[1:]
     last, i_last = records[-1]["result"], len(records) - 2
 
@@ -978,20 +978,6 @@ def join_phases(model: Model, records: list[dict]) -> Result:
         u_origin=geo.u_origin,
         f_int_origin=geo.f_int_origin,
     )
-
-
-# the per-row records of a Result (states: every step's, or the last only, as the phases kept them)
-_ROW_FIELDS = (
-    "load_factor",
-    "u",
-    "f_int",
-    "states",
-    "iterations",
-    "residuals",
-    "energies",
-    "stiffness",
-    "step_viscosity",
-)
 
 
 def _hold(model, dofs, start, increment):

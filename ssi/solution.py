@@ -61,6 +61,19 @@ class Result:
     f_ref: np.ndarray | None = None  # (n_dof,) reference load [N/m], scaled by the load factor
     f_dead: np.ndarray | None = None  # (n_dof,) dead load [N/m], constant
 
+    # the per-step lists (one entry per row); the solver's snapshots and a phased scene's join copy these
+    ROWS = (
+        "load_factor",
+        "u",
+        "f_int",
+        "states",
+        "iterations",
+        "residuals",
+        "energies",
+        "stiffness",
+        "step_viscosity",
+    )
+
     @classmethod
     def of_linear_solve(
         cls,

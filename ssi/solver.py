@@ -427,17 +427,6 @@ def _raise_relaxation_failure(path, failure, lam_lo, stiff):
 class _Snapshot:
     """A committed path (see :meth:`_Path.save`): copies of the result's per-step lists and the state."""
 
-    LISTS = (
-        "load_factor",
-        "u",
-        "f_int",
-        "states",
-        "iterations",
-        "residuals",
-        "energies",
-        "stiffness",
-        "step_viscosity",
-    )
     lists: dict
     u: np.ndarray
     states: list
@@ -475,7 +464,7 @@ class _Path:
         """The committed path (result lists and current state), to return to with :meth:`restore`."""
         r = self.result
         return _Snapshot(
-            {name: list(getattr(r, name)) for name in _Snapshot.LISTS},
+            {name: list(getattr(r, name)) for name in Result.ROWS},
             self.u,
             self.states,
             self.lam,
