@@ -135,14 +135,17 @@ def chapter11_foundation(
     h_coarse: float = 2.0,
     growth: float = 1.3,
     section: Section | None = None,
+    end_grading: float = 1.0,
 ) -> Scene:
     """The scene of chapter 11: a 6 m long RC beam (:func:`chapter11_section`) on 2 m of soft clay over 8 m of
     sand, a 30 m x 10 m block, two columns at x = +-2.5 m carrying ``column_load`` [N/m] each (the left one
     also ``horizontal_load`` [N/m]), the beam's self-weight 25 kN/m^3 x 0.4 m.
 
     ``h_fine`` / ``h_coarse`` [m]: element size under the beam / far from it, ``growth`` [-] their ratio per
-    element; ``clay_E`` [Pa], ``clay_c`` [Pa], ``clay_phi_deg`` [deg]: the clay's modulus and strength (the
-    variables of chapter 14); ``section``: another strip section (default chapter 11's)."""
+    element, ``end_grading`` [-] the grading of the elements under the beam towards its ends (1: even;
+    :class:`~ssi.scene.MeshSize`); ``clay_E`` [Pa], ``clay_c`` [Pa], ``clay_phi_deg`` [deg]: the clay's
+    modulus and strength (the variables of chapter 14); ``section``: another strip section (default
+    chapter 11's)."""
     check_real("column_load", column_load, unit="N/m")
     return Scene(
         width=30.0,
@@ -160,7 +163,7 @@ def chapter11_foundation(
         ),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=column_load, H=horizontal_load), ColumnLoad(x=2.5, N=column_load)],
-        mesh=MeshSize(h_fine=h_fine, h_coarse=h_coarse, growth=growth),
+        mesh=MeshSize(h_fine=h_fine, h_coarse=h_coarse, growth=growth, end_grading=end_grading),
     )
 
 
