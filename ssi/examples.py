@@ -32,7 +32,8 @@ from .elements.plate import add_plate_strip
 from .materials.interface_law import interface_params
 from .materials.layer_laws import CONCRETE, STEEL
 from .materials.rc import concrete_params, designer_concrete, steel_params
-from .materials.soil_laws import GAMMA_W
+from .materials.soil_laws import ELASTIC, GAMMA_W, elastic_params
+from .mesh import foundation_contact, soil_block
 from .model import Model
 from .scene import (
     BuiltScene,
@@ -49,6 +50,7 @@ from .scene import (
     SurfacePressure,
 )
 from .section import Section, homogeneous, rc_section
+from .supports import fix_block, soil_group
 from .validate import check_int, check_real
 
 __all__ = [
@@ -195,6 +197,30 @@ def winkler_strip(n_el: int, depth: float, E: float, nu: float, k: float, P: flo
     m.add_load([mid], "w", -P)
     res = m.solve_linear(backend="superlu")
     return m.coords[pids, 0], -res.at(pids, "w")
+
+
+def punch_settlement(n_under: int, end_grading: float = 1.0) -> float:
+    """Settlement [m] of a rigid, smooth strip punch (chapter 07's Sadowsky problem: half-width 1 m, plate
+    E = 1e12 Pa, interface k_n = 1e13 Pa/m, k_t = 0) pressed by 100 kN/m into an elastic block (E = 10 MPa,
+    nu = 0.3) 20 m wide and 10 m deep, with ``n_under`` elements under the punch graded by ``end_grading``
+    (:class:`~ssi.scene.MeshSize`), 4 times that size far from it; solved linearly. P w / 2 is the strain
+    energy, so its convergence order measures how a mesh family resolves the punch's edge singularity."""
+    n_under = check_int("n_under", n_under, lo=1)
+    h = 2.0 / n_under
+    mesh = soil_block(20.0, 10.0, foundation=(-1.0, 1.0), h_fine=h, h_coarse=4 * h, end_grading=end_grading)
+    m = Model()
+    ids = m.add_nodes(mesh.xy, 2)
+    soil_group(m, mesh, [(ELASTIC, elastic_params(10e6, 0.3))], ids=ids)
+    contact = foundation_contact(mesh, -1.0, 1.0, 0.5)
+    plate, pids, pconn = add_plate_strip(m, contact.plate_xy[0::2, 0], homogeneous(0.5, 1e12, 0.2), z=0.25)
+    add_interface(
+        m, pconn, ids[contact.soil_conn], interface_params(0.0, 1e13, c=math.inf), offset=plate.bottom_offset
+    )
+    fix_block(m, mesh, ids)
+    mid = pids[len(pids) // 2]
+    m.fix([mid], "u")
+    m.add_load([mid], "w", -100e3)
+    return float(-m.solve_linear(backend="superlu").at([mid], "w")[0])
 
 
 def excavated_column(

@@ -7,7 +7,7 @@ is compared with the even spacing the block was built with before the option exi
 import numpy as np
 import pytest
 
-from ssi.examples import chapter11_foundation
+from ssi.examples import chapter11_foundation, punch_settlement
 from ssi.mesh import MAX_END_GRADING, foundation_lines, graded_lines, soil_block
 from ssi.scene import MeshSize
 
@@ -92,37 +92,6 @@ def test_bad_end_grading_is_named(bad):
         MeshSize(end_grading=bad)
     with pytest.raises(TypeError, match=r"MeshSize\.end_grading"):
         MeshSize(end_grading="2")
-
-
-def punch_settlement(n_under: int, end_grading: float) -> float:
-    """Settlement [m] of a rigid, smooth strip (half-width 1 m, 100 kN/m) on an elastic block 20 m x 10 m,
-    ``n_under`` elements under it (chapter 07's Sadowsky punch)."""
-    import math
-
-    from ssi.elements.interface import add_interface
-    from ssi.elements.plate import add_plate_strip
-    from ssi.materials.interface_law import interface_params
-    from ssi.materials.soil_laws import ELASTIC, elastic_params
-    from ssi.mesh import foundation_contact
-    from ssi.model import Model
-    from ssi.section import homogeneous
-    from ssi.supports import fix_block, soil_group
-
-    h = 2.0 / n_under
-    mesh = soil_block(20.0, 10.0, foundation=(-1.0, 1.0), h_fine=h, h_coarse=4 * h, end_grading=end_grading)
-    m = Model()
-    ids = m.add_nodes(mesh.xy, 2)
-    soil_group(m, mesh, [(ELASTIC, elastic_params(10e6, 0.3))], ids=ids)
-    contact = foundation_contact(mesh, -1.0, 1.0, 0.5)
-    plate, pids, pconn = add_plate_strip(m, contact.plate_xy[0::2, 0], homogeneous(0.5, 1e12, 0.2), z=0.25)
-    add_interface(
-        m, pconn, ids[contact.soil_conn], interface_params(0.0, 1e13, c=math.inf), offset=plate.bottom_offset
-    )
-    fix_block(m, mesh, ids)
-    mid = pids[len(pids) // 2]
-    m.fix([mid], "u")
-    m.add_load([mid], "w", -100e3)
-    return -m.solve_linear(backend="superlu").at([mid], "w")[0]
 
 
 @pytest.mark.parametrize(("end_grading", "order"), [(1.0, 1.0), (2.0, 2.0)])
