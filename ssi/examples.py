@@ -32,7 +32,8 @@ from .elements.plate import add_plate_strip
 from .materials.interface_law import interface_params
 from .materials.layer_laws import CONCRETE, STEEL
 from .materials.rc import concrete_params, designer_concrete, steel_params
-from .materials.soil_laws import GAMMA_W
+from .materials.soil_laws import ELASTIC, GAMMA_W, elastic_params
+from .mesh import foundation_contact, soil_block
 from .model import Model
 from .scene import (
     BuiltScene,
@@ -49,6 +50,7 @@ from .scene import (
     SurfacePressure,
 )
 from .section import Section, homogeneous, rc_section
+from .supports import fix_block, soil_group
 from .validate import check_int, check_real
 
 __all__ = [
@@ -135,14 +137,17 @@ def chapter11_foundation(
     h_coarse: float = 2.0,
     growth: float = 1.3,
     section: Section | None = None,
+    end_grading: float = 1.0,
 ) -> Scene:
     """The scene of chapter 11: a 6 m long RC beam (:func:`chapter11_section`) on 2 m of soft clay over 8 m of
     sand, a 30 m x 10 m block, two columns at x = +-2.5 m carrying ``column_load`` [N/m] each (the left one
     also ``horizontal_load`` [N/m]), the beam's self-weight 25 kN/m^3 x 0.4 m.
 
     ``h_fine`` / ``h_coarse`` [m]: element size under the beam / far from it, ``growth`` [-] their ratio per
-    element; ``clay_E`` [Pa], ``clay_c`` [Pa], ``clay_phi_deg`` [deg]: the clay's modulus and strength (the
-    variables of chapter 14); ``section``: another strip section (default chapter 11's)."""
+    element, ``end_grading`` [-] the grading of the elements under the beam towards its ends (1: even;
+    :class:`~ssi.scene.MeshSize`); ``clay_E`` [Pa], ``clay_c`` [Pa], ``clay_phi_deg`` [deg]: the clay's
+    modulus and strength (the variables of chapter 14); ``section``: another strip section (default
+    chapter 11's)."""
     check_real("column_load", column_load, unit="N/m")
     return Scene(
         width=30.0,
@@ -160,7 +165,7 @@ def chapter11_foundation(
         ),
         contact=Contact(kn=4e9, kt=4e8, phi_deg=25.0),
         loads=[ColumnLoad(x=-2.5, N=column_load, H=horizontal_load), ColumnLoad(x=2.5, N=column_load)],
-        mesh=MeshSize(h_fine=h_fine, h_coarse=h_coarse, growth=growth),
+        mesh=MeshSize(h_fine=h_fine, h_coarse=h_coarse, growth=growth, end_grading=end_grading),
     )
 
 
@@ -192,6 +197,30 @@ def winkler_strip(n_el: int, depth: float, E: float, nu: float, k: float, P: flo
     m.add_load([mid], "w", -P)
     res = m.solve_linear(backend="superlu")
     return m.coords[pids, 0], -res.displacement(pids, "w")[-1]
+
+
+def punch_settlement(n_under: int, end_grading: float = 1.0) -> float:
+    """Settlement [m] of a rigid, smooth strip punch (chapter 07's Sadowsky problem: half-width 1 m, plate
+    E = 1e12 Pa, interface k_n = 1e13 Pa/m, k_t = 0) pressed by 100 kN/m into an elastic block (E = 10 MPa,
+    nu = 0.3) 20 m wide and 10 m deep, with ``n_under`` elements under the punch graded by ``end_grading``
+    (:class:`~ssi.scene.MeshSize`), 4 times that size far from it; solved linearly. P w / 2 is the strain
+    energy, so its convergence order measures how a mesh family resolves the punch's edge singularity."""
+    n_under = check_int("n_under", n_under, lo=1)
+    h = 2.0 / n_under
+    mesh = soil_block(20.0, 10.0, foundation=(-1.0, 1.0), h_fine=h, h_coarse=4 * h, end_grading=end_grading)
+    m = Model()
+    ids = m.add_nodes(mesh.xy, 2)
+    soil_group(m, mesh, [(ELASTIC, elastic_params(10e6, 0.3))], ids=ids)
+    contact = foundation_contact(mesh, -1.0, 1.0, 0.5)
+    plate, pids, pconn = add_plate_strip(m, contact.plate_xy[0::2, 0], homogeneous(0.5, 1e12, 0.2), z=0.25)
+    add_interface(
+        m, pconn, ids[contact.soil_conn], interface_params(0.0, 1e13, c=math.inf), offset=plate.bottom_offset
+    )
+    fix_block(m, mesh, ids)
+    mid = pids[len(pids) // 2]
+    m.fix([mid], "u")
+    m.add_load([mid], "w", -100e3)
+    return float(-m.solve_linear(backend="superlu").displacement([mid], "w")[-1, 0])
 
 
 def excavated_column(

@@ -3,7 +3,9 @@ the interface node pairs between them.
 
 The soil block spans x in [x_left, x_right], z in [-depth, 0] (surface at z = 0, z upwards). Mesh lines are
 graded: element size ``h_fine`` under the foundation, growing geometrically (ratio ``growth``) up to
-``h_coarse`` away from it, sideways and downwards. Every layer boundary is a mesh line, so each element lies
+``h_coarse`` away from it, sideways and downwards; optionally (``end_grading``) the elements under the
+foundation are graded towards its two ends, where a stiff strip's contact pressure is singular, and the
+growth starts from the end elements' size. Every layer boundary is a mesh line, so each element lies
 in one layer. Nodes are numbered column by column (z fastest), which keeps neighbours close in memory.
 """
 
@@ -14,6 +16,7 @@ import numpy as np
 from .validate import check_array, check_real
 
 MAX_LINES = 100_000  # mesh lines per direction: more is a unit slip (mm for m), not a mesh
+MAX_END_GRADING = 4.0  # beyond, the end element of a coarse mesh is (2/n)^4 of the half-width: slivers
 
 
 def graded_lines(start, stop, h_start, h_max, growth=1.2):
@@ -133,6 +136,7 @@ def soil_block(
     breaks=(),
     embedment=0.0,
     edges=(),
+    end_grading=1.0,
 ):
     """The graded soil block of Fig. 1.
 
@@ -150,6 +154,10 @@ def soil_block(
         elements above it between the foundation ends are removed (the trench the strip sits in)
     edges : x positions [m] that must be element edges (vertical mesh lines through corner nodes, e.g. the
         sides of an excavation), placed before ``breaks`` as they are
+    end_grading : exponent gamma >= 1 of the grading of the lines under the foundation towards its ends
+        (:func:`foundation_lines`); 1 (default) spaces them evenly. The lines beside the foundation and
+        those below the surface grow (ratio ``growth``) from the end element's size, so the elements at the
+        foundation's corners are about square: the mesh is graded towards both corner points
     """
     width = check_real("width", width, lo=0.0, lo_open=True, unit="m")
     depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
@@ -184,16 +192,17 @@ def soil_block(
             f"h_fine={h_fine!r}, h_coarse={h_coarse!r} give more than {MAX_LINES} mesh lines "
             f"in one direction (block {width:g} m x {depth:g} m): check the units"
         )
-    n_under = max(1, round((x1 - x0) / h_fine))
-    under = np.linspace(x0, x1, n_under + 1)
-    h0 = (x1 - x0) / n_under
-    left = graded_lines(x0, x_left, h0, h_coarse, growth)[::-1]
-    right = graded_lines(x1, x_right, h0, h_coarse, growth)
+    under = foundation_lines(x0, x1, h_fine, end_grading)
+    # the lines beside the foundation and below the surface grow from the end element's size (even: exactly
+    # the size used before the grading existed)
+    h_end = (x1 - x0) / (len(under) - 1) if end_grading == 1.0 else under[1] - under[0]
+    left = graded_lines(x0, x_left, h_end, h_coarse, growth)[::-1]
+    right = graded_lines(x1, x_right, h_end, h_coarse, growth)
     protected = (x_left, x0, x1, x_right)
     x_lines = _insert_breaks(np.unique(np.concatenate([left, under, right])), edges, protected, as_edges=True)
     x_lines = _insert_breaks(x_lines, breaks, protected + tuple(float(v) for v in edges))
     z_parts = [np.array([0.0])]
-    top, h = 0.0, h0
+    top, h = 0.0, h_end  # graded: the ends' corner elements are about square, not slivers
     for t in layers:
         part = graded_lines(top, top - t, h, h_coarse, growth)
         z_parts.append(part[1:])
@@ -212,6 +221,27 @@ def soil_block(
         trench = (centre[:, 0] > x0) & (centre[:, 0] < x1) & (centre[:, 1] > -embedment)
         mesh = remove_elements(mesh, ~trench)
     return mesh
+
+
+def foundation_lines(x0, x1, h_fine, end_grading=1.0):
+    """Mesh-line positions [m] under a foundation from ``x0`` to ``x1``: n = round((x1 - x0) / h_fine)
+    elements (at least one), spaced evenly for ``end_grading`` = 1, else graded towards both ends by the
+    symmetric power map
+
+        x(t) = x0 + (x1 - x0) s(t),  s(t) = (2t)^gamma / 2 for t <= 1/2,  1 - (2(1 - t))^gamma / 2 beyond,
+
+    of the even parameters t = i/n (Babuska's radical grading, mirrored). The end element is then about
+    (x1 - x0) / 2 * (2/n)^gamma, so halving ``h_fine`` shrinks it by 2^gamma: a family of such meshes resolves
+    the singular contact pressure at the ends of a stiff strip faster than the even one, with the same number
+    of elements (those in the middle grow to about gamma * h_fine)."""
+    h_fine = check_real("h_fine", h_fine, lo=0.0, lo_open=True, unit="m")
+    end_grading = check_real("end_grading", end_grading, lo=1.0, hi=MAX_END_GRADING, unit="-")
+    n = max(1, round((x1 - x0) / h_fine))
+    if end_grading == 1.0:
+        return np.linspace(x0, x1, n + 1)
+    t = np.arange(n + 1) / n
+    s = np.where(t <= 0.5, 0.5 * (2.0 * t) ** end_grading, 1.0 - 0.5 * (2.0 * (1.0 - t)) ** end_grading)
+    return x0 + (x1 - x0) * s
 
 
 def _insert_breaks(lines, breaks, protected, as_edges=False):

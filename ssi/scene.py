@@ -75,7 +75,7 @@ from .materials.soil_laws import (
     material_table,
     pore_pressure,
 )
-from .mesh import foundation_contact, soil_block, surface_pressure_forces
+from .mesh import MAX_END_GRADING, foundation_contact, soil_block, surface_pressure_forces
 from .model import Model, System
 from .section import Section
 from .shapes import lagrange3
@@ -367,12 +367,15 @@ class Phase:
 @dataclass(frozen=True)
 class MeshSize:
     """Element size ``h_fine`` [m] under the foundation, ``h_coarse`` [m] far from it, ``growth`` [-] ratio of
-    neighbouring sizes, ``n_gauss`` 2 (reduced) or 3 (full) Gauss points per direction."""
+    neighbouring sizes, ``n_gauss`` 2 (reduced) or 3 (full) Gauss points per direction, ``end_grading``
+    [-] exponent (1 to ``ssi.mesh.MAX_END_GRADING``) grading the elements under the foundation towards its
+    ends (1: even; see ``ssi.mesh.foundation_lines``)."""
 
     h_fine: float = 0.25
     h_coarse: float = 2.0
     growth: float = 1.25
     n_gauss: int = 2
+    end_grading: float = 1.0
 
     def __post_init__(self):
         h_fine = check_real("MeshSize.h_fine", self.h_fine, lo=0.0, lo_open=True, unit="m")
@@ -380,6 +383,7 @@ class MeshSize:
             raise ValueError(f"MeshSize.h_coarse must be >= h_fine = {self.h_fine!r}, got {self.h_coarse!r}")
         check_real("MeshSize.growth", self.growth, lo=1.0)
         check_choice("MeshSize.n_gauss", self.n_gauss, (2, 3))
+        check_real("MeshSize.end_grading", self.end_grading, lo=1.0, hi=MAX_END_GRADING, unit="-")
 
 
 @dataclass
@@ -506,6 +510,7 @@ class Scene:
             breaks=self._breaks(),
             embedment=self.embedment,
             edges=sorted({v for ph in self.phases for ex in ph.excavate for v in (ex.x0, ex.x1)}),
+            end_grading=self.mesh.end_grading,
         )
         model = Model()
         model.info["scene"] = _describe(self)

@@ -168,7 +168,13 @@ UNITS = {
         "bottom": "m (depth below the ground)",
         "top": "m (depth below the ground; leave out: 0)",
     },
-    "MeshSize": {"h_fine": "m", "h_coarse": "m", "growth": "-", "n_gauss": "2 | 3"},
+    "MeshSize": {
+        "h_fine": "m",
+        "h_coarse": "m",
+        "growth": "-",
+        "n_gauss": "2 | 3",
+        "end_grading": "- (1: even; ends graded up to 4)",
+    },
     "homogeneous": {"thickness": "m", "E": "Pa", "nu": "-", "n_layers": "-"},
     "rc": {
         "depth": "m",
