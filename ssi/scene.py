@@ -1142,10 +1142,8 @@ class BuiltScene:
                 "contact_force: the reaction of a RigidFooting is read from a single-phase solve (its "
                 "Settlement in Scene.loads); of a phased solve it is not built"
             )
-        res = out.solver_result
-        base = self.model.dof(self.footing_nodes, "w")
         whole = 2.0 if self.scene.symmetric else 1.0
-        return np.array([-whole * float(np.sum(res.reactions(k)[base])) for k in range(res.n_steps + 1)])
+        return -whole * out.solver_result.support_reaction(self.footing_nodes, "w")
 
     # ---- solution --------------------------------------------------------------------------------------
     def solve(

@@ -128,19 +128,31 @@ class Result:
 
     def reaction(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
         """(n_steps + 1,) summed internal force (= support reaction where no load acts on those DOFs) over
-        ``ids`` in ``comp`` [N/m] (N m/m for "alpha"). With loads on them, see :meth:`reactions`."""
+        ``ids`` in ``comp`` [N/m] (N m/m for "alpha"). With loads on them, see :meth:`support_reaction`."""
         d = self.model.dof(ids, comp)
         return np.array(self.f_int)[:, d].sum(axis=1)
 
     def reactions(self, k: int = -1) -> np.ndarray:
         """(n_dof,) support reactions [N/m] at step ``k``: the internal force minus the applied load,
         F_int - (lambda f_ref + f_dead); zero on the free DOFs up to the equilibrium residual."""
+        self._check_loads("reactions")
+        return self.f_int[k] - (self.load_factor[k] * self.f_ref + self.f_dead)
+
+    def support_reaction(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
+        """(n_steps + 1,) summed support reaction over ``ids`` in ``comp`` [N/m] (N m/m for "alpha"): the
+        internal force minus the applied load there (:meth:`reactions`, summed; e.g. a rigid footing's base
+        node that a ground surcharge also loads)."""
+        self._check_loads("support_reaction")
+        d = self.model.dof(ids, comp)
+        applied = np.asarray(self.load_factor) * self.f_ref[d].sum() + self.f_dead[d].sum()
+        return self.reaction(ids, comp) - applied
+
+    def _check_loads(self, name: str) -> None:
         if self.f_ref is None or self.f_dead is None:
             raise ValueError(
-                "reactions: this result does not record the loads it was solved with (f_ref, f_dead); of a "
+                f"{name}: this result does not record the loads it was solved with (f_ref, f_dead); of a "
                 "phased scene read each phase's result (out.phases[i]['result'])"
             )
-        return self.f_int[k] - (self.load_factor[k] * self.f_ref + self.f_dead)
 
     @property
     def final_state(self) -> list[np.ndarray]:
