@@ -42,6 +42,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .results import atomic_path
+
 __all__ = [
     "REQUIRED_META",
     "AxisCalibration",
@@ -152,8 +154,8 @@ def read_digitizer_csv(src, name: str = "curve") -> dict[str, np.ndarray]:
 
 
 def write_reference(path, meta: dict, columns: dict) -> None:
-    """Write a reference CSV: provenance comments, header row, rows. ``columns``: name -> sequence (equal
-    lengths; may be empty for an empty slot)."""
+    """Write a reference CSV atomically: provenance comments, header row, rows. ``columns``: name -> sequence
+    (equal lengths; may be empty for an empty slot)."""
     missing = [k for k in REQUIRED_META if not str(meta.get(k, "")).strip()]
     if missing:
         raise ValueError(f"meta is missing the provenance keys {missing} (required: {list(REQUIRED_META)})")
@@ -171,7 +173,8 @@ def write_reference(path, meta: dict, columns: dict) -> None:
     w.writerow(list(columns))
     for row in zip(*columns.values(), strict=True):
         w.writerow([f"{v:.6g}" if isinstance(v, float | np.floating) else v for v in row])
-    Path(path).write_text("\n".join(lines) + "\n" + buf.getvalue(), encoding="utf-8")
+    with atomic_path(path, overwrite=True) as tmp:  # a reader never sees half a file
+        tmp.write_text("\n".join(lines) + "\n" + buf.getvalue(), encoding="utf-8")
 
 
 def read_reference(path) -> tuple[dict, dict]:
