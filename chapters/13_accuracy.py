@@ -65,13 +65,14 @@ from ssi import paths
 from ssi.analytical import hetenyi_deflection
 from ssi.analytical_soil import strip_centreline_compression, strip_load_stresses
 from ssi.bearing_capacity import footing_settings, prandtl, push_footing, rigid_footing
+from ssi.digitize import read_reference
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.estimate import RefinedSolver, richardson, solve_to_target
 from ssi.examples import chapter11_foundation, punch_settlement, winkler_strip
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
-from ssi.report import record, save_figure
+from ssi.report import check, record, record_empty, save_figure
 from ssi.solver import NonConvergence, Settings
 from ssi.supports import edge_forces
 
@@ -382,18 +383,33 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # solve: its path goes viscous and relaxes at λ = 1). Full mode runs it below; fast mode leaves it out (that
 # one solve costs more than the rest of the section).
 #
-# **Why the row is still not met: the reference.** A claim "2 %" needs a reference much finer than what was
-# delivered. The next copy of the graded family (h = 0.125 m, 22 837 DOFs) took 22 minutes here and did not
-# reach the service load: the solver reports "limit load reached at λ = 0.974 (held at λ = 1 the body kept
-# flowing, its current stiffness 0.0005 of the initial)", at 46.36 mm. That is not believable as physics —
-# the h/4 copy carries 1.5 times the service load (112 mm, relaxed) and finite-element limit loads fall by a
-# few per cent per halving, not by a third — but it leaves no reference at λ = 1 to compare with. The other
-# fine copies solved agree with the delivered 47.61 mm to within 1.4 %: the x-only graded copy at h = 0.125 m
-# (17 141 DOFs, 10 min) 47.77 mm, the even copy at h = 0.125 m 46.97 mm. They are neither much finer at the
-# ends nor the same family, so they do not decide the claim. The row `target_error_met` therefore stays
-# **not met**; its value is, as before, the estimated error of the finest even copy solved (h/4).
+# **The reference.** A claim "2 %" needs a reference much finer than what was delivered: the next copies of
+# the same graded family, solved once with `tools/chapter11_reference.py` and stored with their provenance
+# in `reference_data/chapter11_graded_reference.csv` (h = 0.125 m: 22 837 DOFs, 250 s with PARDISO on this
+# machine, 630 s while it was busy — too long to repeat in every run). It is a mesh-convergence reference from
+# the same code, not an independent one, so it is used the way such references are: the three finest answers
+# (h/2, h/4 of this run, h/8 stored) give their own observed order and Richardson limit s*, and the
+# delivered answer's true error is taken against s* — more than its difference from the h/8 copy whenever
+# the sequence converges monotonically. Two checks keep the stored number honest: its h/8 value must lie
+# where this run's own sequence predicts it (the fitted power law C hᵖ of h, h/2, h/4 — a prediction made
+# without it), and the reference's own estimated error must be well below the target.
+#
+# Measured (full mode): the stored h/8 copy gives 47.89 mm where this run's h, h/2, h/4 predict 47.92 mm;
+# h/2, h/4, h/8 converge at order 1.86 to 48.00 mm, the h/8 copy within 0.23 % of it; the delivered
+# 47.61 mm is 0.82 % from that limit (0.60 % from the h/8 copy), against the driver's predicted 1.24 %
+# (efficiency index 1.5) — the target is met. Two things the reference runs showed, left open: an earlier run
+# of the h/8 copy, before the linear solver was made reproducible (`MKL_CBWR`), stopped at λ = 0.974 as a
+# "limit load"; and the h/16 copy (70 989 DOFs, 30 min) ends "limit load reached at λ = 0.606", which is not
+# believable (the h/4 copy carries 1.5 times the service load): its evidence is a held load that "kept
+# flowing" with a current stiffness of 0.044 of the initial — below `collapse_stiffness = 0.05`, but a slow
+# relaxation rather than a mechanism (the zoo's true collapses flow at 10⁻⁵). On meshes this fine near the
+# strip corners, a limit load the solver reports with flow evidence near 0.05 deserves a second look.
 
 # %%
+# the even mesh as given: an honest refusal, consistent with its order (asymptotic, more than 3 halvings)
+assert target.status == "limit of refinements", target.status
+assert halvings_needed > 3
+assert finest_error > TARGET
 if not FAST:
     scene11g = chapter11_foundation(1.0, h_coarse=4.0, end_grading=END_GRADING)
     t0 = time.perf_counter()
@@ -403,29 +419,47 @@ if not FAST:
     graded_s = graded.estimate.parts["mesh"]["max_settlement"]
     # the grading must lift the observed order above the even mesh's
     assert graded_s.order > p_mesh + 0.5, (graded_s.order, p_mesh)
-    graded_text = (
-        f"; end_grading={END_GRADING}: '{graded.status}' at {graded.key} (mesh order {graded_s.order:.2f}, "
-        f"predicted {graded.predicted['max_settlement']:.2%}) but no reference: its h/8 copy stops at "
-        "lambda = 0.974 in the solver (chapter text)"
+    assert graded.met and graded.key == (2, 0, 0), (graded.status, graded.key)  # h/4, as predicted
+
+    ref_meta, ref = read_reference("chapter11_graded_reference.csv")
+    row = int(np.flatnonzero(np.isclose(ref["h_fine_m"], scene11g.mesh.h_fine / 8))[0])
+    assert np.isclose(ref["h_coarse_m"][row], scene11g.mesh.h_coarse / 8)  # the same family
+    s_h8 = 1e-3 * ref["max_settlement_mm"][row]
+    s_delivered = graded.result.max_settlement()[1]
+    assert s_delivered == graded_s.values[2]  # the delivered copy is the estimate's h/4
+    # (1) the stored h/8 answer where this run's h, h/2, h/4 predict it: q2 - q_exact shrinks by 2^p
+    predicted_h8 = graded_s.extrapolated + graded_s.error_fine / 2**graded_s.order
+    # (2) the reference sequence h/2, h/4, h/8 and its limit
+    seq = richardson(graded_s.values[1], s_delivered, s_h8)
+    true_error = abs(s_delivered - seq.extrapolated) / seq.extrapolated
+    ref_error = abs(seq.error_fine) / seq.extrapolated
+    print(
+        f"reference ({ref_meta['how_obtained'][:60]}...): h/8 = {1e3 * s_h8:.2f} mm, this run's sequence "
+        f"predicts {1e3 * predicted_h8:.2f} mm; h/2, h/4, h/8: order {seq.order:.2f}, limit "
+        f"{1e3 * seq.extrapolated:.2f} mm, estimated error of the h/8 copy {ref_error:.2%}; delivered "
+        f"{1e3 * s_delivered:.2f} mm: true error {true_error:.2%} (against h/8 alone "
+        f"{abs(s_delivered - s_h8) / s_h8:.2%}), predicted {graded.predicted['max_settlement']:.2%}"
+    )
+    # the prediction without the reference lands within a quarter of the h/4 -> h/8 change
+    assert abs(predicted_h8 - s_h8) < 0.25 * abs(s_h8 - s_delivered), (predicted_h8, s_h8)
+    assert seq.asymptotic and ref_error < 0.25 * TARGET, (seq, ref_error)  # the reference is much finer
+    check(
+        "target_error_met",
+        f"chapter-11 scene (h = 1 m, 4 m far) with end_grading={END_GRADING}, solve_to_target("
+        f"target_error={TARGET}): '{graded.status}' at h/4 ({graded.result.built.model.n_dof} DOFs, "
+        f"predicted {graded.predicted['max_settlement']:.2%}); value: true error of its max settlement "
+        f"against the Richardson limit of h/2, h/4 and the stored h/8 copy "
+        f"({1e3 * seq.extrapolated:.2f} mm, order {seq.order:.2f}); the even mesh as given refuses: "
+        f"'{target.status}' (order {p_mesh:.2f}, about {halvings_needed} halvings needed)",
+        true_error,
+        TARGET,
     )
 else:
-    graded_text = f"; end_grading={END_GRADING} copy: full mode"
-
-# %%
-# an honest refusal is the driver's answer, recorded as a FAIL of the claim (not hidden, not a crash)
-record(
-    "target_error_met",
-    f"chapter-11 scene (h = 1 m, 4 m far), target_error={TARGET}: '{target.status}' (mesh order "
-    f"{p_mesh:.2f}, about {halvings_needed} halvings needed, 3 allowed){graded_text}; value: "
-    "estimated error of the finest even copy solved (h/4)",
-    finest_error,
-    TARGET,
-    False,
-)
-# the refusal must be the consistent one: the order is asymptotic, and more than 3 halvings are needed
-assert target.status == "limit of refinements", target.status
-assert halvings_needed > 3
-assert finest_error > TARGET
+    record_empty(
+        "target_error_met",
+        "fast mode: the graded solve_to_target (40 s) and its comparison with the stored reference run in "
+        "full mode only",
+    )
 
 # %% [markdown]
 # ## 3. The speed/accuracy trade: Pareto fronts
@@ -600,13 +634,13 @@ assert by_mc["h=0.125 30 steps line_search"]["error"] < by_mc["h=0.5 30 steps li
 # settlement converges with the mesh at order 0.55 (the punch edges on yielding clay), so 2 % would take about
 # seven halvings of h; the finest even copy of the estimate (h/4) is still about 10 % off. The error lives at
 # the two strip ends; a mesh graded towards them (`end_grading = 1.75`, order γ on Sadowsky's punch) lifts
-# the observed order to 1.7 and the driver then predicts 1.2 % at h/4 — but the much finer reference that
-# claim needs (the graded h/8 copy) does not reach the service load in the solver today, so the row
-# `target_error_met` stays FAIL. The Pareto fronts show where the time goes: for both scenes the mesh decides
-# the error and the cost; for the chapter-11 scene twice the load steps or twice the plate layers change the
-# settlement by less than 0.1 %, and BFGS and full Newton give the same settlement to the solver's tolerance
-# (their costs are in the table above). The MC footing,
-# which converges at order ≈ 1, reaches 10 % and 5 % cheaply and 2 % only on the finest mesh of full mode.
+# the observed order to 1.7, the driver predicts 1.24 % at h/4 and delivers it, and against a much finer
+# reference of the same family (the stored h/8 copy and the Richardson limit of h/2, h/4, h/8) its true error
+# is 0.82 % (row `target_error_met`). The Pareto fronts show where the time goes: for both scenes the mesh
+# decides the error and the cost; for the chapter-11 scene twice the load steps or twice the plate layers
+# change the settlement by less than 0.1 %, and BFGS and full Newton give the same settlement to the solver's
+# tolerance (their costs are in the table above). The MC footing, which converges at order ≈ 1, reaches 10 %
+# and 5 % cheaply and 2 % only on the finest mesh of full mode.
 #
 # References: L. F. Richardson (1911), *Phil. Trans. R. Soc. A* 210, 307–357; P. J. Roache (1998),
 # *Verification and Validation in Computational Science and Engineering*, Hermosa (the grid convergence index

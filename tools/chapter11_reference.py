@@ -6,8 +6,8 @@ quantities as a reference CSV (chapter 13's row ``target_error_met`` compares th
 
 Each copy is ``chapter11_foundation(h, h_coarse=4 h, end_grading=g)`` -- the family chapter 13 refines,
 h = 1 m halved -- solved with the default ``Settings()``. A copy that does not complete (a limit load, a
-NonConvergence) is reported and left out. Minutes per copy: h = 0.125 m, 22 837 DOFs, took 250 s with the
-``fast`` extra (PARDISO) on the project's 2-core machine and ~22 min with SuperLU; install ``.[fast]`` first.
+NonConvergence) is reported and left out. Minutes per copy: h = 0.125 m, 22 837 DOFs, took 250 s (630 s on
+a busy machine) with the ``fast`` extra (PARDISO) on the project's 2-core machine; install ``.[fast]`` first.
 The file is written atomically; an existing one is replaced only with ``--overwrite``.
 """
 
