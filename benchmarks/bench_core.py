@@ -169,6 +169,7 @@ def throughput(group):
             f_buf,
             k_buf,
             ELASTIC,
+            0.0,
         )
 
     def fast():

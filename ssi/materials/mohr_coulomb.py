@@ -72,8 +72,16 @@ def principal_inplane(sxx, szz, sxz):
     mean = 0.5 * (sxx + szz)
     half = 0.5 * (sxx - szz)
     rad = math.sqrt(half * half + sxz * sxz)
-    theta = 0.5 * math.atan2(sxz, half) if rad > 0.0 else 0.0
-    return mean + rad, mean - rad, math.cos(theta), math.sin(theta)
+    if rad == 0.0:
+        return mean, mean, 1.0, 0.0
+    # theta = atan2(sxz, half) / 2 in (-pi/2, pi/2] by the half-angle formulas: one square root instead of
+    # atan2, cos and sin (those three were ~80 % of an elastic Mohr-Coulomb point's time); each branch takes
+    # the root of the larger of 1 +- cos(2 theta), so neither loses digits near theta = 0 or +-pi/2
+    if half >= 0.0:
+        c = math.sqrt(0.5 * (1.0 + half / rad))
+        return mean + rad, mean - rad, c, 0.5 * sxz / (rad * c)
+    s = math.copysign(math.sqrt(0.5 * (1.0 - half / rad)), sxz)
+    return mean + rad, mean - rad, 0.5 * sxz / (rad * s), s
 
 
 @njit(cache=True)
@@ -192,10 +200,11 @@ def _dp_times(lam, mu, v, out):
 
 
 @njit(cache=True)
-def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H):
+def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H, vec):
     """Return-map the ordered trial principal stresses ``sB`` (3,) onto the Mohr–Coulomb surface.
 
-    Writes the returned ordered principal stresses ``sig`` (3,) and ``H`` (3, 3) = d sig / d sB.
+    Writes the returned ordered principal stresses ``sig`` (3,) and ``H`` (3, 3) = d sig / d sB; ``vec``
+    (6, 3) is scratch for the gradient vectors.
     Returns the branch code (B_PLANE, B_EDGE12, B_EDGE23, B_APEX) or -1 if no branch was admissible.
     Assumes f(sB) > 0.
 
@@ -205,7 +214,6 @@ def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H):
             (i.e. it lies on the edge below the apex).
     Step 3 (apex): sig = apex (φ > 0 only); H = 0.
     """
-    vec = np.empty((6, 3))  # one allocation for the six gradient vectors
     a0 = vec[0]
     b0 = vec[1]
     a1 = vec[2]
@@ -331,11 +339,41 @@ def _plastic_strain_norm(lam, mu, dsig):
     return math.sqrt(s)
 
 
+N_MC_CONSTANTS = 6  # (lam, mu, k, m, kc, apex) of one material: see mc_material_constants
+N_MC_WORK = 110  # float scratch of mc_implicit_with: 4 vectors (3,), 5 matrices (4, 4), 6 vectors (3,)
+
+
+@njit(cache=True)
+def mc_material_constants(params, out):
+    """Fill ``out`` (N_MC_CONSTANTS,) with the constants of a Mohr–Coulomb parameter row that every point
+    of the material shares: the Lamé pair and :func:`mc_constants` (an element kernel computes them once per
+    material, not per point: three transcendentals and four divisions, ~40 ns of a ~110 ns elastic point)."""
+    lam, mu = lame(params[0], params[1])
+    k, m, kc, apex = mc_constants(params[2], params[3], params[4])
+    out[0], out[1], out[2], out[3], out[4], out[5] = lam, mu, k, m, kc, apex
+
+
 @njit(cache=True)
 def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
+    """:func:`mc_implicit_with` for a parameter row [E, nu, c, phi, psi, ...] (constants computed here)."""
+    lam, mu = lame(params[0], params[1])
+    k, m, kc, apex = mc_constants(params[2], params[3], params[4])
+    work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
+    return mc_implicit_with(
+        lam, mu, k, m, kc, apex, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork
+    )
+
+
+@njit(cache=True)
+def mc_implicit_with(
+    lam, mu, k, m, kc, apex, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork
+):
     """Implicit (backward-Euler) Mohr–Coulomb update; returns 0 elastic, 1 plastic, -1 failure.
 
-    Shapes: params (>=5,), deps (4,), sig_old (4,), hist_old (2,), sig_new (4,), hist_new (2,), D (4, 4).
+    Constants: the Lamé pair (lam, mu) and (k, m, kc, apex) of :func:`mc_constants`. Shapes: deps (4,),
+    sig_old (4,), hist_old (2,), sig_new (4,), hist_new (2,), D (4, 4); scratch ``work`` (N_MC_WORK,) float
+    and ``iwork`` (3,) int, owned by the caller so that a plastic point allocates nothing either (four small
+    allocations were most of a plastic point's time).
 
     1. Trial stress sB = σ_old + D Δε (elastic predictor).
     2. Principal values of sB: in-plane pair (pa, pb) with axes n_a, n_b and the out-of-plane syy; order them.
@@ -345,13 +383,6 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
        C = H Dp for the normal components and G* = μ (σa - σb) / (sBa - sBb) for the in-plane shear
        (rotation of the axes); rotate: D = R C Rᵀ. ``tangent == K0_MATRIX`` returns the elastic D.
     """
-    E = params[0]
-    nu = params[1]
-    c = params[2]
-    phi = params[3]
-    psi = params[4]
-    lam, mu = lame(E, nu)
-    k, m, kc, apex = mc_constants(c, phi, psi)
     # trial stress and its ordered principal values as scalars: an elastic point allocates nothing
     tr = deps[0] + deps[1] + deps[3]
     t0 = sig_old[0] + lam * tr + 2.0 * mu * deps[0]
@@ -374,26 +405,26 @@ def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
         hist_new[1] = B_ELASTIC
         elastic_fill(lam, mu, D)
         return ST_ELASTIC
-    # plastic: one block of vectors, one of small matrices, one index triple
-    vec = np.empty((4, 3))
+    # plastic: vectors, small matrices and the index triple live in the caller's scratch
+    vec = work[:12].reshape((4, 3))
     sB = vec[0]
     s = vec[1]
     q = vec[2]
     ds = vec[3]
-    mats = np.empty((5, 4, 4))
+    mats = work[12:92].reshape((5, 4, 4))
     H = mats[0]
     R = mats[1]
     Cp = mats[2]
     C4 = mats[3]
     T = mats[4]
-    order = np.empty(3, np.int64)
+    order = iwork
     order[0] = o0
     order[1] = o1
     order[2] = o2
     sB[0] = sB0
     sB[1] = sB1
     sB[2] = sB2
-    branch = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H)
+    branch = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H, work[92:110].reshape((6, 3)))
     if branch < 0:
         sig_new[0] = t0
         sig_new[1] = t1
@@ -620,7 +651,7 @@ def mc_drift_correct(sig, lam, mu, k, m, kc, apex):
         return 0
     s = np.empty(3)
     H = np.empty((3, 3))
-    br = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H)
+    br = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H, np.empty((6, 3)))
     if br < 0:
         return br
     q = np.empty(3)

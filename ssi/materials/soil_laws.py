@@ -32,7 +32,16 @@ from numba import njit
 
 from ..protocol import CONSISTENT
 from ..validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
-from .mohr_coulomb import elastic_fill, lame, mc_explicit, mc_implicit, vm_implicit
+from .mohr_coulomb import (
+    N_MC_CONSTANTS,
+    N_MC_WORK,
+    elastic_fill,
+    lame,
+    mc_explicit,
+    mc_implicit_with,
+    mc_material_constants,
+    vm_implicit,
+)
 
 ELASTIC = 0
 MOHR_COULOMB = 1
@@ -55,17 +64,61 @@ def elastic_matrix(E, nu, D):
     elastic_fill(lam, mu, D)
 
 
+@njit(cache=True)
+def law_constants(kinds, params):
+    """(n_mat, N_MC_CONSTANTS): per material the constants its law shares over all points (the
+    ``constants`` row of :func:`soil_update_among`; zeros for a law that has none)."""
+    out = np.zeros((kinds.shape[0], N_MC_CONSTANTS))
+    for i in range(kinds.shape[0]):
+        if kinds[i] == MOHR_COULOMB:
+            mc_material_constants(params[i], out[i])
+    return out
+
+
 @njit(cache=True, inline="always")
 def soil_update_among(
-    has_mc, has_mc_explicit, has_vm, kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent
+    has_mc,
+    has_mc_explicit,
+    has_vm,
+    kind,
+    params,
+    constants,
+    deps,
+    sig_old,
+    hist_old,
+    sig_new,
+    hist_new,
+    D,
+    tangent,
+    work,
+    iwork,
 ):
-    """:func:`soil_update` restricted to the laws flagged ``has_*`` (a kind not flagged is taken as ELASTIC).
+    """:func:`soil_update` restricted to the laws flagged ``has_*`` (a kind not flagged is taken as ELASTIC);
+    ``constants`` is the material's row of :func:`law_constants`, ``work`` (N_MC_WORK,) float and ``iwork``
+    (3,) int the caller's scratch.
 
     Inlined into its caller: where the flags are compile-time constants (the law-specialised kernels of
     ``ssi.elements.soil_q8.q8_kernel_for``), numba drops the branches of the laws not flagged before typing
     them, so a scene compiles only the laws its materials use."""
     if has_mc and kind == MOHR_COULOMB:
-        return mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+        c = constants
+        return mc_implicit_with(
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+            c[4],
+            c[5],
+            deps,
+            sig_old,
+            hist_old,
+            sig_new,
+            hist_new,
+            D,
+            tangent,
+            work,
+            iwork,
+        )
     if has_mc_explicit and kind == MOHR_COULOMB_EXPLICIT:
         return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
     if has_vm and kind == VON_MISES:
@@ -89,8 +142,26 @@ def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tan
     ``tangent == K0_MATRIX`` (0, :mod:`ssi.protocol`), else the consistent tangent. Status 0 = elastic, 1 =
     plastic, < 0 = failure.
     """
+    constants = np.zeros(N_MC_CONSTANTS)
+    if kind == MOHR_COULOMB:
+        mc_material_constants(params, constants)
+    work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
     return soil_update_among(
-        True, True, True, kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent
+        True,
+        True,
+        True,
+        kind,
+        params,
+        constants,
+        deps,
+        sig_old,
+        hist_old,
+        sig_new,
+        hist_new,
+        D,
+        tangent,
+        work,
+        iwork,
     )
 
 
