@@ -233,9 +233,10 @@ def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H, vec):
     viol12 = sig[1] - sig[0] > tol
     viol23 = sig[2] - sig[1] > tol
     if not viol12 and not viol23:
+        inv_den = 1.0 / den  # one division for the nine entries of H
         for i in range(3):
             for j in range(3):
-                H[i, j] = (1.0 if i == j else 0.0) - r0[i] * a0[j] / den
+                H[i, j] = (1.0 if i == j else 0.0) - r0[i] * a0[j] * inv_den
         return B_PLANE
     # --- edges (try the indicated one first, then the other)
     for attempt in range(2):
@@ -332,9 +333,10 @@ def _plastic_strain_norm(lam, mu, dsig):
     E = mu * (3.0 * lam + 2.0 * mu) / (lam + mu)
     nu = lam / (2.0 * (lam + mu))
     tr = dsig[0] + dsig[1] + dsig[2]
+    inv_e = 1.0 / E
     s = 0.0
     for i in range(3):
-        e = ((1.0 + nu) * dsig[i] - nu * tr) / E
+        e = ((1.0 + nu) * dsig[i] - nu * tr) * inv_e
         s += e * e
     return math.sqrt(s)
 
