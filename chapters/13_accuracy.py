@@ -399,11 +399,15 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # 47.61 mm is 0.82 % from that limit (0.60 % from the h/8 copy), against the driver's predicted 1.24 %
 # (efficiency index 1.5) — the target is met. Two things the reference runs showed, left open: an earlier run
 # of the h/8 copy, before the linear solver was made reproducible (`MKL_CBWR`), stopped at λ = 0.974 as a
-# "limit load"; and the h/16 copy (70 989 DOFs, 30 min) ends "limit load reached at λ = 0.606", which is not
-# believable (the h/4 copy carries 1.5 times the service load): its evidence is a held load that "kept
-# flowing" with a current stiffness of 0.044 of the initial — below `collapse_stiffness = 0.05`, but a slow
-# relaxation rather than a mechanism (the zoo's true collapses flow at 10⁻⁵). On meshes this fine near the
-# strip corners, a limit load the solver reports with flow evidence near 0.05 deserves a second look.
+# "limit load"; and the h/16 copy (70 989 DOFs, 34 min) cannot relax its viscous path above λ = 0.606. It
+# used to end there as "limit load reached", which is not believable (the h/4 copy carries 1.5 times the
+# service load). Its evidence was the held load at λ = 0.615, which "kept flowing" with a current stiffness
+# of 0.044 of the initial: below `collapse_stiffness = 0.05`, but it relaxed by half per increment (a slow
+# relaxation, not a mechanism), and the relaxed path's secant stiffness there was 0.95. The zoo's collapses
+# flow at 4·10⁻⁹ to 1.6·10⁻³ at the held load nearest their limit, so a held load now counts as flowing
+# only below a tenth of `collapse_stiffness`, and only the nearest one counts: on the h/16 copy's evidence
+# the solver raises `NonConvergence` that says the relaxation failed, not a false collapse
+# (`tests/test_solver.py::test_collapse_evidence_is_the_nearest_held_load`).
 
 # %%
 # the even mesh as given: an honest refusal, consistent with its order (asymptotic, more than 3 halvings)

@@ -300,3 +300,36 @@ def test_a_path_crawls_only_when_a_third_of_its_recent_attempts_failed_and_it_ha
     assert not path._crawling()
     path.advances = [0.0] * (CRAWL_WINDOW - 1)  # too few attempts to judge
     assert not path._crawling()
+
+
+def _held(lam, flow):
+    from ssi.solver import _RelaxationFailed
+
+    return _RelaxationFailed({"reason": "no convergence"}, 10.0, lam, flow)
+
+
+@pytest.mark.parametrize(
+    "failures, secant, collapsed",
+    [
+        # the graded h = 0.0625 m copy of chapter 11 (carries lambda = 1 on every coarser copy): the held
+        # load at 0.615 relaxed by half per increment (0.044), the one at 1 slowly (3.7e-3): not a collapse
+        ([(1.0, 3.7e-3), (0.615, 0.044)], 0.4, False),
+        # zoo scene 80 (random, seed 1): the nearest held load flowed at 7e-4 while the relaxed path stayed
+        # stiff: a collapse on the flow evidence
+        ([(1.0, 1.6e-3), (0.748, 1.15e-3), (0.623, 7e-4)], 0.37, True),
+        # zoo scene 13: the nearest held load kept flowing at -5e-6 (the load fell back while held)
+        ([(1.0, 5.6e-7), (0.798, -4.95e-6)], np.nan, True),
+        # no flow measured (nan) and a relaxed path that flattened: a collapse on the secant evidence
+        ([(0.9, np.nan)], 0.01, True),
+        ([(0.9, np.nan)], 0.3, False),
+    ],
+)
+def test_collapse_evidence_is_the_nearest_held_load(failures, secant, collapsed):
+    """The bracket's verdict rests on the held load just above the largest relaxed one, with a flow
+    stiffness below a tenth of collapse_stiffness (measured flows of the zoo's collapses: 4e-9 .. 1.6e-3)
+    or a flattened relaxed path; numbers from the runs named."""
+    from ssi.solver import _collapse_evidence
+
+    nearest, _, verdict = _collapse_evidence([_held(lam, f) for lam, f in failures], secant, 0.05)
+    assert nearest.lam == min(lam for lam, _ in failures)
+    assert verdict is collapsed
