@@ -358,21 +358,17 @@ def mc_material_constants(params, out):
 @njit(cache=True)
 def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     """:func:`mc_implicit_with` for a parameter row [E, nu, c, phi, psi, ...] (constants computed here)."""
-    lam, mu = lame(params[0], params[1])
-    k, m, kc, apex = mc_constants(params[2], params[3], params[4])
+    constants = np.empty(N_MC_CONSTANTS)
+    mc_material_constants(params, constants)
     work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
-    return mc_implicit_with(
-        lam, mu, k, m, kc, apex, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork
-    )
+    return mc_implicit_with(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork)
 
 
 @njit(cache=True)
-def mc_implicit_with(
-    lam, mu, k, m, kc, apex, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork
-):
+def mc_implicit_with(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork):
     """Implicit (backward-Euler) Mohr–Coulomb update; returns 0 elastic, 1 plastic, -1 failure.
 
-    Constants: the Lamé pair (lam, mu) and (k, m, kc, apex) of :func:`mc_constants`. Shapes: deps (4,),
+    ``constants`` (N_MC_CONSTANTS,): the material's row of :func:`mc_material_constants`. Shapes: deps (4,),
     sig_old (4,), hist_old (2,), sig_new (4,), hist_new (2,), D (4, 4); scratch ``work`` (N_MC_WORK,) float
     and ``iwork`` (3,) int, owned by the caller so that a plastic point allocates nothing either (four small
     allocations were most of a plastic point's time).
@@ -385,6 +381,8 @@ def mc_implicit_with(
        C = H Dp for the normal components and G* = μ (σa - σb) / (sBa - sBb) for the in-plane shear
        (rotation of the axes); rotate: D = R C Rᵀ. ``tangent == K0_MATRIX`` returns the elastic D.
     """
+    lam, mu, k = constants[0], constants[1], constants[2]
+    m, kc, apex = constants[3], constants[4], constants[5]
     # trial stress and its ordered principal values as scalars: an elastic point allocates nothing
     tr = deps[0] + deps[1] + deps[3]
     t0 = sig_old[0] + lam * tr + 2.0 * mu * deps[0]

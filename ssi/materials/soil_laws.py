@@ -101,23 +101,8 @@ def soil_update_among(
     ``ssi.elements.soil_q8.q8_kernel_for``), numba drops the branches of the laws not flagged before typing
     them, so a scene compiles only the laws its materials use."""
     if has_mc and kind == MOHR_COULOMB:
-        c = constants
         return mc_implicit_with(
-            c[0],
-            c[1],
-            c[2],
-            c[3],
-            c[4],
-            c[5],
-            deps,
-            sig_old,
-            hist_old,
-            sig_new,
-            hist_new,
-            D,
-            tangent,
-            work,
-            iwork,
+            constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork
         )
     if has_mc_explicit and kind == MOHR_COULOMB_EXPLICIT:
         return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
