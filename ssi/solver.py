@@ -238,13 +238,13 @@ RELAX_TOL = 1e-5  # a stage ends when the load measure changes by less than this
 RELAX_MIN_GROWTH = 1.5  # a failing stage is retried with a smaller growth of tau, down to this
 FLOW_MIN = 10.0 * RELAX_TOL  # a held increment smaller than this (relative to delta) is not flow but noise
 BRACKET_TOL = 0.01  # a limit load found by relaxation is bracketed to 1 % of its load factor ...
+BRACKET_REFINEMENTS = 4  # ... with at most this many extra relaxations
 # A held load "flows" (evidence of a mechanism) when its flow stiffness is below this fraction of
 # collapse_stiffness. Measured: the zoo's held loads above a detected limit flowed at 4e-9 .. 1.6e-3 of the
 # initial stiffness; the graded h = 0.0625 m copy of chapter 11's foundation, which carries lambda = 1
 # on every coarser copy, failed to relax at lambda = 0.615 with 0.044 (it relaxed by half per increment:
 # slow, not flowing) and was taken for a collapse there while the threshold was collapse_stiffness itself.
 FLOW_COLLAPSE_FRACTION = 0.1
-BRACKET_REFINEMENTS = 4  # ... with at most this many extra relaxations
 
 
 class _RelaxationFailed(Exception):
