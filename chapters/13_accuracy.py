@@ -403,13 +403,14 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # used to end there as "limit load reached", which is not believable (the h/4 copy carries 1.5 times the
 # service load). Its evidence was the held load at λ = 0.615, which "kept flowing" with a current stiffness
 # of 0.044 of the initial: below `collapse_stiffness = 0.05`, but it relaxed by half per increment (a slow
-# relaxation, not a mechanism), and the relaxed path's secant stiffness there was 0.95. The zoo's collapses
-# flow at 4·10⁻⁹ to 1.6·10⁻³ at the held load nearest their limit, so a held load now counts as flowing
+# relaxation, not a mechanism), and the relaxed path's secant stiffness there was 0.95. The zoo's held loads
+# above a detected limit flow at 4·10⁻⁹ to 1.6·10⁻³, the one nearest each limit at most 7·10⁻⁴, so a held
+# load now counts as flowing
 # only below a tenth of `collapse_stiffness`, and only the nearest one counts
 # (`tests/test_solver.py::test_collapse_evidence_is_the_nearest_held_load`). Re-run with that rule, the h/16
 # copy took the same path (37 min) and stopped with `NonConvergence`: the largest relaxed load factor
-# 0.6057, the held load at 0.6151 not flowing, the worst residual at the strip's edge (plate and contact) --
-# an honest stop where it used to report a false collapse.
+# 0.6057, the held load at 0.6151 not flowing, the worst residual under the strip at x = −1.4 m (plate and
+# contact) -- an honest stop where it used to report a false collapse.
 
 # %%
 # the even mesh as given: an honest refusal, consistent with its order (asymptotic, more than 3 halvings)

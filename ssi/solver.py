@@ -437,9 +437,9 @@ def _raise_relaxation_failure(path, failure, lam_lo, stiff):
             f"{path.settings.collapse_stiffness:g}, and the held load at lambda = {failure.lam:.6g} did not "
             f"flow (flow stiffness {failure.flow_stiffness:.2g}, not below "
             f"{FLOW_COLLAPSE_FRACTION * path.settings.collapse_stiffness:g}), so this is not taken for a "
-            "collapse; non-associated laws (soil psi < phi, contact psi_deg < phi_deg) on a fine mesh can "
-            "lose rate-independent solutions below the capacity: try a coarser mesh where the worst DOF "
-            "lies, or dilation closer to friction)"
+            "collapse; softening (a cracking strip) and non-associated laws (soil psi < phi, contact "
+            "psi_deg < phi_deg) can lose rate-independent solutions below the capacity on a fine mesh: try "
+            "a coarser mesh where the worst DOF lies, or dilation closer to friction)"
         )
     path.result.status = STOPPED
     raise NonConvergence(report, path.result)
