@@ -342,7 +342,7 @@ def _plastic_strain_norm(lam, mu, dsig):
 
 
 N_MC_CONSTANTS = 6  # (lam, mu, k, m, kc, apex) of one material: see mc_material_constants
-N_MC_WORK = 110  # float scratch of mc_implicit_with: 4 vectors (3,), 5 matrices (4, 4), 6 vectors (3,)
+N_MC_WORK = 110  # float scratch of mc_implicit: 4 vectors (3,), 5 matrices (4, 4), 6 vectors (3,)
 
 
 @njit(cache=True)
@@ -356,16 +356,7 @@ def mc_material_constants(params, out):
 
 
 @njit(cache=True)
-def mc_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
-    """:func:`mc_implicit_with` for a parameter row [E, nu, c, phi, psi, ...] (constants computed here)."""
-    constants = np.empty(N_MC_CONSTANTS)
-    mc_material_constants(params, constants)
-    work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
-    return mc_implicit_with(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork)
-
-
-@njit(cache=True)
-def mc_implicit_with(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork):
+def mc_implicit(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork):
     """Implicit (backward-Euler) Mohr–Coulomb update; returns 0 elastic, 1 plastic, -1 failure.
 
     ``constants`` (N_MC_CONSTANTS,): the material's row of :func:`mc_material_constants`. Shapes: deps (4,),

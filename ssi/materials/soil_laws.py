@@ -38,7 +38,7 @@ from .mohr_coulomb import (
     elastic_fill,
     lame,
     mc_explicit,
-    mc_implicit_with,
+    mc_implicit,
     mc_material_constants,
     vm_implicit,
 )
@@ -65,13 +65,20 @@ def elastic_matrix(E, nu, D):
 
 
 @njit(cache=True)
+def law_constants_of(kind, params, out):
+    """Fill ``out`` (N_MC_CONSTANTS,) with the constants a law of ``kind`` shares over all points of one
+    material (left alone for a law that has none)."""
+    if kind == MOHR_COULOMB:
+        mc_material_constants(params, out)
+
+
+@njit(cache=True)
 def law_constants(kinds, params):
-    """(n_mat, N_MC_CONSTANTS): per material the constants its law shares over all points (the
-    ``constants`` row of :func:`soil_update_among`; zeros for a law that has none)."""
+    """(n_mat, N_MC_CONSTANTS): :func:`law_constants_of` per material (the ``constants`` row of
+    :func:`soil_update_among`; zeros for a law that has none)."""
     out = np.zeros((kinds.shape[0], N_MC_CONSTANTS))
     for i in range(kinds.shape[0]):
-        if kinds[i] == MOHR_COULOMB:
-            mc_material_constants(params[i], out[i])
+        law_constants_of(kinds[i], params[i], out[i])
     return out
 
 
@@ -101,9 +108,7 @@ def soil_update_among(
     ``ssi.elements.soil_q8.q8_kernel_for``), numba drops the branches of the laws not flagged before typing
     them, so a scene compiles only the laws its materials use."""
     if has_mc and kind == MOHR_COULOMB:
-        return mc_implicit_with(
-            constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork
-        )
+        return mc_implicit(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork)
     if has_mc_explicit and kind == MOHR_COULOMB_EXPLICIT:
         return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
     if has_vm and kind == VON_MISES:
@@ -128,8 +133,7 @@ def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tan
     plastic, < 0 = failure.
     """
     constants = np.zeros(N_MC_CONSTANTS)
-    if kind == MOHR_COULOMB:
-        mc_material_constants(params, constants)
+    law_constants_of(kind, params, constants)
     work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
     return soil_update_among(
         True,
