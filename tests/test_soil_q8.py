@@ -12,7 +12,7 @@ from ssi.analytical_soil import flamant_strip_quadrature, strip_load_stresses
 from ssi.assembly import SparsePattern
 from ssi.elements.q8_elastic import q8_elastic_stiffness
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.materials.soil_laws import ELASTIC, elastic_params, material_table, mohr_coulomb_params
+from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import foundation_contact, soil_block, structured_q8
 from ssi.model import Model
 from ssi.protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX
@@ -309,29 +309,19 @@ def test_fast_elastic_kernel_matches_the_element_group(n_gauss):
 def test_duvaut_lions_blend_of_trial_and_inviscid_return(tangent):
     """A viscous group's forces, tangent and stress are (elastic trial + tau inviscid) / (1 + tau) of two
     rate-independent evaluations (one with every law elastic, one inviscid); its history is the inviscid
-    return's. Points in every return branch: the blend is done per point inside the kernel."""
-    rng = np.random.default_rng(3)
-    n_el = 40
-    ref = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1], [0, -1], [1, 0], [0, 1], [-1, 0]], float)
-    corners = ref[:4] + rng.uniform(-0.2, 0.2, (n_el, 4, 2))
-    coords = np.concatenate([corners, 0.5 * (corners + np.roll(corners, -1, axis=1))], axis=1)
-    kinds, params = material_table([mohr_coulomb_params(20e6, 0.3, 10e3, 25.0, 5.0)])
-    edofs = np.arange(16 * n_el).reshape(n_el, 16)
+    return's. The kernel regression case: every soil law, points in every return branch; the blend is done
+    per point inside the kernel."""
+    from kernel_regression_case import case
+
+    base, du, state = case(2)
     tau = 2.5
 
-    def group(kinds_, viscosity):
-        return SoilQ8(coords, edofs, 0, kinds_, params, viscosity=viscosity)
+    def group(kinds, viscosity):
+        return SoilQ8(base.coords, base.edofs, base.el_mat, kinds, base.params, viscosity=viscosity)
 
-    state = group(kinds, 0.0).initial_state()
-    p = rng.uniform(-150e3, -10e3, (n_el, 4))
-    state[:, :, 0] = p + rng.normal(0, 25e3, p.shape)
-    state[:, :, 1] = p + rng.normal(0, 25e3, p.shape)
-    state[:, :, 2] = rng.normal(0, 15e3, p.shape)
-    state[:, :, 3] = p
-    du = rng.normal(0.0, 2e-3, (n_el, 16))
-    f_v, k_v, s_v = group(kinds, tau).evaluate(du, du, state, tangent)
-    f_i, k_i, s_i = group(kinds, 0.0).evaluate(du, du, state, tangent)
-    f_e, k_e, s_e = group(np.zeros_like(kinds), 0.0).evaluate(du, du, state, tangent)
+    f_v, k_v, s_v = group(base.kinds, tau).evaluate(du, du, state, tangent)
+    f_i, k_i, s_i = group(base.kinds, 0.0).evaluate(du, du, state, tangent)
+    f_e, k_e, s_e = group(np.zeros_like(base.kinds), 0.0).evaluate(du, du, state, tangent)
     assert len(np.unique(s_i[:, :, 5])) >= 3  # elastic and at least two return branches
     np.testing.assert_allclose(
         f_v, (f_e + tau * f_i) / (1.0 + tau), rtol=1e-12, atol=1e-9 * np.abs(f_i).max()
