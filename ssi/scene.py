@@ -677,6 +677,13 @@ class Scene:
         )
         built.plate, built.interface, built.plate_nodes = plate, iface, ids
         built.base_pressure = p0
+        if all(seg.contact.kt == 0.0 for seg in segments):
+            # frictionless contact everywhere: nothing resists a horizontal translation of the strip, so K0
+            # is singular (strict pivoting used to factorise it on a round-off pivot). Hold u at the plate
+            # node nearest the middle: the contact tractions are normal to the horizontal base, so the
+            # support's reaction is zero while the strip carries no horizontal load (load_effect refuses one)
+            built.slide_support = int(ids[np.argmin(np.abs(plate_xy[:, 0] - 0.5 * (f.x0 + f.x1)))])
+            model.fix([built.slide_support], "u")
         if p0:
             scatter_vector(plate.edofs, plate.distributed_load(-p0, comp="w"), built.geostatic_load)
 
@@ -1006,6 +1013,7 @@ class BuiltScene:
     base_pressure: float = 0.0  # geostatic vertical stress [Pa] the strip's base starts with
     element_layer: np.ndarray | None = None  # (n_el,) index in scene.layers of every soil element
     footing_nodes: np.ndarray | None = None  # soil node ids under a RigidFooting (its base), ordered by x
+    slide_support: int | None = None  # plate node whose u is held because every Contact.kt = 0 (frictionless)
 
     def plate_node_at(self, x: float, tol: float = 1e-6) -> np.integer:
         xs = self.model.coords[self.plate_nodes, 0]
@@ -1041,6 +1049,11 @@ class BuiltScene:
             nodes, w = surface_pressure_forces(self.mesh, load.x0, load.x1)
             np.add.at(f_vec, model.dof(nodes, "w"), -load.q * w)
         elif isinstance(load, ColumnLoad):
+            if load.H != 0.0 and self.slide_support is not None:
+                raise ValueError(
+                    f"ColumnLoad.H = {load.H:g} N/m at x = {load.x:g} m on a frictionless contact (every "
+                    "Contact.kt = 0): nothing resists a horizontal load on the strip; give Contact.kt > 0"
+                )
             node = self.plate_node_at(load.x)
             for comp, value in (("w", -load.N), ("u", load.H), ("alpha", load.M)):
                 f_vec[model.dof(node, comp)] += value

@@ -214,7 +214,10 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     singular tangent on which SuperLU calls BLAS's DGEMV with an illegal dimension; unpatched, BLAS printed
     "On entry to DGEMV parameter number 2 had an illegal value" four times (on file descriptor 1, from C).
     The run must still stop with NonConvergence, the refusal must have happened (else this test proves
-    nothing), and neither descriptor may carry it."""
+    nothing), and neither descriptor may carry it. The known trigger needs strict partial pivoting (scipy's
+    default, this project's until SUPERLU_PIVOT_THRESHOLD = 0.1): with threshold pivoting the same tangent
+    is reported exactly singular instead, so the test pins the threshold to 1.0."""
+    monkeypatch.setattr(linsolve, "SUPERLU_PIVOT_THRESHOLD", 1.0)
     trapped = []
     drain = linsolve._drain_scratch
     monkeypatch.setattr(linsolve, "_drain_scratch", lambda: trapped.append(drain()) or trapped[-1])

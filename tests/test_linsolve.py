@@ -64,3 +64,30 @@ def test_pardiso_refactorisation_reuses_the_analysis(spd, symmetric):
         assert np.max(np.abs(fac.solve(rhs) - ref)) <= TOL * np.max(np.abs(ref))
         del fac
     assert any(h is first_handle for _, h in linsolve._IDLE_HANDLES)
+
+
+def test_superlu_threshold_pivoting_still_pivots_where_the_diagonal_is_weak():
+    """SuperLU keeps diagonal pivots down to SUPERLU_PIVOT_THRESHOLD of a column's largest entry: rows whose
+    diagonal is zero or tiny (a saddle-point block, a nearly singular non-associated tangent) must still be
+    pivoted off the diagonal and solved to round-off. (Without pivoting -- threshold 0 -- the 1e-13 pivots
+    below wreck the solution: checked when this test was written.)"""
+    import scipy.sparse as sp
+
+    from ssi.linsolve import SUPERLU_PIVOT_THRESHOLD
+
+    rng = np.random.default_rng(3)
+    n = 400
+    a = sp.random(n, n, density=0.02, random_state=rng, format="lil") + sp.eye(n) * 2.0
+    a = (a + a.T).tolil()  # a symmetric pattern, as the assembled matrices have
+    tiny = 1e-13
+    assert tiny < 1e-6 * SUPERLU_PIVOT_THRESHOLD  # far below the threshold: these must be pivoted away
+    for i in rng.choice(n, 60, replace=False):
+        a[i, i] = 0.0 if i % 2 else tiny
+        a[i, (i + 1) % n] = 3.0  # a strong off-diagonal partner, nonsymmetric
+    a = a.tocsc()
+    x_true = rng.standard_normal(n)
+    b = a @ x_true
+    x = Factorization(a, symmetric=False, backend="superlu").solve(b)
+    assert np.linalg.norm(a @ x - b) <= 1e-10 * np.linalg.norm(b)
+    cond = np.linalg.cond(a.toarray())
+    assert np.linalg.norm(x - x_true) <= 1e-14 * cond * np.linalg.norm(x_true)

@@ -399,3 +399,25 @@ def test_no_internal_force_before_anything_is_displaced_or_stressed(section):
     for tangent in (None, 1):
         f_int, _, _ = System(model).evaluate(zero, zero, states, tangent)
         assert not f_int.any()
+
+
+def test_frictionless_contact_holds_the_strip_horizontally_without_a_reaction():
+    """Every Contact.kt = 0: nothing resists a horizontal translation of the strip, so K0 was singular (strict
+    pivoting factorised it on a round-off pivot; threshold pivoting meets the exact zero). The scene holds u
+    at the middle plate node; the tractions of a frictionless contact are normal to the base, so under
+    vertical loads -- here off-centre, so nothing is symmetric -- that support carries no force."""
+    scene = strip_scene(contact=Contact(kn=1e10, kt=0.0), loads=[ColumnLoad(x=0.5, N=300e3)])
+    built = scene.build()
+    assert built.slide_support is not None
+    out = built.solve()
+    reaction = out.solver_result.reactions()[built.model.dof(built.slide_support, "u")]
+    assert abs(reaction) <= 1e-9 * 300e3
+    c = out.contact()
+    assert np.sum(c["sig_n"] * built.interface.ip_weights()) == pytest.approx(-300e3, rel=1e-9)
+    assert np.allclose(c["tau"], 0.0, atol=1e-9 * 300e3)
+
+
+def test_horizontal_load_on_a_frictionless_contact_is_refused():
+    scene = strip_scene(contact=Contact(kn=1e10, kt=0.0), loads=[ColumnLoad(x=0.0, N=300e3, H=10e3)])
+    with pytest.raises(ValueError, match=r"ColumnLoad.H = 10000 .*Contact.kt > 0"):
+        scene.build()

@@ -167,11 +167,13 @@ def test_undrained_A_mohr_coulomb_strength(k0):
     """psi = 0: the plastic strain has no volume change and no out-of-plane part, so the in-plane mean
     effective stress rises by beta (t - t0) only, beta = (lambda' + G) / (lambda' + G + K_w/n) (the finite
     water stiffness), giving t_u = (c cos phi + s'0 sin phi - beta t0 sin phi) / (1 - beta sin phi); exact
-    for a uniform element (round-off, 1e-12)."""
+    for a uniform element (round-off, 1e-12) once each increment is converged to round-off: with the default
+    force_tol = 1e-5 the yield-onset increment may stop at 8.6e-6 (measured), its stress 1.8e-7 off the
+    undrained path, which is within that tolerance and not what this test is about."""
     c, phi = 10e3, np.radians(30.0)
     layer = SoilLayer(1.0, E=E, nu=NU, c=c, phi_deg=30.0, psi_deg=0.0, drainage="undrained_A", nu_u=0.495)
     sig0 = np.array([-k0 * 100e3, -100e3, 0.0, -k0 * 100e3])
-    t = biaxial_compression(layer, sig0)["t"]
+    t = biaxial_compression(layer, sig0, settings=Settings(method="full", force_tol=1e-12))["t"]
     G, lam = E / (2 * (1 + NU)), E * NU / ((1 + NU) * (1 - 2 * NU))
     beta = (lam + G) / (lam + G + layer.k_water())
     s0, t0 = -0.5 * (sig0[0] + sig0[1]), 0.5 * (sig0[0] - sig0[1])
