@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from ..assembly import scatter_matrix
-from ..materials.mohr_coulomb import N_MC_WORK
+from ..materials.mohr_coulomb import N_MC_WORK_ROWS
 from ..materials.soil_laws import N_SOIL_HIST, elastic_matrix, law_constants, laws_used, soil_update_among
 from ..protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS
 from ..quadrature import gauss_2d
@@ -111,7 +111,7 @@ def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
         d_elastic = np.empty((4, 4))
         dn_ref = _reference_derivatives(gp)
         constants = law_constants(kinds, params)
-        work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
+        work, iwork = np.empty((N_MC_WORK_ROWS, 4)), np.empty(3, np.int64)
         failures = 0
         for e in range(n_el):
             for i in range(16):

@@ -203,8 +203,8 @@ def _dp_times(lam, mu, v, out):
 def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H, vec):
     """Return-map the ordered trial principal stresses ``sB`` (3,) onto the Mohr–Coulomb surface.
 
-    Writes the returned ordered principal stresses ``sig`` (3,) and ``H`` (3, 3) = d sig / d sB; ``vec``
-    (6, 3) is scratch for the gradient vectors.
+    Writes the returned ordered principal stresses ``sig`` (3,) and ``H`` (3, 3) = d sig / d sB (the leading
+    3 x 3 block where the arrays are larger); ``vec`` (6, >= 3) is scratch for the gradient vectors.
     Returns the branch code (B_PLANE, B_EDGE12, B_EDGE23, B_APEX) or -1 if no branch was admissible.
     Assumes f(sB) > 0.
 
@@ -342,7 +342,10 @@ def _plastic_strain_norm(lam, mu, dsig):
 
 
 N_MC_CONSTANTS = 6  # (lam, mu, k, m, kc, apex) of one material: see mc_material_constants
-N_MC_WORK = 110  # float scratch of mc_implicit: 4 vectors (3,), 5 matrices (4, 4), 6 vectors (3,)
+# float scratch of mc_implicit, shape (N_MC_WORK_ROWS, 4): rows 0-3 the vectors sB, s, q, ds, rows 4-23 five
+# (4, 4) matrices, rows 24-29 the six gradient vectors of mc_return_principal -- each taken by slicing rows,
+# not by reshaping a flat buffer: a numba reshape calls a C helper (~18 ns), and a plastic point made three
+N_MC_WORK_ROWS = 30
 
 
 @njit(cache=True)
@@ -355,14 +358,16 @@ def mc_material_constants(params, out):
     out[0], out[1], out[2], out[3], out[4], out[5] = lam, mu, k, m, kc, apex
 
 
-@njit(cache=True)
+# inlined (numba IR) into the element kernel: a call passes each array argument as its whole struct, and the
+# call of this function was ~35 ns of a ~165 ns mixed elastic/plastic point (bench_kernels.py); +0.4 s compile
+@njit(cache=True, inline="always")
 def mc_implicit(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work, iwork):
     """Implicit (backward-Euler) Mohr–Coulomb update; returns 0 elastic, 1 plastic, -1 failure.
 
     ``constants`` (N_MC_CONSTANTS,): the material's row of :func:`mc_material_constants`. Shapes: deps (4,),
-    sig_old (4,), hist_old (2,), sig_new (4,), hist_new (2,), D (4, 4); scratch ``work`` (N_MC_WORK,) float
-    and ``iwork`` (3,) int, owned by the caller so that a plastic point allocates nothing either (four small
-    allocations were most of a plastic point's time).
+    sig_old (4,), hist_old (2,), sig_new (4,), hist_new (2,), D (4, 4); scratch ``work`` (N_MC_WORK_ROWS, 4)
+    float and ``iwork`` (3,) int, owned by the caller so that a plastic point allocates nothing either (four
+    small allocations were most of a plastic point's time).
 
     1. Trial stress sB = σ_old + D Δε (elastic predictor).
     2. Principal values of sB: in-plane pair (pa, pb) with axes n_a, n_b and the out-of-plane syy; order them.
@@ -397,17 +402,15 @@ def mc_implicit(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangen
         elastic_fill(lam, mu, D)
         return ST_ELASTIC
     # plastic: vectors, small matrices and the index triple live in the caller's scratch
-    vec = work[:12].reshape((4, 3))
-    sB = vec[0]
-    s = vec[1]
-    q = vec[2]
-    ds = vec[3]
-    mats = work[12:92].reshape((5, 4, 4))
-    H = mats[0]
-    R = mats[1]
-    Cp = mats[2]
-    C4 = mats[3]
-    T = mats[4]
+    sB = work[0]
+    s = work[1]
+    q = work[2]
+    ds = work[3]
+    H = work[4:8]
+    R = work[8:12]
+    Cp = work[12:16]
+    C4 = work[16:20]
+    T = work[20:24]
     order = iwork
     order[0] = o0
     order[1] = o1
@@ -415,7 +418,7 @@ def mc_implicit(constants, deps, sig_old, hist_old, sig_new, hist_new, D, tangen
     sB[0] = sB0
     sB[1] = sB1
     sB[2] = sB2
-    branch = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H, work[92:110].reshape((6, 3)))
+    branch = mc_return_principal(sB, lam, mu, k, m, kc, apex, s, H, work[24:30])
     if branch < 0:
         sig_new[0] = t0
         sig_new[1] = t1

@@ -34,7 +34,7 @@ from ..protocol import CONSISTENT
 from ..validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
 from .mohr_coulomb import (
     N_MC_CONSTANTS,
-    N_MC_WORK,
+    N_MC_WORK_ROWS,
     elastic_fill,
     lame,
     mc_explicit,
@@ -101,8 +101,8 @@ def soil_update_among(
     iwork,
 ):
     """:func:`soil_update` restricted to the laws flagged ``has_*`` (a kind not flagged is taken as ELASTIC);
-    ``constants`` is the material's row of :func:`law_constants`, ``work`` (N_MC_WORK,) float and ``iwork``
-    (3,) int the caller's scratch.
+    ``constants`` is the material's row of :func:`law_constants`, ``work`` (N_MC_WORK_ROWS, 4) float and
+    ``iwork`` (3,) int the caller's scratch.
 
     Inlined into its caller: where the flags are compile-time constants (the law-specialised kernels of
     ``ssi.elements.soil_q8.q8_kernel_for``), numba drops the branches of the laws not flagged before typing
@@ -134,7 +134,7 @@ def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tan
     """
     constants = np.zeros(N_MC_CONSTANTS)
     law_constants_of(kind, params, constants)
-    work, iwork = np.empty(N_MC_WORK), np.empty(3, np.int64)
+    work, iwork = np.empty((N_MC_WORK_ROWS, 4)), np.empty(3, np.int64)
     return soil_update_among(
         True,
         True,
