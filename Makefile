@@ -67,9 +67,10 @@ test: $(STAMP) notebooks
 	status=$$?; echo "make_test_s: $(ELAPSED)   (budget 240 s)"; exit $$status
 
 # `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first (full
-# mode, measured: 06 ~600 s, 13 ~300 s, 10 ~210 s, 08 ~120 s, 11 ~100 s); report rows are one file per id,
-# written atomically, so the workers cannot mix them
-FULL_SLOW_FIRST := 06_solver 13_accuracy 10_bearing_capacity 08_rc_beam 11_foundation_scene
+# mode, measured on this machine: 06 ~400 s, 13 ~125 s, 10 ~100 s, 12, 16, 14, 11 55-60 s, 08 ~45 s); report
+# rows are one file per id, written atomically, so the workers cannot mix them
+FULL_SLOW_FIRST := 06_solver 13_accuracy 10_bearing_capacity 12_engineering_scenes 16_bad_input 14_uncertainty \
+	11_foundation_scene 08_rc_beam
 REPRODUCE_ORDER := $(call notebooks_slow_first,$(FULL_SLOW_FIRST))
 
 reproduce: $(STAMP) notebooks
