@@ -192,7 +192,9 @@ class Contact:
     Fields: ``kn``, ``kt`` normal and tangential stiffness [Pa/m]; ``phi_deg`` interface friction angle [deg];
     ``c`` adhesion [Pa]; ``psi_deg`` dilation angle [deg] -- the default 0 (slip without dilation) is the
     usual engineering choice for a concrete--soil contact, ``None`` gives the paper's associated rule (psi =
-    phi); ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss".
+    phi); ``sig_t`` tension cut-off [Pa]; ``rule`` "newton_cotes" or "gauss". ``kt = 0`` on the whole strip
+    (frictionless): nothing holds the strip horizontally, so the built scene fixes u of its middle plate node
+    (``BuiltScene.slide_support``, zero reaction under vertical loads) and refuses a ``ColumnLoad`` with H.
     """
 
     kn: float
