@@ -215,8 +215,8 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     "On entry to DGEMV parameter number 2 had an illegal value" four times (on file descriptor 1, from C).
     The run must still stop with NonConvergence, the refusal must have happened (else this test proves
     nothing), and neither descriptor may carry it. The known trigger needs strict partial pivoting (scipy's
-    default, this project's until SUPERLU_PIVOT_THRESHOLD = 0.1): with threshold pivoting the same tangent
-    is reported exactly singular instead, so the test pins the threshold to 1.0."""
+    default, this project's until SUPERLU_PIVOT_THRESHOLD = 0.1): with threshold pivoting the same run stops
+    with NonConvergence without any refusal, so the test pins the threshold to 1.0."""
     monkeypatch.setattr(linsolve, "SUPERLU_PIVOT_THRESHOLD", 1.0)
     trapped = []
     drain = linsolve._drain_scratch
