@@ -5,9 +5,10 @@ SuperLU factorisation does. The reference is SuperLU, an independent code; 1e-10
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 
 from ssi.assembly import SparsePattern
-from ssi.linsolve import Factorization, pardiso_available
+from ssi.linsolve import SUPERLU_PIVOT_THRESHOLD, Factorization, pardiso_available
 from ssi.materials.soil_laws import ELASTIC, elastic_params
 from ssi.mesh import structured_q8
 from ssi.model import Model
@@ -71,10 +72,6 @@ def test_superlu_threshold_pivoting_still_pivots_where_the_diagonal_is_weak():
     diagonal is zero or tiny (a saddle-point block, a nearly singular non-associated tangent) must still be
     pivoted off the diagonal and solved to round-off. (Without pivoting -- threshold 0 -- the 1e-13 pivots
     below wreck the solution: checked when this test was written.)"""
-    import scipy.sparse as sp
-
-    from ssi.linsolve import SUPERLU_PIVOT_THRESHOLD
-
     rng = np.random.default_rng(3)
     n = 400
     a = sp.random(n, n, density=0.02, random_state=rng, format="lil") + sp.eye(n) * 2.0
