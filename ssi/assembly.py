@@ -71,7 +71,7 @@ def _row_pointers(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, marker):
     n_free = inc_ptr.size - 1
     for i in range(n_free):
         marker[i] = -1
-    row = 0
+    row = np.int64(0)  # not the literal 0: numba would compile a second _run_length for a literal argument
     while row < n_free:
         run = _run_length(inc_ptr, inc_el, row)
         n = 0
@@ -97,7 +97,7 @@ def _column_indices(dofs, el_ptr, free_of, inc_ptr, inc_el, indptr, indices, mar
     for i in range(n_free):
         marker[i] = -1
         fill[i] = indptr[i]
-    row = 0
+    row = np.int64(0)  # see _row_pointers
     while row < n_free:
         run = _run_length(inc_ptr, inc_el, row)
         for k in range(inc_ptr[row], inc_ptr[row + 1]):

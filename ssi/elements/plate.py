@@ -69,6 +69,10 @@ from ..quadrature import gauss_legendre
 from ..section import Section
 from ..shapes import lagrange3
 
+# the layer laws' tangent flag where the kernels always want the tangent: int64, not the literal 1, because
+# numba compiles one more copy of every layer law for a literal flag (Python calls pass int64)
+_ALWAYS_TANGENT = np.int64(CONSISTENT)
+
 __all__ = [
     "N_LAYER_HIST",
     "PlateStrip",
@@ -181,7 +185,7 @@ def _section(
         # the law always returns its tangent; K0 (K0_MATRIX) uses the initial moduli instead, so that the
         # internal force never depends on which matrix the solver asks for
         sig, tau, e_t, g_t = layer_update(
-            kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], 1
+            kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], _ALWAYS_TANGENT
         )
         if do_ax:
             i_n = hn * hn * hn / 12.0  # exact within-layer bending, eq. (4.7b) h_n^2/12
@@ -197,10 +201,10 @@ def _section(
                 z_b = z - 0.5 * hn
                 z_t = z + 0.5 * hn
                 s_b, _, e_b, _ = layer_update(
-                    kind[n], params[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, 1
+                    kind[n], params[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
                 )
                 s_t, _, e_tp, _ = layer_update(
-                    kind[n], params[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, 1
+                    kind[n], params[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
                 )
                 c = hn * hn / 12.0
                 M += c * (s_b - s_t)
@@ -403,7 +407,7 @@ def plate_layer_stresses(eps, gam, state, kind, params, band, ls_index, wt, leng
             _crack_band(prm, band, ls_index, crack_band_width(length[e], wt[p]))
             for n in range(eps.shape[2]):
                 s, t, _, _ = layer_update(
-                    kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, 1
+                    kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, _ALWAYS_TANGENT
                 )
                 sig[e, p, n] = s
                 tau[e, p, n] = t

@@ -111,13 +111,16 @@ def _pick3(i, p0, p1, p2):
 
 @njit(cache=True)
 def order3_scalars(p0, p1, p2):
-    """The index triple of :func:`order3` for three scalars, without an array (same compares)."""
+    """The index triple of :func:`order3` for three scalars, without an array (same compares). The values
+    are swapped beside their indices, not picked by index: a call ``_pick3(0, ...)`` would make numba compile
+    one more copy of ``_pick3`` for each literal index (a cold first run pays every copy)."""
     i0, i1, i2 = 0, 1, 2
-    if _pick3(i0, p0, p1, p2) < _pick3(i1, p0, p1, p2):
-        i0, i1 = i1, i0
-    if _pick3(i1, p0, p1, p2) < _pick3(i2, p0, p1, p2):
-        i1, i2 = i2, i1
-    if _pick3(i0, p0, p1, p2) < _pick3(i1, p0, p1, p2):
+    v0, v1, v2 = p0, p1, p2
+    if v0 < v1:
+        i0, i1, v0, v1 = i1, i0, v1, v0
+    if v1 < v2:
+        i1, i2, v1, v2 = i2, i1, v2, v1
+    if v0 < v1:
         i0, i1 = i1, i0
     return i0, i1, i2
 
@@ -170,6 +173,11 @@ def mc_yield(sig, c, phi):
 # ---------------------------------------------------------------------------------------------------------
 # return mapping in ordered principal space
 # ---------------------------------------------------------------------------------------------------------
+# surface index 0 typed int64, not the literal 0: numba compiles a separate copy of a kernel for each literal
+# argument it is called with, and the other calls pass int64 indices
+_MAIN_PLANE = np.int64(0)
+
+
 @njit(cache=True)
 def _surface_vectors(i, k, m, a, b):
     """Gradient ``a`` of f_i and ``b`` of g_i (ordered principal space) for surface i.
@@ -222,7 +230,7 @@ def mc_return_principal(sB, lam, mu, k, m, kc, apex, sig, H, vec):
     r1 = vec[5]
     fB = k * sB[0] - sB[2] - kc
     # --- plane
-    _surface_vectors(0, k, m, a0, b0)
+    _surface_vectors(_MAIN_PLANE, k, m, a0, b0)
     _dp_times(lam, mu, b0, r0)
     den = a0[0] * r0[0] + a0[1] * r0[1] + a0[2] * r0[2]
     dl = fB / den
