@@ -1,6 +1,8 @@
 """The component-built scene: only what it contains is instantiated, linear scenes are one solve, and the
 contact carries exactly the applied column load (global equilibrium, an independent check)."""
 
+import textwrap
+
 import numpy as np
 import pytest
 
@@ -421,3 +423,29 @@ def test_horizontal_load_on_a_frictionless_contact_is_refused():
     scene = strip_scene(contact=Contact(kn=1e10, kt=0.0), loads=[ColumnLoad(x=0.0, N=300e3, H=10e3)])
     with pytest.raises(ValueError, match=r"ColumnLoad.H = 10000 .*Contact.kt > 0"):
         scene.build()
+
+
+def test_readme_scene_compiles_one_copy_of_each_kernel():
+    """A cold first run pays every compiled copy of a kernel: numba compiles one more for each distinct
+    argument type, and a literal constant (``f(x, 1)``) is its own type. The README scene, run in a fresh
+    process on the shared cache, leaves every ssi kernel with one signature (a copy loaded from the cache
+    counts as well, so a warm cache sees the same)."""
+    import pathlib
+    import re
+    import subprocess
+    import sys
+
+    readme = (pathlib.Path(__file__).resolve().parent.parent / "README.md").read_text()
+    code = re.search(r"```python\n(.*?)```", readme, re.S).group(1)
+    code += textwrap.dedent("""
+        import importlib, pkgutil, numba, ssi
+        for info in pkgutil.walk_packages(ssi.__path__, "ssi."):
+            module = importlib.import_module(info.name)
+            for name, obj in vars(module).items():
+                if isinstance(obj, numba.core.registry.CPUDispatcher) and len(obj.signatures) > 1:
+                    print("COPIES", info.name, name, obj.signatures)
+    """)
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert "completed" in run.stdout
+    copies = [line for line in run.stdout.splitlines() if line.startswith("COPIES")]
+    assert copies == [], "\n".join(copies)
