@@ -9,6 +9,12 @@ cheap), so they measure the named work only:
 
 * ``pattern_<n>_dofs_s``, ``pattern_1e6_s``: the CSR pattern and scatter map of one mesh (warm kernels);
   ``_cpu_s`` beside them: the same step's CPU time (one thread), what a loaded machine does not inflate.
+  At 1e6 DOFs the wall time is mostly the kernel's first touch of fresh memory: numpy asks Linux for
+  transparent huge pages for arrays of 4 MB and more, and with ``transparent_hugepage/defrag = madvise``
+  (this machine) their faults compact memory. Measured (numpy's switch ``NUMPY_MADVISE_HUGEPAGE``, same
+  session): the pattern took 0.63 s with huge pages (0.25 s CPU in the best call, 0.6-1.0 s of system time in
+  a fresh process's first) and 0.30 s without -- but a whole 1e6-DOF ``solve_linear`` process took 4.7-5.6 s
+  with them and 6.1-6.5 s without, so ssi leaves numpy's default alone.
 * ``assembly_<n>_dofs_s``: K0 element matrices + scatter into a reused buffer (what a refactorisation does).
 * ``assembly_1e6_fresh_s`` / ``assembly_1e6_fresh_vs_skfem``: a first assembly as a user's process does it
   -- pattern + element matrices + scatter into fresh arrays -- against scikit-fem's basis + ``asm`` of the
