@@ -215,9 +215,11 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     "On entry to DGEMV parameter number 2 had an illegal value" four times (on file descriptor 1, from C).
     The run must still stop with NonConvergence, the refusal must have happened (else this test proves
     nothing), and neither descriptor may carry it. The known trigger needs strict partial pivoting (scipy's
-    default, this project's until SUPERLU_PIVOT_THRESHOLD = 0.1): with threshold pivoting the same run stops
-    with NonConvergence without any refusal, so the test pins the threshold to 1.0."""
+    default, this project's until SUPERLU_PIVOT_THRESHOLD = 0.1) and each tangent ordered afresh (as before
+    a refactorised pattern kept its first ordering): with threshold pivoting, or with the kept ordering, the
+    same run stops with NonConvergence without any refusal, so the test pins both."""
     monkeypatch.setattr(linsolve, "SUPERLU_PIVOT_THRESHOLD", 1.0)
+    monkeypatch.setattr(linsolve, "_kept_ordering", lambda matrix: None)
     trapped = []
     drain = linsolve._drain_scratch
     monkeypatch.setattr(linsolve, "_drain_scratch", lambda: trapped.append(drain()) or trapped[-1])

@@ -88,3 +88,30 @@ def test_superlu_threshold_pivoting_still_pivots_where_the_diagonal_is_weak():
     assert np.linalg.norm(a @ x - b) <= 1e-10 * np.linalg.norm(b)
     cond = np.linalg.cond(a.toarray())
     assert np.linalg.norm(x - x_true) <= 1e-14 * cond * np.linalg.norm(x_true)
+
+
+def test_superlu_keeps_a_refactorised_patterns_ordering():
+    """A tangent refactorised on one pattern is factorised in the ordering of the pattern's first
+    factorisation (permuted, natural order): every solve, of one or several right-hand sides, agrees with an
+    independent dense solve to round-off, and the kept ordering goes when the pattern does."""
+    import gc
+
+    from ssi import linsolve
+
+    pattern, g = block_system()
+    rng = np.random.default_rng(4)
+    k_el = g.elastic_stiffness()
+    rhs = rng.normal(size=(pattern.n_free, 2))
+    for scale in (1.0, 3.0, 0.5):  # the first factorisation orders the pattern, the next two reuse it
+        data = pattern.assemble([scale * k_el])
+        data *= 1.0 + 0.01 * rng.uniform(-1.0, 1.0, data.size)  # nonsymmetric values, as non-associated flow
+        k = pattern.matrix(data)
+        fac = Factorization(k, symmetric=False, backend="superlu")
+        ref = np.linalg.solve(k.toarray(), rhs)
+        assert np.max(np.abs(fac.solve(rhs) - ref)) <= TOL * np.max(np.abs(ref))
+        assert np.max(np.abs(fac.solve(rhs[:, 0]) - ref[:, 0])) <= TOL * np.max(np.abs(ref))
+    key = linsolve._pattern_key(k)
+    assert linsolve._ORDERINGS[key].source is not None  # the later factorisations took the kept ordering
+    del fac, k, pattern, g
+    gc.collect()
+    assert key not in linsolve._ORDERINGS
