@@ -5,7 +5,8 @@ thing this module must do well is keep a factorisation. Backends:
 
 * ``"superlu"`` -- scipy's SuperLU with the MMD_AT_PLUS_A ordering (3x faster than the default COLAMD on
   these meshes) and threshold partial pivoting that prefers the diagonal (``SUPERLU_PIVOT_THRESHOLD``);
-  always available, the fallback.
+  always available, the fallback. A matrix refactorised on one pattern (Newton's tangents) keeps the
+  ordering of the pattern's first factorisation (:class:`_KeptOrdering`).
 * ``"pardiso"`` -- MKL PARDISO through ``pypardiso`` (``pip install ssi[fast]``), SPD mode for K0; its solve
   phase is called on the kept factorisation directly, because ``pypardiso.spsolve``
   re-hashes the matrix on every call.
