@@ -109,6 +109,7 @@ def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
         hist_old = np.empty(N_SOIL_HIST)
         xy = np.empty((8, 2))
         d_elastic = np.empty((4, 4))
+        db = np.empty((8, 6))  # D B_b of each node b at the current point
         dn_ref = _reference_derivatives(gp)
         constants = law_constants(kinds, params)
         work, iwork = np.empty((N_MC_WORK_ROWS, 4)), np.empty(3, np.int64)
@@ -175,19 +176,26 @@ def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
                     # B_a^T sigma for rows (exx, ezz, gxz): u-row (bx, 0, bz), w-row (0, bz, bx)
                     f_el[e, 2 * a] += (bx * sig[0] + bz * sig[2]) * wdet
                     f_el[e, 2 * a + 1] += (bz * sig[1] + bx * sig[2]) * wdet
-                    if tangent == FORCES_ONLY:  # modified Newton: the matrix is K0, kept factorised
-                        continue
-                    # D B_b for both columns of node b, then B_a^T (D B_b)
+                if tangent == FORCES_ONLY:  # modified Newton: the matrix is K0, kept factorised
+                    continue
+                # D B_b for both columns of each node b, once per point (not once per node pair a, b):
+                # columns u_b -> strain (cx, 0, cz); w_b -> strain (0, cz, cx)
+                for b in range(8):
+                    cx = dndx[b, 0]
+                    cz = dndx[b, 1]
+                    db[b, 0] = D[0, 0] * cx + D[0, 2] * cz
+                    db[b, 1] = D[1, 0] * cx + D[1, 2] * cz
+                    db[b, 2] = D[2, 0] * cx + D[2, 2] * cz
+                    db[b, 3] = D[0, 1] * cz + D[0, 2] * cx
+                    db[b, 4] = D[1, 1] * cz + D[1, 2] * cx
+                    db[b, 5] = D[2, 1] * cz + D[2, 2] * cx
+                # then B_a^T (D B_b)
+                for a in range(8):
+                    bx = dndx[a, 0]
+                    bz = dndx[a, 1]
                     for b in range(8):
-                        cx = dndx[b, 0]
-                        cz = dndx[b, 1]
-                        # columns: u_b -> strain (cx, 0, cz); w_b -> strain (0, cz, cx)
-                        du0 = D[0, 0] * cx + D[0, 2] * cz
-                        du1 = D[1, 0] * cx + D[1, 2] * cz
-                        du2 = D[2, 0] * cx + D[2, 2] * cz
-                        dw0 = D[0, 1] * cz + D[0, 2] * cx
-                        dw1 = D[1, 1] * cz + D[1, 2] * cx
-                        dw2 = D[2, 1] * cz + D[2, 2] * cx
+                        du0, du1, du2 = db[b, 0], db[b, 1], db[b, 2]
+                        dw0, dw1, dw2 = db[b, 3], db[b, 4], db[b, 5]
                         k_el[e, 2 * a, 2 * b] += (bx * du0 + bz * du2) * wdet
                         k_el[e, 2 * a, 2 * b + 1] += (bx * dw0 + bz * dw2) * wdet
                         k_el[e, 2 * a + 1, 2 * b] += (bz * du1 + bx * du2) * wdet
