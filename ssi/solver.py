@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .lbfgs import lbfgs_first_loop, lbfgs_second_loop
 from .linsolve import BACKENDS, Factorization
 from .model import Model, System
 from .progress import SolverProgress, announce_compilation, log, solver_progress
@@ -878,30 +879,34 @@ class _Lbfgs:
 
     def __init__(self, fac_k0, memory):
         self.fac, self.memory = fac_k0, memory
-        self.pairs = []
+        self.s_rows = self.y_rows = None  # (memory, n) ring buffers, allocated at the first pair kept
+        self.rho = np.empty(memory)
+        self.alphas = np.empty(memory)
+        self.head = self.count = 0  # next row to write; pairs kept
 
     def direction(self, r):
         q = r.copy()
-        alphas = []
-        for s, y, rho in reversed(self.pairs):
-            a = rho * (s @ q)
-            q -= a * y
-            alphas.append(a)
+        if self.count:
+            lbfgs_first_loop(self.s_rows, self.y_rows, self.rho, self.head, self.count, q, self.alphas)
         z = self.fac.solve(q)
-        for (s, y, rho), a in zip(self.pairs, reversed(alphas)):
-            z += (a - rho * (y @ z)) * s
+        if self.count:
+            lbfgs_second_loop(self.s_rows, self.y_rows, self.rho, self.head, self.count, z, self.alphas)
         return z
 
     def update(self, s, y):
         sy = float(s @ y)
         if not sy > 1e-12 * np.linalg.norm(s) * np.linalg.norm(y):
-            self.pairs.clear()
+            self.count = 0
             return
         if self.memory == 0:
             return
-        self.pairs.append((s, y, 1.0 / sy))
-        if len(self.pairs) > self.memory:
-            self.pairs.pop(0)
+        if self.s_rows is None:  # np.empty: rows not yet written cost no memory
+            self.s_rows, self.y_rows = np.empty((self.memory, s.size)), np.empty((self.memory, s.size))
+        self.s_rows[self.head] = s
+        self.y_rows[self.head] = y
+        self.rho[self.head] = 1.0 / sy
+        self.head = (self.head + 1) % self.memory
+        self.count = min(self.count + 1, self.memory)
 
 
 LINE_SEARCH_TOL = 0.5  # accept a step s once |du . r(s)| <= LINE_SEARCH_TOL |du . r(0)|

@@ -333,3 +333,44 @@ def test_collapse_evidence_is_the_nearest_held_load(failures, secant, collapsed)
     nearest, _, verdict = _collapse_evidence([_held(lam, f) for lam, f in failures], secant, 0.05)
     assert nearest.lam == min(lam for lam, _ in failures)
     assert verdict is collapsed
+
+
+def _two_loop_reference(pairs, solve, r):
+    """Nocedal's recursion over the (s, y) pairs, oldest first, in numpy (what ssi.lbfgs must reproduce)."""
+    q = r.copy()
+    alphas = []
+    for s, y in reversed(pairs):
+        a = (1.0 / float(s @ y)) * (s @ q)
+        q -= a * y
+        alphas.append(a)
+    z = solve(q)
+    for (s, y), a in zip(pairs, reversed(alphas)):
+        z += (a - (1.0 / float(s @ y)) * (y @ z)) * s
+    return z
+
+
+def test_lbfgs_ring_buffer_gives_the_numpy_two_loop_bit_for_bit():
+    """The numba two loops over ring buffers: the same direction as the list-based recursion, also once the
+    ring has wrapped (7 pairs in a memory of 3) and after a pair with s . y <= 0 cleared the memory."""
+    from ssi.solver import _Lbfgs
+
+    rng = np.random.default_rng(3)
+    n = 257
+    scale = rng.uniform(0.5, 2.0, n)
+
+    class Diagonal:  # stands in for the K0 factorisation
+        def solve(self, b):
+            return b / scale
+
+    lbfgs, kept = _Lbfgs(Diagonal(), memory=3), []
+    for k in range(9):
+        s = rng.normal(size=n)
+        y = s * scale + 0.1 * rng.normal(size=n)
+        if k == 5:
+            y = -y  # s . y < 0: the memory is cleared
+        lbfgs.update(s, y)
+        kept = [] if k == 5 else (kept + [(s, y)])[-3:]
+        r = rng.normal(size=n)
+        expected = _two_loop_reference(kept, Diagonal().solve, r)
+        assert np.array_equal(lbfgs.direction(r), expected)
+    assert lbfgs.count == 3
