@@ -20,13 +20,19 @@ def lagrange3(xi):
     """Values N (3,) and derivatives dN/dxi (3,) of the quadratic Lagrange line at ``xi``."""
     n = np.empty(3)
     dn = np.empty(3)
+    lagrange3_into(xi, n, dn)
+    return n, dn
+
+
+@njit(cache=True)
+def lagrange3_into(xi, n, dn):
+    """:func:`lagrange3` written into ``n`` and ``dn`` (3,): for loops that must not allocate."""
     n[0] = 0.5 * xi * (xi - 1.0)
     n[1] = 1.0 - xi * xi
     n[2] = 0.5 * xi * (xi + 1.0)
     dn[0] = xi - 0.5
     dn[1] = -2.0 * xi
     dn[2] = xi + 0.5
-    return n, dn
 
 
 @njit(cache=True)

@@ -67,7 +67,7 @@ from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, crack_band_widt
 from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre
 from ..section import Section
-from ..shapes import lagrange3
+from ..shapes import lagrange3, lagrange3_into
 
 # the layer laws' tangent flag where the kernels always want the tangent: int64, not the literal 1, because
 # numba compiles one more copy of every layer law for a literal flag (Python calls pass int64)
@@ -118,11 +118,10 @@ def integration_rule(integration):
 @njit(cache=True)
 def _point_b(x, xi, n_out, bx_out):
     """Shape values n_out (3,) and x-derivatives bx_out (3,) at xi; return the Jacobian dx/dxi."""
-    n, dn = lagrange3(xi)
-    jac = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2]
+    lagrange3_into(xi, n_out, bx_out)  # bx_out holds dN/dxi until divided by the Jacobian
+    jac = bx_out[0] * x[0] + bx_out[1] * x[1] + bx_out[2] * x[2]
     for a in range(3):
-        n_out[a] = n[a]
-        bx_out[a] = dn[a] / jac
+        bx_out[a] = bx_out[a] / jac
     return jac
 
 
@@ -263,7 +262,6 @@ def plate_kernel(
     (n_layer,) bool; band (n_layer,) bool: layers whose ``params[ls_index]`` is replaced at each point by the
     crack band width w_p L_e / 2 that the point represents (eq. 5.4; all False leaves params untouched).
     """
-    n_el = x_el.shape[0]
     nn = np.empty(3)
     bx = np.empty(3)
     be = np.zeros(9)  # d eps0 / d u_el
@@ -272,6 +270,78 @@ def plate_kernel(
     res = np.zeros(8)
     scratch = np.zeros(state_old.shape[3])
     prm = params.copy()
+    return _plate_points(
+        x_el,
+        u_el,
+        state_old,
+        state_new,
+        f_el,
+        k_el,
+        xi,
+        wt,
+        ax,
+        sh,
+        z_mid,
+        h,
+        kind,
+        params,
+        cshear,
+        kappa,
+        e0,
+        g0,
+        self_mode,
+        band,
+        ls_index,
+        tangent,
+        nn,
+        bx,
+        be,
+        bk,
+        bg,
+        res,
+        scratch,
+        prm,
+    )
+
+
+# The loop over elements and points, compiled without numba's reference counting (the scratch comes from
+# plate_kernel; nothing below allocates): the section update's array arguments and the per-point views of the
+# states cost an atomic increment and decrement each. Numba compiles the functions a loop calls with the
+# loop's own setting, so nothing that allocates may be reached from here.
+@njit(cache=True, _nrt=False)
+def _plate_points(
+    x_el,
+    u_el,
+    state_old,
+    state_new,
+    f_el,
+    k_el,
+    xi,
+    wt,
+    ax,
+    sh,
+    z_mid,
+    h,
+    kind,
+    params,
+    cshear,
+    kappa,
+    e0,
+    g0,
+    self_mode,
+    band,
+    ls_index,
+    tangent,
+    nn,
+    bx,
+    be,
+    bk,
+    bg,
+    res,
+    scratch,
+    prm,
+):
+    n_el = x_el.shape[0]
     bad = 0
     for e in range(n_el):
         for i in range(9):
