@@ -7,6 +7,10 @@ in every return branch. The rewrite changes where intermediate values live, not 
 must agree bit for bit; the comparison allows 1e-14 relative in case a compiler reorders a sum.
 """
 
+import os
+import textwrap
+from pathlib import Path
+
 import numpy as np
 import pytest
 from kernel_regression_case import DATA, outputs
@@ -67,3 +71,42 @@ def test_law_specialised_kernels_give_the_stored_outputs(stored, laws):
                     continue
                 ref = stored[f"{name}_{tag}"][sel]
                 assert np.max(np.abs(value - ref)) <= TOL * np.abs(ref).max(), (laws, name, tag)
+
+
+def test_loops_without_reference_counting_compile_first_in_a_fresh_process(tmp_path):
+    """The soil (elastic, Mohr-Coulomb) and plate loops are compiled without numba's runtime, and numba
+    compiles the functions they call with that same setting: a callee that allocates fails to compile there,
+    but only when no earlier call in the process compiled it with the runtime. A process with an empty cache
+    that calls those kernels first is the order where such a callee would show."""
+    import subprocess
+    import sys
+
+    code = textwrap.dedent("""
+        import numpy as np
+        import ssi
+        from kernel_regression_case import case
+        from ssi.elements.plate import PlateStrip
+        from ssi.materials import rc
+        from ssi.materials.layer_laws import CONCRETE, STEEL
+        from ssi.section import paper_rc_section
+        for laws in ((0,), (0, 1)):
+            full, du, state = case(2)
+            sel = np.flatnonzero(np.isin(full.kinds[full.el_mat], laws))
+            mats = np.flatnonzero(np.isin(full.kinds, laws))
+            group = type(full)(full.coords[sel], full.edofs[sel], np.searchsorted(mats, full.el_mat[sel]),
+                               full.kinds[mats], full.params[mats])
+            for tangent in (-1, 0, 1):
+                group.evaluate(du[sel], du[sel], state[sel], tangent)
+        conc = rc.concrete_params(fc=30e6, E0=30e9, eps_c=0.002, fr=3e6, Gf=100.0, ls=0.1, eps_y=2.5e-3)
+        steel = rc.steel_params(fy=500e6, Es=200e9, EH=2e9)
+        section = paper_rc_section(0.5, 0.05, 1.5e-3, 0.8e-3, (CONCRETE, conc), (STEEL, steel))
+        xy = np.array([[[0.0, 0.0], [0.25, 0.0], [0.5, 0.0]]])
+        strip = PlateStrip(xy, np.arange(9)[None], section)
+        u = np.linspace(0.0, 1e-3, 9)[None]
+        for tangent in (-1, 0, 1):
+            strip.evaluate(u, u, strip.initial_state(), tangent)
+        print("compiled")
+    """)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(Path(__file__).parent))
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert run.returncode == 0 and "compiled" in run.stdout, run.stderr[-3000:]
