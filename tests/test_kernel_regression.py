@@ -74,10 +74,10 @@ def test_law_specialised_kernels_give_the_stored_outputs(stored, laws):
 
 
 def test_loops_without_reference_counting_compile_first_in_a_fresh_process(tmp_path):
-    """The soil (elastic, Mohr-Coulomb) and plate loops are compiled without numba's runtime, and numba
-    compiles the functions they call with that same setting: a callee that allocates fails to compile there,
-    but only when no earlier call in the process compiled it with the runtime. A process with an empty cache
-    that calls those kernels first is the order where such a callee would show."""
+    """The soil (elastic, Mohr-Coulomb), plate and interface loops are compiled without numba's runtime,
+    and numba compiles the functions they call with that same setting: a callee that allocates fails to
+    compile there, but only when no earlier call in the process compiled it with the runtime. A process with
+    an empty cache that calls those kernels first is the order where such a callee would show."""
     import subprocess
     import sys
 
@@ -105,6 +105,14 @@ def test_loops_without_reference_counting_compile_first_in_a_fresh_process(tmp_p
         u = np.linspace(0.0, 1e-3, 9)[None]
         for tangent in (-1, 0, 1):
             strip.evaluate(u, u, strip.initial_state(), tangent)
+        from ssi.elements.interface import Interface6
+        from ssi.materials.interface_law import interface_params
+        line = np.array([[0.0, 0.0], [0.25, 0.0], [0.5, 0.0]])
+        contact = Interface6(np.concatenate([line, line])[None], np.arange(12)[None],
+                             interface_params(1e8, 1e9, c=0.0, phi_deg=30.0))
+        du = np.array([[1e-3, -1e-4] * 3 + [0.0, 0.0] * 3])
+        for tangent in (0, 1):
+            contact.evaluate(du, du, contact.initial_state(), tangent)
         print("compiled")
     """)
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(Path(__file__).parent))

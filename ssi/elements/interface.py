@@ -35,7 +35,7 @@ from numba import njit
 from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, STICK, interface_update
 from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre, newton_cotes
-from ..shapes import lagrange3
+from ..shapes import lagrange3, lagrange3_into
 
 __all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 
@@ -48,9 +48,10 @@ V_TAU, V_SIG, V_STATUS, V_GT, V_GN, V_SLIPT, V_SLIPN, V_OPEN, V_BROKEN = range(N
 
 
 @njit(cache=True)
-def _b_matrix(xl, zl, hoff, n_up_dof, xi, B):
-    """Fill B (2, n_edof) at ``xi``; return |dx/dxi| (the line Jacobian). xl, zl: lower-node coordinates."""
-    n, dn = lagrange3(xi)
+def _b_matrix(xl, zl, hoff, n_up_dof, xi, B, n, dn):
+    """Fill B (2, n_edof) at ``xi``; return |dx/dxi| (the line Jacobian). xl, zl: lower-node coordinates;
+    n, dn (3,): scratch for the shape functions and their derivatives."""
+    lagrange3_into(xi, n, dn)
     dx = 0.0
     dz = 0.0
     for a in range(3):
@@ -86,8 +87,7 @@ def _b_matrix(xl, zl, hoff, n_up_dof, xi, B):
 
 @njit(cache=True)
 def _evaluate(coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangent, f_el, k_el, state_new):
-    n_el, n_edof = du_el.shape
-    n_ip = xis.shape[0]
+    n_edof = du_el.shape[1]
     B = np.empty((2, n_edof))
     xl = np.empty(3)
     zl = np.empty(3)
@@ -96,6 +96,24 @@ def _evaluate(coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangen
     h_new = np.empty(N_HIST)
     D = np.empty((2, 2))
     DB = np.empty((2, n_edof))
+    n, dn = np.empty(3), np.empty(3)
+    _points(
+        coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangent, f_el, k_el, state_new,
+        B, xl, zl, dgap, t_new, h_new, D, DB, n, dn,
+    )  # fmt: skip
+
+
+# The loop over elements and points, compiled without numba's reference counting (the scratch comes from
+# _evaluate; nothing below allocates): the law update's array arguments and views cost an atomic increment
+# and decrement each per point. Numba compiles the functions a loop calls with the loop's own setting, so
+# nothing that allocates may be reached from here.
+@njit(cache=True, _nrt=False)
+def _points(
+    coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangent, f_el, k_el, state_new,
+    B, xl, zl, dgap, t_new, h_new, D, DB, n, dn,
+):  # fmt: skip
+    n_el, n_edof = du_el.shape
+    n_ip = xis.shape[0]
     for e in range(n_el):
         for a in range(3):
             xl[a] = coords[e, 3 + a, 0]
@@ -105,7 +123,7 @@ def _evaluate(coords, hoff, n_up_dof, xis, wts, params, du_el, state_old, tangen
             for j in range(n_edof):
                 k_el[e, i, j] = 0.0
         for q in range(n_ip):
-            jac = _b_matrix(xl, zl, hoff[e], n_up_dof, xis[q], B)
+            jac = _b_matrix(xl, zl, hoff[e], n_up_dof, xis[q], B, n, dn)
             dv = wts[q] * jac
             for r in range(2):
                 s = 0.0
