@@ -89,14 +89,14 @@ def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
     kernel a fraction of that. Each specialisation is a closure over its flags, which numba caches on disk
     under a key that includes them."""
 
-    # The loop over elements and points. Without the explicit Mohr-Coulomb and von Mises laws it is compiled
-    # without numba's reference counting: the elastic and implicit Mohr-Coulomb updates allocate nothing (the
-    # scratch comes from ``kernel``), and the counts numba kept for the array arguments of the inlined law
-    # update (an atomic increment and decrement each, per point) were half of the Mohr-Coulomb kernel's time
-    # (measured: 225 -> 98 ns per point, forces only). The two other laws allocate per point, which needs
-    # the runtime; numba compiles the functions a loop calls with the loop's own setting, so a law that
-    # allocates must never be reached from a loop without it.
-    @njit(cache=True, _nrt=has_mc_explicit or has_vm)
+    # The loop over elements and points. Without the explicit Mohr-Coulomb law it is compiled without
+    # numba's reference counting: the elastic, implicit Mohr-Coulomb and von Mises updates allocate nothing
+    # (the scratch comes from ``kernel``), and the counts numba kept for the array arguments of the inlined
+    # law update (an atomic increment and decrement each, per point) were half of the Mohr-Coulomb kernel's
+    # time (measured: 225 -> 98 ns per point, forces only). The explicit law (the paper's scheme, an option)
+    # allocates per point, which needs the runtime; numba compiles the functions a loop calls with the loop's
+    # own setting, so a law that allocates must never be reached from a loop without it.
+    @njit(cache=True, _nrt=has_mc_explicit)
     def points(
         coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new, f_el, k_el, tangent, tau,
         dndx, deps, sig, hist, D, sig_old, hist_old, xy, d_elastic, db, dn_ref, constants, work, iwork,

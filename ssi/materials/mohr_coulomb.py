@@ -774,8 +774,9 @@ def mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
 # von Mises (plane strain), for the Smith & Griffiths regression
 # ---------------------------------------------------------------------------------------------------------
 @njit(cache=True)
-def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
-    """Von Mises radial return, f = sqrt(J2) - cu, perfect plasticity; shapes as :func:`mc_implicit`.
+def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work):
+    """Von Mises radial return, f = sqrt(J2) - cu, perfect plasticity; shapes as :func:`mc_implicit`, whose
+    scratch ``work`` (at least 3 rows of 4) it shares, so that it allocates nothing either.
 
     s_tr = dev(σ_old + D Δε); if ||s_tr|| / √2 > cu: s = r s_tr with r = √2 cu / ||s_tr||; pressure unchanged.
     Consistent tangent: K 1⊗1 + 2μ r (I_dev - n⊗n), n = s_tr / ||s_tr|| (Simo & Hughes, Box 3.2 without
@@ -785,10 +786,10 @@ def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     nu = params[1]
     cu = params[2]
     lam, mu = lame(E, nu)
-    st = np.empty(4)
+    st = work[0]
     _elastic_increment(sig_old, lam, mu, deps, 1.0, st)
     pm = (st[0] + st[1] + st[3]) / 3.0
-    sd = np.empty(4)
+    sd = work[1]
     sd[0] = st[0] - pm
     sd[1] = st[1] - pm
     sd[2] = st[2]
@@ -811,7 +812,7 @@ def vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent):
     hist_new[1] = B_PLANE
     if tangent != K0_MATRIX:
         K = lam + 2.0 * mu / 3.0
-        n = np.empty(4)
+        n = work[2]
         for i in range(4):
             n[i] = sd[i] / nrm
         for i in range(4):

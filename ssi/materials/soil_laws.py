@@ -112,7 +112,7 @@ def soil_update_among(
     if has_mc_explicit and kind == MOHR_COULOMB_EXPLICIT:
         return mc_explicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
     if has_vm and kind == VON_MISES:
-        return vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent)
+        return vm_implicit(params, deps, sig_old, hist_old, sig_new, hist_new, D, tangent, work)
     elastic_matrix(params[0], params[1], D)
     for i in range(4):
         s = sig_old[i]
