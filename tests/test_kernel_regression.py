@@ -77,7 +77,9 @@ def test_loops_without_reference_counting_compile_first_in_a_fresh_process(tmp_p
     """The soil (elastic, Mohr-Coulomb, von Mises), plate and interface loops are compiled without numba's
     runtime, and numba compiles the functions they call with that same setting: a callee that allocates fails
     to compile there, but only when no earlier call in the process compiled it with the runtime. A process
-    with an empty cache that calls those kernels first is the order where such a callee would show."""
+    with an empty cache that calls those kernels first is the order where such a callee would show. A second
+    process on the same cache must then compile nothing (a compiled function holding another as a closure
+    constant is not found in the cache: it was compiled again in every process)."""
     import subprocess
     import sys
 
@@ -118,3 +120,8 @@ def test_loops_without_reference_counting_compile_first_in_a_fresh_process(tmp_p
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(Path(__file__).parent))
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
     assert run.returncode == 0 and "compiled" in run.stdout, run.stderr[-3000:]
+    env["NUMBA_DEBUG_CACHE"] = "1"
+    again = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert again.returncode == 0, again.stderr[-3000:]
+    saved = [line for line in again.stdout.splitlines() if "data saved" in line]
+    assert "data loaded" in again.stdout and not saved, saved

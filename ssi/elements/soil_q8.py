@@ -192,7 +192,6 @@ def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
                         k_el[e, 2 * a + 1, 2 * b + 1] += (bz * dw1 + bx * dw2) * wdet
         return failures
 
-    @njit(cache=True)
     def kernel(coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new, f_el, k_el, tangent, tau):
         """Internal forces and stiffness of all Q8 elements; returns the number of points that failed.
 
@@ -200,23 +199,28 @@ def q8_kernel_for(has_mc=True, has_mc_explicit=True, has_vm=True):
         (n_mat, n_par); gp (n_ip, 2), gw (n_ip,); state_old/state_new (n_el, n_ip, N_SOIL_STATE);
         f_el (n_el, 16), k_el (n_el, 16, 16) are overwritten (k_el is left alone when tangent is
         FORCES_ONLY); tau >= 0 the Duvaut--Lions viscosity (see :class:`SoilQ8`; 0: rate independent).
+
+        Plain Python around the compiled loop: it allocates the loop's scratch (fresh per call, so that
+        threads may share a kernel). A compiled wrapper calling ``points`` would hold that closure as a
+        constant, which numba's cache cannot key: it was compiled again in every process (0.5 s of the
+        README scene's 1.7 s) and added an entry to the cache at each run.
         """
-        dndx = np.empty((8, 2))
-        deps = np.zeros(4)
-        sig = np.empty(4)
-        hist = np.empty(N_SOIL_HIST)
-        D = np.empty((4, 4))
-        sig_old = np.empty(4)  # the point's committed state, copied into scratch (no views built per point)
-        hist_old = np.empty(N_SOIL_HIST)
-        xy = np.empty((8, 2))
-        d_elastic = np.empty((4, 4))
-        db = np.empty((8, 6))  # D B_b of each node b at the current point
-        dn_ref = _reference_derivatives(gp)
-        constants = law_constants(kinds, params)
-        work, iwork = np.empty((N_MC_WORK_ROWS, 4)), np.empty(3, np.int64)
         return points(
             coords, du_el, el_mat, kinds, params, gp, gw, state_old, state_new, f_el, k_el, tangent, tau,
-            dndx, deps, sig, hist, D, sig_old, hist_old, xy, d_elastic, db, dn_ref, constants, work, iwork,
+            np.empty((8, 2)),  # dndx
+            np.zeros(4),  # deps
+            np.empty(4),  # sig
+            np.empty(N_SOIL_HIST),  # hist
+            np.empty((4, 4)),  # D
+            np.empty(4),  # sig_old: the point's committed state, copied (no views built per point)
+            np.empty(N_SOIL_HIST),  # hist_old
+            np.empty((8, 2)),  # xy
+            np.empty((4, 4)),  # d_elastic
+            np.empty((8, 6)),  # db: D B_b of each node b at the current point
+            _reference_derivatives(gp),  # dn_ref
+            law_constants(kinds, params),  # constants
+            np.empty((N_MC_WORK_ROWS, 4)),  # work
+            np.empty(3, np.int64),  # iwork
         )  # fmt: skip
 
     return kernel
