@@ -271,37 +271,9 @@ def plate_kernel(
     scratch = np.zeros(state_old.shape[3])
     prm = params.copy()
     return _plate_points(
-        x_el,
-        u_el,
-        state_old,
-        state_new,
-        f_el,
-        k_el,
-        xi,
-        wt,
-        ax,
-        sh,
-        z_mid,
-        h,
-        kind,
-        params,
-        cshear,
-        kappa,
-        e0,
-        g0,
-        self_mode,
-        band,
-        ls_index,
-        tangent,
-        nn,
-        bx,
-        be,
-        bk,
-        bg,
-        res,
-        scratch,
-        prm,
-    )
+        x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, cshear, kappa, e0, g0,
+        self_mode, band, ls_index, tangent, nn, bx, be, bk, bg, res, scratch, prm,
+    )  # fmt: skip
 
 
 # The loop over elements and points, compiled without numba's reference counting (the scratch comes from
@@ -310,37 +282,9 @@ def plate_kernel(
 # loop's own setting, so nothing that allocates may be reached from here.
 @njit(cache=True, _nrt=False)
 def _plate_points(
-    x_el,
-    u_el,
-    state_old,
-    state_new,
-    f_el,
-    k_el,
-    xi,
-    wt,
-    ax,
-    sh,
-    z_mid,
-    h,
-    kind,
-    params,
-    cshear,
-    kappa,
-    e0,
-    g0,
-    self_mode,
-    band,
-    ls_index,
-    tangent,
-    nn,
-    bx,
-    be,
-    bk,
-    bg,
-    res,
-    scratch,
-    prm,
-):
+    x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, cshear, kappa, e0, g0,
+    self_mode, band, ls_index, tangent, nn, bx, be, bk, bg, res, scratch, prm,
+):  # fmt: skip
     n_el = x_el.shape[0]
     bad = 0
     for e in range(n_el):
