@@ -299,7 +299,13 @@ class _KeptOrdering:
             index_type = np.int32 if nnz < 2**31 else np.int64  # the map of a 1e6-DOF tangent: 72 MB
             self.source = (moved.data - 1.0).astype(index_type)
             self.indices, self.indptr = moved.indices, moved.indptr
-        return sp.csc_matrix((matrix.data[self.source], self.indices, self.indptr), shape=matrix.shape)
+            self.canonical = moved.has_canonical_format  # sorted, no duplicates: true of every later copy
+        values = np.empty(self.source.shape[0])
+        _gather_values(matrix.data, self.source, values)
+        permuted = sp.csc_matrix((values, self.indices, self.indptr), shape=matrix.shape)
+        # splu checks the format again otherwise (O(nnz) in Python-level numpy: ~50 us at 1e5 entries)
+        permuted.has_canonical_format = self.canonical
+        return permuted
 
     def solve_with(self, permuted_solve):
         """The solve of A x = b from the permuted factor's: x[q] = solve(b[q])."""
@@ -311,6 +317,14 @@ class _KeptOrdering:
             return x
 
         return solve
+
+
+@njit(cache=True)
+def _gather_values(data, source, out):
+    """out[k] = data[source[k]]: numpy's fancy indexing first copies an int32 map to int64 (measured 250 us
+    against 74 us here for 1.2e5 entries in random order; a 1.7 k-DOF tangent factorises in ~2 ms)."""
+    for k in range(source.shape[0]):
+        out[k] = data[source[k]]
 
 
 _ORDERINGS: dict = {}  # pattern key (see _pattern_key) -> _KeptOrdering, dropped with the pattern's indices
