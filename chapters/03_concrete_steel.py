@@ -110,10 +110,13 @@ print({k: f"{v:.4g}" for k, v in des.items()})
 print(f"snap-back limit 2 E0 Gf / fr^2 = {rc.snap_back_limit(E0, GF, FR):.3f} m")
 
 # %% [markdown]
-# The kernel, printed from the library (the chapter never retypes it):
+# The kernel, printed from the library (the chapter never retypes it). Its constants -- the functions of the
+# parameters alone -- are computed apart, so that the plate strip computes them once per layer rather than at
+# each of its layer points:
 
 # %%
-print(inspect.getsource(concrete.concrete_update.py_func))
+print(inspect.getsource(concrete.concrete_constants.py_func))
+print(inspect.getsource(concrete.concrete_update_with.py_func))
 
 # %% [markdown]
 # ## Driving the points along strain paths

@@ -5,6 +5,10 @@
 case of ``tests/kernel_regression_case.py``: every soil law, both Gauss rules, all three tangent flags, points
 in every return branch. The rewrite changes where intermediate values live, not the arithmetic, so the outputs
 must agree bit for bit; the comparison allows 1e-14 relative in case a compiler reorders a sum.
+
+``tests/data/plate_kernel_v0.npz`` does the same for the plate strip (``tests/plate_regression_case.py``,
+stored at main 510b7d3): its concrete law now takes constants computed once per layer, by the same
+expressions, instead of at every layer point.
 """
 
 import os
@@ -12,6 +16,7 @@ import textwrap
 from pathlib import Path
 
 import numpy as np
+import plate_regression_case
 import pytest
 from kernel_regression_case import DATA, outputs
 
@@ -35,6 +40,32 @@ def test_same_outputs_as_the_stored_kernel(stored, current):
         scale = np.abs(ref).max()
         assert scale > 0.0, key
         assert np.max(np.abs(new - ref)) <= TOL * scale, key
+
+
+def test_plate_kernel_gives_the_stored_outputs():
+    stored = dict(np.load(plate_regression_case.DATA))
+    current = plate_regression_case.outputs()
+    assert set(stored) == set(current)
+    for key, ref in stored.items():
+        scale = np.abs(ref).max()
+        assert scale > 0.0, key
+        assert np.max(np.abs(current[key] - ref)) <= TOL * scale, key
+
+
+def test_plate_case_reaches_every_branch_of_the_layer_laws():
+    from ssi.materials.concrete import P_E0, P_EPS_CU, P_FR
+    from ssi.materials.layer_laws import CONCRETE, STEEL
+
+    stored = dict(np.load(plate_regression_case.DATA))
+    for tag, plane_strain, gc in (("a", False, None), ("b", True, 0.0)):
+        s = plate_regression_case.section(plane_strain, gc)
+        prm = s.params[s.kind == CONCRETE][0]
+        state = stored[f"state_{tag}_committed_consistent"]
+        x_max, e_max = state[..., s.kind == CONCRETE, 0], state[..., s.kind == CONCRETE, 1]
+        assert (x_max == 0.0).any() and (x_max > 0.0).any() and (x_max >= prm[P_EPS_CU]).any(), tag
+        assert (e_max <= prm[P_FR] / prm[P_E0]).any() and (e_max > prm[P_FR] / prm[P_E0]).any(), tag
+        yielded = state[..., s.kind == STEEL, 0] != 0.0
+        assert yielded.any() and not yielded.all(), tag
 
 
 def test_case_covers_every_return_branch(stored):

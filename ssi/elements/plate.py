@@ -63,7 +63,15 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
-from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, P_LS, crack_band_width, layer_update
+from ..materials.layer_laws import (
+    CONCRETE,
+    N_LAYER_CONSTANTS,
+    N_LAYER_HIST,
+    P_LS,
+    crack_band_width,
+    layer_constants,
+    layer_update_with,
+)
 from ..protocol import CONSISTENT, K0_MATRIX
 from ..quadrature import gauss_legendre
 from ..section import Section
@@ -126,11 +134,22 @@ def _point_b(x, xi, n_out, bx_out):
 
 
 @njit(cache=True)
-def _crack_band(prm, band, ls_index, ls):
-    """Set the crack band width of the flagged layers (paper eq. 5.4 with ls = the point's length)."""
+def _crack_band(prm, const, kind, band, ls_index, ls):
+    """Set the crack band width of the flagged layers (paper eq. 5.4 with ls = the point's length), and
+    their law's constants, which depend on it."""
     for n in range(band.shape[0]):
         if band[n]:
             prm[n, ls_index] = ls
+            layer_constants(kind[n], prm[n], const[n])
+
+
+@njit(cache=True)
+def _layer_constants(kind, prm):
+    """(n_layer, N_LAYER_CONSTANTS) constants of the layers' laws (``layer_constants``)."""
+    const = np.zeros((kind.shape[0], N_LAYER_CONSTANTS))
+    for n in range(kind.shape[0]):
+        layer_constants(kind[n], prm[n], const[n])
+    return const
 
 
 @njit(cache=True)
@@ -142,6 +161,7 @@ def _section(
     h,
     kind,
     params,
+    const,
     cshear,
     kappa,
     e0,
@@ -183,8 +203,8 @@ def _section(
         hn = h[n]
         # the law always returns its tangent; K0 (K0_MATRIX) uses the initial moduli instead, so that the
         # internal force never depends on which matrix the solver asks for
-        sig, tau, e_t, g_t = layer_update(
-            kind[n], params[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], _ALWAYS_TANGENT
+        sig, tau, e_t, g_t = layer_update_with(
+            kind[n], params[n], const[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], _ALWAYS_TANGENT
         )
         if do_ax:
             i_n = hn * hn * hn / 12.0  # exact within-layer bending, eq. (4.7b) h_n^2/12
@@ -199,11 +219,11 @@ def _section(
                 # chord: M_self = -int (z - z_n) sig dz with sig linear between the faces' stresses
                 z_b = z - 0.5 * hn
                 z_t = z + 0.5 * hn
-                s_b, _, e_b, _ = layer_update(
-                    kind[n], params[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
+                s_b, _, e_b, _ = layer_update_with(
+                    kind[n], params[n], const[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
                 )
-                s_t, _, e_tp, _ = layer_update(
-                    kind[n], params[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
+                s_t, _, e_tp, _ = layer_update_with(
+                    kind[n], params[n], const[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
                 )
                 c = hn * hn / 12.0
                 M += c * (s_b - s_t)
@@ -270,9 +290,10 @@ def plate_kernel(
     res = np.zeros(8)
     scratch = np.zeros(state_old.shape[3])
     prm = params.copy()
+    const = _layer_constants(kind, prm)
     return _plate_points(
         x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, cshear, kappa, e0, g0,
-        self_mode, band, ls_index, tangent, nn, bx, be, bk, bg, res, scratch, prm,
+        self_mode, band, ls_index, tangent, nn, bx, be, bk, bg, res, scratch, prm, const,
     )  # fmt: skip
 
 
@@ -283,7 +304,7 @@ def plate_kernel(
 @njit(cache=True, _nrt=False)
 def _plate_points(
     x_el, u_el, state_old, state_new, f_el, k_el, xi, wt, ax, sh, z_mid, h, kind, cshear, kappa, e0, g0,
-    self_mode, band, ls_index, tangent, nn, bx, be, bk, bg, res, scratch, prm,
+    self_mode, band, ls_index, tangent, nn, bx, be, bk, bg, res, scratch, prm, const,
 ):  # fmt: skip
     n_el = x_el.shape[0]
     bad = 0
@@ -301,7 +322,7 @@ def _plate_points(
                         state_new[e, p, n, i] = state_old[e, p, n, i]
                 continue
             wj = wt[p] * jac
-            _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
+            _crack_band(prm, const, kind, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
             for a in range(3):
                 be[3 * a] = bx[a]
                 bg[3 * a + 1] = bx[a]
@@ -315,6 +336,7 @@ def _plate_points(
                 h,
                 kind,
                 prm,
+                const,
                 cshear,
                 kappa,
                 e0,
@@ -377,10 +399,11 @@ def plate_resultants(
     scratch = np.empty((h.shape[0], state.shape[3]))
     scratch1 = np.zeros(state.shape[3])
     prm = params.copy()
+    const = _layer_constants(kind, prm)
     for e in range(x_el.shape[0]):
         for p in range(xi.shape[0]):
             _point_b(x_el[e], xi[p], nn, bx)
-            _crack_band(prm, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
+            _crack_band(prm, const, kind, band, ls_index, crack_band_width(x_el[e, 2] - x_el[e, 0], wt[p]))
             _section(
                 u_el[e],
                 nn,
@@ -389,6 +412,7 @@ def plate_resultants(
                 h,
                 kind,
                 prm,
+                const,
                 cshear,
                 kappa,
                 e0,
@@ -415,13 +439,21 @@ def plate_layer_stresses(eps, gam, state, kind, params, band, ls_index, wt, leng
     eps (n_el, n_ip, n_layer), gam (n_el, n_ip), state (n_el, n_ip, n_layer, n_hist), length (n_el,);
     writes sig, tau (n_el, n_ip, n_layer) (tau unfactored by kappa, as the laws return it)."""
     prm = params.copy()
+    const = _layer_constants(kind, prm)
     scratch = np.empty(state.shape[3])
     for e in range(eps.shape[0]):
         for p in range(eps.shape[1]):
-            _crack_band(prm, band, ls_index, crack_band_width(length[e], wt[p]))
+            _crack_band(prm, const, kind, band, ls_index, crack_band_width(length[e], wt[p]))
             for n in range(eps.shape[2]):
-                s, t, _, _ = layer_update(
-                    kind[n], prm[n], eps[e, p, n], gam[e, p], state[e, p, n], scratch, _ALWAYS_TANGENT
+                s, t, _, _ = layer_update_with(
+                    kind[n],
+                    prm[n],
+                    const[n],
+                    eps[e, p, n],
+                    gam[e, p],
+                    state[e, p, n],
+                    scratch,
+                    _ALWAYS_TANGENT,
                 )
                 sig[e, p, n] = s
                 tau[e, p, n] = t

@@ -97,9 +97,14 @@ def compression_envelope(x, E0, fc, eps_c, eps_cu):
     f = E0 x / (1 + (E0 eps_c / fc - 2) r + r^2), r = x / eps_c; df/dx = E0 (1 - r^2) / den^2.
     Zero stress and slope at and beyond ``eps_cu`` (open choice of paper-notes §3.1).
     """
+    return _compression(x, E0, E0 * eps_c / fc, eps_c, eps_cu)
+
+
+@njit(cache=True)
+def _compression(x, E0, a, eps_c, eps_cu):
+    """:func:`compression_envelope` with its constant a = E0 eps_c / fc given."""
     if x >= eps_cu:
         return 0.0, 0.0
-    a = E0 * eps_c / fc
     r = x / eps_c
     den = 1.0 + (a - 2.0) * r + r * r
     return E0 * x / den, E0 * (1.0 - r * r) / (den * den)
@@ -124,9 +129,15 @@ def crushing_envelope(x, E0, fc, eps_c, eps_cu, Gc, ls):
     Eq. (5.1) below eps_cu; then f_cu (eps_cd - x) / (eps_cd - eps_cu) down to zero at eps_cd
     (``crushing_end``); zero beyond. With Gc = 0 it is :func:`compression_envelope` (zero at and
     beyond eps_cu)."""
-    if x < eps_cu:
-        return compression_envelope(x, E0, fc, eps_c, eps_cu)
     f_cu, eps_cd = crushing_end(E0, fc, eps_c, eps_cu, Gc, ls)
+    return _crushing(x, E0, E0 * eps_c / fc, eps_c, eps_cu, f_cu, eps_cd)
+
+
+@njit(cache=True)
+def _crushing(x, E0, a, eps_c, eps_cu, f_cu, eps_cd):
+    """:func:`crushing_envelope` with its constants a, f_cu and eps_cd given."""
+    if x < eps_cu:
+        return _compression(x, E0, a, eps_c, eps_cu)
     if x >= eps_cd:
         return 0.0, 0.0
     slope = -f_cu / (eps_cd - eps_cu)
@@ -136,9 +147,14 @@ def crushing_envelope(x, E0, fc, eps_c, eps_cu, Gc, ls):
 @njit(cache=True)
 def irreversible_strain(x_max, E0, fc, eps_c, eps_cu):
     """Second form of eq. (5.3): eps_p = x_max - f(x_max) / E0 (magnitudes; 0 before any compression)."""
+    return _irreversible(x_max, E0, E0 * eps_c / fc, eps_c, eps_cu)
+
+
+@njit(cache=True)
+def _irreversible(x_max, E0, a, eps_c, eps_cu):
     if x_max <= 0.0:
         return 0.0
-    f, _ = compression_envelope(x_max, E0, fc, eps_c, eps_cu)
+    f, _ = _compression(x_max, E0, a, eps_c, eps_cu)
     return x_max - f / E0
 
 
@@ -177,10 +193,16 @@ def tension_envelope(e, E0, fr, Gf, ls, alpha_ts, eps_y):
     """
     eps_r = fr / E0
     eps_u = 2.0 * Gf / (fr * ls)
+    return _tension(e, fr, eps_r, eps_u, softening_modulus(E0, fr, Gf, ls), alpha_ts, eps_y)
+
+
+@njit(cache=True)
+def _tension(e, fr, eps_r, eps_u, e_soft, alpha_ts, eps_y):
+    """:func:`tension_envelope` with its constants eps_r, eps_u and the softening modulus e_soft given."""
     s_soft = 0.0
     d_soft = 0.0
     if e < eps_u:
-        d_soft = softening_modulus(E0, fr, Gf, ls)
+        d_soft = e_soft
         s_soft = fr + d_soft * (e - eps_r)
     s_ts = 0.0
     d_ts = 0.0
@@ -203,13 +225,19 @@ def shear_retention(e_max, eps_r, eps_y, beta0, beta_floor):
     return b
 
 
-@njit(cache=True)
-def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
-    """One concrete layer point: return ``(sig, tau, e_t, g_t)`` and write ``hist_new``.
+# indices of concrete_constants' tuple
+C_E0, C_G, C_EPS_R, C_A, C_F_CU, C_EPS_CD, C_EPS_U, C_E_SOFT = range(8)
+N_CONCRETE_CONSTANTS = 8
 
-    ``tangent`` = 0 returns the initial moduli (E0, G) for K0, else d sig/d eps and d tau/d gam.
-    Shapes: params (>= N_CONCRETE_PARAMS,), hist_old/hist_new (>= N_CONCRETE_HIST,).
-    """
+
+@njit(cache=True)
+def concrete_constants(params):
+    """The law's constants, functions of ``params`` alone: (axial E0 -- D1 of eq. 4.4 in plane strain --, G,
+    eps_r = fr/E0, a = E0 eps_c/fc of eq. 5.1, f_cu and eps_cd of ``crushing_end``, eps_u = 2 Gf/(fr ls) and
+    the softening modulus of eq. 5.4), indexed by ``C_*``. A dozen divisions: the plate kernel computes them
+    once per layer (and crack band) instead of at every layer point, with the same expressions, so the update
+    is the same bit for bit. A parameter that would divide by zero (fr ls = 0, which validation rejects)
+    gives inf."""
     E0 = params[P_E0]
     G = 0.5 * E0 / (1.0 + params[P_NU])
     if params[P_PLANE] != 0.0:
@@ -218,7 +246,38 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     eps_c = params[P_EPS_C]
     eps_cu = params[P_EPS_CU]
     fr = params[P_FR]
-    eps_r = fr / E0
+    Gf = params[P_GF]
+    ls = params[P_LS]
+    f_cu, eps_cd = crushing_end(E0, fc, eps_c, eps_cu, params[P_GC], ls)
+    eps_u = math.inf
+    e_soft = math.inf
+    if fr * ls != 0.0:
+        eps_u = 2.0 * Gf / (fr * ls)
+        e_soft = softening_modulus(E0, fr, Gf, ls)
+    return (E0, G, fr / E0, E0 * eps_c / fc, f_cu, eps_cd, eps_u, e_soft)
+
+
+@njit(cache=True)
+def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
+    """One concrete layer point: return ``(sig, tau, e_t, g_t)`` and write ``hist_new``.
+
+    ``tangent`` = 0 returns the initial moduli (E0, G) for K0, else d sig/d eps and d tau/d gam.
+    Shapes: params (>= N_CONCRETE_PARAMS,), hist_old/hist_new (>= N_CONCRETE_HIST,).
+    """
+    return concrete_update_with(concrete_constants(params), params, eps, gam, hist_old, hist_new, tangent)
+
+
+@njit(cache=True)
+def concrete_update_with(const, params, eps, gam, hist_old, hist_new, tangent):
+    """:func:`concrete_update` with the law's constants ``const`` (``concrete_constants(params)``, a tuple or
+    an array row) given."""
+    E0 = const[C_E0]
+    G = const[C_G]
+    eps_c = params[P_EPS_C]
+    eps_cu = params[P_EPS_CU]
+    fr = params[P_FR]
+    eps_r = const[C_EPS_R]
+    a = const[C_A]
     eps_y = params[P_EPS_Y]
     x_max = hist_old[H_XMAX]
     e_max = hist_old[H_EMAX]
@@ -230,38 +289,37 @@ def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     x = -eps
     sig = 0.0
     e_t = 0.0
-    Gc = params[P_GC]
-    ls = params[P_LS]
-    _, eps_cd = crushing_end(E0, fc, eps_c, eps_cu, Gc, ls)
+    f_cu = const[C_F_CU]
+    eps_cd = const[C_EPS_CD]
     if x_max >= eps_cd or x >= eps_cd:
         # 1. crushed through: no stress from now on
         x_max = max(x_max, x)
     elif x > x_max:
         # 2. compression loading on the envelope, eq. (5.1), then the regularised crushing branch
-        f, df = crushing_envelope(x, E0, fc, eps_c, eps_cu, Gc, ls)
+        f, df = _crushing(x, E0, a, eps_c, eps_cu, f_cu, eps_cd)
         sig = -f
         e_t = df
         x_max = x
     elif x_max >= eps_cu:
         # 3. unloading from the crushing branch: E0 from the irreversible strain, compression only
-        f_m, _ = crushing_envelope(x_max, E0, fc, eps_c, eps_cu, Gc, ls)
+        f_m, _ = _crushing(x_max, E0, a, eps_c, eps_cu, f_cu, eps_cd)
         e = eps + x_max - f_m / E0
         if e < 0.0:
             sig = E0 * e
             e_t = E0
     else:
         # 3. shift by the irreversible strain, eq. (5.3)
-        e = eps + irreversible_strain(x_max, E0, fc, eps_c, eps_cu)
+        e = eps + _irreversible(x_max, E0, a, eps_c, eps_cu)
         if e <= 0.0 or e <= eps_r and e_max <= eps_r:
             sig = E0 * e
             e_t = E0
         elif e >= e_max:
             # 4. loading on the cracked envelope
-            sig, e_t = tension_envelope(e, E0, fr, params[P_GF], ls, params[P_ALPHA_TS], eps_y)
+            sig, e_t = _tension(e, fr, eps_r, const[C_EPS_U], const[C_E_SOFT], params[P_ALPHA_TS], eps_y)
             e_max = e
         else:
             # 4. unloading of a cracked point: secant towards the origin
-            s_env, _ = tension_envelope(e_max, E0, fr, params[P_GF], ls, params[P_ALPHA_TS], eps_y)
+            s_env, _ = _tension(e_max, fr, eps_r, const[C_EPS_U], const[C_E_SOFT], params[P_ALPHA_TS], eps_y)
             e_t = s_env / e_max
             sig = e_t * e
         e_max = max(e_max, e)

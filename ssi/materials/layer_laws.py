@@ -33,7 +33,7 @@ strain; steel uses 1: plastic strain). Unused entries are copied through.
 
 from numba import njit
 
-from .concrete import N_CONCRETE_PARAMS, P_LS, concrete_update
+from .concrete import N_CONCRETE_CONSTANTS, N_CONCRETE_PARAMS, P_LS, concrete_constants, concrete_update_with
 from .steel import steel_update
 
 ELASTIC = 0
@@ -41,16 +41,21 @@ CONCRETE = 1
 STEEL = 2
 N_LAYER_HIST = 4  # history variables per layer point (laws may use fewer)
 N_LAYER_PARAMS = N_CONCRETE_PARAMS  # longest parameter vector of any kind
+N_LAYER_CONSTANTS = N_CONCRETE_CONSTANTS  # a layer's precomputed constants (only concrete has any)
+_NO_CONSTANTS = (0.0,) * N_LAYER_CONSTANTS
 
 __all__ = [
     "CONCRETE",
     "ELASTIC",
+    "N_LAYER_CONSTANTS",
     "N_LAYER_HIST",
     "N_LAYER_PARAMS",
     "P_LS",
     "STEEL",
     "crack_band_width",
+    "layer_constants",
     "layer_update",
+    "layer_update_with",
 ]
 
 
@@ -66,10 +71,27 @@ def crack_band_width(element_length: float, weight: float) -> float:
 def layer_update(kind, params, eps, gam, hist_old, hist_new, tangent):
     """Return ``(sig, tau, e_t, g_t)``: stresses and the tangent (``tangent`` CONSISTENT) or initial
     (K0_MATRIX) moduli d sig/d eps and d tau/d gam. Writes ``hist_new`` (N_LAYER_HIST,)."""
+    const = concrete_constants(params) if kind == CONCRETE else _NO_CONSTANTS
+    return layer_update_with(kind, params, const, eps, gam, hist_old, hist_new, tangent)
+
+
+@njit(cache=True)
+def layer_constants(kind, params, out):
+    """Write the law's constants (functions of ``params`` alone) to ``out`` (N_LAYER_CONSTANTS,), for
+    :func:`layer_update_with`: a kernel that updates one layer at many points computes them once."""
+    if kind == CONCRETE:
+        const = concrete_constants(params)
+        for i in range(N_LAYER_CONSTANTS):
+            out[i] = const[i]
+
+
+@njit(cache=True)
+def layer_update_with(kind, params, const, eps, gam, hist_old, hist_new, tangent):
+    """:func:`layer_update` with the law's constants ``const`` (from :func:`layer_constants`) given."""
     for i in range(hist_old.size):  # a loop, not hist_new[:] = hist_old: numba compiles an array-to-slice
         hist_new[i] = hist_old[i]  # copy with its shape-checking error path, seconds per signature
     if kind == CONCRETE:
-        return concrete_update(params, eps, gam, hist_old, hist_new, tangent)
+        return concrete_update_with(const, params, eps, gam, hist_old, hist_new, tangent)
     if kind == STEEL:
         return steel_update(params, eps, gam, hist_old, hist_new, tangent)
     E, nu = params[0], params[1]
