@@ -32,6 +32,7 @@ Shapes: kap, M, eps0, S are (n_steps + 1,) arrays, row 0 the unloaded section.
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from .materials.concrete import P_LS
 from .materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
@@ -57,6 +58,9 @@ def _params(section: Section, ls):
     return prm
 
 
+_SELF_BENDING = {"none": 0, "initial": 1, "tangent": 2, "chord": 3}
+
+
 def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6.0, self_bending="chord"):
     """Resultants of the section at (eps0, kap) from the committed layer histories ``hist_old``.
 
@@ -65,40 +69,76 @@ def section_state(section: Section, params, eps0, kap, hist_old, kappa_s=5.0 / 6
     "initial" (e0 h^3/12 kap) or "none" (pure midpoint rule).
     Returns ``(N, M, A, S, hist_new)``: axial force, moment, dN/deps0, shear stiffness (per unit width),
     and the new histories (n_layer, N_LAYER_HIST)."""
-    e0, _ = section.initial_moduli()
-    hist_new = np.empty_like(hist_old)
-    scratch = np.empty(hist_old.shape[1])
-    N = M = A = S = 0.0
-    for n in range(section.n_layer):
-        z, h = section.z_mid[n], section.h[n]
-        sig, _, e_t, g_t = layer_update(
-            section.kind[n], params[n], eps0 - z * kap, 0.0, hist_old[n], hist_new[n], 1
+    if self_bending not in _SELF_BENDING:
+        raise ValueError(f"self_bending must be one of {sorted(_SELF_BENDING)}, got {self_bending!r}")
+    return _section_state(_Layers.of(section), params, eps0, kap, hist_old, kappa_s, self_bending)
+
+
+@dataclass(frozen=True)
+class _Layers:
+    """The arrays of a section that :func:`_section_resultants` reads, with the initial moduli (computed once
+    per analysis, not at each of its thousands of section states)."""
+
+    z_mid: np.ndarray
+    h: np.ndarray
+    h_cubed: np.ndarray
+    kind: np.ndarray
+    carries_shear: np.ndarray
+    e0: np.ndarray
+
+    @classmethod
+    def of(cls, section: Section) -> "_Layers":
+        h = np.ascontiguousarray(section.h, np.float64)
+        return cls(
+            np.ascontiguousarray(section.z_mid, np.float64),
+            h,
+            h**3,
+            np.ascontiguousarray(section.kind, np.int64),
+            np.ascontiguousarray(section.carries_shear, np.bool_),
+            section.initial_moduli()[0],
         )
-        N += h * sig
-        M += -h * z * sig
-        if self_bending == "chord":
-            s_b = layer_update(
-                section.kind[n], params[n], eps0 - (z - h / 2) * kap, 0.0, hist_old[n], scratch, 1
-            )[0]
-            s_t = layer_update(
-                section.kind[n], params[n], eps0 - (z + h / 2) * kap, 0.0, hist_old[n], scratch, 1
-            )[0]
-            M += h * h / 12.0 * (s_b - s_t)
-        else:
-            e_self = e0[n] if self_bending == "initial" else (e_t if self_bending == "tangent" else 0.0)
-            M += e_self * h**3 / 12.0 * kap
-        A += h * e_t
-        if section.carries_shear[n]:
-            S += kappa_s * h * g_t
+
+
+def _section_state(layers: _Layers, params, eps0, kap, hist_old, kappa_s, self_bending):
+    hist_new = np.empty_like(hist_old)
+    N, M, A, S = _section_resultants(
+        layers.z_mid, layers.h, layers.h_cubed, layers.kind, layers.carries_shear, layers.e0,
+        np.ascontiguousarray(params, np.float64), float(eps0), float(kap), hist_old, hist_new,
+        float(kappa_s), _SELF_BENDING[self_bending],
+    )  # fmt: skip
     return N, M, A, S, hist_new
 
 
-def _solve_eps0(section, params, kap, hist, guess, n_scale, kappa_s, sb):
+@njit(cache=True)
+def _section_resultants(z_mid, h_all, h_cubed, kind, carries_shear, e0, params, eps0, kap, hist_old, hist_new,
+                        kappa_s, self_bending):  # fmt: skip
+    """The loop of :func:`section_state` (``self_bending`` 0 none, 1 initial, 2 tangent, 3 chord)."""
+    scratch = np.empty(hist_old.shape[1])
+    N = M = A = S = 0.0
+    for n in range(z_mid.shape[0]):
+        z, h = z_mid[n], h_all[n]
+        sig, _, e_t, g_t = layer_update(kind[n], params[n], eps0 - z * kap, 0.0, hist_old[n], hist_new[n], 1)
+        N += h * sig
+        M += -h * z * sig
+        if self_bending == 3:
+            s_b = layer_update(kind[n], params[n], eps0 - (z - h / 2) * kap, 0.0, hist_old[n], scratch, 1)[0]
+            s_t = layer_update(kind[n], params[n], eps0 - (z + h / 2) * kap, 0.0, hist_old[n], scratch, 1)[0]
+            M += h * h / 12.0 * (s_b - s_t)
+        else:
+            e_self = e0[n] if self_bending == 1 else (e_t if self_bending == 2 else 0.0)
+            M += e_self * h_cubed[n] / 12.0 * kap
+        A += h * e_t
+        if carries_shear[n]:
+            S += kappa_s * h * g_t
+    return N, M, A, S
+
+
+def _solve_eps0(layers, params, kap, hist, guess, n_scale, kappa_s, sb):
     """eps0 with N(eps0, kap) = 0 for the committed ``hist``: Newton, then bisection as a fallback."""
     tol = 1e-11 * n_scale
     x = guess
     for _ in range(60):
-        N, M, A, S, hn = section_state(section, params, x, kap, hist, kappa_s, sb)
+        N, M, A, S, hn = _section_state(layers, params, x, kap, hist, kappa_s, sb)
         if abs(N) <= tol:
             return x, M, S, hn
         if A <= 0.0:
@@ -106,13 +146,13 @@ def _solve_eps0(section, params, kap, hist, guess, n_scale, kappa_s, sb):
         x = x - N / A
     # bracket and bisect (N rises with eps0 wherever the section still has stiffness)
     lo, hi = guess - 1e-3, guess + 1e-3
-    while section_state(section, params, lo, kap, hist, kappa_s, sb)[0] > 0.0:
+    while _section_state(layers, params, lo, kap, hist, kappa_s, sb)[0] > 0.0:
         lo -= 2.0 * (hi - lo)
-    while section_state(section, params, hi, kap, hist, kappa_s, sb)[0] < 0.0:
+    while _section_state(layers, params, hi, kap, hist, kappa_s, sb)[0] < 0.0:
         hi += 2.0 * (hi - lo)
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        N, M, A, S, hn = section_state(section, params, mid, kap, hist, kappa_s, sb)
+        N, M, A, S, hn = _section_state(layers, params, mid, kap, hist, kappa_s, sb)
         if abs(N) <= tol or hi - lo < 1e-16:
             return mid, M, S, hn
         if N > 0.0:
@@ -173,11 +213,12 @@ def moment_curvature(
     M = np.zeros_like(kaps)
     eps0 = np.zeros_like(kaps)
     S = np.zeros_like(kaps)
-    _, M[0], _, S[0], _ = section_state(section, params, 0.0, 0.0, hist, kappa_s, self_bending)
+    layers = _Layers.of(section)
+    _, M[0], _, S[0], _ = _section_state(layers, params, 0.0, 0.0, hist, kappa_s, self_bending)
     first_yield = None
     for i in range(1, kaps.size):
         eps0[i], M[i], S[i], hist = _solve_eps0(
-            section, params, kaps[i], hist, eps0[i - 1], n_scale, kappa_s, self_bending
+            layers, params, kaps[i], hist, eps0[i - 1], n_scale, kappa_s, self_bending
         )
         if first_yield is None and steel.size and np.any(hist[steel, 0] != 0.0):
             first_yield = i

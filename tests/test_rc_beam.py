@@ -34,6 +34,20 @@ def test_moment_curvature_elastic_plastic_rectangle():
     assert np.max(np.abs(mc.M[el] - Es * H**3 / 12 * mc.kap[el])) <= 1e-9 * m_p
 
 
+def test_section_state_resultants_of_an_elastic_section_and_its_option_check():
+    """N = E A eps0 and M = E I kap for an elastic section about its mid-plane, with every self-bending term
+    exact for linear layers; an unknown option is refused by name."""
+    E, H, n = 30e9, 0.4, 8
+    sec = layered(np.full(n, H / n), ELASTIC, np.array([E, 0.0]))
+    for mode in ("chord", "initial", "tangent"):
+        N, M, A, S, _ = sa.section_state(sec, sec.params, 1e-4, 2e-3, np.zeros((n, 4)), self_bending=mode)
+        assert N == pytest.approx(E * H * 1e-4, rel=1e-12)
+        assert M == pytest.approx(E * H**3 / 12 * 2e-3, rel=1e-12)
+        assert A == pytest.approx(E * H, rel=1e-12)
+    with pytest.raises(ValueError, match="self_bending.*'mid'"):
+        sa.section_state(sec, sec.params, 0.0, 0.0, np.zeros((n, 4)), self_bending="mid")
+
+
 def test_curvature_integral_matches_timoshenko_for_elastic_section():
     sec = rb.janney_section(11, elastic=True)
     k = sec.elastic_resultant_stiffness()

@@ -3,7 +3,8 @@ scene, the tests and the chapters load cached machine code instead of compiling 
 
 Runs small versions of the paths users take: the README scene (soil, plate, interface kernels, the default
 solver), a Mohr–Coulomb footing pushed to failure (full Newton with the consistent tangent), a linear solve
-of an elastic block (the K0 kernel, assembly). Prints the wall time as ``warm_cache_s: N``.
+of an elastic block (the K0 kernel, assembly), an RC section's moment-curvature (the section analysis).
+Prints the wall time as ``warm_cache_s: N``.
 """
 
 import re
@@ -42,6 +43,10 @@ def main():
     fix_block(m, mesh, sides=False)
     m.add_load(mesh.surface, "w", -1.0)
     m.solve_linear()
+    from ssi.examples import chapter11_section
+    from ssi.section_analysis import moment_curvature
+
+    moment_curvature(chapter11_section(), 0.01, 4)
     warm_soil_law_kernels()
     warm_pardiso_kernels(m)
     print(f"warm_cache_s: {time.perf_counter() - t0:.1f}")
