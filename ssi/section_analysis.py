@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .materials.concrete import P_LS
+from .materials.concrete import H_EMAX, H_XMAX, P_LS
 from .materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
 from .protocol import CONSISTENT
 from .section import Section
@@ -312,11 +312,11 @@ def _softening_meets_stiffening(prm, eps_r):
     return [(eps_u * a1 - eps_y * a2) / (a1 - a2)]
 
 
+@njit(cache=True)
 def _envelope(kind, prm, eps):
     """Stress and shear modulus of a fibre loaded monotonically to ``eps`` (the law from a virgin history;
-    the shear modulus with the crack or crushing state that strain leaves)."""
-    from .materials.concrete import H_EMAX, H_XMAX
-
+    the shear modulus with the crack or crushing state that strain leaves). Compiled: the adaptive
+    quadrature of the layer-free section calls it some 10^5 times per moment-curvature trace."""
     h0 = np.zeros(N_LAYER_HIST)
     h1 = np.zeros(N_LAYER_HIST)
     sig = layer_update(kind, prm, eps, 0.0, h0, h1, CONSISTENT)[0]

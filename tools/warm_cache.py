@@ -3,7 +3,7 @@ scene, the tests and the chapters load cached machine code instead of compiling 
 
 Runs small versions of the paths users take: the README scene (soil, plate, interface kernels, the default
 solver), a Mohr–Coulomb footing pushed to failure (full Newton with the consistent tangent), a linear solve
-of an elastic block (the K0 kernel, assembly), an RC section's moment-curvature (the section analysis).
+of an elastic block (the K0 kernel, assembly), an RC section's moment-curvature (both section analyses).
 Prints the wall time as ``warm_cache_s: N``.
 """
 
@@ -44,9 +44,10 @@ def main():
     m.add_load(mesh.surface, "w", -1.0)
     m.solve_linear()
     from ssi.examples import chapter11_section
-    from ssi.section_analysis import moment_curvature
+    from ssi.section_analysis import layer_free_moment_curvature, moment_curvature
 
     moment_curvature(chapter11_section(), 0.01, 4)
+    layer_free_moment_curvature(chapter11_section(), np.array([0.0, 1e-3]))
     warm_soil_law_kernels()
     warm_pardiso_kernels(m)
     print(f"warm_cache_s: {time.perf_counter() - t0:.1f}")
