@@ -5,6 +5,14 @@ on 50 000 elements of an implicit Mohr–Coulomb soil (phi = 20 deg, c = 10 kPa)
 loaded soil (a mix of elastic and plastic points, measured and printed), best of 5 in one process after JIT.
 ``soil_mc_consistent_ns_per_gp``: the same with the consistent tangent (element matrices filled).
 
+``plate_rc_ns_per_layer_point``: the plate strip's kernel (forces and consistent tangent) per layer point
+(elements x points x layers) on 2 000 elements of chapter 11's RC section (9 concrete and 2 steel layers, the
+chord self-bending term: 2 extra law calls per concrete layer at the bending points), bent to curvatures of
+1e-4 to 5e-2 1/m from a committed cracked and crushed history (printed: the cracked fraction); the crack band
+as the scenes set it, per layer. ``plate_rc_point_band_ns_per_layer_point``: the same with the band width set
+per point (``crack_band="point"``, the beam studies): the concrete law's constants are then recomputed at
+every point.
+
 ``soil_mc_arithmetic_ns_per_gp``: what the arithmetic alone would cost on this machine: the operation count
 of one point (counted by hand from the kernel, below) times the time of one scalar floating-point operation,
 one square root and one division, each measured in the same run by small numba loops. Goal: the kernel
@@ -19,7 +27,10 @@ from goals import verdict
 from numba import njit
 
 import ssi  # noqa: F401  (first: it keys numba's cache on the package sources before numba is imported)
+from ssi.elements.plate import PlateStrip
 from ssi.elements.soil_q8 import SoilQ8
+from ssi.examples import chapter11_section
+from ssi.materials.layer_laws import CONCRETE
 from ssi.materials.soil_laws import material_table, mohr_coulomb_params
 from ssi.protocol import CONSISTENT, FORCES_ONLY
 
@@ -112,6 +123,32 @@ def loaded_group():
     return group, du, state
 
 
+def bent_rc_strip(crack_band, n_el=2_000):
+    """(group, u_el, committed state) of chapter 11's RC section, elements 0.2 m long, random curvatures."""
+    rng = np.random.default_rng(1)
+    coords = np.zeros((n_el, 3, 2))
+    coords[:, :, 0] = 0.2 * np.arange(n_el)[:, None] + np.array([0.0, 0.1, 0.2])
+    group = PlateStrip(
+        coords, np.arange(9 * n_el).reshape(n_el, 9), chapter11_section(), crack_band=crack_band
+    )
+    xs = coords[:, :, 0] - coords[:, :1, 0]
+    kap = rng.choice([1e-4, 1e-3, 1e-2, 5e-2], n_el) * rng.choice([-1.0, 1.0], n_el)
+    u_el = np.zeros((n_el, 9))
+    u_el[:, 0::3] = rng.uniform(-2e-3, 1e-3, (n_el, 1)) * xs
+    u_el[:, 2::3] = kap[:, None] * xs
+    u_el[:, 1::3] = 0.5 * kap[:, None] * xs**2
+    _, _, state = group.evaluate(1.5 * u_el[::-1], None, group.initial_state(), CONSISTENT)
+    return group, u_el, state
+
+
+def plate_ns_per_layer_point(crack_band):
+    group, u_el, state = bent_rc_strip(crack_band)
+    group.evaluate(u_el, None, state, CONSISTENT)
+    n_points = group.n_el * group.n_ip * group.section.n_layer
+    cracked = float(np.mean(state[..., group.section.kind == CONCRETE, 1] > 0.0))
+    return best(lambda: group.evaluate(u_el, None, state, CONSISTENT)) / n_points * 1e9, cracked
+
+
 def main():
     group, du, state = loaded_group()
     n_gp = group.n_el * len(group.gw)
@@ -135,6 +172,10 @@ def main():
     print(f"soil_mc_ns_per_gp: {t_forces:.1f}{verdict(t_forces, '<=', 3 * arith, ' ns = 3 x arithmetic')}")
     print(f"soil_mc_over_arithmetic: {t_forces / arith:.2f}{verdict(t_forces / arith, '<=', 3.0)}")
     print(f"soil_mc_consistent_ns_per_gp: {t_consistent:.1f}")
+    t_plate, cracked = plate_ns_per_layer_point(None)
+    print(f"plate_rc_cracked_fraction: {cracked:.3f}")
+    print(f"plate_rc_ns_per_layer_point: {t_plate:.1f}")
+    print(f"plate_rc_point_band_ns_per_layer_point: {plate_ns_per_layer_point('point')[0]:.1f}")
 
 
 if __name__ == "__main__":
