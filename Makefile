@@ -67,7 +67,7 @@ test: $(STAMP) notebooks
 	status=$$?; echo "make_test_s: $(ELAPSED)   (budget 240 s)"; exit $$status
 
 # `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first (full
-# mode, measured on this machine: 06 ~225 s, 10 and 13 ~60 s, 14, 11, 12, 08, 16 29-37 s); report
+# mode, measured on this machine: 06 ~230 s, 10 and 13 ~60 s, 14, 11, 12, 16 29-32 s, 08 15 s); report
 # rows are one file per id, written atomically, so the workers cannot mix them
 FULL_SLOW_FIRST := 06_solver 13_accuracy 10_bearing_capacity 12_engineering_scenes 16_bad_input 14_uncertainty \
 	11_foundation_scene 08_rc_beam
