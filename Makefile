@@ -47,12 +47,13 @@ lint: $(STAMP)
 
 # `make test` runs the unit tests and the chapters in one pytest session on two worker processes
 # (pytest-xdist), fed one test at a time (--maxschedchunk 1) in the order given: the chapters slowest first
-# (fast mode, measured on a quiet machine, fresh clone: 10, 13, 12 ~50 s; 15, 06 ~38 s; 08, 02e, 11, 14
-# 25-30 s; the rest 4-12 s), then the slowest unit test files, then the rest, so that both workers end
-# together. One failing test, unit or chapter, fails the target.
-SLOW_FIRST := 10_bearing_capacity 13_accuracy 12_engineering_scenes 15_results_and_files 06_solver \
-	08_rc_beam 02e_trade 11_foundation_scene 14_uncertainty
-SLOW_TEST_FILES := tests/test_zoo.py tests/test_results.py tests/test_sweep.py
+# (fast mode, measured in a fresh clone: 10, 12, 13, 15 14-17 s; 06, 14 ~10 s; 08, 05, 11 5-6 s; the rest
+# 2-4 s), then the slowest unit test files (test_kernel_regression.py compiles kernels in a fresh process,
+# 18 s), then the rest, so that both workers end together. One failing test, unit or chapter, fails the
+# target.
+SLOW_FIRST := 10_bearing_capacity 12_engineering_scenes 13_accuracy 15_results_and_files 06_solver \
+	14_uncertainty 08_rc_beam 05_soil_element 11_foundation_scene
+SLOW_TEST_FILES := tests/test_kernel_regression.py tests/test_zoo.py tests/test_results.py tests/test_sweep.py
 # the notebooks of the chapters named in $(1) first, in that order, then the others
 notebooks_slow_first = $(filter $(NOTEBOOKS),$(patsubst %,build/notebooks/%.ipynb,$(1))) \
 	$(filter-out $(patsubst %,build/notebooks/%.ipynb,$(1)),$(NOTEBOOKS))
