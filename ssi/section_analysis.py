@@ -281,30 +281,24 @@ def _material_intervals(section: Section, params):
 
 def _kink_strains(kind, prm):
     """Strains at which a law's monotonic envelope has a kink or a jump (breakpoints for quadrature)."""
-    from .materials.concrete import P_E0, P_EPS_CU, P_EPS_Y, P_FR, P_GF
+    from .materials.concrete import C_EPS_CD, C_EPS_R, C_EPS_U, P_EPS_CU, P_EPS_Y, concrete_constants
     from .materials.layer_laws import STEEL
 
     if kind == CONCRETE:
-        from .materials.concrete import P_NU, P_PLANE
-
-        e0 = prm[P_E0] / (1.0 - prm[P_NU] ** 2) if prm[P_PLANE] != 0.0 else prm[P_E0]
-        eps_r = prm[P_FR] / e0
-        eps_u = 2.0 * prm[P_GF] / (prm[P_FR] * prm[P_LS])
-        from .materials.concrete import P_EPS_C, P_FC, P_GC, crushing_end
-
-        eps_cd = crushing_end(e0, prm[P_FC], prm[P_EPS_C], prm[P_EPS_CU], prm[P_GC], prm[P_LS])[1]
-        return [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU], -eps_cd] + _softening_meets_stiffening(prm, eps_r)
+        const = concrete_constants(prm)
+        eps_r, eps_u = const[C_EPS_R], const[C_EPS_U]
+        kinks = [eps_r, eps_u, prm[P_EPS_Y], -prm[P_EPS_CU], -const[C_EPS_CD]]
+        return kinks + _softening_meets_stiffening(prm, eps_r, eps_u)
     if kind == STEEL:
         return [prm[2] / prm[0], -prm[2] / prm[0]]
     return []
 
 
-def _softening_meets_stiffening(prm, eps_r):
+def _softening_meets_stiffening(prm, eps_r, eps_u):
     """Strain where the softening line (eq. 5.4) meets the tension-stiffening line (the kink of their max)."""
-    from .materials.concrete import P_ALPHA_TS, P_EPS_Y, P_FR, P_GF
+    from .materials.concrete import P_ALPHA_TS, P_EPS_Y
 
-    fr, eps_y, alpha = prm[P_FR], prm[P_EPS_Y], prm[P_ALPHA_TS]
-    eps_u = 2.0 * prm[P_GF] / (fr * prm[P_LS])
+    eps_y, alpha = prm[P_EPS_Y], prm[P_ALPHA_TS]
     # fr (eps_u - e)/(eps_u - eps_r) = alpha fr (eps_y - e)/(eps_y - eps_r)
     a1, a2 = 1.0 / (eps_u - eps_r), alpha / (eps_y - eps_r)
     if abs(a1 - a2) < 1e-300:
