@@ -78,7 +78,7 @@ reproduce: $(STAMP) notebooks
 	rm -rf figures/report.d
 	SSI_FAST=0 $(BIN)/python -m pytest $(XDIST) --durations=0 \
 	--nbmake --nbmake-timeout=3600 --overwrite $(REPRODUCE_ORDER); \
-	status=$$?; $(BIN)/python -m ssi.report; report=$$?; \
+	status=$$?; $(BIN)/python -m ssi.lab.report; report=$$?; \
 	echo "make_reproduce_s: $(ELAPSED)   (budget 360 s)"; \
 	test $$status -eq 0 -a $$report -eq 0
 

@@ -42,15 +42,15 @@ import numpy as np
 import scipy.sparse as sp
 from goals import verdict
 
-from ssi.assembly import SparsePattern
+from ssi.core.assembly import SparsePattern
+from ssi.core.linsolve import Factorization, pardiso_available
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
+from ssi.core.protocol import K0_MATRIX
 from ssi.elements.q8_elastic import q8_elastic_stiffness
 from ssi.elements.soil_q8 import q8_kernel
-from ssi.linsolve import Factorization, pardiso_available
+from ssi.elements.supports import fix_block, soil_group
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
-from ssi.protocol import K0_MATRIX
-from ssi.supports import fix_block, soil_group
 
 E, NU = 30e6, 0.3
 GOALS = {
@@ -115,8 +115,8 @@ COMPILE_SCRIPT = textwrap.dedent("""
     import time
     t0 = time.perf_counter()
     import numpy as np
-    from ssi.mesh import structured_q8
-    from ssi.model import Model
+    from ssi.core.mesh import structured_q8
+    from ssi.core.model import Model
     from ssi.elements.soil_q8 import SoilQ8
     from ssi.elements.q8_elastic import q8_elastic_stiffness
     from ssi.materials.soil_laws import ELASTIC, elastic_params
@@ -268,8 +268,8 @@ PUBLIC_SCRIPT = textwrap.dedent("""
     import numpy as np
     from ssi.elements.soil_q8 import SoilQ8
     from ssi.materials.soil_laws import ELASTIC, elastic_params
-    from ssi.mesh import structured_q8
-    from ssi.model import Model
+    from ssi.core.mesh import structured_q8
+    from ssi.core.model import Model
     nz = {nz}; nx = 2 * nz
     mesh = structured_q8(np.linspace(-10.0, 10.0, nx + 1), np.linspace(-10.0, 0.0, nz + 1))
     model = Model(); model.add_nodes(mesh.xy, 2)
@@ -334,7 +334,7 @@ def elastic_block_total():
 
 def elastic_block_breakdown():
     """The steps of Model.solve_linear on the 1e5-DOF block, timed one by one (same calls, same order)."""
-    from ssi.model import System
+    from ssi.core.model import System
 
     t = {}
     t0 = time.perf_counter()

@@ -17,7 +17,7 @@ go to stderr.
 import sys
 import time
 
-from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing
+from ssi.lab.bearing_capacity import chapter10_footing, prandtl, push_footing
 from ssi.solver import Settings
 
 Q_PRANDTL = prandtl(10e3, 20.0)[0]

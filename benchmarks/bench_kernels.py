@@ -27,12 +27,12 @@ from goals import verdict
 from numba import njit
 
 import ssi  # noqa: F401  (first: it keys numba's cache on the package sources before numba is imported)
+from ssi.core.protocol import CONSISTENT, FORCES_ONLY
 from ssi.elements.plate import PlateStrip
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.examples import chapter11_section
+from ssi.lab.examples import chapter11_section
 from ssi.materials.layer_laws import CONCRETE
 from ssi.materials.soil_laws import material_table, mohr_coulomb_params
-from ssi.protocol import CONSISTENT, FORCES_ONLY
 
 N_EL = 50_000
 # Operation count of one 2x2-rule point of the forces-only kernel (additions and multiplications), counted

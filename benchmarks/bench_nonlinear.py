@@ -29,8 +29,9 @@ from bench_footing import footing_scene
 from goals import verdict
 
 import ssi  # noqa: F401  (first: keys numba's cache before numba is imported)
-from ssi import assembly, linsolve, model, solver
-from ssi.bearing_capacity import push_footing
+from ssi.core import assembly, linsolve, model
+from ssi.lab.bearing_capacity import push_footing
+from ssi.solver import driver as solver
 
 ROOT = Path(__file__).resolve().parent.parent
 REPEAT = int(os.environ.get("SSI_BENCH_REPEAT", "3"))

@@ -1,6 +1,6 @@
-"""Benchmark of issue 15: throughput of ``ssi.sweep`` on this machine.
+"""Benchmark of issue 15: throughput of ``ssi.studies.sweep`` on this machine.
 
-Twenty-four scenes like chapter 14's (``ssi.examples.chapter11_foundation`` on a coarse mesh: chapter 11's
+Twenty-four scenes like chapter 14's (``ssi.lab.examples.chapter11_foundation`` on a coarse mesh: chapter 11's
 section and its 400 kN/m per column -- until the shared factory this benchmark used the zoo's 7-layer RC strip
 and 450 kN/m; the soft clay's E, c, tan phi varied) are solved serially in this process (the scene's own solve
 time), then by a LocalCluster of 1 and of 2 worker processes (threads_per_worker=1). The cluster's start-up is
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ssi.examples import chapter11_foundation
-from ssi.sweep import _client, sweep
+from ssi.lab.examples import chapter11_foundation
+from ssi.studies.sweep import _client, sweep
 
 N_SCENES = 24
 

@@ -1,4 +1,4 @@
-"""Benchmark of the robust-solution issue: the zoo of ordinary scenes (``ssi.zoo.ordinary_scenes``) solved
+"""Benchmark of the robust-solution issue: the zoo of ordinary scenes (``ssi.lab.zoo.ordinary_scenes``) solved
 with the default ``Settings()``, one process, JIT cached by a warm-up scene first.
 
 Prints ``zoo_total_s`` (wall time of the whole zoo), ``zoo_solved_fraction`` (scenes that reached their load
@@ -8,7 +8,7 @@ or a detected collapse) and, on stderr, each scene's outcome and time.
 import sys
 import time
 
-from ssi.zoo import ordinary_scenes, solve_zoo
+from ssi.lab.zoo import ordinary_scenes, solve_zoo
 
 
 def main():

@@ -66,14 +66,14 @@
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import report
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
 from ssi.elements.interface import add_interface
+from ssi.elements.supports import edge_forces, fix_block, soil_group
+from ssi.lab import report
+from ssi.lab.verify import zero_energy_modes
 from ssi.materials.interface_law import interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
-from ssi.supports import edge_forces, fix_block, soil_group
-from ssi.verify import zero_energy_modes
 
 # %% [markdown]
 # ## The scene

@@ -125,17 +125,17 @@ import inspect
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
+from ssi.core.protocol import CONSISTENT
+from ssi.core.shapes import lagrange3
 from ssi.elements import plate as plate_module
 from ssi.elements.plate import PlateStrip
-from ssi.examples import CHAPTER02_STRIP
+from ssi.elements.section import homogeneous, paper_rc_section
+from ssi.elements.supports import plate_strip_model
+from ssi.lab import paths, report
+from ssi.lab.examples import CHAPTER02_STRIP
+from ssi.lab.verify import dense_stiffness, zero_energy_modes
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, STEEL
-from ssi.protocol import CONSISTENT
-from ssi.section import homogeneous, paper_rc_section
-from ssi.shapes import lagrange3
-from ssi.supports import plate_strip_model
-from ssi.verify import dense_stiffness, zero_energy_modes
 
 FAST = paths.FAST
 E, NU, H = CHAPTER02_STRIP.E, CHAPTER02_STRIP.nu, CHAPTER02_STRIP.h  # 30 GPa, 0.2, 1 m (span/depth = span)
@@ -152,11 +152,11 @@ print(inspect.getsource(plate_module._section.py_func))
 # %% [markdown]
 # ## Building blocks
 #
-# A strip on supports is a few lines with `ssi.model.Model`: `add_plate_strip` adds the nodes (3 DOFs each)
-# and the element group; supports act on u, w, α; nodal forces with `add_load`, distributed loads through
-# the element's equivalent nodal forces (`distributed_load`, exact for loads up to cubic). The strips of this
-# chapter's parts are built by `ssi.supports.plate_strip_model`, `simply_supported_strip` and
-# `cantilever_strip`, and compared with the Timoshenko closed forms of `ssi.analytical`.
+# A strip on supports is a few lines with `ssi.core.model.Model`: `add_plate_strip` adds the nodes (3 DOFs
+# each) and the element group; supports act on u, w, α; nodal forces with `add_load`, distributed loads
+# through the element's equivalent nodal forces (`distributed_load`, exact for loads up to cubic). The strips
+# of this chapter's parts are built by `ssi.elements.supports.plate_strip_model`, `simply_supported_strip` and
+# `cantilever_strip`, and compared with the Timoshenko closed forms of `ssi.lab.analytical`.
 
 # %% [markdown]
 # ## 1. Element properties

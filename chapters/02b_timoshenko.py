@@ -31,15 +31,15 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi.analytical import (
+from ssi.elements.supports import cantilever_strip, simply_supported_strip
+from ssi.lab import paths, report
+from ssi.lab.analytical import (
     timoshenko_cantilever,
     timoshenko_simply_supported_point,
     timoshenko_simply_supported_uniform,
 )
-from ssi.examples import CHAPTER02_STRIP
-from ssi.supports import cantilever_strip, simply_supported_strip
-from ssi.verify import convergence_rate
+from ssi.lab.examples import CHAPTER02_STRIP
+from ssi.lab.verify import convergence_rate
 
 FAST = paths.FAST
 # the elastic strip of the closed-form checks: 30 GPa, nu = 0.2, 1 m deep (span/depth is the span in metres),

@@ -29,11 +29,11 @@
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi.analytical import timoshenko_simply_supported_uniform
-from ssi.examples import CHAPTER02_STRIP
-from ssi.supports import simply_supported_strip
-from ssi.verify import convergence_rate
+from ssi.elements.supports import simply_supported_strip
+from ssi.lab import paths, report
+from ssi.lab.analytical import timoshenko_simply_supported_uniform
+from ssi.lab.examples import CHAPTER02_STRIP
+from ssi.lab.verify import convergence_rate
 
 FAST = paths.FAST
 STRIP = CHAPTER02_STRIP  # chapter 02b's elastic strip: 30 GPa, nu = 0.2, kappa = 5/6

@@ -30,13 +30,13 @@
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
 from ssi.elements.plate import PlateStrip
-from ssi.examples import CHAPTER02_STRIP
+from ssi.elements.section import homogeneous, layered, paper_rc_section
+from ssi.elements.supports import cantilever_strip
+from ssi.lab import paths, report
+from ssi.lab.examples import CHAPTER02_STRIP
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, STEEL
-from ssi.section import homogeneous, layered, paper_rc_section
-from ssi.supports import cantilever_strip
 
 FAST = paths.FAST
 E, NU, H = CHAPTER02_STRIP.E, CHAPTER02_STRIP.nu, CHAPTER02_STRIP.h  # 30 GPa, 0.2, 1 m (span/depth = span)

@@ -34,15 +34,15 @@ from dataclasses import replace
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi import rc_beam as rb
-from ssi import section_analysis as sa
+from ssi.core.protocol import CONSISTENT
+from ssi.elements import section_analysis as sa
 from ssi.elements.plate import PlateStrip, beam_mesh
+from ssi.elements.section import paper_rc_section, rc_section
+from ssi.lab import paths, report
+from ssi.lab import rc_beam as rb
+from ssi.lab.verify import convergence_rate
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, STEEL
-from ssi.protocol import CONSISTENT
-from ssi.section import paper_rc_section, rc_section
-from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 print(f"fast mode: {FAST}")
@@ -96,8 +96,9 @@ def section_moment(sec, curvature, self_bending="chord"):
 
 
 def reference_moment(sec, curvature):
-    """-int z sig(-z k) dz through the depth without layers: ``ssi.section_analysis.layer_free_resultants``
-    (adaptive quadrature of the continuous stress profile, breakpoints at the law's kinks) at eps0 = 0."""
+    """-int z sig(-z k) dz through the depth without layers:
+    ``ssi.elements.section_analysis.layer_free_resultants`` (adaptive quadrature of the continuous stress
+    profile, breakpoints at the law's kinks) at eps0 = 0."""
     return sa.layer_free_resultants(sec, 0.0, curvature)[1]
 
 
@@ -181,7 +182,7 @@ report.save_figure(fig, "fig02_trade")
 # section of chapter 08 (the Janney beam: bars at d = 210.8 mm, fc = 36.2 MPa, the paper's 11 layers), solves
 # N = 0 at each curvature up to 0.06 1/m (about four times the yield curvature, well into the post-yield
 # plateau where the top fibres crush), and compares M of the discrete section, with each self-bending option
-# and with none, against the layer-free reference `ssi.section_analysis.layer_free_moment_curvature`
+# and with none, against the layer-free reference `ssi.elements.section_analysis.layer_free_moment_curvature`
 # (Brent's method on N = 0, `quad` over each material interval with breakpoints at the strain kinks).
 # The reference loads every fibre monotonically to its strain; the history-following analysis with many
 # layers checks that assumption (fibres just above the rising neutral axis unload a little from small

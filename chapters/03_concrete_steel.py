@@ -62,8 +62,8 @@
 # which is continuous at $f_r$ only in the limit and never exceeds $f_r$. Where it acts is a modelling
 # choice the paper leaves open: on every cracked layer (`tension_stiffening="all"`, the default) or only in
 # the effective tension area around the bars, $h_{c,ef}=\min(2.5(h-d),(h-x)/3,h/2)$ (MC2010, EC2 7.3.2;
-# `ssi.section.with_crack_spacing_band(..., tension_stiffening="effective_area")`), outside which the concrete
-# softens as plain concrete. Chapter 08 scores both against every measured point of a beam.
+# `ssi.elements.section.with_crack_spacing_band(..., tension_stiffening="effective_area")`), outside which the
+# concrete softens as plain concrete. Chapter 08 scores both against every measured point of a beam.
 #
 # **Cracked shear (Fig. 6).** $G_c=\beta G$, $\beta=\beta_0(1-\varepsilon_{max}/\varepsilon_y)$ after
 # cracking, never below a floor $\beta_{floor}$ that keeps the matrix regular. $\beta$ is taken from the crack
@@ -91,11 +91,11 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import report
+from ssi.core.protocol import CONSISTENT
+from ssi.lab import report
+from ssi.lab.verify import fd_jacobian
 from ssi.materials import concrete, rc
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
-from ssi.protocol import CONSISTENT
-from ssi.verify import fd_jacobian
 
 t_start = time.perf_counter()
 FC, FY = 36.2e6, 333.0e6  # the substitute beam of chapter 08

@@ -102,9 +102,12 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import report
-from ssi.analytical import sadowsky_pressure
+from ssi.core.protocol import CONSISTENT
+from ssi.core.shapes import lagrange3
 from ssi.elements.interface import Interface6
+from ssi.lab import report
+from ssi.lab.analytical import sadowsky_pressure
+from ssi.lab.verify import fd_jacobian
 from ssi.materials.interface_law import (
     N_HIST,
     OPEN,
@@ -115,9 +118,6 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
-from ssi.protocol import CONSISTENT
-from ssi.shapes import lagrange3
-from ssi.verify import fd_jacobian
 
 t_chapter = time.perf_counter()
 

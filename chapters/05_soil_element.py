@@ -63,7 +63,7 @@
 #
 # | paper | code | meaning |
 # |---|---|---|
-# | N, ∂N/∂ξ | `ssi.shapes.serendipity8` | shape functions and reference derivatives |
+# | N, ∂N/∂ξ | `ssi.core.shapes.serendipity8` | shape functions and reference derivatives |
 # | B | built inside `ssi.elements.soil_q8.q8_kernel` | strain–displacement matrix |
 # | D | `ssi.materials.soil_laws.elastic_matrix` | plane-strain elastic matrix, order [xx, zz, xz, yy] |
 # | σx, σz, τxz, σy | `state[..., 0:4]` = `sxx, szz, txz, syy` | stress at the integration points, tension + |
@@ -79,16 +79,22 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi.analytical_soil import lame_cylinder_displacement, strip_load_stresses
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
+from ssi.core.shapes import Q8_NODES, serendipity8
 from ssi.elements.soil_q8 import SoilQ8
+from ssi.elements.supports import edge_forces
+from ssi.lab import paths, report
+from ssi.lab.analytical_soil import lame_cylinder_displacement, strip_load_stresses
+from ssi.lab.verify import (
+    convergence_rate,
+    dense_stiffness,
+    distorted_q8_mesh,
+    fd_jacobian,
+    zero_energy_modes,
+)
 from ssi.materials.mohr_coulomb import B_APEX, B_EDGE12, B_EDGE23, B_PLANE, mc_yield
 from ssi.materials.soil_laws import ELASTIC, drive, elastic_matrix, elastic_params, mohr_coulomb_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
-from ssi.shapes import Q8_NODES, serendipity8
-from ssi.supports import edge_forces
-from ssi.verify import convergence_rate, dense_stiffness, distorted_q8_mesh, fd_jacobian, zero_energy_modes
 
 FAST = paths.FAST
 # Every system in this chapter is small (< 1e5 DOFs): SciPy's SuperLU factorises them in milliseconds, while
@@ -119,7 +125,7 @@ def q8_model(xy, conn, n_gauss, nu=NU):
 
 
 def q8_stiffness(xy, conn, n_gauss):
-    """The dense unsupported K0 of one Q8 group on ``conn`` (:func:`ssi.verify.dense_stiffness`)."""
+    """The dense unsupported K0 of one Q8 group on ``conn`` (:func:`ssi.lab.verify.dense_stiffness`)."""
     model, group = q8_model(xy, conn, n_gauss)
     return dense_stiffness(model.n_dof, [group])
 
@@ -200,7 +206,7 @@ for ng in (2, 3):
 # ## 3. Elastic strip load against the closed form
 #
 # A uniform pressure q on −b ≤ x ≤ b of an elastic half-plane has closed-form stresses
-# (`ssi.analytical_soil.strip_load_stresses`; checked in the tests against Flamant's line-load solution
+# (`ssi.lab.analytical_soil.strip_load_stresses`; checked in the tests against Flamant's line-load solution
 # integrated over the strip). To measure the *discretisation* error alone we cut a finite window out of the
 # half-plane — the half 0 ≤ x ≤ 4b, −4b ≤ z ≤ 0 (symmetry: u = 0 on x = 0) — and load its cut faces with the
 # exact tractions σ·n of the half-plane solution, integrated consistently on each quadratic edge. One vertical

@@ -66,14 +66,14 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
+from ssi.core.mesh import soil_block
+from ssi.core.model import Model
 from ssi.elements.spring import TANH
+from ssi.elements.supports import fix_block, soil_group, spring_chain
+from ssi.lab import paths, report
+from ssi.lab.verify import residual_order
 from ssi.materials.soil_laws import mohr_coulomb_params
-from ssi.mesh import soil_block
-from ssi.model import Model
 from ssi.solver import NonConvergence, Settings, run
-from ssi.supports import fix_block, soil_group, spring_chain
-from ssi.verify import residual_order
 
 FAST = paths.FAST
 print("fast mode" if FAST else "full mode")
@@ -388,13 +388,13 @@ print("all checks passed")
 # (`viscosity=1`, Duvaut–Lions, relaxed to the rate-independent state at the end, chapter 10) is the only
 # one the rate-independent stall cannot stop. (c) An associated, cohesionless contact (ψ_i = φ_i, c_i = 0)
 # with slipping edges, which cycled slip → open → stick before the Coulomb corner was split along the return
-# direction (chapter 04's law). (d) The zoo of random ordinary scenes (`ssi.zoo.random_scenes`).
+# direction (chapter 04's law). (d) The zoo of random ordinary scenes (`ssi.lab.zoo.random_scenes`).
 
 # %%
-from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing  # noqa: E402
+from ssi.elements.section import homogeneous  # noqa: E402
+from ssi.lab.bearing_capacity import chapter10_footing, prandtl, push_footing  # noqa: E402
+from ssi.lab.zoo import light_footing_on_deep_block, random_scenes, solve_zoo  # noqa: E402
 from ssi.scene import ColumnLoad, Contact, Foundation, Scene, SoilLayer  # noqa: E402
-from ssi.section import homogeneous  # noqa: E402
-from ssi.zoo import light_footing_on_deep_block, random_scenes, solve_zoo  # noqa: E402
 
 over = run(over_model, [1.0])  # (a) default settings
 print(f"(a) {over.message}; F / F_u at the limit = {1.2 * over.limit_load_factor:.4f}")

@@ -73,18 +73,18 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi.analytical import hetenyi_deflection, sadowsky_pressure
+from ssi.core.mesh import foundation_contact, soil_block
+from ssi.core.model import Model
 from ssi.elements.interface import add_interface
 from ssi.elements.plate import add_plate_strip
-from ssi.examples import winkler_strip
+from ssi.elements.section import homogeneous
+from ssi.elements.supports import fix_block, soil_group
+from ssi.lab import paths, report
+from ssi.lab.analytical import hetenyi_deflection, sadowsky_pressure
+from ssi.lab.examples import winkler_strip
+from ssi.lab.verify import convergence_rate
 from ssi.materials.interface_law import interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import foundation_contact, soil_block
-from ssi.model import Model
-from ssi.section import homogeneous
-from ssi.supports import fix_block, soil_group
-from ssi.verify import convergence_rate
 
 t_chapter = time.perf_counter()
 A, P = 1.0, 100e3
@@ -201,7 +201,7 @@ N_B = 100  # named mesh: 100 elements, 16 per wavelength 2 pi / lam
 
 
 def winkler_beam(n_el, h=H_B):
-    """The strip of depth h on the bed (`ssi.examples.winkler_strip`) against Hetenyi: x, w, w_exact, max
+    """The strip of depth h on the bed (`ssi.lab.examples.winkler_strip`) against Hetenyi: x, w, w_exact, max
     relative error, lambda, EI."""
     ei = E_B * h**3 / (12 * (1 - NU_B**2))
     lam = (K_BED / (4 * ei)) ** 0.25

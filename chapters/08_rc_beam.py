@@ -57,8 +57,8 @@
 #   h_{c,ef}=\min\bigl(2.5(h-d),\ (h-x)/3,\ h/2\bigr),$$
 #
 # $c$ the clear cover, $\phi$ the bar diameter, $x$ the cracked elastic neutral-axis depth
-# (`ssi.materials.rc.crack_spacing_mc2010`, `ssi.section.with_crack_spacing_band`). The same band width
-# regularises crushing (compressive fracture energy $G_c$, chapter 03). For this beam $h_{c,ef}$ = 75 mm
+# (`ssi.materials.rc.crack_spacing_mc2010`, `ssi.elements.section.with_crack_spacing_band`). The same band
+# width regularises crushing (compressive fracture energy $G_c$, chapter 03). For this beam $h_{c,ef}$ = 75 mm
 # ($(h-x)/3$ governs) and $s_{r,max}$ = 0.256 m.
 #
 # **Curvature-integral reference.** For a statically determinate beam, virtual work gives the mid-span
@@ -83,13 +83,13 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi import rc_beam as rb
-from ssi import section_analysis as sa
-from ssi.digitize import read_reference
+from ssi.elements import section_analysis as sa
+from ssi.lab import paths, report
+from ssi.lab import rc_beam as rb
+from ssi.lab.digitize import read_reference
+from ssi.lab.verify import convergence_rate
 from ssi.materials.layer_laws import STEEL
 from ssi.solver import Settings
-from ssi.verify import convergence_rate
 
 t_start = time.perf_counter()
 FAST = paths.FAST

@@ -49,7 +49,7 @@
 #   u(x) = \frac{\tau_f}{k_t} + \frac{F(s-x) - \tau_f(s^2-x^2)/2}{EA}\ (x \le s).$$
 # Solved for F, the front gives the explicit parametrisation used to invert it:
 # F(s) = τ_f s + τ_f tanh(λ(L − s))/λ. As s → L, F → τ_f L: the whole sample slides at τ̄ = τ_f.
-# These formulas live in `ssi.analytical` (no finite elements involved).
+# These formulas live in `ssi.lab.analytical` (no finite elements involved).
 #
 # *The finite-element model* is the same situation in 2D: a soil layer of Q8 elements on interface elements
 # (upper nodes on the soil, 2 DOFs — the element's second variant) whose lower nodes are the fixed concrete
@@ -75,16 +75,16 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from ssi import paths, report
-from ssi.analytical import shear_lag_from_slip, shear_lag_onset, shear_lag_state
-from ssi.digitize import read_reference
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
 from ssi.elements.interface import V_GT, Interface6, add_interface
+from ssi.elements.supports import soil_group, surface_pressure
+from ssi.lab import paths, report
+from ssi.lab.analytical import shear_lag_from_slip, shear_lag_onset, shear_lag_state
+from ssi.lab.digitize import read_reference
 from ssi.materials.interface_law import SLIP, interface_params
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
 from ssi.solver import Settings, run
-from ssi.supports import soil_group, surface_pressure
 
 t_chapter = time.perf_counter()
 EA, KT, L, TAU_F = 4000e3, 2e7, 0.6, 50e3
@@ -303,7 +303,7 @@ if n_measured == 0:
     report.record_empty(
         "fig13_measured",
         "Fig. 13a measured curves (Yin Zong-Ze et al. 1995): slot "
-        "reference_data/zongze1995_fig13a.csv has no rows yet; fill with python -m ssi.digitize",
+        "reference_data/zongze1995_fig13a.csv has no rows yet; fill with python -m ssi.lab.digitize",
     )
     print("fig13_measured: EMPTY slot -", meta["how_obtained"][:120], "...")
 else:
@@ -432,7 +432,7 @@ report.save_figure(fig, "fig13_direct_shear")
 # digitiser (one dataset per curve, named `point1` … `point6`, `edge`), export all datasets as CSV, and run
 #
 # ```
-# python -m ssi.digitize export.csv reference_data/zongze1995_fig13a.csv \
+# python -m ssi.lab.digitize export.csv reference_data/zongze1995_fig13a.csv \
 #     --columns curve,tau_bar_kPa,displacement_mm --swap \
 #     --meta-from reference_data/zongze1995_fig13a.csv [--x-cal px1,v1,px2,v2 --y-cal px1,v1,px2,v2]
 # ```

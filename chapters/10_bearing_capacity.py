@@ -70,7 +70,7 @@
 # holds u = 0 there. The pressure is q = 2R/B from the reaction R. Elements are h wide under the footing and
 # grow by 1.25 up to 1 m. The global iteration is full Newton with the consistent tangent and a backtracking
 # line search (`ssi.solver.run` with `Settings(method="full", line_search=True)`: the default settings of
-# `ssi.bearing_capacity.push_footing`, `footing_settings()`): plain Newton steps near the footing corner
+# `ssi.lab.bearing_capacity.push_footing`, `footing_settings()`): plain Newton steps near the footing corner
 # overshoot into a far plastic state and diverge.
 #
 # | paper / text | code | meaning |
@@ -88,14 +88,14 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, report
-from ssi.bearing_capacity import CHAPTER10_FOOTING, chapter10_footing, prandtl, push_footing, sg61_scene
-from ssi.digitize import read_reference
+from ssi.lab import paths, report
+from ssi.lab.bearing_capacity import CHAPTER10_FOOTING, chapter10_footing, prandtl, push_footing, sg61_scene
+from ssi.lab.digitize import read_reference
+from ssi.lab.verify import convergence_rate
 from ssi.solver import NonConvergence, Settings, run
-from ssi.verify import convergence_rate
 
 FAST = paths.FAST
-# the footing test above, `ssi.bearing_capacity.chapter10_footing`: B = 2 m, c = 10 kPa, phi = 20° unless
+# the footing test above, `ssi.lab.bearing_capacity.chapter10_footing`: B = 2 m, c = 10 kPa, phi = 20° unless
 # varied, E = 20 MPa and nu = 0.3 (the limit load does not depend on them), the 6 m x 5 m half block
 C = CHAPTER10_FOOTING["c"]  # cohesion [Pa]
 MESHES = [0.5, 0.25] if FAST else [0.25, 0.125, 0.0625]  # element size under the footing [m]

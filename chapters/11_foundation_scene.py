@@ -29,8 +29,8 @@
 #
 # ## The scene
 #
-# The scene is built by `ssi.examples.chapter11_foundation(h_fine)` (its section: `chapter11_section()`), so
-# that chapters 13 and 14 and the sweep benchmark vary the very scene studied here.
+# The scene is built by `ssi.lab.examples.chapter11_foundation(h_fine)` (its section: `chapter11_section()`),
+# so that chapters 13 and 14 and the sweep benchmark vary the very scene studied here.
 #
 # | component | choice | code |
 # |---|---|---|
@@ -64,17 +64,17 @@ from dataclasses import replace
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths
-from ssi import section_analysis as sa
-from ssi.examples import CHAPTER11_COLUMN_LOAD, chapter11_foundation, chapter11_section
+from ssi.elements import section_analysis as sa
+from ssi.elements.section import homogeneous
+from ssi.io.results import read_result, write_result
+from ssi.lab import paths
+from ssi.lab.examples import CHAPTER11_COLUMN_LOAD, chapter11_foundation, chapter11_section
+from ssi.lab.report import record, save_figure
+from ssi.lab.verify import convergence_rate
 from ssi.materials.layer_laws import CONCRETE, N_LAYER_HIST, STEEL, layer_update
 from ssi.materials.rc import designer_concrete
-from ssi.report import record, save_figure
-from ssi.results import read_result, write_result
 from ssi.scene import Contact
-from ssi.section import homogeneous
 from ssi.solver import Settings
-from ssi.verify import convergence_rate
 
 FAST = paths.FAST
 fy = 500e6
@@ -175,8 +175,8 @@ save_figure(fig, "ch11_foundation_scene")
 # - **Modified vs full Newton** agree to the solver tolerance (two different iterations, one answer).
 # - **Steel against an independent section calculation.** At the point where the bars are most stressed, the
 #   strip's curvature κ and axial force N are read off; the layer-free section analysis of chapter 02
-#   (`ssi.section_analysis.layer_free_state`: adaptive quadrature of the continuous stress profile, no
-#   layers, Brent's method for the strain plane carrying N at κ) gives the bar strain and stress there. The
+#   (`ssi.elements.section_analysis.layer_free_state`: adaptive quadrature of the continuous stress profile,
+#   no layers, Brent's method for the strain plane carrying N at κ) gives the bar strain and stress there. The
 #   difference is the strip's layer rule (11 layers; about 1 % in M in chapter 02) and the history of the
 #   fibres; the tolerance is 3 % of the stress.
 # - **Cracks**: the soil pushes the beam up between the columns, so the hogging moment is largest near

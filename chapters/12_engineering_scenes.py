@@ -42,7 +42,7 @@
 # |---|---|---|
 # | q | surcharge on the ground [Pa] | `Scene.surcharge` |
 # | H, M | layer depth [m], constrained modulus E(1−ν)/((1+ν)(1−2ν)) [Pa] | |
-# | N_q | exp(π tan φ) tan²(45° + φ/2) | `ssi.bearing_capacity.prandtl` |
+# | N_q | exp(π tan φ) tan²(45° + φ/2) | `ssi.lab.bearing_capacity.prandtl` |
 # | q_u | largest mean contact pressure of a push-over [Pa] | `BuiltScene.contact_force / B` |
 # | d_w | depth of the water table [m] | `Scene.water_table` |
 # | γ, γ_sat, γ_w | unit weight above, below the table; water [N/m³] | `unit_weight(_sat)`, `gamma_w` |
@@ -64,10 +64,11 @@ from itertools import pairwise
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths
-from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing
-from ssi.element_test import biaxial_compression
-from ssi.examples import (
+from ssi.elements.section import homogeneous
+from ssi.lab import paths
+from ssi.lab.bearing_capacity import chapter10_footing, prandtl, push_footing
+from ssi.lab.element_test import biaxial_compression
+from ssi.lab.examples import (
     drainage_switch_errors,
     excavated_column,
     excavated_column_errors,
@@ -78,7 +79,7 @@ from ssi.examples import (
     surcharge_heave,
     switched_layer_pore_pressure,
 )
-from ssi.report import record, save_figure
+from ssi.lab.report import record, save_figure
 from ssi.scene import (
     ColumnLoad,
     Contact,
@@ -94,7 +95,6 @@ from ssi.scene import (
     StripWeight,
     SurfacePressure,
 )
-from ssi.section import homogeneous
 from ssi.solver import Settings
 
 FAST = paths.FAST
@@ -136,7 +136,7 @@ def push_over(scene, n_steps=30):
 E, NU, H_LAYER, Q = 20e6, 0.3, 6.0, 10e3
 heave = []
 for with_strip in (False, True):
-    # the scene and the measure live in `ssi.examples` (`tests/test_scene.py` checks the same claim)
+    # the scene and the measure live in `ssi.lab.examples` (`tests/test_scene.py` checks the same claim)
     heave.append(surcharge_heave(with_strip, q=Q, depth=H_LAYER, E=E, nu=NU)[0])
     print(
         f"{'with' if with_strip else 'without'} strip: max |surface displacement| / (qH/M) = {heave[-1]:.2e}"
@@ -658,7 +658,7 @@ assert len(caught) == 2
 # (tolerance 1e-12, measured about 1e-15).
 
 # %%
-# the scene and the comparison live in `ssi.examples` (`tests/test_scene_phases.py` checks the same claim)
+# the scene and the comparison live in `ssi.lab.examples` (`tests/test_scene_phases.py` checks the same claim)
 dig = excavated_column(t=2.0, depth=6.0, E=E, nu=NU, unit_weight=18e3, K0=0.5)
 dig_check = excavated_column_errors(dig)
 err_heave, err_sv, err_sh = dig_check["heave"], dig_check["sigma_v"], dig_check["sigma_h"]
@@ -690,7 +690,7 @@ record(
 # load (a norm); its sum over the bottom nodes may be larger, so the tolerance is 1e-4.
 
 # %%
-pit = pit_beside_strip(section=STRIP)  # the scene and the hand value: ssi.examples (and the unit tests)
+pit = pit_beside_strip(section=STRIP)  # the scene and the hand value: ssi.lab.examples (and the unit tests)
 pit_built = pit.build()
 pit_out = pit_built.solve()
 reaction, removed_weight = pit_reaction_drop(pit_built, pit_out)
@@ -730,7 +730,7 @@ record(
 # remember the path). All three are linear solves: round-off, tolerance 1e-10.
 
 # %%
-# the scenes and closed forms live in `ssi.examples` (`tests/test_scene_phases.py` checks the same claims)
+# the scenes and closed forms live in `ssi.lab.examples` (`tests/test_scene_phases.py` checks the same claims)
 sw = drainage_switch_errors(E=E_SK, nu=NU_SK, nu_u=NU_U, depth=H_LAYER, section=STRIP)
 od = switched_layer_pore_pressure(E=E_SK, nu=NU_SK, nu_u=NU_U, depth=H_LAYER, dq=Q_U1D)
 err_increment, err_consolidated, err_p_switch = sw["increment"], sw["consolidated"], od["error"]
@@ -771,7 +771,7 @@ record(
 # a 0.5 m concrete strip under water rests on the soil with (25 − 9.81) kN/m³ × 0.5 m.
 
 # %%
-# the scenes and hand calculations live in `ssi.examples` (`tests/test_scene_phases.py` checks the same)
+# the scenes and hand calculations live in `ssi.lab.examples` (`tests/test_scene_phases.py` checks the same)
 pond_runs = ponding_errors((0.0, 1.0, 3.0), depth=H_LAYER, E=E, nu=NU)
 pond_errors = []
 for h_pond, pond in pond_runs.items():
@@ -805,8 +805,8 @@ record(
 # ## 11. Undrained strength of a Mohr–Coulomb soil in effective stress
 #
 # Undrained "A" keeps c', φ' and lets the pore water resist volume change. What strength does that give? Take
-# a plane-strain biaxial test (one element, `ssi.element_test.biaxial_compression`: smooth platens, the side
-# at its initial total stress, the top pushed down) with ψ = 0, starting from an effective state with
+# a plane-strain biaxial test (one element, `ssi.lab.element_test.biaxial_compression`: smooth platens, the
+# side at its initial total stress, the top pushed down) with ψ = 0, starting from an effective state with
 # in-plane mean s'₀ = −(σ'_xx + σ'_zz)/2 and deviator t₀ = (σ'_xx − σ'_zz)/2 (principal axes x, z).
 #
 # With ψ = 0 the plastic strain rate is deviatoric and lies in the plane of σ₁ and σ₃ (in-plane here), so it

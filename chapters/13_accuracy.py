@@ -15,8 +15,8 @@
 #
 # *Beyond the paper.* Every chapter so far measured its discretisation error once, by hand, against a
 # reference it happened to have. A user's scene has no reference. This chapter turns the refinement studies
-# into a tool: `ssi.estimate` re-solves a scene on systematically refined copies and estimates the error of
-# each headline answer from how the answers change.
+# into a tool: `ssi.studies.estimate` re-solves a scene on systematically refined copies and estimates the
+# error of each headline answer from how the answers change.
 #
 # In this chapter you will
 # - derive the Richardson estimate with the *observed* order of convergence from three refinement levels;
@@ -39,8 +39,8 @@
 #   q_2 - q^\* \approx -\frac{d_2}{2^p - 1}.$$
 #
 # The estimate is only as good as the power law. When $d_1$ and $d_2$ differ in sign, or $p$ lies outside
-# [0.5, 5], the answers are not in the asymptotic range and `ssi.estimate` flags the estimate instead of
-# using it. Differences smaller than the nonlinear solver's iteration error (10⁻³ relative; chapter 11
+# [0.5, 5], the answers are not in the asymptotic range and `ssi.studies.estimate` flags the estimate instead
+# of using it. Differences smaller than the nonlinear solver's iteration error (10⁻³ relative; chapter 11
 # measured 10⁻⁴ between two solvers at the same tolerance) carry no order: the error is then bounded by the
 # differences themselves. The three refinements (mesh, steps, layers) are estimated one at a time from one
 # base solve and their errors are added.
@@ -61,20 +61,20 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths
-from ssi.analytical import hetenyi_deflection
-from ssi.analytical_soil import strip_centreline_compression, strip_load_stresses
-from ssi.bearing_capacity import footing_settings, prandtl, push_footing, rigid_footing
-from ssi.digitize import read_reference
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.estimate import RefinedSolver, richardson, solve_to_target
-from ssi.examples import chapter11_foundation, punch_settlement, winkler_strip
+from ssi.elements.supports import edge_forces
+from ssi.lab import paths
+from ssi.lab.analytical import hetenyi_deflection
+from ssi.lab.analytical_soil import strip_centreline_compression, strip_load_stresses
+from ssi.lab.bearing_capacity import footing_settings, prandtl, push_footing, rigid_footing
+from ssi.lab.digitize import read_reference
+from ssi.lab.examples import chapter11_foundation, punch_settlement, winkler_strip
+from ssi.lab.report import check, record, record_empty, save_figure
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
-from ssi.report import check, record, record_empty, save_figure
 from ssi.solver import NonConvergence, Settings
-from ssi.supports import edge_forces
+from ssi.studies.estimate import RefinedSolver, richardson, solve_to_target
 
 FAST = paths.FAST
 print("fast mode" if FAST else "full mode")
@@ -146,8 +146,8 @@ LAM = (K_BED / (4 * EI_PLATE)) ** 0.25
 
 
 def winkler_deflection(n_el):
-    """Deflection [m] under the load of the plate strip on the interface bed (`ssi.examples.winkler_strip`,
-    the model of chapter 07) with n_el elements."""
+    """Deflection [m] under the load of the plate strip on the interface bed
+    (`ssi.lab.examples.winkler_strip`, the model of chapter 07) with n_el elements."""
     x, w = winkler_strip(n_el, H_PLATE, E_PLATE, NU_PLATE, K_BED, P_LOAD)
     return float(w[np.argmin(np.abs(x))])
 
@@ -288,8 +288,8 @@ assert efficiency_ok, f"efficiency indices {indices} outside {EFFICIENCY_RANGE}"
 # %% [markdown]
 # ## 2. The chapter-11 foundation, asked for 2 %
 #
-# The scene of chapter 11 (`ssi.examples.chapter11_foundation`: an RC beam on soft clay over sand under two
-# columns of 400 kN/m) on a coarse mesh — h = 1 m under the foundation, 4 m far from it — solved with the
+# The scene of chapter 11 (`ssi.lab.examples.chapter11_foundation`: an RC beam on soft clay over sand under
+# two columns of 400 kN/m) on a coarse mesh — h = 1 m under the foundation, 4 m far from it — solved with the
 # default solver (BFGS on K0, automatic steps) and asked for its maximum settlement to 2 %:
 # `solve_to_target` first estimates every headline quantity's error (mesh h, h/2, h/4; steps ×1, ×2, ×4;
 # plate layers ×1, ×2, ×4), then extrapolates each refinement's fitted power law to the cheapest setting of
@@ -633,7 +633,7 @@ assert by_mc["h=0.125 30 steps line_search"]["error"] < by_mc["h=0.5 30 steps li
 
 # %% [markdown]
 # ## Summary
-# `ssi.estimate.estimate(scene)` answers "how wrong is this?" for the headline quantities from three
+# `ssi.studies.estimate.estimate(scene)` answers "how wrong is this?" for the headline quantities from three
 # refinement levels of the mesh, the steps and the plate layers, with the observed order of each; on three
 # closed forms its efficiency index lies in the table above (row `error_estimate_efficiency`).
 # `solve_to_target(scene, 0.02)` turns it round: it extrapolates each refinement's error and solves the

@@ -16,13 +16,13 @@
 # *Beyond the paper.* The soft clay under the chapter-11 foundation is not known to three digits: its
 # stiffness and strength scatter from sample to sample. The question an engineer asks is how the settlement,
 # the differential settlement and the beam's moment spread over the plausible soil, and how likely a
-# serviceability limit is exceeded. That needs hundreds of scenes: `ssi.sweep` runs them on a
+# serviceability limit is exceeded. That needs hundreds of scenes: `ssi.studies.sweep` runs them on a
 # `dask.distributed` cluster (here a `LocalCluster` of two worker processes), one result file per scene.
 #
 # In this chapter you will
 # - give E, c and tan φ of the soft layer lognormal distributions with coefficients of variation from the
 #   literature;
-# - run a Monte Carlo study with `ssi.sweep` (a dozen samples in fast mode, 300 in full mode);
+# - run a Monte Carlo study with `ssi.studies.sweep` (a dozen samples in fast mode, 300 in full mode);
 # - read the distributions, the probability that the settlement exceeds 50 mm with its confidence interval,
 #   and first-order sensitivities;
 # - cross-check the Monte Carlo mean against a first-order second-moment (FOSM) estimate.
@@ -46,8 +46,8 @@
 # foundation). The lognormal keeps E and c positive; its parameters follow from the mean μ and CoV V as σ_ln²
 # = ln(1 + V²), μ_ln = ln μ − σ_ln²/2.
 #
-# The scene is the chapter-11 foundation (`ssi.examples.chapter11_foundation`) on a coarse mesh (h = 1 m under
-# the beam, 4 m far from it) with 450 kN/m per column, the load chapter 11 used before its strip was
+# The scene is the chapter-11 foundation (`ssi.lab.examples.chapter11_foundation`) on a coarse mesh (h = 1 m
+# under the beam, 4 m far from it) with 450 kN/m per column, the load chapter 11 used before its strip was
 # corrected (chapter 11 now takes 400 kN/m; this chapter's recorded study is kept at 450 kN/m): the
 # study is of the spread, and chapter 13 measures this mesh's discretisation error of the settlement (at
 # 400 kN/m: 19 % against a Richardson extrapolation, 24 % estimated; assumed nearly the same for every
@@ -61,10 +61,10 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths
-from ssi.examples import chapter11_foundation
-from ssi.report import record, save_figure
-from ssi.sweep import sweep
+from ssi.lab import paths
+from ssi.lab.examples import chapter11_foundation
+from ssi.lab.report import record, save_figure
+from ssi.studies.sweep import sweep
 
 FAST = paths.FAST
 N_SAMPLES = 12 if FAST else 300

@@ -24,7 +24,7 @@
 # - write the result to HDF5, read it back, and check that *every* quantity a `SceneResult` answers comes back
 #   bit for bit;
 # - export every load step to ParaView (VTU + a `.pvd` time series) and read it back with meshio;
-# - draw the standard figures, each one call of `ssi.plot`, from the file alone.
+# - draw the standard figures, each one call of `ssi.io.plot`, from the file alone.
 #
 # ## What a result file holds
 #
@@ -51,12 +51,13 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import paths, plot
-from ssi.cli import summary
-from ssi.export import read_series
-from ssi.report import record, save_figure
-from ssi.results import max_difference, read_info, read_result, write_result
-from ssi.scene_file import read_scene_file
+from ssi.io import plot
+from ssi.io.cli import summary
+from ssi.io.export import read_series
+from ssi.io.results import max_difference, read_info, read_result, write_result
+from ssi.lab import paths
+from ssi.lab.report import record, save_figure
+from ssi.scene.scene_file import read_scene_file
 
 FAST = paths.FAST
 EXAMPLES = paths.ROOT / "examples"
@@ -90,7 +91,7 @@ print(phased_path.read_text())
 # %% [markdown]
 # ## One command: `ssi run`
 #
-# Each example file is run through the command line in a fresh process (`python -m ssi.cli run`, what the
+# Each example file is run through the command line in a fresh process (`python -m ssi.io.cli run`, what the
 # installed `ssi` script calls), which writes the result file, the ParaView series, the figures and a
 # summary. The same file is then solved in this notebook through the Python API (`read_scene_file`,
 # `Scene.build`, `BuiltScene.solve`) and the summaries are compared. They are the same computation, so they
@@ -119,7 +120,7 @@ for example in sorted(EXAMPLES.glob("*.toml")):
     work.write_text(example.read_text())
     t0 = time.perf_counter()
     proc = subprocess.run(
-        [sys.executable, "-m", "ssi.cli", "run", str(work), "--overwrite"],
+        [sys.executable, "-m", "ssi.io.cli", "run", str(work), "--overwrite"],
         capture_output=True,
         text=True,
         check=False,
@@ -136,7 +137,7 @@ for example in sorted(EXAMPLES.glob("*.toml")):
 # %% [markdown]
 # ## Back from the file: every number
 #
-# `read_result` gives back a `SceneResult`. `ssi.results.max_difference` walks every quantity a
+# `read_result` gives back a `SceneResult`. `ssi.io.results.max_difference` walks every quantity a
 # `SceneResult` answers — displacements, states of every group at every step, settlements, contact stresses,
 # zones, weights and resultant, strip forces, layer strains and stresses, steel stress and yield, crack map,
 # soil stress, plastic points and strain, the load–settlement path, the status and limit load, and every
@@ -228,7 +229,8 @@ record(
 # %% [markdown]
 # ## The standard figures, from the file alone
 #
-# Each panel below is one `ssi.plot` call on the result read back from disk (`ax=` draws into a given axes).
+# Each panel below is one `ssi.io.plot` call on the result read back from disk (`ax=` draws into a given
+# axes).
 
 # %%
 fig, ax = plt.subplots(3, 2, figsize=(13, 11), layout="constrained")

@@ -21,9 +21,9 @@
 #
 # In this chapter you will
 # - see the promise stated precisely: what counts as a *named* error, what counts as an *escape*;
-# - meet the one validation layer (`ssi.validate`) and where it is called (the public boundary only);
-# - run a property-based study (`ssi.fuzz`, driven by *hypothesis*): hundreds of seeded invalid calls of the
-#   public API and a set of random valid scenes;
+# - meet the one validation layer (`ssi.core.validate`) and where it is called (the public boundary only);
+# - run a property-based study (`ssi.lab.fuzz`, driven by *hypothesis*): hundreds of seeded invalid calls of
+#   the public API and a set of random valid scenes;
 # - check that every invalid call raises a named `ValueError`/`TypeError` and every valid scene either
 #   solves or stops with the solver's named `NonConvergence`.
 
@@ -47,7 +47,7 @@
 # 1) and the number of all other outcomes (`fuzz_escapes`, must be 0).
 #
 # **What is allowed** is written down once per entry point, as tables of allowed sets next to the base call
-# they perturb (`ssi.fuzz.LAYER_SPEC`, `MESH_SPEC`, `SETTINGS_SPEC`, ...): e.g. $E \in (0, \infty)$,
+# they perturb (`ssi.lab.fuzz.LAYER_SPEC`, `MESH_SPEC`, `SETTINGS_SPEC`, ...): e.g. $E \in (0, \infty)$,
 # $\nu \in (-1, 0.5)$, $\varphi \in [0°, 90°)$, $\psi \in [0, \varphi]$, $h_\text{fine} > 0$,
 # $h_\text{coarse} \ge h_\text{fine}$, growth $\ge 1$, `n_steps` an integer $\ge 1$. Only the *allowed sets*
 # are checked, never plausibility: a 10 kPa modulus is soft but valid SI input (warnings about likely unit
@@ -64,24 +64,24 @@
 #
 # Where each concept lives in the code:
 #
-# - type / finiteness / range checks: `ssi.validate.check_real`, `check_int`, `check_bool`, `check_choice`,
-#   `check_instance`, `check_array`;
+# - type / finiteness / range checks: `ssi.core.validate.check_real`, `check_int`, `check_bool`,
+#   `check_choice`, `check_instance`, `check_array`;
 # - where they are called: `__post_init__` of `SoilLayer`, `Foundation`, `Contact`, `ColumnLoad`,
 #   `MeshSize`, `Scene`, `Section`, `Settings`; `BuiltScene.solve`; `soil_block`; `Model` loads/supports;
-#   footing builders; `ssi.analytical`;
-# - allowed sets, strategies, classifier, driver: `ssi.fuzz` (`invalid_cases`, `valid_scenes`,
+#   footing builders; `ssi.lab.analytical`;
+# - allowed sets, strategies, classifier, driver: `ssi.lab.fuzz` (`invalid_cases`, `valid_scenes`,
 #   `classify_invalid`, `classify_valid`, `study`);
 # - supports that leave a rigid motion free: `Model.check` (rank of the rigid motions on the constrained
 #   DOFs, per connected part);
-# - a singular matrix otherwise: `ssi.linsolve.SingularMatrix` (names the rows of the null space), re-raised
-#   by `Model.solve_linear` as a `ValueError` naming the nodes and components.
+# - a singular matrix otherwise: `ssi.core.linsolve.SingularMatrix` (names the rows of the null space),
+#   re-raised by `Model.solve_linear` as a `ValueError` naming the nodes and components.
 
 # %%
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ssi import fuzz, paths
-from ssi.report import check, save_figure
+from ssi.lab import fuzz, paths
+from ssi.lab.report import check, save_figure
 from ssi.scene import ColumnLoad, MeshSize, SoilLayer
 
 FAST = paths.FAST
@@ -156,7 +156,7 @@ assert study["counts_valid"].get("solved", 0) > 0  # the valid population is not
 
 # %% [markdown]
 # **Before and after.** Before this layer existed (commit 87d2b94; the same driver, seeds and sizes, run on a
-# copy of that commit's `ssi` with only `ssi/fuzz.py` added) the studies gave:
+# copy of that commit's `ssi` with only `ssi/lab/fuzz.py` added) the studies gave:
 #
 # | study | invalid calls | named before | escapes before (unnamed/returned/other) | named after | escapes |
 # |---|---|---|---|---|---|
@@ -213,7 +213,8 @@ save_figure(fig, "16_bad_input")
 #
 # ## Summary
 #
-# - One validation layer, `ssi.validate`, called only at the public boundary; kernels stay free of checks.
+# - One validation layer, `ssi.core.validate`, called only at the public boundary; kernels stay free of
+#   checks.
 # - Every invalid call of the seeded study raised a `ValueError`/`TypeError` naming the parameter and value
 #   (`fuzz_named_errors` = 1, `fuzz_escapes` = 0); every random valid scene solved or stopped with
 #   `NonConvergence`.

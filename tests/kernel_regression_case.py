@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ssi.core.protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX
 from ssi.elements.soil_q8 import SoilQ8
 from ssi.materials.soil_laws import elastic_params, material_table, mohr_coulomb_params, von_mises_params
-from ssi.protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX
 
 DATA = Path(__file__).parent / "data" / "soil_kernel_v0.npz"
 N_EL = 120

@@ -10,11 +10,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ssi.core.protocol import CONSISTENT, K0_MATRIX
 from ssi.elements.plate import PlateStrip
+from ssi.elements.section import rc_section
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.rc import concrete_params, designer_concrete, steel_params
-from ssi.protocol import CONSISTENT, K0_MATRIX
-from ssi.section import rc_section
 
 DATA = Path(__file__).parent / "data" / "plate_kernel_v0.npz"
 N_EL = 40

@@ -4,11 +4,11 @@ Tresca footing instead of failing there as load control does."""
 import numpy as np
 import pytest
 
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
+from ssi.elements.supports import fix_block, soil_group, surface_pressure
 from ssi.materials.soil_laws import elastic_params, von_mises_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
 from ssi.solver import Settings, run, run_arc_length
-from ssi.supports import fix_block, soil_group, surface_pressure
 
 PRANDTL = 2.0 + np.pi  # q_u / c_u of a smooth strip footing on weightless Tresca soil
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from ssi.assembly import SparsePattern
-from ssi.mesh import structured_q8
+from ssi.core.assembly import SparsePattern
+from ssi.core.mesh import structured_q8
 
 
 def reference_pattern(edofs_list, free):

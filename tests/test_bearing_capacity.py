@@ -13,8 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from ssi.bearing_capacity import chapter10_footing, prandtl, push_footing, rigid_footing, sg61_scene
-from ssi.digitize import read_reference
+from ssi.lab.bearing_capacity import chapter10_footing, prandtl, push_footing, rigid_footing, sg61_scene
+from ssi.lab.digitize import read_reference
 from ssi.scene import SoilLayer
 from ssi.solver import Settings, run
 
@@ -156,10 +156,10 @@ def test_geostatic_stress_is_in_equilibrium_with_self_weight(plastic):
     """Two layers with different γ and K0 (default 1 − sin φ and a given one): the geostatic stress balances
     the self-weight exactly (2×2 Gauss integrates the linear stress and the body force exactly, layer
     boundaries are mesh lines), so the solver finds zero displacement and the law stays elastic."""
+    from ssi.core.mesh import soil_block
+    from ssi.core.model import Model
+    from ssi.elements.supports import fix_block, soil_group
     from ssi.materials.soil_laws import elastic_params, geostatic_stress, mohr_coulomb_params
-    from ssi.mesh import soil_block
-    from ssi.model import Model
-    from ssi.supports import fix_block, soil_group
 
     mesh = soil_block(8.0, 6.0, [2.0, 4.0], foundation=(-1.0, 1.0), h_fine=0.5, h_coarse=1.0)
     model = Model()

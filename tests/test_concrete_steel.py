@@ -10,6 +10,8 @@ have truncation error ~ h^2 |f'''| / 6 and round-off ~ 1e-16 |sig| / h; with h =
 import numpy as np
 import pytest
 
+from ssi.core.protocol import CONSISTENT
+from ssi.lab.verify import fd_jacobian
 from ssi.materials import rc
 from ssi.materials.concrete import (
     P_EPS_C,
@@ -20,8 +22,6 @@ from ssi.materials.concrete import (
     softening_modulus,
 )
 from ssi.materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
-from ssi.protocol import CONSISTENT
-from ssi.verify import fd_jacobian
 
 FD_TOL = 1e-6
 H_FD = 1e-9

@@ -7,8 +7,8 @@ must return those values to round-off (the calibration is an exact affine / log-
 import numpy as np
 import pytest
 
-from ssi import paths
-from ssi.digitize import (
+from ssi.lab import paths
+from ssi.lab.digitize import (
     REQUIRED_META,
     AxisCalibration,
     convert,

@@ -1,5 +1,5 @@
-"""Error estimates (ssi.estimate): Richardson analysis against sequences whose limit and order are known,
-refined copies that keep what they must keep, and the estimate of a linear scene."""
+"""Error estimates (ssi.studies.estimate): Richardson analysis against sequences whose limit and order are
+known, refined copies that keep what they must keep, and the estimate of a linear scene."""
 
 import math
 from dataclasses import replace
@@ -7,7 +7,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ssi.estimate import (
+from ssi.elements.section import homogeneous
+from ssi.lab.zoo import rc_strip
+from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from ssi.solver import Settings
+from ssi.studies.estimate import (
     Level,
     RefinedSolver,
     estimate,
@@ -18,10 +22,6 @@ from ssi.estimate import (
     solve_with_error,
     split_section,
 )
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.section import homogeneous
-from ssi.solver import Settings
-from ssi.zoo import rc_strip
 
 
 def linear_scene(h_fine=1.0):

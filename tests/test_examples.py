@@ -1,12 +1,12 @@
-"""ssi.examples: the shared model problems are what their docstrings say."""
+"""ssi.lab.examples: the shared model problems are what their docstrings say."""
 
 import math
 
 import numpy as np
 import pytest
 
-from ssi.analytical import hetenyi_deflection
-from ssi.examples import CHAPTER11_COLUMN_LOAD, chapter11_foundation, chapter11_section, winkler_strip
+from ssi.lab.analytical import hetenyi_deflection
+from ssi.lab.examples import CHAPTER11_COLUMN_LOAD, chapter11_foundation, chapter11_section, winkler_strip
 
 
 def test_winkler_strip_is_hetenyi_beam():

@@ -1,6 +1,6 @@
 """Bad input gets a clear, named error; valid input is never refused (issue 11).
 
-Property-based part: the strategies and the classifier live in ``ssi.fuzz`` (shared with chapter 16); here
+Property-based part: the strategies and the classifier live in ``ssi.lab.fuzz`` (shared with chapter 16); here
 hypothesis runs them with shrinking, so a failure is reported as its smallest invalid argument. Seeded and
 bounded: ``SSI_FAST=1`` draws fewer examples than the full run.
 """
@@ -13,18 +13,19 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, seed, settings
 
-from ssi import fuzz, linsolve
+from ssi.core import linsolve
+from ssi.core.linsolve import Factorization, SingularMatrix
+from ssi.core.mesh import soil_block
+from ssi.core.model import Model
+from ssi.core.validate import check_array, check_bool, check_choice, check_int, check_real
+from ssi.elements.section import homogeneous
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.linsolve import Factorization, SingularMatrix
+from ssi.elements.supports import soil_group
+from ssi.lab import fuzz
 from ssi.materials.soil_laws import ELASTIC as SOIL_ELASTIC
 from ssi.materials.soil_laws import elastic_params, material_table
-from ssi.mesh import soil_block
-from ssi.model import Model
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.section import homogeneous
 from ssi.solver import NonConvergence, Settings
-from ssi.supports import soil_group
-from ssi.validate import check_array, check_bool, check_choice, check_int, check_real
 
 FAST = os.environ.get("SSI_FAST", "1") != "0"
 N_INVALID = 400 if FAST else 3000
@@ -182,7 +183,7 @@ def test_a_mechanism_the_supports_cannot_see_is_still_called_singular():
 
 def test_nan_right_hand_side_is_not_called_singular():
     model, _ = _soil_model()
-    from ssi.model import System
+    from ssi.core.model import System
 
     system = System(model)
     k0 = system.pattern.matrix(system.pattern.assemble([g.elastic_stiffness() for g in model.groups]))

@@ -10,7 +10,9 @@ import math
 import numpy as np
 import pytest
 
+from ssi.core.protocol import CONSISTENT, K0_MATRIX
 from ssi.elements.interface import V_GN, V_GT, V_STATUS, Interface6
+from ssi.lab.verify import fd_jacobian, zero_energy_modes
 from ssi.materials.interface_law import (
     H_BROKEN,
     H_OPEN,
@@ -23,8 +25,6 @@ from ssi.materials.interface_law import (
     interface_params,
     interface_update,
 )
-from ssi.protocol import CONSISTENT, K0_MATRIX
-from ssi.verify import fd_jacobian, zero_energy_modes
 
 KT, KN = 2.0e7, 5.0e7  # Pa/m
 C, PHI = 8.0e3, 30.0  # Pa, deg
@@ -415,8 +415,9 @@ def test_initial_traction_is_a_prestressed_committed_state():
 
 
 def test_analytical_references_against_reference_data():
-    """ssi.analytical against the numbers of reference-data.md (independent hand values) and equilibrium."""
-    from ssi.analytical import (
+    """ssi.lab.analytical against the numbers of reference-data.md (independent hand values) and
+    equilibrium."""
+    from ssi.lab.analytical import (
         hetenyi_deflection,
         sadowsky_pressure,
         shear_lag_from_slip,

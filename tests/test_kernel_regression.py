@@ -121,7 +121,7 @@ def test_loops_without_reference_counting_compile_first_in_a_fresh_process(tmp_p
         from ssi.elements.plate import PlateStrip
         from ssi.materials import rc
         from ssi.materials.layer_laws import CONCRETE, STEEL
-        from ssi.section import paper_rc_section
+        from ssi.elements.section import paper_rc_section
         for laws in ((0,), (0, 1), (0, 3), (0, 1, 3)):
             full, du, state = case(2)
             sel = np.flatnonzero(np.isin(full.kinds[full.el_mat], laws))

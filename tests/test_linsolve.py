@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from ssi.assembly import SparsePattern
-from ssi.linsolve import SUPERLU_PIVOT_THRESHOLD, Factorization, pardiso_available
+from ssi.core.assembly import SparsePattern
+from ssi.core.linsolve import SUPERLU_PIVOT_THRESHOLD, Factorization, pardiso_available
+from ssi.core.mesh import structured_q8
+from ssi.core.model import Model
+from ssi.elements.supports import fix_block, soil_group
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import structured_q8
-from ssi.model import Model
-from ssi.supports import fix_block, soil_group
 
 TOL = 1e-10
 
@@ -49,7 +49,7 @@ def test_matrix_rejects_data_of_another_pattern():
 @pytest.mark.skipif(not pardiso_available(), reason="pypardiso (MKL) not installed")
 @pytest.mark.parametrize("spd, symmetric", [(True, True), (False, True), (False, False)])
 def test_pardiso_refactorisation_reuses_the_analysis(spd, symmetric):
-    from ssi import linsolve
+    from ssi.core import linsolve
 
     pattern, g = block_system()
     rhs = np.random.default_rng(1).normal(size=(pattern.n_free, 2))
@@ -96,7 +96,7 @@ def test_superlu_keeps_a_refactorised_patterns_ordering():
     independent dense solve to round-off, and the kept ordering goes when the pattern does."""
     import gc
 
-    from ssi import linsolve
+    from ssi.core import linsolve
 
     pattern, g = block_system()
     rng = np.random.default_rng(4)

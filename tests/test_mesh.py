@@ -1,14 +1,14 @@
 """The soil block's mesh lines: the grading under the foundation towards its ends (``end_grading``).
 
-Expected node positions are hand calculations of the power map in ``ssi.mesh.foundation_lines``; the default
-is compared with the even spacing the block was built with before the option existed (reconstructed here from
-``np.linspace`` and ``graded_lines``, the pieces it was made of)."""
+Expected node positions are hand calculations of the power map in ``ssi.core.mesh.foundation_lines``; the
+default is compared with the even spacing the block was built with before the option existed (reconstructed
+here from ``np.linspace`` and ``graded_lines``, the pieces it was made of)."""
 
 import numpy as np
 import pytest
 
-from ssi.examples import chapter11_foundation, punch_settlement
-from ssi.mesh import MAX_END_GRADING, foundation_lines, graded_lines, soil_block
+from ssi.core.mesh import MAX_END_GRADING, foundation_lines, graded_lines, soil_block
+from ssi.lab.examples import chapter11_foundation, punch_settlement
 from ssi.scene import MeshSize
 
 

@@ -16,6 +16,8 @@ import numpy as np
 import pytest
 from scipy.optimize import nnls
 
+from ssi.core.protocol import CONSISTENT
+from ssi.lab.verify import fd_jacobian
 from ssi.materials.mohr_coulomb import mc_yield
 from ssi.materials.soil_laws import (
     ELASTIC,
@@ -33,8 +35,6 @@ from ssi.materials.soil_laws import (
     soil_update,
     von_mises_params,
 )
-from ssi.protocol import CONSISTENT
-from ssi.verify import fd_jacobian
 
 E, NU = 20e6, 0.3
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))

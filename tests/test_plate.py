@@ -1,4 +1,5 @@
-"""Unit tests of the layered plate-strip element (ssi.elements.plate) and the section builder (ssi.section).
+"""Unit tests of the layered plate-strip element (ssi.elements.plate) and the section builder
+(ssi.elements.section).
 
 References are independent of the element: Timoshenko closed forms, transformed-section formulas, finite
 differences of the element's own internal force (tangent check), statics (load resultants), and linear algebra
@@ -10,14 +11,14 @@ used.
 import numpy as np
 import pytest
 
+from ssi.core.model import Model
+from ssi.core.protocol import CONSISTENT, K0_MATRIX
 from ssi.elements.plate import PlateStrip, add_plate_strip, beam_mesh, beam_mesh_from_ends, integration_rule
+from ssi.elements.section import homogeneous, layered, paper_rc_section, rc_section
+from ssi.lab.verify import fd_jacobian, zero_energy_modes
 from ssi.materials import rc
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.layer_laws import ELASTIC as K_ELASTIC
-from ssi.model import Model
-from ssi.protocol import CONSISTENT, K0_MATRIX
-from ssi.section import homogeneous, layered, paper_rc_section, rc_section
-from ssi.verify import fd_jacobian, zero_energy_modes
 
 E, NU, H, L = 30.0e9, 0.2, 0.5, 5.0
 E1 = E / (1.0 - NU**2)  # D1 of eq. (4.4), cylindrical bending

@@ -10,12 +10,12 @@ steps), asserted 4e-3 here, and it must shrink on refinement.
 import numpy as np
 import pytest
 
-from ssi import rc_beam as rb
-from ssi import section_analysis as sa
-from ssi.digitize import read_reference
+from ssi.elements import section_analysis as sa
+from ssi.elements.section import layered
+from ssi.lab import rc_beam as rb
+from ssi.lab.digitize import read_reference
 from ssi.materials import rc
 from ssi.materials.layer_laws import ELASTIC, STEEL
-from ssi.section import layered
 from ssi.solver import Settings
 
 G = rb.JANNEY

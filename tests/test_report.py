@@ -4,7 +4,7 @@ import csv
 
 import pytest
 
-from ssi import paths, report
+from ssi.lab import paths, report
 
 
 @pytest.fixture

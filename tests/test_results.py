@@ -13,11 +13,11 @@ import meshio
 import numpy as np
 import pytest
 
-from ssi import plot
-from ssi.cli import main, summary
-from ssi.export import export_series, export_vtu, read_series
-from ssi.progress import progress_enabled, solver_progress
-from ssi.results import atomic_path, max_difference, read_info, read_result, write_result
+from ssi.elements.section import homogeneous
+from ssi.io import plot
+from ssi.io.cli import main, summary
+from ssi.io.export import export_series, export_vtu, read_series
+from ssi.io.results import atomic_path, max_difference, read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
     Contact,
@@ -33,9 +33,9 @@ from ssi.scene import (
     StripWeight,
     SurfacePressure,
 )
-from ssi.scene_file import LOAD_TYPES, UNITS, read_scene_file, scene_from_dict, scene_to_dict
-from ssi.section import homogeneous
+from ssi.scene.scene_file import LOAD_TYPES, UNITS, read_scene_file, scene_from_dict, scene_to_dict
 from ssi.solver import NonConvergence, Settings
+from ssi.solver.progress import progress_enabled, solver_progress
 
 EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
 COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
@@ -430,13 +430,13 @@ def test_every_field_has_a_unit():
     import dataclasses
     import inspect
 
-    from ssi import scene as scene_module
+    from ssi.scene import scene as scene_module
 
     runtime = {"BuiltScene", "SceneResult"}  # built from a scene, not written in a scene file
     classes = [
         c
         for _, c in inspect.getmembers(scene_module, inspect.isclass)
-        if dataclasses.is_dataclass(c) and c.__module__ == "ssi.scene" and c.__name__ not in runtime
+        if dataclasses.is_dataclass(c) and c.__module__.startswith("ssi.scene.") and c.__name__ not in runtime
     ]
     assert {"Scene", "Phase", "ContactSegment", "Settlement", "SurfacePressure"} <= {
         c.__name__ for c in classes
@@ -563,7 +563,7 @@ def test_cli_runs_the_examples(name, tmp_path, capsys):
 def test_compile_notice_only_on_an_empty_cache(tmp_path, monkeypatch):
     import io
 
-    from ssi import progress
+    from ssi.solver import progress
 
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(progress, "_announced", False)
@@ -589,9 +589,9 @@ def test_bare_model_file_keeps_mapping_access(nonlinear, tmp_path):
 
 def test_rc_section_table_equals_the_python_section():
     """examples/rc_strip.toml's `rc` section is chapter 11's rc_section built in Python, layer for layer."""
+    from ssi.elements.section import rc_section
     from ssi.materials.layer_laws import CONCRETE, STEEL
     from ssi.materials.rc import concrete_params, designer_concrete, steel_params
-    from ssi.section import rc_section
 
     d = designer_concrete(38e6)
     concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))

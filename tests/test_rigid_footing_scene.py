@@ -13,9 +13,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ssi.bearing_capacity import footing_scene, footing_settings, push_footing, rigid_footing
-from ssi.model import System
-from ssi.results import max_difference, read_result, write_result
+from ssi.core.model import System
+from ssi.elements.section import homogeneous
+from ssi.io.results import max_difference, read_result, write_result
+from ssi.lab.bearing_capacity import footing_scene, footing_settings, push_footing, rigid_footing
 from ssi.scene import (
     ColumnLoad,
     Contact,
@@ -28,8 +29,7 @@ from ssi.scene import (
     SoilLayer,
     SurfacePressure,
 )
-from ssi.scene_file import scene_from_dict, scene_to_dict
-from ssi.section import homogeneous
+from ssi.scene.scene_file import scene_from_dict, scene_to_dict
 
 COARSE = dict(B=2.0, half_width=6.0, depth=5.0, h_fine=0.5, h_coarse=1.0)
 CASES = {

@@ -8,11 +8,11 @@ import pytest
 
 from ssi.elements.interface import Interface6
 from ssi.elements.plate import PlateStrip
+from ssi.elements.section import homogeneous
 from ssi.elements.soil_q8 import SoilQ8
-from ssi.examples import surcharge_heave
-from ssi.results import read_result, write_result
+from ssi.io.results import read_result, write_result
+from ssi.lab.examples import surcharge_heave
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.section import homogeneous
 from ssi.solver import Settings
 
 COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
@@ -140,7 +140,7 @@ M_OED = E_SOIL * (1 - NU_SOIL) / ((1 + NU_SOIL) * (1 - 2 * NU_SOIL))
 
 @pytest.mark.parametrize("with_strip", [False, True])
 def test_surcharge_alone_does_not_heave(with_strip):
-    """Chapter 12's claim ``surcharge_no_heave`` (``ssi.examples.surcharge_heave``): the old scene heaved
+    """Chapter 12's claim ``surcharge_no_heave`` (``ssi.lab.examples.surcharge_heave``): the old scene heaved
     q H / M under the surcharge alone; now the geostatic state is in equilibrium (round-off, 1e-8)."""
     q = 10e3
     ratio, built, out = surcharge_heave(with_strip, q=q, depth=6.0, E=E_SOIL, nu=NU_SOIL)
@@ -385,10 +385,10 @@ def test_no_internal_force_before_anything_is_displaced_or_stressed(section):
     """``Model.solve_linear`` skips the internal-force pass when u = 0 and every group's state is zero: that
     is exact only if every element type gives exactly zero force there, checked here for the soil, plate
     (elastic and RC layers) and interface groups, with tangents off and on."""
+    from ssi.core.model import System
+    from ssi.elements.section import rc_section
     from ssi.materials.layer_laws import CONCRETE, STEEL
     from ssi.materials.rc import concrete_params, steel_params
-    from ssi.model import System
-    from ssi.section import rc_section
 
     changes = {}
     if section == "rc":

@@ -8,8 +8,10 @@ linear scene solved with one K0 per increment) and the solver's force tolerance 
 import numpy as np
 import pytest
 
-from ssi.element_test import biaxial_compression
-from ssi.examples import (
+from ssi.elements.section import homogeneous
+from ssi.io.results import read_info, read_result, write_result
+from ssi.lab.element_test import biaxial_compression
+from ssi.lab.examples import (
     PIT_STRIP_LOAD,
     drainage_switch_errors,
     drainage_switch_scene,
@@ -21,7 +23,6 @@ from ssi.examples import (
     submerged_strip_error,
     switched_layer_pore_pressure,
 )
-from ssi.results import read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
     Excavation,
@@ -31,8 +32,7 @@ from ssi.scene import (
     StripWeight,
     SurfacePressure,
 )
-from ssi.scene_file import scene_from_dict, scene_to_dict
-from ssi.section import homogeneous
+from ssi.scene.scene_file import scene_from_dict, scene_to_dict
 from ssi.solver import NonConvergence, Settings
 
 E, NU, GAMMA, GW = 20e6, 0.3, 18e3, 9.81e3
@@ -40,8 +40,8 @@ STRIP = homogeneous(0.5, 30e9, 0.2)
 
 
 def test_excavating_the_top_layer_unloads_the_column_in_1d():
-    """Chapter 12's claim ``excavation_heave`` (the scene and its hand calculation in ``ssi.examples``): heave
-    gamma t (H - t) / M at the new surface; sigma_v rises by gamma t, sigma_h by nu/(1-nu) of it. The
+    """Chapter 12's claim ``excavation_heave`` (the scene and its hand calculation in ``ssi.lab.examples``):
+    heave gamma t (H - t) / M at the new surface; sigma_v rises by gamma t, sigma_h by nu/(1-nu) of it. The
     remaining column's change is a uniform 1D state, which quadratic elements represent exactly: round-off
     (1e-12)."""
     t = 2.0
@@ -53,7 +53,7 @@ def test_excavating_the_top_layer_unloads_the_column_in_1d():
 
 
 def test_a_pit_next_to_a_loaded_strip_runs_with_the_defaults():
-    """Chapter 12's claim ``excavation_pit_reaction`` (scene and hand value in ``ssi.examples``):
+    """Chapter 12's claim ``excavation_pit_reaction`` (scene and hand value in ``ssi.lab.examples``):
     Mohr--Coulomb soil, water table, surcharge, a strip under load, then a pit beside it, all default
     settings: the bottom reaction rises by the strip's load and falls by the removed buoyant weight plus the
     surcharge over the pit (equilibrium, to the solver's force tolerance 1e-5 of the structural load; 1e-4
@@ -84,7 +84,7 @@ def test_excavation_round_trips_through_the_scene_record_and_the_result_file(tmp
 
 
 def test_drained_then_undrained_then_consolidated():
-    """Chapter 12's claim ``undrained_switch`` (scenes and closed forms in ``ssi.examples``): elastic soil
+    """Chapter 12's claim ``undrained_switch`` (scenes and closed forms in ``ssi.lab.examples``): elastic soil
     drained under the first column, undrained ("A") under the second, then drained again. The undrained
     increment is that of an elastic soil with G and nu_u; after consolidation the state is the drained
     response to both loads (elastic: path independent); round-off (1e-10)."""
@@ -144,7 +144,7 @@ def test_bad_excavation_and_drainage_values_are_named():
 
 @pytest.mark.parametrize("h_pond", [0.0, 2.0])
 def test_ponding_changes_pore_pressure_not_effective_stress(h_pond):
-    """Chapter 12's claim ``ponding_effective_stress`` (scenes and hand calculations in ``ssi.examples``):
+    """Chapter 12's claim ``ponding_effective_stress`` (scenes and hand calculations in ``ssi.lab.examples``):
     free water h above the ground: sigma' and the displacements under a load are those of the table at the
     ground (the effective-stress problem does not see the pond); p = gamma_w (h + d) and
     sigma_v = -(gamma_w h + gamma_sat d) (hand calculation, round-off 1e-12)."""
@@ -255,7 +255,7 @@ q = 20e3
 
 
 def test_toml_excavation_drainage_and_ponding(tmp_path):
-    from ssi.scene_file import read_scene_file
+    from ssi.scene.scene_file import read_scene_file
 
     path = tmp_path / "phases.toml"
     path.write_text(PHASES_TOML)
@@ -318,7 +318,7 @@ max_cuts = 1
 
 def test_ssi_run_writes_every_completed_phase_of_a_stopped_run(tmp_path):
     """``ssi run`` on a phased scene that stops: exit status 3, and the file holds the completed phases."""
-    from ssi.cli import EXIT_INCOMPLETE, main
+    from ssi.io.cli import EXIT_INCOMPLETE, main
 
     path = tmp_path / "stop.toml"
     path.write_text(STOP_TOML)

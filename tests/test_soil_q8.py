@@ -8,17 +8,17 @@ dense NumPy re-implementation, patch-test fields, Flamant's line-load solution.
 import numpy as np
 import pytest
 
-from ssi.analytical_soil import flamant_strip_quadrature, strip_load_stresses
-from ssi.assembly import SparsePattern
+from ssi.core.assembly import SparsePattern
+from ssi.core.mesh import foundation_contact, soil_block, structured_q8
+from ssi.core.model import Model
+from ssi.core.protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX
+from ssi.core.quadrature import gauss_2d, gauss_legendre, newton_cotes
+from ssi.core.shapes import LINE3_NODES, Q8_NODES, lagrange3, serendipity8
 from ssi.elements.q8_elastic import q8_elastic_stiffness
 from ssi.elements.soil_q8 import SoilQ8
+from ssi.lab.analytical_soil import flamant_strip_quadrature, strip_load_stresses
+from ssi.lab.verify import dense_stiffness, distorted_q8_mesh, fd_jacobian, zero_energy_modes
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.mesh import foundation_contact, soil_block, structured_q8
-from ssi.model import Model
-from ssi.protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX
-from ssi.quadrature import gauss_2d, gauss_legendre, newton_cotes
-from ssi.shapes import LINE3_NODES, Q8_NODES, lagrange3, serendipity8
-from ssi.verify import dense_stiffness, distorted_q8_mesh, fd_jacobian, zero_energy_modes
 
 # Round-off tolerances: all quantities below are O(1) sums of at most a few hundred O(1) terms in float64,
 # so 1e-12 (relative) leaves a factor ~100 over the accumulated round-off; patch tests use the 1e-10.

@@ -1,15 +1,15 @@
-"""Parameter sweeps (ssi.sweep): one row and one file per scene, failures recorded, re-runs resumed, and the
-dask cluster giving the same answers as the serial run."""
+"""Parameter sweeps (ssi.studies.sweep): one row and one file per scene, failures recorded, re-runs resumed,
+and the dask cluster giving the same answers as the serial run."""
 
 import json
 import sys
 
 import pytest
 
-from ssi.results import read_result
+from ssi.elements.section import homogeneous
+from ssi.io.results import read_result
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.section import homogeneous
-from ssi.sweep import grid, read_table, scene_key, sweep
+from ssi.studies.sweep import grid, read_table, scene_key, sweep
 
 CALLS = []
 

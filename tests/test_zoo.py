@@ -1,4 +1,4 @@
-"""The zoo of ordinary scenes (``ssi.zoo``), each solved with the default ``Settings()``: every one must
+"""The zoo of ordinary scenes (``ssi.lab.zoo``), each solved with the default ``Settings()``: every one must
 reach its full load or end as a detected collapse -- never stop with NonConvergence.
 
 The checks on each outcome can fail for a wrong answer, not only for a stopped run: a completed scene's
@@ -9,8 +9,8 @@ the scenes loaded above their capacity must end as "limit load reached" below th
 import numpy as np
 import pytest
 
+from ssi.lab.zoo import ordinary_scenes
 from ssi.solver import LIMIT_LOAD, Settings
-from ssi.zoo import ordinary_scenes
 
 SCENES = dict(ordinary_scenes())
 
@@ -47,8 +47,8 @@ def test_a_viscous_path_past_the_limit_load_ends_as_a_bracketed_limit():
     contain it; its width is at most 2**-4 of the last viscous step (BRACKET_REFINEMENTS) -- here <= 4 %."""
     from dataclasses import replace
 
+    from ssi.lab.zoo import _base
     from ssi.scene import ColumnLoad
-    from ssi.zoo import _base
 
     base = _base()
     scene = _base(

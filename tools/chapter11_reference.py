@@ -16,11 +16,11 @@ import subprocess
 import time
 from pathlib import Path
 
-from ssi.digitize import write_reference
-from ssi.estimate import headline
-from ssi.examples import chapter11_foundation
-from ssi.linsolve import pardiso_available
+from ssi.core.linsolve import pardiso_available
+from ssi.lab.digitize import write_reference
+from ssi.lab.examples import chapter11_foundation
 from ssi.solver import NonConvergence
+from ssi.studies.estimate import headline
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUT = ROOT / "reference_data" / "chapter11_graded_reference.csv"

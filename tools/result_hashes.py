@@ -19,9 +19,9 @@ import sys
 import numpy as np
 
 import ssi  # noqa: F401  (first: keys numba's cache before numba is imported)
-from ssi.examples import chapter11_foundation
+from ssi.lab.examples import chapter11_foundation
+from ssi.lab.zoo import random_scenes
 from ssi.solver import NonConvergence, Settings
-from ssi.zoo import random_scenes
 
 ZOO = (0, 3, 20, 21, 37, 50, 66, 91)
 

@@ -18,8 +18,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def main():
-    from ssi.bearing_capacity import chapter10_footing, push_footing
-    from ssi.progress import announce_compilation
+    from ssi.lab.bearing_capacity import chapter10_footing, push_footing
+    from ssi.solver.progress import announce_compilation
 
     announce_compilation()
     code = re.search(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.DOTALL).group(1)
@@ -31,10 +31,10 @@ def main():
     push_footing(scene, n_steps=2)
     import numpy as np
 
+    from ssi.core.mesh import structured_q8
+    from ssi.core.model import Model
+    from ssi.elements.supports import fix_block, soil_group
     from ssi.materials.soil_laws import ELASTIC, elastic_params
-    from ssi.mesh import structured_q8
-    from ssi.model import Model
-    from ssi.supports import fix_block, soil_group
 
     mesh = structured_q8(np.linspace(0.0, 2.0, 3), np.linspace(-1.0, 0.0, 2))
     m = Model()
@@ -43,8 +43,8 @@ def main():
     fix_block(m, mesh, sides=False)
     m.add_load(mesh.surface, "w", -1.0)
     m.solve_linear()
-    from ssi.examples import chapter11_section
-    from ssi.section_analysis import layer_free_moment_curvature, moment_curvature
+    from ssi.elements.section_analysis import layer_free_moment_curvature, moment_curvature
+    from ssi.lab.examples import chapter11_section
 
     moment_curvature(chapter11_section(), 0.01, 4)
     layer_free_moment_curvature(chapter11_section(), np.array([0.0, 1e-3]))
@@ -55,8 +55,8 @@ def main():
 
 def warm_pardiso_kernels(model):
     """The kernels that hand a pattern to PARDISO (the scenes above are small enough for SuperLU)."""
-    from ssi.linsolve import Factorization, pardiso_available
-    from ssi.model import System
+    from ssi.core.linsolve import Factorization, pardiso_available
+    from ssi.core.model import System
 
     if not pardiso_available():
         return

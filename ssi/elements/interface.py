@@ -32,10 +32,10 @@ Layout (see ``base``): coords (n_el, 6, 2) [upper 0-2, lower 3-5]; edofs (n_el, 
 import numpy as np
 from numba import njit
 
+from ..core.protocol import CONSISTENT, K0_MATRIX
+from ..core.quadrature import gauss_legendre, newton_cotes
+from ..core.shapes import lagrange3, lagrange3_into
 from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, STICK, interface_update
-from ..protocol import CONSISTENT, K0_MATRIX
-from ..quadrature import gauss_legendre, newton_cotes
-from ..shapes import lagrange3, lagrange3_into
 
 __all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 

@@ -41,13 +41,13 @@ For a linear law the stress is exactly linear within a layer, so both *are* the 
 K0 of eq. (4.7b), for any number of layers (asserted in ``tests/test_plate.py`` and chapter 02). For nonlinear
 layers the choice matters. Measured in chapter 02 (row ``section_selfbending``) on the Janney beam section
 with the paper's 11 layers, N = 0, against the layer-free reference
-(``ssi.section_analysis.layer_free_moment_curvature``, adaptive quadrature of the continuous stress profile):
-``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 / +8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01 / 0.03 /
-0.06 1/m (the error grows with the curvature, as more of the depth cracks and crushes); ``"tangent"`` stays
-within -0.2 ... +1.05 % and ``"chord"`` within 0 ... +1.05 %. The chord is the default: equally accurate, and
-its continuous f lets Newton converge where the tangent's jumps stop it (chapter 08, Janney beam with the
-crack-spacing band: 8 + 8 elements reached 6.9 mm with "tangent", 32 mm with "chord"; chapter 11's h = 0.25 m
-scene: "tangent" stalls, "chord" converges).
+(``ssi.elements.section_analysis.layer_free_moment_curvature``, adaptive quadrature of the continuous stress
+profile): ``"initial"`` over-estimates M by +1.0 / +1.8 / +3.1 / +8.1 / +17.2 % at kap = 0.001 / 0.004 / 0.01
+/ 0.03 / 0.06 1/m (the error grows with the curvature, as more of the depth cracks and crushes); ``"tangent"``
+stays within -0.2 ... +1.05 % and ``"chord"`` within 0 ... +1.05 %. The chord is the default: equally
+accurate, and its continuous f lets Newton converge where the tangent's jumps stop it (chapter 08, Janney beam
+with the crack-spacing band: 8 + 8 elements reached 6.9 mm with "tangent", 32 mm with "chord"; chapter 11's h
+= 0.25 m scene: "tangent" stalls, "chord" converges).
 
 Integration along the element (option ``integration``): ``"selective"`` (default, paper §10): membrane and
 bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in shear for thin strips);
@@ -55,7 +55,7 @@ bending with 3-point Gauss, shear with 2-point Gauss; ``"full"`` (3/3, locks in 
 layer histories: with selective integration point 0-2 are the axial (membrane/bending) points and 3-4 the
 shear points, so ``n_ip = 5``; when both rules coincide one set serves both (n_ip = n).
 
-Array layout (see ``ssi.protocol``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
+Array layout (see ``ssi.core.protocol``): edofs (n_el, 9) = (u, w, alpha) of nodes (left, mid, right);
 coords (n_el, 3, 2); state (n_el, n_ip, n_layer, N_LAYER_HIST) = the layer laws' history variables (total
 formulation: strains come from ``u_el``; ``du_el`` is not used).
 """
@@ -63,6 +63,9 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
+from ..core.protocol import CONSISTENT, K0_MATRIX
+from ..core.quadrature import gauss_legendre
+from ..core.shapes import lagrange3, lagrange3_into
 from ..materials.layer_laws import (
     CONCRETE,
     N_LAYER_CONSTANTS,
@@ -72,10 +75,7 @@ from ..materials.layer_laws import (
     layer_constants,
     layer_update_with,
 )
-from ..protocol import CONSISTENT, K0_MATRIX
-from ..quadrature import gauss_legendre
-from ..section import Section
-from ..shapes import lagrange3, lagrange3_into
+from .section import Section
 
 # the layer laws' tangent flag where the kernels always want the tangent: int64, not the literal 1, because
 # numba compiles one more copy of every layer law for a literal flag (Python calls pass int64)
@@ -481,7 +481,7 @@ class PlateStrip:
     coords : (n_el, 3, 2) nodal (x, z) of the nodes (left, middle, right) on the reference surface; the strip
         is horizontal (x increasing along each element; z may differ between elements, not within one)
     edofs : (n_el, 9) global DOFs, (u, w, alpha) per node (``Model.element_dofs(conn)`` for 3-DOF nodes)
-    section : :class:`ssi.section.Section` (layers: z_mid, h, kind, params, carries_shear)
+    section : :class:`ssi.elements.section.Section` (layers: z_mid, h, kind, params, carries_shear)
     kappa : shear correction factor on D2 (default 5/6; kappa = 1 is the paper's literal eq. 4.4)
     integration : "selective" (default, 3-pt bending / 2-pt shear), "full" (3/3), "reduced" (2/2) or
         (n_axial, n_shear)
@@ -499,7 +499,7 @@ class PlateStrip:
 
     Notes
     -----
-    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.protocol``.
+    ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.core.protocol``.
     Bottom face for the interface element: ``z_bottom`` (< 0, relative to the nodes) and ``bottom_offset =
     -z_bottom`` so that u_g = u_b + bottom_offset * alpha_b (eq. 6.1); ``thickness`` is the section depth.
     """
@@ -525,7 +525,10 @@ class PlateStrip:
                 f"{self.edofs.shape}"
             )
         if not isinstance(section, Section):
-            raise ValueError("section must be an ssi.section.Section (see ssi.section.layered / rc_section)")  # noqa: TRY004
+            raise ValueError(
+                "section must be an ssi.elements.section.Section "
+                "(see ssi.elements.section.layered / rc_section)"
+            )  # noqa: TRY004
         if not 0.0 < kappa <= 1.0:
             raise ValueError(f"kappa must be in (0, 1], got {kappa}")
         x = self.coords[:, :, 0]

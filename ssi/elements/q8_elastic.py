@@ -21,8 +21,8 @@ Layout: coords (n_el, 8, 2), E and nu (n_el,), dn_ref (n_ip, 8, 2), weights (n_i
 import numpy as np
 from numba import njit, prange
 
-from ..quadrature import gauss_2d
-from ..shapes import serendipity8
+from ..core.quadrature import gauss_2d
+from ..core.shapes import serendipity8
 
 __all__ = ["q8_elastic_assemble", "q8_elastic_stiffness", "reference_derivatives"]
 
@@ -140,7 +140,7 @@ def q8_elastic_stiffness(coords, E, nu, n_gauss=2, out=None):
 
     Parameters
     ----------
-    coords : (n_el, 8, 2) nodal coordinates (node order of ``ssi.shapes.serendipity8``)
+    coords : (n_el, 8, 2) nodal coordinates (node order of ``ssi.core.shapes.serendipity8``)
     E, nu : scalars or (n_el,) Young's modulus [Pa] and Poisson's ratio of each element
     n_gauss : 2 (reduced, the paper's) or 3 (full)
     out : optional (n_el, 16, 16) float64 C-contiguous buffer to fill (reused between calls)

@@ -13,12 +13,12 @@ import functools
 import numpy as np
 from numba import njit
 
-from ..assembly import scatter_matrix
+from ..core.assembly import scatter_matrix
+from ..core.protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS
+from ..core.quadrature import gauss_2d
+from ..core.shapes import serendipity8
 from ..materials.mohr_coulomb import N_MC_WORK_ROWS
 from ..materials.soil_laws import N_SOIL_HIST, elastic_matrix, law_constants, laws_used, soil_update_among
-from ..protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS
-from ..quadrature import gauss_2d
-from ..shapes import serendipity8
 from .q8_elastic import q8_elastic_assemble, q8_elastic_stiffness
 
 N_STRESS = 4
@@ -301,7 +301,7 @@ class SoilQ8:
 
     Parameters
     ----------
-    coords : (n_el, 8, 2) nodal coordinates, node order of ``ssi.shapes.serendipity8``
+    coords : (n_el, 8, 2) nodal coordinates, node order of ``ssi.core.shapes.serendipity8``
     edofs : (n_el, 16) global DOFs (u, w per node)
     el_mat : (n_el,) material index of each element
     kinds : (n_mat,) law kinds of ``ssi.materials.soil_laws``

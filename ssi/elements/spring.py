@@ -21,7 +21,7 @@ full Newton quadratic (``tests/test_solver.py`` checks them by finite difference
 import numpy as np
 from numba import njit
 
-from ..protocol import CONSISTENT, K0_MATRIX
+from ..core.protocol import CONSISTENT, K0_MATRIX
 
 __all__ = ["ELASTOPLASTIC", "LINEAR", "TANH", "Spring", "spring_force"]
 

@@ -67,7 +67,7 @@ import math
 
 from numba import njit
 
-from ..protocol import K0_MATRIX
+from ..core.protocol import K0_MATRIX
 
 (
     P_E0,

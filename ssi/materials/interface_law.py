@@ -29,7 +29,7 @@ The update (one call per integration point and iteration), in numbered steps
    sig_n further into compression, so the return never crosses the apex sig_n = c / tan(phi).
    When the trial came from a re-closing step (1), the tangent is chained with d t_tr / d dgap.
 
-``tangent == K0_MATRIX`` (:mod:`ssi.protocol`) returns D = De in every state: the K0 of modified
+``tangent == K0_MATRIX`` (:mod:`ssi.core.protocol`) returns D = De in every state: the K0 of modified
 Newton-Raphson (paper §8).
 
 Parameter vector ``params`` (build it with :func:`interface_params`), indices ``P_*``:
@@ -44,7 +44,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..protocol import K0_MATRIX
+from ..core.protocol import K0_MATRIX
 
 __all__ = [
     "N_HIST",

@@ -39,7 +39,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..protocol import K0_MATRIX
+from ..core.protocol import K0_MATRIX
 
 # branch codes stored in hist[1]
 B_ELASTIC = 0

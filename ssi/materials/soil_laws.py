@@ -30,8 +30,15 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..protocol import CONSISTENT
-from ..validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
+from ..core.protocol import CONSISTENT
+from ..core.validate import (
+    check_bool,
+    check_choice,
+    check_instance,
+    check_int,
+    check_optional_real,
+    check_real,
+)
 from .mohr_coulomb import (
     N_MC_CONSTANTS,
     N_MC_WORK_ROWS,
@@ -129,8 +136,8 @@ def soil_update(kind, params, deps, sig_old, hist_old, sig_new, hist_new, D, tan
     """Update the stress of one point for the strain increment ``deps``; return a status code.
 
     Writes ``sig_new`` (4,), ``hist_new`` (N_SOIL_HIST,) and ``D`` (4, 4): the elastic matrix when
-    ``tangent == K0_MATRIX`` (0, :mod:`ssi.protocol`), else the consistent tangent. Status 0 = elastic, 1 =
-    plastic, < 0 = failure.
+    ``tangent == K0_MATRIX`` (0, :mod:`ssi.core.protocol`), else the consistent tangent. Status 0 = elastic, 1
+    = plastic, < 0 = failure.
     """
     constants = np.zeros(N_MC_CONSTANTS)
     law_constants_of(kind, params, constants)

@@ -17,7 +17,7 @@ Return mapping (one call, from the committed eps_p):
 
 from numba import njit
 
-from ..protocol import K0_MATRIX
+from ..core.protocol import K0_MATRIX
 
 S_ES, S_NU, S_FY, S_EH = range(4)
 N_STEEL_PARAMS = 4

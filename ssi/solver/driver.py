@@ -42,13 +42,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..core.linsolve import BACKENDS, Factorization
+from ..core.model import Model, System
+from ..core.protocol import CONSISTENT
+from ..core.solution import COMPLETED, LIMIT_LOAD, STOPPED, Result  # noqa: F401 (Result and the statuses live there)
+from ..core.validate import check_bool, check_choice, check_int, check_real
 from .lbfgs import lbfgs_first_loop, lbfgs_second_loop
-from .linsolve import BACKENDS, Factorization
-from .model import Model, System
 from .progress import SolverProgress, announce_compilation, log, solver_progress
-from .protocol import CONSISTENT
-from .solution import COMPLETED, LIMIT_LOAD, STOPPED, Result  # noqa: F401 (Result and the statuses live there)
-from .validate import check_bool, check_choice, check_int, check_real
 
 METHODS = ("bfgs", "modified", "full")
 STEPPINGS = ("auto", "fixed")
@@ -1047,7 +1047,7 @@ def _point_codes(group, state):
     if callable(status):
         return np.asarray(status(state)).ravel(), GROUP_ACTIVITY["interface"]
     if group.name == "soil_q8":
-        from .elements.soil_q8 import N_STRESS
+        from ..elements.soil_q8 import N_STRESS
 
         return (state[..., N_STRESS + 1] > 0).astype(int).ravel(), GROUP_ACTIVITY["soil_q8"]
     return None

@@ -17,9 +17,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .materials.layer_laws import CONCRETE, STEEL
-from .materials.rc import concrete_params, designer_concrete, steel_params
-from .scene import (
+from ..elements.section import homogeneous, rc_section
+from ..materials.layer_laws import CONCRETE, STEEL
+from ..materials.rc import concrete_params, designer_concrete, steel_params
+from ..scene import (
     ColumnLoad,
     Contact,
     Excavation,
@@ -31,8 +32,7 @@ from .scene import (
     StripWeight,
     SurfacePressure,
 )
-from .section import homogeneous, rc_section
-from .solver import NonConvergence, Settings
+from ..solver import NonConvergence, Settings
 
 
 def rc_strip(depth: float = 0.5, fc: float = 30e6, fy: float = 500e6, area: float = 1.0e-3):

@@ -3,8 +3,8 @@
 Chapters call :func:`check` (record a claim and assert it), :func:`record` (record a number that is reported
 but not asserted) or :func:`record_empty` (a reference slot still waiting for data); each row
 lands in its own file under ``figures/report.d/`` so that chapters can run in any order or in parallel.
-``python -m ssi.report`` merges them into ``figures/report.csv`` (``id,metric,value,tolerance,status``) and
-prints it. A FAIL row is a result, not a crash: the command still succeeds and names the FAIL rows (a
+``python -m ssi.lab.report`` merges them into ``figures/report.csv`` (``id,metric,value,tolerance,status``)
+and prints it. A FAIL row is a result, not a crash: the command still succeeds and names the FAIL rows (a
 chapter's own asserts are what stop ``make reproduce``).
 """
 
@@ -26,7 +26,7 @@ def _row_file(row_id: str):
 def _write(row_id, metric, value, tolerance, status):
     if not row_id.replace("_", "").isalnum():
         raise ValueError(f"report id must be alphanumeric with underscores, got {row_id!r}")
-    from .results import atomic_path
+    from ..io.results import atomic_path
 
     # written whole or not at all: `make test` runs chapters in parallel processes, and a row file cut short
     # by a crash must not be merged as a truncated row

@@ -7,7 +7,7 @@ full meshes. ``SSI_ROOT`` overrides the project root (default: the folder above 
 import os
 from pathlib import Path
 
-ROOT = Path(os.environ.get("SSI_ROOT", Path(__file__).resolve().parent.parent))
+ROOT = Path(os.environ.get("SSI_ROOT", Path(__file__).resolve().parents[2]))
 FIGURES = ROOT / "figures"
 RESULTS = ROOT / "results"
 REFERENCE_DATA = ROOT / "reference_data"

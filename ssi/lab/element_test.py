@@ -9,12 +9,12 @@ the finite-element answer is exact: the element's law (drained or undrained "A" 
 
 import numpy as np
 
-from .elements.soil_q8 import SoilQ8
-from .materials.soil_laws import material_table
-from .mesh import structured_q8
-from .model import Model
-from .solver import Settings, run
-from .validate import check_array, check_int, check_real
+from ..core.mesh import structured_q8
+from ..core.model import Model
+from ..core.validate import check_array, check_int, check_real
+from ..elements.soil_q8 import SoilQ8
+from ..materials.soil_laws import material_table
+from ..solver import Settings, run
 
 
 def biaxial_compression(layer, sig0, delta=0.02, n_steps=40, settings=None) -> dict:

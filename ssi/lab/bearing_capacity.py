@@ -19,14 +19,21 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .elements.soil_q8 import SoilQ8
-from .materials.soil_laws import mohr_coulomb_params, von_mises_params
-from .mesh import structured_q8
-from .model import Model
-from .scene import BuiltScene, MeshSize, RigidFooting, Scene, Settlement, SoilLayer
-from .solver import NonConvergence, Settings, run
-from .supports import fix_block, soil_group, surface_pressure
-from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
+from ..core.mesh import structured_q8
+from ..core.model import Model
+from ..core.validate import (
+    check_bool,
+    check_choice,
+    check_instance,
+    check_int,
+    check_optional_real,
+    check_real,
+)
+from ..elements.soil_q8 import SoilQ8
+from ..elements.supports import fix_block, soil_group, surface_pressure
+from ..materials.soil_laws import mohr_coulomb_params, von_mises_params
+from ..scene import BuiltScene, MeshSize, RigidFooting, Scene, Settlement, SoilLayer
+from ..solver import NonConvergence, Settings, run
 
 
 def prandtl(c, phi_deg, q=0.0):

@@ -208,7 +208,7 @@ SHEAR_LAG_SPEC = dict(tau_bar=Real(lo=0.0, hi=100e3), EA=POSITIVE, kt=POSITIVE, 
 
 # ---- the perturbed calls -----------------------------------------------------------------------------------
 def _section(**kw):
-    from .section import homogeneous
+    from ..elements.section import homogeneous
 
     return homogeneous(**{**BASE_SECTION, **kw})
 
@@ -225,8 +225,8 @@ def run_scene(
     settings_kw=None,
 ):
     """Build and solve the base scene with the given overrides of each component; returns the result."""
-    from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-    from .solver import Settings
+    from ..scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+    from ..solver import Settings
 
     parts = dict(
         layers=[SoilLayer(**{**BASE_LAYER, **(layer or {})})],
@@ -246,7 +246,7 @@ def run_scene(
 
 
 def _run_section(**fields):
-    from .section import Section
+    from ..elements.section import Section
 
     base = _section()
     arrays = {
@@ -504,9 +504,9 @@ def classify_invalid(case: InvalidCase, timeout: float = CASE_TIMEOUT) -> tuple[
 @st.composite
 def valid_scenes(draw):
     """Strategy of small valid scenes: (Scene, n_steps, Settings)."""
-    from .scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-    from .section import homogeneous
-    from .solver import Settings
+    from ..elements.section import homogeneous
+    from ..scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+    from ..solver import Settings
 
     h_fine = draw(st.sampled_from([0.5, 1.0]))
     half_b = h_fine * draw(st.integers(1, 2))
@@ -561,7 +561,7 @@ def valid_scenes(draw):
 
 def classify_valid(case, timeout: float = 4 * CASE_TIMEOUT) -> tuple[str, str]:
     """(outcome, detail) of one valid scene: solved / nonconvergence / not_finite / other / timeout."""
-    from .solver import NonConvergence
+    from ..solver import NonConvergence
 
     scene, n_steps, solver = case
     try:

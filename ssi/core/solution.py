@@ -1,6 +1,6 @@
-"""The result of an analysis: its converged steps, linear (:meth:`ssi.model.Model.solve_linear`, rows
+"""The result of an analysis: its converged steps, linear (:meth:`ssi.core.model.Model.solve_linear`, rows
 [initial, solved]) or incremental (:func:`ssi.solver.run`, one row per converged step), with the solver's
-diagnostics. :class:`ssi.scene.SceneResult` is a view of one; ``ssi.results`` writes and reads it.
+diagnostics. :class:`ssi.scene.SceneResult` is a view of one; ``ssi.io.results`` writes and reads it.
 
 Below the model and the solver: it imports neither (``model`` is only read through ``Model.dof``).
 """

@@ -1,17 +1,17 @@
 """Supports and loads of a hand-built soil-block model: the glue every chapter and test that builds a
-:class:`ssi.model.Model` by hand used to write again.
+:class:`ssi.core.model.Model` by hand used to write again.
 
 * :func:`soil_group` -- the Q8 soil group of a mesh, added to the model (materials as ``(kind, params)``).
 * :func:`fix_block` -- the soil block's standard supports: bottom fixed (u = w = 0), sides on vertical
   rollers (u = 0).
 * :func:`surface_pressure` -- a uniform pressure on a stretch of a horizontal mesh line, as consistent
-  nodal forces (:func:`ssi.mesh.surface_pressure_forces`, the L/6, 4L/6, L/6 rule of a quadratic edge).
+  nodal forces (:func:`ssi.core.mesh.surface_pressure_forces`, the L/6, 4L/6, L/6 rule of a quadratic edge).
 * :func:`edge_forces` -- consistent nodal forces of any traction on curved quadratic edges (Gauss).
 * :func:`plate_strip_model`, :func:`simply_supported_strip`, :func:`cantilever_strip` -- a plate strip
   alone on its supports (the element checks of chapter 02).
 * :func:`spring_chain` -- nonlinear springs in series (the solver's closed-form checks, chapter 06); it lives
-  here, not beside the spring element, because it builds a :class:`ssi.model.Model` (elements sit below the
-  model and do not import it).
+  here, not beside the spring element, because it builds a :class:`ssi.core.model.Model` (elements sit below
+  the model and do not import it).
 
 :class:`ssi.scene.Scene` builds its models with the same supports; these helpers are for the models that a
 chapter or a test builds itself.
@@ -23,14 +23,14 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from .elements.plate import add_plate_strip
-from .elements.soil_q8 import SoilQ8
-from .elements.spring import LINEAR, Spring
-from .materials.soil_laws import material_table
-from .mesh import SoilMesh, surface_pressure_forces
-from .model import Model
-from .quadrature import gauss_legendre
-from .shapes import lagrange3
+from ..core.mesh import SoilMesh, surface_pressure_forces
+from ..core.model import Model
+from ..core.quadrature import gauss_legendre
+from ..core.shapes import lagrange3
+from ..materials.soil_laws import material_table
+from .plate import add_plate_strip
+from .soil_q8 import SoilQ8
+from .spring import LINEAR, Spring
 
 __all__ = [
     "cantilever_strip",
@@ -51,7 +51,7 @@ def soil_group(model, mesh: SoilMesh, materials: Sequence, ids=None, el_mat=0, x
     :func:`ssi.materials.soil_laws.material_table`; ``el_mat``: each element's material index (an int for
     one material, or ``mesh.el_layer``); ``ids``: the model node ids of the mesh nodes (default: the mesh
     nodes are the model's first nodes, ``model.add_nodes(mesh.xy, 2)`` on an empty model); ``xy``: the
-    nodal coordinates if not ``mesh.xy`` (a distorted copy, :func:`ssi.verify.distorted_q8_mesh`).
+    nodal coordinates if not ``mesh.xy`` (a distorted copy, :func:`ssi.lab.verify.distorted_q8_mesh`).
     ``options`` go to :class:`ssi.elements.soil_q8.SoilQ8` (``n_gauss``, ``unit_weight``, ``initial_stress``,
     ...)."""
     kinds, params = material_table(materials)
@@ -75,8 +75,8 @@ def surface_pressure(
     model, mesh: SoilMesh, x0: float, x1: float, p: float, z: float = 0.0, ids=None, dead: bool = False
 ):
     """Load the mesh line z from x0 to x1 with a uniform pressure ``p`` [Pa] (positive down): the
-    consistent nodal forces of :func:`ssi.mesh.surface_pressure_forces`, as a reference load (scaled by the
-    load factor) or, with ``dead``, a dead load. ``ids``: the model node ids of the mesh nodes. Returns
+    consistent nodal forces of :func:`ssi.core.mesh.surface_pressure_forces`, as a reference load (scaled by
+    the load factor) or, with ``dead``, a dead load. ``ids``: the model node ids of the mesh nodes. Returns
     ``(model node ids, nodal force per unit pressure [m])``."""
     nodes, f = surface_pressure_forces(mesh, x0, x1, z)
     nodes = nodes if ids is None else np.asarray(ids)[nodes]

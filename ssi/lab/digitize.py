@@ -24,7 +24,7 @@ slot* (columns of length 0).
 
 Command line::
 
-    python -m ssi.digitize export.csv out.csv --columns curve,tau_bar_kPa,displacement_mm \\
+    python -m ssi.lab.digitize export.csv out.csv --columns curve,tau_bar_kPa,displacement_mm \\
         --x-cal 112,0,598,60 --y-cal 410,0,52,5 --swap --meta-from reference_data/zongze1995_fig13a.csv
 
 (``--x-cal px1,val1,px2,val2[,log]``; ``--swap`` when the figure's horizontal axis is the reference file's
@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .results import atomic_path
+from ..io.results import atomic_path
 
 __all__ = [
     "REQUIRED_META",
@@ -249,7 +249,7 @@ def convert(
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m ssi.digitize", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m ssi.lab.digitize", description=__doc__.split("\n\n")[0])
     ap.add_argument("export", help="the digitiser's CSV export")
     ap.add_argument("output", help="reference CSV to write")
     ap.add_argument("--columns", default="curve,x,y", help="names of the curve and the two value columns")
@@ -264,7 +264,9 @@ def main(argv=None) -> int:
     meta = dict(read_reference(a.meta_from)[0]) if a.meta_from else {}
     if a.meta_from:
         meta["trust"] = "C (hand-digitised from the figure)"
-        meta["how_obtained"] = f"digitised with a plot digitiser, converted by ssi.digitize from {a.export}"
+        meta["how_obtained"] = (
+            f"digitised with a plot digitiser, converted by ssi.lab.digitize from {a.export}"
+        )
     for k in REQUIRED_META:
         v = getattr(a, k)
         if v is not None:

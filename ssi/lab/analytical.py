@@ -17,7 +17,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from .validate import check_array, check_real
+from ..core.validate import check_array, check_real
 
 __all__ = [
     "hetenyi_deflection",

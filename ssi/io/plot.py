@@ -1,9 +1,9 @@
 """Standard figures of a :class:`ssi.scene.SceneResult`: each one call that returns the matplotlib Figure.
 
-    fig = ssi.plot.contact(result)            # at the last step; k= selects another step
+    fig = ssi.io.plot.contact(result)            # at the last step; k= selects another step
     fig.savefig("contact.png")
 
-Every function takes the result (live or read back with :func:`ssi.results.read_result`), the step ``k``
+Every function takes the result (live or read back with :func:`ssi.io.results.read_result`), the step ``k``
 (default the last converged one) and an optional ``ax`` to draw into (then the figure of that axes is
 returned). Lengths are plotted in m, settlements in mm, stresses in kPa or MPa, forces in kN/m.
 """

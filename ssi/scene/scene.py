@@ -43,7 +43,7 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **A rigid footing and the half model**: ``foundation`` may be a :class:`RigidFooting` (no plate, no
   interface: the soil nodes under it pushed by a ``Settlement``, rough or smooth), and ``symmetric=True``
   models only the half x >= 0 of a scene symmetric about x = 0 (u = 0 on the axis) -- the bearing-capacity
-  scenes of ``ssi.bearing_capacity`` are such scenes.
+  scenes of ``ssi.lab.bearing_capacity`` are such scenes.
 * **Phases that change the soil**: ``Phase.excavate`` removes :class:`Excavation` regions (the forces the
   removed soil exerted fall to zero over the phase), ``Phase.drainage`` switches a layer between drained and
   undrained_A; ``water_table < 0`` is free water above the ground (pore pressure, not effective stress). A
@@ -52,22 +52,34 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 
 import math
 import warnings
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from itertools import pairwise
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .assembly import scatter_vector
-from .elements.interface import V_SIG, V_TAU, Interface6, add_interface
-from .elements.plate import INTEGRATIONS, PlateStrip
-from .elements.soil_q8 import SoilQ8
-from .materials.concrete import P_E0, P_FR
-from .materials.interface_law import interface_params
-from .materials.layer_laws import CONCRETE, STEEL
-from .materials.layer_laws import ELASTIC as LAYER_ELASTIC
-from .materials.soil_laws import (
+from ..core.assembly import scatter_vector
+from ..core.mesh import MAX_END_GRADING, foundation_contact, soil_block, surface_pressure_forces
+from ..core.model import Model, System
+from ..core.shapes import lagrange3
+from ..core.solution import Result
+from ..core.validate import (
+    check_bool,
+    check_choice,
+    check_instance,
+    check_int,
+    check_optional_real,
+    check_real,
+)
+from ..elements.interface import V_SIG, V_TAU, Interface6, add_interface
+from ..elements.plate import INTEGRATIONS, PlateStrip
+from ..elements.section import Section
+from ..elements.soil_q8 import SoilQ8
+from ..elements.supports import fix_block
+from ..materials.concrete import P_E0, P_FR
+from ..materials.interface_law import interface_params
+from ..materials.layer_laws import CONCRETE, STEEL
+from ..materials.layer_laws import ELASTIC as LAYER_ELASTIC
+from ..materials.soil_laws import (
     DRAINAGE,
     GAMMA_W,
     SoilLayer,
@@ -75,17 +87,7 @@ from .materials.soil_laws import (
     material_table,
     pore_pressure,
 )
-from .mesh import MAX_END_GRADING, foundation_contact, soil_block, surface_pressure_forces
-from .model import Model, System
-from .section import Section
-from .shapes import lagrange3
-from .solution import Result
-from .solver import NonConvergence, Settings, run
-from .supports import fix_block
-from .validate import check_bool, check_choice, check_instance, check_int, check_optional_real, check_real
-
-if TYPE_CHECKING:  # for annotations only: ssi.estimate imports this module
-    from .estimate import TargetResult
+from ..solver import NonConvergence, Settings, run
 
 
 @dataclass(frozen=True)
@@ -126,8 +128,8 @@ class Foundation:
             raise ValueError(f"crack_band must be 'spacing', 'point' or None, got {self.crack_band!r}")
         from dataclasses import replace
 
-        from .materials.rc import with_plane_strain
-        from .section import with_crack_spacing_band
+        from ..elements.section import with_crack_spacing_band
+        from ..materials.rc import with_plane_strain
 
         sec = self.section
         if not np.any(sec.kind == CONCRETE):
@@ -370,8 +372,8 @@ class Phase:
 class MeshSize:
     """Element size ``h_fine`` [m] under the foundation, ``h_coarse`` [m] far from it, ``growth`` [-] ratio of
     neighbouring sizes, ``n_gauss`` 2 (reduced) or 3 (full) Gauss points per direction, ``end_grading``
-    [-] exponent (1 to ``ssi.mesh.MAX_END_GRADING``) grading the elements under the foundation towards its
-    ends (1: even; see ``ssi.mesh.foundation_lines``)."""
+    [-] exponent (1 to ``ssi.core.mesh.MAX_END_GRADING``) grading the elements under the foundation towards
+    its ends (1: even; see ``ssi.core.mesh.foundation_lines``)."""
 
     h_fine: float = 0.25
     h_coarse: float = 2.0
@@ -416,7 +418,7 @@ class Scene:
     made through the layer's ``K0`` (default Jaky's 1 - sin phi, the ratio of a soil consolidated under its
     own weight): ``K0=1`` starts the soil isotropic, on the hydrostatic axis and as far from the
     Mohr--Coulomb surface as that mean stress allows (the start of the rigid-footing bearing-capacity scenes,
-    :func:`ssi.bearing_capacity.rigid_footing`).
+    :func:`ssi.lab.bearing_capacity.rigid_footing`).
     """
 
     width: float
@@ -900,8 +902,8 @@ def _check_integration(name, value):
 
 
 def _describe(scene):
-    """The scene record of ``model.info["scene"]``: :func:`ssi.scene_file.scene_to_dict` (one home for the
-    plain form of a scene; every load tagged with its class name under ``type``)."""
+    """The scene record of ``model.info["scene"]``: :func:`ssi.scene.scene_file.scene_to_dict` (one home for
+    the plain form of a scene; every load tagged with its class name under ``type``)."""
     from .scene_file import scene_to_dict
 
     return scene_to_dict(scene)
@@ -925,7 +927,7 @@ def _run_phase(model, load_factors, settings, start=None, loads=None):
 class PhaseNonConvergence(NonConvergence):
     """A phase of a phased solve did not converge. ``scene_result`` is a :class:`SceneResult` of every
     completed phase plus the failing phase's converged steps (its record's ``result`` has status "stopped";
-    ``ssi.results.write_result`` writes it with ``stop=report``); ``result`` is the failing phase's partial
+    ``ssi.io.results.write_result`` writes it with ``stop=report``); ``result`` is the failing phase's partial
     solver result (as for any :class:`~ssi.solver.NonConvergence`); ``report`` is the solver's report with
     ``phase`` (the failing phase's name) and ``completed_phases`` ("name (steps first-last)") added."""
 
@@ -956,7 +958,7 @@ def _phase_record(name, records, result):
 
 
 def join_phases(model: Model, records: list[dict]) -> Result:
-    """The one :class:`~ssi.solution.Result` of a phased solve from its phases' ``records`` (``name``,
+    """The one :class:`~ssi.core.solution.Result` of a phased solve from its phases' ``records`` (``name``,
     ``first``, ``last``, ``result``; the geostatic phase first): on the phase time (the geostatic phase's
     first and last rows at 0, phase i's rows at i - 1 + its load factor), each phase's rows after its first
     (its first is the previous phase's last); the per-row records come along, the counts and times are
@@ -1165,11 +1167,7 @@ class BuiltScene:
         self,
         n_steps: int | None = None,
         settings: Settings | None = None,
-        *,
-        estimate_error: bool = False,
-        target_error: float | None = None,
-        quantities: Sequence[str] = ("max_settlement",),
-    ) -> "SceneResult | TargetResult":
+    ) -> "SceneResult":
         """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear and
         has no phases.
 
@@ -1185,30 +1183,11 @@ class BuiltScene:
         ``out.phases`` lists each phase's name, first and last step index and solver result, and
         ``out.solver_result`` joins their rows (:func:`join_phases`).
 
-        ``estimate_error=True``: also re-solve systematically refined copies (mesh h/2, steps x2, layers x2)
-        and attach a Richardson estimate of each headline quantity's error as ``out.error_estimate``
-        (:func:`ssi.estimate.solve_with_error`). ``target_error`` (relative): refine until the estimated
-        error of ``quantities`` is below it and return that :class:`ssi.estimate.TargetResult`
-        (:func:`ssi.estimate.solve_to_target`; it says so when the refinements are not asymptotic)."""
+        An error estimate, or a refinement to a target error, is a study above the scene:
+        :func:`ssi.studies.estimate.estimate`, :func:`ssi.studies.estimate.solve_to_target`."""
         if n_steps is not None:
             check_int("n_steps", n_steps, lo=1)
         check_instance("settings", settings, Settings, optional=True)
-        if target_error is not None:
-            from .estimate import solve_to_target
-
-            return solve_to_target(
-                self.scene,
-                check_real("target_error", target_error, lo=0.0, hi=1.0, lo_open=True),
-                quantities,
-                n_steps,
-                settings,
-            )
-        if estimate_error:
-            from .estimate import solve_with_error
-
-            out, estimate = solve_with_error(self.scene, n_steps, settings)
-            out.error_estimate = estimate
-            return out
         if self.scene.phases:
             return self._solve_phases(n_steps, settings)
         if self.is_linear:
@@ -1393,7 +1372,8 @@ class BuiltScene:
 @dataclass
 class SceneResult:
     """What a foundation engineer reads off a scene, at step ``k`` (default: the last): a view of one
-    :class:`~ssi.solution.Result`, ``solver_result``, whose rows (load_factor, u, f_int, states) it reads.
+    :class:`~ssi.core.solution.Result`, ``solver_result``, whose rows (load_factor, u, f_int, states) it
+    reads.
 
     Of a linear scene that result is :meth:`Model.solve_linear`'s (rows [unloaded, solved]); of a phased
     solve it is its phases' rows joined on the phase time (:func:`join_phases`), and ``phases`` lists each
@@ -1533,7 +1513,7 @@ class SceneResult:
         """Stress [Pa] in every steel layer at the strip's axial points at step ``k``: ``x`` (n_el, n_ax) [m],
         ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
         ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
-        from .materials.steel import S_FY
+        from ..materials.steel import S_FY
 
         layers = self.plate_layers(k)
         steel = layers["steel"]
@@ -1578,14 +1558,14 @@ class SceneResult:
     def plastic_points(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
         surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
-        from .elements.soil_q8 import N_STRESS
+        from ..elements.soil_q8 import N_STRESS
 
         return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
 
     def plastic_strain(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
         (history slot 0; zero for elastic layers)."""
-        from .elements.soil_q8 import N_STRESS
+        from ..elements.soil_q8 import N_STRESS
 
         return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
 

@@ -56,10 +56,11 @@ one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of :class:`ssi.
     contact = { kn = 1e10, kt = 0.0 }
 
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
-:func:`ssi.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.section.rc_section` with ``bars = [[z, As],
-...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``, see
-:func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.section.Section` fields themselves (z_mid,
-h, kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files store.
+:func:`ssi.elements.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.elements.section.rc_section` with
+``bars = [[z, As], ...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``,
+see :func:`rc_section_from`) or ``{layers = {...}}``: the :class:`ssi.elements.section.Section` fields
+themselves (z_mid, h, kind, params, carries_shear, z_bottom, z_top, labels) -- the exact form result files
+store.
 """
 
 import dataclasses
@@ -68,7 +69,9 @@ from pathlib import Path
 
 import numpy as np
 
-from . import section as section_mod
+from ..elements import section as section_mod
+from ..elements.section import Section
+from ..solver import Settings
 from .scene import (
     ColumnLoad,
     Contact,
@@ -85,8 +88,6 @@ from .scene import (
     StripWeight,
     SurfacePressure,
 )
-from .section import Section
-from .solver import Settings
 
 UNITS = {
     "Scene": {
@@ -356,11 +357,12 @@ def section_from_dict(data: dict, where: str = "section") -> Section:
 
 
 def rc_section_from(args: dict, where: str = "rc") -> Section:
-    """:func:`ssi.section.rc_section` from plain values: ``depth``, ``bars``, ``n_concrete``, ``concrete =
-    {fc, E0?, eps_c?, fr?, Gf?, ls}`` (missing ones from :func:`ssi.materials.rc.designer_concrete`) and
+    """:func:`ssi.elements.section.rc_section` from plain values: ``depth``, ``bars``, ``n_concrete``,
+    ``concrete = {fc, E0?, eps_c?, fr?, Gf?, ls}`` (missing ones from
+    :func:`ssi.materials.rc.designer_concrete`) and
     ``steel = {fy, Es?, EH?}``; the concrete's yield strain for shear retention is fy/Es."""
-    from .materials.layer_laws import CONCRETE, STEEL
-    from .materials.rc import concrete_params, designer_concrete, steel_params
+    from ..materials.layer_laws import CONCRETE, STEEL
+    from ..materials.rc import concrete_params, designer_concrete, steel_params
 
     _check_keys(args, {"depth", "bars", "concrete", "steel", "n_concrete", "z_ref"}, where)
     conc = dict(args["concrete"])

@@ -1,12 +1,12 @@
 """Strain-compatibility section analysis and the curvature-integral deflection of a determinate beam.
 
 Two section analyses live here. :func:`moment_curvature` is the *discrete* section of the layered strip: the
-same layer laws (``ssi.materials.layer_laws.layer_update``), the same layers (``ssi.section.Section``) and the
-same self-bending term, but none of the element code -- it checks the element along the span.
-:func:`layer_free_moment_curvature` forgets the layers: it integrates the continuous stress profile through
-the depth by adaptive quadrature, so it also sees the error of the layer rule (chapter 02, row
-``section_selfbending``; chapter 08, ``fig12_curvature_integral``). For the discrete one: Plane sections
-remain plane,
+same layer laws (``ssi.materials.layer_laws.layer_update``), the same layers
+(``ssi.elements.section.Section``) and the same self-bending term, but none of the element code -- it checks
+the element along the span. :func:`layer_free_moment_curvature` forgets the layers: it integrates the
+continuous stress profile through the depth by adaptive quadrature, so it also sees the error of the layer
+rule (chapter 02, row ``section_selfbending``; chapter 08, ``fig12_curvature_integral``). For the discrete
+one: Plane sections remain plane,
 
     eps(z) = eps0 - z kap,      N = sum h_n sig_n = 0 (no axial force in a simply supported beam),
     M = -sum h_n z_n sig_n + sum e_n h_n^3/12 kap      (sagging positive, per unit width),
@@ -34,9 +34,9 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .materials.concrete import H_EMAX, H_XMAX, P_LS
-from .materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
-from .protocol import CONSISTENT
+from ..core.protocol import CONSISTENT
+from ..materials.concrete import H_EMAX, H_XMAX, P_LS
+from ..materials.layer_laws import CONCRETE, N_LAYER_HIST, layer_update
 from .section import Section
 
 __all__ = [
@@ -203,7 +203,7 @@ def moment_curvature(
     if not kap_max > 0.0 or int(n_steps) < 2:
         raise ValueError(f"need kap_max > 0 and n_steps >= 2, got {kap_max}, {n_steps}")
     params = _params(section, ls)
-    from .materials.layer_laws import STEEL
+    from ..materials.layer_laws import STEEL
 
     steel = np.flatnonzero(section.kind == STEEL)
     e0, _ = section.initial_moduli()
@@ -281,8 +281,8 @@ def _material_intervals(section: Section, params):
 
 def _kink_strains(kind, prm):
     """Strains at which a law's monotonic envelope has a kink or a jump (breakpoints for quadrature)."""
-    from .materials.concrete import C_EPS_CD, C_EPS_R, C_EPS_U, P_EPS_CU, P_EPS_Y, concrete_constants
-    from .materials.layer_laws import STEEL
+    from ..materials.concrete import C_EPS_CD, C_EPS_R, C_EPS_U, P_EPS_CU, P_EPS_Y, concrete_constants
+    from ..materials.layer_laws import STEEL
 
     if kind == CONCRETE:
         const = concrete_constants(prm)
@@ -296,7 +296,7 @@ def _kink_strains(kind, prm):
 
 def _softening_meets_stiffening(prm, eps_r, eps_u):
     """Strain where the softening line (eq. 5.4) meets the tension-stiffening line (the kink of their max)."""
-    from .materials.concrete import P_ALPHA_TS, P_EPS_Y
+    from ..materials.concrete import P_ALPHA_TS, P_EPS_Y
 
     eps_y, alpha = prm[P_EPS_Y], prm[P_ALPHA_TS]
     # fr (eps_u - e)/(eps_u - eps_r) = alpha fr (eps_y - e)/(eps_y - eps_r)
@@ -407,7 +407,7 @@ def layer_free_moment_curvature(section: Section, kaps, ls=None, kappa_s=5.0 / 6
     unload slightly from small compression, which the history-following analysis (:func:`moment_curvature`)
     keeps and this one does not (measured in chapter 02: below 1e-3 of M). ``first_yield``: first row with a
     steel fibre past fy/Es."""
-    from .materials.layer_laws import STEEL
+    from ..materials.layer_laws import STEEL
 
     kaps = np.asarray(kaps, np.float64)
     if kaps.ndim != 1 or kaps.size < 2 or np.any(np.diff(kaps) <= 0.0) or kaps[0] < 0.0:

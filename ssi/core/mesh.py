@@ -48,7 +48,7 @@ def graded_lines(start, stop, h_start, h_max, growth=1.2):
 
 @dataclass
 class SoilMesh:
-    """A structured Q8 mesh. ``conn`` (n_el, 8) in the node order of ``ssi.shapes.serendipity8``."""
+    """A structured Q8 mesh. ``conn`` (n_el, 8) in the node order of ``ssi.core.shapes.serendipity8``."""
 
     xy: np.ndarray
     conn: np.ndarray

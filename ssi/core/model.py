@@ -296,9 +296,9 @@ class Model:
     def solve_linear(self, backend: str = "auto") -> Result:
         """Solve the linear-elastic scene at load factor 1: one factorisation, one solve.
 
-        Returns a :class:`ssi.solution.Result` (:meth:`~ssi.solution.Result.of_linear_solve`) with two rows,
-        the initial state (load factor 0) and the solution (load factor 1), each with its internal force;
-        ``reactions()`` gives the support reactions."""
+        Returns a :class:`ssi.core.solution.Result` (:meth:`~ssi.core.solution.Result.of_linear_solve`) with
+        two rows, the initial state (load factor 0) and the solution (load factor 1), each with its internal
+        force; ``reactions()`` gives the support reactions."""
         t_start = time.perf_counter()
         self.check()
         system = System(self)

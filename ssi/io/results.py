@@ -1,14 +1,15 @@
 """Result files (HDF5, h5py): write any result, read it back as an object that answers and replots.
 
 ``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped) or
-a :class:`ssi.solution.Result` (of ``ssi.solver.run`` or ``Model.solve_linear``). ``read_result(path)`` gives
-back a ``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult`` method and
-every ``ssi.plot`` function works without the original script) or, for a bare model, a :class:`StoredResult`.
+a :class:`ssi.core.solution.Result` (of ``ssi.solver.run`` or ``Model.solve_linear``). ``read_result(path)``
+gives back a ``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult``
+method and every ``ssi.io.plot`` function works without the original script) or, for a bare model, a
+:class:`StoredResult`.
 
 Layout::
 
     /attrs  format, ssi_version, kind ('scene' | 'model'), complete (bool), stop (JSON: why a run stopped),
-            scene (JSON, ssi.scene_file.scene_to_dict: every layer, load, section layer), model (JSON,
+            scene (JSON, ssi.scene.scene_file.scene_to_dict: every layer, load, section layer), model (JSON,
             Model.describe), settings (JSON), extra (JSON: further scalar fields of the result object)
     /mesh/coords                    (n_nodes, 2) node coordinates [m]
     /mesh/node_ndof                 (n_nodes,)
@@ -54,13 +55,13 @@ from typing import TYPE_CHECKING
 import h5py
 import numpy as np
 
-from . import __version__
+from .. import __version__
 
 if TYPE_CHECKING:  # for annotations only: the functions import ssi.scene and ssi.solver lazily
-    from .model import Model
-    from .scene import SceneResult
-    from .solution import Result
-    from .solver import Settings
+    from ..core.model import Model
+    from ..core.solution import Result
+    from ..scene import SceneResult
+    from ..solver import Settings
 
 FORMAT = "ssi-result-1"
 _SCENE_RESULT_FIELDS = ("built", "solver_result", "phases")
@@ -172,7 +173,7 @@ def write_result(
 
 
 def _write_scene_result(h5, result):
-    from .scene_file import scene_to_dict
+    from ..scene.scene_file import scene_to_dict
 
     built = result.built
     h5.attrs["kind"] = "scene"
@@ -418,8 +419,8 @@ def _optional_count(value):
 
 
 def _scene_result(info, lam, u, states, solver, phases, coords):
-    from .scene import SceneResult, join_phases
-    from .scene_file import scene_from_dict
+    from ..scene import SceneResult, join_phases
+    from ..scene.scene_file import scene_from_dict
 
     built = scene_from_dict(info["scene"]).build()
     if built.model.coords.shape != coords.shape or not np.array_equal(built.model.coords, coords):
@@ -451,8 +452,8 @@ def _linear_result(model, u, states):
     """The Result of a linear solve from its two stored rows ``u`` and ``states`` (files of linear scenes
     written before Model.solve_linear returned one: the solved state stored on both rows), its internal
     force evaluated from each row; the solve's wall time was not stored (nan)."""
-    from .model import System
-    from .solution import Result
+    from ..core.model import System
+    from ..core.solution import Result
 
     system = System(model)
     f_int = [system.evaluate(row, np.zeros_like(row), st, None)[0] for row, st in zip(u, states)]
@@ -462,7 +463,7 @@ def _linear_result(model, u, states):
 def _solver_result(model, rec, lam, u, states):
     """A :class:`ssi.solver.Result` from its stored record; its u and state rows are the scene result's
     where the file says so (files without the row tables: the scene result's rows themselves)."""
-    from .solution import Result
+    from ..core.solution import Result
 
     u_rows = rec.get("u_rows", np.arange(len(lam)))
     state_rows = rec.get("state_rows", np.arange(len(states)))

@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
-from .mesh import SoilMesh, structured_q8
+from ..core.mesh import SoilMesh, structured_q8
 
 __all__ = [
     "convergence_rate",

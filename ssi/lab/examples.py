@@ -5,7 +5,7 @@
 * :func:`chapter11_section` -- that beam's RC section.
 * :func:`winkler_strip` -- a plate strip on an interface bed over a rigid base under a point load: the finite
   element model of Hetenyi's beam on a Winkler foundation (chapters 07 and 13 compare it with
-  :func:`ssi.analytical.hetenyi_deflection`).
+  :func:`ssi.lab.analytical.hetenyi_deflection`).
 * :class:`ElasticStrip` / ``CHAPTER02_STRIP`` -- the elastic plate strip of chapter 02's closed-form studies
   (02a to 02d) with its stiffnesses.
 * :func:`excavated_column` and :func:`excavated_column_errors` -- chapter 12's one-dimensional excavation
@@ -27,15 +27,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .elements.interface import add_interface
-from .elements.plate import add_plate_strip
-from .materials.interface_law import interface_params
-from .materials.layer_laws import CONCRETE, STEEL
-from .materials.rc import concrete_params, designer_concrete, steel_params
-from .materials.soil_laws import ELASTIC, GAMMA_W, elastic_params
-from .mesh import foundation_contact, soil_block
-from .model import Model
-from .scene import (
+from ..core.mesh import foundation_contact, soil_block
+from ..core.model import Model
+from ..core.validate import check_int, check_real
+from ..elements.interface import add_interface
+from ..elements.plate import add_plate_strip
+from ..elements.section import Section, homogeneous, rc_section
+from ..elements.supports import fix_block, soil_group
+from ..materials.interface_law import interface_params
+from ..materials.layer_laws import CONCRETE, STEEL
+from ..materials.rc import concrete_params, designer_concrete, steel_params
+from ..materials.soil_laws import ELASTIC, GAMMA_W, elastic_params
+from ..scene import (
     BuiltScene,
     ColumnLoad,
     Contact,
@@ -49,9 +52,6 @@ from .scene import (
     StripWeight,
     SurfacePressure,
 )
-from .section import Section, homogeneous, rc_section
-from .supports import fix_block, soil_group
-from .validate import check_int, check_real
 
 __all__ = [
     "CHAPTER02_STRIP",
@@ -104,7 +104,8 @@ class ElasticStrip:
         return self.kappa * self.G * self.h
 
     def section(self) -> Section:
-        """The strip's :class:`~ssi.section.Section` (:func:`ssi.section.homogeneous`, its default layers)."""
+        """The strip's :class:`~ssi.elements.section.Section` (:func:`ssi.elements.section.homogeneous`, its
+        default layers)."""
         return homogeneous(self.h, self.E, self.nu)
 
 

@@ -1,9 +1,9 @@
 """The command line: ``ssi run scene.toml``, ``ssi show result.h5``, ``ssi schema``.
 
-``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene_file`) and writes, next to it unless told
-otherwise: ``<name>.h5`` (the result, :func:`ssi.results.write_result`), ``<name>.pvd`` +
-``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.plot.standard_figures`) and
-``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
+``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene.scene_file`) and writes, next to it unless
+told otherwise: ``<name>.h5`` (the result, :func:`ssi.io.results.write_result`), ``<name>.pvd`` +
+``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.io.plot.standard_figures`)
+and ``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
 bending moment, the status, wall time). Nothing is overwritten without ``--overwrite``.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
 factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
@@ -29,7 +29,7 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     ``stop_reason``). ``phase``: of a phased scene, the name of the last phase reached; ``phase_load_factor``
     the load factor reached in it. ``column_load`` [N/m]: of a single-phase scene, load factor times the sum
     of the column forces N (None for a phased scene: its phase, load factor and contact resultant say it)."""
-    from .scene import ColumnLoad
+    from ..scene import ColumnLoad
 
     x_s, s_max = result.max_settlement()
     out = {
@@ -106,12 +106,12 @@ def summary_text(s: dict) -> str:
 
 def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True):
     """What ``ssi run`` does; returns (result, summary dict, written paths)."""
+    from ..scene import SceneResult
+    from ..scene.scene_file import read_scene_file
+    from ..solver import NonConvergence
+    from ..solver.progress import announce_compilation
     from .plot import save_standard_figures
-    from .progress import announce_compilation
     from .results import atomic_path, write_result
-    from .scene import SceneResult
-    from .scene_file import read_scene_file
-    from .solver import NonConvergence
 
     scene_path = Path(scene_path)
     stem = scene_path.with_suffix("")
@@ -193,7 +193,7 @@ def main(argv=None) -> int:
     sub.add_parser("schema", help="print the scene file's tables, keys and units")
     args = parser.parse_args(argv)
     if args.command == "schema":
-        from .scene_file import schema_text
+        from ..scene.scene_file import schema_text
 
         print(schema_text())
         return 0

@@ -26,10 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
-from .protocol import K0_MATRIX
-from .quadrature import layer_rule
-from .validate import check_array, check_int, check_real
+from ..core.protocol import K0_MATRIX
+from ..core.quadrature import layer_rule
+from ..core.validate import check_array, check_int, check_real
+from ..materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
 
 __all__ = ["Section", "homogeneous", "layered", "paper_rc_section", "rc_section", "with_crack_spacing_band"]
 
@@ -364,9 +364,9 @@ def with_crack_spacing_band(
     face that has its own bars, where bond transfers stress from the bars into the concrete between cracks;
     the other concrete layers soften to zero as plain concrete (alpha_ts = 0). Returns ``(section, spacings)``
     with one ``crack_spacing_mc2010`` dict per face used (bottom, top)."""
-    from .materials.concrete import P_E0
-    from .materials.layer_laws import CONCRETE, STEEL
-    from .materials.rc import _positive, crack_spacing_mc2010, with_crack_band
+    from ..materials.concrete import P_E0
+    from ..materials.layer_laws import CONCRETE, STEEL
+    from ..materials.rc import _positive, crack_spacing_mc2010, with_crack_band
 
     phi = _positive("bar_diameter", bar_diameter)
     bars = np.flatnonzero(section.kind == STEEL)
@@ -403,7 +403,7 @@ def with_crack_spacing_band(
     faces = [bottom or top, top or bottom]
     if tension_stiffening not in ("all", "effective_area"):
         raise ValueError(f"tension_stiffening must be 'all' or 'effective_area', got {tension_stiffening!r}")
-    from .materials.concrete import P_ALPHA_TS
+    from ..materials.concrete import P_ALPHA_TS
 
     params = section.params.copy()
     for n in conc:

@@ -19,12 +19,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .elements.plate import add_plate_strip
-from .materials import rc
-from .materials.layer_laws import CONCRETE, ELASTIC, STEEL
-from .model import Model
-from .section import rc_section, with_crack_spacing_band
-from .solver import NonConvergence, Settings, run
+from ..core.model import Model
+from ..elements.plate import add_plate_strip
+from ..elements.section import rc_section, with_crack_spacing_band
+from ..materials import rc
+from ..materials.layer_laws import CONCRETE, ELASTIC, STEEL
+from ..solver import NonConvergence, Settings, run
 
 __all__ = [
     "JANNEY",
@@ -201,5 +201,5 @@ def janney_band_section(n_layers=11, tension_stiffening="all", **kw):
 
 def janney_crack_spacing():
     """Crack band width of the substitute beam: s_r,max of *fib* Model Code 2010 for its bars (the scene
-    default, ``ssi.section.with_crack_spacing_band``; the No. 5 bars' diameter)."""
+    default, ``ssi.elements.section.with_crack_spacing_band``; the No. 5 bars' diameter)."""
     return float(with_crack_spacing_band(janney_section(11), JANNEY_BAR_DIAMETER)[1][0]["s_r_max"])

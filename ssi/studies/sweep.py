@@ -1,10 +1,10 @@
 """Parameter studies: many scenes on a dask.distributed cluster, one result file each, one table.
 
-    from ssi.sweep import sweep, grid
+    from ssi.studies.sweep import sweep, grid
     table = sweep(make_scene, grid(E=[10e6, 20e6], c=[10e3, 20e3]), out_dir="results/my_sweep")
 
 ``make_scene(**params)`` returns a :class:`~ssi.scene.Scene`; every parameter set becomes one task that builds
-and solves it and writes ``scenes/<key>.h5`` (the full result, :func:`ssi.results.write_result`) and
+and solves it and writes ``scenes/<key>.h5`` (the full result, :func:`ssi.io.results.write_result`) and
 ``scenes/<key>.json`` (its table row), both atomically, where ``<key>`` is a hash of the parameters. The
 sweep then gathers every row into ``sweep.csv``. A scene that raises is recorded with status "failed" and its
 error, never fatal; a re-run skips the scenes whose row says "completed" or "collapsed" (resumable after a
@@ -17,8 +17,8 @@ GIL is held in numba kernels) and closes it at the end; a scheduler address ("tc
 dask is not installed).
 
 Numba: the workers of a LocalCluster inherit this process's environment, so they load the compiled kernels
-from the same ``NUMBA_CACHE_DIR`` (set here to the project's ``.numba_cache`` when it is not set); on a real
-cluster, set ``NUMBA_CACHE_DIR`` to one shared folder in the workers' environment.
+from the same ``NUMBA_CACHE_DIR`` (importing ``ssi`` sets it: see ``ssi.numba_cache_key``); on a real cluster,
+set ``NUMBA_CACHE_DIR`` to one shared folder in the workers' environment.
 """
 
 from __future__ import annotations
@@ -36,8 +36,7 @@ import traceback
 import warnings
 from pathlib import Path
 
-from . import paths
-from .results import atomic_path, write_result
+from ..io.results import atomic_path, write_result
 
 STATUSES = ("completed", "collapsed", "failed")
 DONE = ("completed", "collapsed")
@@ -70,8 +69,9 @@ def run_scene(
     """Build and solve ``scene_factory(**params)``; write its result file and row; return the row.
 
     The row: ``key``, ``params``, ``status`` ("completed", "collapsed": a limit load was reached, "failed":
-    the factory, build or solve raised), headline quantities (:func:`ssi.estimate.headline`), ``n_dof``,
-    ``wall_time`` [s] (build + solve), ``error`` (the exception of a failed scene), ``worker`` (pid)."""
+    the factory, build or solve raised), headline quantities (:func:`ssi.studies.estimate.headline`),
+    ``n_dof``, ``wall_time`` [s] (build + solve), ``error`` (the exception of a failed scene), ``worker``
+    (pid)."""
     from .estimate import headline
 
     key = scene_key(params)
@@ -129,7 +129,6 @@ def _client(client, n_workers):
     from distributed import Client, LocalCluster
 
     if client is None:
-        os.environ.setdefault("NUMBA_CACHE_DIR", str(paths.ROOT / ".numba_cache"))
         for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             os.environ.setdefault(var, "1")
         with _main_not_reimported():
@@ -157,8 +156,9 @@ def sweep(
 
     ``client``: None (a LocalCluster of ``n_workers`` processes), a scheduler address, a
     ``distributed.Client``, or "serial" (this process, no dask). ``out_dir`` (default
-    ``results/sweep``): where ``scenes/`` and ``sweep.csv`` go. ``n_steps``, ``settings``: those of
-    ``BuiltScene.solve``. ``keep_files``: write each scene's HDF5 result (False: only its row).
+    ``results/sweep`` under the current folder): where ``scenes/`` and ``sweep.csv`` go. ``n_steps``,
+    ``settings``: those of ``BuiltScene.solve``. ``keep_files``: write each scene's HDF5 result (False: only
+    its row).
     Returns the rows in the order of ``parameters``; ``sweep.csv`` holds them with one column per parameter
     and quantity. A scene already done (its row says completed or collapsed) is not solved again; a failed
     one is retried if ``retry_failed``."""
@@ -167,7 +167,7 @@ def sweep(
         raise ValueError("parameters: the sweep needs at least one parameter set")
     if int(n_workers) != n_workers or n_workers < 1:
         raise ValueError(f"n_workers must be an integer >= 1, got {n_workers}")
-    out = Path(out_dir) if out_dir is not None else paths.RESULTS / "sweep"
+    out = Path(out_dir) if out_dir is not None else Path("results") / "sweep"
     (out / "scenes").mkdir(parents=True, exist_ok=True)
     keys = [scene_key(p) for p in parameters]
     if len(set(keys)) != len(keys):

@@ -1,6 +1,6 @@
 """Error estimates of a scene's answers: re-solve on systematically refined copies, Richardson extrapolation.
 
-    from ssi.estimate import estimate
+    from ssi.studies.estimate import estimate
     est = estimate(scene)                 # mesh h/2, h/4; steps x2, x4; plate layers x2, x4
     print(est)                            # value, estimated error, observed order and cost per quantity
 
@@ -34,9 +34,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .scene import Foundation
-from .section import Section, layered
-from .solver import Settings
+from ..elements.section import Section, layered
+from ..scene import Foundation
+from ..solver import Settings
 
 REFINEMENTS = ("mesh", "steps", "layers")
 QUANTITIES = (
@@ -318,8 +318,8 @@ def estimate(
 
 
 def solve_with_error(scene, n_steps: int | None = None, settings: Settings | None = None, refine=REFINEMENTS):
-    """(SceneResult of the scene as given, its ErrorEstimate): what ``Scene.solve(estimate_error=True)``
-    would return."""
+    """(SceneResult of the scene as given, its ErrorEstimate): the scene's own solution with
+    the estimate of its error."""
     est = estimate(scene, n_steps, settings, refine)
     return est.levels[est.base_key].result, est
 

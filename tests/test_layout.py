@@ -1,0 +1,163 @@
+"""The package's layering, read from its imports (``ast``, nothing is imported), and the numba cache key.
+
+Each subpackage of ``ssi`` has a rank; a module may import from its own subpackage, from a lower rank and from
+the package root (``ssi/__init__.py``: the version and the cache key), never upwards. Imports inside functions
+and under ``TYPE_CHECKING`` count as well: a function-level import hides a circle, it does not remove it.
+``limit`` (finite-element limit analysis) has its rank before it lands; a folder the list does not rank fails
+the test, so a new subpackage gets its place on purpose.
+"""
+
+import ast
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent / "ssi"
+ORDER = ("core", "materials", "elements", "solver", "limit", "scene", "io", "studies", "lab")
+RANK = {name: i for i, name in enumerate(ORDER)}
+
+
+def _module_name(path: Path, package: Path = PACKAGE) -> str:
+    parts = path.relative_to(package.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _imports(path: Path, package: Path = PACKAGE) -> list[tuple[int, str]]:
+    """(line, absolute module) of every import in ``path`` that names an ``ssi`` module (``from X import y``
+    gives ``X.y``, which is a module or a name in X: both sit in X's subpackage)."""
+    here = _module_name(path, package).split(".")
+    base_package = here if path.name == "__init__.py" else here[:-1]
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+        if isinstance(node, ast.Import):
+            found += [(node.lineno, alias.name) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = base_package[: len(base_package) - (node.level - 1)]
+                module = ".".join(base + ([node.module] if node.module else []))
+            else:
+                module = node.module
+            found += [(node.lineno, f"{module}.{alias.name}") for alias in node.names]
+    return [(line, name) for line, name in found if name == "ssi" or name.startswith("ssi.")]
+
+
+def _room(module: str, package: Path = PACKAGE) -> str | None:
+    """The subpackage of an ``ssi`` module, or None for the package root."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 and (package / parts[1]).is_dir() else None
+
+
+def upward_imports(package: Path = PACKAGE) -> list[str]:
+    """Every import of a module from a subpackage of higher rank, as "file:line (room) imports module
+    (room)"."""
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        own = _room(_module_name(path, package), package)
+        for line, target in _imports(path, package):
+            other = _room(target, package)
+            if other is None:
+                continue
+            if own is None or RANK[other] > RANK[own]:
+                where = path.relative_to(package.parent)
+                found.append(f"{where}:{line} ({own or 'the root'}) imports {target} ({other})")
+    return found
+
+
+def test_every_subpackage_has_a_rank():
+    folders = {p.name for p in PACKAGE.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
+    assert folders <= set(ORDER), f"subpackages without a rank in ORDER: {sorted(folders - set(ORDER))}"
+    assert {"core", "materials", "elements", "solver", "scene", "io", "studies", "lab"} <= folders
+    loose = sorted(p.name for p in PACKAGE.glob("*.py") if p.name != "__init__.py")
+    assert loose == [], f"modules outside every subpackage: {loose}"
+
+
+def test_no_import_runs_upwards():
+    found = upward_imports()
+    assert found == [], "imports that run upwards:\n" + "\n".join(found)
+
+
+def test_the_product_never_imports_the_lab():
+    """Nothing in ``ssi`` outside ``lab/`` imports it (tests, chapters, benchmarks and tools may)."""
+    hits = [
+        f"{p}:{line}"
+        for p in PACKAGE.rglob("*.py")
+        if _room(_module_name(p)) != "lab"
+        for line, target in _imports(p)
+        if _room(target) == "lab"
+    ]
+    assert hits == []
+
+
+def test_the_layering_check_finds_an_upward_import(tmp_path):
+    """The check must be able to fail: a function-level import of the scene written into a copy of a core
+    module is reported, with its line."""
+    copy = tmp_path / "ssi"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    assert upward_imports(copy) == []
+    with open(copy / "core" / "mesh.py", "a") as fh:
+        fh.write("\n\ndef _probe():\n    from ..scene import Scene\n\n    return Scene\n")
+    found = upward_imports(copy)
+    assert (
+        len(found) == 1 and found[0].startswith("ssi/core/mesh.py:") and "ssi.scene.Scene (scene)" in found[0]
+    )
+
+
+def _defines_kernels(path: Path) -> bool:
+    """Whether ``path`` uses numba's ``njit``/``jit`` (``@njit(cache=True)``, ``njit(f)``)."""
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Name) and node.id in ("njit", "jit"):
+            return True
+        if isinstance(node, ast.Attribute) and node.attr in ("njit", "jit"):
+            return True
+    return False
+
+
+def test_every_kernel_lives_in_a_hashed_package():
+    """Every module that defines a numba kernel is inside a folder the cache key hashes: a kernel elsewhere
+    could run stale machine code after its callee changed."""
+    from ssi import KERNEL_PACKAGES
+
+    kernels = {p for p in PACKAGE.rglob("*.py") if _defines_kernels(p)}
+    assert kernels, "no kernel found: the search is wrong"
+    outside = sorted(str(p) for p in kernels if _room(_module_name(p)) not in KERNEL_PACKAGES)
+    assert outside == []
+
+
+def _cache_folder(package_copy: Path) -> str:
+    """The numba cache folder a fresh process picks for the package copy under ``package_copy``."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(package_copy / "cache"), PYTHONPATH=str(package_copy))
+    code = "import os, ssi; print(ssi.__file__); print(os.environ['NUMBA_CACHE_DIR'])"
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, cwd=package_copy, capture_output=True, text=True
+    )
+    assert out.returncode == 0, out.stderr
+    imported, folder = (Path(line) for line in out.stdout.split())
+    assert imported == package_copy / "ssi" / "__init__.py"  # the copy, not the installed package
+    assert folder.parent == package_copy / "cache"
+    return folder.name
+
+
+@pytest.fixture
+def package_copy(tmp_path):
+    shutil.copytree(PACKAGE, tmp_path / "ssi", ignore=shutil.ignore_patterns("__pycache__"))
+    return tmp_path
+
+
+@pytest.mark.parametrize("edited", ["lab/report.py", "scene/scene_file.py", "io/plot.py", "studies/sweep.py"])
+def test_editing_a_file_without_kernels_keeps_the_numba_cache(package_copy, edited):
+    before = _cache_folder(package_copy)
+    with open(package_copy / "ssi" / edited, "a") as fh:
+        fh.write("\n# an edit\n")
+    assert _cache_folder(package_copy) == before
+
+
+@pytest.mark.parametrize("edited", ["materials/mohr_coulomb.py", "elements/plate.py", "core/assembly.py"])
+def test_editing_a_kernel_file_moves_the_numba_cache(package_copy, edited):
+    before = _cache_folder(package_copy)
+    with open(package_copy / "ssi" / edited, "a") as fh:
+        fh.write("\n# an edit\n")
+    assert _cache_folder(package_copy) != before
