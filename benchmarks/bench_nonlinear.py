@@ -31,7 +31,7 @@ from goals import verdict
 import ssi  # noqa: F401  (first: keys numba's cache before numba is imported)
 from ssi.core import assembly, linsolve, model
 from ssi.lab.bearing_capacity import push_footing
-from ssi.solver import driver as solver
+from ssi.solver import control as solver  # the load-path control, which calls _increment
 
 ROOT = Path(__file__).resolve().parent.parent
 REPEAT = int(os.environ.get("SSI_BENCH_REPEAT", "3"))

@@ -95,6 +95,7 @@ from ssi.scene import (
     StripWeight,
     SurfacePressure,
 )
+from ssi.scene.scene_file import scene_to_dict
 from ssi.solver import Settings
 
 FAST = paths.FAST
@@ -221,8 +222,8 @@ record(
 # there), a load varying linearly from 20 kPa at its left end to 5 kPa at its right end, and its own weight
 # from the section (25 kN/m³ × 0.5 m). Beside it, a 15 kPa pressure acts on the ground from x = 4 to 6 m.
 # In an elastic scene the contact must carry the strip loads exactly (to round-off) — the ground pressure not
-# at all, the surcharge over the strip's width in addition. The scene record (`model.info['scene']`, written
-# to every result file) lists each load with its type.
+# at all, the surcharge over the strip's width in addition. The scene record (`scene_to_dict(built.scene)`,
+# written to every result file) lists each load with its type.
 
 # %%
 layers = [
@@ -271,7 +272,7 @@ for name, value in expected.items():
     )
     assert err < LOAD_TOL
 print("column nodes:", [float(built.model.coords[built.plate_node_at(x), 0]) for x in (-1.3, 1.7)])
-print("recorded loads:", [ld["type"] for ld in built.model.info["scene"]["phases"][1]["loads"]])
+print("recorded loads:", [ld["type"] for ld in scene_to_dict(built.scene)["phases"][1]["loads"]])
 
 # %% [markdown]
 # ## 3. Phases: geostatic → weight → building → unloading → reloading

@@ -2,7 +2,11 @@
 
 Each subpackage of ``ssi`` has a rank; a module may import from its own subpackage, from a lower rank and from
 the package root (``ssi/__init__.py``: the version and the cache key), never upwards. Imports inside functions
-and under ``TYPE_CHECKING`` count as well: a function-level import hides a circle, it does not remove it.
+and under ``TYPE_CHECKING`` count as well.
+No two modules import each other, through any chain, at run time (imports inside functions count: a
+function-level import hides a circle, it does not remove it); an import under ``if TYPE_CHECKING:`` names a
+type for an annotation only (``BuiltScene`` in the ``SceneResult`` that views it) and is left out of that
+check, but it too must respect the ranks.
 ``limit`` (finite-element limit analysis) has its rank before it lands; a folder the list does not rank fails
 the test, so a new subpackage gets its place on purpose.
 """
@@ -78,6 +82,75 @@ def test_every_subpackage_has_a_rank():
 def test_no_import_runs_upwards():
     found = upward_imports()
     assert found == [], "imports that run upwards:\n" + "\n".join(found)
+
+
+def _runtime_imports(path: Path, package: Path = PACKAGE) -> set[str]:
+    """The ``ssi`` modules ``path`` imports at run time (not under ``if TYPE_CHECKING:``), each resolved to a
+    module file of the package (``from X import y``: X.y if that is a module, else X)."""
+    tree = ast.parse(path.read_text())
+    hidden = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            hidden |= {id(n) for n in ast.walk(node)}
+    modules = set()
+    here = _module_name(path, package).split(".")
+    base_package = here if path.name == "__init__.py" else here[:-1]
+    for node in ast.walk(tree):
+        if id(node) in hidden or not isinstance(node, ast.ImportFrom | ast.Import):
+            continue
+        if isinstance(node, ast.Import):
+            candidates = [alias.name for alias in node.names]
+        else:
+            base = base_package[: len(base_package) - (node.level - 1)] if node.level else []
+            module = ".".join(base + ([node.module] if node.module else [])) if node.level else node.module
+            candidates = [f"{module}.{alias.name}" for alias in node.names] + [module]
+        for name in candidates:
+            if not name.startswith("ssi"):
+                continue
+            rel = Path(*name.split(".")[1:])
+            if (package / rel).with_suffix(".py").exists():
+                modules.add(name)
+            elif (package / rel / "__init__.py").exists() and name == candidates[-1]:
+                modules.add(name)
+    return modules
+
+
+def import_circles(package: Path = PACKAGE) -> list[list[str]]:
+    """Every circle of run-time imports between the modules of ``package``, each as [a, b, ..., a]."""
+    graph = {_module_name(p, package): _runtime_imports(p, package) for p in package.rglob("*.py")}
+    circles, done = [], set()
+
+    def visit(module, stack):
+        if module in stack:
+            circles.append(stack[stack.index(module) :] + [module])
+            return
+        if module in done:
+            return
+        for other in sorted(graph.get(module, ())):
+            if other != module:
+                visit(other, stack + [module])
+        done.add(module)
+
+    for module in sorted(graph):
+        visit(module, [])
+    return circles
+
+
+def test_no_import_circles():
+    circles = import_circles()
+    assert circles == [], "import circles:\n" + "\n".join(" -> ".join(c) for c in circles)
+
+
+def test_the_circle_check_finds_a_function_level_circle(tmp_path):
+    """A function-level import of the scene file written into a copy of the scene module closes a circle
+    (the scene file imports the scene module): the check names it."""
+    copy = tmp_path / "ssi"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    assert import_circles(copy) == []
+    with open(copy / "scene" / "scene.py", "a") as fh:
+        fh.write("\n\ndef _probe():\n    from .scene_file import scene_to_dict\n\n    return scene_to_dict\n")
+    circles = import_circles(copy)
+    assert circles and {"ssi.scene.scene", "ssi.scene.scene_file"} <= set(circles[0])
 
 
 def test_the_product_never_imports_the_lab():

@@ -13,6 +13,7 @@ from ssi.elements.soil_q8 import SoilQ8
 from ssi.io.results import read_result, write_result
 from ssi.lab.examples import surcharge_heave
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from ssi.scene.scene_file import scene_to_dict
 from ssi.solver import Settings
 
 COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
@@ -202,7 +203,7 @@ def test_phases_carry_each_load_and_unload_elastically():
     moved = np.abs(u[step["building"]] - u[step["weight"]]).max()
     assert moved > 1e-3
     assert np.abs(u[step["unload"]] - u[step["weight"]]).max() < 1e-8 * moved
-    kinds = [ld["type"] for ld in built.model.info["scene"]["phases"][1]["loads"]]
+    kinds = [ld["type"] for ld in scene_to_dict(built.scene)["phases"][1]["loads"]]
     assert kinds == ["ColumnLoad", "StripLoad", "SurfacePressure"]
 
 

@@ -124,7 +124,7 @@ def test_untrustworthy_tangent_solve_falls_back_to_k0(monkeypatch):
     """A tangent factorisation whose correction does not satisfy K_T du = r (what SuperLU can return after
     BLAS refused a call on a nearly singular matrix) is refused: the increment goes on with K0, linearly
     convergent, to the same closed-form answer -- never on the garbage correction."""
-    import ssi.solver.driver as solver_module
+    import ssi.solver.increment as solver_module  # where the tangent is factorised and solved
 
     class Garbled(solver_module.Factorization):
         """K0 (factorised with spd=True) solves correctly; every tangent solve is off."""
@@ -287,7 +287,7 @@ def test_old_convergence_measure_accepted_a_wrong_state_the_structural_one_does_
 
 def test_a_path_crawls_only_when_a_third_of_its_recent_attempts_failed_and_it_hardly_advanced():
     """The crawl test of the auto stepping (see ``_Path._crawling``): the numbers the docstring states."""
-    from ssi.solver.driver import CRAWL_WINDOW, _Path
+    from ssi.solver.control import CRAWL_WINDOW, _Path
 
     path = _Path.__new__(_Path)  # the test reads only the attempt history, the settings and the scale
     path.settings, path.scale = Settings(), 1.0
@@ -303,7 +303,7 @@ def test_a_path_crawls_only_when_a_third_of_its_recent_attempts_failed_and_it_ha
 
 
 def _held(lam, flow):
-    from ssi.solver.driver import _RelaxationFailed
+    from ssi.solver.viscous import _RelaxationFailed
 
     return _RelaxationFailed({"reason": "no convergence"}, 10.0, lam, flow)
 
@@ -328,7 +328,7 @@ def test_collapse_evidence_is_the_nearest_held_load(failures, secant, collapsed)
     """The bracket's verdict rests on the held load just above the largest relaxed one, with a flow
     stiffness below a tenth of collapse_stiffness (measured flows of the zoo's collapses: 4e-9 .. 1.6e-3)
     or a flattened relaxed path; numbers from the runs named."""
-    from ssi.solver.driver import _collapse_evidence
+    from ssi.solver.viscous import _collapse_evidence
 
     nearest, _, verdict = _collapse_evidence([_held(lam, f) for lam, f in failures], secant, 0.05)
     assert nearest.lam == min(lam for lam, _ in failures)
@@ -353,7 +353,7 @@ def _two_loop_reference(pairs, solve, r):
 def test_lbfgs_ring_buffer_gives_the_numpy_two_loop_bit_for_bit():
     """The numba two loops over ring buffers: the same direction as the list-based recursion, also once the
     ring has wrapped (7 pairs in a memory of 3) and after a pair with s . y <= 0 cleared the memory."""
-    from ssi.solver.driver import _Lbfgs
+    from ssi.solver.increment import _Lbfgs
 
     rng = np.random.default_rng(3)
     n = 257

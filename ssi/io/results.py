@@ -503,6 +503,11 @@ def _split(flat, counts):
 
 
 def _jsonable(obj):
+    from ..scene import Scene
+    from ..scene.scene_file import scene_to_dict
+
+    if isinstance(obj, Scene):  # the scene a model was built from (Model.info["scene"]): its plain form
+        return scene_to_dict(obj)
     if isinstance(obj, np.ndarray):
         return obj.tolist()
     if isinstance(obj, np.generic):

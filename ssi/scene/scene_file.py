@@ -71,23 +71,11 @@ import numpy as np
 
 from ..elements import section as section_mod
 from ..elements.section import Section
+from ..materials.soil_laws import SoilLayer
 from ..solver import Settings
-from .scene import (
-    ColumnLoad,
-    Contact,
-    ContactSegment,
-    Excavation,
-    Foundation,
-    MeshSize,
-    Phase,
-    RigidFooting,
-    Scene,
-    Settlement,
-    SoilLayer,
-    StripLoad,
-    StripWeight,
-    SurfacePressure,
-)
+from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
+from .scene import Scene
 
 UNITS = {
     "Scene": {

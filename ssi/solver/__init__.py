@@ -1,9 +1,20 @@
 """The solution of a model along a load path: ``Settings`` (the method, the stepping, the tolerances) and
-``run`` (load-controlled, Newton-type iterations), ``run_arc_length`` (arc-length control), with L-BFGS
-updates (``lbfgs``) and progress reporting (``progress``). The solver is the only place that commits state."""
+``run`` (load-controlled, Newton-type iterations), ``run_arc_length`` (arc-length control). The solver is the
+only place that commits state.
+
+* ``settings`` -- ``Settings`` and ``NonConvergence``;
+* ``control`` -- the load-path control: ``run``, stepping, step cuts, fallbacks, limit-load detection;
+* ``increment`` -- one increment: the iterations of each method, line search, tangent solve, convergence;
+* ``viscous`` -- viscous recovery of a stalled path and the bracketing of a limit load;
+* ``arc_length`` -- ``run_arc_length``;
+* ``diagnostics`` -- what a failed increment reports;
+* ``lbfgs`` -- the L-BFGS two-loop kernels; ``progress`` -- the progress bar and the compile notice.
+"""
 
 from ..core.solution import COMPLETED, LIMIT_LOAD, STOPPED, Result
-from .driver import METHODS, REFERENCES, STEPPINGS, NonConvergence, Settings, run, run_arc_length
+from .arc_length import run_arc_length
+from .control import run
+from .settings import METHODS, REFERENCES, STEPPINGS, NonConvergence, Settings
 
 __all__ = [
     "COMPLETED",

@@ -1,0 +1,400 @@
+"""A scene built into a model (``BuiltScene``): its groups and nodes, the effect of each load, the water and
+pore-pressure fields, and the staged analysis that solves it (the geostatic phase, then each phase in turn,
+with excavation and drainage switches).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.assembly import scatter_vector
+from ..core.mesh import surface_pressure_forces
+from ..core.model import Model, System
+from ..core.validate import (
+    check_instance,
+    check_int,
+)
+from ..elements.interface import V_SIG, Interface6
+from ..elements.plate import PlateStrip
+from ..elements.soil_q8 import SoilQ8
+from ..materials.layer_laws import ELASTIC as LAYER_ELASTIC
+from ..materials.soil_laws import (
+    pore_pressure,
+)
+from ..solver import NonConvergence, Settings
+from .checks import _segments
+from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .parts import Phase
+from .stages import _hold, _load_levels, _phase_failure, _phase_record, _run_phase, join_phases
+from .view import SceneResult
+
+if TYPE_CHECKING:  # for annotations only: these modules import this one
+    from .scene import Scene
+
+
+@dataclass
+class BuiltScene:
+    scene: Scene
+    model: Model
+    mesh: object
+    soil: SoilQ8
+    plate: PlateStrip | None = None
+    interface: Interface6 | None = None
+    plate_nodes: np.ndarray | None = None
+    geostatic_load: np.ndarray | None = None  # (n_dof,) dead loads [N/m] holding the geostatic state
+    base_pressure: float = 0.0  # geostatic vertical stress [Pa] the strip's base starts with
+    element_layer: np.ndarray | None = None  # (n_el,) index in scene.layers of every soil element
+    footing_nodes: np.ndarray | None = None  # soil node ids under a RigidFooting (its base), ordered by x
+    slide_support: int | None = None  # plate node whose u is held because every Contact.kt = 0 (frictionless)
+
+    def plate_node_at(self, x: float, tol: float = 1e-6) -> np.integer:
+        xs = self.model.coords[self.plate_nodes, 0]
+        i = int(np.argmin(np.abs(xs - x)))
+        if abs(xs[i] - x) > tol * max(1.0, abs(x)):
+            raise ValueError(
+                f"x={x}: column loads must act on the strip; nearest plate node is x={xs[i]:.6g}"
+            )
+        return self.plate_nodes[i]
+
+    @property
+    def is_linear(self) -> bool:
+        soil_linear = all(lay.c is None for lay in self.scene.layers)
+        plate_linear = self.plate is None or bool(np.all(self.plate.section.kind == LAYER_ELASTIC))
+        contact_linear = self.scene.contact is None or all(
+            seg.contact.phi_deg is None for seg in _segments(self.scene)
+        )
+        return soil_linear and plate_linear and contact_linear
+
+    # ---- loads -----------------------------------------------------------------------------------------
+    def load_effect(
+        self, load: SurfacePressure | ColumnLoad | StripLoad | StripWeight | Settlement
+    ) -> tuple[np.ndarray, dict[int, float]]:
+        """(force vector (n_dof,) [N/m], {dof: prescribed displacement increment [m]}) of one load."""
+        model, f_vec, held = self.model, np.zeros(self.model.n_dof), {}
+        if isinstance(load, SurfacePressure):
+            f = self.scene.foundation
+            if f is not None and min(load.x1, f.x1) - max(load.x0, f.x0) > 1e-9:
+                raise ValueError(
+                    f"SurfacePressure ({load.x0}, {load.x1}) overlaps the strip ({f.x0}, {f.x1}): "
+                    "a load on the strip is a StripLoad"
+                )
+            nodes, w = surface_pressure_forces(self.mesh, load.x0, load.x1)
+            np.add.at(f_vec, model.dof(nodes, "w"), -load.q * w)
+        elif isinstance(load, ColumnLoad):
+            if load.H != 0.0 and self.slide_support is not None:
+                raise ValueError(
+                    f"ColumnLoad.H = {load.H:g} N/m at x = {load.x:g} m on a frictionless contact (every "
+                    "Contact.kt = 0): nothing resists a horizontal load on the strip; give Contact.kt > 0"
+                )
+            node = self.plate_node_at(load.x)
+            for comp, value in (("w", -load.N), ("u", load.H), ("alpha", load.M)):
+                f_vec[model.dof(node, comp)] += value
+        elif isinstance(load, StripLoad):
+            scatter_vector(
+                self.plate.edofs, self.plate.distributed_load(self._strip_profile(load), comp="w"), f_vec
+            )
+        elif isinstance(load, StripWeight):
+            q = load.unit_weight * self.plate.section.thickness - self.scene.gamma_w * self._submerged_depth()
+            scatter_vector(self.plate.edofs, self.plate.distributed_load(-q, comp="w"), f_vec)
+        elif isinstance(load, Settlement) and self.footing_nodes is not None:  # a RigidFooting's base
+            held.update({int(d): -float(load.w) for d in model.dof(self.footing_nodes, "w")})
+        elif isinstance(load, Settlement):
+            ids = self.plate_nodes if load.x is None else np.array([self.plate_node_at(x) for x in load.x])
+            held.update({int(d): -float(load.w) for d in model.dof(ids, "w")})
+            if load.x is None:  # rigid strip: rotations held
+                held.update({int(d): 0.0 for d in model.dof(ids, "alpha")})
+        else:
+            raise TypeError(
+                f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or Settlement"
+            )
+        return f_vec, held
+
+    def _submerged_depth(self) -> float:
+        """Thickness [m] of the strip below the water level: the water pressure on its base exceeds that on
+        its top by gamma_w times it (the strip's buoyancy, netted in :class:`StripWeight`)."""
+        if self.scene.water_table is None:
+            return 0.0
+        t = self.plate.section.thickness
+        return float(np.clip(-self.scene.water_table + self.scene.embedment, 0.0, t))
+
+    def _strip_profile(self, load):
+        a = self.scene.foundation.x0 if load.x0 is None else load.x0
+        b = self.scene.foundation.x1 if load.x1 is None else load.x1
+        if not (self.scene.foundation.x0 - 1e-9 <= a < b <= self.scene.foundation.x1 + 1e-9):
+            raise ValueError(
+                f"StripLoad x0={a}, x1={b} must satisfy foundation.x0 <= x0 < x1 <= foundation.x1"
+            )
+        q_end = load.q if load.q_end is None else load.q_end
+
+        def q(x):
+            inside = (x >= a - 1e-12) & (x <= b + 1e-12)
+            return np.where(inside, -(load.q + (q_end - load.q) * (x - a) / (b - a)), 0.0)
+
+        return q
+
+    def _register(self, load):
+        """Add one load of the single-phase scene to the model (reference load, or prescribed settlement)."""
+        f_vec, held = self.load_effect(load)
+        nz = np.flatnonzero(f_vec)
+        if nz.size:
+            self.model.add_element_load(nz[None], f_vec[nz][None])
+        for d, v in held.items():
+            self.model._prescribed[d] = v
+            self.model._fixed.pop(d, None)
+
+    def pore_pressure(self) -> np.ndarray:
+        """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el,
+        n_ip); the total stress is the state's effective stress minus it on the normal components."""
+        z = self.soil.integration_points()[..., 1]
+        return pore_pressure(z, self.scene.water_table, gamma_w=self.scene.gamma_w)
+
+    def excess_pore_pressure(self, out: SceneResult, k: int = -1) -> np.ndarray:
+        """Excess pore pressure [Pa] (compression positive) of the undrained_A layers at the soil's
+        integration points (n_el, n_ip) at step ``k`` of ``out``; zero in drained layers (and in a layer's
+        drained phases, see ``Phase.drainage``) and in excavated elements."""
+        config = self.soil_configuration(out, k) if out.phases else None
+        try:
+            if config is not None:
+                self.soil.configure(config["active"], config["k_water"], config["reference"])
+            return self.soil.excess_pore_pressure(out.u[k][self.soil.edofs])
+        finally:
+            self.soil.configure()
+
+    def total_stress(self, out: SceneResult, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip, 4) total stress [sxx, szz, txz, syy] [Pa] (tension positive) at step ``k`` of ``out``:
+        the effective stress of the state minus the pore pressure (hydrostatic from the water level, ponding
+        included, plus the excess of undrained layers) on the normal components."""
+        p = self.pore_pressure() + self.excess_pore_pressure(out, k)
+        sig = out.soil_stress(k)
+        return sig - p[..., None] * np.array([1.0, 1.0, 0.0, 1.0])
+
+    def contact_force(self, out: SceneResult) -> np.ndarray:
+        """Vertical force [N/m] the strip presses on the soil (> 0 compression) at every step of ``out``:
+        -integral of sig_n along the contact. Of a push-over it is the load. Of a :class:`RigidFooting`: the
+        reaction of its base nodes (of a symmetric scene: twice the modelled half's, the whole footing's)."""
+        if self.footing_nodes is not None:
+            return self._footing_reaction(out)
+        k = self.model.groups.index(self.interface)
+        w = self.interface.ip_weights()
+        return np.array([-np.sum(st[k][..., V_SIG] * w) for st in out.states])
+
+    def _footing_reaction(self, out: SceneResult) -> np.ndarray:
+        """Downward reaction [N/m] of a RigidFooting's base at every step of a single-phase solve: the
+        support reactions (internal force minus the ground loads that share the footing's edge node) at the
+        base's w DOFs, summed, doubled for a symmetric scene."""
+        if out.phases:
+            raise ValueError(
+                "contact_force: the reaction of a RigidFooting is read from a single-phase solve (its "
+                "Settlement in Scene.loads); of a phased solve it is not built"
+            )
+        whole = 2.0 if self.scene.symmetric else 1.0
+        return -whole * out.solver_result.support_reaction(self.footing_nodes, "w")
+
+    # ---- solution --------------------------------------------------------------------------------------
+    def solve(
+        self,
+        n_steps: int | None = None,
+        settings: Settings | None = None,
+    ) -> SceneResult:
+        """Apply the loads up to their full value (load factor 1); one linear solve if the scene is linear and
+        has no phases.
+
+        ``n_steps=None`` (default): automatic increments (``settings.stepping``, see :class:`Settings`);
+        an integer: the path passes through n equal load levels (each may be subdivided by automatic
+        stepping; ``Settings.paper()`` takes each as one increment). The result's ``status`` says
+        ``"completed"`` or ``"limit load reached"`` (the loads exceed what the scene can carry: the path up
+        to the limit is returned); a failure before either raises :class:`~ssi.solver.NonConvergence`.
+
+        With ``scene.phases``: the geostatic phase, then each phase in turn (``scene.loads``, if any, as the
+        first, named "loads"); a phase that reaches a limit load ends the analysis. Of a phased solve,
+        ``out.load_factor`` is the phase time (phase i runs from i - 1 to i; the geostatic phase is at 0),
+        ``out.phases`` lists each phase's name, first and last step index and solver result, and
+        ``out.solver_result`` joins their rows (:func:`join_phases`).
+
+        An error estimate, or a refinement to a target error, is a study above the scene:
+        :func:`ssi.studies.estimate.estimate`, :func:`ssi.studies.estimate.solve_to_target`."""
+        if n_steps is not None:
+            check_int("n_steps", n_steps, lo=1)
+        check_instance("settings", settings, Settings, optional=True)
+        if self.scene.phases:
+            return self._solve_phases(n_steps, settings)
+        if self.is_linear:
+            return SceneResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
+        return SceneResult(self, _run_phase(self.model, _load_levels(n_steps), settings))
+
+    def _solve_phases(self, n_steps, settings):
+        scene, model = self.scene, self.model
+        phases = ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
+        n = model.n_dof
+        body = np.zeros(n)
+        for g in model.groups:
+            if g is not self.plate and g.body_force() is not None:
+                scatter_vector(g.edofs, g.body_force(), body)
+        plate_weight = np.zeros(n)
+        if self.plate is not None and self.plate.body_force() is not None:
+            scatter_vector(self.plate.edofs, self.plate.body_force(), plate_weight)
+        f_geo = body + self.geostatic_load
+        saved = dict(model._fixed), dict(model._prescribed)
+        # the single-phase registration is not used here: phases set every load and constraint themselves
+        for d in list(model._prescribed):
+            model._fixed[d] = 0.0
+            model._prescribed.pop(d)
+        try:
+            res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_geo))
+            records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
+            effects, factors, held_from = {}, {}, {}
+            f_prev = np.zeros(n)
+            config = self._initial_soil()
+            for i, ph in enumerate(phases):
+                parts = [self.load_effect(ld) for ld in ph.loads]
+                f_ph = sum((p[0] for p in parts), np.zeros(n)) + (plate_weight if i == 0 else 0.0)
+                held = {}
+                for p in parts:
+                    for d, v in p[1].items():
+                        held[d] = held.get(d, 0.0) + v
+                effects[ph.name] = (f_ph, held)
+                factors[ph.name] = 1.0
+                factors.update(ph.factors)
+                for d in held:
+                    held_from.setdefault(ph.name, {})[d] = float(res.u[-1][d])
+                f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
+                target = {}
+                for k, start in held_from.items():
+                    for d, u0 in start.items():
+                        target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
+                dofs = np.array(sorted(target), np.int64)
+                now = res.u[-1][dofs]
+                soil_before = config
+                config = self._phase_soil(config, ph, res.u[-1])
+                if config is not soil_before:  # soil removed or drainage switched
+                    self.soil.configure(config["active"], config["k_water"], config["reference"])
+                    self._fix_removed_nodes(config, res.u[-1])
+                    f_geo = self._body_force() + self.geostatic_load - self._removed_ground_load(config)
+                _hold(model, dofs, now, np.array([target[d] for d in dofs]) - now)
+                # a changed soil releases the forces it no longer carries: the out-of-balance force g of the
+                # phase's first state (removed elements' stress and weight, the released pore water) is
+                # applied at the start and falls to zero over the phase
+                g = self._release_force(res, f_geo + f_prev) if config is not soil_before else 0.0
+                try:
+                    res = _run_phase(
+                        model,
+                        _load_levels(ph.n_steps or n_steps),
+                        settings,
+                        start=res,
+                        loads=(f_end - f_prev - g, f_geo + f_prev + g),
+                    )
+                except NonConvergence as err:
+                    raise _phase_failure(self, err, ph.name, records) from err
+                _hold(model, dofs, np.array([target[d] for d in dofs]), np.zeros(len(dofs)))
+                f_prev = f_end
+                records.append(_phase_record(ph.name, records, res))
+                if res.collapsed:
+                    break
+        finally:
+            model._fixed.clear()
+            model._fixed.update(saved[0])
+            model._prescribed.clear()
+            model._prescribed.update(saved[1])
+            self.soil.configure()
+        return SceneResult(self, join_phases(model, records), phases=records)
+
+    # ---- phases that change the soil: excavation, drainage switch ---------------------------------------
+    def _phase_list(self):
+        """The phases after the geostatic one: ``scene.loads`` (if any) as the first, named "loads"."""
+        scene = self.scene
+        return ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
+
+    def _initial_soil(self):
+        """The soil configuration as built: every element present, each layer's own drainage."""
+        n_el = self.soil.n_el
+        kw = np.array([lay.k_water() for lay in self.scene.layers])[self.element_layer]
+        return {"active": np.ones(n_el, bool), "k_water": kw, "reference": np.zeros((n_el, 16))}
+
+    def _phase_soil(self, config, phase, u_start):
+        """The soil configuration of ``phase`` from that of the phase before (returned itself if unchanged):
+        its excavations removed, its drainage switches made (an undrained layer's pore water counts the
+        volume change from ``u_start``, the phase's first state)."""
+        removed = self._excavated(phase)
+        switch = {
+            k: v
+            for k, v in phase.drainage.items()
+            if (config["k_water"][self.element_layer == k] > 0).any() != (v == "undrained_A")
+        }
+        if not (removed & config["active"]).any() and not switch:
+            return config
+        active = config["active"] & ~removed
+        kw, ref = config["k_water"].copy(), config["reference"].copy()
+        for k, value in switch.items():
+            els = self.element_layer == k
+            kw[els] = self.scene.layers[k].undrained_k_water() if value == "undrained_A" else 0.0
+            ref[els] = u_start[self.soil.edofs[els]]
+        return {"active": active, "k_water": kw, "reference": ref}
+
+    def _excavated(self, phase):
+        """(n_el,) bool: the soil elements inside the phase's excavation regions."""
+        xc = self.soil.coords.mean(axis=1)
+        out = np.zeros(self.soil.n_el, bool)
+        for ex in phase.excavate:
+            depth = -xc[:, 1]
+            out |= (xc[:, 0] > ex.x0) & (xc[:, 0] < ex.x1) & (depth > ex.top) & (depth < ex.bottom)
+        return out
+
+    def soil_configuration(self, out: SceneResult, k: int = -1) -> dict[str, np.ndarray]:
+        """The soil configuration at step ``k`` of ``out``: ``active`` (n_el,) elements present (False:
+        excavated), ``k_water`` (n_el,) K_w/n [Pa] (0: drained), ``reference`` (n_el, 16) displacement [m]
+        from which each undrained element's pore water counts. Replayed from the phases of ``out``."""
+        config = self._initial_soil()
+        k = k % len(out.u)
+        for phase, record in zip(self._phase_list(), (out.phases or [])[1:]):
+            if record["first"] > k:
+                break
+            config = self._phase_soil(config, phase, out.u[record["first"] - 1])
+        return config
+
+    def _body_force(self):
+        """(n_dof,) body forces [N/m] of the soil as currently configured (the plate's weight is a load)."""
+        f = np.zeros(self.model.n_dof)
+        for g in self.model.groups:
+            if g is not self.plate and g.body_force() is not None:
+                scatter_vector(g.edofs, g.body_force(), f)
+        return f
+
+    def _removed_ground_load(self, config):
+        """(n_dof,) the part of the geostatic ground load (the surcharge) that acted on the top edges of
+        excavated elements: it is removed with them."""
+        f = np.zeros(self.model.n_dof)
+        q, fdn = self.scene.surcharge, self.scene.foundation
+        if not q:
+            return f
+        for e in np.flatnonzero(~config["active"]):
+            top = self.mesh.conn[e][[3, 6, 2]]  # serendipity order: top edge left, middle, right
+            x, z = self.mesh.xy[top, 0], self.mesh.xy[top, 1]
+            under_strip = fdn is not None and fdn.x0 - 1e-9 <= x[1] <= fdn.x1 + 1e-9
+            if np.all(np.abs(z) < 1e-9) and not under_strip:
+                np.add.at(f, self.model.dof(top, "w"), -q * np.array([1.0, 4.0, 1.0]) * (x[2] - x[0]) / 6.0)
+        return f
+
+    def _fix_removed_nodes(self, config, u_start):
+        """Hold the soil nodes that no present element uses at their displacement (they leave the system)."""
+        used = np.zeros(len(self.mesh.xy), bool)
+        used[self.mesh.conn[config["active"]].ravel()] = True
+        for d in (
+            self.model.dof(np.flatnonzero(~used), "u").tolist()
+            + self.model.dof(np.flatnonzero(~used), "w").tolist()
+        ):
+            self.model._fixed[int(d)] = float(u_start[d])
+            self.model._prescribed.pop(int(d), None)
+
+    def _release_force(self, res, f_ext):
+        """g (n_dof,) [N/m]: internal force of the changed model at the phase's first state minus the external
+        force ``f_ext`` it keeps, on the free DOFs -- the excavation forces (the removed soil's stress and
+        weight acting on what remains) and the pore water force a drained layer releases."""
+        system = System(self.model)
+        u0 = res.u[-1]
+        f_int, _, _ = system.evaluate(u0, np.zeros_like(u0), res.final_state, None)
+        g = np.zeros(self.model.n_dof)
+        g[system.free] = (f_int - f_ext)[system.free]
+        return g

@@ -1,0 +1,105 @@
+"""The pieces of a staged analysis: the load levels of one phase, the run of one phase, the record of each,
+the phases' rows joined into one result, and the error a failing phase raises.
+"""
+
+import numpy as np
+
+from ..core.model import Model
+from ..core.solution import Result
+from ..solver import NonConvergence, run
+from .view import SceneResult
+
+
+def _load_levels(n_steps):
+    """Target load factors of one phase: [1] (automatic increments) for None, else n equal levels."""
+    if n_steps is None:
+        return [1.0]
+    if isinstance(n_steps, (int, np.integer)) and not isinstance(n_steps, bool) and n_steps >= 1:
+        return np.linspace(0.0, 1.0, int(n_steps) + 1)[1:]
+    raise ValueError(f"n_steps must be None (automatic) or an integer >= 1, got {n_steps!r}")
+
+
+def _run_phase(model, load_factors, settings, start=None, loads=None):
+    """The one place a phase is stepped: ``ssi.solver.run`` along ``load_factors`` from ``start`` (the last
+    converged state of the previous phase) with F_ext = lambda f_ref + f_dead (``loads``)."""
+    return run(model, load_factors, settings, start=start, loads=loads)
+
+
+class PhaseNonConvergence(NonConvergence):
+    """A phase of a phased solve did not converge. ``scene_result`` is a :class:`SceneResult` of every
+    completed phase plus the failing phase's converged steps (its record's ``result`` has status "stopped";
+    ``ssi.io.results.write_result`` writes it with ``stop=report``); ``result`` is the failing phase's partial
+    solver result (as for any :class:`~ssi.solver.NonConvergence`); ``report`` is the solver's report with
+    ``phase`` (the failing phase's name) and ``completed_phases`` ("name (steps first-last)") added."""
+
+    def __init__(self, report: dict, result: Result, scene_result: "SceneResult") -> None:
+        super().__init__(report, result)
+        self.scene_result = scene_result
+        solver = ", ".join(f"{k}={v}" for k, v in report.items() if k not in ("phase", "completed_phases"))
+        done = ", ".join(report["completed_phases"]) or "none"
+        text = f"phase {report['phase']!r} did not converge: {solver}; completed phases: {done}"
+        self.args = (text + " (all in .scene_result)",)
+
+
+def _phase_failure(built, err, name, records):
+    """The PhaseNonConvergence of phase ``name`` from the solver's NonConvergence ``err``, with the completed
+    phases' ``records``."""
+    partial = err.result
+    records = records + [_phase_record(name, records, partial)]
+    done = [f"{r['name']} (steps {r['first']}-{r['last']})" for r in records[:-1]]
+    report = {"phase": name, "completed_phases": done, **err.report}
+    scene_result = SceneResult(built, join_phases(built.model, records), phases=records)
+    return PhaseNonConvergence(report, partial, scene_result)
+
+
+def _phase_record(name, records, result):
+    """The record of a phase solved after ``records``: its rows follow theirs (its row 0 is their last)."""
+    first = records[-1]["last"] + 1
+    return {"name": name, "first": first, "last": first + result.n_steps - 1, "result": result}
+
+
+def join_phases(model: Model, records: list[dict]) -> Result:
+    """The one :class:`~ssi.core.solution.Result` of a phased solve from its phases' ``records`` (``name``,
+    ``first``, ``last``, ``result``; the geostatic phase first): on the phase time (the geostatic phase's
+    first and last rows at 0, phase i's rows at i - 1 + its load factor), each phase's rows after its first
+    (its first is the previous phase's last); the per-row records come along, the counts and times are
+    summed, the status and limit (shifted onto the phase time) are the last phase's. Its ``f_ref`` and
+    ``f_dead`` are None: each phase has its own loads (``records[i]["result"]``)."""
+    geo = records[0]["result"]
+    rows = {
+        "load_factor": [0.0, 0.0],
+        **{key: [getattr(geo, key)[0], getattr(geo, key)[-1]] for key in Result.ROWS if key != "load_factor"},
+    }
+    for i, record in enumerate(records[1:]):
+        res = record["result"]
+        rows["load_factor"] += [i + v for v in res.load_factor[1:]]
+        for key in Result.ROWS[1:]:  # states: every step's, or the last only, as the phases kept them
+            rows[key] += getattr(res, key)[1:]
+    last, i_last = records[-1]["result"], len(records) - 2
+
+    def phase_time(value):  # a load factor of the last phase on the phase time
+        return None if value is None else i_last + value
+
+    return Result(
+        model=model,
+        **rows,
+        cuts=sum(r["result"].cuts for r in records),
+        wall_time=sum(r["result"].wall_time for r in records),
+        factorizations=sum(r["result"].factorizations for r in records),
+        status=last.status,
+        limit_load_factor=phase_time(last.limit_load_factor),
+        limit_load_upper=phase_time(last.limit_load_upper),
+        limit_evidence=last.limit_evidence,
+        relaxed_steps=last.relaxed_steps,
+        viscous_from=None if last.viscous_from is None else records[-1]["first"] + last.viscous_from - 1,
+        u_origin=geo.u_origin,
+        f_int_origin=geo.f_int_origin,
+    )
+
+
+def _hold(model, dofs, start, increment):
+    """Constrain ``dofs`` to start + lambda * increment during a phase (the model stores a DOF's fixed value
+    and its prescribed reference apart; both are set here)."""
+    for d, a, b in zip(dofs, start, increment):
+        model._fixed[int(d)] = float(a)
+        model._prescribed[int(d)] = float(b)

@@ -1,0 +1,227 @@
+"""The result view: what a foundation engineer reads off a solved scene (``SceneResult``)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.solution import Result
+from ..elements.interface import V_SIG, V_TAU, Interface6
+from ..materials.concrete import P_E0, P_FR
+from ..materials.layer_laws import CONCRETE, STEEL
+from .loads import ColumnLoad
+
+if TYPE_CHECKING:  # for annotations only: these modules import this one
+    from .built import BuiltScene
+
+
+@dataclass
+class SceneResult:
+    """What a foundation engineer reads off a scene, at step ``k`` (default: the last): a view of one
+    :class:`~ssi.core.solution.Result`, ``solver_result``, whose rows (load_factor, u, f_int, states) it
+    reads.
+
+    Of a linear scene that result is :meth:`Model.solve_linear`'s (rows [unloaded, solved]); of a phased
+    solve it is its phases' rows joined on the phase time (:func:`join_phases`), and ``phases`` lists each
+    phase's name, first and last row and its own result."""
+
+    built: BuiltScene
+    solver_result: Result
+    phases: list | None = None  # phased solve: [{"name", "first", "last" (step indices), "result"}]
+
+    @property
+    def load_factor(self) -> list:
+        """Load factor of every row (of a phased solve: the phase time)."""
+        return self.solver_result.load_factor
+
+    @property
+    def u(self) -> list:
+        """(n_dof,) displacement [m, rad] of every row."""
+        return self.solver_result.u
+
+    @property
+    def f_int(self) -> list:
+        """(n_dof,) internal force [N/m] of every row."""
+        return self.solver_result.f_int
+
+    @property
+    def states(self) -> list:
+        """Committed states of every row (or of the last only, ``Settings.keep_states=False``)."""
+        return self.solver_result.states
+
+    @property
+    def status(self) -> str:
+        """ "completed" (load factor 1 reached) or "limit load reached" (collapse detected before it)."""
+        return self.solver_result.status
+
+    @property
+    def limit_load_factor(self) -> float | None:
+        """Load factor of the detected collapse (fraction of the scene's loads; of a phased solve, of the
+        last phase's), None if completed."""
+        last = self.phases[-1]["result"] if self.phases else self.solver_result
+        return last.limit_load_factor
+
+    def _group_state(self, group, k):
+        return self.states[k][self.built.model.groups.index(group)]
+
+    def settlement(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
+        """(x, settlement) along the foundation's nodes (a RigidFooting's: its base), settlement positive
+        downwards."""
+        ids = self.built.plate_nodes if self.built.footing_nodes is None else self.built.footing_nodes
+        return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
+
+    def contact(self, k: int = -1) -> dict[str, np.ndarray]:
+        """Interface points: dict of x, normal stress sig_n (< 0 compression), shear tau and the zone name
+        ('stick', 'slip', 'open') at each integration point."""
+        iface = self.built.interface
+        st = self._group_state(iface, k)
+        names = np.array(["stick", "slip", "open"])[Interface6.status(st)]
+        return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": names}
+
+    def surface(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
+        """(x, settlement) of the soil surface, positive downwards; after an excavation the ground as it is at
+        step ``k`` (the pit's bottom and walls' tops)."""
+        ids = self.built.mesh.surface
+        if any(ph.excavate for ph in self.built.scene.phases) and self.phases:
+            mesh = self.built.mesh
+            used = np.zeros(len(mesh.xy), bool)
+            used[mesh.conn[self.active_elements(k)].ravel()] = True
+            ids = np.array([col[(col >= 0) & used[np.maximum(col, 0)]][-1] for col in mesh.grid], np.int64)
+        return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
+
+    def plate_layers(self, k: int = -1) -> dict[str, np.ndarray]:
+        """Layer strains and stresses of the foundation at its axial sampling points.
+
+        Returns a dict: ``x`` (n_el, n_ip), ``z`` (n_layer,) layer mid-depths above the reference surface,
+        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers
+        whose largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
+        """
+        plate = self.built.plate
+        sec = plate.section
+        u_el = self.u[k][plate.edofs]
+        state = self._group_state(plate, k)
+        eps, _ = plate.layer_strains(u_el)
+        sig, _ = plate.layer_stresses(u_el, state)
+        cracked = np.zeros(eps.shape, bool)
+        for n in np.flatnonzero(sec.kind == CONCRETE):  # history slot 1: the largest tensile strain
+            cracked[..., n] = state[..., n, 1] > sec.params[n, P_FR] / sec.params[n, P_E0]
+        x_pts = plate.point_x()
+        axial = plate.ax.astype(bool)
+        return {
+            "x": x_pts[:, axial],
+            "z": sec.z_mid,
+            "eps": eps[:, axial],
+            "sig": sig[:, axial],
+            "cracked": cracked[:, axial],
+            "steel": sec.kind == STEEL,
+        }
+
+    # ---- what the engineer asks (issue 13); units in each docstring -------------------------------------
+    @property
+    def n_steps(self) -> int:
+        """Number of converged load steps after the initial state (row 0 is lambda = 0)."""
+        return len(self.load_factor) - 1
+
+    def max_settlement(self, k: int = -1) -> tuple[float, float]:
+        """(x [m], settlement [m]) of the foundation node that settles most at step ``k`` (positive down);
+        the soil surface's if the scene has no foundation."""
+        x, s = self.settlement(k) if self.built.plate is not None else self.surface(k)
+        i = int(np.argmax(s))
+        return float(x[i]), float(s[i])
+
+    def contact_weights(self) -> np.ndarray:
+        """(n_el, n_ip) integration weight of every contact point times the line Jacobian [m]: the contact
+        length each point represents (their sum is the foundation width)."""
+        return self.built.interface.ip_weights()
+
+    def contact_resultant(self, k: int = -1) -> dict[str, float]:
+        """Resultant of the contact tractions at step ``k`` per unit length of the strip: ``N`` [N/m]
+        (compression positive, = the vertical load the soil carries), ``H`` [N/m] (shear, +x), ``M``
+        [N m/m] (moment of the tractions about x = 0, counter-clockwise positive) and the foundation's
+        ``eccentricity`` M_p/N [m] of the pressure about x = 0."""
+        c = self.contact(k)
+        w = self.contact_weights()
+        pressure = -c["sig_n"]
+        N = float(np.sum(pressure * w))
+        H = float(np.sum(c["tau"] * w))
+        M = float(np.sum(pressure * w * c["x"]))
+        return {"N": N, "H": H, "M": M, "eccentricity": M / N if N else float("nan")}
+
+    def strip_forces(self, k: int = -1) -> dict[str, np.ndarray]:
+        """Stress resultants of the foundation strip per unit width at step ``k``, from
+        ``PlateStrip.resultants``: ``x_ax`` (n_el, n_ax) [m] with normal force ``N`` [N/m] and bending moment
+        ``M`` [N m/m] (positive sagging: tension at the bottom), ``x_sh`` (n_el, n_sh) [m] with shear force
+        ``Q`` [N/m]."""
+        plate = self.built.plate
+        return plate.resultants(self.u[k][plate.edofs], self._group_state(plate, k))
+
+    def steel_stress(self, k: int = -1) -> dict[str, np.ndarray]:
+        """Stress [Pa] in every steel layer at the strip's axial points at step ``k``: ``x`` (n_el, n_ax) [m],
+        ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
+        ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
+        from ..materials.steel import S_FY
+
+        layers = self.plate_layers(k)
+        steel = layers["steel"]
+        sig = layers["sig"][..., steel]
+        params = self.built.plate.section.params
+        fy = params[steel, S_FY] if steel.any() else np.zeros(0)
+        return {
+            "x": layers["x"],
+            "z": layers["z"][steel],
+            "sig": sig,
+            "yielded": np.abs(sig) >= fy * (1.0 - 1e-9),
+        }
+
+    def crack_map(self, k: int = -1) -> dict[str, np.ndarray]:
+        """Cracked concrete layer points at step ``k``: ``x`` (n_el, n_ax) [m], ``z`` (n_layer,) [m],
+        ``cracked`` (n_el, n_ax, n_layer) bool (largest tensile strain beyond fr/E0; see ``plate_layers``)."""
+        layers = self.plate_layers(k)
+        return {"x": layers["x"], "z": layers["z"], "cracked": layers["cracked"]}
+
+    def soil_points(self) -> np.ndarray:
+        """(n_el, n_ip, 2) coordinates (x, z) [m] of the soil integration points."""
+        return self.built.soil.integration_points()
+
+    def soil_stress(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip, 4) soil stress [sxx, szz, txz, syy] [Pa] (tension positive; geostatic included)."""
+        return self.built.soil.stress(self._group_state(self.built.soil, k)).copy()
+
+    def total_stress(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip, 4) total soil stress [sxx, szz, txz, syy] [Pa] (tension positive) at step ``k``: see
+        :meth:`BuiltScene.total_stress`."""
+        return self.built.total_stress(self, k)
+
+    def pore_pressure(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip) pore pressure [Pa] (compression positive) at step ``k``: hydrostatic from the water
+        level (ponding included) plus the excess pore pressure of undrained layers."""
+        return self.built.pore_pressure() + self.built.excess_pore_pressure(self, k)
+
+    def active_elements(self, k: int = -1) -> np.ndarray:
+        """(n_el,) bool: the soil elements present at step ``k`` (False: excavated in an earlier phase)."""
+        return self.built.soil_configuration(self, k)["active"]
+
+    def plastic_points(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
+        surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
+        from ..elements.soil_q8 import N_STRESS
+
+        return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
+
+    def plastic_strain(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
+        (history slot 0; zero for elastic layers)."""
+        from ..elements.soil_q8 import N_STRESS
+
+        return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
+
+    def load_settlement(self) -> dict[str, np.ndarray]:
+        """The load--settlement path over every converged step (also of a stopped run): ``load_factor``
+        (n_steps + 1,) [-], ``column_load`` (n_steps + 1,) [N/m] = lambda * sum of the column forces N,
+        ``settlement`` (n_steps + 1,) [m] the largest settlement at each step (positive down)."""
+        lam = np.asarray(self.load_factor, np.float64)
+        total_n = sum(load.N for load in self.built.scene.loads if isinstance(load, ColumnLoad))
+        settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
+        return {"load_factor": lam, "column_load": lam * total_n, "settlement": settle}
