@@ -9,11 +9,13 @@ stopped at an error, or that makes figures but holds none (a kernel run with ``M
 non-inline backend, which shows no figure), is refused with a message saying which and what to run;
 ``--execute`` runs such notebooks instead (in the mode ``SSI_FAST`` selects) and renders the result.
 
-The book needs no network when read: the mkdocs Material theme without web fonts and with its offline
-plugin (pages work from ``file://``), ``use_directory_urls: false`` (links point at ``.html`` files, not at
-folders), MathJax 2.7 copied into the site from the ``jupyter-server-mathjax`` package (PyPI, the Jupyter
-project's own bundle of MathJax; no Node or CDN needed to build), code highlighted at build time by Pygments
-(no highlight.js), and wide tables in a horizontal scroller (``book_extra.css``).
+The book needs no network when read: the mkdocs Material theme without web fonts and without the search
+plugin (whose worker cannot start from ``file://``), ``use_directory_urls: false`` (links point at ``.html``
+files, not at folders, so the pages work from ``file://``), MathJax 3 copied into the site from the
+``django-static-mathjax`` package (PyPI: MathJax's release files and nothing else, no dependency; so a
+machine with Python alone builds the book, no Node, no CDN) with its SVG output (no font files), code
+highlighted at build time by Pygments (no highlight.js), nbconvert's mermaid loader (a CDN import, for
+diagrams no chapter has) removed, and wide tables in a horizontal scroller (``book_extra.css``).
 
 After the build, :func:`check_html` reads every page and reports what would break it in a browser:
 
@@ -38,11 +40,14 @@ import sys
 from pathlib import Path
 
 TOOLS = Path(__file__).resolve().parent
-# the bundled MathJax 2.7: the TeX input, the HTML-CSS output with its STIX web fonts (mathjax_local.js,
-# installed as config/local/ssi.js) and the Safe extension (no \href javascript:, no raw HTML from TeX);
-# pages are flat (use_directory_urls: false), so the path is relative to every page
+# MathJax 3 from the django-static-mathjax package (a plain copy of MathJax's release, no dependency; its
+# Django glue is not used), loaded by mathjax_load.js, which configures it; pages are flat
+# (use_directory_urls: false), so the path is relative to every page
 MATHJAX_DIR = "assets/mathjax"
-MATHJAX_URL = f"{MATHJAX_DIR}/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/ssi"
+MATHJAX_URL = "assets/mathjax_load.js"
+# what the site needs of MathJax's es5 folder: the tex-svg component and what it loads on demand (TeX
+# extensions, the menu, the a11y helpers); not the speech engine nor the other combined components
+_MATHJAX_SKIP = ("sre", "*-speech.js", "node-main.js", "tex-chtml*", "tex-mml-*", "mml-*", "tex-svg-full.js")
 EXTRA_CSS = "book_extra.css"
 _MATH = re.compile(r"\$\$(.+?)\$\$|(?<![\\$])\$(?!\$)(.+?)(?<![\\$])\$", re.DOTALL)
 _TAG = re.compile(r"<(/?)(em|strong|i|b|code|a|span)\b[^>]*>")
@@ -58,7 +63,9 @@ _RESOURCE = re.compile(
 )
 # nbconvert's loader of mermaid diagrams (a <script type="module"> importing mermaid from a CDN when a page
 # has a diagram; no chapter has one)
-_MERMAID = re.compile(r"<script type=\"module\">(?:(?!</script>).)*?mermaid(?:(?!</script>).)*</script>", re.DOTALL)
+_MERMAID = re.compile(
+    r"<script type=\"module\">(?:(?!</script>).)*?mermaid(?:(?!</script>).)*</script>", re.DOTALL
+)
 _FIGURE_CALL = re.compile(r"\bplt\.(subplots|figure)\(|\.plot_\w+\(|\bplot\.\w+\(")
 
 
@@ -188,14 +195,19 @@ def prepare(pages: list[Path], source: Path) -> Path:
 
 
 def mathjax_source() -> Path:
-    """The MathJax 2.7 folder shipped by the ``jupyter-server-mathjax`` package (the book extra)."""
+    """MathJax 3's es5 folder as shipped by the ``django-static-mathjax`` package (the book extra)."""
     try:
-        import jupyter_server_mathjax
+        import mathjax
     except ImportError as err:
         raise ImportError(
-            "the book bundles MathJax from the jupyter-server-mathjax package: pip install -e '.[book]'"
+            "the book bundles MathJax from the django-static-mathjax package: pip install -e '.[book]'"
         ) from err
-    return Path(jupyter_server_mathjax.__file__).parent / "static"
+    folder = Path(mathjax.__file__).parent / "static" / "mathjax"
+    if not (folder / "es5" / "tex-svg.js").is_file():
+        raise FileNotFoundError(
+            f"{folder}/es5/tex-svg.js missing: not the MathJax 3 of django-static-mathjax"
+        )
+    return folder
 
 
 def build(notebooks, site, source=None, run: bool = False) -> Path:
@@ -213,13 +225,10 @@ def build(notebooks, site, source=None, run: bool = False) -> Path:
     for page in site.glob("*.html"):  # mermaid from a CDN, for diagrams that no chapter has
         text = page.read_text()
         page.write_text(_MERMAID.sub("", text))
-    shutil.copytree(
-        mathjax_source(),
-        site / MATHJAX_DIR,
-        ignore=shutil.ignore_patterns("*.py", "__pycache__", "SVG", "localization"),
-    )
-    (site / MATHJAX_DIR / "config" / "local").mkdir(exist_ok=True)
-    shutil.copy2(TOOLS / "mathjax_local.js", site / MATHJAX_DIR / "config" / "local" / "ssi.js")
+    source_mj = mathjax_source()
+    shutil.copytree(source_mj / "es5", site / MATHJAX_DIR, ignore=shutil.ignore_patterns(*_MATHJAX_SKIP))
+    shutil.copy2(source_mj / "LICENSE", site / MATHJAX_DIR / "LICENSE")
+    shutil.copy2(TOOLS / "mathjax_load.js", site / MATHJAX_URL)
     return site
 
 
@@ -232,8 +241,10 @@ def check_page(text: str) -> list[str]:
             problems.append(f"resource loaded from the network: {url[:100]}")
     has_math = bool(_MATH.search(_body_text(text)))
     sources = re.findall(r"<script[^>]*\bsrc=\"([^\"]*)\"", text)
-    if has_math and not any(MATHJAX_DIR in s for s in sources):
-        problems.append(f"math on the page but the bundled MathJax is not loaded (no <script src=...{MATHJAX_DIR}>)")
+    if has_math and not any(s.endswith(MATHJAX_URL) for s in sources):
+        problems.append(
+            f"math on the page but the bundled MathJax is not loaded (no <script src={MATHJAX_URL}>)"
+        )
     for m in _MATH.finditer(_body_text(text)):
         tex = m.group(1) if m.group(1) is not None else m.group(2)
         short = tex.strip()[:60]

@@ -198,7 +198,8 @@ _TEXT_JS = r"""
     acceptNode(node) {
       for (let e = node.parentElement; e; e = e.parentElement) {
         if (skip.has(e.tagName)) return NodeFilter.FILTER_REJECT;
-        if (e.classList && (e.classList.contains("MathJax_Preview"))) return NodeFilter.FILTER_REJECT;
+        if (e.classList && e.classList.contains("MathJax_Preview")) return NodeFilter.FILTER_REJECT;
+        if (e.tagName === "MJX-ASSISTIVE-MML") return NodeFilter.FILTER_REJECT;
         const s = getComputedStyle(e);
         if (s.display === "none" || s.visibility === "hidden") return NodeFilter.FILTER_REJECT;
       }
@@ -248,9 +249,14 @@ _LAYOUT_JS = r"""
 _IMAGES_JS = """Array.from(document.images).map(i => ({src: i.src.slice(0, 100), complete: i.complete,
   naturalWidth: i.naturalWidth}))"""
 
+# the number of typeset equations once MathJax (3: startup.promise; 2: the Hub's queue) is done; -1 when the
+# page has no MathJax (none loaded, or its script failed to load)
 _MATHJAX_DONE_JS = """new Promise((resolve) => {
-  if (!window.MathJax || !window.MathJax.Hub) { resolve(-1); return; }
-  MathJax.Hub.Queue(() => resolve(document.querySelectorAll(".MathJax, .MathJax_Display, mjx-container").length));
+  const count = () => document.querySelectorAll("mjx-container, .MathJax, .MathJax_Display").length;
+  const M = window.MathJax;
+  if (M && M.startup && M.startup.promise) { M.startup.promise.then(() => resolve(count())); return; }
+  if (M && M.Hub) { M.Hub.Queue(() => resolve(count())); return; }
+  resolve(-1);
 })"""
 
 
@@ -339,7 +345,9 @@ def inspect_page(
                 )
             elif method == "Log.entryAdded" and p.get("entry", {}).get("level") == "error":
                 entry = p["entry"]
-                report.console_errors.append(f"{entry.get('source')}: {entry.get('text')} {entry.get('url', '')}")
+                report.console_errors.append(
+                    f"{entry.get('source')}: {entry.get('text')} {entry.get('url', '')}"
+                )
             elif method == "Network.requestWillBeSent":
                 req_url = p.get("request", {}).get("url", "")
                 if not req_url.startswith(("file:", "data:", "about:", "blob:")):
@@ -357,7 +365,7 @@ def main(argv=None) -> int:
     with Chromium() as browser:
         for page in pages:
             shot = Path("build/browser") / (Path(page).stem + ".png")
-            views = {shot.with_name(shot.stem + "-math.png"): ".MathJax_Display"}
+            views = {shot.with_name(shot.stem + "-math.png"): "mjx-container[display]"}
             views[shot.with_name(shot.stem + "-figure.png")] = ".jp-OutputArea-output img"
             r = inspect_page(browser, Path(page), shot, views=views)
             print(
