@@ -187,6 +187,7 @@ def prepare(pages: list[Path], source: Path) -> Path:
         "plugins:\n"
         "  - mkdocs-jupyter:\n"
         "      execute: false\n"
+        "      cache: false\n"  # no .cache/ folder in the working directory
         "      include_source: false\n"
         "      include_requirejs: false\n"
         f'      custom_mathjax_url: "{MATHJAX_URL}"\n'
