@@ -27,7 +27,9 @@ After the build, :func:`check_html` reads every page and reports what would brea
 * unbalanced braces in a math span.
 
 What only a browser can tell (the math typeset, every image decoded, no console error, the layout) is
-checked by ``tests/test_browser.py`` with headless Chromium (``tools/browser.py``).
+checked with headless Chromium (``tools/browser.py``, offline) on every chapter page when Chromium is
+installed (:func:`check_in_browser`; screenshots in ``build/browser/book/``), and on two chapters by
+``tests/test_browser.py`` in ``make test``.
 """
 
 import html
@@ -221,7 +223,9 @@ def build(notebooks, site, source=None, run: bool = False) -> Path:
     pages = check_notebooks(Path(notebooks), run=run)
     config = prepare(pages, source)
     subprocess.run(
-        [sys.executable, "-m", "mkdocs", "build", "-q", "-f", str(config), "-d", str(site)], check=True
+        [sys.executable, "-m", "mkdocs", "build", "-q", "-f", str(config), "-d", str(site)],
+        check=True,
+        env={**os.environ, "NO_MKDOCS_2_WARNING": "1"},  # Material's banner about a future mkdocs 2
     )
     for page in site.glob("*.html"):  # mermaid from a CDN, for diagrams that no chapter has
         text = page.read_text()
@@ -275,6 +279,34 @@ def check_html(site) -> dict:
     return out
 
 
+def check_in_browser(site, shots=Path("build/browser/book")) -> dict | None:
+    """{page: [problems]} of every page of ``site`` opened in headless Chromium with no network (see
+    ``PageReport.problems`` in tools/browser.py), or None when Chromium is not installed."""
+    sys.path.insert(0, str(TOOLS))
+    try:
+        import browser
+    finally:
+        sys.path.remove(str(TOOLS))
+    if browser.find_chromium() is None:
+        return None
+    out = {}
+    with browser.Chromium() as chromium:
+        for page in sorted(Path(site).glob("*.html")):
+            if page.name == "404.html":  # a web server's page, with links from the server's root
+                continue
+            report = browser.inspect_page(chromium, page, Path(shots) / (page.stem + ".png"))
+            problems = report.problems()
+            if (
+                page.stem[:2].isdigit()
+                and report.math_elements == 0
+                and "$" in page.read_text(errors="replace")
+            ):
+                problems.append("no equation typeset (MathJax did not run?)")
+            if problems:
+                out[page.name] = problems
+    return out
+
+
 def main(argv=None) -> int:
     args = sys.argv[1:] if argv is None else list(argv)
     run = "--execute" in args
@@ -295,7 +327,20 @@ def main(argv=None) -> int:
         f"book: {site}/index.html ({n_pages} pages, {n_img} images); offline and equation check: "
         + ("OK" if not problems else f"{sum(map(len, problems.values()))} problems")
     )
-    return 1 if problems else 0
+    in_browser = check_in_browser(site)
+    if in_browser is None:
+        print(
+            "book: no chromium installed, the pages were not opened in a browser (apt-get install chromium)"
+        )
+    else:
+        for page, items in in_browser.items():
+            for p in items:
+                print(f"{page} (in Chromium): {p}")
+        print(
+            "book: every page opened in headless Chromium, offline (screenshots in build/browser/book): "
+            + ("OK" if not in_browser else f"{sum(map(len, in_browser.values()))} problems")
+        )
+    return 1 if problems or in_browser else 0
 
 
 if __name__ == "__main__":

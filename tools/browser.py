@@ -190,6 +190,30 @@ class PageReport:
     math_elements: int = 0  # elements MathJax typeset
     screenshot: Path | None = None
 
+    def problems(self) -> list[str]:
+        """What a reader would see broken on the page (empty when it is fine): raw TeX delimiters ($$, \\(,
+        \\[) in the text outside code, images that did not decode, console errors and exceptions, requests to
+        the network, a page wider than the window, and a table running past the window without a scroller."""
+        problems = []
+        for raw in ("$$", "\\(", "\\["):
+            if raw in self.text:
+                at = self.text.index(raw)
+                problems.append(f"raw {raw!r} in the rendered text: {self.text[max(at - 40, 0) : at + 60]!r}")
+        bad_images = [i["src"] for i in self.images if not i["naturalWidth"] > 0]
+        if bad_images:
+            problems.append(f"images not loaded: {bad_images}")
+        problems += [f"console: {e}" for e in self.console_errors]
+        problems += [f"request to the network: {u}" for u in self.external_requests]
+        lay = self.layout
+        if lay["page_width"] > lay["viewport_width"]:
+            problems.append(f"page wider than the window: {lay['page_width']} > {lay['viewport_width']} px")
+        for t in lay["tables"]:
+            if t["right"] > lay["viewport_width"] and not t["scrolls"]:
+                problems.append(
+                    f"table cut at the window's edge (right edge {t['right']:.0f} px, no scroller)"
+                )
+        return problems
+
 
 _TEXT_JS = r"""
 (() => {
