@@ -10,6 +10,7 @@ equation and its first figure).
 """
 
 import importlib.util
+import json
 import os
 import shutil
 import sys
@@ -47,6 +48,16 @@ def chromium():
         yield b
 
 
+def _wide_table_page(path):
+    """A Markdown-only page with a 12-column table about 1 600 px wide, more than twice the text column."""
+    head = "| " + " | ".join(f"column {i} with a long heading" for i in range(12)) + " |"
+    row = "| " + " | ".join(f"{i * 1234.5678:.4f} kN/m" for i in range(12)) + " |"
+    source = "\n".join(["# 99 — A wide table", "", "Wider than the column; $\\sigma = E\\varepsilon$.", ""])
+    source += "\n".join([head, "|" + "---|" * 12, row, row])
+    cell = {"cell_type": "markdown", "metadata": {}, "source": source}
+    path.write_text(json.dumps({"cells": [cell], "metadata": {}, "nbformat": 4, "nbformat_minor": 5}))
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """The book of CHAPTERS, executed in fast mode now (or as `make reproduce` left them, if executed)."""
@@ -62,6 +73,7 @@ def site(tmp_path_factory):
             shutil.copy2(left, notebooks / left.name)
         else:
             jupytext.write(jupytext.read(ROOT / "chapters" / f"{name}.py"), notebooks / f"{name}.ipynb")
+    _wide_table_page(notebooks / "99_wide_table.ipynb")
     # fast mode, and the chapters' figures and report rows written under tmp, not into the project's figures/
     env = {"SSI_FAST": "1", "SSI_ROOT": str(tmp / "root")}
     saved = {k: os.environ.get(k) for k in env}
@@ -111,3 +123,17 @@ def test_broken_page_is_caught(tmp_path, chromium):
         assert expected in problems, expected
     assert "page wider than the window" in problems and "table cut" in problems
     assert report.math_elements == 0
+
+
+def test_wide_table_scrolls_inside_the_column(site, chromium):
+    report = browser.inspect_page(
+        chromium,
+        site / "99_wide_table.html",
+        SHOTS / "99_wide_table.png",
+        views={SHOTS / "99_table.png": "table"},
+    )
+    assert report.problems() == []
+    (table,) = report.layout["tables"]
+    assert table["width"] > 1.5 * table["column_width"]  # the table is really wider than its column...
+    assert table["scrolls"]  # ...and sits in a horizontal scroller instead of being cut or widening the page
+    assert report.layout["page_width"] <= report.layout["viewport_width"]

@@ -86,7 +86,6 @@ class Chromium:
             "--disable-background-networking",
             "--disable-component-update",
             "--host-resolver-rules=MAP * ~NOTFOUND",  # offline: any host name fails to resolve
-            "--hide-scrollbars",
             "about:blank",
         ]
         self._proc = subprocess.Popen(
@@ -193,7 +192,8 @@ class PageReport:
     def problems(self) -> list[str]:
         """What a reader would see broken on the page (empty when it is fine): raw TeX delimiters ($$, \\(,
         \\[) in the text outside code, images that did not decode, console errors and exceptions, requests to
-        the network, a page wider than the window, and a table running past the window without a scroller."""
+        the network, a page wider than the window, and a table running past its text column (into the
+        sidebar or off the window) without a scroller."""
         problems = []
         for raw in ("$$", "\\(", "\\["):
             if raw in self.text:
@@ -257,7 +257,10 @@ _LAYOUT_JS = r"""
   };
   const tables = Array.from(document.querySelectorAll("table")).map((t) => {
     const r = t.getBoundingClientRect();
-    return {width: t.scrollWidth, right: r.right, scrolls: scrolls(t)};
+    const column = (t.closest("article, .md-content, main") || document.body).getBoundingClientRect();
+    // a table scrolls when it (display: block, overflow-x: auto) or an ancestor is a horizontal scroller
+    return {width: t.scrollWidth, right: r.right, column_right: column.right, column_width: column.width,
+            scrolls: scrolls(t)};
   });
   return {
     viewport_width: vw,
