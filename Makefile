@@ -92,7 +92,9 @@ bench: $(STAMP)
 	$(BIN)/python -m pip install -q -e '.[test,bench,fast]'
 	@for f in $(sort $(wildcard benchmarks/bench_*.py)); do $(BIN)/python $$f || exit 1; done
 
-book: $(STAMP)
+# after `make notebooks` (a chapter edited since `make reproduce` is converted again, without outputs, and
+# then refused by name rather than shown with the results of its previous version)
+book: $(STAMP) notebooks
 	$(BIN)/python -m pip install -q -e '.[book]'
 	$(BIN)/python tools/book.py build/notebooks build/book
 

@@ -117,6 +117,7 @@ def execute(notebook: Path, timeout: int = 3600) -> None:
     """Execute ``notebook`` in place with nbclient (the mode from ``SSI_FAST``, as the environment sets)."""
     import nbformat
     from nbclient import NotebookClient
+    from nbclient.exceptions import CellExecutionError
 
     nb = nbformat.read(notebook, as_version=4)
     env_backend = os.environ.pop("MPLBACKEND", None)  # the kernel must use the inline backend
@@ -124,6 +125,8 @@ def execute(notebook: Path, timeout: int = 3600) -> None:
         NotebookClient(
             nb, timeout=timeout, kernel_name="python3", resources={"metadata": {"path": str(Path.cwd())}}
         ).execute()
+    except CellExecutionError:
+        pass  # the error is in the cell's outputs: notebook_problem() reports it
     finally:
         if env_backend is not None:
             os.environ["MPLBACKEND"] = env_backend
