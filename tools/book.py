@@ -299,11 +299,9 @@ def check_in_browser(site, shots=Path("build/browser/book")) -> dict | None:
                 continue
             report = browser.inspect_page(chromium, page, Path(shots) / (page.stem + ".png"))
             problems = report.problems()
-            if (
-                page.stem[:2].isdigit()
-                and report.math_elements == 0
-                and "$" in page.read_text(errors="replace")
-            ):
+            # TeX outside code blocks and scripts (a '$' in code or in the page's scripts is not math)
+            has_math = _MATH.search(_body_text(page.read_text(errors="replace")))
+            if has_math and report.math_elements == 0:
                 problems.append("no equation typeset (MathJax did not run?)")
             if problems:
                 out[page.name] = problems
