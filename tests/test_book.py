@@ -1,5 +1,7 @@
-"""The HTML book: mkdocs-jupyter renders a chapter-like notebook and the equation check passes it, and the
-check fails on each way an equation breaks (MathJax not loaded, TeX mangled, a LaTeX string without r'')."""
+"""The HTML book: mkdocs-jupyter renders a chapter-like notebook with the bundled MathJax and no network
+resource, and the checks pass it; the page check fails on each way an equation or the offline reading breaks
+(MathJax not loaded, TeX mangled, a LaTeX string without r'', a CDN script); notebooks that are not executed,
+stopped at an error, or make figures but hold none are refused by name."""
 
 import importlib.util
 import json
@@ -21,7 +23,7 @@ EQUATIONS = [
 ]
 
 
-def _notebook(folder, lines):
+def _notebook(folder, lines, execution_count=1, outputs=None, code="print('$5 and $6')"):
     cells = [
         {
             "cell_type": "markdown",
@@ -31,9 +33,11 @@ def _notebook(folder, lines):
         {
             "cell_type": "code",
             "metadata": {},
-            "execution_count": 1,
-            "source": "print('$5 and $6')",
-            "outputs": [{"output_type": "stream", "name": "stdout", "text": "$5 and $6\n"}],
+            "execution_count": execution_count,
+            "source": code,
+            "outputs": [{"output_type": "stream", "name": "stdout", "text": "$5 and $6\n"}]
+            if outputs is None
+            else outputs,
         },
     ]
     nb = {
@@ -44,21 +48,66 @@ def _notebook(folder, lines):
     }
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "99_chapter.ipynb").write_text(json.dumps(nb))
+    return folder / "99_chapter.ipynb"
 
 
 def test_rendered_book_keeps_equations(tmp_path):
-    pytest.importorskip("mkdocs_jupyter")
+    pytest.importorskip("mkdocs_jupyter", reason="the book extra (mkdocs-jupyter) is not installed")
+    pytest.importorskip("mathjax", reason="the book extra (django-static-mathjax) is not installed")
     _notebook(tmp_path / "nb", EQUATIONS)
     site = book.build(tmp_path / "nb", tmp_path / "site")
-    page = (site / "99_chapter" / "index.html").read_text()
+    page = (site / "99_chapter.html").read_text()
     assert r"\tan\varphi_i" in page and r"\frac{M}{EI}" in page  # the TeX reaches the page intact
     assert book.check_html(site) == {}
+    # MathJax is in the site, loaded by a relative path, with the book's font settings; nothing from a CDN
+    assert (site / book.MATHJAX_DIR / "tex-svg.js").is_file() and (site / book.MATHJAX_URL).is_file()
+    assert f'src="{book.MATHJAX_URL}"' in page
+    assert "cdnjs" not in page and "highlight.min.js" not in page and "unpkg" not in page
+
+
+_IMAGE = {
+    "output_type": "display_data",
+    "metadata": {},
+    "data": {"image/png": "iVBORw0KGgo=", "text/plain": "F"},
+}
+
+
+@pytest.mark.parametrize(
+    "execution_count, outputs, code, why",
+    [
+        (None, [], "x = 1", "not executed"),
+        (
+            1,
+            [{"output_type": "error", "ename": "ValueError", "evalue": "bad", "traceback": []}],
+            "x = 1",
+            "error",
+        ),
+        (1, [], "fig, ax = plt.subplots()", "makes figures but holds none"),
+    ],
+)
+def test_unfit_notebooks_are_refused(tmp_path, execution_count, outputs, code, why):
+    nb = _notebook(tmp_path / "nb", EQUATIONS, execution_count, outputs, code)
+    assert why in book.notebook_problem(nb)
+    with pytest.raises(book.NotExecutedError, match="99_chapter.ipynb.*" + why):
+        book.check_notebooks(tmp_path / "nb")
+    assert book.main([str(tmp_path / "nb"), str(tmp_path / "site")]) == 2  # make book stops, nothing built
+    assert not (tmp_path / "site").exists()
+
+
+def test_executed_notebook_with_its_figure_is_accepted(tmp_path):
+    nb = _notebook(tmp_path / "nb", EQUATIONS, 1, [_IMAGE], "fig, ax = plt.subplots()")
+    assert book.notebook_problem(nb) is None
+    assert book.check_notebooks(tmp_path / "nb") == [nb]
 
 
 @pytest.mark.parametrize(
     "page, word",
     [
         ('<script src=""></script><p>$a_b$</p>', "MathJax is not loaded"),
+        ('<script src="https://cdnjs.example/mathjax.js"></script><p>$a_b$</p>', "MathJax is not loaded"),
+        (f'<script src="{book.MATHJAX_URL}"></script><script src="https://cdn.x/h.js"></script>', "network"),
+        ('<link rel="stylesheet" href="//fonts.example/css">', "network"),
+        ('<script type="module">await import("https://cdn.x/m.mjs")</script>', "network"),
         (f'<script src="{book.MATHJAX_URL}"></script><p>$a<em>b</em>c$</p>', "HTML tag inside math"),
         (f'<script src="{book.MATHJAX_URL}"></script><p>$\x08ar m$</p>', "control character"),
         ('<script src="' + book.MATHJAX_URL + r'"></script><p>$\frac{a}{{b}$</p>', "unbalanced braces"),

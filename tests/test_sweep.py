@@ -65,7 +65,7 @@ def test_sweep_rejects_bad_input(tmp_path):
 
 
 def test_dask_sweep_matches_the_serial_one(tmp_path):
-    pytest.importorskip("distributed")
+    pytest.importorskip("distributed", reason="dask.distributed (the test and sweep extras) is not installed")
     import cloudpickle
 
     cloudpickle.register_pickle_by_value(sys.modules[__name__])  # workers do not import the tests
