@@ -433,7 +433,7 @@ def test_every_field_has_a_unit():
     import dataclasses
     import inspect
 
-    from ssi.scene import scene as scene_module
+    import ssi.scene as scene_module  # the face: every class a scene is made of
 
     runtime = {"BuiltScene", "SceneResult"}  # built from a scene, not written in a scene file
     classes = [

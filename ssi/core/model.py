@@ -178,6 +178,56 @@ class Model:
             self._prescribed[int(d)] = value
             self._fixed.pop(int(d), None)
 
+    # ---- constraints by DOF number, for a staged analysis ----------------------------------------------
+    def _dof_numbers(self, name: str, dofs) -> list[int]:
+        dofs = np.atleast_1d(np.asarray(dofs))
+        if dofs.size and (dofs.dtype.kind not in "iu" or dofs.min() < 0 or dofs.max() >= self.n_dof):
+            raise ValueError(f"{name}: DOF numbers must be integers in [0, {self.n_dof}), got {dofs!r}")
+        return [int(d) for d in dofs.ravel()]
+
+    def fix_dofs(self, dofs, values) -> None:
+        """Hold each DOF of ``dofs`` (model DOF numbers) at its entry of ``values`` [m or rad], not scaled by
+        the load factor; a DOF prescribed before stops being prescribed."""
+        dofs = self._dof_numbers("fix_dofs dofs", dofs)
+        for d, v in zip(dofs, np.broadcast_to(np.asarray(values, float), (len(dofs),))):
+            self._fixed[d] = float(v)
+            self._prescribed.pop(d, None)
+
+    def prescribe_dofs(self, dofs, values) -> None:
+        """Prescribe each DOF of ``dofs`` at its entry of ``values`` [m or rad] times the load factor; a DOF
+        fixed before stops being fixed."""
+        dofs = self._dof_numbers("prescribe_dofs dofs", dofs)
+        for d, v in zip(dofs, np.broadcast_to(np.asarray(values, float), (len(dofs),))):
+            self._prescribed[d] = float(v)
+            self._fixed.pop(d, None)
+
+    def hold_dofs(self, dofs, start, increment) -> None:
+        """Constrain each DOF of ``dofs`` to u = start + lambda * increment [m or rad] (the phase engine's
+        hold: the fixed value and the prescribed reference of one DOF, both set)."""
+        dofs = self._dof_numbers("hold_dofs dofs", dofs)
+        for d, a, b in zip(dofs, start, increment):
+            self._fixed[d] = float(a)
+            self._prescribed[d] = float(b)
+
+    def fix_prescribed(self) -> None:
+        """Turn every prescribed DOF into one fixed at zero (a phase sets its own prescribed motions)."""
+        for d in list(self._prescribed):
+            self._fixed[d] = 0.0
+            self._prescribed.pop(d)
+
+    def constraint_state(self) -> tuple[dict[int, float], dict[int, float]]:
+        """A copy of the constraints, (fixed values, prescribed references) by DOF, for
+        :meth:`restore_constraints`."""
+        return dict(self._fixed), dict(self._prescribed)
+
+    def restore_constraints(self, state: tuple[dict[int, float], dict[int, float]]) -> None:
+        """Put back the constraints a :meth:`constraint_state` recorded."""
+        fixed, prescribed = state
+        self._fixed.clear()
+        self._fixed.update(fixed)
+        self._prescribed.clear()
+        self._prescribed.update(prescribed)
+
     def add_load(self, ids, comp: str | int, value) -> None:
         """Nodal force (or moment for 'alpha') per node, scaled by the load factor."""
         d = self.dof(ids, comp)

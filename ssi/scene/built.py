@@ -11,7 +11,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.assembly import scatter_vector
-from ..core.mesh import surface_pressure_forces
 from ..core.model import Model, System
 from ..core.validate import (
     check_instance,
@@ -26,7 +25,7 @@ from ..materials.soil_laws import (
 )
 from ..solver import NonConvergence, Settings
 from .checks import _segments
-from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .loads import LOAD_TYPES, ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Phase
 from .stages import _hold, _load_levels, _phase_failure, _phase_record, _run_phase, join_phases
 from .view import SceneResult
@@ -72,47 +71,15 @@ class BuiltScene:
     def load_effect(
         self, load: SurfacePressure | ColumnLoad | StripLoad | StripWeight | Settlement
     ) -> tuple[np.ndarray, dict[int, float]]:
-        """(force vector (n_dof,) [N/m], {dof: prescribed displacement increment [m]}) of one load."""
-        model, f_vec, held = self.model, np.zeros(self.model.n_dof), {}
-        if isinstance(load, SurfacePressure):
-            f = self.scene.foundation
-            if f is not None and min(load.x1, f.x1) - max(load.x0, f.x0) > 1e-9:
-                raise ValueError(
-                    f"SurfacePressure ({load.x0}, {load.x1}) overlaps the strip ({f.x0}, {f.x1}): "
-                    "a load on the strip is a StripLoad"
-                )
-            nodes, w = surface_pressure_forces(self.mesh, load.x0, load.x1)
-            np.add.at(f_vec, model.dof(nodes, "w"), -load.q * w)
-        elif isinstance(load, ColumnLoad):
-            if load.H != 0.0 and self.slide_support is not None:
-                raise ValueError(
-                    f"ColumnLoad.H = {load.H:g} N/m at x = {load.x:g} m on a frictionless contact (every "
-                    "Contact.kt = 0): nothing resists a horizontal load on the strip; give Contact.kt > 0"
-                )
-            node = self.plate_node_at(load.x)
-            for comp, value in (("w", -load.N), ("u", load.H), ("alpha", load.M)):
-                f_vec[model.dof(node, comp)] += value
-        elif isinstance(load, StripLoad):
-            scatter_vector(
-                self.plate.edofs, self.plate.distributed_load(self._strip_profile(load), comp="w"), f_vec
-            )
-        elif isinstance(load, StripWeight):
-            q = load.unit_weight * self.plate.section.thickness - self.scene.gamma_w * self._submerged_depth()
-            scatter_vector(self.plate.edofs, self.plate.distributed_load(-q, comp="w"), f_vec)
-        elif isinstance(load, Settlement) and self.footing_nodes is not None:  # a RigidFooting's base
-            held.update({int(d): -float(load.w) for d in model.dof(self.footing_nodes, "w")})
-        elif isinstance(load, Settlement):
-            ids = self.plate_nodes if load.x is None else np.array([self.plate_node_at(x) for x in load.x])
-            held.update({int(d): -float(load.w) for d in model.dof(ids, "w")})
-            if load.x is None:  # rigid strip: rotations held
-                held.update({int(d): 0.0 for d in model.dof(ids, "alpha")})
-        else:
+        """(force vector (n_dof,) [N/m], {dof: prescribed displacement increment [m]}) of one load: its own
+        ``effect`` on this built scene (``ssi.scene.loads``)."""
+        if not isinstance(load, tuple(LOAD_TYPES.values())):
             raise TypeError(
                 f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or Settlement"
             )
-        return f_vec, held
+        return load.effect(self)
 
-    def _submerged_depth(self) -> float:
+    def submerged_depth(self) -> float:
         """Thickness [m] of the strip below the water level: the water pressure on its base exceeds that on
         its top by gamma_w times it (the strip's buoyancy, netted in :class:`StripWeight`)."""
         if self.scene.water_table is None:
@@ -120,30 +87,13 @@ class BuiltScene:
         t = self.plate.section.thickness
         return float(np.clip(-self.scene.water_table + self.scene.embedment, 0.0, t))
 
-    def _strip_profile(self, load):
-        a = self.scene.foundation.x0 if load.x0 is None else load.x0
-        b = self.scene.foundation.x1 if load.x1 is None else load.x1
-        if not (self.scene.foundation.x0 - 1e-9 <= a < b <= self.scene.foundation.x1 + 1e-9):
-            raise ValueError(
-                f"StripLoad x0={a}, x1={b} must satisfy foundation.x0 <= x0 < x1 <= foundation.x1"
-            )
-        q_end = load.q if load.q_end is None else load.q_end
-
-        def q(x):
-            inside = (x >= a - 1e-12) & (x <= b + 1e-12)
-            return np.where(inside, -(load.q + (q_end - load.q) * (x - a) / (b - a)), 0.0)
-
-        return q
-
     def _register(self, load):
         """Add one load of the single-phase scene to the model (reference load, or prescribed settlement)."""
         f_vec, held = self.load_effect(load)
         nz = np.flatnonzero(f_vec)
         if nz.size:
             self.model.add_element_load(nz[None], f_vec[nz][None])
-        for d, v in held.items():
-            self.model._prescribed[d] = v
-            self.model._fixed.pop(d, None)
+        self.model.prescribe_dofs(np.array(list(held), np.int64), list(held.values()))
 
     def pore_pressure(self) -> np.ndarray:
         """Hydrostatic pore pressure [Pa] (compression positive) at the soil's integration points (n_el,
@@ -237,11 +187,9 @@ class BuiltScene:
         if self.plate is not None and self.plate.body_force() is not None:
             scatter_vector(self.plate.edofs, self.plate.body_force(), plate_weight)
         f_geo = body + self.geostatic_load
-        saved = dict(model._fixed), dict(model._prescribed)
+        saved = model.constraint_state()
         # the single-phase registration is not used here: phases set every load and constraint themselves
-        for d in list(model._prescribed):
-            model._fixed[d] = 0.0
-            model._prescribed.pop(d)
+        model.fix_prescribed()
         try:
             res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_geo))
             records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
@@ -294,10 +242,7 @@ class BuiltScene:
                 if res.collapsed:
                     break
         finally:
-            model._fixed.clear()
-            model._fixed.update(saved[0])
-            model._prescribed.clear()
-            model._prescribed.update(saved[1])
+            model.restore_constraints(saved)
             self.soil.configure()
         return SceneResult(self, join_phases(model, records), phases=records)
 
@@ -381,12 +326,10 @@ class BuiltScene:
         """Hold the soil nodes that no present element uses at their displacement (they leave the system)."""
         used = np.zeros(len(self.mesh.xy), bool)
         used[self.mesh.conn[config["active"]].ravel()] = True
-        for d in (
-            self.model.dof(np.flatnonzero(~used), "u").tolist()
-            + self.model.dof(np.flatnonzero(~used), "w").tolist()
-        ):
-            self.model._fixed[int(d)] = float(u_start[d])
-            self.model._prescribed.pop(int(d), None)
+        dofs = np.concatenate(
+            [self.model.dof(np.flatnonzero(~used), "u"), self.model.dof(np.flatnonzero(~used), "w")]
+        )
+        self.model.fix_dofs(dofs, u_start[dofs])
 
     def _release_force(self, res, f_ext):
         """g (n_dof,) [N/m]: internal force of the changed model at the phase's first state minus the external

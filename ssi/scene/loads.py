@@ -1,12 +1,26 @@
 """The loads a scene can carry: column loads and strip loads on the foundation, its self-weight, pressures on
 the ground, and a prescribed settlement of a rigid footing.
+
+Each load class knows what it does to a built scene and to its mesh: ``effect(built)`` gives its force vector
+(n_dof,) [N/m] and the DOFs it prescribes {dof: displacement increment [m]}; ``mesh_lines()`` the x [m] that
+must be surface nodes of the mesh. ``LOAD_TYPES`` (class name -> class) is the one registry of load types:
+the scene's checks and the scene file read it. A new load is a class here with those two methods and its row
+in ``LOAD_TYPES``.
 """
 
-from dataclasses import dataclass
+from __future__ import annotations
 
-from ..core.validate import (
-    check_real,
-)
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.assembly import scatter_vector
+from ..core.mesh import surface_pressure_forces
+from ..core.validate import check_real
+
+if TYPE_CHECKING:  # for annotations only: the built scene imports this module
+    from .built import BuiltScene
 
 
 @dataclass(frozen=True)
@@ -25,6 +39,23 @@ class ColumnLoad:
         check_real("ColumnLoad.H", self.H, unit="N/m")
         check_real("ColumnLoad.M", self.M, unit="N m/m")
 
+    def mesh_lines(self) -> list[float]:
+        """The column's x [m]: a plate (and surface) node."""
+        return [self.x]
+
+    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
+        """N, H, M at the plate node at x."""
+        model, f_vec = built.model, np.zeros(built.model.n_dof)
+        if self.H != 0.0 and built.slide_support is not None:
+            raise ValueError(
+                f"ColumnLoad.H = {self.H:g} N/m at x = {self.x:g} m on a frictionless contact (every "
+                "Contact.kt = 0): nothing resists a horizontal load on the strip; give Contact.kt > 0"
+            )
+        node = built.plate_node_at(self.x)
+        for comp, value in (("w", -self.N), ("u", self.H), ("alpha", self.M)):
+            f_vec[model.dof(node, comp)] += value
+        return f_vec, {}
+
 
 @dataclass(frozen=True)
 class SurfacePressure:
@@ -34,6 +65,23 @@ class SurfacePressure:
     x0: float
     x1: float
     q: float
+
+    def mesh_lines(self) -> list[float]:
+        """Both ends [m]."""
+        return [self.x0, self.x1]
+
+    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
+        """The consistent nodal forces of the pressure on the ground surface."""
+        model, f_vec = built.model, np.zeros(built.model.n_dof)
+        f = built.scene.foundation
+        if f is not None and min(self.x1, f.x1) - max(self.x0, f.x0) > 1e-9:
+            raise ValueError(
+                f"SurfacePressure ({self.x0}, {self.x1}) overlaps the strip ({f.x0}, {f.x1}): "
+                "a load on the strip is a StripLoad"
+            )
+        nodes, w = surface_pressure_forces(built.mesh, self.x0, self.x1)
+        np.add.at(f_vec, model.dof(nodes, "w"), -self.q * w)
+        return f_vec, {}
 
 
 @dataclass(frozen=True)
@@ -46,6 +94,36 @@ class StripLoad:
     x0: float | None = None
     x1: float | None = None
 
+    def mesh_lines(self) -> list[float]:
+        """The ends [m] that are given."""
+        return [v for v in (self.x0, self.x1) if v is not None]
+
+    def profile(self, foundation):
+        """q(x) [Pa], > 0 upwards as the plate's distributed load takes it, on ``foundation``'s strip."""
+        a = foundation.x0 if self.x0 is None else self.x0
+        b = foundation.x1 if self.x1 is None else self.x1
+        if not (foundation.x0 - 1e-9 <= a < b <= foundation.x1 + 1e-9):
+            raise ValueError(
+                f"StripLoad x0={a}, x1={b} must satisfy foundation.x0 <= x0 < x1 <= foundation.x1"
+            )
+        q_end = self.q if self.q_end is None else self.q_end
+
+        def q(x):
+            inside = (x >= a - 1e-12) & (x <= b + 1e-12)
+            return np.where(inside, -(self.q + (q_end - self.q) * (x - a) / (b - a)), 0.0)
+
+        return q
+
+    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
+        """The plate's equivalent nodal forces of the distributed load."""
+        f_vec = np.zeros(built.model.n_dof)
+        scatter_vector(
+            built.plate.edofs,
+            built.plate.distributed_load(self.profile(built.scene.foundation), comp="w"),
+            f_vec,
+        )
+        return f_vec, {}
+
 
 @dataclass(frozen=True)
 class StripWeight:
@@ -55,6 +133,17 @@ class StripWeight:
     water pressure on its base exceeds that on its top by that much)."""
 
     unit_weight: float = 25e3
+
+    def mesh_lines(self) -> list[float]:
+        """None: the weight acts on the whole strip."""
+        return []
+
+    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
+        """The strip's weight less its buoyancy, as the plate's equivalent nodal forces."""
+        f_vec = np.zeros(built.model.n_dof)
+        q = self.unit_weight * built.plate.section.thickness - built.scene.gamma_w * built.submerged_depth()
+        scatter_vector(built.plate.edofs, built.plate.distributed_load(-q, comp="w"), f_vec)
+        return f_vec, {}
 
 
 @dataclass(frozen=True)
@@ -67,6 +156,24 @@ class Settlement:
     w: float
     x: tuple | None = None
 
+    def mesh_lines(self) -> list[float]:
+        """The settled columns' x [m] (none for the whole strip)."""
+        return [] if self.x is None else list(self.x)
 
-# what Scene.loads (and a Phase's loads) may hold, and the per-segment contact type of a list Scene.contact
-LOAD_TYPES = (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)
+    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
+        """No force: the settled DOFs prescribed (a rigid footing's base, the whole strip with its rotations
+        held, or the plate nodes at x)."""
+        model, held = built.model, {}
+        if built.footing_nodes is not None:  # a RigidFooting's base
+            held.update({int(d): -float(self.w) for d in model.dof(built.footing_nodes, "w")})
+        else:
+            ids = built.plate_nodes if self.x is None else np.array([built.plate_node_at(x) for x in self.x])
+            held.update({int(d): -float(self.w) for d in model.dof(ids, "w")})
+            if self.x is None:  # rigid strip: rotations held
+                held.update({int(d): 0.0 for d in model.dof(ids, "alpha")})
+        return np.zeros(model.n_dof), held
+
+
+# the one registry of load types (class name -> class): what Scene.loads and a Phase's loads may hold, and
+# the names a scene file's load tables take under ``type``
+LOAD_TYPES = {cls.__name__: cls for cls in (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)}

@@ -223,7 +223,7 @@ class Phase:
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name:
             raise TypeError(f"Phase.name must be a non-empty string, got {self.name!r}")
-        _check_list(f"Phase({self.name!r}).loads", list(self.loads), LOAD_TYPES)
+        _check_list(f"Phase({self.name!r}).loads", list(self.loads), tuple(LOAD_TYPES.values()))
         if not isinstance(self.factors, dict):
             raise TypeError(
                 f"Phase({self.name!r}).factors must be a dict {{phase name: factor}}, got "

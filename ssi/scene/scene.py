@@ -86,7 +86,7 @@ from .checks import (
     _segments,
     _warn_implausible_units,
 )
-from .loads import LOAD_TYPES, ColumnLoad, Settlement, StripLoad, SurfacePressure
+from .loads import LOAD_TYPES, ColumnLoad, SurfacePressure
 from .parts import CONTACT_SEGMENT_TYPES, Contact, Foundation, MeshSize, Phase, RigidFooting, _check_list
 
 
@@ -140,7 +140,7 @@ class Scene:
         depth = check_real("Scene.depth", self.depth, lo=0.0, lo_open=True, unit="m")
         check_real("Scene.surcharge", self.surcharge, lo=0.0, unit="Pa")
         _check_list("Scene.layers", self.layers, SoilLayer, min_len=1)
-        _check_list("Scene.loads", self.loads, LOAD_TYPES)
+        _check_list("Scene.loads", self.loads, tuple(LOAD_TYPES.values()))
         check_instance("Scene.foundation", self.foundation, (Foundation, RigidFooting), optional=True)
         check_bool("Scene.symmetric", self.symmetric)
         if isinstance(self.contact, list | tuple) and CONTACT_SEGMENT_TYPES:
@@ -270,14 +270,7 @@ class Scene:
         out = []
         f = self.foundation
         for load in self._all_loads():
-            if isinstance(load, SurfacePressure):
-                out += [load.x0, load.x1]
-            elif isinstance(load, ColumnLoad):
-                out.append(load.x)
-            elif isinstance(load, StripLoad):
-                out += [v for v in (load.x0, load.x1) if v is not None]
-            elif isinstance(load, Settlement) and load.x is not None:
-                out += list(load.x)
+            out += load.mesh_lines()
         lo, hi = self._block()
         bad = [x for x in out if not (lo <= x <= hi)]
         if bad:

@@ -73,7 +73,7 @@ from ..elements import section as section_mod
 from ..elements.section import Section
 from ..materials.soil_laws import SoilLayer
 from ..solver import Settings
-from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .loads import LOAD_TYPES, ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure  # noqa: F401
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
 
@@ -174,8 +174,6 @@ UNITS = {
     },
 }
 
-# the load classes a load table may name with its ``type`` key (the class name; ColumnLoad if left out)
-LOAD_TYPES = {cls.__name__: cls for cls in (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)}
 _LOAD = "load"  # marks a field holding load tables
 # fields holding other dataclasses: (class, field) -> (element class, container: "one" | "list" | "tuple")
 _NESTED = {

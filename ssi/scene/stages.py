@@ -100,6 +100,4 @@ def join_phases(model: Model, records: list[dict]) -> Result:
 def _hold(model, dofs, start, increment):
     """Constrain ``dofs`` to start + lambda * increment during a phase (the model stores a DOF's fixed value
     and its prescribed reference apart; both are set here)."""
-    for d, a, b in zip(dofs, start, increment):
-        model._fixed[int(d)] = float(a)
-        model._prescribed[int(d)] = float(b)
+    model.hold_dofs(dofs, start, increment)
