@@ -1,0 +1,249 @@
+"""Lower bound: a statically admissible stress field on linear-stress triangles, one SOCP, then certified.
+
+Unknowns: the stresses (sig_x, sig_z, tau) at the three vertices of every triangle, each triangle with its
+own nodes (layout ``sig[n_el, 3 vertices, 3 components]``, flat index 9 e + 3 k + c), and mu = k lambda.
+Constraints (all linear in the nodal stresses, so met at the nodes means met everywhere):
+
+- equilibrium in each triangle, d sig_x/dx + d tau/dz = 0, d tau/dx + d sig_z/dz = gamma (z up);
+- on every interior edge, at both its ends, equal tractions (t_x, t_z) from the two triangles;
+- on a free or loaded edge, t = -(p_dead + lambda p_ref) n at both ends; on a symmetry roller t . s = 0;
+- under a rigid footing, the resultant of the soil tractions equals load_dead + lambda load_ref along each
+  free translation, and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
+  sigma_n tan phi_i (two linear rows), rough nothing (the soil's own strength governs);
+- Mohr-Coulomb at every vertex as the 3-D cone ||(sig_x - sig_z, 2 tau)|| <= 2 c cos phi - (sig_x + sig_z)
+  sin phi (Tresca: phi = 0), and, with a tension cut-off T, ||(sig_x - sig_z, 2 tau)|| <= 2 T - (sig_x +
+  sig_z). A linear field in a convex set at the vertices stays in it inside the triangle.
+
+Certification (never the solver's status): the program is solved with the first component of each yield
+cone shrunk by the factor (1 - ``margin``); the returned field is projected onto the equality constraints
+(least-squares, the sparse KKT system of min ||x - x0|| s.t. A x = b, with refinement); every vertex is then
+checked against the true cone and every interface row against its inequality, and lambda is recomputed
+from the projected field. ``certified`` says whether all checks held, ``reason`` why not.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ._common import boundary_edges, gradients, interior_edges, scales, strength
+from .conic import Rows, solve_conic
+from .geometry import Site
+from .mesh import TriMesh
+
+__all__ = ["LowerBound", "lower_bound"]
+
+APEX_TOL = 1e-9  # in units of the problem's stress scale S: a vertex this close to the apex counts as on it
+
+
+@dataclass
+class LowerBound:
+    """A certified lower bound. ``lam`` the certified load factor (NaN if not certified), ``lam_solver`` the
+    solver's, ``lam_projected`` that of the projected field (= lam when certified); ``stress`` (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex);
+    ``min_margin`` the smallest distance inside the true yield cone over all vertices [Pa] (negative:
+    outside); ``n_apex`` vertices at the apex within APEX_TOL S; ``eq_residual`` the largest equality
+    residual after projection [Pa]; time [s], iterations, status, n_cones, n_rows of the solve."""
+
+    lam: float
+    lam_solver: float
+    lam_projected: float
+    certified: bool
+    reason: str
+    stress: np.ndarray
+    min_margin: float
+    n_apex: int
+    eq_residual: float
+    time: float
+    iterations: int
+    status: str
+    n_cones: int
+    n_rows: int
+
+
+def _assemble(site: Site, mesh: TriMesh, margin: float):
+    sc = scales(site)
+    xy = mesh.xy / sc.L
+    n_el = mesh.n_el
+    n = 9 * n_el + 1
+    imu = n - 1
+    eq, ineq, soc = Rows(), Rows(), Rows()
+    b, c, A = gradients(xy, mesh.tri)
+    gam = np.array([m.gamma for m in site.materials])[mesh.material] * sc.L / sc.S
+    base = 9 * np.arange(n_el)
+    # equilibrium (times 2A): sum_k b_k sx_k + c_k tau_k = 0 ; sum_k b_k tau_k + c_k sz_k = 2 A gamma
+    r = np.repeat(np.arange(n_el), 6)
+    cols = np.stack([base + 0, base + 2, base + 3, base + 5, base + 6, base + 8], axis=1).ravel()
+    vals = np.stack([b[:, 0], c[:, 0], b[:, 1], c[:, 1], b[:, 2], c[:, 2]], axis=1).ravel()
+    eq.add_many(r, cols, vals, np.zeros(n_el))
+    cols = np.stack([base + 2, base + 1, base + 5, base + 4, base + 8, base + 7], axis=1).ravel()
+    eq.add_many(r, cols, vals, 2.0 * A * gam)
+    # traction continuity on interior edges, at both ends
+    e1, k1, e2, k2, _ = interior_edges(mesh)
+    t1, t2 = mesh.tri[e1], mesh.tri[e2]
+    ia, ib = (k1 + 1) % 3, (k1 + 2) % 3
+    ga, gb = t1[np.arange(len(e1)), ia], t1[np.arange(len(e1)), ib]
+    d = xy[gb] - xy[ga]
+    nrm = np.stack([d[:, 1], -d[:, 0]], axis=1) / np.hypot(d[:, 0], d[:, 1])[:, None]
+    rows_i = np.arange(len(e1))
+    for g, i1 in ((ga, ia), (gb, ib)):
+        i2 = np.argmax(t2 == g[:, None], axis=1)
+        s1, s2 = 9 * e1 + 3 * i1, 9 * e2 + 3 * i2
+        nx, nz = nrm[:, 0], nrm[:, 1]
+        z = np.zeros(len(e1))
+        # t_x = nx sx + nz tau ; t_z = nx tau + nz sz
+        eq.add_many(
+            np.repeat(rows_i, 4),
+            np.stack([s1, s1 + 2, s2, s2 + 2], axis=1).ravel(),
+            np.stack([nx, nz, -nx, -nz], axis=1).ravel(),
+            z,
+        )
+        eq.add_many(
+            np.repeat(rows_i, 4),
+            np.stack([s1 + 2, s1 + 1, s2 + 2, s2 + 1], axis=1).ravel(),
+            np.stack([nx, nz, -nx, -nz], axis=1).ravel(),
+            z,
+        )
+    # boundary edges
+    be = boundary_edges(mesh, xy)
+    F = {i: [[], [], []] for i in range(len(site.footings))}  # footing: cols, x-vals, z-vals of resultant
+    for j in range(len(be.p)):
+        bnd = site.segments[be.seg[j]][2]
+        nx, nz = be.n[j]
+        for loc in (be.lp[j], be.lq[j]):
+            s0 = 9 * be.el[j] + 3 * loc
+            tx = ([s0, s0 + 2], [nx, nz])
+            tz = ([s0 + 2, s0 + 1], [nx, nz])
+            if bnd.kind == "free":
+                pd, pr = bnd.pressure_dead / sc.S, bnd.pressure_ref / sc.S
+                eq.add(tx[0] + [imu], tx[1] + [pr * nx / sc.k], -pd * nx)
+                eq.add(tz[0] + [imu], tz[1] + [pr * nz / sc.k], -pd * nz)
+            elif bnd.kind == "symmetry":  # t . s = -nz t_x + nx t_z = 0
+                eq.add([s0, s0 + 2, s0 + 2, s0 + 1], [-nz * nx, -nz * nz, nx * nx, nx * nz], 0.0)
+            elif bnd.kind == "footing":
+                f = F[bnd.footing]
+                f[0] += [s0, s0 + 2, s0 + 1]
+                h = 0.5 * be.length[j]
+                f[1] += [h * nx, h * nz, 0.0]
+                f[2] += [0.0, h * nx, h * nz]
+                itf = site.footings[bnd.footing].interface
+                # sigma_n = nx t_x + nz t_z ; tau = -nz t_x + nx t_z
+                sn = ([s0, s0 + 2, s0 + 1], [nx * nx, 2 * nx * nz, nz * nz])
+                ta = ([s0, s0 + 2, s0 + 1], [-nz * nx, nx * nx - nz * nz, nx * nz])
+                if itf.kind == "smooth":
+                    eq.add(ta[0], ta[1], 0.0)
+                elif itf.kind == "coulomb":
+                    ci, tphi = itf.strength
+                    for sgn in (1.0, -1.0):
+                        ineq.add(sn[0] + ta[0], [tphi * v for v in sn[1]] + [sgn * v for v in ta[1]], ci / sc.S)
+    for i, ft in enumerate(site.footings):
+        cols, vx, vz = F[i]
+        for d_, vals in (("x", vx), ("z", vz)):
+            ax = 0 if d_ == "x" else 1
+            if d_ in ft.moves:
+                fr = ft.load_ref[ax] / (sc.S * sc.L)
+                fd = ft.load_dead[ax] / (sc.S * sc.L)
+                eq.add(cols + [imu], vals + [-fr / sc.k], fd)
+    # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x
+    mats = site.materials
+    two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in mats)))
+    f = 1.0 - margin
+    nv = 3 * n_el
+    s0 = 3 * np.arange(nv)  # flat index of sig_x of each vertex
+    m_v = np.repeat(mesh.material, 3)
+    rr = np.arange(nv) * 3
+    soc.add_many(
+        np.concatenate([rr, rr, rr + 1, rr + 1, rr + 2]),
+        np.concatenate([s0, s0 + 1, s0, s0 + 1, s0 + 2]),
+        np.concatenate([f * sphi[m_v], f * sphi[m_v], -np.ones(nv), np.ones(nv), -2 * np.ones(nv)]),
+        np.stack([f * two_c[m_v], np.zeros(nv), np.zeros(nv)], axis=1).ravel(),
+    )
+    cut = [m.tension_cutoff for m in mats]
+    if any(t is not None for t in cut):
+        for v in range(nv):
+            t = cut[m_v[v]]
+            if t is None:
+                continue
+            soc.add([3 * v, 3 * v + 1], [f, f], f * 2 * t / sc.S)
+            soc.add([3 * v, 3 * v + 1], [-1.0, 1.0], 0.0)
+            soc.add([3 * v + 2], [-2.0], 0.0)
+    q = np.zeros(n)
+    q[imu] = -1.0
+    return sc, eq, ineq, soc, q, n
+
+
+def _project(A: sp.csr_matrix, b: np.ndarray, x0: np.ndarray, steps: int = 4) -> np.ndarray:
+    """x closest to x0 with A x = b: the KKT system [[I, A^T], [A, -eps I]] (eps regularises rows that are
+    linearly dependent), with iterative refinement on the unregularised residual."""
+    m, n = A.shape
+    eps = 1e-12
+    K = sp.bmat([[sp.identity(n), A.T], [A, -eps * sp.identity(m)]], format="csc")
+    lu = spla.splu(K)
+    x = x0.copy()
+    for _ in range(steps):
+        r = b - A @ x
+        if np.max(np.abs(r)) < 1e-15:
+            break
+        sol = lu.solve(np.concatenate([np.zeros(n), r]))
+        x += sol[:n]
+    return x
+
+
+def lower_bound(site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e-9) -> LowerBound:
+    """The certified lower bound of the load factor lambda of ``site`` on ``mesh`` (module docstring).
+    ``margin``: relative shrink of the yield cones in the solve (dimensionless); ``tol``: Clarabel's
+    tolerances."""
+    if not 0.0 <= margin < 0.1:
+        raise ValueError(f"margin must be in [0, 0.1), got {margin!r}")
+    sc, eq, ineq, soc, q, n = _assemble(site, mesh, margin)
+    sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+    lam_solver = sol.x[-1] / sc.k
+    Ae, be = eq.matrix(n)
+    rs = 1.0 / np.maximum(abs(Ae).max(axis=1).toarray().ravel(), 1e-300)
+    Ae, be = sp.diags(rs) @ Ae, rs * be
+    x = _project(Ae.tocsr(), be, sol.x)
+    res = float(np.max(np.abs(Ae @ x - be))) if len(be) else 0.0
+    sig = x[:-1].reshape(mesh.n_el, 3, 3)
+    # true cones
+    two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in site.materials)))
+    mv = mesh.material
+    sx, sz, tau = sig[..., 0], sig[..., 1], sig[..., 2]
+    rad = np.hypot(sx - sz, 2 * tau)
+    top = two_c[mv][:, None] - (sx + sz) * sphi[mv][:, None]
+    marg = top - rad
+    cuts = np.array([np.inf if m.tension_cutoff is None else 2 * m.tension_cutoff / sc.S for m in site.materials])
+    marg = np.minimum(marg, cuts[mv][:, None] - (sx + sz) - rad)
+    apex = (np.abs(top) <= APEX_TOL) & (rad <= APEX_TOL)
+    bad = (marg <= 0.0) & ~apex
+    Ai, bi = ineq.matrix(n)
+    ineq_bad = int(np.sum(Ai @ x > bi)) if len(bi) else 0
+    reasons = []
+    if not np.all(np.isfinite(x)):
+        reasons.append("the solver returned no finite point")
+    if res > 1e-10:
+        reasons.append(f"equality residual {res:.2e} S after projection")
+    if bad.any():
+        reasons.append(f"{int(bad.sum())} vertices outside or on the yield surface (min margin {marg.min():.2e} S)")
+    if ineq_bad:
+        reasons.append(f"{ineq_bad} interface rows violated")
+    certified = not reasons
+    lam = x[-1] / sc.k
+    return LowerBound(
+        lam=float(lam) if certified else math.nan,
+        lam_solver=float(lam_solver),
+        lam_projected=float(lam),
+        certified=certified,
+        reason="; ".join(reasons) if reasons else f"certified ({int(apex.sum())} vertices at the apex)",
+        stress=sig * sc.S,
+        min_margin=float(np.min(np.where(apex, np.inf, marg), initial=np.inf)) * sc.S,
+        n_apex=int(apex.sum()),
+        eq_residual=res * sc.S,
+        time=sol.time,
+        iterations=sol.iterations,
+        status=sol.status,
+        n_cones=sol.n_soc,
+        n_rows=Ae.shape[0] + Ai.shape[0] + 3 * sol.n_soc,
+    )
