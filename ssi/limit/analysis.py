@@ -4,7 +4,7 @@ refinement, the Davis bracket for non-associated materials and a factor of safet
 The gap identity: with the lower-bound stress sig (in equilibrium with lambda_LB) and the upper-bound
 velocity u (reference power 1) on the same triangles, virtual work gives
 
-    lambda_UB - lambda_LB = sum_e [ D_e(u) - int_e sig : eps(u) dA ] + sum_footing-edges int [ D_i(d) - t . d ] ds
+    lambda_UB - lambda_LB = sum_e [D_e(u) - int_e sig : eps(u) dA] + sum_(footing edges) int [D_i - t.d] ds
 
 and every term is >= 0 because sig is admissible (D is the support function of the yield set). Each
 element's term is its share of the gap: what adaptivity refines. The identity itself is a check of both

@@ -89,4 +89,5 @@ def solve_conic(
     t0 = time.perf_counter()
     solver = clarabel.DefaultSolver(P, np.asarray(q, float), A, b, cones, settings)
     sol = solver.solve()
-    return ConicSolution(np.array(sol.x), str(sol.status), int(sol.iterations), time.perf_counter() - t0, n_soc)
+    elapsed = time.perf_counter() - t0
+    return ConicSolution(np.array(sol.x), str(sol.status), int(sol.iterations), elapsed, n_soc)

@@ -24,7 +24,7 @@ BOUNDARY_KINDS = ("fixed", "symmetry", "free", "footing")
 
 
 def davis_beta(phi_deg: float, psi_deg: float) -> float:
-    """Davis' reduction factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless, 1 for psi = phi)."""
+    """Davis' factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless; 1 for psi = phi)."""
     phi, psi = math.radians(phi_deg), math.radians(psi_deg)
     return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
 
@@ -94,7 +94,7 @@ class Interface:
             psi = check_real("psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="deg")
             object.__setattr__(self, "psi_deg", psi)
         if self.kind != "coulomb" and (self.c != 0.0 or self.phi_deg != 0.0):
-            raise ValueError(f"c and phi_deg of an Interface apply to kind 'coulomb' only, got kind={self.kind!r}")
+            raise ValueError(f"c and phi_deg of an Interface need kind 'coulomb', got kind={self.kind!r}")
 
     @property
     def strength(self) -> tuple[float, float]:
@@ -133,7 +133,8 @@ class Footing:
         for m in self.moves:
             check_choice("moves", m, ("x", "z"))
         for name in ("load_ref", "load_dead"):
-            v = tuple(float(check_real(f"{name}[{i}]", x, unit="N/m")) for i, x in enumerate(getattr(self, name)))
+            given = getattr(self, name)
+            v = tuple(float(check_real(f"{name}[{i}]", x, unit="N/m")) for i, x in enumerate(given))
             if len(v) != 2:
                 raise ValueError(f"{name} must be (Fx, Fz), got {getattr(self, name)!r}")
             object.__setattr__(self, name, v)
@@ -190,7 +191,8 @@ class Site:
             if not (0 <= i < n and 0 <= j < n) or i == j:
                 raise ValueError(f"segment ({i}, {j}) must join two distinct points of 0..{n - 1}")
             if b is not None and b.kind == "footing" and b.footing >= len(self.footings):
-                raise ValueError(f"segment ({i}, {j}) names footing {b.footing}, only {len(self.footings)} given")
+                nf = len(self.footings)
+                raise ValueError(f"segment ({i}, {j}) names footing {b.footing}, only {nf} given")
         for r in self.regions:
             if not (0 <= r[2] < len(self.materials)):
                 raise ValueError(f"region seed {r} names material {r[2]}, only {len(self.materials)} given")
@@ -266,4 +268,5 @@ def strip_site(
         pts = [(x0, -depth), (half_width, -depth), (half_width, 0), (B / 2, 0), (xf, 0), (x0, 0)]
         segs = [(0, 1, Boundary("fixed")), (1, 2, far), (2, 3, top_rest), (3, 4, under), (4, 5, top_rest)]
         segs.append((5, 0, far))
-    return Site(np.array(pts, float), tuple(segs), ((0.5 * (x0 + B / 2), -0.5 * depth, 0),), (material,), footings)
+    seed = ((0.5 * (x0 + B / 2), -0.5 * depth, 0),)
+    return Site(np.array(pts, float), tuple(segs), seed, (material,), footings)

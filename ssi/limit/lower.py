@@ -43,10 +43,11 @@ APEX_TOL = 1e-9  # in units of the problem's stress scale S: a vertex this close
 @dataclass
 class LowerBound:
     """A certified lower bound. ``lam`` the certified load factor (NaN if not certified), ``lam_solver`` the
-    solver's, ``lam_projected`` that of the projected field (= lam when certified); ``stress`` (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex);
-    ``min_margin`` the smallest distance inside the true yield cone over all vertices [Pa] (negative:
-    outside); ``n_apex`` vertices at the apex within APEX_TOL S; ``eq_residual`` the largest equality
-    residual after projection [Pa]; time [s], iterations, status, n_cones, n_rows of the solve."""
+    solver's, ``lam_projected`` that of the projected field (= lam when certified); ``stress``
+    (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex); ``min_margin`` the smallest
+    distance inside the true yield cone over all vertices [Pa] (negative: outside); ``n_apex`` vertices at
+    the apex within APEX_TOL S; ``eq_residual`` the largest equality residual after projection [Pa];
+    time [s], iterations, status, n_cones, n_rows of the solve."""
 
     lam: float
     lam_solver: float
@@ -138,7 +139,8 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
                 elif itf.kind == "coulomb":
                     ci, tphi = itf.strength
                     for sgn in (1.0, -1.0):
-                        ineq.add(sn[0] + ta[0], [tphi * v for v in sn[1]] + [sgn * v for v in ta[1]], ci / sc.S)
+                        vals = [tphi * v for v in sn[1]] + [sgn * v for v in ta[1]]
+                        ineq.add(sn[0] + ta[0], vals, ci / sc.S)
     for i, ft in enumerate(site.footings):
         cols, vx, vz = F[i]
         for d_, vals in (("x", vx), ("z", vz)):
@@ -214,7 +216,8 @@ def lower_bound(site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e
     rad = np.hypot(sx - sz, 2 * tau)
     top = two_c[mv][:, None] - (sx + sz) * sphi[mv][:, None]
     marg = top - rad
-    cuts = np.array([np.inf if m.tension_cutoff is None else 2 * m.tension_cutoff / sc.S for m in site.materials])
+    cuts = [np.inf if m.tension_cutoff is None else 2 * m.tension_cutoff / sc.S for m in site.materials]
+    cuts = np.array(cuts)
     marg = np.minimum(marg, cuts[mv][:, None] - (sx + sz) - rad)
     apex = (np.abs(top) <= APEX_TOL) & (rad <= APEX_TOL)
     bad = (marg <= 0.0) & ~apex
@@ -226,7 +229,8 @@ def lower_bound(site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e
     if res > 1e-10:
         reasons.append(f"equality residual {res:.2e} S after projection")
     if bad.any():
-        reasons.append(f"{int(bad.sum())} vertices outside or on the yield surface (min margin {marg.min():.2e} S)")
+        nb = int(bad.sum())
+        reasons.append(f"{nb} vertices outside or on the yield surface (min margin {marg.min():.2e} S)")
     if ineq_bad:
         reasons.append(f"{ineq_bad} interface rows violated")
     certified = not reasons

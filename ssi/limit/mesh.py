@@ -136,7 +136,8 @@ def _check_boundary_closed(site: Site, mesh: TriMesh) -> None:
     labelled = {tuple(sorted(e)) for e in mesh.bnd}
     missing = outer - labelled
     if missing:
-        raise ValueError(f"{len(missing)} boundary edges lie on no labelled segment of the site, e.g. {min(missing)}")
+        nm = len(missing)
+        raise ValueError(f"{nm} boundary edges lie on no labelled segment of the site, e.g. {min(missing)}")
 
 
 def bisect(mesh: TriMesh, marked: np.ndarray) -> TriMesh:

@@ -47,7 +47,8 @@ class UpperBound:
     ``mesh.edges()``; scaled so that the reference loads' power is 1 N/m . m/s); ``footing_velocity``
     (n_footings, 2); ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference
     power; interface shares added to the element under the edge), ``dead_power`` the dead loads' share
-    (lam = dissipation.sum() - dead_power); ``strain`` (n_el, 3, 3) vertex strain rates (eps_x, eps_z, gamma) [1/s];
+    (lam = dissipation.sum() - dead_power); ``strain`` (n_el, 3, 3) vertex strain rates (eps_x, eps_z,
+    gamma) [1/s];
     ``flow_residual`` the largest relative flow-rule residual; time [s], iterations, status, n_cones."""
 
     lam: float
@@ -145,7 +146,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9) -> UpperBound:
         bnd = site.segments[be.seg[j]][2]
         if bnd.kind == "footing" and site.footings[bnd.footing].interface.kind != "rough":
             nrm = (round(float(be.n[j, 0]), 9), round(float(be.n[j, 1]), 9))
-            for w, key in ((0, ("n", int(be.p[j]), nrm)), (1, ("m", int(be.edge[j]))), (2, ("n", int(be.q[j]), nrm))):
+            keys = (("n", int(be.p[j]), nrm), ("m", int(be.edge[j])), ("n", int(be.q[j]), nrm))
+            for w, key in enumerate(keys):
                 if key not in cp:
                     cp[key] = len(cp)
                 cp_rows.append((key, bnd.footing, j, w))
@@ -258,7 +260,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9) -> UpperBound:
     d_el = (c_cos * A / 3.0)[:, None] * e_min
     diss = d_el.sum(axis=1)
     # interface control points recomputed
-    for key, f, j, w in cp_rows:
+    for _key, f, j, w in cp_rows:
         itf = site.footings[f].interface
         ci, tphi = itf.strength
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
