@@ -22,8 +22,9 @@ control point of the jump.
   of the dead loads (weight, surcharge, dead footing loads), which is lambda.
 
 Recomputation: from the returned velocities alone, the strain rates at the vertices, the least e that
-satisfies the cone, the flow-rule residual |eps_v - sin phi e| / ||eps||, the jump control points, the
-dissipation, the dead and reference powers, and lambda = (D - P_dead) / P_ref.
+satisfies the cone, the flow-rule residual |eps_v - sin phi e| h / max |v| (h the element size; at the
+interface |d_n - tan phi_i s| / max |v|), the jump control points, the dissipation, the dead and
+reference powers, and lambda = (D - P_dead) / P_ref.
 """
 
 from __future__ import annotations
@@ -255,8 +256,10 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9) -> UpperBound:
     vol = ex + ez
     s_e = sinm[:, None]
     e_min = np.where(s_e > 0, np.maximum(dev, vol / np.where(s_e > 0, s_e, 1.0)), dev)
-    scale_e = np.maximum(np.abs(np.stack([ex, ez, gm])).max(), 1e-300)
-    flow_res = float(np.max(np.abs(vol - s_e * e_min)) / scale_e)
+    # the flow-rule residual relative to the velocity scale: |eps_v - sin phi e| h / max |v|
+    v_scale = max(np.abs(vel).max(), np.abs(fv).max(initial=0.0), 1e-300)
+    h_el = np.sqrt(2.0 * A)[:, None]
+    flow_res = float(np.max(np.abs(vol - s_e * e_min) * h_el) / v_scale)
     d_el = (c_cos * A / 3.0)[:, None] * e_min
     diss = d_el.sum(axis=1)
     # interface control points recomputed
@@ -270,7 +273,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9) -> UpperBound:
         nx, nz = be.n[j]
         dn, dt = bk[0] * nx + bk[1] * nz, -bk[0] * nz + bk[1] * nx
         s_need = abs(dt) if tphi == 0 else max(abs(dt), dn / tphi)
-        flow_res = max(flow_res, abs(dn - tphi * s_need) / scale_e / sc.L)
+        flow_res = max(flow_res, abs(dn - tphi * s_need) / v_scale)
         diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
     pr = _power(p_ref, dof, fvar, vel, fv, n)
     pd = _power(p_dead, dof, fvar, vel, fv, n)
