@@ -27,7 +27,6 @@ from ssi.limit import (
     safety_factor,
     strip_site,
     triangulate,
-    upper_bound,
 )
 from ssi.limit import lower as lower_module
 
