@@ -27,6 +27,7 @@ from ssi.limit import (
     safety_factor,
     strip_site,
     triangulate,
+    upper_bound,
 )
 from ssi.limit import lower as lower_module
 
@@ -185,3 +186,21 @@ def test_davis_material():
 def test_bad_input_names_the_parameter(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def test_fields_carried_to_a_nested_mesh_keep_their_bounds():
+    """On a bisected mesh the coarse stress field is still statically admissible and the coarse velocity
+    field still kinematically admissible: re-certified and re-evaluated there, they give the coarse bounds
+    back (to round-off), which is what makes nested refinement monotone."""
+    from ssi.limit.analysis import carry_stress, carry_velocity
+
+    site, mesh = footing(20.0, "smooth")
+    br0 = bracket(site, mesh)
+    fine = bisect(mesh, np.argsort(-br0.shares)[: mesh.n_el // 3])
+    sig = carry_stress(mesh, fine, br0.lower.stress)
+    lb = lower_bound(site, fine, stress=(sig, br0.lower.lam_projected))
+    assert lb.certified, lb.reason
+    assert abs(lb.lam / br0.lb - 1) < 1e-9
+    vel = carry_velocity(mesh, fine, br0.upper.velocity)
+    ub = upper_bound(site, fine, velocity=(vel, br0.upper.footing_velocity))
+    assert abs(ub.lam / br0.ub - 1) < 1e-9

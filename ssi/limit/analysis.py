@@ -25,7 +25,16 @@ from .lower import LowerBound, lower_bound
 from .mesh import TriMesh, bisect
 from .upper import UpperBound, upper_bound
 
-__all__ = ["AdaptiveResult", "Bracket", "adaptive", "bracket", "gap_shares", "safety_factor"]
+__all__ = [
+    "AdaptiveResult",
+    "Bracket",
+    "adaptive",
+    "bracket",
+    "carry_stress",
+    "carry_velocity",
+    "gap_shares",
+    "safety_factor",
+]
 
 
 @dataclass
@@ -94,11 +103,73 @@ def gap_shares(site: Site, mesh: TriMesh, lower: LowerBound, upper: UpperBound) 
     return share
 
 
-def bracket(site: Site, mesh: TriMesh, label: str = "") -> Bracket:
-    """Both bounds on one mesh and the gap shares."""
+def bracket(site: Site, mesh: TriMesh, label: str = "", previous: Bracket | None = None) -> Bracket:
+    """Both bounds on one mesh and the gap shares. With ``previous``, a bracket on a mesh that ``mesh``
+    refines (``mesh.parent`` set by :func:`ssi.limit.mesh.bisect`), its stress and velocity fields are
+    carried to ``mesh`` (still admissible there) and each bound is the better of the solved and the carried
+    field: nested refinement then never loses ground even when the solver stops short of the optimum."""
     lo = lower_bound(site, mesh)
     up = upper_bound(site, mesh)
+    if previous is not None and mesh.parent is not None:
+        lo_c = lower_bound(
+            site,
+            mesh,
+            stress=(carry_stress(previous.mesh, mesh, previous.lower.stress), previous.lower.lam_projected),
+        )
+        if lo_c.certified and (not lo.certified or lo_c.lam > lo.lam):
+            lo_c.time, lo_c.iterations, lo_c.status = lo.time, lo.iterations, f"carried ({lo.status})"
+            lo_c.lam_solver = lo.lam_solver
+            lo = lo_c
+        v, fv = carry_velocity(previous.mesh, mesh, previous.upper.velocity), previous.upper.footing_velocity
+        up_c = upper_bound(site, mesh, velocity=(v, fv))
+        if up_c.lam < up.lam:
+            up_c.time, up_c.iterations, up_c.status = up.time, up.iterations, f"carried ({up.status})"
+            up_c.lam_solver = up.lam_solver
+            up = up_c
     return Bracket(mesh, lo, up, gap_shares(site, mesh, lo, up), label)
+
+
+def _barycentric(coarse: TriMesh, parent: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    """Barycentric coordinates (n, 3) of points ``pts`` (n, 2) in the coarse triangles ``parent`` (n,)."""
+    p = coarse.xy[coarse.tri[parent]]
+    a = p[:, 0]
+    m = np.stack([p[:, 1] - a, p[:, 2] - a], axis=2)  # (n, 2, 2): columns b - a, c - a
+    l12 = np.linalg.solve(m, (pts - a)[..., None])[..., 0]
+    return np.column_stack([1.0 - l12.sum(axis=1), l12])
+
+
+def carry_stress(coarse: TriMesh, fine: TriMesh, stress: np.ndarray) -> np.ndarray:
+    """The coarse linear stress field (n_el_coarse, 3, 3) at the vertices of the nested ``fine`` mesh."""
+    par = fine.parent
+    out = np.empty((fine.n_el, 3, 3))
+    for v in range(3):
+        lam = _barycentric(coarse, par, fine.xy[fine.tri[:, v]])
+        out[:, v] = np.einsum("ek,ekc->ec", lam, stress[par])
+    return out
+
+
+def carry_velocity(coarse: TriMesh, fine: TriMesh, velocity: np.ndarray) -> np.ndarray:
+    """The coarse quadratic velocity field at the corner and midside nodes of the nested ``fine`` mesh
+    (layout of :class:`ssi.limit.upper.UpperBound`)."""
+    _, ce = coarse.edges()
+    f_edges, fe = fine.edges()
+    nn_c, nn_f = len(coarse.xy), len(fine.xy)
+    ids = np.concatenate([coarse.tri, nn_c + ce], axis=1)[fine.parent]  # (n_el_fine, 6) coarse nodes
+    out = np.zeros((nn_f + len(f_edges), 2))
+    for k in range(6):
+        node = fine.tri[:, k] if k < 3 else nn_f + fe[:, k - 3]
+        pts = (
+            fine.xy[fine.tri[:, k]]
+            if k < 3
+            else 0.5 * (fine.xy[fine.tri[:, (k - 2) % 3]] + fine.xy[fine.tri[:, (k - 1) % 3]])
+        )
+        L = _barycentric(coarse, fine.parent, pts)
+        N = np.column_stack(
+            [L[:, i] * (2 * L[:, i] - 1) for i in range(3)]
+            + [4 * L[:, (i + 1) % 3] * L[:, (i + 2) % 3] for i in range(3)]
+        )
+        out[node] = np.einsum("en,enc->ec", N, velocity[ids])
+    return out
 
 
 @dataclass
@@ -106,7 +177,9 @@ class AdaptiveResult:
     """The adaptive sequence: ``history`` rows (n_el, lb, ub, gap, t_lb [s], t_ub [s], iterations lb, ub,
     cones lb, ub), the last ``final`` bracket, ``lb``/``ub`` the best certified bounds of the sequence,
     ``monotone``: the nested meshes gave a non-decreasing lb and non-increasing ub (to ``mono_tol``
-    relative, the solvers' accuracy), ``converged``: gap reached."""
+    relative), ``converged``: gap reached, ``solver_setbacks``: steps where the solver's own optimum was
+    worse than the previous mesh's (impossible in exact arithmetic on nested meshes: the solver stopped
+    short), which the carried fields of :func:`bracket` make up for."""
 
     history: list = field(default_factory=list)
     final: Bracket | None = None
@@ -114,6 +187,7 @@ class AdaptiveResult:
     ub: float = float("nan")
     monotone: bool = True
     converged: bool = False
+    solver_setbacks: int = 0
 
     @property
     def gap(self) -> float:
@@ -139,9 +213,11 @@ def adaptive(
     theta = check_real("theta", theta, lo=0.0, lo_open=True, hi=1.0)
     out = AdaptiveResult()
     best_lb, best_ub = -np.inf, np.inf
+    br = None
+    raw_lb, raw_ub = -np.inf, np.inf
     for step in range(max_steps + 1):
         t0 = time.perf_counter()
-        br = bracket(site, mesh)
+        br = bracket(site, mesh, previous=br)
         row = dict(
             step=step,
             n_el=mesh.n_el,
@@ -161,6 +237,13 @@ def adaptive(
             out.monotone = False
         if np.isfinite(best_ub) and br.ub > best_ub * (1 + mono_tol):
             out.monotone = False
+        # the solver's own fields (before the carried ones are compared): monotone in exact arithmetic
+        solved_lb = br.lower.lam_solver
+        solved_ub = br.upper.lam_solver
+        row["solver_lb"], row["solver_ub"] = solved_lb, solved_ub
+        if solved_lb < raw_lb * (1 - mono_tol) or solved_ub > raw_ub * (1 + mono_tol):
+            out.solver_setbacks += 1
+        raw_lb, raw_ub = max(raw_lb, solved_lb), min(raw_ub, solved_ub)
         if br.lower.certified:
             best_lb = max(best_lb, br.lb)
         best_ub = min(best_ub, br.ub)

@@ -31,7 +31,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ._common import boundary_edges, gradients, interior_edges, scales, strength
-from .conic import Rows, solve_conic
+from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
 
@@ -219,14 +219,21 @@ def _project(A: sp.csr_matrix, b: np.ndarray, x0: np.ndarray, steps: int = 4) ->
     return x
 
 
-def lower_bound(site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e-9) -> LowerBound:
+def lower_bound(
+    site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e-9, stress: tuple | None = None
+) -> LowerBound:
     """The certified lower bound of the load factor lambda of ``site`` on ``mesh`` (module docstring).
     ``margin``: relative shrink of the yield cones in the solve (dimensionless); ``tol``: Clarabel's
-    tolerances."""
+    tolerances. ``stress``: (sig (n_el, 3, 3) [Pa], lam) a field to certify instead of solving (e.g. a
+    coarser mesh's field carried to a nested finer mesh)."""
     if not 0.0 <= margin < 0.1:
         raise ValueError(f"margin must be in [0, 0.1), got {margin!r}")
     sc, eq, ineq, soc, q, n = _assemble(site, mesh, margin)
-    sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+    if stress is None:
+        sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+    else:
+        x_in = np.concatenate([np.asarray(stress[0], float).ravel() / sc.S, [stress[1] * sc.k]])
+        sol = ConicSolution(x_in, "given", 0, 0.0, len(soc.rhs) // 3)
     lam_solver = sol.x[-1] / sc.k
     Ae, be = eq.matrix(n)
     rs = 1.0 / np.maximum(abs(Ae).max(axis=1).toarray().ravel(), 1e-300)

@@ -36,6 +36,7 @@ class TriMesh:
     material: np.ndarray
     bnd: np.ndarray
     bnd_seg: np.ndarray
+    parent: np.ndarray | None = None  # (n_el,) after bisect: the element of the coarser mesh containing each
 
     @property
     def n_el(self) -> int:
@@ -144,10 +145,12 @@ def bisect(mesh: TriMesh, marked: np.ndarray) -> TriMesh:
     """Refine by longest-edge bisection (Rivara): every marked element (boolean (n_el,) or indices) is split
     across its longest edge, after its neighbour across that edge has been split until it shares that edge
     as its own longest (so the mesh stays conforming). The result is nested: each old triangle is a union of
-    new ones. Ties between equal edges are broken by node numbers, so the result is deterministic."""
+    new ones (``parent`` names it). Ties between equal edges are broken by node numbers, so the result is
+    deterministic."""
     xy = [tuple(p) for p in mesh.xy]
     tris = [list(map(int, t)) for t in mesh.tri]
     mat = list(map(int, mesh.material))
+    origin = list(range(len(tris)))
     alive = [True] * len(tris)
     edge_tris: dict[tuple[int, int], list[int]] = {}
     for e, t in enumerate(tris):
@@ -186,6 +189,7 @@ def bisect(mesh: TriMesh, marked: np.ndarray) -> TriMesh:
         for nt in new:
             tris.append(nt)
             mat.append(mat[e])
+            origin.append(origin[e])
             alive.append(True)
         n1, n2 = len(tris) - 2, len(tris) - 1
         for kk in range(3):
@@ -230,6 +234,7 @@ def bisect(mesh: TriMesh, marked: np.ndarray) -> TriMesh:
         np.array([mat[i] for i in keep], np.int64),
         np.array([(p, q) for p, q, _ in bnd_items], np.int64).reshape(-1, 2),
         np.array([s for _, _, s in bnd_items], np.int64),
+        np.array([origin[i] for i in keep], np.int64),
     )
     if np.any(out.areas() <= 0.0):
         raise RuntimeError("bisection produced a clockwise or degenerate triangle")

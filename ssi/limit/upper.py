@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._common import boundary_edges, gradients, scales, strength
-from .conic import Rows, solve_conic
+from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
 
@@ -128,9 +128,10 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
     return dof, fvar, nxt, oblique
 
 
-def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9) -> UpperBound:
+def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> UpperBound:
     """The upper bound of the load factor lambda of ``site`` on ``mesh`` (module docstring), recomputed from
-    the velocity field. ``tol``: Clarabel's tolerances."""
+    the velocity field. ``tol``: Clarabel's tolerances. ``velocity``: (nodal (n_nodes + n_edges, 2), footing
+    (n_footings, 2)) velocities to evaluate instead of solving (any scale; a held component must be zero)."""
     sc = scales(site)
     xy = mesh.xy / sc.L
     n_nodes, n_el = len(xy), mesh.n_el
@@ -243,8 +244,17 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9) -> UpperBound:
     nz_ = np.flatnonzero(p_ref)
     eq.add(list(nz_), list(p_ref[nz_]), 1.0)
     q -= p_dead
-    sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
-    x = sol.x
+    if velocity is None:
+        sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+        x = sol.x
+    else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing translations)
+        vel_in, fv_in = velocity
+        x = np.zeros(n)
+        m_ = dof >= 0
+        x[dof[m_]] = vel_in[m_]
+        mf_ = fvar >= 0
+        x[fvar[mf_]] = fv_in[mf_]
+        sol = ConicSolution(x, "given", 0, 0.0, len(soc.rhs) // 3)
     # ---- recomputation from the velocities alone
     vel = np.where(dof >= 0, x[np.maximum(dof, 0)], 0.0)
     fv = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)
