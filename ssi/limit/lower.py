@@ -199,7 +199,55 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             soc.add([3 * v + 2], [-2.0], 0.0)
     q = np.zeros(n)
     q[imu] = -1.0
-    return sc, eq, ineq, soc, q, n
+    return sc, _independent_local_rows(eq, 9 * n_el), ineq, soc, q, n
+
+
+def _independent_local_rows(eq: Rows, n_sig: int) -> Rows:
+    """``eq`` without the rows that repeat other rows on the same vertex: where two boundary conditions
+    meet at a domain corner (a free top and a symmetry roller: the roller's tau = 0 is already in t = 0),
+    the rows acting on that vertex's three stresses alone are reduced to an independent set (greedy, in
+    order, by the rank of the small dense block)."""
+    vals = np.asarray(eq.vals, float)
+    nz = vals != 0.0  # a stored zero (the load factor's coefficient on an unloaded edge) couples nothing
+    rows = np.asarray(eq.rows)[nz]
+    cols = np.asarray(eq.cols)[nz]
+    vals = vals[nz]
+    n_rows = len(eq.rhs)
+    lo = np.full(n_rows, np.iinfo(np.int64).max)
+    hi = np.full(n_rows, -1)
+    np.minimum.at(lo, rows, cols)
+    np.maximum.at(hi, rows, cols)
+    local = (hi < n_sig) & (lo // 3 == hi // 3) & (hi >= 0)
+    groups: dict[int, list[int]] = {}
+    for r in np.flatnonzero(local):
+        groups.setdefault(int(lo[r] // 3), []).append(int(r))
+    drop = np.zeros(n_rows, bool)
+    entries = {}
+    for r, c, v in zip(
+        rows[np.isin(rows, np.flatnonzero(local))],
+        cols[np.isin(rows, np.flatnonzero(local))],
+        vals[np.isin(rows, np.flatnonzero(local))],
+    ):
+        entries.setdefault(int(r), np.zeros(3))[int(c) % 3] += v
+    for g in groups.values():
+        if len(g) < 2:
+            continue
+        kept = []
+        for r in g:
+            block = np.array([entries[k] for k in kept + [r]])
+            if np.linalg.matrix_rank(block, tol=1e-10 * np.abs(block).max()) > len(kept):
+                kept.append(r)
+            else:
+                drop[r] = True
+    if not drop.any():
+        return eq
+    out = Rows()
+    keep_rows = np.flatnonzero(~drop)
+    new_index = -np.ones(n_rows, np.int64)
+    new_index[keep_rows] = np.arange(len(keep_rows))
+    m = ~drop[rows]
+    out.add_many(new_index[rows[m]], cols[m], vals[m], np.asarray(eq.rhs)[keep_rows])
+    return out
 
 
 def _project(A: sp.csr_matrix, b: np.ndarray, x0: np.ndarray, steps: int = 4) -> np.ndarray:
