@@ -204,3 +204,49 @@ def test_fields_carried_to_a_nested_mesh_keep_their_bounds():
     vel = carry_velocity(mesh, fine, br0.upper.velocity)
     ub = upper_bound(site, fine, velocity=(vel, br0.upper.footing_velocity))
     assert abs(ub.lam / br0.ub - 1) < 1e-9
+
+
+def two_layer_site(top, bottom):
+    """Chapter 10's half block split at z = -1 m by an interior polyline: ``top`` over ``bottom``."""
+    from ssi.limit import Boundary, Footing, Site
+
+    pts = np.array([(0, -5), (6, -5), (6, -1), (6, 0), (1, 0), (0, 0), (0, -1)], float)
+    sym, fixed = Boundary("symmetry"), Boundary("fixed")
+    segs = (
+        (0, 1, fixed), (1, 2, sym), (2, 3, sym), (3, 4, Boundary("free")),
+        (4, 5, Boundary("footing", footing=0)), (5, 6, sym), (6, 0, sym), (6, 2, None),
+    )  # fmt: skip
+    regions = ((3.0, -0.5, 0), (3.0, -3.0, 1))
+    footing = Footing(Interface("rough"), load_ref=(0.0, -1.0), moves=("z",))
+    return Site(pts, segs, regions, (top, bottom), (footing,))
+
+
+def test_layered_site_regions_and_bracket():
+    soil = Material(10e3, 0.0)
+    site = two_layer_site(soil, Material(10e3, 0.0, gamma=0.0))
+    mesh = triangulate(site, 1.0, size=graded(1.0, 0.2, 0.3))
+    cz = mesh.xy[mesh.tri][:, :, 1].mean(axis=1)
+    assert np.all(mesh.material[cz > -1.0] == 0) and np.all(mesh.material[cz < -1.0] == 1)
+    br = bracket(site, mesh)
+    exact = prandtl_q(10e3, 0.0)  # the two layers are the same soil: Prandtl again
+    assert br.lower.certified
+    assert br.lb <= exact <= br.ub
+    # a far stronger lower layer cannot lower the capacity: both bounds stay above the homogeneous LB
+    strong = bracket(two_layer_site(soil, Material(100e3, 0.0)), mesh)
+    assert strong.lb >= br.lb * (1 - REL) and strong.ub >= br.lb
+
+
+def test_tension_cutoff_lower_bound():
+    site, mesh = footing(20.0, "rough")
+    T = 1e3  # Pa
+    cut = strip_site(2.0, Material(10e3, 20.0, tension_cutoff=T), Interface("rough"))
+    lb0 = lower_bound(site, mesh)
+    lb1 = lower_bound(cut, mesh)
+    assert lb1.certified, lb1.reason
+    assert lb1.lam <= lb0.lam * (1 + REL)  # a smaller admissible set: never a larger lower bound
+    sx, sz, tau = lb1.stress[..., 0], lb1.stress[..., 1], lb1.stress[..., 2]
+    sig1 = 0.5 * (sx + sz) + np.hypot(0.5 * (sx - sz), tau)
+    assert sig1.max() <= T  # certified: no principal stress above the cut-off anywhere
+    # a zero cut-off is met with equality on the free surface: reported, not certified by tolerance
+    zero = lower_bound(strip_site(2.0, Material(10e3, 20.0, tension_cutoff=0.0), Interface("rough")), mesh)
+    assert zero.certified == math.isfinite(zero.lam)

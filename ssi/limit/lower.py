@@ -12,7 +12,9 @@ Constraints (all linear in the nodal stresses, so met at the nodes means met eve
   sigma_n tan phi_i (two linear rows), rough nothing (the soil's own strength governs);
 - Mohr-Coulomb at every vertex as the 3-D cone ||(sig_x - sig_z, 2 tau)|| <= 2 c cos phi - (sig_x + sig_z)
   sin phi (Tresca: phi = 0), and, with a tension cut-off T, ||(sig_x - sig_z, 2 tau)|| <= 2 T - (sig_x +
-  sig_z). A linear field in a convex set at the vertices stays in it inside the triangle.
+  sig_z). A linear field in a convex set at the vertices stays in it inside the triangle. (The upper bound
+  has no cut-off: its value is that of the material without one, still a ceiling for the one with it. A
+  zero cut-off is met with equality on a traction-free surface and then rarely certifies.)
 
 Certification (never the solver's status): the program is solved with the first component of each yield
 cone shrunk by the factor (1 - ``margin``); the returned field is projected onto the equality constraints
@@ -38,6 +40,7 @@ from .mesh import TriMesh
 __all__ = ["LowerBound", "lower_bound"]
 
 APEX_TOL = 1e-9  # in units of the problem's stress scale S: a vertex this close to the apex counts as on it
+CUT_TOL = 1e-12  # likewise on a tension cut-off (round-off of the projected field)
 
 
 @dataclass
@@ -194,7 +197,10 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             t = cut[m_v[v]]
             if t is None:
                 continue
-            soc.add([3 * v, 3 * v + 1], [f, f], f * 2 * t / sc.S)
+            # the cut-off lowered to T (1 - margin): shifted, not scaled, which would also shrink the room
+            # left of sig_1 = T. A zero cut-off leaves no room on a traction-free surface (sig_1 = sig_z = 0
+            # there): such a field is certified only if the solver's point happens to be inside
+            soc.add([3 * v, 3 * v + 1], [1.0, 1.0], 2 * t * f / sc.S)
             soc.add([3 * v, 3 * v + 1], [-1.0, 1.0], 0.0)
             soc.add([3 * v + 2], [-2.0], 0.0)
     q = np.zeros(n)
@@ -298,9 +304,12 @@ def lower_bound(
     marg = top - rad
     cuts = [np.inf if m.tension_cutoff is None else 2 * m.tension_cutoff / sc.S for m in site.materials]
     cuts = np.array(cuts)
-    marg = np.minimum(marg, cuts[mv][:, None] - (sx + sz) - rad)
+    cut_marg = cuts[mv][:, None] - (sx + sz) - rad
     apex = (np.abs(top) <= APEX_TOL) & (rad <= APEX_TOL)
-    bad = (marg <= 0.0) & ~apex
+    # on the cut-off to round-off (CUT_TOL S): a free surface under a zero cut-off, where sig_1 = sig_z = 0
+    on_cut = np.abs(cut_marg) <= CUT_TOL
+    bad = ((marg <= 0.0) & ~apex) | ((cut_marg <= 0.0) & ~on_cut)
+    marg = np.minimum(marg, np.where(on_cut, np.inf, cut_marg))
     Ai, bi = ineq.matrix(n)
     ineq_bad = int(np.sum(Ai @ x > bi)) if len(bi) else 0
     reasons = []
@@ -320,7 +329,9 @@ def lower_bound(
         lam_solver=float(lam_solver),
         lam_projected=float(lam),
         certified=certified,
-        reason="; ".join(reasons) if reasons else f"certified ({int(apex.sum())} vertices at the apex)",
+        reason="; ".join(reasons)
+        if reasons
+        else f"certified ({int(apex.sum())} vertices at the apex, {int(on_cut.sum())} on the cut-off)",
         stress=sig * sc.S,
         min_margin=float(np.min(np.where(apex, np.inf, marg), initial=np.inf)) * sc.S,
         n_apex=int(apex.sum()),
