@@ -155,7 +155,7 @@ def test_safety_factor_of_tresca_footing():
     q_applied = 20e3  # Pa: F* = (2 + pi) c / q exactly (capacity proportional to c for phi = 0)
     site = strip_site(2.0, Material(10e3, 0.0), Interface("rough"), load_ref=(0.0, -q_applied * 1.0))
     mesh = triangulate(site, 1.0, size=graded(1.0, 0.25, 0.35))
-    f_lb, f_ub, trials = safety_factor(site, mesh, rel_tol=5e-3)
+    f_lb, f_ub, trials = safety_factor(site, mesh, rel_tol=2e-2)
     exact = prandtl_q(10e3, 0.0) / q_applied
     assert f_lb <= exact <= f_ub
     assert f_ub / f_lb < 1.4

@@ -7,7 +7,14 @@
 - :mod:`.upper`: the upper bound (6-node quadratic-velocity triangles, SOCP, recomputed from velocities);
 - :mod:`.analysis`: brackets, the gap split by element, adaptivity, the factor of safety.
 
-Imports numpy, scipy, clarabel, triangle and :mod:`ssi.validate` only, so a scene can wrap it thinly.
+Imports numpy, scipy, clarabel, triangle and :mod:`ssi.validate` only, so a scene can wrap it thinly:
+a scene's block is the :class:`Site` polygon, each soil layer a region below an interior polyline (its c,
+phi, effective unit weight; an undrained layer phi = 0), a rigid footing a :class:`Footing` on the
+``footing`` segments (its interface rough / smooth / Coulomb), a surcharge the ``pressure_dead`` of the free
+surface, the loads that scale with lambda ``load_ref`` / ``pressure_ref`` (a ``Settlement`` push: the
+footing's vertical force, so lambda is its mean pressure), a symmetric scene the axis as a "symmetry"
+segment and the footing moving along z only. Not covered yet: pore pressures as loads (only effective unit
+weights), footing rotation, a beam strip with plastic hinges.
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
