@@ -140,8 +140,8 @@ def outside(lb, ub, exact):
     return max(lb / exact - 1.0, 1.0 - ub / exact)
 
 
-def run(site, size, gap, h=1.0, label="", **kw):
-    mesh = triangulate(site, h, size=size)
+def run(site, size, gap, h=1.0, label="", fans=(), **kw):
+    mesh = triangulate(site, h, size=size, fans=fans)
     t0 = time.perf_counter()
     res = adaptive(site, mesh, gap=gap, **kw)
     res.wall = time.perf_counter() - t0
@@ -323,7 +323,10 @@ report.check(
 
 # %%
 site_sg = strip_site(4.0, Material(100e3, 0.0), half_width=12.0, depth=5.0, flexible=True)
-sg = run(site_sg, graded(2.0, 0.15, 0.3), GAP, label="S&G 6.1 flexible")
+# the edge of the flexible load (x = 2 m) is a point where the surface traction jumps: a lower-bound field
+# turns through a fan of sectors there, and bisection keeps the number of sectors bounded (without the fan
+# the lower bound stalls at 471.3 kPa, 0.917 x, on every mesh from 630 to 12 400 triangles, measured)
+sg = run(site_sg, graded(2.0, 0.15, 0.3), GAP, label="S&G 6.1 flexible", fans=((2.0, 0.0, 0.6, 18),))
 q_sg = (2.0 + math.pi) * 100e3
 print(f"bracket [{sg.lb / 1e3:.1f}, {sg.ub / 1e3:.1f}] kPa against {q_sg / 1e3:.2f} kPa")
 report.check(

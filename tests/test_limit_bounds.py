@@ -250,3 +250,15 @@ def test_tension_cutoff_lower_bound():
     # a zero cut-off is met with equality on the free surface: reported, not certified by tolerance
     zero = lower_bound(strip_site(2.0, Material(10e3, 20.0, tension_cutoff=0.0), Interface("rough")), mesh)
     assert zero.certified == math.isfinite(zero.lam)
+
+
+def test_flexible_load_with_a_fan_brackets_sg61():
+    """Smith & Griffiths' program 6.1 footing (uniform pressure on a half width of 2 m, Tresca c_u = 100 kPa):
+    (2 + pi) c_u inside the bracket, with the rays of a fan meshed at the edge of the load."""
+    site = strip_site(4.0, Material(100e3, 0.0), half_width=12.0, depth=5.0, flexible=True)
+    mesh = triangulate(site, 1.5, size=graded(2.0, 0.3, 0.4), fans=((2.0, 0.0, 0.6, 12),))
+    br = bracket(site, mesh)
+    assert br.lower.certified, br.lower.reason
+    assert br.lb <= (2 + math.pi) * 100e3 <= br.ub
+    with pytest.raises(ValueError, match="fans"):
+        triangulate(site, 1.5, fans=((2.5, 0.0, 0.6, 12),))

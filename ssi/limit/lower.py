@@ -87,7 +87,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
     eq.add_many(r, cols, vals, 2.0 * A * gam)
     # boundary edges
     be = boundary_edges(mesh, xy)
-    prescribed = {}  # flat index of a vertex on a free edge: (nx, nz, stress zero)
+    prescribed = {}  # flat index of a vertex on a free edge: (nx, nz, stress zero, p_dead, p_ref)
     # a cohesionless triangle vertex at a point of a traction-free edge: its traction on some plane is zero
     # (on the free edge, or on an interior edge shared with a vertex that has it), and a Mohr circle through
     # the origin inside the Coulomb wedge is a point: the only admissible stress is zero. Stated as such,
@@ -115,7 +115,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
                 pd, pr = bnd.pressure_dead / sc.S, bnd.pressure_ref / sc.S
                 if s0 in prescribed:
                     continue
-                prescribed[s0] = (nx, nz, s0 in zero)
+                prescribed[s0] = (nx, nz, s0 in zero, pd, pr)
                 if s0 in zero:
                     continue
                 eq.add(tx[0] + [imu], tx[1] + [pr * nx / sc.k], -pd * nx)
@@ -161,7 +161,10 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             if a in zero and b_ in zero:
                 continue
             pa, pb = prescribed.get(a), prescribed.get(b_)
-            if pa is not None and pb is not None and abs(pa[0] - pb[0]) + abs(pa[1] - pb[1]) < 1e-9:
+            same = pa is not None and pb is not None and abs(pa[0] - pb[0]) + abs(pa[1] - pb[1]) < 1e-9
+            # implied only where both prescribed tractions are the same: at a jump of the surface load (the
+            # edge of a flexible footing) the normal row is kept, a real condition on the field
+            if same and pa[3:] == pb[3:]:
                 if pa[2] and pb[2]:
                     continue
                 sx_, sz_ = -pa[1], pa[0]  # boundary tangent

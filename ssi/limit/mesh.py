@@ -73,18 +73,39 @@ class TriMesh:
 
 
 def triangulate(
-    site: Site, h: float, size: Callable[[np.ndarray], np.ndarray] | None = None, min_angle: float = 28.0
+    site: Site,
+    h: float,
+    size: Callable[[np.ndarray], np.ndarray] | None = None,
+    min_angle: float = 28.0,
+    fans: tuple = (),
 ) -> TriMesh:
     """A quality mesh of ``site`` (Triangle: constrained conforming Delaunay, smallest angle ``min_angle``
     [deg]) whose triangles are no larger than an equilateral triangle of side ``h`` [m], or of side
-    ``size(centroids)`` [m] where that is smaller (``size`` maps (n, 2) points to (n,) lengths)."""
+    ``size(centroids)`` [m] where that is smaller (``size`` maps (n, 2) points to (n,) lengths).
+
+    ``fans``: (x, z, radius [m], n) for points of a site's point list on a horizontal ground surface (the
+    edge of a flexible load): n + 1 rays of length ``radius`` into the ground, equally spaced over the half
+    plane below, are meshed as interior segments. A lower-bound stress field turns through a fan of
+    sectors at such a point; bisection keeps the number of sectors there bounded, so the fan is made here."""
     h = check_real("h", h, lo=0.0, lo_open=True, unit="m")
     min_angle = check_real("min_angle", min_angle, lo=10.0, hi=33.0, unit="deg")
     seg = np.array([(i, j) for i, j, _ in site.segments], dtype=np.int32)
     markers = np.arange(len(seg), dtype=np.int32) + 2  # 0 and 1 are Triangle's own markers
+    pts = site.points
+    for x, z, radius, n in fans:
+        c = int(np.argmin(np.hypot(pts[:, 0] - x, pts[:, 1] - z)))
+        if np.hypot(pts[c, 0] - x, pts[c, 1] - z) > 1e-9:
+            raise ValueError(f"fans: ({x}, {z}) is not a point of the site")
+        ang = -np.pi * np.arange(1, n) / n  # strictly inside the half plane below (the surface rays exist)
+        new = np.column_stack([x + radius * np.cos(ang), z + radius * np.sin(ang)])
+        first = len(pts)
+        pts = np.vstack([pts, new])
+        rays = np.array([(c, first + k) for k in range(len(new))], np.int32)
+        seg = np.vstack([seg, rays])
+        markers = np.concatenate([markers, np.ones(len(rays), np.int32)])  # interior: marker 1
     area = np.sqrt(3.0) / 4.0 * h * h
     regions = [[x, z, m, area] for x, z, m in site.regions]
-    data = dict(vertices=site.points, segments=seg, segment_markers=markers[:, None], regions=regions)
+    data = dict(vertices=pts, segments=seg, segment_markers=markers[:, None], regions=regions)
     out = triangle.triangulate(data, f"pq{min_angle:g}Aa")
     for _ in range(12):
         if size is None:
