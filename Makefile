@@ -57,7 +57,7 @@ lint: $(STAMP)
 # workers end together. One failing test, unit or chapter, fails the target; -rs lists every skipped test
 # with its reason.
 SLOW_FIRST := 10_bearing_capacity 12_engineering_scenes 13_accuracy 15_results_and_files 06_solver \
-	14_uncertainty 08_rc_beam 05_soil_element 11_foundation_scene
+	17_limit_analysis 14_uncertainty 08_rc_beam 05_soil_element 11_foundation_scene
 SLOW_TEST_FILES := tests/test_kernel_regression.py tests/test_zoo.py tests/test_results.py tests/test_sweep.py \
 	tests/test_browser.py
 # the notebooks of the chapters named in $(1) first, in that order, then the others
@@ -76,7 +76,7 @@ test: $(STAMP) notebooks
 # `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first (full
 # mode, measured on this machine: 06 ~230 s, 10 and 13 ~60 s, 14, 11, 12, 16 29-32 s, 08 15 s); report
 # rows are one file per id, written atomically, so the workers cannot mix them
-FULL_SLOW_FIRST := 06_solver 13_accuracy 10_bearing_capacity 12_engineering_scenes 16_bad_input 14_uncertainty \
+FULL_SLOW_FIRST := 06_solver 17_limit_analysis 13_accuracy 10_bearing_capacity 12_engineering_scenes 16_bad_input 14_uncertainty \
 	11_foundation_scene 08_rc_beam
 REPRODUCE_ORDER := $(call notebooks_slow_first,$(FULL_SLOW_FIRST))
 

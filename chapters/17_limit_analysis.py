@@ -1,0 +1,470 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 17 — Limit analysis: the capacity as a certified bracket (beyond the paper)
+#
+# The paper finds a footing's capacity the way an incremental elasto-plastic analysis does: push until the
+# solver stops making progress. That number depends on the mesh, the iteration scheme and, for ψ < φ, on the
+# path (chapter 10). Limit analysis answers the question the engineer asked — the collapse load of the
+# rigid-plastic body — with two numbers that enclose it: a **lower bound** from a stress field that is in
+# equilibrium and nowhere above yield, and an **upper bound** from a collapse mechanism whose dissipation
+# pays for the work of the loads. Each bound is one second-order cone program (Makrodimopoulos & Martin
+# 2006, 2007; Sloan 2013), solved here by Clarabel on meshes from Triangle.
+#
+# **In this chapter you will**
+# - state the static and kinematic theorems and write Mohr–Coulomb and its flow rule as 3-D cones;
+# - build both bounds on the same triangles (`ssi.limit`), certify the lower bound after the solve and
+#   recompute the upper bound from the velocities;
+# - split the gap between the bounds by element and refine where it lives (nested bisection, so the bounds
+#   can only improve) until (UB − LB)/(UB + LB) ≤ 2 % (1 % on request);
+# - check the brackets against Prandtl (N_c), Prandtl–Reissner (N_q), Martin's exact N_γ, a sliding footing
+#   and Smith & Griffiths' program 6.1, bracket the Davis material for ψ < φ and a factor of safety.
+
+# %% [markdown]
+# ## Theory
+#
+# **The theorems** (associated perfect plasticity, small strain). The collapse multiplier λ* of the
+# reference loads, with the dead loads (weight, surcharge) held, is unique and independent of E, ν and the
+# loading history. *Static theorem*: a stress field in equilibrium with the dead loads plus λ × the
+# reference loads, meeting the traction boundary conditions and nowhere outside the yield surface, has
+# λ ≤ λ*. *Kinematic theorem*: a velocity field meeting the velocity boundary conditions and the flow rule,
+# with unit power of the reference loads, has λ = D − P_dead ≥ λ* (D the plastic dissipation, P_dead the
+# power of the dead loads). For ψ < φ neither theorem holds; Radenković's theorem keeps the associated upper
+# bound as a ceiling, and Davis' associated material (c* = βc, tan φ* = β tan φ,
+# β = cos ψ cos φ / (1 − sin ψ sin φ)) gives the usual engineering value.
+#
+# **Mohr–Coulomb as a cone** (plane strain, tension positive):
+#
+# $$\|(\sigma_x-\sigma_z,\ 2\tau_{xz})\| \le 2c\cos\varphi - (\sigma_x+\sigma_z)\sin\varphi ,$$
+#
+# the vector $(2c\cos\varphi-(\sigma_x+\sigma_z)\sin\varphi,\ \sigma_x-\sigma_z,\ 2\tau_{xz})$ lies in
+# the 3-D second-order cone; φ = 0 is Tresca. Its associated flow rule: with
+# $e \ge \|(\dot\varepsilon_x-\dot\varepsilon_z,\ \dot\gamma_{xz})\|$,
+# $\dot\varepsilon_x+\dot\varepsilon_z = e\sin\varphi$, and the dissipation per unit volume is
+# $c\cos\varphi\,e$.
+# On a Coulomb joint (c_i, φ_i) with slip $d_t$ and opening $d_n$: $d_n = |d_t|\tan\varphi_i$, dissipation
+# $c_i|d_t|$ per unit length.
+#
+# **Elements.** Lower bound: 3-node triangles with linear stress, nodes unique to each triangle, so every
+# edge may carry a stress discontinuity with continuous tractions; equilibrium in each triangle (constant
+# divergence, the weight γ along −z); the cone at the three vertices holds the whole linear field inside.
+# Upper bound: 6-node triangles with quadratic velocity, so the strain rate is linear and the flow rule at
+# the vertices holds everywhere; the dissipation is integrated with the vertex rule, exact for φ > 0 (it is
+# then $c\cot\varphi$ times the linear volumetric rate) and above the true integral for φ = 0 (a convex
+# function of a linear field lies below the interpolant of its vertex values), so the bound stays rigorous.
+# A rigid footing is a translating body: rough — the soil under it moves with it; smooth or Coulomb — the
+# jump d = U − u is quadratic along an edge and its Bernstein control points, which hold the whole curve in
+# their convex hull, carry the joint's cone and its dissipation.
+#
+# **Certification.** The solver's status is not trusted (Clarabel reports `AlmostSolved` or even
+# `NumericalError` on good lower bounds). The lower bound is solved with the yield cones shrunk by 10⁻⁴,
+# projected exactly (sparse least squares) onto the equalities, checked vertex by vertex against the true
+# cone, and λ is recomputed from the projected field. The upper bound is recomputed from the velocities:
+# strain rates, the least e, the flow-rule residual, dissipation and powers.
+#
+# **The gap by element.** With the lower-bound stress σ and the upper-bound velocity u on the same
+# triangles, virtual work gives
+#
+# $$\lambda_{UB}-\lambda_{LB} = \sum_e\Big[D_e(u)-\int_e \sigma:\dot\varepsilon(u)\,dA\Big]
+#   + \sum_{\text{joint}}\int \big[D_i(d) - t\cdot d\big]\,ds ,$$
+#
+# every term ≥ 0 (σ is admissible and D is the support function of the yield set). Each element's term is
+# its share; the largest shares are refined by longest-edge bisection. A bisected mesh contains the old
+# one, so the old fields stay admissible: the lower bound cannot fall and the upper bound cannot rise.
+#
+# | symbol | code | meaning |
+# |---|---|---|
+# | λ | `lam` | load factor of the reference loads |
+# | c, φ, γ | `Material(c, phi_deg, gamma)` | cohesion [Pa], friction angle [°], unit weight [N/m³] |
+# | c_i, φ_i | `Interface("coulomb", c, phi_deg)` | footing joint |
+# | β | `davis_beta(phi, psi)` | Davis' reduction factor |
+# | e | `e` variables of `ssi.limit.upper` | plastic multiplier at a vertex |
+# | share_e | `Bracket.shares` | element's share of UB − LB |
+
+# %%
+import math
+import time
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from ssi.lab import paths, report
+from ssi.limit import (
+    Interface,
+    Material,
+    adaptive,
+    bracket,
+    davis_beta,
+    safety_factor,
+    strip_site,
+    triangulate,
+)
+
+FAST = paths.FAST
+# the requested relative gaps (UB-LB)/(UB+LB): the issue's 2 %, 1 % on request and 3 % for N_gamma in full
+# mode; fast mode (make test) exercises the same code on a few small meshes
+GAP = 0.10 if FAST else 0.02
+GAP_FINE = 0.07 if FAST else 0.01
+GAP_NGAMMA = 0.20 if FAST else 0.03
+C = 10e3  # cohesion [Pa] of chapter 10's footing
+B = 2.0  # footing width [m]
+print("fast mode" if FAST else "full mode", "gap", GAP)
+
+
+def prandtl(c, phi_deg, q=0.0):
+    """Prandtl-Reissner q_u = c N_c + q N_q of a weightless soil [Pa] (closed form, independent of ssi)."""
+    if phi_deg == 0.0:
+        return c * (2.0 + math.pi) + q
+    t = math.tan(math.radians(phi_deg))
+    nq = math.exp(math.pi * t) * math.tan(math.radians(45.0 + phi_deg / 2.0)) ** 2
+    return c * (nq - 1.0) / t + q * nq
+
+
+def graded(x0, h_min, growth):
+    """Element size [m] growing from h_min at the footing edge (x0, 0)."""
+    return lambda p: h_min + growth * np.hypot(p[:, 0] - x0, p[:, 1])
+
+
+def outside(lb, ub, exact):
+    """How far ``exact`` lies outside [lb, ub], relative (<= 0: inside)."""
+    return max(lb / exact - 1.0, 1.0 - ub / exact)
+
+
+def run(site, size, gap, h=1.0, label="", fans=(), **kw):
+    mesh = triangulate(site, h, size=size, fans=fans)
+    t0 = time.perf_counter()
+    res = adaptive(site, mesh, gap=gap, **kw)
+    res.wall = time.perf_counter() - t0
+    last = res.history[-1]
+    print(
+        f"{label:28s} {len(res.history):2d} meshes, {last['n_el']:5d} triangles: LB {res.lb / 1e3:9.3f} "
+        f"UB {res.ub / 1e3:9.3f} kPa, gap {100 * res.gap:5.2f} %, {res.wall:6.1f} s, "
+        f"solver setbacks {res.solver_setbacks}"
+    )
+    return res
+
+
+# %% [markdown]
+# ## Prandtl: rough and smooth rigid strip, φ = 0 and 20°, c = 10 kPa, weightless
+#
+# The half model of chapter 10 (6 m × 5 m, footing 0 ≤ x ≤ 1 m, symmetry roller on x = 0, rollers on
+# x = 6 m, base fixed); λ is the mean footing pressure [Pa].
+
+# %%
+prandtl_runs = {}
+for phi in (0.0, 20.0):
+    for kind in ("rough", "smooth"):
+        site = strip_site(B, Material(C, phi), Interface(kind))
+        gap = GAP_FINE if (phi, kind) == (20.0, "rough") else GAP
+        prandtl_runs[phi, kind] = run(site, graded(1.0, 0.2, 0.3), gap, label=f"phi={phi:g} {kind}")
+
+# %%
+ok_prandtl, worst_gap = True, 0.0
+for (phi, kind), res in prandtl_runs.items():
+    exact = prandtl(C, phi)
+    inside_every_mesh = all(r["best_lb"] <= exact <= r["best_ub"] for r in res.history)
+    inside_every_mesh &= all(r["lb"] <= exact * (1 + 1e-9) for r in res.history if r["certified"])
+    inside_every_mesh &= all(r["ub"] >= exact * (1 - 1e-9) for r in res.history)
+    want = GAP_FINE if (phi, kind) == (20.0, "rough") else GAP
+    ok_prandtl &= inside_every_mesh and res.gap <= want
+    worst_gap = max(worst_gap, res.gap)
+    print(
+        f"phi={phi:4.0f} {kind:6s} LB/exact {res.lb / exact:.4f}  UB/exact {res.ub / exact:.4f}  "
+        f"gap {100 * res.gap:.2f} % (asked {100 * want:g} %)  inside on every mesh: {inside_every_mesh}"
+    )
+report.check(
+    "fela_prandtl",
+    f"largest gap (UB-LB)/(UB+LB) of 4 adaptive Prandtl brackets; each contains c Nc on every mesh "
+    f"and rough phi=20 reaches {100 * GAP_FINE:g} %",
+    worst_gap,
+    GAP,
+    passed=ok_prandtl,
+)
+
+# %% [markdown]
+# ### Time against triangles
+#
+# The rough φ = 20° footing refined to the fine gap: each row of the adaptive history is one lower and one
+# upper bound (Clarabel with its default QDLDL factorisation, on the 2-core machine shared with the rest of
+# the test suite, so the times are upper estimates).
+
+# %%
+hist = prandtl_runs[20.0, "rough"].history
+print(" triangles   LB/exact   UB/exact   gap %   t_LB [s]  t_UB [s]  it_LB it_UB  cones")
+ex20 = prandtl(C, 20.0)
+for r in hist:
+    print(
+        f"{r['n_el']:10d}  {r['best_lb'] / ex20:9.4f}  {r['best_ub'] / ex20:9.4f}  {100 * r['gap']:6.2f}  "
+        f"{r['t_lb']:8.2f}  {r['t_ub']:8.2f}  {r['it_lb']:5d} {r['it_ub']:5d}  {r['cones_lb']:6d}"
+    )
+
+# %% [markdown]
+# ## Davis: the same footing with φ = 20°, ψ = 0
+#
+# No rigorous lower bound exists for ψ < φ. The associated bracket (above) is a ceiling (Radenković); the
+# Davis material c* = βc, tan φ* = β tan φ (β = cos φ for ψ = 0) is associated, so its bracket is rigorous
+# for it and must contain its own Prandtl value. Chapter 10's incremental ψ = 0 limits (viscously relaxed
+# pushes, measured there: 1.039, 0.995 and 0.969 × Prandtl(φ = 20°) on h = 0.25, 0.125 and 0.0625 m) are
+# set beside both brackets.
+
+# %%
+soil_na = Material(C, 20.0, psi_deg=0.0)
+site_na = strip_site(B, soil_na, Interface("rough"))
+davis = run(site_na.davis(), graded(1.0, 0.2, 0.3), GAP, label="Davis phi=20 psi=0")
+m_d = soil_na.davis()
+exact_d = prandtl(m_d.c, m_d.phi_deg)
+beta = davis_beta(20.0, 0.0)
+print(f"beta = {beta:.4f}: c* = {m_d.c / 1e3:.3f} kPa, phi* = {m_d.phi_deg:.3f} deg")
+print(f"Davis bracket / Prandtl(c*, phi*): [{davis.lb / exact_d:.4f}, {davis.ub / exact_d:.4f}]")
+assoc = prandtl_runs[20.0, "rough"]
+print(f"in units of Prandtl(phi=20): Davis [{davis.lb / ex20:.3f}, {davis.ub / ex20:.3f}], "
+      f"associated [{assoc.lb / ex20:.3f}, {assoc.ub / ex20:.3f}]")  # fmt: skip
+for h, v in ((0.25, 1.039), (0.125, 0.995), (0.0625, 0.969)):
+    where = "above the associated upper bound" if v * ex20 > assoc.ub else "inside [LB_Davis, UB_assoc]"
+    print(f"chapter 10, psi = 0, h = {h:6.4f} m: {v:.3f} x Prandtl -> {where}")
+report.check(
+    "fela_davis",
+    "how far Prandtl(c*, phi*) of the Davis material (phi=20, psi=0) lies outside its bracket (<= 0: inside)",
+    outside(davis.lb, davis.ub, exact_d),
+    0.0,
+    passed=outside(davis.lb, davis.ub, exact_d) <= 0.0,
+)
+
+# %% [markdown]
+# ## N_γ: rough strip on sand, c = 0, φ = 30°, γ = 20 kN/m³
+#
+# The exact value from the method of characteristics: **N_γ = 14.75** for a rough base, φ = 30° (Martin,
+# C.M. 2005, *Exact bearing capacity calculations using the method of characteristics*, Proc. 11th
+# IACMAG, Turin, vol. 4, 441–450: his ABC program's table; the rough value carries its four printed digits,
+# ±0.005). q_u = ½ γ B N_γ. The mechanism reaches ≈ 9 m from the axis for B = 2 m: the block is 10 m × 5 m.
+
+# %%
+GAMMA = 20e3
+N_GAMMA_MARTIN = 14.75
+site_ng = strip_site(B, Material(0.0, 30.0, gamma=GAMMA), Interface("rough"), half_width=10.0, depth=5.0)
+size_ng = graded(1.0, 0.08, 0.25)
+ngamma = run(site_ng, size_ng, GAP_NGAMMA, h=1.5, label="N_gamma phi=30 rough", theta=0.6, max_steps=20)
+q_ng = 0.5 * GAMMA * B * N_GAMMA_MARTIN
+n_lb, n_ub = ngamma.lb / (0.5 * GAMMA * B), ngamma.ub / (0.5 * GAMMA * B)
+print(f"N_gamma bracket [{n_lb:.3f}, {n_ub:.3f}] against Martin's {N_GAMMA_MARTIN}")
+report.check(
+    "fela_ngamma",
+    f"gap of the N_gamma bracket [{n_lb:.3f}, {n_ub:.3f}] (rough, phi=30), which must contain Martin's 14.75",
+    ngamma.gap,
+    GAP_NGAMMA,
+    passed=ngamma.lb <= q_ng <= ngamma.ub and ngamma.gap <= GAP_NGAMMA,
+)
+
+# %% [markdown]
+# ## Surcharge: c = 0, φ = 30°, weightless, q = 10 kPa — Prandtl–Reissner q N_q
+
+# %%
+Q = 10e3
+site_q = strip_site(B, Material(0.0, 30.0), Interface("rough"), half_width=10.0, depth=5.0, surcharge=Q)
+surch = run(site_q, graded(1.0, 0.1, 0.25), GAP, h=1.5, label="surcharge phi=30")
+exact_q = prandtl(0.0, 30.0, Q)
+print(f"bracket / (q Nq): [{surch.lb / exact_q:.4f}, {surch.ub / exact_q:.4f}]")
+report.check(
+    "fela_surcharge",
+    "how far q Nq (c=0, phi=30, q=10 kPa) lies outside the bracket (<= 0: inside)",
+    outside(surch.lb, surch.ub, exact_q),
+    0.0,
+    passed=outside(surch.lb, surch.ub, exact_q) <= 0.0,
+)
+
+# %% [markdown]
+# ## Sliding: a rigid footing on a Coulomb joint over much stronger soil
+#
+# Whole model (no symmetry), N = 100 kN/m held, the horizontal force λ × 1 N/m scaled; joint φ_i = 25°,
+# c_i = 0 and 5 kPa; soil Tresca with c = 1 MPa. The footing translates (its rotation is held), so the
+# exact capacity is H = c_i B + N tan φ_i: the mechanism is the footing sliding and lifting by tan φ_i.
+
+# %%
+N_SLIDE = 100e3
+slide = {}
+for c_i in (0.0, 5e3):
+    itf = Interface("coulomb", c=c_i, phi_deg=25.0)
+    site_s = strip_site(
+        B, Material(1e6, 0.0), itf, half_width=4.0, depth=3.0, symmetric=False,
+        load_ref=(1.0, 0.0), load_dead=(0.0, -N_SLIDE),
+    )  # fmt: skip
+    br = bracket(site_s, triangulate(site_s, 1.0, size=graded(1.0, 0.3, 0.3)))
+    exact_s = c_i * B + N_SLIDE * math.tan(math.radians(25.0))
+    slide[c_i] = (br, exact_s)
+    print(
+        f"c_i = {c_i / 1e3:3.0f} kPa: [{br.lb / exact_s:.6f}, {br.ub / exact_s:.6f}] x exact, "
+        f"gap {br.gap:.1e}"
+    )
+ok_slide = all(b.lb <= e <= b.ub * (1 + 1e-9) and b.gap <= 0.01 for b, e in slide.values())
+report.check(
+    "fela_sliding",
+    "largest gap of the sliding brackets (c_i = 0, 5 kPa); each contains c_i B + N tan phi_i",
+    max(b.gap for b, _ in slide.values()),
+    0.01,
+    passed=ok_slide,
+)
+
+# %% [markdown]
+# ## Smith & Griffiths, program 6.1: a flexible footing on undrained clay
+#
+# The scene of chapter 10 (`ssi.bearing_capacity.sg61_scene`): half width 2 m of uniform pressure on a
+# 12 m × 5 m half block, c_u = 100 kPa (Tresca), x = 0 and x = 12 m on rollers, base fixed. Its limit is
+# Prandtl's (2 + π) c_u = 514.16 kPa (the peer's table; chapter 10's reference data).
+
+# %%
+site_sg = strip_site(4.0, Material(100e3, 0.0), half_width=12.0, depth=5.0, flexible=True)
+# the edge of the flexible load (x = 2 m) is a point where the surface traction jumps: a lower-bound field
+# turns through a fan of sectors there, and bisection keeps the number of sectors bounded (without the fan
+# the lower bound stalls at 471.3 kPa, 0.917 x, on every mesh from 630 to 12 400 triangles, measured)
+sg = run(site_sg, graded(2.0, 0.15, 0.3), GAP, label="S&G 6.1 flexible", fans=((2.0, 0.0, 0.6, 18),))
+q_sg = (2.0 + math.pi) * 100e3
+print(f"bracket [{sg.lb / 1e3:.1f}, {sg.ub / 1e3:.1f}] kPa against {q_sg / 1e3:.2f} kPa")
+report.check(
+    "fela_sg61",
+    "how far (2+pi) cu = 514.16 kPa lies outside the bracket of S&G 6.1's footing (<= 0: inside)",
+    outside(sg.lb, sg.ub, q_sg),
+    0.0,
+    passed=outside(sg.lb, sg.ub, q_sg) <= 0.0,
+)
+
+# %% [markdown]
+# ## Monotone, reproducible, free of E and ν
+#
+# Along every adaptive sequence above the reported lower bound must not fall and the upper bound must not
+# rise. Each reported bound is the better of the solver's field and the previous mesh's field carried over
+# (still admissible on the nested mesh); the count of steps where the solver's own optimum was worse than
+# the previous mesh's is printed — in exact arithmetic there would be none. A rerun gives bit-identical
+# bounds. E and ν appear nowhere in the input of `ssi.limit`, so the bounds cannot depend on them.
+
+# %%
+runs = list(prandtl_runs.values()) + [davis, ngamma, surch, sg]
+mono = all(r.monotone for r in runs)
+setbacks = sum(r.solver_setbacks for r in runs)
+steps = sum(len(r.history) - 1 for r in runs)
+site0 = strip_site(B, Material(C, 20.0), Interface("smooth"))
+mesh0 = triangulate(site0, 1.0, size=graded(1.0, 0.25, 0.3))
+a, b = bracket(site0, mesh0), bracket(site0, mesh0)
+identical = (a.lb, a.ub) == (b.lb, b.ub)
+print(f"monotone on all {len(runs)} sequences ({steps} refinements): {mono}; solver setbacks: {setbacks}")
+print(f"rerun bit-identical: {identical}")
+report.check(
+    "fela_monotone",
+    f"refinement steps with a falling LB or rising UB over {len(runs)} adaptive sequences "
+    f"(and reruns bit-identical: {identical})",
+    0 if mono else 1,
+    0,
+    passed=mono and identical,
+)
+
+# %% [markdown]
+# ## A factor of safety by strength reduction
+#
+# Chapter 10's footing (c = 10 kPa, φ = 20°) under a mean pressure of 100 kPa: the largest F for which
+# c/F, tan φ/F still carry it, bracketed by bisection on each bound (a coarse mesh: the bracket is as wide
+# as that mesh's bounds).
+
+# %%
+site_f = strip_site(B, Material(C, 20.0), Interface("rough"), load_ref=(0.0, -100e3 * B / 2))
+mesh_f = triangulate(site_f, 1.0, size=graded(1.0, 0.25 if FAST else 0.12, 0.3))
+t0 = time.perf_counter()
+f_lb, f_ub, trials = safety_factor(site_f, mesh_f, rel_tol=3e-2 if FAST else 3e-3)
+print(f"F in [{f_lb:.3f}, {f_ub:.3f}] ({len(trials)} bound solves, {time.perf_counter() - t0:.1f} s)")
+assert f_lb < f_ub
+
+# %% [markdown]
+# ## Verification
+#
+# The report rows above assert their conditions; here the lower bounds' certificates and the upper bounds'
+# flow-rule residuals of the last meshes, and the gap identity (the element shares sum to UB − LB).
+
+# %%
+for name, r in [("prandtl rough 20", assoc), ("davis", davis), ("N_gamma", ngamma), ("S&G", sg)]:
+    f = r.final
+    print(
+        f"{name:18s} LB certified: {f.lower.certified} ({f.lower.reason}); UB flow residual "
+        f"{f.upper.flow_residual:.1e}; identity error {f.identity_error:.1e}"
+    )
+    assert f.lower.certified
+    assert f.upper.flow_residual < 1e-6  # relative to the velocity scale: solver tolerance 1e-9
+    assert f.identity_error < 1e-6  # round-off of two fields that each satisfy their constraints
+
+# %% [markdown]
+# ## Figures
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+for (phi, kind), res in prandtl_runs.items():
+    n = [r["n_el"] for r in res.history]
+    ex = prandtl(C, phi)
+    (line,) = axes[0].semilogx(
+        n, [r["best_ub"] / ex for r in res.history], "-o", ms=3, label=f"φ={phi:g} {kind}"
+    )
+    axes[0].semilogx(n, [r["best_lb"] / ex for r in res.history], "--o", ms=3, color=line.get_color())
+axes[0].axhline(1.0, color="k", lw=0.8)
+axes[0].set_xlabel("triangles")
+axes[0].set_ylabel("bound / Prandtl")
+axes[0].legend(fontsize=8)
+axes[1].loglog([r["n_el"] for r in hist], [r["t_lb"] for r in hist], "-o", label="lower bound")
+axes[1].loglog([r["n_el"] for r in hist], [r["t_ub"] for r in hist], "-s", label="upper bound")
+axes[1].set_xlabel("triangles")
+axes[1].set_ylabel("solve time [s]")
+axes[1].legend()
+report.save_figure(fig, "fig17_1_bounds_and_time")
+plt.show()
+
+# %% [markdown]
+# *Figure 17.1 — Left: upper (solid) and lower (dashed) bounds over Prandtl's exact pressure along the
+# adaptive sequences. Right: solve time of each bound against the number of triangles (rough φ = 20°).*
+
+# %%
+fin = assoc.final
+m = fin.mesh
+fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
+speed = np.hypot(*fin.upper.velocity[: len(m.xy)].T)
+tp = axes[0].tripcolor(m.xy[:, 0], m.xy[:, 1], m.tri, speed, shading="gouraud", cmap="viridis")
+axes[0].triplot(m.xy[:, 0], m.xy[:, 1], m.tri, lw=0.1, color="w")
+fig.colorbar(tp, ax=axes[0], label="|velocity| (unit reference power)")
+dens = np.maximum(fin.upper.dissipation, 1e-30) / m.areas()
+tp = axes[1].tripcolor(
+    m.xy[:, 0], m.xy[:, 1], m.tri, facecolors=np.log10(dens / dens.max() + 1e-12), cmap="magma"
+)
+tp.set_clim(-4, 0)
+fig.colorbar(tp, ax=axes[1], label="log10 dissipation density / max")
+for ax in axes:
+    ax.set_aspect("equal")
+    ax.set_xlim(0, 6)
+    ax.set_ylim(-5, 0)
+report.save_figure(fig, "fig17_2_mechanism")
+plt.show()
+
+# %% [markdown]
+# *Figure 17.2 — The upper-bound mechanism of the rough φ = 20° footing on its last adaptive mesh: speed
+# (left) and where the dissipation happens (right); the refinement follows the fan and the wedge edges.*
+#
+# ## Summary
+#
+# - Both bounds are one conic program each on the same Triangle mesh; the lower bound is certified from
+#   its projected field (never from the solver's status), the upper bound recomputed from its velocities.
+# - Prandtl (rough/smooth, φ = 0 and 20°), Prandtl–Reissner, Martin's N_γ, sliding and program 6.1 each lie
+#   inside their bracket on every mesh; adaptivity on each element's share of the gap reaches 2 % (1 % on
+#   request, N_γ 3 %), with the numbers printed above.
+# - Nested bisection makes the sequence monotone; the carried fields make it so even where the interior-point
+#   solver reports success short of the optimum.
+# - For ψ < φ the associated bracket is a ceiling and the Davis bracket the conventional value; chapter 10's
+#   ψ = 0 incremental limit on its coarsest mesh lies above every associated upper bound here: a mesh
+#   overestimate, not a capacity.
+#
+# References: Sloan (2013) Géotechnique 63(7); Makrodimopoulos & Martin (2006) IJNME 66, (2007) IJNAMG 31;
+# Lyamin & Sloan (2002); Krabbenhøft et al. (2012); Davis (1968); Drescher & Detournay (1993); Martin (2005);
+# Radenković (1961); Rivara (1984) on longest-edge bisection; Goulart & Chen (2024) Clarabel; Shewchuk (1996)
+# Triangle.

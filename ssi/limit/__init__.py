@@ -1,0 +1,47 @@
+"""Finite-element limit analysis: the collapse load factor of a site as a certified bracket.
+
+- :mod:`.geometry`: the input (:class:`Site`: a polygon split into regions with rigid-plastic materials,
+  named boundary segments, rigid footings with their interfaces); Davis and strength reduction of a site;
+- :mod:`.mesh`: Triangle quality meshes and nested longest-edge bisection;
+- :mod:`.lower`: the lower bound (linear-stress triangles, SOCP, certified by projection);
+- :mod:`.upper`: the upper bound (6-node quadratic-velocity triangles, SOCP, recomputed from velocities);
+- :mod:`.analysis`: brackets, the gap split by element, adaptivity, the factor of safety.
+
+Imports numpy, scipy, clarabel, triangle and :mod:`ssi.core.validate` only, so a scene can wrap it thinly:
+a scene's block is the :class:`Site` polygon, each soil layer a region below an interior polyline (its c,
+phi, effective unit weight; an undrained layer phi = 0), a rigid footing a :class:`Footing` on the
+``footing`` segments (its interface rough / smooth / Coulomb), a surcharge the ``pressure_dead`` of the free
+surface, the loads that scale with lambda ``load_ref`` / ``pressure_ref`` (a ``Settlement`` push: the
+footing's vertical force, so lambda is its mean pressure), a symmetric scene the axis as a "symmetry"
+segment and the footing moving along z only. Not covered yet: pore pressures as loads (only effective unit
+weights), footing rotation, a beam strip with plastic hinges.
+"""
+
+from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
+from .geometry import Boundary, Footing, Interface, Material, Site, davis_beta, strip_site
+from .lower import LowerBound, lower_bound
+from .mesh import TriMesh, bisect, triangulate
+from .upper import UpperBound, upper_bound
+
+__all__ = [
+    "AdaptiveResult",
+    "Boundary",
+    "Bracket",
+    "Footing",
+    "Interface",
+    "LowerBound",
+    "Material",
+    "Site",
+    "TriMesh",
+    "UpperBound",
+    "adaptive",
+    "bisect",
+    "bracket",
+    "davis_beta",
+    "gap_shares",
+    "lower_bound",
+    "safety_factor",
+    "strip_site",
+    "triangulate",
+    "upper_bound",
+]

@@ -1,0 +1,272 @@
+"""The input of a limit analysis: a domain polygon split into regions, each with a rigid-plastic material, and
+named boundary segments (fixed, symmetry roller, free or loaded, footing).
+
+Units: metres, pascals, newtons per metre run (plane strain); tension positive; coordinates (x, z) with z
+up, gravity along -z. Nothing here knows about elasticity: E and nu do not enter a limit analysis, which is
+why a :class:`Site` has no place for them.
+
+A :class:`Site` is what :func:`ssi.limit.mesh.triangulate` meshes and what the bound solvers read; a scene
+(or a chapter) builds one with :func:`strip_site` or by listing points, segments and regions itself.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..core.validate import check_choice, check_int, check_real
+
+__all__ = ["Boundary", "Footing", "Interface", "Material", "Site", "davis_beta", "strip_site"]
+
+BOUNDARY_KINDS = ("fixed", "symmetry", "free", "footing")
+
+
+def davis_beta(phi_deg: float, psi_deg: float) -> float:
+    """Davis' factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless; 1 for psi = phi)."""
+    phi, psi = math.radians(phi_deg), math.radians(psi_deg)
+    return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
+
+
+@dataclass(frozen=True)
+class Material:
+    """A rigid-plastic Mohr-Coulomb material: cohesion ``c`` [Pa], friction angle ``phi_deg`` [deg] (0: Tresca
+    with c the undrained strength), unit weight ``gamma`` [N/m^3] (effective, buoyant below water), dilation
+    angle ``psi_deg`` [deg] (None: associated, psi = phi; used only by :meth:`davis`), optional
+    ``tension_cutoff`` [Pa]: the largest principal stress allowed (lower bound only; None: no cut-off)."""
+
+    c: float
+    phi_deg: float
+    gamma: float = 0.0
+    psi_deg: float | None = None
+    tension_cutoff: float | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "c", check_real("c", self.c, lo=0.0, unit="Pa"))
+        object.__setattr__(self, "phi_deg", check_real("phi_deg", self.phi_deg, lo=0.0, hi=60.0, unit="deg"))
+        object.__setattr__(self, "gamma", check_real("gamma", self.gamma, lo=0.0, unit="N/m^3"))
+        if self.psi_deg is not None:
+            psi = check_real("psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="deg")
+            object.__setattr__(self, "psi_deg", psi)
+        if self.tension_cutoff is not None:
+            t = check_real("tension_cutoff", self.tension_cutoff, lo=0.0, unit="Pa")
+            object.__setattr__(self, "tension_cutoff", t)
+        if self.c == 0.0 and self.phi_deg == 0.0:
+            raise ValueError("a Material needs c > 0 or phi_deg > 0 (got c = 0 and phi_deg = 0: no strength)")
+
+    @property
+    def associated(self) -> bool:
+        return self.psi_deg is None or self.psi_deg == self.phi_deg
+
+    def davis(self) -> Material:
+        """The associated material of Davis (1968): c* = beta c, tan phi* = beta tan phi (psi* = phi*)."""
+        if self.associated:
+            return replace(self, psi_deg=None)
+        b = davis_beta(self.phi_deg, self.psi_deg)
+        phi = math.degrees(math.atan(b * math.tan(math.radians(self.phi_deg))))
+        return replace(self, c=b * self.c, phi_deg=phi, psi_deg=None)
+
+    def reduced(self, factor: float) -> Material:
+        """The strength-reduced material c / F, tan phi / F (F = ``factor`` > 0)."""
+        factor = check_real("factor", factor, lo=0.0, lo_open=True)
+        phi = math.degrees(math.atan(math.tan(math.radians(self.phi_deg)) / factor))
+        return replace(self, c=self.c / factor, phi_deg=phi)
+
+
+@dataclass(frozen=True)
+class Interface:
+    """The contact between a rigid footing and the soil. ``kind``: "rough" (bonded: no velocity jump, the
+    soil's own strength governs), "smooth" (no shear, no separation) or "coulomb" (|tau| <= c - sigma_n tan
+    phi with cohesion ``c`` [Pa] and friction angle ``phi_deg`` [deg], associated: a slip opens the joint by
+    |slip| tan phi). ``psi_deg`` [deg] (coulomb only, None = associated) enters only :meth:`davis`."""
+
+    kind: str = "rough"
+    c: float = 0.0
+    phi_deg: float = 0.0
+    psi_deg: float | None = None
+
+    def __post_init__(self):
+        check_choice("kind", self.kind, ("rough", "smooth", "coulomb"))
+        object.__setattr__(self, "c", check_real("c", self.c, lo=0.0, unit="Pa"))
+        object.__setattr__(self, "phi_deg", check_real("phi_deg", self.phi_deg, lo=0.0, hi=60.0, unit="deg"))
+        if self.psi_deg is not None:
+            psi = check_real("psi_deg", self.psi_deg, lo=0.0, hi=self.phi_deg, unit="deg")
+            object.__setattr__(self, "psi_deg", psi)
+        if self.kind != "coulomb" and (self.c != 0.0 or self.phi_deg != 0.0):
+            raise ValueError(f"c and phi_deg of an Interface need kind 'coulomb', got kind={self.kind!r}")
+
+    @property
+    def strength(self) -> tuple[float, float]:
+        """(c [Pa], tan phi) of the joint; smooth: (0, 0). Meaningless for rough."""
+        return self.c, math.tan(math.radians(self.phi_deg))
+
+    def davis(self) -> Interface:
+        if self.kind != "coulomb" or self.psi_deg is None or self.psi_deg == self.phi_deg:
+            return replace(self, psi_deg=None)
+        b = davis_beta(self.phi_deg, self.psi_deg)
+        phi = math.degrees(math.atan(b * math.tan(math.radians(self.phi_deg))))
+        return replace(self, c=b * self.c, phi_deg=phi, psi_deg=None)
+
+    def reduced(self, factor: float) -> Interface:
+        if self.kind != "coulomb":
+            return self
+        phi = math.degrees(math.atan(math.tan(math.radians(self.phi_deg)) / factor))
+        return replace(self, c=self.c / factor, phi_deg=phi)
+
+
+@dataclass(frozen=True)
+class Footing:
+    """A rigid footing (translation only: its rotation is held) on the ``footing`` segments of a site.
+
+    ``load_ref`` (Fx, Fz) [N/m] is the reference force on the footing that the load factor lambda scales,
+    ``load_dead`` (Fx, Fz) [N/m] the force held fixed (e.g. a column's vertical load while lambda scales a
+    horizontal push). ``moves``: the translations that are free ("x", "z" or both); a held one is a support
+    whose reaction needs no equilibrium (the symmetry axis of a half model holds "x")."""
+
+    interface: Interface = field(default_factory=Interface)
+    load_ref: tuple[float, float] = (0.0, -1.0)
+    load_dead: tuple[float, float] = (0.0, 0.0)
+    moves: tuple[str, ...] = ("x", "z")
+
+    def __post_init__(self):
+        for m in self.moves:
+            check_choice("moves", m, ("x", "z"))
+        for name in ("load_ref", "load_dead"):
+            given = getattr(self, name)
+            v = tuple(float(check_real(f"{name}[{i}]", x, unit="N/m")) for i, x in enumerate(given))
+            if len(v) != 2:
+                raise ValueError(f"{name} must be (Fx, Fz), got {getattr(self, name)!r}")
+            object.__setattr__(self, name, v)
+        for i, d in enumerate("xz"):
+            if d not in self.moves and (self.load_ref[i] != 0.0 or self.load_dead[i] != 0.0):
+                raise ValueError(f"Footing load along {d} needs '{d}' in moves, got moves={self.moves!r}")
+
+
+@dataclass(frozen=True)
+class Boundary:
+    """The condition on one boundary segment. ``kind``: "fixed" (velocity zero), "symmetry" (roller: normal
+    velocity and shear traction zero), "free" (traction = -(pressure_dead + lambda pressure_ref) n, n the
+    outward normal: a surcharge or a flexible load; both zero: a free surface) or "footing" (in contact with
+    ``footing``, an index into :attr:`Site.footings`). Pressures in Pa, compression positive."""
+
+    kind: str
+    pressure_dead: float = 0.0
+    pressure_ref: float = 0.0
+    footing: int = 0
+
+    def __post_init__(self):
+        check_choice("kind", self.kind, BOUNDARY_KINDS)
+        object.__setattr__(self, "pressure_dead", check_real("pressure_dead", self.pressure_dead, unit="Pa"))
+        object.__setattr__(self, "pressure_ref", check_real("pressure_ref", self.pressure_ref, unit="Pa"))
+        object.__setattr__(self, "footing", check_int("footing", self.footing, lo=0))
+        if self.kind != "free" and (self.pressure_dead != 0.0 or self.pressure_ref != 0.0):
+            raise ValueError(f"pressures apply to kind 'free' only, got kind={self.kind!r}")
+
+
+@dataclass(frozen=True)
+class Site:
+    """A meshable limit-analysis problem.
+
+    ``points`` (n_p, 2) [m]; ``segments``: (i, j, Boundary) for every segment of the outer boundary, listed
+    so that the domain lies on the left of i -> j (counter-clockwise), or (i, j, None) for an interior
+    polyline that splits regions; ``regions``: (x, z, material index) seed points, one inside each region;
+    ``materials`` and ``footings`` are indexed by regions and boundaries. ``max_area`` [m^2] per region
+    material (None: the global ``h`` of the mesher)."""
+
+    points: np.ndarray
+    segments: tuple
+    regions: tuple
+    materials: tuple
+    footings: tuple = ()
+
+    def __post_init__(self):
+        pts = np.ascontiguousarray(self.points, dtype=float)
+        if pts.ndim != 2 or pts.shape[1] != 2 or not np.all(np.isfinite(pts)):
+            raise ValueError(f"points must be a finite (n, 2) array, got shape {pts.shape}")
+        object.__setattr__(self, "points", pts)
+        n = len(pts)
+        for s in self.segments:
+            i, j, b = s
+            if not (0 <= i < n and 0 <= j < n) or i == j:
+                raise ValueError(f"segment ({i}, {j}) must join two distinct points of 0..{n - 1}")
+            if b is not None and b.kind == "footing" and b.footing >= len(self.footings):
+                nf = len(self.footings)
+                raise ValueError(f"segment ({i}, {j}) names footing {b.footing}, only {nf} given")
+        for r in self.regions:
+            if not (0 <= r[2] < len(self.materials)):
+                raise ValueError(f"region seed {r} names material {r[2]}, only {len(self.materials)} given")
+
+    def map_materials(self, fn) -> Site:
+        """A copy with every material replaced by ``fn(material)`` (Davis, strength reduction)."""
+        return replace(self, materials=tuple(fn(m) for m in self.materials))
+
+    def map_interfaces(self, fn) -> Site:
+        return replace(self, footings=tuple(replace(f, interface=fn(f.interface)) for f in self.footings))
+
+    def davis(self, interface: bool = True) -> Site:
+        """The Davis-reduced site (soil and, if ``interface``, the footing interfaces)."""
+        out = self.map_materials(Material.davis)
+        return out.map_interfaces(Interface.davis) if interface else out
+
+    def reduced(self, factor: float, interface: bool = True) -> Site:
+        """The site with c / F and tan phi / F (soil and, if ``interface``, the footing interfaces)."""
+        out = self.map_materials(lambda m: m.reduced(factor))
+        return out.map_interfaces(lambda i: i.reduced(factor)) if interface else out
+
+    @property
+    def length_scale(self) -> float:
+        """The larger side of the bounding box [m]."""
+        return float(np.max(self.points.max(axis=0) - self.points.min(axis=0)))
+
+
+def strip_site(
+    B: float,
+    material: Material,
+    interface: Interface | None = None,
+    half_width: float = 6.0,
+    depth: float = 5.0,
+    symmetric: bool = True,
+    surcharge: float = 0.0,
+    load_ref: tuple[float, float] | None = None,
+    load_dead: tuple[float, float] = (0.0, 0.0),
+    flexible: bool = False,
+    side: str = "symmetry",
+) -> Site:
+    """A strip footing of width ``B`` [m] on the surface z = 0 of a block ``half_width`` [m] either side of
+    the axis and ``depth`` [m] deep (base fixed, far sides ``side``: "symmetry" rollers or "fixed").
+
+    ``symmetric``: only x >= 0 modelled, the axis a symmetry roller, the footing moving along z alone.
+    ``flexible``: a uniform reference pressure of 1 Pa on the footing's width instead of a rigid footing
+    (Smith & Griffiths' program 6.1): lambda is then the pressure [Pa]. Rigid: lambda multiplies
+    ``load_ref`` [N/m] (default (0, -B_model): lambda is the mean footing pressure [Pa], B_model the modelled
+    width), with ``load_dead`` held. ``surcharge`` [Pa] acts on the free surface beside the footing."""
+    B = check_real("B", B, lo=0.0, lo_open=True, unit="m")
+    half_width = check_real("half_width", half_width, lo=B / 2, lo_open=True, unit="m")
+    depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
+    surcharge = check_real("surcharge", surcharge, lo=0.0, unit="Pa")
+    check_choice("side", side, ("symmetry", "fixed"))
+    interface = Interface() if interface is None else interface
+    x0 = 0.0 if symmetric else -half_width
+    xf = 0.0 if symmetric else -B / 2
+    b_model = B / 2 if symmetric else B
+    top_rest = Boundary("free", pressure_dead=surcharge)
+    if flexible:
+        under = Boundary("free", pressure_ref=1.0)
+        footings = ()
+    else:
+        under = Boundary("footing", footing=0)
+        ref = (0.0, -b_model) if load_ref is None else load_ref
+        moves = ("z",) if symmetric else ("x", "z")
+        footings = (Footing(interface, ref, load_dead, moves),)
+    far = Boundary(side)
+    if symmetric:
+        pts = [(0, -depth), (half_width, -depth), (half_width, 0), (B / 2, 0), (0, 0)]
+        segs = [(0, 1, Boundary("fixed")), (1, 2, far), (2, 3, top_rest), (3, 4, under)]
+        segs.append((4, 0, Boundary("symmetry")))
+    else:
+        pts = [(x0, -depth), (half_width, -depth), (half_width, 0), (B / 2, 0), (xf, 0), (x0, 0)]
+        segs = [(0, 1, Boundary("fixed")), (1, 2, far), (2, 3, top_rest), (3, 4, under), (4, 5, top_rest)]
+        segs.append((5, 0, far))
+    seed = ((0.5 * (x0 + B / 2), -0.5 * depth, 0),)
+    return Site(np.array(pts, float), tuple(segs), seed, (material,), footings)

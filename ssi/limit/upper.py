@@ -1,0 +1,317 @@
+"""Upper bound: a kinematically admissible velocity field on 6-node triangles, one SOCP, then recomputed.
+
+Unknowns: velocities (u, w) at the corner and midside nodes (quadratic in each triangle, continuous),
+each footing's translation (U, W), a plastic multiplier e at each vertex of each triangle (layout
+``e[n_el, 3]``), and, under a footing with a Coulomb or smooth interface, a slip bound s at each
+control point of the jump.
+
+- The strain rate is linear in a triangle. At each vertex the associated Mohr-Coulomb flow rule reads
+  eps_x + eps_z = sin phi e and ||(eps_x - eps_z, gamma_xz)|| <= e (a 3-D cone). e is linear between the
+  vertices, so the rule holds everywhere in the triangle.
+- Dissipation: c cos phi e per unit volume, integrated with the vertex rule (A/3) sum_k e_k. For phi > 0 the
+  flow rule makes this exactly c cot phi times the integral of the volumetric rate (linear: exact); for
+  phi = 0 it is the integral of the linear interpolant of e_k >= ||dev||, above the integral of the convex
+  function ||dev(x)||: the computed dissipation can only overestimate, so the bound stays rigorous.
+- Footing interface: the jump d = U - u (footing relative to soil) is quadratic along an edge; its Bernstein
+  control points b_0 = d_a, b_1 = 2 d_m - (d_a + d_b)/2, b_2 = d_b contain the whole curve in their convex
+  hull, so the Coulomb rule n.b_k = tan phi_i s_k, |t.b_k| <= s_k at the control points holds along the edge
+  and the dissipation c_i sum_k s_k L/3 bounds c_i times the integral of |d_t| from above. Rough: d = 0.
+- Velocity conditions: fixed u = 0; symmetry u . n = 0 (axis-aligned rollers, eliminated); a footing's held
+  translation is zero.
+- Normalisation: the power of the reference loads is 1; the objective is the dissipation minus the power
+  of the dead loads (weight, surcharge, dead footing loads), which is lambda.
+
+Recomputation: from the returned velocities alone, the strain rates at the vertices, the least e that
+satisfies the cone, the flow-rule residual |eps_v - sin phi e| h / max |v| (h the element size; at the
+interface |d_n - tan phi_i s| / max |v|), the jump control points, the dissipation, the dead and
+reference powers, and lambda = (D - P_dead) / P_ref.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._common import boundary_edges, gradients, scales, strength
+from .conic import ConicSolution, Rows, solve_conic
+from .geometry import Site
+from .mesh import TriMesh
+
+__all__ = ["UpperBound", "upper_bound"]
+
+
+@dataclass
+class UpperBound:
+    """A recomputed upper bound. ``lam`` from the velocity field, ``lam_solver`` the solver's objective;
+    ``velocity`` (n_nodes + n_edges, 2) [m/s] (corner nodes, then one midside node per edge of
+    ``mesh.edges()``; scaled so that the reference loads' power is 1 N/m . m/s); ``footing_velocity``
+    (n_footings, 2); ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference
+    power; interface shares added to the element under the edge), ``dead_power`` the dead loads' share
+    (lam = dissipation.sum() - dead_power); ``strain`` (n_el, 3, 3) vertex strain rates (eps_x, eps_z,
+    gamma) [1/s];
+    ``flow_residual`` the largest relative flow-rule residual; time [s], iterations, status, n_cones."""
+
+    lam: float
+    lam_solver: float
+    velocity: np.ndarray
+    footing_velocity: np.ndarray
+    dissipation: np.ndarray
+    dead_power: float
+    strain: np.ndarray
+    flow_residual: float
+    p_ref: float
+    time: float
+    iterations: int
+    status: str
+    n_cones: int
+    n_rows: int
+
+
+def _vertex_gradients(b, c, A):
+    """G (n_el, 3 vertices, 6 nodes, 2): gradients of the 6 quadratic shape functions (corners 0-2, then
+    the midside node of side k = opposite vertex k) at each vertex, in the units of b, c / A."""
+    n_el = len(A)
+    gl = np.stack([b, c], axis=2) / (2 * A)[:, None, None]  # (n_el, 3, 2) grad L_k
+    G = np.zeros((n_el, 3, 6, 2))
+    for v in range(3):
+        for i in range(3):
+            G[:, v, i] = 3 * gl[:, v] if i == v else -gl[:, i]
+        for k in range(3):
+            if k != v:
+                j = 3 - v - k  # side k joins v and j
+                G[:, v, 3 + k] = 4 * gl[:, j]
+    return G
+
+
+def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
+    """Variable index of each nodal velocity component (-1: held at zero), footing variables, and the rows
+    for symmetry rollers that are not axis-aligned."""
+    n_all = n_nodes + n_mid
+    state = np.zeros((n_all, 2), np.int64)  # 0 free, -1 zero, f+1: tied to footing f (rough)
+    oblique = []
+    for j in range(len(be.p)):
+        bnd = site.segments[be.seg[j]][2]
+        nodes = (be.p[j], be.q[j], n_nodes + be.edge[j])
+        nx, nz = be.n[j]
+        for g in nodes:
+            if bnd.kind == "fixed":
+                state[g] = -1
+            elif bnd.kind == "symmetry":
+                if abs(nz) < 1e-12:
+                    state[g, 0] = -1
+                elif abs(nx) < 1e-12:
+                    state[g, 1] = -1
+                else:
+                    oblique.append((g, nx, nz))
+            elif bnd.kind == "footing" and site.footings[bnd.footing].interface.kind == "rough":
+                for d in range(2):
+                    if state[g, d] == 0:
+                        state[g, d] = bnd.footing + 1
+    n_f = len(site.footings)
+    fvar = -np.ones((n_f, 2), np.int64)
+    nxt = 0
+    for f, ft in enumerate(site.footings):
+        for d, name in enumerate("xz"):
+            if name in ft.moves:
+                fvar[f, d] = nxt
+                nxt += 1
+    dof = -np.ones((n_all, 2), np.int64)
+    for g in range(n_all):
+        for d in range(2):
+            s = state[g, d]
+            if s == 0:
+                dof[g, d] = nxt
+                nxt += 1
+            elif s > 0:
+                dof[g, d] = fvar[s - 1, d]
+    return dof, fvar, nxt, oblique
+
+
+def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> UpperBound:
+    """The upper bound of the load factor lambda of ``site`` on ``mesh`` (module docstring), recomputed from
+    the velocity field. ``tol``: Clarabel's tolerances. ``velocity``: (nodal (n_nodes + n_edges, 2), footing
+    (n_footings, 2)) velocities to evaluate instead of solving (any scale; a held component must be zero)."""
+    sc = scales(site)
+    xy = mesh.xy / sc.L
+    n_nodes, n_el = len(xy), mesh.n_el
+    edges, el_edge = mesh.edges()
+    n_mid = len(edges)
+    be = boundary_edges(mesh, xy)
+    dof, fvar, n_v, oblique = _dof_map(site, mesh, be, n_nodes, n_mid)
+    ie = n_v  # e variables
+    n_e = 3 * n_el
+    # interface control points (non-rough footings): keyed per corner node and per midside node
+    cp = {}
+    cp_rows = []  # (key, footing, edge j, which: 0/1/2)
+    for j in range(len(be.p)):
+        bnd = site.segments[be.seg[j]][2]
+        if bnd.kind == "footing" and site.footings[bnd.footing].interface.kind != "rough":
+            nrm = (round(float(be.n[j, 0]), 9), round(float(be.n[j, 1]), 9))
+            keys = (("n", int(be.p[j]), nrm), ("m", int(be.edge[j])), ("n", int(be.q[j]), nrm))
+            for w, key in enumerate(keys):
+                if key not in cp:
+                    cp[key] = len(cp)
+                cp_rows.append((key, bnd.footing, j, w))
+    i_s = ie + n_e
+    n = i_s + len(cp)
+    eq, ineq, soc = Rows(), Rows(), Rows()
+    q = np.zeros(n)
+    # flow rule at the vertices
+    b, c, A = gradients(xy, mesh.tri)
+    G = _vertex_gradients(b, c, A)
+    nodes6 = np.concatenate([mesh.tri, n_nodes + el_edge], axis=1)  # (n_el, 6)
+    du, dw = dof[nodes6, 0], dof[nodes6, 1]
+    c2, sphi, cphi = (np.array(v) for v in zip(*(strength(m, sc.S) for m in site.materials)))
+    c_cos = 0.5 * c2[mesh.material]  # c cos phi / S
+    sinm = sphi[mesh.material]
+    for e in range(n_el):
+        for v in range(3):
+            gx, gz = G[e, v, :, 0], G[e, v, :, 1]
+            ev = ie + 3 * e + v
+            # eps_x = gx . u, eps_z = gz . w, gamma = gz . u + gx . w
+            cu, cw = du[e], dw[e]
+            ok_u, ok_w = cu >= 0, cw >= 0
+            vol_c = list(cu[ok_u]) + list(cw[ok_w]) + [ev]
+            vol_v = list(gx[ok_u]) + list(gz[ok_w]) + [-sinm[e]]
+            eq.add(vol_c, vol_v, 0.0)
+            soc.add([ev], [-1.0], 0.0)
+            soc.add(list(cu[ok_u]) + list(cw[ok_w]), list(-gx[ok_u]) + list(gz[ok_w]), 0.0)
+            soc.add(list(cu[ok_u]) + list(cw[ok_w]), list(-gz[ok_u]) + list(-gx[ok_w]), 0.0)
+            q[ev] += c_cos[e] * A[e] / 3.0
+    # oblique symmetry rollers
+    for g, nx, nz in dict(((g, (g, nx, nz)) for g, nx, nz in oblique)).values():
+        cols = [dof[g, 0], dof[g, 1]]
+        vals = [nx, nz]
+        keep = [i for i, cc in enumerate(cols) if cc >= 0]
+        if keep:
+            eq.add([cols[i] for i in keep], [vals[i] for i in keep], 0.0)
+    # interface control points: b_k in terms of (U - u) at a, m, b
+    cp_done = set()
+    for key, f, j, w in cp_rows:
+        L = be.length[j]
+        itf = site.footings[f].interface
+        ci, tphi = itf.strength
+        k = i_s + cp[key]
+        q[k] += ci / sc.S * L / 3.0
+        if key in cp_done:
+            continue
+        cp_done.add(key)
+        nx, nz = be.n[j]
+        a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
+        weights = {0: {a_: 1.0}, 2: {b_: 1.0}, 1: {m_: 2.0, a_: -0.5, b_: -0.5}}[w]
+        wsum = sum(weights.values())  # the footing's U enters with the same weights (U is constant)
+        for comp, (vx, vz) in (("n", (nx, nz)), ("t", (-nz, nx))):
+            cols, vals = [], []
+            for d, vv in ((0, vx), (1, vz)):
+                if fvar[f, d] >= 0:
+                    cols.append(fvar[f, d])
+                    vals.append(wsum * vv)
+                for g, wt in weights.items():
+                    if dof[g, d] >= 0:
+                        cols.append(dof[g, d])
+                        vals.append(-wt * vv)
+            if comp == "n":
+                eq.add(cols + [k], vals + [-tphi], 0.0)
+            else:
+                ineq.add(cols + [k], vals + [-1.0], 0.0)
+                ineq.add(cols + [k], [-v for v in vals] + [-1.0], 0.0)
+    # powers: reference (= 1) and dead (subtracted in the objective)
+    p_ref = np.zeros(n)
+    p_dead = np.zeros(n)
+    gam = np.array([m.gamma for m in site.materials])[mesh.material] * sc.L / sc.S
+    for e in range(n_el):  # weight (0, -gamma): integral of a midside shape function is A/3, of a corner 0
+        for k in range(3):
+            d = dw[e, 3 + k]
+            if d >= 0:
+                p_dead[d] += -gam[e] * A[e] / 3.0
+    for j in range(len(be.p)):
+        bnd = site.segments[be.seg[j]][2]
+        if bnd.kind != "free":
+            continue
+        L = be.length[j]
+        nx, nz = be.n[j]
+        for g, wt in ((be.p[j], L / 6), (be.q[j], L / 6), (n_nodes + be.edge[j], 2 * L / 3)):
+            for d, nn in ((0, nx), (1, nz)):
+                if dof[g, d] >= 0:
+                    p_ref[dof[g, d]] += -bnd.pressure_ref / sc.S * nn * wt / sc.k
+                    p_dead[dof[g, d]] += -bnd.pressure_dead / sc.S * nn * wt
+    for f, ft in enumerate(site.footings):
+        for d in range(2):
+            if fvar[f, d] >= 0:
+                p_ref[fvar[f, d]] += ft.load_ref[d] / (sc.S * sc.L) / sc.k
+                p_dead[fvar[f, d]] += ft.load_dead[d] / (sc.S * sc.L)
+    nz_ = np.flatnonzero(p_ref)
+    eq.add(list(nz_), list(p_ref[nz_]), 1.0)
+    q -= p_dead
+    if velocity is None:
+        sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+        x = sol.x
+    else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing translations)
+        vel_in, fv_in = velocity
+        x = np.zeros(n)
+        m_ = dof >= 0
+        x[dof[m_]] = vel_in[m_]
+        mf_ = fvar >= 0
+        x[fvar[mf_]] = fv_in[mf_]
+        sol = ConicSolution(x, "given", 0, 0.0, len(soc.rhs) // 3)
+    # ---- recomputation from the velocities alone
+    vel = np.where(dof >= 0, x[np.maximum(dof, 0)], 0.0)
+    fv = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)
+    ue, we = vel[nodes6, 0], vel[nodes6, 1]  # (n_el, 6)
+    ex = np.einsum("evn,en->ev", G[..., 0], ue)
+    ez = np.einsum("evn,en->ev", G[..., 1], we)
+    gm = np.einsum("evn,en->ev", G[..., 1], ue) + np.einsum("evn,en->ev", G[..., 0], we)
+    dev = np.hypot(ex - ez, gm)
+    vol = ex + ez
+    s_e = sinm[:, None]
+    e_min = np.where(s_e > 0, np.maximum(dev, vol / np.where(s_e > 0, s_e, 1.0)), dev)
+    # the flow-rule residual relative to the velocity scale: |eps_v - sin phi e| h / max |v|
+    v_scale = max(np.abs(vel).max(), np.abs(fv).max(initial=0.0), 1e-300)
+    h_el = np.sqrt(2.0 * A)[:, None]
+    flow_res = float(np.max(np.abs(vol - s_e * e_min) * h_el) / v_scale)
+    d_el = (c_cos * A / 3.0)[:, None] * e_min
+    diss = d_el.sum(axis=1)
+    # interface control points recomputed
+    for _key, f, j, w in cp_rows:
+        itf = site.footings[f].interface
+        ci, tphi = itf.strength
+        a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
+        U = fv[f]
+        da, dm, db = U - vel[a_], U - vel[m_], U - vel[b_]
+        bk = {0: da, 1: 2 * dm - 0.5 * (da + db), 2: db}[w]
+        nx, nz = be.n[j]
+        dn, dt = bk[0] * nx + bk[1] * nz, -bk[0] * nz + bk[1] * nx
+        s_need = abs(dt) if tphi == 0 else max(abs(dt), dn / tphi)
+        flow_res = max(flow_res, abs(dn - tphi * s_need) / v_scale)
+        diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
+    pr = _power(p_ref, dof, fvar, vel, fv, n)
+    pd = _power(p_dead, dof, fvar, vel, fv, n)
+    lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
+    unit = 1.0 / (sc.S * sc.L * sc.k * pr)  # real velocities with a reference power of 1 N/m . m/s
+    return UpperBound(
+        lam=float(lam),
+        lam_solver=float(q @ x) / sc.k,
+        velocity=vel * unit,
+        footing_velocity=fv * unit,
+        dissipation=diss / (pr * sc.k),
+        dead_power=pd / (pr * sc.k),
+        strain=np.stack([ex, ez, gm], axis=2) * unit / sc.L,
+        flow_residual=flow_res,
+        p_ref=pr,
+        time=sol.time,
+        iterations=sol.iterations,
+        status=sol.status,
+        n_cones=sol.n_soc,
+        n_rows=len(eq.rhs) + len(ineq.rhs) + len(soc.rhs),
+    )
+
+
+def _power(coef: np.ndarray, dof, fvar, vel, fv, n) -> float:
+    """coef . x with x rebuilt from the recomputed nodal and footing velocities (not the solver's vector)."""
+    x = np.zeros(n)
+    m = dof >= 0
+    x[dof[m]] = vel[m]
+    mf = fvar >= 0
+    x[fvar[mf]] = fv[mf]
+    return float(coef @ x)
