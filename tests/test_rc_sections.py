@@ -5,36 +5,23 @@ softening line and the distance from the snap-back limit), both closed-form, to 
 representative sections are driven past cracking as beams (``ssi.lab.rc_sections``); the whole grid runs in
 chapter 18's full mode (row ``rc_sections_grid``)."""
 
-import math
 import warnings
 
 import numpy as np
 import pytest
 
-from ssi.elements.section import PlainConcreteWarning, rc_section
-from ssi.lab.rc_sections import design_section, grid_case, rho_min_ec2, section_grid
+from ssi.elements.section import PlainConcreteWarning
+from ssi.lab.rc_sections import design_section, grid_case, issue_section, rho_min_ec2, section_grid
 from ssi.materials.concrete import P_ALPHA_TS, P_E0, P_FR, P_GF, P_LS
 from ssi.materials.layer_laws import CONCRETE, STEEL
 from ssi.materials.rc import (
     SNAP_BACK_MARGIN,
     CrackBandWarning,
-    concrete_params,
     designer_concrete,
     regularised_tensile_strength,
     snap_back_limit,
-    steel_params,
 )
 from ssi.scene import Foundation
-
-
-def issue_section(bars=None):
-    """The issue's footing: 0.6 m deep, C30/37 (fcm 38 MPa), B500, phi16@150 bottom, phi12@200 top, covers
-    50 mm (to the bar surface)."""
-    d = designer_concrete(38e6)
-    conc = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
-    if bars is None:
-        bars = [(0.058, math.pi * 0.016**2 / 4 / 0.15), (0.6 - 0.056, math.pi * 0.012**2 / 4 / 0.2)]
-    return rc_section(0.6, bars, conc, (STEEL, steel_params(500e6)))
 
 
 def test_regularised_strength_keeps_fracture_energy_and_softens():

@@ -24,7 +24,7 @@ from ..materials.concrete import H_EMAX, P_E0, P_FR
 from ..materials.layer_laws import CONCRETE, STEEL
 from ..materials.rc import concrete_params, designer_concrete, steel_params
 
-__all__ = ["GridSection", "crack_section", "design_section", "rho_min_ec2", "section_grid"]
+__all__ = ["GridSection", "crack_section", "design_section", "issue_section", "rho_min_ec2", "section_grid"]
 
 FCK_CLASSES = {"C20/25": 20e6, "C30/37": 30e6, "C40/50": 40e6, "C50/60": 50e6}
 MPA = 1.0e6
@@ -34,6 +34,16 @@ def rho_min_ec2(fck: float, fyk: float = 500e6) -> float:
     """EN 1992-1-1 eq. (9.1N): As,min / (b d) = max(0.26 fctm / fyk, 0.0013), fctm = 0.30 fck^(2/3) [MPa]."""
     fctm = 0.30 * (fck / MPA) ** (2.0 / 3.0)
     return max(0.26 * fctm / (fyk / MPA), 0.0013)
+
+
+def issue_section(bars=None) -> Section:
+    """The footing of issue 33: 0.6 m deep, C30/37 (fcm 38 MPa), B500, phi16@150 bottom, phi12@200 top, covers
+    50 mm (to the bar surface)."""
+    d = designer_concrete(38e6)
+    conc = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))
+    if bars is None:
+        bars = [(0.058, math.pi * 0.016**2 / 4 / 0.15), (0.6 - 0.056, math.pi * 0.012**2 / 4 / 0.2)]
+    return rc_section(0.6, bars, conc, (STEEL, steel_params(500e6)))
 
 
 @dataclass(frozen=True)
