@@ -206,6 +206,7 @@ def design_summary(out, **options) -> dict | None:
         "plain_concrete": plain,
         "options": {
             "fck_MPa": design.fck / 1e6,
+            "fyk_MPa": design.fyk / 1e6,
             "gamma_c": design.gamma_c,
             "gamma_s": design.gamma_s,
             "kt": design.kt,
@@ -224,6 +225,12 @@ def summary_text(s: dict | None) -> str:
             f"{p['sig_s_crack_max_MPa']:.0f} MPa, M_Ed/M_Rd {p['util_M_max']:.2f}, V_Ed/V_Rd,c "
             f"{p['util_V_max']:.2f}, M {p['M_min_kNm']:.1f} .. {p['M_max_kNm']:.1f} kNm/m"
         )
+        if p["sig_s_crack_max_MPa"] > s["options"]["fyk_MPa"]:
+            lines.append(
+                "    the cracked elastic section puts the bars beyond f_yk at a crack: the section has "
+                "yielded "
+                "and the crack width of 7.3.4 (a service check) does not apply there"
+            )
     lines.append(
         f"  M_Rd (N = 0): sagging {s['M_Rd_sag_kNm']:.1f}, hogging {s['M_Rd_hog_kNm']:.1f} kNm/m; brittle "
         f"faces: {', '.join(f for f, b in s['brittle'].items() if b) or 'none'}"
