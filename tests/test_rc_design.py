@@ -157,3 +157,12 @@ def test_scene_design_view():
     assert s["util_M_max"] >= u["M"].max() - 1e-12  # the maximum over every step includes the last
     assert 0.3 * s["M_Rd_sag_kNm"] < 1e-3 * u["M_Rd"].max() < 2.0 * s["M_Rd_sag_kNm"]
     assert s["brittle"] == {"bottom": False, "top": True}
+    from ssi.scene.design import envelopes
+
+    env = envelopes(out)["loading"]
+    for key in ("M", "N", "V", "w_k", "sig_s", "p"):
+        assert np.all(env[key][0] >= env[key][1])
+    assert 1e3 * env["w_k"][0].max() == pytest.approx(s["w_k_max_mm"], rel=1e-12)
+    rows = range(out.n_steps + 1)
+    assert np.array_equal(env["M"][0], np.max([out.strip_forces(k)["M"] for k in rows], axis=0))
+    assert 1e-3 * env["p"][0].max() == pytest.approx(s["phases"]["loading"]["p_max_kPa"], rel=1e-12)
