@@ -260,6 +260,27 @@ def _allocate(n_total: int, gaps: np.ndarray) -> np.ndarray:
     return n
 
 
+def _bar_entries(bars) -> list[tuple[float, float]]:
+    """``bars`` as a list of (z_bar [m], As [m^2/m]) float pairs, or a ValueError naming the bad entry."""
+    if isinstance(bars, str | bytes) or not isinstance(bars, Sequence | np.ndarray):
+        raise ValueError(f"bars must be a list of [z_bar, As] pairs (m, m^2/m), got {bars!r}")
+    out = []
+    for i, entry in enumerate(bars):
+        if isinstance(entry, str | bytes) or np.ndim(entry) != 1 or len(entry) != 2:
+            raise ValueError(
+                f"bars[{i}] must be a pair [z_bar, As] (height of the bar centroid above the bottom face "
+                f"[m], bar area per unit width [m^2/m]), got {entry!r}"
+            )
+        try:
+            z, a = float(entry[0]), float(entry[1])
+        except (TypeError, ValueError):
+            raise ValueError(f"bars[{i}] must hold two numbers [z_bar, As], got {entry!r}") from None
+        if not (np.isfinite(z) and np.isfinite(a)):
+            raise ValueError(f"bars[{i}] must hold finite numbers [z_bar, As], got {entry!r}")
+        out.append((z, a))
+    return out
+
+
 def rc_section(
     depth: float,
     bars: Sequence[tuple[float, float]],
@@ -276,7 +297,8 @@ def rc_section(
     bars : list of ``(z_bar, As)``: height of the bar centroid above the bottom face [m] and bar area per
         unit width [m^2/m]; the bar layer has thickness ``As`` centred on ``z_bar`` (equivalent thickness)
     concrete : ``(kind, params)`` of the concrete layers
-    steel : ``(kind, params)`` of all bar layers, or a list with one ``(kind, params)`` per bar
+    steel : ``(kind, params)`` of all bar layers, or a list with one ``(kind, params)`` per bar (unused
+        without bars: ``bars=[]`` is a plain concrete section)
     n_concrete : total number of concrete layers (int, spread over the gaps between faces and bars in
         proportion to the gap thickness, at least one each) or a list with one count per gap, bottom up
     z_ref : reference surface height above the bottom face (default depth/2)
@@ -286,7 +308,7 @@ def rc_section(
     """
     if not depth > 0.0:
         raise ValueError(f"depth must be > 0, got {depth}")
-    bars = sorted((float(z), float(a)) for z, a in bars)
+    bars = sorted(_bar_entries(bars))
     if len(steel) == 2 and np.isscalar(steel[0]):  # one (kind, params) for all bars
         steel = [steel] * len(bars)
     if len(steel) != len(bars):
@@ -371,8 +393,13 @@ def with_crack_spacing_band(
     phi = _positive("bar_diameter", bar_diameter)
     bars = np.flatnonzero(section.kind == STEEL)
     conc = np.flatnonzero(section.kind == CONCRETE)
-    if bars.size == 0 or conc.size == 0:
-        raise ValueError("with_crack_spacing_band: the section needs STEEL and CONCRETE layers")
+    if conc.size == 0:
+        raise ValueError("with_crack_spacing_band: the section has no CONCRETE layer to give a crack band")
+    if tension_stiffening not in ("all", "effective_area"):
+        raise ValueError(f"tension_stiffening must be 'all' or 'effective_area', got {tension_stiffening!r}")
+    _WARNED.clear()  # each build warns once per face
+    if bars.size == 0:
+        return _plain_concrete_band(section, conc)
     h = section.thickness
     z_mid_sec = 0.5 * (section.z_bottom + section.z_top)
 
@@ -401,14 +428,13 @@ def with_crack_spacing_band(
     bottom = spacing("bottom") if section.z_mid[bars[0]] < z_mid_sec else None
     top = spacing("top") if section.z_mid[bars[-1]] >= z_mid_sec else None
     faces = [bottom or top, top or bottom]
-    if tension_stiffening not in ("all", "effective_area"):
-        raise ValueError(f"tension_stiffening must be 'all' or 'effective_area', got {tension_stiffening!r}")
     from ..materials.concrete import P_ALPHA_TS
 
     params = section.params.copy()
     for n in conc:
         face = faces[0] if section.z_mid[n] < z_mid_sec else faces[1]
-        params[n, : len(section.params[n])] = with_crack_band(section.params[n], face["s_r_max"])
+        prm = _regularised(section.params[n], face["s_r_max"], "bottom" if face is faces[0] else "top")
+        params[n, : len(section.params[n])] = with_crack_band(prm, face["s_r_max"])
         if tension_stiffening == "effective_area":
             near_bottom = bottom is not None and section.z_mid[n] - section.z_bottom <= bottom["h_c_ef"]
             near_top = top is not None and section.z_top - section.z_mid[n] <= top["h_c_ef"]
@@ -417,3 +443,83 @@ def with_crack_spacing_band(
     from dataclasses import replace
 
     return replace(section, params=params), faces
+
+
+# Hinge width of a plain concrete beam's flexural crack, as a fraction of the depth: Ulfkjaer, Krenk &
+# Brincker (1995), "Analytical model for fictitious crack propagation in concrete beams", J. Eng. Mech.
+# 121(1), s = h/2.
+PLAIN_HINGE_FRACTION = 0.5
+
+
+class PlainConcreteWarning(UserWarning):
+    """A concrete section without reinforcement: its cracking is brittle (the cracking moment is its peak)."""
+
+
+_WARNED: list = []
+
+
+def _warn_once(message: str, category: type) -> None:
+    """Warn ``message`` unless it was just warned for another layer of the same section build."""
+    import warnings
+
+    if message not in _WARNED:
+        warnings.warn(message, category, stacklevel=5)
+    _WARNED.append(message)
+
+
+def _regularised(params: np.ndarray, ls: float, where: str) -> np.ndarray:
+    """Copy of a CONCRETE vector whose tensile strength is lowered (``ssi.materials.rc.
+    regularised_tensile_strength``) if the band ``ls`` [m] would snap back or soften steeper than the margin
+    allows; warns (``CrackBandWarning``) saying what was done and why."""
+
+    from ..materials.concrete import P_E0, P_FR, P_GF
+    from ..materials.rc import (
+        SNAP_BACK_MARGIN,
+        CrackBandWarning,
+        regularised_tensile_strength,
+        snap_back_limit,
+    )
+
+    p = np.array(params, dtype=np.float64)
+    E0, Gf, fr = p[P_E0], p[P_GF], p[P_FR]
+    fr_band = regularised_tensile_strength(E0, Gf, fr, ls)
+    if fr_band < fr:
+        limit = snap_back_limit(E0, Gf, fr)
+        _warn_once(
+            f"crack band of the {where} face: ls = {ls:.4g} m (the crack spacing s_r,max) is "
+            f"{ls / limit:.3g} times the snap-back limit 2*E0*Gf/fr**2 = {limit:.4g} m of eq. (5.4) "
+            f"(allowed: {SNAP_BACK_MARGIN}); the band's tensile strength is lowered from "
+            f"fr = {fr / 1e6:.4g} to {fr_band / 1e6:.4g} MPa so that its softening still dissipates "
+            f"Gf = {Gf:.4g} N/m without "
+            "snapping back (crack band regularisation of Bazant & Oh); the strip cracks at a moment lower "
+            f"by about {100 * (1 - fr_band / fr):.0f} %",
+            CrackBandWarning,
+        )
+        p[P_FR] = fr_band
+    return p
+
+
+def _plain_concrete_band(section: Section, conc: np.ndarray) -> tuple[Section, list]:
+    """The crack band of a section without bars: one flexural crack, whose fracture zone spans a hinge of
+    width h/2 (``PLAIN_HINGE_FRACTION``), no tension stiffening (nothing bonds to the concrete); the band
+    regularised like a reinforced one if that width would snap back. Warns that the cracking is brittle."""
+    import warnings
+    from dataclasses import replace
+
+    from ..materials.concrete import P_ALPHA_TS
+    from ..materials.rc import with_crack_band
+
+    ls = PLAIN_HINGE_FRACTION * section.thickness
+    params = section.params.copy()
+    for n in conc:
+        prm = _regularised(section.params[n], ls, "plain")
+        prm[P_ALPHA_TS] = 0.0
+        params[n, : len(section.params[n])] = with_crack_band(prm, ls)
+    warnings.warn(
+        "plain concrete section (no bars): its cracking is brittle -- the cracking moment is its peak "
+        f"moment and the crack opens with no reinforcement to hold it; crack band ls = h/2 = {ls:.4g} m (the "
+        "flexural hinge width of Ulfkjaer, Krenk & Brincker 1995), no tension stiffening",
+        PlainConcreteWarning,
+        stacklevel=3,
+    )
+    return replace(section, params=params), [{"s_r_max": ls, "plain": True}]

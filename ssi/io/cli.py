@@ -58,6 +58,8 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["limit_load_factor"] = result.limit_load_factor if complete else None
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
+    if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
+        out["design"] = result.design_summary()
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
 
@@ -97,6 +99,10 @@ def summary_text(s: dict) -> str:
             f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
             f"(solver failure, not a detected limit load: {s['stop_reason']})"
         )
+    if s.get("design"):
+        from ..scene.design import summary_text as design_text
+
+        lines.append(design_text(s["design"]))
     if s.get("wall_time_s") is not None:
         lines.append(
             f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})"

@@ -54,6 +54,34 @@ def check_crack_band(ls, E0: float, Gf: float, fr: float) -> None:
         )
 
 
+# Largest ls / (2 E0 Gf / fr^2) a band keeps before its tensile strength is lowered (regularise_band): the
+# softening modulus of eq. (5.4) is then at most 1 / (1/0.8 - 1) = 4 times E0 in magnitude.
+SNAP_BACK_MARGIN = 0.8
+
+
+class CrackBandWarning(UserWarning):
+    """A concrete band's tensile strength was lowered so that eq. (5.4) keeps Gf without snapping back."""
+
+
+def regularised_tensile_strength(
+    E0: float, Gf: float, fr: float, ls: float, margin: float = SNAP_BACK_MARGIN
+):
+    """Tensile strength [Pa] of a crack band of width ``ls`` [m] that keeps the fracture energy ``Gf`` [N/m]
+    with a softening line (eq. 5.4) no steeper than the ``margin`` allows (Bazant & Oh 1983, "Crack band
+    theory for fracture of concrete", Materiaux et Constructions 16: for bands too wide to soften, lower the
+    strength, not the energy).
+
+    The triangle under the softening line of eq. (5.4) has the area fr eps_u / 2 = Gf / ls whatever fr is, so
+    a band dissipates Gf per unit area with any strength; the line snaps back (eps_u < fr / E0) once
+    ls >= 2 E0 Gf / fr^2. Returns min(fr, sqrt(margin 2 E0 Gf / ls)): fr itself while ls <= margin times the
+    snap-back limit, else the strength at which ls is exactly that fraction of the limit."""
+    for name, v in (("E0", E0), ("Gf", Gf), ("fr", fr), ("ls", ls)):
+        _positive(name, v)
+    if not 0.0 < margin < 1.0:
+        raise ValueError(f"margin must be in (0, 1), got {margin!r}")
+    return min(float(fr), math.sqrt(margin * 2.0 * E0 * Gf / ls))
+
+
 def designer_concrete(fc: float) -> dict:
     """Designer values of E0, fr, Gf, eps_c, eps_cu from the mean compressive strength ``fc`` [Pa]
     (fib Model Code 2010; see the module docstring)."""

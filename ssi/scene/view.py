@@ -181,6 +181,20 @@ class SceneResult:
         layers = self.plate_layers(k)
         return {"x": layers["x"], "z": layers["z"], "cracked": layers["cracked"]}
 
+    def crack_width(self, k: int = -1) -> dict[str, np.ndarray]:
+        """Crack width w_k [m] (EN 1992-1-1 7.3.4) at the strip's axial points at step ``k``: see
+        :func:`ssi.scene.design.crack_width`."""
+        from .design import crack_width
+
+        return crack_width(self, k)
+
+    def design_summary(self, **options) -> dict | None:
+        """Crack widths, utilisations and envelopes of an RC strip per phase: see
+        :func:`ssi.scene.design.design_summary` (``options``: gamma_c, gamma_s, kt, fck)."""
+        from .design import design_summary
+
+        return design_summary(self, **options)
+
     def soil_points(self) -> np.ndarray:
         """(n_el, n_ip, 2) coordinates (x, z) [m] of the soil integration points."""
         return self.built.soil.integration_points()
