@@ -1,0 +1,404 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 19 — Sites: boreholes, sloping ground, several foundations, stiffness growing with depth
+#
+# *Beyond the paper.* The paper's foundation rests on "an arbitrary system of geological layers" (§1, §2
+# Fig. 1, §11); the scene of chapters 11–12 writes only a stack of level slabs. A site is what an engineer
+# draws: layer boundaries measured in boreholes and interpolated between them, layers that pinch out, a
+# ground surface that slopes, two foundations side by side, a clay whose stiffness grows with depth.
+#
+# In this chapter you will
+# - describe a site by boreholes, a ground polyline and strips (`ssi.scene.site.Site`) and see the one
+#   geometry description (`ssi.core.geometry.Geometry`) that both the soil mesh and a triangle mesher read;
+# - mesh it with gmsh into 8-node serendipity quadrilaterals conforming to every boundary and refined
+#   towards the foundations (`ssi.core.gmsh_mesh`), quality-checked;
+# - check that a level borehole site on the structured path gives the layered scene's numbers;
+# - compute the initial stress by gravity loading and check it against the K0 state on level ground;
+# - check a strip load on Gibson's soil (G = m z, ν → ½) against Gibson's exact settlement;
+# - put two strips on a four-layer borehole site and check elastic superposition on one mesh.
+#
+# ## Theory
+#
+# **Geometry.** The block x ∈ [−W/2, W/2], z ∈ [−D, z_g(x)] is cut by vertical lines at every *break*
+# (ground vertices, boreholes, polyline vertices, foundation ends, load points, and the points where the
+# ground crosses a layer boundary). Between two breaks every boundary is a straight segment, so each layer
+# occupies a trapezoid (a triangle where it pinches out, nothing where it is absent). These cells tile the
+# site; they share their edges, so any mesher that meshes each cell conforms to every boundary. A boundary
+# between boreholes at x_a < x_b is interpolated linearly, z_k(x) = z_k(x_a) + (x − x_a)/(x_b − x_a)
+# (z_k(x_b) − z_k(x_a)), level beyond the outermost boreholes, and cut by the ground: min(z_k, z_g).
+#
+# **Mesh.** gmsh meshes each cell (frontal-Delaunay for quadrilaterals), recombines the triangles into
+# quadrilaterals (Blossom), subdivides what is left so that every element is a quadrilateral, and adds the
+# mid-side nodes (incomplete second order): the Q8 of chapter 05. A threshold size field sets the size to
+# h_fine at the foundations and lets it grow by (growth − 1) per metre up to h_coarse.
+#
+# **Initial stress.** On level ground over level boundaries the vertical stress is the weight of the column
+# above, σ_v = Σ γ_i t_i, and σ_h = K0 σ_v (chapter 12). Elsewhere the state must be computed: *gravity
+# loading* solves K u_g = f_γ (the soil's weight on the soil alone, elastic) and keeps σ_0 = D B u_g, which
+# is in discrete equilibrium with the weight, discarding u_g. On level ground with rollers on the sides,
+# ε_xx = 0 gives σ_h/σ_v = ν/(1 − ν) exactly — the check below.
+#
+# **Gibson soil.** For G(z) = m z (z depth) and ν = ½, Gibson (1967) showed that a surface pressure q
+# settles the half-space by w = q/(2m) under the load and not at all outside it: the soil acts as a
+# Winkler foundation of modulus 2m. In a closed block of incompressible soil the volume pushed down under
+# the load heaves the far ground uniformly, so the check compares the settlement *relative to the far
+# ground*.
+#
+# | paper / text | code |
+# |---|---|
+# | layer boundaries from boreholes | `Borehole(x, boundaries)` |
+# | ground surface z_g(x) | `Site.ground`, `Site.ground_z` |
+# | E = E_ref + E_inc · depth | `DepthVarying(layer, E_inc, c_inc, z_ref)` |
+# | gravity loading σ_0 = D B u_g | `Site(initial_stress="gravity")` |
+# | Gibson's w = q/(2m) | `ssi.scene.site.gibson_settlement` |
+
+# %%
+import time
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from ssi.elements.section import homogeneous
+from ssi.lab import paths
+from ssi.lab.report import check, record, save_figure
+from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer, SurfacePressure
+from ssi.scene.site import Borehole, DepthVarying, Site, Strip, gibson_settlement
+
+FAST = paths.FAST
+H_FINE = 0.25 if FAST else 0.125
+MESH = MeshSize(h_fine=H_FINE, h_coarse=2.0)
+SECTION = homogeneous(0.5, 30e9, 0.2)
+CONTACT = Contact(kn=1e10, kt=1e9)
+TWO = [
+    SoilLayer(3.0, E=20e6, nu=0.3, unit_weight=18e3),
+    SoilLayer(7.0, E=60e6, nu=0.25, unit_weight=20e3),
+]
+
+# %% [markdown]
+# ## 1. A level borehole site is the layered scene
+#
+# Two boreholes find the boundary at 3 m both; the site's structured path builds the same graded block as the
+# scene, so the numbers must agree to round-off (1e-10 relative: the same arithmetic in another order would
+# differ by a few ulp). The same site on the gmsh mesh differs by the discretisation error; we show it next to
+# the change of the gmsh result under halving h_fine, its own error indicator.
+
+# %%
+loads = [ColumnLoad(0.0, N=400e3)]
+scene = Scene(width=20.0, depth=10.0, layers=TWO, foundation=Foundation(-1.0, 1.0, SECTION), contact=CONTACT,
+              loads=loads, mesh=MESH)  # fmt: skip
+
+
+def level_site(mesher, mesh=MESH):
+    return Site(20.0, 10.0, TWO, boreholes=[Borehole(-5.0, [-3.0]), Borehole(5.0, [-3.0])],
+                strips=[Strip(Foundation(-1.0, 1.0, SECTION), CONTACT)], loads=loads, mesh=mesh,
+                mesher=mesher)  # fmt: skip
+
+
+x_ref, w_ref = scene.build().solve().settlement()
+built_s = level_site("auto").build()
+x_s, w_s = built_s.solve().strip_settlement(0)
+equal_err = float(np.abs(w_s - w_ref).max() / np.abs(w_ref).max())
+w_gmsh = {}
+for h in (2 * H_FINE, H_FINE):
+    m = MeshSize(h_fine=h, h_coarse=2.0)
+    w_gmsh[h] = level_site("gmsh", m).build().solve().strip_settlement(0)[1].max()
+w_struct_max = w_ref.max()
+gmsh_diff = abs(w_gmsh[H_FINE] - w_struct_max) / w_struct_max
+gmsh_change = abs(w_gmsh[H_FINE] - w_gmsh[2 * H_FINE]) / w_struct_max
+print(f"structured path: {built_s.mesher}, {built_s.initial_stress_method}; max |dw|/w = {equal_err:.2e}")
+print(f"max settlement: layered scene {1e3 * w_struct_max:.3f} mm, gmsh h={2 * H_FINE}: "
+      f"{1e3 * w_gmsh[2 * H_FINE]:.3f} mm, h={H_FINE}: {1e3 * w_gmsh[H_FINE]:.3f} mm")  # fmt: skip
+print(f"gmsh vs structured {gmsh_diff:.2%}; gmsh change under refinement {gmsh_change:.2%}")
+
+# %% [markdown]
+# ## 2. Gravity loading against K0 on level ground
+#
+# The elastic gravity phase on the structured block: σ_v against the weight of the column above (1e-6
+# relative: the exact state is quadratic in z, in the Q8 space, so only round-off remains) and σ_h/σ_v against
+# ν/(1 − ν) (1e-6 absolute). On a gmsh mesh of general quadrilaterals the quadratic field is not reproduced
+# exactly; its error is shown, not asserted.
+
+
+# %%
+def gravity_error(mesher):
+    site = Site(12.0, 10.0, TWO, boreholes=[Borehole(0.0, [-3.0])], initial_stress="gravity", mesher=mesher,
+                mesh=MESH)  # fmt: skip
+    built = site.build()
+    sig, z = built.soil.initial_stress, built.soil.integration_points()[..., 1]
+    sv = np.where(z > -3.0, 18e3 * z, -54e3 + 20e3 * (z + 3.0))
+    nu = np.where(z > -3.0, 0.3, 0.25)
+    return (
+        built.initial_stress_method,
+        float(np.abs(sig[..., 1] - sv).max() / np.abs(sv).max()),
+        float(np.abs(sig[..., 0] / sig[..., 1] - nu / (1 - nu)).max()),
+    )
+
+
+grav = {mesher: gravity_error(mesher) for mesher in ("structured", "gmsh")}
+for mesher, (method, e_v, e_k) in grav.items():
+    print(f"{mesher:10s} {method}: sigma_v rel. error {e_v:.2e}, sigma_h/sigma_v - nu/(1-nu) {e_k:.2e}")
+
+# %% [markdown]
+# ## 3. Gibson's soil
+#
+# G = m z with m = 1 MPa/m, ν = 0.499 (E_inc = 2(1 + ν) m, E_ref ≈ 0), a flexible strip of half-width
+# b = 1 m under q = 100 kPa, block 40 m × 20 m. The modulus is evaluated at each element's centroid.
+
+# %%
+nu_g, m_g, q_g, b_g = 0.499, 1e6, 100e3, 1.0
+gibson_layer = DepthVarying(SoilLayer(1.0, E=1e-3 * m_g, nu=nu_g, nu_u=nu_g), E_inc=2.0 * (1.0 + nu_g) * m_g)
+gibson_site = Site(40.0, 20.0, [gibson_layer], loads=[SurfacePressure(-b_g, b_g, q_g)],
+                   mesh=MeshSize(h_fine=H_FINE, h_coarse=4.0))  # fmt: skip
+x_g, w_g = gibson_site.build().solve().ground_settlement()
+w_exact = gibson_settlement(q_g, m_g)
+rel_g = (w_g - w_g[0]) / w_exact  # relative to the far ground at the block's side
+gibson_under = float(np.abs(rel_g[np.abs(x_g) <= 0.5 * b_g] - 1.0).max())
+gibson_outside = float(np.abs(rel_g[np.abs(x_g) >= 2.0 * b_g]).max())
+print(f"Gibson w = q/2m = {1e3 * w_exact:.1f} mm; far-ground heave {-1e3 * w_g[0]:.2f} mm")
+print(f"under |x| <= b/2: max |w_rel/w - 1| = {gibson_under:.2%}; outside |x| >= 2b: max |w_rel|/w = "
+      f"{gibson_outside:.2%}")  # fmt: skip
+
+# %% [markdown]
+# ## 4. Two strips on a four-layer borehole site
+#
+# Three boreholes; the second layer pinches out at x = 0. Strip A (x ∈ [−6, −4]) carries 300 kN/m, strip B
+# (x ∈ [3, 5]) 200 kN/m. The soil and the bonded contact are elastic, so the two-strip solution is the sum of
+# the single ones on the same mesh (1e-10: round-off of a linear solve); the gmsh mesh is the same for the
+# three sites because the load points are the same and gmsh runs deterministically (asserted).
+
+# %%
+FOUR = [
+    SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3),
+    SoilLayer(1.0, E=30e6, nu=0.3, unit_weight=19e3),
+    SoilLayer(1.0, E=50e6, nu=0.3, unit_weight=19e3),
+    SoilLayer(1.0, E=80e6, nu=0.3, unit_weight=20e3),
+]
+BOREHOLES = [Borehole(-10.0, [-2.0, -4.0, -7.0]), Borehole(0.0, [-2.5, -2.5, -6.0]),
+             Borehole(10.0, [-3.5, -5.0, -8.0])]  # fmt: skip
+
+
+def two_strips(n_a, n_b):
+    return Site(30.0, 12.0, FOUR, boreholes=BOREHOLES, mesh=MESH,
+                strips=[Strip(Foundation(-6.0, -4.0, SECTION), CONTACT),
+                        Strip(Foundation(3.0, 5.0, SECTION), CONTACT)],
+                loads=[ColumnLoad(-5.0, N=n_a), ColumnLoad(4.0, N=n_b)])  # fmt: skip
+
+
+two_strips(300e3, 200e3).build()  # warm-up (first gmsh call, plate and interface kernels)
+t0 = time.perf_counter()
+both = two_strips(300e3, 200e3).build()
+mesh_s = time.perf_counter() - t0
+only_a, only_b = two_strips(300e3, 0.0).build(), two_strips(0.0, 200e3).build()
+same_mesh = np.array_equal(both.mesh.xy, only_a.mesh.xy) and np.array_equal(both.mesh.conn, only_b.mesh.conn)
+out_both = both.solve()
+u, ua, ub = out_both.u[-1], only_a.solve().u[-1], only_b.solve().u[-1]
+superposition = float(np.abs(u - ua - ub).max() / np.abs(u).max())
+sa, sb = out_both.strip_summary(0), out_both.strip_summary(1)
+print(f"{both.mesher} mesh: {len(both.mesh.conn)} Q8, {both.model.n_dof} DOFs, quality {both.quality}; "
+      f"initial stress: {both.initial_stress_method}; meshed and built in {mesh_s:.3f} s")  # fmt: skip
+print(f"strip A: mean {1e3 * sa['mean']:.2f} mm, tilt {1e3 * sa['tilt']:.3f} mm/m; strip B: mean "
+      f"{1e3 * sb['mean']:.2f} mm, tilt {1e3 * sb['tilt']:.3f} mm/m; differential A - B "
+      f"{1e3 * out_both.differential_settlement(0, 1):.2f} mm; superposition error "
+      f"{superposition:.1e}")  # fmt: skip
+
+# %% [markdown]
+# ### Plastic soil: the interaction against distance
+#
+# On a Mohr–Coulomb soil (c = 10 kPa, φ = 30°, ψ = 0) superposition no longer holds. Strip A (x ∈ [−2, 0])
+# carries 250 kN/m alone and then with strip B, equally loaded, at a clear distance s to its right; the extra
+# mean settlement of A caused by B is the interaction. It must fall monotonically with s (the plastic zones
+# and the elastic stress bulbs separate) towards zero.
+
+# %%
+MC = [SoilLayer(1.0, E=20e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0)]
+FRICTION = Contact(kn=1e10, kt=1e9, phi_deg=25.0)
+
+
+def strip_a_settlement(gap, n_b):
+    site = Site(40.0, 15.0, MC, mesher="gmsh", mesh=MeshSize(h_fine=0.25, h_coarse=3.0),
+                strips=[Strip(Foundation(-2.0, 0.0, SECTION), FRICTION),
+                        Strip(Foundation(gap, gap + 2.0, SECTION), FRICTION)],
+                loads=[ColumnLoad(-1.0, N=250e3), ColumnLoad(gap + 1.0, N=n_b)])  # fmt: skip
+    out = site.build().solve()
+    assert out.result.status == "completed"
+    return out.strip_summary(0)["mean"]
+
+
+gaps = [1.0, 4.0] if FAST else [0.5, 1.0, 2.0, 4.0, 8.0]
+interaction = []
+for gap in gaps:
+    alone, together = strip_a_settlement(gap, 0.0), strip_a_settlement(gap, 250e3)
+    interaction.append((together - alone) / alone)
+    print(f"clear distance {gap:4.1f} m: strip A {1e3 * alone:.2f} mm alone, {1e3 * together:.2f} mm with B "
+          f"(+{interaction[-1]:.1%})")  # fmt: skip
+
+# %% [markdown]
+# ## 5. A beam over a dipping boundary
+#
+# A foundation beam (L = 10 m, 0.5 m concrete) under eleven equal columns (50 kN/m each, 1 m apart) rests on
+# soft soil (E = 5 MPa) over stiff soil (E = 50 MPa) whose boundary dips 10° to the right: the soft layer is
+# 2 m thick under the left end and 3.76 m under the right one, the block 8 m deep. The beam must tilt towards
+# the soft side. A 1-D column estimate under each end, s = q Σ t_i / E_oed,i with q the mean pressure and
+# E_oed = E (1 − ν) / ((1 + ν)(1 − 2ν)), gives a differential settlement to compare with; it ignores the load
+# spreading sideways and the beam's stiffness, both of which make the real difference smaller. The issue's
+# 20 % is recorded, not asserted: the FE result, converged under refinement, is what it is.
+
+# %%
+E_SOFT, E_STIFF, NU_D = 5e6, 50e6, 0.3
+TAN10 = np.tan(np.radians(10.0))
+
+
+def z_dip(x):
+    return -2.0 - (x + 5.0) * TAN10  # the boundary: 2 m deep at the beam's left end, dipping to the right
+
+
+def e_oed(e):
+    return e * (1 - NU_D) / ((1 + NU_D) * (1 - 2 * NU_D))
+
+
+def dipping(h):
+    site = Site(40.0, 8.0, [SoilLayer(1.0, E=E_SOFT, nu=NU_D), SoilLayer(1.0, E=E_STIFF, nu=NU_D)],
+                boundaries=[[(-20.0, z_dip(-20.0)), (20.0, z_dip(20.0))]],
+                strips=[Strip(Foundation(-5.0, 5.0, SECTION), CONTACT)],
+                loads=[ColumnLoad(x, N=50e3) for x in np.linspace(-5.0, 5.0, 11)],
+                mesh=MeshSize(h_fine=h, h_coarse=2.0))  # fmt: skip
+    x, w = site.build().solve().strip_settlement(0)
+    return w[0], w[-1]
+
+
+q_dip = 11 * 50e3 / 10.0
+s_1d = {xe: q_dip * (-z_dip(xe) / e_oed(E_SOFT) + (8.0 + z_dip(xe)) / e_oed(E_STIFF)) for xe in (-5.0, 5.0)}
+dip_h = [0.5, 0.25] if FAST else [0.5, 0.25, 0.125]
+dip = {h: dipping(h) for h in dip_h}
+for h, (wl, wr) in dip.items():
+    print(f"h={h}: ends {1e3 * wl:.2f} / {1e3 * wr:.2f} mm, differential {1e3 * (wr - wl):.2f} mm; 1-D "
+          f"{1e3 * s_1d[-5.0]:.2f} / {1e3 * s_1d[5.0]:.2f} mm, differential "
+          f"{1e3 * (s_1d[5.0] - s_1d[-5.0]):.2f} mm")  # fmt: skip
+diffs = [wr - wl for wl, wr in dip.values()]
+dip_ratio = diffs[-1] / (s_1d[5.0] - s_1d[-5.0])
+dip_change = abs(diffs[-1] - diffs[-2]) / abs(diffs[-1])
+
+# %% [markdown]
+# ## 6. Solve time per DOF: gmsh mesh against the structured block
+#
+# The level site of section 1 on both meshes (linear: one factorisation and one solve each), best of three.
+
+
+# %%
+def solve_per_dof(mesher):
+    built = level_site(mesher).build()
+    best = min(_timed(built) for _ in range(3))
+    return best / built.model.n_dof
+
+
+def _timed(built):
+    t = time.perf_counter()
+    built.solve()
+    return time.perf_counter() - t
+
+
+per_dof_ratio = solve_per_dof("gmsh") / solve_per_dof("structured")
+print(f"solve time per DOF, gmsh / structured: {per_dof_ratio:.2f}")
+
+# %% [markdown]
+# ## Verification
+
+# %%
+check("site_horizontal_equal", "max |w_site - w_scene| / max w, structured path", equal_err, 1e-10)
+assert built_s.mesher == "structured" and built_s.initial_stress_method == "K0"
+# the gmsh result lies within a few times its own change under refinement of the structured one (the two
+# meshes err differently; 3x the indicator and at least 1 %: the indicator itself is an estimate)
+assert gmsh_diff <= max(3.0 * gmsh_change, 0.01), (gmsh_diff, gmsh_change)
+_, e_v, e_k = grav["structured"]
+check("site_gravity_k0", "max rel. error of sigma_v from gravity loading (level ground)", e_v, 1e-6)
+assert e_k <= 1e-6, e_k
+assert grav["gmsh"][0] == "gravity"
+check("site_gibson", "max |w/w_Gibson - 1| under the load (relative to the far ground)", gibson_under, 0.03)
+assert gibson_outside <= 0.03, gibson_outside
+assert same_mesh
+check("site_two_footings", "max |u_AB - u_A - u_B| / max |u_AB| on one mesh (elastic)", superposition, 1e-10)
+assert sa["mean"] > sb["mean"] > 0.0  # the heavier strip over the softer left side settles more
+# plastic interaction: positive, falling monotonically with the distance
+assert all(i > 0.0 for i in interaction) and all(a > b for a, b in zip(interaction, interaction[1:])), (
+    interaction
+)
+assert all(d > 0.0 for d in diffs)  # the right (soft) end settles more: the beam tilts towards the soft side
+assert dip_change <= 0.01, dip_change  # converged: the finest two meshes agree within 1 %
+record("site_dipping_layer", "FE / 1-D column differential settlement - 1 (recorded, see section 5)",
+       dip_ratio - 1.0, 0.2, abs(dip_ratio - 1.0) <= 0.2)  # fmt: skip
+record("site_mesh_s", "4-layer borehole site, two strips: gmsh mesh + build [s] (goal 2 s)", mesh_s, 2.0,
+       mesh_s <= 2.0)  # fmt: skip
+record("site_solve_per_dof_vs_structured", "solve time per DOF, gmsh / structured (goal 1.3)", per_dof_ratio,
+       1.3, per_dof_ratio <= 1.3)  # fmt: skip
+
+# %% [markdown]
+# ## Figure
+
+# %%
+fig, (ax0, ax1, ax2) = plt.subplots(1, 3, figsize=(18, 4.5))
+xy, conn = both.mesh.xy, both.mesh.conn
+colors = plt.cm.YlOrBr(np.linspace(0.2, 0.8, len(FOUR)))
+for e, c in enumerate(conn):
+    poly = xy[c[[0, 4, 1, 5, 2, 6, 3, 7]]]
+    ax0.fill(poly[:, 0], poly[:, 1], color=colors[both.element_layer[e]], ec="0.4", lw=0.2)
+for s in both.site.strips:
+    ax0.plot([s.foundation.x0, s.foundation.x1], [0.25, 0.25], "k", lw=5)
+for bh in BOREHOLES:
+    ax0.plot([bh.x, bh.x], [0.0, -12.0], "b--", lw=0.8)
+    ax0.plot([bh.x] * len(bh.boundaries), bh.boundaries, "bo", ms=3)
+ax0.set(xlabel="x [m]", ylabel="z [m]", title="Fig. 19.1a — four layers from three boreholes, two strips")
+ax0.set_aspect("equal")
+ax1.plot(x_g, 1e3 * (w_g - w_g[0]), "o-", ms=3, label="FE, relative to the far ground")
+ax1.plot([-b_g, -b_g, b_g, b_g], [0, 1e3 * w_exact, 1e3 * w_exact, 0], "k--", label="Gibson (1967): q/2m")
+ax1.set(
+    xlim=(-6, 6), xlabel="x [m]", ylabel="settlement [mm]", title="Fig. 19.1b — strip load on Gibson soil"
+)
+ax1.invert_yaxis()
+ax1.legend()
+ax2.plot(gaps, 100 * np.array(interaction), "o-")
+ax2.set(xlabel="clear distance between the strips [m]", ylabel="extra settlement of strip A [%]",
+        title="Fig. 19.1c — plastic interaction of two strips")  # fmt: skip
+save_figure(fig, "19_sites")
+
+# %% [markdown]
+# *Fig. 19.1* (a) The gmsh Q8 mesh of the two-strip site: it conforms to the interpolated boundaries and
+# to the pinch-out of the second layer at x = 0, and is finest at the strips. (b) Settlement of the ground
+# under a strip load on Gibson's soil against the exact uniform value. (c) Extra mean settlement of strip A
+# caused by an equally loaded strip B on Mohr–Coulomb soil, against their clear distance.
+#
+# ## Summary
+#
+# A site is described once (boreholes or polylines, a ground polyline, strips); the description is cut into
+# cells that a quadrilateral mesher (gmsh) and a triangle mesher can both mesh. Where the ground and the
+# boundaries are level, the structured block and the K0 state serve and give the layered scene's numbers;
+# elsewhere the gmsh mesh and gravity loading do. Gibson's exact settlement and elastic superposition of two
+# strips check the new pieces.
+#
+# The beam over the dipping boundary tilts towards the soft side, converged under refinement, but its
+# differential settlement is about 0.72 of the 1-D column estimate (28 % below it, outside the issue's 20 %):
+# the 1-D columns neglect the lateral spreading of the load and the beam's stiffness, which both even out the
+# settlement. A better reference (a 2-D elastic layer solution) would be needed to assert this row.
+#
+# **Not yet here** (issue 32): side contact on embedded strips, embedded strips on a site, slope capacity
+# against a published limit analysis, the command line, result plots
+# and ParaView export of sites.
+#
+# ## References
+#
+# - R. E. Gibson (1967), Some results concerning displacements and stresses in a non-homogeneous elastic
+#   half-space, *Géotechnique* 17(1), 58–67.
+# - C. Geuzaine, J.-F. Remacle (2009), Gmsh: a 3-D finite element mesh generator with built-in pre- and
+#   post-processing facilities, *Int. J. Numer. Meth. Eng.* 79(11), 1309–1331.
+# - W. Szajna, *A set of finite elements for 2D analysis of reinforced concrete foundations on deformable
+#   subsoil* (§1, §2 Fig. 1, §11: arbitrary layered subsoil).

@@ -1,0 +1,753 @@
+"""Any site an engineer draws: layers from boreholes or boundary polylines, a ground-surface polyline, a
+water table, several foundations, and stiffness and strength growing with depth within a layer.
+
+    site = Site(width=30.0, depth=12.0,
+                layers=[SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3),
+                        SoilLayer(1.0, E=40e6, nu=0.3, unit_weight=19e3)],
+                boreholes=[Borehole(-10.0, [-2.0]), Borehole(10.0, [-5.0])],   # the boundary dips
+                ground=[(-15.0, 0.0), (15.0, 0.0)],
+                strips=[Strip(Foundation(-6.0, -4.0, section), Contact(kn=1e10, kt=1e9)),
+                        Strip(Foundation(4.0, 6.0, section), Contact(kn=1e10, kt=1e9))],
+                loads=[ColumnLoad(-5.0, N=300e3), ColumnLoad(5.0, N=300e3)])
+    built = site.build()          # the mesh: structured where it can serve, else gmsh Q8
+    out = built.solve()
+    out.strip_settlement(0), out.differential_settlement(0, 1)
+
+Geometry. The block spans x in [-width/2, width/2] down to z = -depth (z upwards, m). The ground is the
+polyline ``ground`` (x increasing; extended level beyond its ends; default z = 0). Layers are listed from the
+top down; the boundary between layer k and k + 1 is given either by ``boreholes`` (each lists the boundary
+elevations at its x, from the top down; between boreholes the boundaries are interpolated linearly, beyond
+the outermost ones they are level) or by ``boundaries`` (one polyline per boundary). Equal elevations make a
+layer pinch out; a boundary above the ground is cut by it (the layer is eroded there). A layer's
+``SoilLayer.thickness`` is not used by a site (the boundaries decide), except on the structured path, where it
+is set from the boundaries.
+
+The geometry is a :class:`ssi.core.geometry.Geometry`: the block cut by vertical lines at every break (ground
+vertices, boreholes, polyline vertices, foundation ends, load points, and where the ground crosses a
+boundary) into columns, each column cut by the layer boundaries into cells. The soil mesh meshes every cell,
+and a triangle mesher (limit analysis) can take the same description (:meth:`Geometry.as_pslg`).
+
+Mesh. ``mesher="structured"`` uses the graded block of :func:`ssi.core.mesh.soil_block` (level ground at
+z = 0 and level boundaries only; the fast path); ``"gmsh"`` the unstructured Q8 mesh of
+:func:`ssi.core.gmsh_mesh.mesh_geometry`; ``"auto"`` (default) the structured one wherever it can serve (level
+ground and boundaries, at most one strip).
+
+Initial stress. ``initial_stress="K0"``: the geostatic K0 state (:func:`ssi.materials.soil_laws.
+geostatic_stress`), valid for level ground over level layer boundaries only (refused otherwise);
+``"gravity"``: the soil's weight switched on in a first, elastic phase (a linear solve on the same mesh, the
+strips absent); the stress of that solve, in equilibrium with the weight, is the initial stress and its
+displacement is discarded; ``"gravity_plastic"``: the same with the soil's own (plastic) laws, the weight
+ramped up in automatic increments (the stress is kept, the plastic history of that phase is not). The
+elastic state may lie outside a soil's strength (a steep slope); the first loaded step then carries that
+out-of-balance, which "gravity_plastic" avoids.
+``"auto"``: K0 where it applies, else gravity. ``BuiltSite.initial_stress_method`` says which was used.
+
+Stiffness and strength growing with depth: :class:`DepthVarying` (PLAXIS's E_inc, c_inc): E = E_ref + E_inc
+(z_ref - z) below the reference elevation z_ref (above it E_ref), the same for c; evaluated at each element's
+centroid (one material row per element: a piecewise-constant field whose error falls with the element size).
+
+Supports: the bottom fixed, the sides on vertical rollers (the separated block of the paper's Fig. 1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..core.geometry import Geometry, GeometryError, from_cells
+from ..core.gmsh_mesh import UnstructuredMesh, check_quality, mesh_geometry
+from ..core.mesh import soil_block
+from ..core.model import Model
+from ..core.validate import check_choice, check_instance, check_optional_real, check_real
+from ..elements.interface import add_interface
+from ..elements.plate import PlateStrip
+from ..elements.soil_q8 import SoilQ8
+from ..materials.soil_laws import GAMMA_W, SoilLayer, geostatic_stress, material_table
+from .loads import ColumnLoad, SurfacePressure
+from .parts import Contact, Foundation, MeshSize
+
+__all__ = ["Borehole", "BuiltSite", "DepthVarying", "RigidStrip", "Site", "SiteResult", "Strip"]
+
+TOL = 1e-9  # relative to the site's size: coordinates closer than this are one point
+
+
+@dataclass(frozen=True)
+class Borehole:
+    """A borehole at ``x`` [m]: ``boundaries`` the elevations z [m] of the layer boundaries met from the top
+    down (one fewer than the site's layers; non-increasing, equal values: a layer absent there)."""
+
+    x: float
+    boundaries: tuple = ()
+
+    def __post_init__(self):
+        check_real("Borehole.x", self.x, unit="m")
+        z = tuple(
+            float(check_real(f"Borehole.boundaries[{i}]", v, unit="m")) for i, v in enumerate(self.boundaries)
+        )
+        for i in range(1, len(z)):
+            if z[i] > z[i - 1]:
+                raise GeometryError(
+                    f"Borehole at x={self.x}: boundaries[{i}]={z[i]} lies above boundaries[{i - 1}]="
+                    f"{z[i - 1]}; "
+                    "list them from the top down (equal values: a layer pinched out)"
+                )
+        object.__setattr__(self, "boundaries", z)
+
+
+@dataclass(frozen=True)
+class DepthVarying:
+    """``layer`` whose E and c grow with depth: E = layer.E + E_inc * max(z_ref - z, 0), c = layer.c + c_inc *
+    max(z_ref - z, 0); ``E_inc`` [Pa/m], ``c_inc`` [Pa/m], ``z_ref`` [m] reference elevation (None: the
+    ground surface above the point)."""
+
+    layer: SoilLayer
+    E_inc: float = 0.0
+    c_inc: float = 0.0
+    z_ref: float | None = None
+
+    def __post_init__(self):
+        check_instance("DepthVarying.layer", self.layer, SoilLayer)
+        check_real("DepthVarying.E_inc", self.E_inc, lo=0.0, unit="Pa/m")
+        check_real("DepthVarying.c_inc", self.c_inc, lo=0.0, unit="Pa/m")
+        check_optional_real("DepthVarying.z_ref", self.z_ref, unit="m")
+        if self.c_inc and self.layer.c is None:
+            raise ValueError(f"DepthVarying.c_inc={self.c_inc}: the layer is elastic (c=None), give it a c")
+
+    def at(self, depth: float) -> SoilLayer:
+        """The layer's material at ``depth`` [m] below the reference level."""
+        d = max(float(depth), 0.0)
+        c = None if self.layer.c is None else self.layer.c + self.c_inc * d
+        return replace(self.layer, E=self.layer.E + self.E_inc * d, c=c)
+
+
+@dataclass(frozen=True)
+class Strip:
+    """A foundation strip of a site resting on the ground through its own ``contact``. ``level`` [m]: the
+    elevation of its base (None: the ground under it; the ground must be level there)."""
+
+    foundation: Foundation
+    contact: Contact
+    level: float | None = None
+
+    def __post_init__(self):
+        check_instance("Strip.foundation", self.foundation, Foundation)
+        check_instance("Strip.contact", self.contact, Contact)
+        check_optional_real("Strip.level", self.level, unit="m")
+
+
+@dataclass(frozen=True)
+class RigidStrip:
+    """A rigid strip footing from ``x0`` to ``x1`` [m] on level ground, without plate or interface: the
+    ground nodes under it are its base, pushed down by ``settle`` [m] times the load factor (displacement
+    control: the reaction is the load, :meth:`SiteResult.rigid_pressure`); ``rough``: their u held too."""
+
+    x0: float
+    x1: float
+    settle: float
+    rough: bool = True
+
+    def __post_init__(self):
+        check_real("RigidStrip.x0", self.x0, unit="m")
+        check_real("RigidStrip.x1", self.x1, lo=self.x0, lo_open=True, unit="m (> x0)")
+        check_real("RigidStrip.settle", self.settle, lo=0.0, lo_open=True, unit="m")
+
+
+def _polyline(name, pts):
+    """(x, z) arrays of a polyline [(x, z), ...] with x strictly increasing."""
+    a = np.asarray(pts, np.float64)
+    if a.ndim != 2 or a.shape[1] != 2 or len(a) < 1 or not np.all(np.isfinite(a)):
+        raise GeometryError(f"{name} must be a list of (x, z) points [m], got {pts!r}")
+    if np.any(np.diff(a[:, 0]) <= 0):
+        raise GeometryError(f"{name}: the x of its points must increase strictly, got {a[:, 0].tolist()}")
+    return a[:, 0], a[:, 1]
+
+
+@dataclass
+class Site:
+    """A site: see the module docstring. ``layers`` (SoilLayer or DepthVarying) from the top down;
+    ``boreholes`` or ``boundaries`` (len(layers) - 1 boundaries); ``ground`` polyline [(x, z)] [m];
+    ``water_table``: elevation [m] or polyline (None: dry), the weight below it is the buoyant one;
+    ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground); ``mesh`` sizes;
+    ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
+    "gravity_plastic"."""
+
+    width: float
+    depth: float
+    layers: list
+    boreholes: list | None = None
+    boundaries: list | None = None
+    ground: list | None = None
+    water_table: float | list | None = None
+    strips: list = field(default_factory=list)
+    loads: list = field(default_factory=list)
+    mesh: MeshSize = field(default_factory=MeshSize)
+    mesher: str = "auto"
+    initial_stress: str = "auto"
+    gamma_w: float = GAMMA_W
+
+    def __post_init__(self):
+        self.width = check_real("Site.width", self.width, lo=0.0, lo_open=True, unit="m")
+        self.depth = check_real("Site.depth", self.depth, lo=0.0, lo_open=True, unit="m")
+        check_choice("Site.mesher", self.mesher, ("auto", "structured", "gmsh"))
+        check_choice("Site.initial_stress", self.initial_stress, ("auto", "K0", "gravity", "gravity_plastic"))
+        check_instance("Site.mesh", self.mesh, MeshSize)
+        if not self.layers:
+            raise ValueError("Site.layers: a site needs at least one soil layer")
+        for i, lay in enumerate(self.layers):
+            check_instance(f"Site.layers[{i}]", lay, (SoilLayer, DepthVarying))
+        for i, s in enumerate(self.strips):
+            check_instance(f"Site.strips[{i}]", s, (Strip, RigidStrip))
+        for i, ld in enumerate(self.loads):
+            check_instance(f"Site.loads[{i}]", ld, (ColumnLoad, SurfacePressure))
+        n_b = len(self.layers) - 1
+        if self.boreholes is not None and self.boundaries is not None:
+            raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
+        if n_b and self.boreholes is None and self.boundaries is None:
+            raise GeometryError(
+                f"Site: {len(self.layers)} layers need boreholes or boundaries ({n_b} boundaries)"
+            )
+        self.x_left, self.x_right = -0.5 * self.width, 0.5 * self.width
+        self.z_bottom = -self.depth
+        gx, gz = (
+            (np.array([0.0]), np.array([0.0]))
+            if self.ground is None
+            else _polyline("Site.ground", self.ground)
+        )
+        self._ground = (gx, gz)
+        self._raw = []  # (x, z) of each boundary
+        if self.boreholes is not None:
+            if not self.boreholes:
+                raise GeometryError("Site.boreholes: give at least one borehole")
+            bh = sorted(self.boreholes, key=lambda b: b.x)
+            for b in bh:
+                if not (self.x_left <= b.x <= self.x_right):
+                    raise GeometryError(
+                        f"Borehole at x={b.x} lies outside the block [{self.x_left:g}, {self.x_right:g}] m"
+                    )
+                if len(b.boundaries) != n_b:
+                    raise GeometryError(
+                        f"Borehole at x={b.x} lists {len(b.boundaries)} boundaries, the {len(self.layers)} "
+                        f"layers need {n_b}"
+                    )
+            if len({b.x for b in bh}) != len(bh):
+                raise GeometryError(f"Site.boreholes: two boreholes at the same x ({[b.x for b in bh]})")
+            xs = np.array([b.x for b in bh])
+            self._raw = [(xs, np.array([b.boundaries[k] for b in bh])) for k in range(n_b)]
+        elif self.boundaries is not None:
+            if len(self.boundaries) != n_b:
+                raise GeometryError(
+                    f"Site.boundaries: {len(self.boundaries)} given, {len(self.layers)} layers need {n_b}"
+                )
+            self._raw = [_polyline(f"Site.boundaries[{k}]", p) for k, p in enumerate(self.boundaries)]
+        self._check_geometry()
+
+    # ---- geometry -----------------------------------------------------------------------------------------
+    def ground_z(self, x) -> np.ndarray:
+        """Elevation [m] of the ground at ``x``."""
+        return np.interp(x, *self._ground)
+
+    def boundary_z(self, k: int, x) -> np.ndarray:
+        """Elevation [m] of the boundary below layer ``k`` at ``x``, cut by the ground (min of both)."""
+        return np.minimum(np.interp(x, *self._raw[k]), self.ground_z(x))
+
+    def water_z(self, x) -> np.ndarray:
+        """Elevation [m] of the water table at ``x`` (-inf: dry)."""
+        if self.water_table is None:
+            return np.full(np.shape(x), -np.inf)
+        if np.ndim(self.water_table) == 0:
+            return np.full(np.shape(x), float(self.water_table))
+        return np.interp(x, *_polyline("Site.water_table", self.water_table))
+
+    def _strip_ends(self):
+        return sorted((_ends(s)) for s in self.strips)
+
+    def breaks(self) -> np.ndarray:
+        """x [m] of the vertical cuts of the geometry (see the module docstring), sorted, unique."""
+        xs = [self.x_left, self.x_right, *self._ground[0]]
+        for bx, _ in self._raw:
+            xs += list(bx)
+        for a, b in self._strip_ends():
+            xs += [a, b]
+        for ld in self.loads:
+            xs += [ld.x] if isinstance(ld, ColumnLoad) else [ld.x0, ld.x1]
+        xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
+        if self.water_table is not None and np.ndim(self.water_table):
+            xs = np.unique(np.clip(np.concatenate([xs, _polyline("Site.water_table", self.water_table)[0]]),
+                                   self.x_left, self.x_right))  # fmt: skip
+        # where the ground crosses a boundary (the cut boundary has a kink there) and where the water table
+        # crosses the ground or a boundary (the cells are cut by the water table)
+        lines = [np.interp(xs, *r) for r in self._raw]
+        pairs = [(self.ground_z(xs), b) for b in lines]
+        if self.water_table is not None:
+            w = self.water_z(xs)
+            pairs += [(w, self.ground_z(xs))] + [(w, b) for b in lines]
+        extra = []
+        for f, g in pairs:
+            d = f - g
+            for i in np.flatnonzero(d[:-1] * d[1:] < 0.0):
+                extra.append(xs[i] + (xs[i + 1] - xs[i]) * d[i] / (d[i] - d[i + 1]))
+        return _unique(np.concatenate([xs, extra]), self.width)
+
+    def _check_geometry(self):
+        xs = self.breaks()
+        g = self.ground_z(xs)
+        if np.any(g <= self.z_bottom):
+            x = xs[np.argmax(g <= self.z_bottom)]
+            raise GeometryError(
+                f"Site.ground at x={x:g} m lies at or below the block bottom z={self.z_bottom:g} m"
+            )
+        for k in range(len(self._raw)):
+            b = np.interp(xs, *self._raw[k])
+            if np.any(b < self.z_bottom - TOL * self.width):
+                x = xs[np.argmax(b < self.z_bottom)]
+                raise GeometryError(
+                    f"layer boundary {k} at x={x:g} m lies below the block bottom z={self.z_bottom:g} m "
+                    f"(z={np.interp(x, *self._raw[k]):g} m): deepen the block"
+                )
+            if k and np.any(b > np.interp(xs, *self._raw[k - 1]) + TOL * self.width):
+                x = xs[np.argmax(b > np.interp(xs, *self._raw[k - 1]) + TOL * self.width)]
+                raise GeometryError(
+                    f"layer boundaries {k - 1} and {k} cross near x={x:g} m: boundary {k} must not rise "
+                    "above "
+                    f"boundary {k - 1} (equal: layer {k} pinched out)"
+                )
+        ends = self._strip_ends()
+        for (a0, a1), (b0, b1) in zip(ends, ends[1:]):
+            if b0 < a1 - TOL * self.width:
+                raise GeometryError(f"strips ({a0:g}, {a1:g}) and ({b0:g}, {b1:g}) m overlap")
+        for i, s in enumerate(self.strips):
+            f = s.foundation if isinstance(s, Strip) else s
+            if not (self.x_left <= f.x0 < f.x1 <= self.x_right):
+                raise GeometryError(
+                    f"strips[{i}] ({f.x0:g}, {f.x1:g}) m must lie within the block "
+                    f"[{self.x_left:g}, {self.x_right:g}]"
+                )
+            inside = xs[(xs >= f.x0) & (xs <= f.x1)]
+            gz = self.ground_z(inside)
+            if np.ptp(gz) > TOL * self.width:
+                raise GeometryError(
+                    f"strips[{i}] ({f.x0:g}, {f.x1:g}) m: the ground under it is not level "
+                    f"(z from {gz.min():g} "
+                    f"to {gz.max():g} m); level the ground under the strip (a berm)"
+                )
+            if isinstance(s, Strip) and s.level is not None and abs(s.level - gz[0]) > TOL * self.width:
+                where = "above the ground: a foundation in the air" if s.level > gz[0] else "below the ground"
+                raise GeometryError(
+                    f"strips[{i}].level={s.level:g} m lies {where} (z={gz[0]:g} m there); embedded strips "
+                    "on a "
+                    "site are not built: give level=None"
+                )
+        for i, ld in enumerate(self.loads):
+            if isinstance(ld, ColumnLoad) and self._strip_at(ld.x) is None:
+                raise GeometryError(f"loads[{i}]: ColumnLoad at x={ld.x:g} m lies on no strip {ends}")
+            if isinstance(ld, SurfacePressure):
+                if not (self.x_left <= ld.x0 < ld.x1 <= self.x_right):
+                    raise GeometryError(
+                        f"loads[{i}]: SurfacePressure ({ld.x0:g}, {ld.x1:g}) m outside the block"
+                    )
+                for a, b in ends:
+                    if min(ld.x1, b) - max(ld.x0, a) > TOL * self.width:
+                        raise GeometryError(
+                            f"loads[{i}]: SurfacePressure ({ld.x0:g}, {ld.x1:g}) m overlaps the strip "
+                            f"({a:g}, {b:g})"
+                        )
+
+    def _strip_at(self, x):
+        for i, s in enumerate(self.strips):
+            x0, x1 = _ends(s)
+            if isinstance(s, Strip) and x0 - 1e-9 <= x <= x1 + 1e-9:
+                return i
+        return None
+
+    def geometry(self) -> Geometry:
+        """The site cut into cells (columns between breaks, layers within each, each layer cut by the water
+        table where it passes), region = layer index."""
+        xs = self.breaks()
+        polys, regions = [], []
+        n = len(self.layers)
+        for xa, xb in zip(xs[:-1], xs[1:]):
+            tops = [self.ground_z(np.array([xa, xb]))]
+            tops += [self.boundary_z(k, np.array([xa, xb])) for k in range(n - 1)]
+            tops.append(np.array([self.z_bottom, self.z_bottom]))
+            w = self.water_z(np.array([xa, xb]))
+            for k in range(n):
+                t, b = tops[k], tops[k + 1]
+                cut = np.clip(w, b, t)  # the water table within the layer (on its top or bottom if outside)
+                for lo, hi in ((b, cut), (cut, t)):  # a cell of zero area is dropped by from_cells
+                    polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
+                    regions.append(k)
+        return from_cells(polys, regions, tol=TOL)
+
+    def is_level(self) -> bool:
+        """Level ground at z = 0, level layer boundaries and a level water table (or none): the K0 state and
+        the structured mesh apply."""
+        xs = self.breaks()
+        flat = np.all(np.abs(self.ground_z(xs)) <= TOL * self.width)
+        water = self.water_table is None or np.ptp(self.water_z(xs)) <= TOL * self.width
+        return bool(flat and water) and all(np.ptp(np.interp(xs, *r)) <= TOL * self.width for r in self._raw)
+
+    def layer_thicknesses(self) -> list[float]:
+        """Thicknesses [m] of the layers of a level site (:meth:`is_level`), top down."""
+        tops = [0.0] + [float(np.interp(0.0, *r)) for r in self._raw] + [self.z_bottom]
+        return [a - b for a, b in zip(tops, tops[1:])]
+
+    def _structured_ok(self) -> str | None:
+        """None if the structured block can serve, else why not."""
+        if not self.is_level():
+            return "the ground or a layer boundary is not level"
+        if len(self.strips) > 1:
+            return "the block is graded for one foundation"
+        if any(t <= TOL * self.depth for t in self.layer_thicknesses()):
+            return "a layer is pinched out everywhere"
+        return None
+
+    # ---- build ---------------------------------------------------------------------------------------------
+    def build(self) -> BuiltSite:
+        """Mesh the site, add the soil, the strips and their contacts, the supports, the initial stress and
+        the loads."""
+        why = self._structured_ok()
+        if self.mesher == "structured" and why:
+            raise GeometryError(f"Site.mesher='structured' cannot serve: {why}")
+        use_structured = self.mesher == "structured" or (self.mesher == "auto" and why is None)
+        level = self.is_level()
+        method = self.initial_stress
+        if method == "K0" and not level:
+            raise ValueError(
+                "Site.initial_stress='K0' is wrong here: the ground or a layer boundary is not level, so the "
+                "vertical stress is not the weight of the column above; use 'gravity' (or 'auto')"
+            )
+        if method == "auto":
+            method = "K0" if level else "gravity"
+        mesh = self._structured_mesh() if use_structured else self._gmsh_mesh()
+        quality = mesh.quality if not use_structured else check_quality(mesh.xy, mesh.conn)
+        return BuiltSite.assemble(self, mesh, method, "structured" if use_structured else "gmsh", quality)
+
+    def _load_points(self) -> list[float]:
+        out = []
+        for ld in self.loads:
+            out += [ld.x] if isinstance(ld, ColumnLoad) else [ld.x0, ld.x1]
+        return out
+
+    def _structured_mesh(self):
+        m = self.mesh
+        if self.strips:
+            foot = _ends(self.strips[0])
+        else:
+            pressures = [ld for ld in self.loads if isinstance(ld, SurfacePressure)]
+            foot = (
+                (min(p.x0 for p in pressures), max(p.x1 for p in pressures))
+                if pressures
+                else (-0.25 * self.width, 0.25 * self.width)
+            )
+        breaks = self._load_points()
+        # the layers split at the water table (a mesh line there, as the layered scene does): each element
+        # wholly above or below it
+        d_w = np.inf if self.water_table is None else -float(self.water_z(0.0))
+        thick, owner, top = [], [], 0.0
+        for k, t in enumerate(self.layer_thicknesses()):
+            if 1e-9 * t < d_w - top < t * (1 - 1e-9):
+                thick += [d_w - top, top + t - d_w]
+                owner += [k, k]
+            else:
+                thick.append(t)
+                owner.append(k)
+            top += t
+        mesh = soil_block(
+            self.width, self.depth, thick, foot, m.h_fine, m.h_coarse, m.growth,
+            breaks=breaks, end_grading=m.end_grading,
+        )  # fmt: skip
+        mesh.el_layer = np.array(owner, np.int64)[mesh.el_layer]
+        return mesh
+
+    def _gmsh_mesh(self) -> UnstructuredMesh:
+        m = self.mesh
+        ref = []
+        for s in self.strips:
+            x0, x1 = _ends(s)
+            n = max(1, round((x1 - x0) / m.h_fine))
+            xs = np.linspace(x0, x1, n + 1)
+            ref += [(x, float(self.ground_z(x))) for x in xs]
+        for ld in self.loads:
+            if isinstance(ld, SurfacePressure):
+                n = max(1, round((ld.x1 - ld.x0) / m.h_fine))
+                ref += [(x, float(self.ground_z(x))) for x in np.linspace(ld.x0, ld.x1, n + 1)]
+        return mesh_geometry(self.geometry(), m.h_fine, m.h_coarse, m.growth, np.array(ref) if ref else None)
+
+
+def _ends(strip) -> tuple[float, float]:
+    """(x0, x1) [m] of a Strip or a RigidStrip."""
+    f = strip.foundation if isinstance(strip, Strip) else strip
+    return f.x0, f.x1
+
+
+def _unique(xs, scale):
+    xs = np.sort(np.asarray(xs, np.float64))
+    keep = np.concatenate([[True], np.diff(xs) > TOL * max(scale, 1.0)])
+    return xs[keep]
+
+
+@dataclass
+class BuiltSite:
+    """A site built into a model: ``mesh`` (SoilMesh or UnstructuredMesh), ``soil`` group, per strip a dict
+    (``plate``, ``interface``, ``plate_nodes`` model ids ordered by x, ``soil_nodes``; of a RigidStrip:
+    ``rigid``, ``soil_nodes``, ``width``), ``element_layer`` (n_el,) layer index, ``initial_stress_method``
+    "K0", "gravity" or "none" (weightless soil), ``mesher`` "structured" or "gmsh",
+    ``quality`` of the mesh (:func:`ssi.core.gmsh_mesh.check_quality`)."""
+
+    site: Site
+    model: Model
+    mesh: object
+    soil: SoilQ8
+    strips: list
+    element_layer: np.ndarray
+    initial_stress_method: str
+    mesher: str
+    quality: dict
+
+    @classmethod
+    def assemble(cls, site: Site, mesh, method: str, mesher: str, quality: dict) -> BuiltSite:
+        model = Model()
+        model.info["site"] = site
+        ids = model.add_nodes(mesh.xy, ndof=2)
+        centre = mesh.xy[mesh.conn].mean(axis=1)
+        kinds, params, el_mat, weights = _materials(site, mesh, centre)
+        soil = SoilQ8(
+            mesh.xy[mesh.conn],
+            model.element_dofs(ids[mesh.conn]),
+            el_mat,
+            kinds,
+            params,
+            n_gauss=site.mesh.n_gauss,
+            unit_weight=weights if weights.any() else None,
+        )
+        model.add_group(soil)
+        _fix_sides(model, mesh.xy, site)
+        built = cls(site, model, mesh, soil, [], np.asarray(mesh.el_layer, np.int64), method, mesher, quality)
+        if weights.any():
+            soil.initial_stress = built._initial_stress()
+        else:  # weightless soil: no initial stress, whatever the method asked for
+            built.initial_stress_method = "none"
+        for s in site.strips:
+            built._add_strip(s)
+        built._add_loads()
+        return built
+
+    def ground_nodes(self, x0: float, x1: float) -> np.ndarray:
+        """Soil node ids on the ground between x0 and x1 [m], ordered by x."""
+        xy = self.mesh.xy
+        scale = max(1.0, self.site.width)
+        on = np.abs(xy[:, 1] - self.site.ground_z(xy[:, 0])) < 1e-7 * scale
+        on &= (xy[:, 0] >= x0 - 1e-9 * scale) & (xy[:, 0] <= x1 + 1e-9 * scale)
+        ids = np.flatnonzero(on)
+        ids = ids[np.argsort(xy[ids, 0])]
+        if len(ids) < 3 or len(ids) % 2 == 0:
+            raise GeometryError(
+                f"the range ({x0:g}, {x1:g}) m does not start and end on element edges of the ground"
+            )
+        return ids
+
+    def _initial_stress(self) -> np.ndarray:
+        """(n_el, n_ip, 4) initial effective stress [Pa] by the method of the build."""
+        site, soil = self.site, self.soil
+        if self.initial_stress_method == "K0":
+            layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in site.layers]
+            layers = [replace(lay, thickness=t) for lay, t in zip(layers, site.layer_thicknesses())]
+            wt = None if site.water_table is None else -float(site.water_z(0.0))
+            return geostatic_stress(
+                soil.integration_points()[..., 1], layers, water_table=wt, gamma_w=site.gamma_w
+            )
+        # gravity loading: the weight on the soil alone, elastic (every law's E and nu), one linear solve; or
+        # with the soil's own laws, the weight ramped up as the reference load of an incremental solve
+        plastic = self.initial_stress_method == "gravity_plastic"
+        model = Model()
+        ids = model.add_nodes(self.mesh.xy, ndof=2)
+        if plastic:
+            kinds, params = soil.kinds, soil.params
+        else:
+            elastic = []
+            for k in range(len(soil.kinds)):
+                e, nu = soil.params[k, 0], soil.params[k, 1]
+                elastic.append(SoilLayer(1.0, E=e, nu=nu).law())
+            kinds, params = material_table(elastic)
+        g = SoilQ8(
+            soil.coords, model.element_dofs(ids[self.mesh.conn]), soil.el_mat, kinds, params,
+            n_gauss=site.mesh.n_gauss, unit_weight=soil.unit_weight,
+        )  # fmt: skip
+        model.add_group(g)
+        _fix_sides(model, self.mesh.xy, site)
+        if plastic:
+            from .stages import _run_phase
+
+            weight = model.load_vectors()[1]
+            g.unit_weight = None  # the weight becomes the reference load, ramped from zero
+            res = _run_phase(model, [1.0], None, loads=(weight, np.zeros(model.n_dof)))
+        else:
+            res = model.solve_linear()
+        self.gravity_displacement = res.u[-1]
+        return np.ascontiguousarray(res.states[-1][0][..., :4])
+
+    def _add_strip(self, s: Strip | RigidStrip):
+        if isinstance(s, RigidStrip):
+            nodes = self.ground_nodes(s.x0, s.x1)
+            if s.rough:
+                self.model.fix(nodes, "u")
+            self.model.prescribe(nodes, "w", -s.settle)
+            self.strips.append({"rigid": True, "soil_nodes": nodes, "width": s.x1 - s.x0})
+            return
+        f, model = s.foundation, self.model
+        soil_nodes = self.ground_nodes(f.x0, f.x1)
+        xs = self.mesh.xy[soil_nodes, 0]
+        if abs(xs[0] - f.x0) > 1e-9 * self.site.width or abs(xs[-1] - f.x1) > 1e-9 * self.site.width:
+            raise GeometryError(f"the strip ({f.x0:g}, {f.x1:g}) m ends are not mesh nodes of the ground")
+        z_base = float(self.site.ground_z(f.x0))
+        local = np.arange(0, len(soil_nodes) - 2, 2)
+        plate_conn = np.column_stack([local, local + 1, local + 2])
+        plate_xy = np.column_stack([xs, np.full(len(xs), z_base - f.section.z_bottom)])
+        ids = model.add_nodes(plate_xy, ndof=3)
+        plate = PlateStrip(
+            plate_xy[plate_conn], model.element_dofs(ids[plate_conn]), f.strip_section(), **f.strip_options()
+        )
+        model.add_group(plate)
+        iface = add_interface(
+            model, ids[plate_conn], soil_nodes[plate_conn], np.tile(s.contact.params(), (len(plate_conn), 1)),
+            offset=plate.bottom_offset, rule=s.contact.rule,
+        )  # fmt: skip
+        if s.contact.kt == 0.0:
+            held = int(ids[np.argmin(np.abs(xs - 0.5 * (f.x0 + f.x1)))])
+            model.fix([held], "u")
+        self.strips.append({"plate": plate, "interface": iface, "plate_nodes": ids, "soil_nodes": soil_nodes})
+
+    def _add_loads(self):
+        model = self.model
+        for ld in self.site.loads:
+            if isinstance(ld, ColumnLoad):
+                ids = self.strips[self.site._strip_at(ld.x)]["plate_nodes"]
+                i = int(np.argmin(np.abs(model.coords[ids, 0] - ld.x)))
+                if abs(model.coords[ids[i], 0] - ld.x) > 1e-6:
+                    raise GeometryError(f"ColumnLoad at x={ld.x:g} m is not a node of its strip")
+                for comp, v in (("w", -ld.N), ("u", ld.H), ("alpha", ld.M)):
+                    if v:
+                        model.add_load([ids[i]], comp, v)
+            else:  # a vertical pressure per horizontal metre on the ground: L/6, 4L/6, L/6 per quadratic edge
+                nodes = self.ground_nodes(ld.x0, ld.x1)
+                xs = self.mesh.xy[nodes, 0]
+                f = np.zeros(len(nodes))
+                for i in range(0, len(nodes) - 2, 2):
+                    f[i : i + 3] += np.array([1.0, 4.0, 1.0]) * (xs[i + 2] - xs[i]) / 6.0
+                model.add_load(nodes, "w", -ld.q * f)
+
+    @property
+    def is_linear(self) -> bool:
+        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
+        return all(lay.c is None for lay in layers) and all(
+            isinstance(s, RigidStrip)
+            or (s.contact.phi_deg is None and bool(np.all(st["plate"].section.kind == 0)))
+            for s, st in zip(self.site.strips, self.strips)
+        )
+
+    def solve(self, n_steps: int | None = None, settings=None, load_factors=None) -> SiteResult:
+        """Apply the loads to load factor 1 from the initial stress: one linear solve for a linear site, else
+        the solver's automatic increments (``n_steps``, ``settings`` as for a scene; ``load_factors``: the
+        levels themselves, e.g. a graded push of a RigidStrip)."""
+        from ..solver import Settings
+        from .stages import _load_levels, _run_phase
+
+        if self.is_linear and load_factors is None:
+            return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
+        levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)
+        return SiteResult(self, _run_phase(self.model, levels, settings))
+
+
+def _materials(site: Site, mesh, centre):
+    """(kinds, params, el_mat, unit weights) of the soil: one row per layer, or per element of a layer whose
+    properties vary with depth (evaluated at the element's centroid)."""
+    rows, el_mat, weights = [], np.zeros(len(mesh.conn), np.int64), []
+    layer_of = np.asarray(mesh.el_layer, np.int64)
+    wet = centre[:, 1] < site.water_z(centre[:, 0])
+    for k, lay in enumerate(site.layers):
+        base = lay.layer if isinstance(lay, DepthVarying) else lay
+        sat = base.unit_weight if base.unit_weight_sat is None else base.unit_weight_sat
+        for is_wet in (False, True):
+            els = np.flatnonzero((layer_of == k) & (wet == is_wet))
+            if not len(els):
+                continue
+            gamma = max(sat - site.gamma_w, 0.0) if is_wet else base.unit_weight
+            if isinstance(lay, DepthVarying):
+                z_ref = site.ground_z(centre[els, 0]) if lay.z_ref is None else np.full(len(els), lay.z_ref)
+                for e, d in zip(els, z_ref - centre[els, 1]):
+                    el_mat[e] = len(rows)
+                    rows.append(lay.at(d).law())
+                    weights.append(gamma)
+            else:
+                el_mat[els] = len(rows)
+                rows.append(base.law())
+                weights.append(gamma)
+    kinds, params = material_table(rows)
+    return kinds, params, el_mat, np.array(weights)
+
+
+def _fix_sides(model, xy, site):
+    """Bottom fixed (u, w), sides on vertical rollers (u)."""
+    tol = 1e-9 * max(1.0, site.width)
+    bottom = np.flatnonzero(np.abs(xy[:, 1] - site.z_bottom) < tol)
+    sides = np.flatnonzero((np.abs(xy[:, 0] - site.x_left) < tol) | (np.abs(xy[:, 0] - site.x_right) < tol))
+    model.fix(bottom, "u")
+    model.fix(bottom, "w")
+    model.fix(sides, "u")
+
+
+@dataclass
+class SiteResult:
+    """The solution of a :class:`BuiltSite`: ``result`` the solver's :class:`~ssi.core.solution.Result`."""
+
+    built: BuiltSite
+    result: object
+
+    @property
+    def u(self) -> list:
+        return self.result.u
+
+    def rigid_pressure(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """(settlement [m], mean pressure [Pa]) histories of the RigidStrip ``i``: the pressure is the
+        vertical support reaction of its base nodes over its width."""
+        st, res = self.built.strips[i], self.result
+        w = res.displacement(st["soil_nodes"][:1], "w")[:, 0]
+        return -w, -res.support_reaction(st["soil_nodes"], "w") / st["width"]
+
+    def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
+        """(x [m], settlement [m], positive down) of the plate nodes of strip ``i`` at step ``k``."""
+        ids = self.built.strips[i]["plate_nodes"]
+        model = self.built.model
+        return model.coords[ids, 0], -self.u[k][model.dof(ids, "w")]
+
+    def strip_summary(self, i: int, k: int = -1) -> dict:
+        """Strip ``i``: ``mean`` settlement [m] (average over its width), ``max`` [m], ``tilt`` [rad] (the
+        slope of the least-squares line through its settlements; > 0: the right end settles more)."""
+        x, w = self.strip_settlement(i, k)
+        slope = np.polyfit(x, w, 1)[0] if len(x) > 1 else 0.0
+        mean = float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(x)) / (x[-1] - x[0]))
+        return {"mean": mean, "max": float(w.max()), "tilt": float(slope)}
+
+    def differential_settlement(self, i: int, j: int, k: int = -1) -> float:
+        """Mean settlement of strip ``i`` minus that of strip ``j`` [m]."""
+        return self.strip_summary(i, k)["mean"] - self.strip_summary(j, k)["mean"]
+
+    def ground_settlement(self, x0: float | None = None, x1: float | None = None, k: int = -1):
+        """(x [m], settlement [m], positive down) of the ground nodes between x0 and x1 (default: all)."""
+        site = self.built.site
+        ids = self.built.ground_nodes(site.x_left if x0 is None else x0, site.x_right if x1 is None else x1)
+        return self.built.mesh.xy[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
+
+    def soil_stress(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip, 4) effective stress [sxx, szz, txz, syy] [Pa] at step ``k``."""
+        i = self.built.model.groups.index(self.built.soil)
+        return self.result.states[k][i][..., :4]
+
+
+def gibson_settlement(q: float, m: float) -> float:
+    """Settlement [m] under a uniform strip pressure ``q`` [Pa] on Gibson's incompressible half-space whose
+    shear modulus grows from zero at the surface as G = m z (``m`` [Pa/m]): w = q / (2 m), uniform under the
+    load and zero outside it (Gibson 1967, Geotechnique 17(1), 58-67; the 'Gibson soil' behaves as a Winkler
+    foundation of modulus 2m)."""
+    return float(q) / (2.0 * float(m))

@@ -1,0 +1,114 @@
+"""Site files: a TOML description of a :class:`ssi.scene.site.Site`, its keys the dataclasses' fields (as in
+:mod:`ssi.scene.scene_file`, whose tables for a foundation, a contact, a soil layer, a load and the mesh it
+reuses). SI units::
+
+    width = 30.0                          # [m]  Site.width
+    depth = 12.0                          # [m]  Site.depth
+    ground = [[-15.0, 1.0], [-4.0, 1.0], [4.0, 0.0], [15.0, 0.0]]   # [m] (x, z) polyline
+    water_table = -3.0                    # [m] elevation, or a polyline; leave out: dry
+    initial_stress = "auto"               # "auto" | "K0" | "gravity"
+    mesher = "auto"                       # "auto" | "structured" | "gmsh"
+
+    [[layers]]                            # SoilLayer fields (thickness: not needed, the boundaries decide)
+    E = 10e6                              # [Pa]
+    nu = 0.3
+    unit_weight = 18e3                    # [N/m^3]
+    E_inc = 1e6                           # [Pa/m] optional: a DepthVarying layer (also c_inc, z_ref)
+
+    [[boreholes]]                         # Borehole: x [m], boundaries: elevations [m] from the top down
+    x = -10.0
+    boundaries = [-2.0]
+
+    [[strips]]                            # Strip: a foundation and its contact (and level [m])
+    foundation = { x0 = -6.0, x1 = -4.0, section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } } }
+    contact = { kn = 1e10, kt = 1e9 }
+
+    [[loads]]                             # ColumnLoad (default) or type = "SurfacePressure"
+    x = -5.0
+    N = 300e3
+
+``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes. The optional
+``[solve]`` table holds ``n_steps`` and :class:`ssi.solver.Settings` fields, as in a scene file.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+from ..solver import Settings
+from .loads import ColumnLoad, SurfacePressure
+from .parts import Contact, Foundation, MeshSize
+from .scene_file import _build, _check_keys, _check_table
+from .site import Borehole, DepthVarying, Site, Strip
+
+__all__ = ["read_site_file", "site_from_dict"]
+
+SITE_KEYS = {
+    "width", "depth", "layers", "boreholes", "boundaries", "ground", "water_table", "strips", "loads", "mesh",
+    "mesher", "initial_stress", "gamma_w",
+}  # fmt: skip
+DEPTH_KEYS = ("E_inc", "c_inc", "z_ref")
+
+
+def site_from_dict(data: dict, where: str = "site") -> Site:
+    """The :class:`Site` a plain dict (from TOML) describes; unknown keys raise ValueError naming them."""
+    from ..materials.soil_laws import SoilLayer
+
+    _check_table(data, where)
+    _check_keys(data, SITE_KEYS, where)
+    kw = {k: v for k, v in data.items() if k not in ("layers", "boreholes", "strips", "loads", "mesh")}
+    layers = []
+    for i, lay in enumerate(data.get("layers", [])):
+        _check_table(lay, f"{where}.layers[{i}]")
+        fields = {"thickness": 1.0, **{k: v for k, v in lay.items() if k not in DEPTH_KEYS}}
+        layer = _build(SoilLayer, fields, f"{where}.layers[{i}]")
+        extra = {k: lay[k] for k in DEPTH_KEYS if k in lay}
+        layers.append(DepthVarying(layer, **extra) if extra else layer)
+    kw["layers"] = layers
+    if "boreholes" in data:
+        kw["boreholes"] = [
+            _build(Borehole, b, f"{where}.boreholes[{i}]") for i, b in enumerate(data["boreholes"])
+        ]
+    strips = []
+    for i, s in enumerate(data.get("strips", [])):
+        _check_table(s, f"{where}.strips[{i}]")
+        _check_keys(s, {"foundation", "contact", "level"}, f"{where}.strips[{i}]")
+        strips.append(
+            Strip(
+                _build(Foundation, s["foundation"], f"{where}.strips[{i}].foundation"),
+                _build(Contact, s["contact"], f"{where}.strips[{i}].contact"),
+                s.get("level"),
+            )
+        )
+    kw["strips"] = strips
+    loads = []
+    kinds = {"ColumnLoad": ColumnLoad, "SurfacePressure": SurfacePressure}
+    for i, ld in enumerate(data.get("loads", [])):
+        _check_table(ld, f"{where}.loads[{i}]")
+        fields = dict(ld)
+        kind = fields.pop("type", "ColumnLoad")
+        if kind not in kinds:
+            raise ValueError(
+                f"{where}.loads[{i}]: load type {kind!r} is not one a site takes: {sorted(kinds)}"
+            )
+        loads.append(_build(kinds[kind], fields, f"{where}.loads[{i}]"))
+    kw["loads"] = loads
+    if "mesh" in data:
+        kw["mesh"] = _build(MeshSize, data["mesh"], f"{where}.mesh")
+    return Site(**kw)
+
+
+def read_site_file(path) -> tuple[Site, int | None, Settings]:
+    """``(site, n_steps, settings)`` from a TOML site file (see the module docstring)."""
+    path = Path(path)
+    with open(path, "rb") as fh:
+        try:
+            data = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as err:
+            raise ValueError(f"{path}: not valid TOML: {err}") from err
+    solve = dict(data.pop("solve", {}))
+    n_steps = solve.pop("n_steps", None)
+    if n_steps is not None and (isinstance(n_steps, bool) or not isinstance(n_steps, int) or n_steps < 1):
+        raise ValueError(f"{path.name}: solve: 'n_steps' must be an integer >= 1, got {n_steps!r}")
+    return site_from_dict(data, path.name), n_steps, Settings(**solve)
