@@ -228,7 +228,7 @@ def test_editing_a_file_without_kernels_keeps_the_numba_cache(package_copy, edit
     assert _cache_folder(package_copy) == before
 
 
-@pytest.mark.parametrize("edited", ["materials/mohr_coulomb.py", "elements/plate.py", "core/assembly.py"])
+@pytest.mark.parametrize("edited", ["materials/mc_surface.py", "elements/plate.py", "core/assembly.py"])
 def test_editing_a_kernel_file_moves_the_numba_cache(package_copy, edited):
     before = _cache_folder(package_copy)
     with open(package_copy / "ssi" / edited, "a") as fh:
