@@ -51,7 +51,8 @@
 # admissible feature of the pyramid in principal space — a face, one of the two edges next to it, or the
 # apex — by one linear solve each (the faces are planes and isotropic elasticity keeps the principal axes).
 # Its consistent tangent adds the rotation of the principal axes and is unsymmetric when ψ ≠ φ. Both schemes
-# live in `ssi/materials/mohr_coulomb.py`; their material-point checks (every branch, finite-difference
+# live in `ssi/materials/mc_implicit_scheme.py` and `mc_explicit_scheme.py` (one surface,
+# `mc_surface.py`); their material-point checks (every branch, finite-difference
 # tangents, symmetry only for ψ = φ) are in `tests/test_mohr_coulomb.py` and chapter 05.
 #
 # **Prandtl's collapse pressure** of a strip footing on weightless soil (smooth or rough base — for γ = 0 both

@@ -214,11 +214,11 @@ def _write_mesh(h5, model):
         grp = mesh.create_group(name)
         grp["edofs"] = g.edofs
         grp["conn"] = element_nodes(model, g.edofs)
-        if hasattr(g, "integration_points"):
-            grp["ip_xy"] = g.integration_points()
-        if hasattr(g, "ip_coords"):
-            grp["ip_xy"] = g.ip_coords()
-            grp["ip_weights"] = g.ip_weights()
+        ip_xy, ip_weights = g.integration_points(), g.ip_weights()
+        if ip_xy is not None:
+            grp["ip_xy"] = ip_xy
+        if ip_weights is not None:
+            grp["ip_weights"] = ip_weights
 
 
 def _write_steps(h5, model, load_factor, u, states):

@@ -39,22 +39,21 @@ from ..core.validate import (
     check_optional_real,
     check_real,
 )
-from .mohr_coulomb import (
-    N_MC_CONSTANTS,
-    N_MC_WORK_ROWS,
-    elastic_fill,
-    lame,
-    mc_explicit,
-    mc_implicit,
-    mc_material_constants,
-    vm_implicit,
-)
+from .mc_explicit_scheme import mc_explicit
+from .mc_implicit_scheme import N_MC_WORK_ROWS, mc_implicit
+from .mc_surface import N_MC_CONSTANTS, mc_material_constants
+from .principal import elastic_fill, lame
+from .von_mises import vm_implicit
 
 ELASTIC = 0
 MOHR_COULOMB = 1
 MOHR_COULOMB_EXPLICIT = 2
 VON_MISES = 3
 N_SOIL_HIST = 2  # history variables per integration point (laws may use fewer)
+# the history slots the laws write, by name: accumulated plastic strain norm sum |d eps_p| [-], and the
+# branch of the last stress update (0 elastic, 1 plane, 2 edge s1 = s2, 3 edge s2 = s3, 4 apex)
+H_PLASTIC_STRAIN, H_BRANCH = 0, 1
+SOIL_HIST_NAMES = ("plastic_strain", "branch")
 N_SOIL_PARAMS = 8  # width of a padded parameter row
 KIND_NAMES = {
     ELASTIC: "elastic",

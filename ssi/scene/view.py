@@ -105,8 +105,9 @@ class SceneResult:
         eps, _ = plate.layer_strains(u_el)
         sig, _ = plate.layer_stresses(u_el, state)
         cracked = np.zeros(eps.shape, bool)
-        for n in np.flatnonzero(sec.kind == CONCRETE):  # history slot 1: the largest tensile strain
-            cracked[..., n] = state[..., n, 1] > sec.params[n, P_FR] / sec.params[n, P_E0]
+        e_max = plate.history(state, "e_max")  # concrete's largest tensile strain
+        for n in np.flatnonzero(sec.kind == CONCRETE):
+            cracked[..., n] = e_max[..., n] > sec.params[n, P_FR] / sec.params[n, P_E0]
         x_pts = plate.point_x()
         axial = plate.ax.astype(bool)
         return {
@@ -219,17 +220,15 @@ class SceneResult:
 
     def plastic_points(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
-        surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
-        from ..elements.soil_q8 import N_STRESS
-
-        return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
+        surface (the history field ``branch`` non-zero), i.e. the points yielding in that step."""
+        soil = self.built.soil
+        return soil.history(self._group_state(soil, k), "branch") > 0.0
 
     def plastic_strain(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
-        (history slot 0; zero for elastic layers)."""
-        from ..elements.soil_q8 import N_STRESS
-
-        return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
+        (the history field ``plastic_strain``; zero for elastic layers)."""
+        soil = self.built.soil
+        return soil.history(self._group_state(soil, k), "plastic_strain").copy()
 
     def load_settlement(self) -> dict[str, np.ndarray]:
         """The load--settlement path over every converged step (also of a stopped run): ``load_factor``
