@@ -64,6 +64,7 @@ from ..elements.interface import add_interface
 from ..elements.plate import PlateStrip
 from ..elements.soil_q8 import SoilQ8
 from ..materials.soil_laws import GAMMA_W, SoilLayer, geostatic_stress, material_table
+from ..solver.progress import announce_compilation
 from .loads import ColumnLoad, SurfacePressure
 from .parts import Contact, Foundation, MeshSize
 
@@ -405,7 +406,9 @@ class Site:
     # ---- build ---------------------------------------------------------------------------------------------
     def build(self) -> BuiltSite:
         """Mesh the site, add the soil, the strips and their contacts, the supports, the initial stress and
-        the loads."""
+        the loads. On a fresh install (numba's cache empty) one line on stderr says the kernels compile
+        now."""
+        announce_compilation()
         why = self._structured_ok()
         if self.mesher == "structured" and why:
             raise GeometryError(f"Site.mesher='structured' cannot serve: {why}")
