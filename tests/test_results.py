@@ -9,14 +9,13 @@ import os
 
 import h5py
 import matplotlib
-import meshio
 import numpy as np
 import pytest
 
 from ssi.elements.section import homogeneous
 from ssi.io import plot
 from ssi.io.cli import main, summary
-from ssi.io.export import export_series, export_vtu, read_series
+from ssi.io.export import export_series, export_vtu, read_series, read_vtu
 from ssi.io.results import atomic_path, max_difference, read_info, read_result, write_result
 from ssi.scene import (
     ColumnLoad,
@@ -452,7 +451,7 @@ def test_every_field_has_a_unit():
 # ---- ParaView export -----------------------------------------------------------------------------------
 def test_vtu_reads_back(nonlinear, tmp_path):
     path = export_vtu(nonlinear, tmp_path / "r.vtu")
-    mesh = meshio.read(path)
+    mesh = read_vtu(path)
     built = nonlinear.built
     # meshio's VTU reader merges the adjacent line3 blocks: strip elements, then contact elements
     assert [c.type for c in mesh.cells] == ["quad8", "line3"]
@@ -467,6 +466,10 @@ def test_vtu_reads_back(nonlinear, tmp_path):
     assert np.max(np.abs(mesh.cell_data["M"][1][: len(m)] - m)) <= 1e-12 * np.abs(m).max()
     p = -nonlinear.contact()["sig_n"].mean(1)
     assert np.max(np.abs(mesh.cell_data["contact_pressure"][1][len(m) :] - p)) <= 1e-12 * np.abs(p).max()
+    # units as field data, one per exported field, and every soil element of a single-phase scene present
+    assert {f"unit_{name}" for name in [*mesh.point_data, *mesh.cell_data]} <= set(mesh.field_data)
+    assert str(mesh.field_data["unit_szz"][0]) == "Pa" and str(mesh.field_data["unit_M"][0]) == "N m/m"
+    assert np.all(mesh.cell_data["active"][0] == 1.0)
     with pytest.raises(FileExistsError):
         export_vtu(nonlinear, path)
 
@@ -474,7 +477,7 @@ def test_vtu_reads_back(nonlinear, tmp_path):
 def test_vtu_pore_pressure_of_a_water_table(phased, tmp_path):
     """The exported pore pressure of the phased scene (drained, water table 2 m deep) is the hydrostatic
     gamma_w (depth - 2 m) averaged over each element's points, by hand from the stored point depths."""
-    mesh = meshio.read(export_vtu(phased, tmp_path / "p.vtu"))
+    mesh = read_vtu(export_vtu(phased, tmp_path / "p.vtu"))
     depth = -phased.soil_points()[..., 1]
     by_hand = (9.81e3 * np.maximum(depth - 2.0, 0.0)).mean(axis=1)
     exported = mesh.cell_data["pore_pressure"][0]
@@ -488,6 +491,7 @@ def test_phased_series_is_numbered_by_step(phased, tmp_path):
     last data set is the last step."""
     series = read_series(export_series(phased, tmp_path / "p.pvd"))
     assert [t for t, _ in series] == list(range(len(phased.load_factor)))
+    assert [float(m.field_data["time"][0]) for _, m in series] == list(range(len(phased.load_factor)))
     w = phased.u[-1][phased.built.model.dof(phased.built.plate_nodes, "w")]
     assert np.max(np.abs(series[-1][1].point_data["displacement"][phased.built.plate_nodes, 1] - w)) <= 1e-12
 
@@ -496,7 +500,14 @@ def test_series_every_step_reads_back(nonlinear, tmp_path):
     path = export_series(nonlinear, tmp_path / "r.pvd")
     assert sorted(os.listdir(tmp_path)) == ["r.pvd", "r_steps"]
     series = read_series(path)
-    assert [t for t, _ in series] == list(nonlinear.load_factor)
+    times = [t for t, _ in series]
+    # the time values are the load factors without binary noise (0.47500000000000003 was written before):
+    # equal to 1e-12, and each written with at most 12 significant digits
+    assert np.allclose(times, nonlinear.load_factor, rtol=1e-12, atol=0.0)
+    assert any(repr(float(x)) != repr(t) for x, t in zip(nonlinear.load_factor, times))  # noise was there
+    assert all(len(repr(t).replace("0.", "").lstrip("0")) <= 13 for t in times)
+    text = path.read_text()
+    assert "0000000" not in text and "9999999" not in text
     soil = np.arange(nonlinear.built.mesh.xy.shape[0])
     for k, (_, mesh) in enumerate(series):
         w = nonlinear.u[k][nonlinear.built.model.dof(soil, "w")]
@@ -563,6 +574,35 @@ def test_cli_runs_the_examples(name, tmp_path, capsys):
     assert shown["max_settlement"] == stored["max_settlement"]
 
 
+def test_show_right_after_run_reprints_and_redraws(tmp_path, capsys):
+    """``ssi show x.h5`` right after ``ssi run x.toml``: the summary again and the figures in a new folder
+    (the run's are kept); ``--overwrite`` redraws into the run's folder; a figure folder given explicitly
+    that holds the figures is refused naming the flag ``--overwrite``, not the Python keyword."""
+    scene_path = tmp_path / "strip_linear.toml"
+    scene_path.write_text(open(os.path.join(EXAMPLES, "strip_linear.toml")).read())
+    assert main(["run", str(scene_path)]) == 0
+    ran = capsys.readouterr().out
+    h5 = tmp_path / "strip_linear.h5"
+    first = sorted(p.name for p in (tmp_path / "strip_linear_plots").iterdir())
+    before = (tmp_path / "strip_linear_plots" / "settlement.png").stat().st_mtime_ns
+    assert main(["show", str(h5)]) == 0
+    shown = capsys.readouterr().out
+    # the summary lines but the wall time (of the solve as stored, not build + solve)
+    summary_lines = [ln for ln in ran.splitlines() if not ln.startswith(("wall time", "wrote"))]
+    assert [ln for ln in shown.splitlines() if not ln.startswith(("wall time", "wrote"))] == summary_lines
+    assert sorted(p.name for p in (tmp_path / "strip_linear_plots_2").iterdir()) == first
+    assert f"wrote {tmp_path / 'strip_linear_plots_2' / 'settlement.png'}" in shown
+    assert main(["show", str(h5)]) == 0 and (tmp_path / "strip_linear_plots_3").is_dir()
+    capsys.readouterr()
+    assert main(["show", str(h5), "--overwrite"]) == 0
+    assert (tmp_path / "strip_linear_plots" / "settlement.png").stat().st_mtime_ns >= before
+    assert not (tmp_path / "strip_linear_plots_4").exists()
+    capsys.readouterr()
+    assert main(["show", str(h5), "--plots", str(tmp_path / "strip_linear_plots")]) == 2
+    err = capsys.readouterr().err
+    assert "pass --overwrite to replace it" in err and "overwrite=True" not in err
+
+
 def test_compile_notice_only_on_an_empty_cache(tmp_path, monkeypatch):
     import io
 
@@ -578,6 +618,55 @@ def test_compile_notice_only_on_an_empty_cache(tmp_path, monkeypatch):
     (tmp_path / "sub").mkdir()
     (tmp_path / "sub" / "kernel-1.py311.nbi").write_bytes(b"")
     assert progress.announce_compilation(io.StringIO()) is False  # kernels cached: silent
+
+
+def test_compile_notice_from_the_python_api(tmp_path, monkeypatch, capsys):
+    """Building a scene from Python (no ``ssi run``) prints the one-line notice on a cold cache, once."""
+    from ssi.solver import progress
+
+    monkeypatch.setattr(progress, "numba_cache_is_empty", lambda cache_dir=None: True)
+    monkeypatch.setattr(progress, "_announced", False)
+    mc_scene().build()
+    mc_scene().build()
+    err = capsys.readouterr().err
+    assert err.count("ssi: compiling kernels once") == 1 and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("mask", [0o022, 0o077, 0o002])
+def test_files_get_the_users_umask(nonlinear, tmp_path, mask):
+    """Result, ParaView and figure files are created as open() would create them under the umask (mkstemp
+    alone made them 0600, unreadable to a team on a shared drive); the writes stay atomic."""
+    old = os.umask(mask)
+    try:
+        written = [write_result(tmp_path / "r.h5", nonlinear), export_vtu(nonlinear, tmp_path / "r.vtu")]
+        with atomic_path(tmp_path / "t.txt") as tmp:
+            tmp.write_text("x")
+        written.append(tmp_path / "t.txt")
+    finally:
+        os.umask(old)
+    for path in written:
+        assert os.stat(path).st_mode & 0o777 == 0o666 & ~mask, path
+
+
+def test_no_resource_warning_from_the_blas_guard():
+    """The scratch files that catch BLAS's C-level text are raw descriptors: a process that used them ends
+    without "ResourceWarning: unclosed file" (it did with tempfile.TemporaryFile objects)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys; from ssi.core import linsolve; "
+        "out, text = linsolve._trap_c_output(lambda: sys.stdout.write('') or 7); "
+        "assert out == 7 and text == ''"
+    )
+    run = subprocess.run(
+        [sys.executable, "-X", "dev", "-W", "always::ResourceWarning", "-c", code],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert run.returncode == 0, run.stderr
+    assert "ResourceWarning" not in run.stderr
 
 
 def test_bare_model_file_keeps_mapping_access(nonlinear, tmp_path):
