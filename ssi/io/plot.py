@@ -8,17 +8,25 @@ Every function takes the result (live or read back with :func:`ssi.io.results.re
 returned). Lengths are plotted in m, settlements in mm, stresses in kPa or MPa, forces in kN/m.
 """
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import PolyCollection
+from matplotlib.figure import Figure
+
+if TYPE_CHECKING:  # annotations only: ssi.scene imports nothing of ssi.io
+    from ..scene import SceneResult
 
 ZONE_COLOURS = {"stick": "C0", "slip": "C1", "open": "C3"}
 _OUTLINE = [0, 4, 1, 5, 2, 6, 3, 7]  # Q8 nodes in order around the element (corner, mid-side, ...)
 
 
-def _axes(ax, n=1, figsize=(8, 3.5)):
+def _axes(ax, n=1, figsize=(8, 3.5)) -> tuple[Figure, Axes]:
     if ax is not None:
         return ax.figure, ax
     fig, axes = plt.subplots(n, 1, figsize=figsize, sharex=True, squeeze=True, layout="constrained")
@@ -32,9 +40,23 @@ def _foundation_window(result, margin=2.0):
     return (f.x0 - margin * (f.x1 - f.x0), f.x1 + margin * (f.x1 - f.x0))
 
 
-def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
+def _present(result: SceneResult, k: int) -> np.ndarray:
+    """(n_el,) bool: the soil elements present at step ``k`` (excavated ones are left out of the plots)."""
+    if result.phases and any(ph.excavate for ph in result.built.scene.phases):
+        return result.active_elements(k)
+    return np.ones(result.built.mesh.conn.shape[0], bool)
+
+
+def deformed_mesh(
+    result: SceneResult,
+    k: int = -1,
+    scale: float | None = None,
+    ax: Axes | None = None,
+    window: tuple[float, float] | None = None,
+) -> Figure:
     """The soil mesh (grey) and its deformed shape (blue) with displacements times ``scale`` (default: the
-    largest displacement drawn as 5 % of the block width); the strip as a thick line."""
+    largest displacement drawn as 5 % of the block width); the strip as a thick line. Soil excavated by step
+    ``k`` is left out (the pit shows as a gap)."""
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
@@ -44,10 +66,11 @@ def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
     disp[: len(dofs)] = u[dofs]
     if built.plate_nodes is not None:
         disp[built.plate_nodes] = u[built.model.node_dofs(built.plate_nodes)][:, :2]
-    umax = np.abs(disp).max()
+    present = _present(result, k)
+    umax = np.abs(disp[np.unique(built.mesh.conn[present])]).max()
     if scale is None:
         scale = 0.05 * built.scene.width / umax if umax > 0 else 1.0
-    outline = built.mesh.conn[:, _OUTLINE]
+    outline = built.mesh.conn[present][:, _OUTLINE]
     ax.add_collection(PolyCollection(xy[outline], facecolors="none", edgecolors="0.8", linewidths=0.4))
     moved = xy + scale * disp
     ax.add_collection(PolyCollection(moved[outline], facecolors="none", edgecolors="C0", linewidths=0.5))
@@ -65,17 +88,22 @@ def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
     return fig
 
 
-def plastic_points(result, k=-1, ax=None, window=None):
+def plastic_points(
+    result: SceneResult, k: int = -1, ax: Axes | None = None, window: tuple[float, float] | None = None
+) -> Figure:
     """Soil integration points yielding at step ``k`` (red) on the mesh outline: where the soil has reached
-    its Mohr--Coulomb strength in that step."""
+    its Mohr--Coulomb strength in that step (excavated soil left out)."""
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
+    present = _present(result, k)
     ax.add_collection(
-        PolyCollection(xy[built.mesh.conn[:, _OUTLINE]], facecolors="none", edgecolors="0.8", linewidths=0.4)
+        PolyCollection(
+            xy[built.mesh.conn[present][:, _OUTLINE]], facecolors="none", edgecolors="0.8", linewidths=0.4
+        )
     )
     pts = result.soil_points()
-    mask = result.plastic_points(k)
+    mask = result.plastic_points(k) & present[:, None]
     ax.plot(pts[mask][:, 0], pts[mask][:, 1], "r.", ms=3, label=f"plastic ({mask.sum()} points)")
     if built.plate_nodes is not None:
         ax.plot(xy[built.plate_nodes, 0], xy[built.plate_nodes, 1], "k-", lw=3)
@@ -89,7 +117,7 @@ def plastic_points(result, k=-1, ax=None, window=None):
     return fig
 
 
-def contact(result, k=-1, ax=None):
+def contact(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Contact pressure and shear stress under the foundation [kPa], points coloured by zone (stick, slip,
     open). ``ax``: two axes (pressure, shear) or None."""
     fig, axes = _axes(ax, 2, figsize=(8, 5)) if ax is None else (ax[0].figure, ax)
@@ -111,14 +139,14 @@ def contact(result, k=-1, ax=None):
     return fig
 
 
-def settlement(result, k=-1, ax=None):
+def settlement(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Settlement [mm] of the soil surface and of the foundation (positive down, plotted downwards)."""
     fig, ax = _axes(ax)
     xs, ss = result.surface(k)
     window = _foundation_window(result, 2.0)
     near = np.ones_like(xs, bool) if window is None else (xs >= window[0]) & (xs <= window[1])
     ax.plot(xs[near], 1e3 * ss[near], "k-", lw=1, label="soil surface")
-    if result.built.plate is not None:
+    if result.built.plate is not None or result.built.footing_nodes is not None:
         xp, sp = result.settlement(k)
         ax.plot(xp, 1e3 * sp, "C0o-", ms=3, label="foundation")
     ax.invert_yaxis()
@@ -129,9 +157,13 @@ def settlement(result, k=-1, ax=None):
     return fig
 
 
-def strip_forces(result, k=-1, ax=None):
-    """Bending moment M [kN m/m] (sagging positive, drawn on the tension side: downwards), shear force
-    Q [kN/m] and normal force N [kN/m] along the strip. ``ax``: three axes or None."""
+MOMENT_CONVENTION = "M > 0 sagging (tension at the bottom), drawn downwards: on the tension side"
+
+
+def strip_forces(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
+    """Bending moment M [kN m/m] (sagging positive, drawn on the tension side: downwards -- the convention
+    is written on the figure), shear force Q [kN/m] and normal force N [kN/m] (tension positive) along the
+    strip. ``ax``: three axes or None."""
     fig, axes = _axes(ax, 3, figsize=(8, 7)) if ax is None else (ax[0].figure, ax)
     f = result.strip_forces(k)
     for a, (xkey, key, label) in zip(
@@ -141,12 +173,14 @@ def strip_forces(result, k=-1, ax=None):
         a.axhline(0.0, color="0.5", lw=0.6)
         a.set_ylabel(label)
     axes[0].invert_yaxis()  # moments on the tension side
+    axes[0].annotate(MOMENT_CONVENTION, (0.01, 0.04), xycoords="axes fraction", fontsize=7, va="bottom")
+    axes[2].annotate("N > 0 tension", (0.01, 0.04), xycoords="axes fraction", fontsize=7, va="bottom")
     axes[-1].set_xlabel("x [m]")
     axes[0].set_title(f"strip forces (step {_step(result, k)})")
     return fig
 
 
-def cracks_and_steel(result, k=-1, ax=None):
+def cracks_and_steel(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Cracked concrete layer points (red ticks at their height) and the steel layers' stress [MPa] with
     yielded points marked (x). ``ax``: two axes or None."""
     fig, axes = _axes(ax, 2, figsize=(8, 5)) if ax is None else (ax[0].figure, ax)
@@ -171,32 +205,43 @@ def cracks_and_steel(result, k=-1, ax=None):
     return fig
 
 
-def load_settlement(result, ax=None):
-    """Total column load [kN/m] against the largest settlement [mm], every converged step; of a phased
-    result the phase time (phase i runs from i - 1 to i) against the settlement, each phase named."""
-    fig, ax = _axes(ax, figsize=(5, 4))
+def load_settlement(result: SceneResult, ax: Axes | None = None) -> Figure:
+    """The load the foundation carries [kN/m] (:meth:`SceneResult.foundation_load`: the column load, or of
+    a push-over the soil's reaction) against the largest settlement [mm] at every converged step, with the
+    capacity (:meth:`SceneResult.capacity`) marked and how it was found. Rows that are not rate-independent
+    equilibria (a viscous fallback's) are drawn hollow and never marked as the capacity. Of a phased result
+    each phase's stretch is coloured and named."""
+    fig, ax = _axes(ax, figsize=(6, 4.5))
     path = result.load_settlement()
-    if result.phases:
-        ax.plot(1e3 * path["settlement"], path["load_factor"], "o-", ms=3)
-        for i, record in enumerate(result.phases):
-            ax.axhline(i, color="0.8", lw=0.8, zorder=0)
-            ax.annotate(
-                record["name"],
-                (0.02, i - 0.5 if i else 0.0),
-                xycoords=("axes fraction", "data"),
-                fontsize=8,
-                va="center",
-            )
-        ax.set_ylabel("phase time [-]")
-    else:
-        ax.plot(1e3 * path["settlement"], path["column_load"] / 1e3, "o-")
-        ax.set_ylabel("column load [kN/m]")
+    s_mm, load = 1e3 * path["settlement"], path["load"] / 1e3
+    ax.plot(s_mm, load, "-", color="0.6", lw=0.8, zorder=1)
+    spans = (
+        [(r["name"], max(r["first"] - 1, 0), r["last"]) for r in result.phases[1:]]
+        if result.phases
+        else [(None, 0, len(load) - 1)]
+    )
+    ok = path["equilibrium"]
+    for i, (name, first, last) in enumerate(spans):
+        rows = np.arange(first, last + 1)
+        good, bad = rows[ok[rows]], rows[~ok[rows]]
+        ax.plot(s_mm[good], load[good], "o", ms=3.5, color=f"C{i}", label=name, zorder=2)
+        if bad.size:
+            ax.plot(s_mm[bad], load[bad], "o", ms=4, mfc="none", color=f"C{i}", zorder=2)
+    if (~ok).any():
+        ax.plot([], [], "o", mfc="none", color="0.3", label="viscous state (not an equilibrium)")
+    cap = result.capacity()
+    word = "capacity" if cap["is_limit"] else "largest load carried"
+    ax.plot(1e3 * cap["settlement"], cap["load"] / 1e3, "k*", ms=11, zorder=3,
+            label=f"{word} {cap['load'] / 1e3:.1f} kN/m")  # fmt: skip
+    ax.annotate(cap["how"], (0.02, 0.02), xycoords="axes fraction", fontsize=7, va="bottom", wrap=True)
     ax.set_xlabel("largest settlement [mm]")
-    ax.set_title("load-settlement path")
+    ax.set_ylabel(("footing load (soil reaction)" if result.is_push_over else "column load") + " [kN/m]")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title("load-settlement path" + (" over the phases" if result.phases else ""))
     return fig
 
 
-def standard_figures(result) -> dict:
+def standard_figures(result: SceneResult) -> dict[str, Figure]:
     """Every figure that applies to the result's scene: name -> Figure."""
     figs = {
         "settlement": settlement(result),
@@ -213,7 +258,7 @@ def standard_figures(result) -> dict:
     return figs
 
 
-def save_standard_figures(result, folder, overwrite=False) -> list[Path]:
+def save_standard_figures(result: SceneResult, folder: str | Path, overwrite: bool = False) -> list[Path]:
     """Write :func:`standard_figures` as PNGs into ``folder`` (atomically, never replacing a file unless
     ``overwrite``); return the paths."""
     from .results import atomic_path
