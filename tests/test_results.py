@@ -771,3 +771,89 @@ def test_files_of_the_earlier_layout_still_read(tmp_path):
         assert force[record["last"]] == pytest.approx(expected[record["name"]], rel=1e-4), record["name"]
     again = read_result(write_result(tmp_path / "phased.h5", back))
     assert max_difference(back, again) == (0.0, "")
+
+
+# ---- what an engineer reads (issue 34): loads, capacity, phases, contact pressure ----------------------
+def test_phased_column_load_is_the_phases_columns(phased):
+    """The column load of every row of the phased scene, by hand from its phases: 0 in the geostatic and
+    'weight' phases, 250 kN/m ramped over 'building', back to 125 kN/m (factor 0.5) over 'half_unload'."""
+    col = phased.column_load()
+    by_name = {r["name"]: r for r in phased.phases}
+    assert np.all(col[: by_name["weight"]["last"] + 1] == 0.0)
+    b, h = by_name["building"], by_name["half_unload"]
+    lam_b = np.asarray(b["result"].load_factor[1:])
+    assert np.allclose(col[b["first"] : b["last"] + 1], 250e3 * lam_b, rtol=1e-14, atol=0.0)
+    lam_h = np.asarray(h["result"].load_factor[1:])
+    assert np.allclose(col[h["first"] : h["last"] + 1], 250e3 - 125e3 * lam_h, rtol=1e-14, atol=0.0)
+    assert col[-1] == pytest.approx(125e3, rel=1e-14)
+    assert np.array_equal(phased.load_settlement()["load"], col)  # load-controlled: the load is the columns
+
+
+def test_phased_summary_gives_each_phase_and_the_envelope(phased):
+    """examples/phased_embedded.toml: the largest settlement (end of 'building') is in the summary, not only
+    the smaller one at the end; each phase's values are its rows' maxima, computed here row by row."""
+    from ssi.io.cli import summary_text
+
+    s = summary(phased)
+    n = len(phased.load_factor)
+    per_row = [phased.max_settlement(k)[1] for k in range(n)]
+    env = s["envelope"]["max_settlement"]
+    assert env["value"] == max(per_row) and env["phase"] == "building"
+    assert env["value"] > 1.5 * s["max_settlement"]  # 6.77 mm against 4.24 mm at the end
+    for row in s["phases"]:
+        rows = range(row["first"], row["last"] + 1)
+        assert row["max_settlement"] == max(per_row[k] for k in rows)
+        m = max(float(np.abs(phased.strip_forces(k)["M"]).max()) for k in rows)
+        assert row["max_abs_moment"] == m
+    assert [r["name"] for r in s["phases"]] == ["weight", "building", "half_unload"]
+    assert s["column_load"] == pytest.approx(125e3, rel=1e-14)
+    text = summary_text(s)
+    assert f"{1e3 * env['value']:.3f} mm largest over the phases (phase 'building')" in text
+    assert "half_unload" in text and "building" in text
+
+
+def test_phased_load_settlement_plot_shows_the_load(phased):
+    fig = plot.load_settlement(phased)
+    ax = fig.axes[0]
+    assert ax.get_ylabel() == "column load [kN/m]"
+    ys = np.concatenate([line.get_ydata() for line in ax.lines if len(line.get_ydata()) > 1])
+    assert ys.max() == pytest.approx(250.0, rel=1e-12)  # kN/m: the building's column, not a phase time
+    matplotlib.pyplot.close(fig)
+
+
+def test_contact_pressure_mean_peak_and_corner(nonlinear):
+    """Mean = contact resultant / B (B = 2 m, by hand); the headline peak leaves out the points within
+    B/10 of the edges; the corner value is the largest anywhere and is printed as a singularity, after
+    the mean and the peak."""
+    from ssi.io.cli import summary_text
+
+    cp = nonlinear.contact_pressure()
+    c = nonlinear.contact()
+    x, p = c["x"].ravel(), -c["sig_n"].ravel()
+    assert cp["mean"] == pytest.approx(nonlinear.contact_resultant()["N"] / 2.0, rel=1e-14)
+    inner = np.minimum(np.abs(x + 1.0), np.abs(1.0 - x)) > 0.2
+    assert cp["peak"] == p[inner].max() and cp["edge"] == p.max()
+    assert cp["edge"] > cp["peak"] > cp["mean"]
+    text = summary_text(summary(nonlinear))
+    assert text.index("kPa mean") < text.index("corner singularity")
+    assert f"{cp['edge'] / 1e3:.2f} kPa" in text.split("edge pressure")[1].splitlines()[0]
+
+
+def test_capacity_of_a_viscous_path_leaves_the_viscous_rows_out(viscous):
+    """Rows solved with a viscosity carry overstress: never offered as the largest load."""
+    visc = np.asarray(viscous.solver_result.step_viscosity)
+    cap = viscous.capacity()
+    assert cap["viscous_rows"] == int((visc > 0).sum()) > 0
+    assert visc[cap["step"]] == 0.0
+    ok = viscous.load_settlement()["equilibrium"]
+    assert np.array_equal(ok, visc == 0.0)
+
+
+def test_capacity_of_a_detected_limit(collapsed):
+    """Ten times the bearing capacity: the solver's limit load, marked as a limit, is the capacity."""
+    cap = collapsed.capacity()
+    assert cap["is_limit"] and cap["how"].startswith("limit load detected by the solver")
+    lam = np.asarray(collapsed.load_factor)
+    ok = collapsed.equilibrium_rows()
+    assert cap["load"] == pytest.approx(3e6 * lam[ok].max(), rel=1e-14)
+    assert summary(collapsed)["capacity"] == cap
