@@ -2,19 +2,24 @@
 
 ``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene.scene_file`) and writes, next to it unless
 told otherwise: ``<name>.h5`` (the result, :func:`ssi.io.results.write_result`), ``<name>.pvd`` +
-``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.io.plot.standard_figures`)
-and ``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
-bending moment, the status, wall time). Nothing is overwritten without ``--overwrite``.
+``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.io.plot.standard_figures`),
+``<name>_summary.json`` and ``<name>_report.html`` (:mod:`ssi.io.report`: the summary with units, the
+capacity, per-phase tables, warnings and the figures, one page that works offline); it prints the summary
+(the foundation load and capacity, settlement, contact pressure -- mean, peak away from the edges, the edge
+value marked as a singularity --, bending moment, per-phase maxima, the status, wall time). Nothing is
+overwritten without ``--overwrite``.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
 factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
-status 3. ``ssi show result.h5`` prints the summary of a result file and writes its plots.
+status 3. ``ssi show result.h5`` prints the summary of a result file and redraws its plots and report into
+a new folder (``<result>_plots_2``, ... when the run's exists; ``--overwrite``: into the run's).
 """
 
 import argparse
 import json
 import sys
 import time
+import warnings
 from pathlib import Path
 
 EXIT_INCOMPLETE = 3
@@ -217,6 +222,7 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
     from .plot import save_standard_figures
+    from .report import write_report
     from .results import OutputExistsError, atomic_path, write_result
 
     scene_path = Path(scene_path)
@@ -225,22 +231,28 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
     plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
     summary_path = stem.parent / (stem.name + "_summary.json")
+    report_path = stem.parent / (stem.name + "_report.html")
     scene, n_steps, settings = read_scene_file(scene_path)
-    for target in (out, paraview, summary_path):
+    for target in (out, paraview, summary_path, report_path):
         if target.exists() and not overwrite:
             raise OutputExistsError(target)
     announce_compilation()
     t0 = time.perf_counter()
-    built = scene.build()
     stop = None
-    try:
-        result = built.solve(n_steps=n_steps, settings=settings)
-    except NonConvergence as err:
-        # the converged steps before the failure; of a phased scene every completed phase and the failing
-        # phase's steps (PhaseNonConvergence.scene_result)
-        result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
-        stop = err.report
+    with warnings.catch_warnings(record=True) as caught:  # shown as usual below, and kept for the report
+        warnings.simplefilter("default")
+        built = scene.build()
+        try:
+            result = built.solve(n_steps=n_steps, settings=settings)
+        except NonConvergence as err:
+            # the converged steps before the failure; of a phased scene every completed phase and the
+            # failing phase's steps (PhaseNonConvergence.scene_result)
+            result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
+            stop = err.report
     wall = time.perf_counter() - t0
+    for w in caught:
+        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
     complete = stop is None
     written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
     from .export import export_series
@@ -250,8 +262,11 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
     written.append(summary_path)
-    if figures:
-        written += save_standard_figures(result, plots, overwrite=overwrite)
+    figs = save_standard_figures(result, plots, overwrite=overwrite) if figures else []
+    written += figs
+    written.append(
+        write_report(s, report_path, figs, scene_path.name, run_warnings=run_warnings, overwrite=overwrite)
+    )
     return result, s, written
 
 
@@ -271,8 +286,10 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     The figures go to ``plots`` (default ``<result>_plots``, the folder ``ssi run`` drew into); if that
     default folder exists and ``overwrite`` is False they go to a new folder beside it (``<result>_plots_2``,
     ...), so showing a result right after its run never fails. A folder given explicitly is used as given:
-    an existing figure in it is replaced only with ``overwrite``."""
+    an existing figure in it is replaced only with ``overwrite``. The figures' folder also gets the HTML
+    report (``report.html``, :mod:`ssi.io.report`)."""
     from .plot import save_standard_figures
+    from .report import write_report
     from .results import read_info, read_result
 
     path = Path(path)
@@ -287,6 +304,7 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
         if plots is None and not overwrite:
             folder = _free_folder(folder)
         written = save_standard_figures(result, folder, overwrite=overwrite)
+        written.append(write_report(s, folder / "report.html", written, path.name, overwrite=overwrite))
     return result, s, written
 
 
