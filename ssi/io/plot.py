@@ -173,10 +173,11 @@ def strip_forces(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Fi
         a.axhline(0.0, color="0.5", lw=0.6)
         a.set_ylabel(label)
     axes[0].invert_yaxis()  # moments on the tension side
-    axes[0].annotate(MOMENT_CONVENTION, (0.01, 0.04), xycoords="axes fraction", fontsize=7, va="bottom")
-    axes[2].annotate("N > 0 tension", (0.01, 0.04), xycoords="axes fraction", fontsize=7, va="bottom")
     axes[-1].set_xlabel("x [m]")
-    axes[0].set_title(f"strip forces (step {_step(result, k)})")
+    # the conventions in the title, where no curve can hide them
+    axes[0].set_title(
+        f"strip forces (step {_step(result, k)})\n{MOMENT_CONVENTION}; N > 0 tension", fontsize=9
+    )
     return fig
 
 
