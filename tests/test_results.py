@@ -926,3 +926,24 @@ def test_readme_images_exist_in_a_fresh_clone():
         if tracked.returncode not in (0, 1):  # not a git checkout (an sdist): the file's presence is the test
             continue
         assert tracked.returncode == 0, f"{image} is not committed"
+
+
+def test_rc_strip_export_has_steel_stress_and_cracks(tmp_path):
+    """examples/rc_strip.toml: the VTU's steel_stress of each strip element is the largest |stress| of its
+    bars (from steel_stress(), computed here point by point) and cracked_fraction the share of its cracked
+    concrete layer points (from crack_map()); the summary's per-phase steel stress is the same maximum."""
+    from ssi.materials.layer_laws import CONCRETE
+
+    scene, n_steps, settings = read_scene_file(os.path.join(EXAMPLES, "rc_strip.toml"))
+    out = scene.build().solve(n_steps=n_steps, settings=settings)
+    mesh = read_vtu(export_vtu(out, tmp_path / "rc.vtu"))
+    n_plate = out.built.plate.n_el
+    st = out.steel_stress()
+    by_element = np.abs(st["sig"]).reshape(n_plate, -1).max(axis=1)
+    assert np.array_equal(mesh.cell_data["steel_stress"][1][:n_plate], by_element)
+    cm = out.crack_map()
+    concrete = out.built.plate.section.kind == CONCRETE
+    share = cm["cracked"][..., concrete].reshape(n_plate, -1).mean(axis=1)
+    assert np.array_equal(mesh.cell_data["cracked_fraction"][1][:n_plate], share) and share.max() > 0.0
+    assert str(mesh.field_data["unit_steel_stress"][0]) == "Pa"
+    assert summary(out)["phases"][-1]["max_steel_stress"] >= by_element.max()

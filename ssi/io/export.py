@@ -13,7 +13,9 @@ integration points),
 ``pore_pressure`` (hydrostatic below the water table plus the excess of undrained_A layers [Pa], compression
 positive, the element mean; the stresses are effective), ``N``, ``M``,
 ``Q`` (strip forces, means over the element's points [N/m, N m/m]), ``contact_pressure``, ``contact_shear``
-(means over the interface element's points [Pa]) and ``contact_open`` (share of open points), ``active``
+(means over the interface element's points [Pa]) and ``contact_open`` (share of open points); of an RC
+strip ``steel_stress`` (largest |stress| of its bars over the element's points [Pa]) and ``cracked_fraction``
+(share of its concrete layer points beyond the cracking strain); ``active``
 (1: the soil element is present at that step, 0: excavated by an earlier phase -- its stress, strain and
 pore pressure are then NaN, so ParaView's Threshold on ``active`` >= 1 shows the ground as it is).
 
@@ -34,6 +36,7 @@ from typing import TYPE_CHECKING
 import meshio
 import numpy as np
 
+from ..materials.layer_laws import CONCRETE
 from .results import OutputExistsError, atomic_path
 
 if TYPE_CHECKING:  # annotations only
@@ -52,6 +55,8 @@ CELL_FIELDS = (
     "contact_shear",
     "contact_open",
     "active",
+    "steel_stress",
+    "cracked_fraction",
 )
 FIELD_UNITS = {
     "displacement": "m",
@@ -70,6 +75,8 @@ FIELD_UNITS = {
     "contact_shear": "Pa",
     "contact_open": "-",
     "active": "-",
+    "steel_stress": "Pa",
+    "cracked_fraction": "-",
 }
 
 
@@ -135,6 +142,13 @@ def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
         data["contact_pressure"][2] = -c["sig_n"].mean(axis=1)
         data["contact_shear"][2] = c["tau"].mean(axis=1)
         data["contact_open"][2] = (c["zone"] == "open").mean(axis=1)
+        layers = result.plate_layers(k)
+        steel = layers["steel"]
+        if steel.any():  # the largest |stress| of the element's bars, at any of its axial points
+            data["steel_stress"][1] = np.abs(layers["sig"][..., steel]).max(axis=(1, 2))
+        concrete = result.built.plate.section.kind == CONCRETE
+        if concrete.any():  # share of the element's concrete layer points beyond the cracking strain
+            data["cracked_fraction"][1] = layers["cracked"][..., concrete].mean(axis=(1, 2))
     return data
 
 

@@ -47,6 +47,33 @@ def _present(result: SceneResult, k: int) -> np.ndarray:
     return np.ones(result.built.mesh.conn.shape[0], bool)
 
 
+def _draw_context(ax: Axes, result: SceneResult) -> None:
+    """Layer boundaries (dashed), the water table (blue) and the column loads (arrows) of the scene."""
+    scene = result.built.scene
+    x0, x1 = float(result.built.model.coords[:, 0].min()), float(result.built.model.coords[:, 0].max())
+    z = -np.cumsum([lay.thickness for lay in scene.layers])[:-1]
+    for zi in z:
+        ax.plot([x0, x1], [zi, zi], "--", color="0.45", lw=0.7, zorder=3)
+    if z.size:
+        ax.plot([], [], "--", color="0.45", lw=0.7, label="layer boundary")
+    if scene.water_table is not None:
+        zw = -float(scene.water_table)
+        ax.plot([x0, x1], [zw, zw], "-", color="C9", lw=1.2, zorder=3, label="water table")
+    from ..scene import ColumnLoad
+
+    loads = list(scene.loads) + [ld for ph in scene.phases for ld in ph.loads]
+    columns = sorted({ld.x for ld in loads if isinstance(ld, ColumnLoad)})
+    if columns and result.built.plate_nodes is not None:
+        top = float(result.built.model.coords[result.built.plate_nodes, 1].max())
+        height = 0.08 * (x1 - x0)
+        for xc in columns:
+            ax.annotate(
+                "", (xc, top), (xc, top + height), arrowprops={"arrowstyle": "-|>", "color": "C3", "lw": 1.5}
+            )
+        ax.plot([], [], "-", color="C3", label="column")
+        ax.set_ylim(top=max(ax.get_ylim()[1], top + 1.2 * height))
+
+
 def deformed_mesh(
     result: SceneResult,
     k: int = -1,
@@ -84,6 +111,10 @@ def deformed_mesh(
         ax.set_xlim(*window)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
+    _draw_context(ax, result)
+    handles, _ = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(loc="lower right", fontsize=8)
     ax.set_title(f"deformed mesh, displacements x {scale:.3g} (step {_step(result, k)})")
     return fig
 
@@ -91,17 +122,23 @@ def deformed_mesh(
 def plastic_points(
     result: SceneResult, k: int = -1, ax: Axes | None = None, window: tuple[float, float] | None = None
 ) -> Figure:
-    """Soil integration points yielding at step ``k`` (red) on the mesh outline: where the soil has reached
-    its Mohr--Coulomb strength in that step (excavated soil left out)."""
+    """Soil integration points yielding at step ``k`` (red): where the soil is at its strength in that step,
+    over the elements shaded by their accumulated plastic strain (largest over their points) up to step
+    ``k``; layer boundaries, the water table and the columns drawn (excavated soil left out)."""
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
     present = _present(result, k)
-    ax.add_collection(
-        PolyCollection(
-            xy[built.mesh.conn[present][:, _OUTLINE]], facecolors="none", edgecolors="0.8", linewidths=0.4
-        )
+    # the accumulated plastic strain shades the elements: the mechanism of a collapse shows even when the
+    # last step (a relaxation or unloading step) has few points yielding in it
+    strain = result.plastic_strain(k).max(axis=1)[present]
+    shade = PolyCollection(
+        xy[built.mesh.conn[present][:, _OUTLINE]], cmap="Oranges", edgecolors="0.8", linewidths=0.4
     )
+    shade.set_array(strain)
+    shade.set_clim(0.0, max(float(strain.max()), 1e-12))
+    ax.add_collection(shade)
+    fig.colorbar(shade, ax=ax, label="accumulated plastic strain [-]", shrink=0.8)
     pts = result.soil_points()
     mask = result.plastic_points(k) & present[:, None]
     ax.plot(pts[mask][:, 0], pts[mask][:, 1], "r.", ms=3, label=f"plastic ({mask.sum()} points)")
@@ -112,8 +149,9 @@ def plastic_points(
     ax.set_xlim(*(window or _foundation_window(result, 3.0) or ax.get_xlim()))
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
-    ax.legend(loc="lower right")
-    ax.set_title(f"plastic points (step {_step(result, k)})")
+    _draw_context(ax, result)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"plastic strain and points yielding in step {_step(result, k)}")
     return fig
 
 
