@@ -38,7 +38,7 @@ book = _load("book")
 pytestmark = pytest.mark.skipif(
     browser.find_chromium() is None,
     reason="headless Chromium not found (apt-get install chromium; .ci/run installs it): "
-    "the book is not checked in a browser",
+    "the book and the run reports are not checked in a browser",
 )
 
 
