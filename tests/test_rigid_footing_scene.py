@@ -387,3 +387,20 @@ def test_push_over_summary_plot_and_accessors(tresca_push, tmp_path):
         with pytest.raises(NotInThisScene, match=f"{name}\\(\\): a RigidFooting has no plate strip"):
             getattr(tresca_push, name)()
     assert tresca_push.design_summary() is None
+
+
+def test_phased_push_over_load_is_the_single_phase_one():
+    """A push in two phases of 1 cm (2 increments each) is the same computation as one push of 2 cm in 4
+    increments: the footing load read from the phases' own reaction records equals the single-phase
+    footing's at every settlement (round-off, 1e-9 of the load)."""
+    scene = footing_scene(
+        B=2.0, c=50e3, phi_deg=0.0, psi_deg=0.0, half_width=6.0, depth=5.0, h_fine=0.5, h_coarse=1.0,
+        settle=0.02,
+    )  # fmt: skip
+    single = scene.build().solve(n_steps=4, settings=footing_settings())
+    phases = [Phase("push", (Settlement(0.01),)), Phase("more", (Settlement(0.01),))]
+    phased = replace(scene, loads=[], phases=phases).build().solve(n_steps=2, settings=footing_settings())
+    a, b = single.load_settlement(), phased.load_settlement()
+    assert np.allclose(b["settlement"][1:], a["settlement"], rtol=0.0, atol=1e-12)
+    assert np.allclose(b["load"][1:], a["load"], rtol=1e-9, atol=1e-9 * a["load"].max())
+    assert phased.capacity()["load"] == pytest.approx(single.capacity()["load"], rel=1e-9)
