@@ -947,3 +947,12 @@ def test_rc_strip_export_has_steel_stress_and_cracks(tmp_path):
     assert np.array_equal(mesh.cell_data["cracked_fraction"][1][:n_plate], share) and share.max() > 0.0
     assert str(mesh.field_data["unit_steel_stress"][0]) == "Pa"
     assert summary(out)["phases"][-1]["max_steel_stress"] >= by_element.max()
+    # the axial-force spikes at x = +-1.75 m (issue 34): the point values of the element where the crack
+    # front lies jump by more than 100 kN/m, its Gauss-weighted mean lies between its neighbours' means
+    f = out.strip_forces()
+    plate = out.built.plate
+    w = plate.wt[plate.ax.astype(bool)]
+    mean = f["N"] @ w / w.sum()
+    e = int(np.argmin(np.abs(f["x_ax"][:, 1] - 1.75)))
+    assert np.ptp(f["N"][e]) > 100e3
+    assert min(mean[e - 1], mean[e + 1]) < mean[e] < max(mean[e - 1], mean[e + 1])
