@@ -382,7 +382,16 @@ def test_push_over_summary_plot_and_accessors(tresca_push, tmp_path):
     assert fig.axes[0].get_ylabel() == "footing load (soil reaction) [kN/m]"
     ys = np.concatenate([ln.get_ydata() for ln in fig.axes[0].lines if len(ln.get_ydata())])
     assert ys.max() == pytest.approx(cap["load"] / 1e3, rel=1e-12)
-    assert set(plot.save_standard_figures(tresca_push, tmp_path)) >= {tmp_path / "load_settlement.png"}
+    saved = set(plot.save_standard_figures(tresca_push, tmp_path))
+    assert saved >= {tmp_path / "load_settlement.png", tmp_path / "mechanism.png"}
+    # the mechanism's arrows are the soil's displacement over the last 3 steps at the element corners
+    fig = plot.mechanism(tresca_push, last=3)
+    arrows = next(c for c in fig.axes[0].collections if hasattr(c, "U"))
+    built = tresca_push.built
+    corners = np.unique(built.mesh.conn[:, :4])
+    du = np.asarray(tresca_push.u[-1]) - np.asarray(tresca_push.u[-4])
+    assert np.array_equal(arrows.U, du[built.model.dof(corners, "u")])
+    assert np.array_equal(arrows.V, du[built.model.dof(corners, "w")])
     for name in ("contact", "contact_resultant", "strip_forces", "crack_map", "steel_stress", "plate_layers"):
         with pytest.raises(NotInThisScene, match=f"{name}\\(\\): a RigidFooting has no plate strip"):
             getattr(tresca_push, name)()

@@ -155,6 +155,60 @@ def plastic_points(
     return fig
 
 
+def mechanism(
+    result: SceneResult,
+    k: int = -1,
+    last: int = 3,
+    ax: Axes | None = None,
+    window: tuple[float, float] | None = None,
+) -> Figure:
+    """The mechanism: the soil's incremental displacement over the ``last`` steps up to step ``k`` (arrows
+    at the element corners, coloured by magnitude [mm]) -- of a collapse, the failure mechanism the
+    plateau's last steps move (the total displacement also holds the elastic part). Excavated soil is left
+    out; layer boundaries, the water table and the columns are drawn."""
+    fig, ax = _axes(ax, figsize=(9, 4))
+    built = result.built
+    xy = built.model.coords
+    k = _step(result, k)
+    k0 = max(k - int(last), 0)
+    present = _present(result, k)
+    corners = np.unique(built.mesh.conn[present][:, :4])
+    du = np.asarray(result.u[k]) - np.asarray(result.u[k0])
+    d = np.column_stack([du[built.model.dof(corners, "u")], du[built.model.dof(corners, "w")]])
+    size = np.hypot(d[:, 0], d[:, 1])
+    ax.add_collection(
+        PolyCollection(
+            xy[built.mesh.conn[present][:, _OUTLINE]], facecolors="none", edgecolors="0.85", linewidths=0.4
+        )
+    )
+    arrows = ax.quiver(
+        xy[corners, 0],
+        xy[corners, 1],
+        d[:, 0],
+        d[:, 1],
+        1e3 * size,
+        cmap="viridis",
+        angles="xy",
+        scale_units="xy",
+        # the longest arrow drawn 4 % of the block width long: the pattern, not the size, is the message
+        scale=max(float(size.max()), 1e-300) / (0.04 * built.scene.width),
+        width=0.003,
+    )
+    fig.colorbar(arrows, ax=ax, label=f"displacement, steps {k0}-{k} [mm]", shrink=0.8)
+    if built.plate_nodes is not None:
+        ax.plot(xy[built.plate_nodes, 0], xy[built.plate_nodes, 1], "k-", lw=3)
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlim(*(window or _foundation_window(result, 3.0) or ax.get_xlim()))
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    _draw_context(ax, result)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"mechanism: incremental displacement of steps {k0}-{k}")
+    return fig
+
+
 def contact(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Contact pressure and shear stress under the foundation [kPa], points coloured by zone (stick, slip,
     open). ``ax``: two axes (pressure, shear) or None."""
@@ -302,6 +356,9 @@ def standard_figures(result: SceneResult) -> dict[str, Figure]:
     }
     if any(lay.c is not None for lay in result.built.scene.layers):
         figs["plastic_points"] = plastic_points(result)
+        collapse = result.capacity()["is_limit"] or result.status == "limit load reached"
+        if collapse and result.n_steps >= 2:  # a push-over's plateau or peak, a detected limit: its mechanism
+            figs["mechanism"] = mechanism(result)
     if result.built.plate is not None:
         figs["contact"] = contact(result)
         figs["strip_forces"] = strip_forces(result)
