@@ -722,6 +722,12 @@ def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     assert info["complete"] is False and info["stop"]["reason"]
     s = json.loads((tmp_path / "overload_summary.json").read_text())
     assert s["stopped_at_column_load"] < 3e6 and s["stop_reason"] == info["stop"]["reason"]
+    # what it carried is not offered as a capacity, and the report says the run stopped
+    assert not s["capacity"]["is_limit"] and "solver stopped" in s["capacity"]["how"]
+    assert s["capacity"]["load"] == pytest.approx(s["stopped_at_column_load"], rel=1e-14)
+    assert (
+        "The run stopped before the end of its load path" in (tmp_path / "overload_report.html").read_text()
+    )
 
 
 # ---- files of the earlier layout -----------------------------------------------------------------------

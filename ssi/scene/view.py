@@ -427,7 +427,8 @@ class SceneResult:
         detected; False: the largest load carried, no limit found), ``how`` (a sentence), ``upper`` [N/m]
         (a bracketed limit's upper end, else None) and ``viscous_rows`` (rows left out).
 
-        How: a load-controlled scene whose solver detected a limit load: that load (lambda * sum N, with the
+        How: a run the solver stopped (a NonConvergence's partial result): the largest load it carried, no
+        limit. A load-controlled scene whose solver detected a limit load: that load (lambda * sum N, with the
         solver's bracket); one that completed: its full load, no limit found. A push-over: the peak of the
         path if the load falls after it by more than 1 %; a plateau if the last increment's stiffness dP/ds is
         below ``PLATEAU_STIFFNESS_SHARE`` of the first's; else the largest carried load, no limit found."""
@@ -442,6 +443,11 @@ class SceneResult:
             "upper": None,
             "viscous_rows": int((~ok).sum()),
         }
+        if self.status == "stopped":  # a NonConvergence's partial path: what it carried, no more
+            return out | {
+                "is_limit": False,
+                "how": "largest load carried before the solver stopped (a solver failure, not a limit)",
+            }
         if not self.is_push_over:
             scale = load[i] / path["load_factor"][i] if path["load_factor"][i] and not self.phases else None
             if self.status == "limit load reached":
