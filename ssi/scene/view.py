@@ -273,8 +273,9 @@ class SceneResult:
         """The contact pressure at step ``k`` as an engineer reports it [Pa, m]: ``mean`` (contact resultant N
         over the contact length), ``peak`` and ``x_peak`` the largest pressure at points farther than
         ``edge_exclusion`` = 10 % of the foundation width from its edges, and ``edge`` and ``x_edge`` the
-        largest pressure anywhere -- at a stiff foundation's edge a singularity of the elastic corner, which
-        grows without bound as the mesh is refined, so it is not a bearing pressure."""
+        largest pressure anywhere -- at a stiff foundation's edge the singularity of an elastic corner,
+        which grows as the mesh is refined (up to the soil's strength where it yields): not a bearing
+        pressure."""
         self._needs_plate("contact_pressure()")
         c = self.contact(k)
         x, p = c["x"].ravel(), -c["sig_n"].ravel()
@@ -289,7 +290,7 @@ class SceneResult:
         j = int(np.argmax(p))
         length = float(self.contact_weights().sum())
         return {
-            "mean": self.contact_resultant(k)["N"] / length / (2.0 if self.built.scene.symmetric else 1.0),
+            "mean": self.contact_resultant(k)["N"] / length,  # both of the modelled part (half if symmetric)
             "peak": float(p[i]),
             "x_peak": float(x[i]),
             "edge": float(p[j]),
