@@ -953,7 +953,12 @@ def test_rc_strip_export_has_steel_stress_and_cracks(tmp_path):
     share = cm["cracked"][..., concrete].reshape(n_plate, -1).mean(axis=1)
     assert np.array_equal(mesh.cell_data["cracked_fraction"][1][:n_plate], share) and share.max() > 0.0
     assert str(mesh.field_data["unit_steel_stress"][0]) == "Pa"
-    assert summary(out)["phases"][-1]["max_steel_stress"] >= by_element.max()
+    s = summary(out)
+    assert s["phases"][-1]["max_steel_stress"] >= by_element.max()
+    # the crack width of the design summary is a per-phase column and enters the envelope
+    w_k = s["design"]["phases"]["loading"]["w_k_max_mm"]
+    assert w_k > 0.0 and s["phases"][-1]["max_crack_width"] == 1e-3 * w_k
+    assert s["envelope"]["max_crack_width"] == {"value": 1e-3 * w_k, "phase": "loading"}
     # the axial-force spikes at x = +-1.75 m (issue 34): the point values of the element where the crack
     # front lies jump by more than 100 kN/m, its Gauss-weighted mean lies between its neighbours' means
     f = out.strip_forces()

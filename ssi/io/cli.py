@@ -82,18 +82,29 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["push_over"] = result.is_push_over
     out["capacity"] = result.capacity()
     out["phases"] = result.phase_table()
-    out["envelope"] = _envelope(out["phases"])
     out["status"] = result.status if complete else "stopped"
     out["limit_load_factor"] = result.limit_load_factor if complete else None
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
         out["design"] = result.design_summary()
+        by_phase = (out["design"] or {}).get("phases", {})
+        for row in out["phases"]:  # EN 1992 crack width w_k [m] of each phase, from the design summary
+            if row["name"] in by_phase:
+                row["max_crack_width"] = 1e-3 * by_phase[row["name"]]["w_k_max_mm"]
+    out["envelope"] = _envelope(out["phases"])
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
 
 
-ENVELOPE_KEYS = ("max_settlement", "max_abs_moment", "peak_pressure", "max_steel_stress", "foundation_load")
+ENVELOPE_KEYS = (
+    "max_settlement",
+    "max_abs_moment",
+    "peak_pressure",
+    "max_steel_stress",
+    "max_crack_width",
+    "foundation_load",
+)
 
 
 def _envelope(table: list[dict]) -> dict:
@@ -171,7 +182,7 @@ def summary_text(s: dict) -> str:
         ]
     if len(s.get("phases") or []) > 1:
         lines.append("per phase        " + _phase_header(s["phases"]))
-        lines += ["  " + _phase_line(row) for row in s["phases"]]
+        lines += ["  " + _phase_line(row, s["phases"]) for row in s["phases"]]
     load = "" if s.get("column_load") is None else f", {s['column_load'] / 1e3:.2f} kN/m of column load"
     if s["status"] == "limit load reached":
         where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
@@ -202,16 +213,24 @@ PHASE_COLUMNS = (  # (key, header with unit, scale from SI, format)
     ("max_abs_moment", "|M| [kNm/m]", 1e-3, "{:9.2f}"),
     ("peak_pressure", "p peak [kPa]", 1e-3, "{:9.2f}"),
     ("max_steel_stress", "steel [MPa]", 1e-6, "{:9.1f}"),
+    ("max_crack_width", "w_k [mm]", 1e3, "{:9.3f}"),
 )
 
 
+def _phase_columns(table):
+    """The PHASE_COLUMNS some phase has a value of (the same for the header and every line)."""
+    return [c for c in PHASE_COLUMNS if any(r.get(c[0]) is not None for r in table)]
+
+
 def _phase_header(table):
-    cols = [h for key, h, _, _ in PHASE_COLUMNS if any(r.get(key) is not None for r in table)]
-    return "max over each phase: " + ", ".join(cols)
+    return "max over each phase: " + ", ".join(h for _, h, _, _ in _phase_columns(table))
 
 
-def _phase_line(row):
-    cells = [fmt.format(row[key] * scale) for key, _, scale, fmt in PHASE_COLUMNS if row.get(key) is not None]
+def _phase_line(row, table):
+    cells = [
+        "        -" if row.get(key) is None else fmt.format(row[key] * scale)
+        for key, _, scale, fmt in _phase_columns(table)
+    ]
     return f"{row['name']:<14} " + " ".join(cells)
 
 

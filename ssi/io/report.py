@@ -44,12 +44,14 @@ PHASE_COLUMNS = (
     ("mean_pressure", "mean pressure at the end", 1e-3, "kPa", "{:.2f}"),
     ("peak_pressure", "max peak pressure (edges excluded)", 1e-3, "kPa", "{:.2f}"),
     ("max_steel_stress", "max |steel stress|", 1e-6, "MPa", "{:.1f}"),
+    ("max_crack_width", "max crack width w_k (EN 1992)", 1e3, "mm", "{:.3f}"),
 )
 ENVELOPE_UNITS = {
     "max_settlement": ("largest settlement", 1e3, "mm", "{:.3f}"),
     "max_abs_moment": ("largest |M|", 1e-3, "kN m/m", "{:.2f}"),
     "peak_pressure": ("largest peak contact pressure (edges excluded)", 1e-3, "kPa", "{:.2f}"),
     "max_steel_stress": ("largest |steel stress|", 1e-6, "MPa", "{:.1f}"),
+    "max_crack_width": ("largest crack width w_k (EN 1992)", 1e3, "mm", "{:.3f}"),
     "foundation_load": ("largest load at a phase end", 1e-3, "kN/m", "{:.2f}"),
 }
 STYLE = """
