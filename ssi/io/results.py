@@ -37,8 +37,9 @@ loads), a linear scene's without /solver (its Result is rebuilt from /steps, f_i
 a bare linear model's with /solver/reactions only (read as a StoredResult without f_int), a phased scene's
 with the attribute solver_phase (ignored: the phases are joined as for a new file).
 
-Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, then
-moved over the target), and an existing file is never replaced unless ``overwrite=True``. A run that stopped
+Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, given
+the mode a newly created file gets under the user's umask, then moved over the target), and an existing
+file is never replaced unless ``overwrite=True``. A run that stopped
 mid-path is written with ``complete=False``, its last converged step and the solver's report (``stop``).
 """
 
@@ -68,6 +69,16 @@ _SCENE_RESULT_FIELDS = ("built", "solver_result", "phases")
 
 
 # ---- atomic files ----------------------------------------------------------------------------------------
+class OutputExistsError(FileExistsError):
+    """An output file exists and ``overwrite`` was not given: ``path`` is the file. The command line names
+    its own flag (``--overwrite``), the Python API its keyword."""
+
+    def __init__(self, path: Path, appeared: bool = False) -> None:
+        self.path = Path(path)
+        when = "appeared while writing" if appeared else "exists"
+        super().__init__(f"{self.path} {when}; pass overwrite=True to replace it")
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Path]:
     """Yield a temporary path in ``path``'s folder; on success it is fsynced and moved to ``path``.
@@ -77,7 +88,7 @@ def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Pa
     removed and the target is untouched."""
     path = Path(path)
     if path.exists() and not overwrite:
-        raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+        raise OutputExistsError(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
@@ -86,20 +97,18 @@ def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Pa
         with open(tmp, "rb+") as fh:
             fh.flush()
             os.fsync(fh.fileno())
+        # mkstemp creates the file 0600; the result is the user's file, as open() would have made it
+        os.chmod(tmp, 0o666 & ~current_umask())
         if overwrite:
             os.replace(tmp, path)
         else:
             try:
                 os.link(tmp, path)
             except FileExistsError:
-                raise FileExistsError(
-                    f"{path} appeared while writing; pass overwrite=True to replace it"
-                ) from None
+                raise OutputExistsError(path, appeared=True) from None
             except OSError:  # a file system without hard links: check, then rename
                 if path.exists():
-                    raise FileExistsError(
-                        f"{path} appeared while writing; pass overwrite=True to replace it"
-                    ) from None
+                    raise OutputExistsError(path, appeared=True) from None
                 os.replace(tmp, path)
             if os.path.exists(tmp):
                 os.unlink(tmp)
@@ -107,6 +116,18 @@ def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Pa
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def current_umask() -> int:
+    """The process's file-creation mask (e.g. 0o022), read without changing it where the system says it
+    (Linux: /proc/self/status), else by setting and restoring it."""
+    with contextlib.suppress(OSError, ValueError):
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 def _fsync_dir(folder):

@@ -60,6 +60,7 @@ from ..core.gmsh_mesh import UnstructuredMesh, check_quality, mesh_geometry
 from ..core.mesh import soil_block
 from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
+from ..solver.progress import announce_compilation
 from .loads import ColumnLoad, SurfacePressure
 from .parts import MeshSize
 from .site_built import BuiltSite
@@ -333,7 +334,9 @@ class Site:
     # ---- build ---------------------------------------------------------------------------------------------
     def build(self) -> BuiltSite:
         """Mesh the site, add the soil, the strips and their contacts, the supports, the initial stress and
-        the loads."""
+        the loads. On a fresh install (numba's cache empty) one line on stderr says the kernels compile
+        now."""
+        announce_compilation()
         why = self._structured_ok()
         if self.mesher == "structured" and why:
             raise GeometryError(f"Site.mesher='structured' cannot serve: {why}")
