@@ -175,7 +175,7 @@ def test_a_capacity_with_more_than_5_percent_error_says_so(tresca_estimate):
     assert f"capacity error   {cap['estimate']['relative']:.1%} estimated" in text
     assert f"WARNING          {cap['warning']}" in text
     report = str(est)
-    assert "capacity on mesh h, h/2, h/4" in report and "WARNING: " + cap["warning"] in report
+    assert "capacity over mesh halvings (h, h/2, h/4)" in report and "WARNING: " + cap["warning"] in report
 
 
 def test_a_capacity_within_5_percent_carries_no_warning(tresca_estimate):

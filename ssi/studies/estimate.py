@@ -305,7 +305,7 @@ class ErrorEstimate:
             for r, part in self.parts.items():
                 if q in part:
                     lines.append(
-                        f"{q} on {r} h, h/2, h/4: "
+                        f"{q} over {r} halvings (h, h/2, h/4): "
                         + ", ".join(f"{v:.6g}" for v in part[q].values)
                         + f" {unit}; extrapolated {part[q].extrapolated:.6g} {unit}; observed order "
                         f"{part[q].order:.2f}"
