@@ -255,3 +255,24 @@ def test_solve_to_target_of_a_push_over_targets_its_capacity():
     assert res.status == "not asymptotic" and list(res.predicted) == ["capacity"]
     assert res.result.capacity()["estimate"]["relative"] == res.predicted["capacity"] > 0.05
     assert "more than 5%" in res.result.capacity()["warning"]
+
+
+def test_solve_to_target_attaches_the_predicted_capacity_error_to_a_refined_result(monkeypatch):
+    """A capacity converging as 1 + 0.4 (h/h0) (synthetic: no FE solve) is the default target; the refined
+    result delivered carries the error predicted for it (0.4/16/1.4 at 4 halvings), not the base's."""
+    from types import SimpleNamespace
+
+    def call(self, key):
+        if key not in self.cache:
+            value = {"capacity": 1.0 + 0.4 * 2.0 ** -key[0]}
+            self.cache[key] = Level(key, value, 4.0 ** key[0], 10, "completed", SimpleNamespace())
+        return self.cache[key]
+
+    monkeypatch.setattr(RefinedSolver, "__call__", call)
+    res = solve_to_target(linear_scene(), 0.02, refine=("mesh",), max_halvings=5)
+    assert res.met and res.key == (4, 0, 0) and list(res.predicted) == ["capacity"]
+    carried = res.result.capacity_error
+    assert carried["relative"] == pytest.approx(0.4 / 16 / 1.4, rel=1e-9)
+    assert carried["extrapolated"] == pytest.approx(1.0, rel=1e-12) and "halvings (4, 0, 0)" in carried["how"]
+    base = res.estimate.levels[(0, 0, 0)].result.capacity_error
+    assert base["relative"] == pytest.approx(0.4 / 1.4, rel=1e-9) and base["values"] == [1.4, 1.2, 1.1]

@@ -28,7 +28,7 @@ class NotInThisScene(ValueError):
 # constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
 PLATEAU_STIFFNESS_SHARE = 0.02
 # a capacity whose estimated discretisation error (ssi.studies.estimate) exceeds this share of it carries a
-# warning: issue 34's threshold, the size of the partial factors' margin a mesh error must not eat
+# warning: issue 34's threshold, a choice (not a measured constant) that capacity()'s warning states
 CAPACITY_ERROR_LIMIT = 0.05
 
 

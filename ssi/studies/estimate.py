@@ -527,7 +527,7 @@ def solve_to_target(
     key = tuple(combo[names.index(r)] if r in names else 0 for r in REFINEMENTS)
     level = solver(key)
     if level.result is not None:
-        level.result.capacity_error = _predicted_capacity_error(est, key, names, combo, pred)
+        level.result.capacity_error = _predicted_capacity_error(est, level, names, combo, pred)
     return TargetResult(
         "target met",
         f"halvings {dict(zip(REFINEMENTS, key))}: predicted errors {_fmt(pred)} <= {target_error:g}",
@@ -539,19 +539,21 @@ def solve_to_target(
     )
 
 
-def _predicted_capacity_error(est: ErrorEstimate, key, names, combo, pred) -> dict | None:
+def _predicted_capacity_error(est: ErrorEstimate, level: Level, names, combo, pred) -> dict | None:
     """The capacity estimate a refined result of :func:`solve_to_target` carries: its error predicted from
     the base's fitted C h^p per refinement (``relative`` from ``pred`` when the capacity was asked for),
     the same extrapolated value; None if the scene answers no capacity."""
     base = est.capacity_error()
-    if base is None or key == est.base_key:
+    if base is None or level.key == est.base_key:
         return base
     error = sum(_error_at(est.parts[r]["capacity"], j) for r, j in zip(names, combo))
-    value = est.levels[key].values.get("capacity", est.value["capacity"])
+    value = level.values.get("capacity", est.value["capacity"])
     return base | {
         "relative": float(pred.get("capacity", error / abs(value))),
         "error": float(error),
-        "how": f"predicted by solve_to_target from the C h^p fitted on the scene as given (halvings {key})",
+        "how": (
+            f"predicted by solve_to_target from the C h^p fitted on the scene as given (halvings {level.key})"
+        ),
     }
 
 
