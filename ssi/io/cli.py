@@ -135,6 +135,21 @@ def _capacity_line(s: dict) -> str | None:
         return None
     if cap.get("viscous_rows"):
         line += f"; {cap['viscous_rows']} viscous (not equilibrium) rows left out"
+    est = cap.get("estimate")
+    if est:  # attached by ssi.studies.estimate (solve_with_error, solve_to_target)
+        meshes = ""
+        if est.get("values"):
+            meshes = (
+                "mesh h, h/2, h/4: "
+                + ", ".join(f"{v / 1e3:.2f}" for v in est["values"])
+                + f" kN/m, observed order {est['order']:.2f}; "
+            )
+        line += (
+            f"\ncapacity error   {est['relative']:.1%} estimated ({meshes}extrapolated "
+            f"{est['extrapolated'] / 1e3:.2f} kN/m)"
+        )
+    if cap.get("warning"):
+        line += f"\nWARNING          {cap['warning']}"
     return line
 
 

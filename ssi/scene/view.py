@@ -27,6 +27,9 @@ class NotInThisScene(ValueError):
 # of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
 # constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
 PLATEAU_STIFFNESS_SHARE = 0.02
+# a capacity whose estimated discretisation error (ssi.studies.estimate) exceeds this share of it carries a
+# warning: issue 34's threshold, a choice (not a measured constant) that capacity()'s warning states
+CAPACITY_ERROR_LIMIT = 0.05
 
 
 @dataclass
@@ -42,6 +45,10 @@ class SceneResult:
     built: BuiltScene
     solver_result: Result
     phases: list | None = None  # phased solve: [{"name", "first", "last" (step indices), "result"}]
+    # the estimated discretisation error of capacity()["load"], attached by ssi.studies.estimate
+    # (solve_with_error, solve_to_target): {"relative", "error" [N/m], "extrapolated" [N/m], "values" [N/m]
+    # on h, h/2, h/4, "order", "asymptotic", "refinements", "how"}; None: not estimated
+    capacity_error: dict | None = None
 
     @property
     def load_factor(self) -> list:
@@ -425,7 +432,10 @@ class SceneResult:
         rows count). Keys: ``load`` [N/m] (:meth:`foundation_load` at ``step``), ``settlement`` [m] there,
         ``step``, ``is_limit`` (True when the path shows a limit: a peak, a plateau or a limit the solver
         detected; False: the largest load carried, no limit found), ``how`` (a sentence), ``upper`` [N/m]
-        (a bracketed limit's upper end, else None) and ``viscous_rows`` (rows left out).
+        (a bracketed limit's upper end, else None), ``viscous_rows`` (rows left out), ``estimate`` (the
+        capacity's estimated discretisation error, :attr:`capacity_error`, or None when not estimated) and
+        ``warning`` (a sentence when that estimated error exceeds ``CAPACITY_ERROR_LIMIT`` of the load or
+        could not be extrapolated, else None).
 
         How: a run the solver stopped (a NonConvergence's partial result): the largest load it carried, no
         limit. A load-controlled scene whose solver detected a limit load: that load (lambda * sum N, with the
@@ -442,6 +452,8 @@ class SceneResult:
             "step": i,
             "upper": None,
             "viscous_rows": int((~ok).sum()),
+            "estimate": self.capacity_error,
+            "warning": capacity_error_warning(self.capacity_error),
         }
         if self.status == "stopped":  # a NonConvergence's partial path: what it carried, no more
             return out | {
@@ -493,3 +505,24 @@ class SceneResult:
             "settlement": settle,
             "equilibrium": self.equilibrium_rows(),
         }
+
+
+def capacity_error_warning(est: dict | None) -> str | None:
+    """The warning a capacity carries when its estimated discretisation error ``est`` (see
+    :attr:`SceneResult.capacity_error`) exceeds ``CAPACITY_ERROR_LIMIT`` or is not asymptotic; else None."""
+    if est is None:
+        return None
+    rel = est["relative"]
+    where = f"extrapolated {est['extrapolated'] / 1e3:.2f} kN/m"
+    if rel > CAPACITY_ERROR_LIMIT:
+        rough = "" if est["asymptotic"] else "; not in the asymptotic range, so the estimate itself is rough"
+        return (
+            f"the capacity's estimated discretisation error is {rel:.1%} (more than "
+            f"{CAPACITY_ERROR_LIMIT:.0%}; {where}{rough}): refine the mesh before using it"
+        )
+    if not est["asymptotic"]:
+        return (
+            f"the capacity's error estimate ({rel:.1%}) is not reliable: the refined answers are not in the "
+            "asymptotic range (no observed order in the accepted range)"
+        )
+    return None
