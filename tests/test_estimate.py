@@ -177,6 +177,9 @@ def test_a_capacity_with_more_than_5_percent_error_says_so(tresca_estimate):
     text = summary_text(s)
     assert f"capacity error   {cap['estimate']['relative']:.1%} estimated" in text
     assert f"WARNING          {cap['warning']}" in text
+    from ssi.io.report import report_warnings
+
+    assert cap["warning"] in report_warnings(s)  # and on the HTML run report's warning list
     report = str(est)
     assert "capacity over mesh halvings (h, h/2, h/4)" in report and "WARNING: " + cap["warning"] in report
 

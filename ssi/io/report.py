@@ -102,6 +102,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             "The push-over did not reach a limit: its largest load is a lower bound of the capacity "
             "(push further)."
         )
+    if cap.get("warning"):  # the capacity's error estimate (ssi.studies): above 5 % or not asymptotic
+        out.append(str(cap["warning"]))
     if "max_contact_pressure" in s:
         out.append(
             "The edge pressure is a singularity of the stiff foundation's corner: it grows as the mesh is "
