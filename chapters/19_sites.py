@@ -493,8 +493,8 @@ save_figure(fig, "19_sites")
 # published slope charts (Georgiadis 2010; Shiau et al. 2011) could be obtained, so none is quoted.
 #
 # **Not yet here** (issue 32): side contact on embedded strips, embedded strips on a site, slope capacity
-# against a published *table* value (and inside the limit-analysis bracket), the command line, result plots
-# and ParaView export of sites.
+# against a published *table* value (and inside the limit-analysis bracket), the result file, result plots
+# and ParaView export of sites (`ssi run` on a site file prints and writes only the per-foundation summary).
 #
 # ## References
 #

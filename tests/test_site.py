@@ -409,3 +409,18 @@ def test_a_scene_file_is_not_taken_for_a_site_file(tmp_path):
     assert not is_site_file(scene)
     (tmp_path / "bad.toml").write_text("width = = 1")
     assert not is_site_file(tmp_path / "bad.toml")  # left to the scene reader's "not valid TOML" error
+
+
+def test_site_summary_of_a_rigid_strip_reports_its_push_and_pressure():
+    from ssi.io.cli_site import site_summary, site_summary_text
+    from ssi.scene.site import RigidStrip
+
+    site = Site(12.0, 5.0, [SoilLayer(1.0, E=20e6, nu=0.3)], strips=[RigidStrip(-1.0, 1.0, settle=0.01)],
+                mesh=COARSE, mesher="gmsh")  # fmt: skip
+    out = site.build().solve(load_factors=[0.5, 1.0])
+    s = site_summary(out)
+    (f,) = s["foundations"]
+    settle, q = out.rigid_pressure(0)
+    assert f["type"] == "rigid strip" and f["settlement_m"] == pytest.approx(0.01, rel=1e-12)
+    assert f["pressure_Pa"] == q[-1] > 0.0 and s["differential_settlement"] == []
+    assert "rigid strip [-1, 1] m: settlement 10.00 mm" in site_summary_text(s)
