@@ -340,7 +340,7 @@ print(f"differential: FE {1e3 * diffs[-1]:.2f} mm; 1-D columns under q {1e3 * di
 # mechanism, the rigid triangle under the footing sliding along the smooth base, kinematically admissible (an
 # upper bound): for a smooth base the value is exact. It is also the φ = 0 ground-inclination factor of
 # Vesić (1975), N_c = 5.14 − 2β. The issue asks for a table value of Georgiadis (2010) or of Shiau,
-# Merifield, Lyamin & Sloan (2011), whose undrained slope charts cover this geometry; their tables could not
+# Merifield, Lyamin & Sloan (2011), whose undrained slope charts address this problem; their tables could not
 # be obtained here (only abstracts), so none is quoted, and the closed form is the limit-analysis value this
 # row checks. A *rough* base forbids the triangle's sliding, so for it π + 2 − 2β is only a lower bound (the
 # rough base is printed below in full mode: 14 % above π + 2 − 2β at h = B/16, and 4.58 c_u, 12 % above, at
