@@ -65,6 +65,7 @@ FALL_STEPS = 3  # a load below its maximum for this many successive steps has pa
 # lower steps are a cracking dip the path may climb out of)
 POOR_CONTRACTION = 0.5  # |r_k| / |r_k-1| above this in two successive iterations: refactorise the tangent
 GROWTH = (0.5, 2.0)  # bounds of the step factor (N_target / N)^(1/2)
+BACKTRACK, BACKTRACK_GROWTH = 4, 2.0  # line search: halvings of a step whose residual norm grows > 2x
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
 KEPT_STEPS = 24  # committed steps kept for the half-size redo of the steps around a peak
 REDO_STEPS = 3  # steps before (and after) the peak that the redo covers; the uncertainty is the larger
@@ -98,7 +99,7 @@ class _Follower:
         self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, k0 = _start(
             model, settings, start, loads
         )
-        self.fac, self.fac_is_k0 = k0, True
+        self.k0 = self.fac = k0  # the lagged factor starts as K0 (SPD)
         free = self.system.free
         self.f = self.f_ref[free]
         self.work = bool(np.any(self.f))  # work control; else displacement control on lambda
@@ -114,6 +115,7 @@ class _Follower:
         unit = float(self.f @ k0.solve(self.f)) * scale if self.work else scale  # control of lambda = scale
         self.ds = settings.first_step * unit  # elastically: the work of the first load step
         self.ds_min, self.ds_max = settings.min_step * unit, settings.max_step * unit
+        self.dlam_cap = settings.max_step * scale  # the largest load-factor correction of one iteration
         self.prev = None  # (du, dlam, ds) of the last committed step: the secant predictor
         self.kept = deque(maxlen=KEPT_STEPS)  # (k, u, states, lam, s, P)
         self.loads = [self._load_measure(self.u, self.result.f_int[0], 0.0)]
@@ -210,12 +212,19 @@ class _Follower:
         if len(kept) < 2:
             return None
         _, u, states, lam, s, _ = kept[0]
-        peak, self.prev = kept[0][5], None
-        for row in kept[1:]:
+        peak = kept[0][5]
+        for before, row in zip(kept, kept[1:]):
+            # predictor of the half steps: the kept step itself (the secant predictor scales it)
+            self.prev = (
+                row[1][self.system.free] - before[1][self.system.free],
+                row[3] - before[3],
+                row[4] - s,
+            )
             for c in (0.5 * (s + row[4]), row[4]):  # the control at the half and the end of the kept step
                 out = self._step(u, states, lam, c - s) if self.work else self._step(u, states, lam, None, c)
                 if out is None:
                     return None
+                self.prev = (out["u"][self.system.free] - u[self.system.free], out["lam"] - lam, out["s"] - s)
                 u, states, lam, s = out["u"], out["states"], out["lam"], out["s"]
                 peak = max(peak, self._load_measure(u, out["f_int"], lam))
         p_max = max(row[5] for row in kept)
@@ -302,7 +311,13 @@ class _Follower:
             if not fixed_lam:
                 b = bfgs.direction(self.f)
                 dlam = -float(self.f @ a) / float(self.f @ b)
+                if not abs(dlam) <= self.dlam_cap:  # f . b ~ 0: the factor is nearly singular along f_ref
+                    out.update(reason=f"load-factor correction {dlam:.3g} beyond the largest step")
+                    break
                 a = a + dlam * b
+            if not np.all(np.isfinite(a)):
+                out.update(reason="the correction is not finite (singular tangent factor)")
+                break
             energy = abs(float(a @ r_f))
             energy0 = energy if energy0 is None else energy0
             energies.append(energy / _energy_scale(energy0, u, f_int, self.result, st))
@@ -319,6 +334,7 @@ class _Follower:
             out.update(reason=f"no convergence in {st.max_iter} iterations")
         out.setdefault("reason", "unknown")
         self.last_failure = out
+        self.fac = self.k0  # a failed step's factor is suspect: the next starts on K0
         self.bar.note(f"step halved at lambda={lam_n:.6g}: {out['reason']}")
         return None
 
@@ -338,15 +354,19 @@ class _Follower:
             fac.solve(np.ones(kt.shape[0]))  # a singular factor shows here, not in the next direction
         except (FloatingPointError, RuntimeError):
             return False
-        self.fac, self.fac_is_k0 = fac, False
+        self.fac = fac
         self.result.factorizations += 1
         return True
 
     def _line_search(self, u, u_n, states_n, lam, du, dlam, r_f):
         """Step t along (du, dlam) with G(t) = du . r(u + t du, lambda + t dlam) ~ 0 (Matthies & Strang):
-        t = 1 if |G(1)| <= |G(0)| / 2, else up to three secant / regula-falsi trials in [0.05, 4]."""
+        t = 1 if |G(1)| <= |G(0)| / 2, else up to three secant / regula-falsi trials in [0.05, 4]. A step
+        whose residual norm exceeds ``BACKTRACK_GROWTH`` times the current one is then halved (at most
+        ``BACKTRACK`` times, the smallest norm kept): with a non-associated tangent G has no potential
+        behind it, and a full step near a corner of the yield surface overshoots far."""
         free = self.system.free
         g0 = float(du @ r_f)
+        r0 = _norm(r_f)
 
         def trial(t):
             v = u.copy()
@@ -356,11 +376,14 @@ class _Follower:
             ev = self._evaluate(v, u_n, states_n, lt)
             return v, lt, ev, (np.inf if ev is None else float(du @ ev[2][free]))
 
+        def norm(cand):
+            return np.inf if cand[2] is None else _norm(cand[2][2][free])
+
         t_lo, g_lo, t = 0.0, g0, 1.0
         best = trial(t)
-        if not self.settings.line_search or g0 <= 0.0:
+        if not self.settings.line_search:
             return best[0], best[1], best[2], t
-        for _ in range(3):
+        for _ in range(3 if g0 > 0.0 else 0):
             g = best[3]
             if best[2] is not None and abs(g) <= 0.5 * g0:
                 break
@@ -375,6 +398,15 @@ class _Follower:
             if t_new == t:
                 break
             t, best = t_new, trial(t_new)
+        best_norm, t_best = norm(best), t
+        for _ in range(BACKTRACK):
+            if best_norm <= BACKTRACK_GROWTH * r0:
+                break
+            t = 0.5 * min(t, 1.0)
+            cand = trial(t)
+            if norm(cand) < best_norm:
+                best, best_norm, t_best = cand, norm(cand), t
+        t = t_best
         return best[0], best[1], best[2], t
 
 
