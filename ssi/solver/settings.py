@@ -29,8 +29,8 @@ _DESIRED_ITER = {"bfgs": 20, "modified": 60, "full": 8}
 
 
 # control="work" (path.py): iteration cap and target of its one corrector (lagged consistent tangent with
-# L-BFGS): a step it cannot converge in 40 iterations is halved rather than ground on
-_MAX_ITER_PATH, _DESIRED_ITER_PATH = 40, 10
+# L-BFGS), those of the L-BFGS method: the zoo's contact scenes take 70-90 K0-based iterations per step
+_MAX_ITER_PATH, _DESIRED_ITER_PATH = 100, 20
 
 
 @dataclass
@@ -58,7 +58,7 @@ class Settings:
     load factor itself, i.e. displacement control), so the path passes limit points; one corrector, a
     continuous step-size rule, and a limit only where the path peaks or stays on a plateau. ``method``,
     ``fallback``, ``viscous_fallback`` and ``collapse_stiffness`` are not used there; ``max_iter`` and
-    ``desired_iterations`` default to 40 and 10.
+    ``desired_iterations`` default to 100 and 20.
 
     ``flow``: ``"user"`` (default) -- each law's own dilation angle; ``"davis"`` -- Davis mode for capacity:
     every Mohr-Coulomb soil and Coulomb interface is solved associated with beta-reduced strength
