@@ -19,22 +19,33 @@ State table (one row per transition; a "step" is one control increment ds)::
 
     state  | event                                    | action                              | next
     -------+------------------------------------------+-------------------------------------+-------
+    START  | residual above the tolerance             | load-controlled step at lambda_0    | FIRST
+    START  | balanced                                 | --                                  | FIRST
+    FIRST  | --                                       | load-controlled step to             | WATCH
+           |                                          |   lambda_0 + ds / (f_ref K0^-1 f_ref)|
+    STEP   | secant predictor passes the target       | load-controlled step to the target  | FINAL
     STEP   | converged, lambda below the target       | commit; ds <- ds clip(sqrt(N*/N),   | WATCH
            |                                          |   1/2, 2) within [ds_min, ds_max]   |
     STEP   | converged, lambda passes the target      | redo as one load-controlled step    | FINAL
            |                                          |   to the target                     |
-    STEP   | not converged                            | ds <- ds / 2                        | STEP
-    STEP   | not converged, ds < ds_min               | NonConvergence (diagnosis: groups,  | end
+    any    | not converged                            | ds <- ds / 2; next step from K0     | STEP
+    any    | not converged, ds < ds_min               | NonConvergence (diagnosis: groups,  | end
            |                                          |   points changing state, lambda, s) |
-    FINAL  | converged                                | commit                              | next
+    FINAL  | converged                                | commit (ds kept)                    | WATCH,
+           |                                          |                                     | next
            |                                          |                                     | target
-    FINAL  | not converged                            | ds <- ds / 2                        | STEP
-    WATCH  | P fell >= FALL_STEPS steps after its max | the steps around the peak redone    | LIMIT
-           |   and is below (1 - PLATEAU_RISE) P_max  |   at half size: uncertainty         |
+    WATCH  | P below (1 - PLATEAU_RISE) P_max, for    | the steps around the peak redone    | LIMIT
+           |   FALL_STEPS steps or a continuation     |   at half size: uncertainty;        |
+           |   as below                               |   checks: limit_suspect             |
     WATCH  | P within PLATEAU_RISE of P_max since the | as above                            | LIMIT
            |   control was s_p, and s - s_p >=        |                                     |
            |   s_p / 2 or PLATEAU_STEPS steps         |                                     |
     WATCH  | otherwise                                | --                                  | STEP
+
+ds_max is ``max_step`` of the elastic work at the largest target, or of the work done so far if larger
+(a softened path's work grows faster than the elastic one). FIRST exists because from the start state a
+contact that carries no load yet lets a work step follow a mechanism at lambda = 0 (a weightless strip
+lifting off).
 
 A failure to converge is never read as a limit. A limit is reported with ``limit_uncertainty`` and, when
 a check fails, ``limit_suspect`` with the reason (:func:`bracket_check` adds the limit-analysis bracket).
@@ -154,22 +165,32 @@ class _Follower:
                 # can follow a mechanism at lambda = 0 (a weightless strip lifting off: zoo scene 24)
                 lam_next = min(target, self.lam + self.ds / self.w1)
                 out = self._step(self.u, self.states, self.lam, None, lam_next)
-                self.started = out is not None
+                self.started, final = out is not None, False
+            elif self._predicted_lam(self.ds) > target:  # the secant predictor passes the target: the
+                out = self._step(self.u, self.states, self.lam, None, target)  # step ends on it instead
+                final = True
             else:
                 out = self._step(self.u, self.states, self.lam, self.ds)
-            final = out is not None and out["lam"] > target
-            if final:
-                out = self._step(self.u, self.states, self.lam, None, target)
+                final = out is not None and out["lam"] > target
+                if final:
+                    out = self._step(self.u, self.states, self.lam, None, target)
             if out is None:
                 self.result.cuts += 1
                 self.ds *= 0.5
                 if self.ds < self.ds_min * (1.0 - 1e-9):
                     self._fail()
                 continue
-            self._commit(out)
+            self._commit(out, adapt=not final)  # a step cut short by the target says nothing of the size
             if self._limit():
                 return True
         return False
+
+    def _predicted_lam(self, ds):
+        """The load factor the secant predictor reaches with the control step ``ds`` (current lambda if
+        there is no previous step to scale)."""
+        if self.prev is None:
+            return self.lam
+        return self.lam + ds / self.prev[2] * self.prev[1]
 
     def _fail(self):
         out = self.last_failure
@@ -178,7 +199,7 @@ class _Follower:
         self.result.status = STOPPED
         raise NonConvergence(report, self.result)
 
-    def _commit(self, out):
+    def _commit(self, out, adapt=True):
         du = out["u"][self.system.free] - self.u[self.system.free]
         ds = out["s"] - self.s
         self.prev = (du, out["lam"] - self.lam, ds) if ds > 0.0 else None
@@ -191,10 +212,15 @@ class _Follower:
         self.loads.append(self._load_measure(self.u, out["f_int"], self.lam))
         self.controls.append(self.s)
         self.kept.append((self.result.n_steps, self.u, self.states, self.lam, self.s, self.loads[-1]))
+        self.bar.update(self.result.n_steps, self.lam, out["iterations"], out["residuals"][-1])
+        if not adapt:
+            return
         n = max(out["iterations"], 1)
         grow = min(max(math.sqrt(self.settings.desired_iterations / n), GROWTH[0]), GROWTH[1])
-        self.ds = min(max(grow * max(ds, self.ds_min), self.ds_min), self.ds_max)
-        self.bar.update(self.result.n_steps, self.lam, out["iterations"], out["residuals"][-1])
+        # the largest step: max_step of the elastic work at the largest target, or of the work done so far
+        # where the path has softened (else a soft path crawls: 427 steps on chapter 11's scene at h = 1/8)
+        ds_max = max(self.ds_max, self.settings.max_step * abs(self.s - self.controls[0]))
+        self.ds = min(max(grow * max(ds, self.ds_min), self.ds_min), ds_max)
 
     def _load_measure(self, u, f_int, lam):
         if self.work:
@@ -209,10 +235,12 @@ class _Follower:
         n = len(p) - 1
         if p[k_max] <= 0.0 or k_max == 0:
             return False
-        fell = n - k_max >= FALL_STEPS and p[-1] < (1.0 - PLATEAU_RISE) * p[k_max]
         on = np.flatnonzero(p >= p[k_max] / (1.0 + PLATEAU_RISE))[0]  # where the plateau began
-        s = np.asarray(self.controls)
-        plateau = s[on] > 0.0 and (s[-1] - s[on] >= PLATEAU_CONTROL * s[on] or n - on >= PLATEAU_STEPS)
+        s = np.asarray(self.controls) - self.controls[0]
+        continued = s[on] > 0.0 and (s[-1] - s[on] >= PLATEAU_CONTROL * s[on] or n - on >= PLATEAU_STEPS)
+        below = p[-1] < (1.0 - PLATEAU_RISE) * p[k_max]
+        fell = below and (n - k_max >= FALL_STEPS or continued)
+        plateau = continued and not below
         if not (fell or plateau):
             return False
         res = self.result
