@@ -145,3 +145,19 @@ def test_davis_rows():
     itf = np.array([1e8, 1e9, 5e3, math.tan(math.radians(30.0)), 0.0, 1e4])
     out = davis_interface_row(itf)
     assert out[3] == pytest.approx(b * itf[3], rel=1e-14) and out[4] == out[3] and out[5] == itf[5]
+
+
+def test_limit_uncertainty_and_suspect_are_written_to_the_result_file(tmp_path):
+    """The controlled path's limit record (uncertainty, suspect reason) is written with the solver's attrs."""
+    import h5py
+
+    from ssi.io.results import write_result
+
+    model, _ = _softening_model()
+    res = run(model, [2.0], Settings(control="work"))
+    bracket_check(res, 1.0, 1.1, 1.2)  # a made-up bracket above the peak: a suspect "false collapse"
+    write_result(tmp_path / "r.h5", res)
+    with h5py.File(tmp_path / "r.h5", "r") as h5:
+        attrs = dict(h5["solver"].attrs)
+    assert attrs["limit_uncertainty"] == res.limit_uncertainty
+    assert "false collapse" in str(attrs["limit_suspect"])
