@@ -488,7 +488,8 @@ davis_err = [ctrl["davis", h, 20]["q_u"] / q_davis - 1.0 for h in CTRL_MESHES]
 psi0_runs = [ctrl["psi0", CTRL_MESHES[0], n] for n in CTRL_STEPS]
 psi0_q = [o["q_u"] / q_p20 for o in psi0_runs]
 print(f"associated, h = {CTRL_H} m: peak - Prandtl {100 * assoc_err:+.2f} %, spread over {CTRL_STEPS} steps "
-      f"{100 * step_spread:.3f} %, inside [0.97 LB_Davis, 1.03 UB_assoc]: {in_bracket}")  # fmt: skip
+      f"{100 * step_spread:.3f} %, inside [0.97 LB_Davis, 1.03 UB_assoc]: "
+      f"{'(no bracket in fast mode)' if FAST else in_bracket}")  # fmt: skip
 print("Davis peak / Prandtl(c*, phi*) - 1 on h =", CTRL_MESHES, ":", [f"{100 * e:+.2f} %" for e in davis_err])
 print(f"psi = 0 path estimate, h = {CTRL_MESHES[0]} m: q_u/Prandtl {[round(q, 4) for q in psi0_q]} over "
       f"{CTRL_STEPS} steps; spread {100 * (max(psi0_q) / min(psi0_q) - 1):.2f} %; failures "
