@@ -394,9 +394,10 @@ report.record(
 # `ssi/solver/path.py`), with one corrector (Newton on a lagged factorisation of the consistent tangent,
 # L-BFGS on that factor, a line search) and a step that grows or shrinks with the iteration count. It
 # declares a limit only where the pressure passes a maximum and falls, or stays on a plateau (rising less
-# than 0.2 % over 10 steps or half the settlement reached there) — never where an increment fails, which is
-# a `NonConvergence`. The peak is reported with its numerical uncertainty: the steps around it redone at half
-# size. `Settings(flow="davis")` solves the same footing associated with Davis' reduced strength
+# than 0.2 % over at least 10 steps and half the settlement reached there) — never where an increment
+# fails: that is a `NonConvergence`. The peak is reported with its numerical uncertainty: the steps
+# around it redone at half size. `Settings(flow="davis")` solves the same footing associated with Davis'
+# reduced strength
 # c* = βc, tan φ* = β tan φ, β = cos ψ cos φ / (1 − sin ψ sin φ) (= cos φ for ψ = 0): a convex problem per
 # increment whose limit is the conventional capacity of the non-associated soil.
 #

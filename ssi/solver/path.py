@@ -39,7 +39,7 @@ State table (one row per transition; a "step" is one control increment ds)::
            |   as below                               |   checks: limit_suspect             |
     WATCH  | P within PLATEAU_RISE of P_max since the | as above                            | LIMIT
            |   control was s_p, and s - s_p >=        |                                     |
-           |   s_p / 2 or PLATEAU_STEPS steps         |                                     |
+           |   s_p / 2 over >= PLATEAU_STEPS steps    |                                     |
     WATCH  | otherwise                                | --                                  | STEP
 
 ds_max is ``max_step`` of the elastic work at the largest target, or of the work done so far if larger
@@ -71,7 +71,8 @@ from .settings import NonConvergence, Settings
 
 PLATEAU_RISE = 2e-3  # a load rising less than 0.2 % over the continuation below is on a plateau
 PLATEAU_STEPS = 10  # ... continuation of at least this many steps ...
-PLATEAU_CONTROL = 0.5  # ... or of this fraction of the control value where the plateau began
+PLATEAU_CONTROL = 0.5  # ... and of this fraction of the control value where the plateau began (both: with
+# "or", 10 small steps of a crawl made chapter 11's cracking strip at h = 1/8 a false limit at 0.969)
 FALL_STEPS = 3  # a load below its maximum for this many successive steps has passed a peak (one or two
 # lower steps are a cracking dip the path may climb out of)
 POOR_CONTRACTION = 0.9  # |r_k| / |r_k-1| above this ...
@@ -237,7 +238,7 @@ class _Follower:
             return False
         on = np.flatnonzero(p >= p[k_max] / (1.0 + PLATEAU_RISE))[0]  # where the plateau began
         s = np.asarray(self.controls) - self.controls[0]
-        continued = s[on] > 0.0 and (s[-1] - s[on] >= PLATEAU_CONTROL * s[on] or n - on >= PLATEAU_STEPS)
+        continued = s[on] > 0.0 and s[-1] - s[on] >= PLATEAU_CONTROL * s[on] and n - on >= PLATEAU_STEPS
         below = p[-1] < (1.0 - PLATEAU_RISE) * p[k_max]
         fell = below and (n - k_max >= FALL_STEPS or continued)
         plateau = continued and not below
