@@ -559,8 +559,11 @@ except NonConvergence as err:
     injected = err.result.status
     print(f"(g) iteration cap 3: NonConvergence, {str(err)[:220]} ...")
 
-# full mode only: in fast mode its 3 scenes took 22 s (two stalling steps halved down to the minimum)
-zoo_ctrl = [] if FAST else solve_zoo(random_scenes(100, seed=1), Settings(control="work"))
+# full mode only (in fast mode its 3 scenes took 22 s: two stalling steps halved down to the minimum), and on
+# the first 20 of the 100 scenes: all 100 took ~300 s, which `make reproduce` (6 min for every chapter) cannot
+# hold; all 100 measured once off-line: 46 completed, 25 limits, 29 NonConvergence
+N_ZOO_CTRL = 20
+zoo_ctrl = [] if FAST else solve_zoo(random_scenes(100, seed=1)[:N_ZOO_CTRL], Settings(control="work"))
 counts = {s: sum(o.status == s for o in zoo_ctrl) for s in ("completed", LIMIT, "failed")}
 print(
     "(h) skipped in fast mode"
@@ -568,8 +571,8 @@ print(
     else f"(h) random zoo on the controlled path: {counts['completed']} completed, "
     f"{counts[LIMIT]} at a limit, "
     f"{counts['failed']} NonConvergence of {len(zoo_ctrl)} ({sum(o.wall_time for o in zoo_ctrl):.1f} s; "
-    f"the default settings above: {sum(o.solved for o in zoo)} solved, "
-    f"{sum(o.wall_time for o in zoo):.1f} s)"
+    f"the default settings above on the same scenes: {sum(o.solved for o in zoo[:N_ZOO_CTRL])} solved, "
+    f"{sum(o.wall_time for o in zoo[:N_ZOO_CTRL]):.1f} s)"
 )
 for o in zoo_ctrl:
     if not o.solved:
@@ -601,7 +604,8 @@ if not FAST:
         f"fraction of {len(zoo_ctrl)} random zoo scenes (seed 1) ending completed or at a limit on the "
         f"controlled path, Settings(control='work'): {counts['completed']} completed, "
         f"{counts[LIMIT]} limits, "
-        f"{counts['failed']} NonConvergence (the default settings: {sum(o.solved for o in zoo)} solved)",
+        f"{counts['failed']} NonConvergence (the default settings: "
+        f"{sum(o.solved for o in zoo[:N_ZOO_CTRL])} solved)",
         solved_ctrl,
         1.0,
         solved_ctrl == 1.0,
