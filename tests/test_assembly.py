@@ -8,6 +8,7 @@ import scipy.sparse as sp
 
 from ssi.core.assembly import SparsePattern
 from ssi.core.mesh import structured_q8
+from ssi.core.protocol import ElementGroup
 
 
 def reference_pattern(edofs_list, free):
@@ -119,8 +120,9 @@ def test_assembly_through_the_maps_matches_dense(split):
     assert np.abs(kff - dense[np.ix_(free, free)]).max() <= 1e-15 * 8
 
 
-class _StoredMatrices:
-    """An element group that only offers its stored K0 (as the plate and interface groups do)."""
+class _StoredMatrices(ElementGroup):
+    """An element group that only offers its stored K0 (as the plate and interface groups do): the base
+    class's default ``assemble_elastic_stiffness`` scatters it."""
 
     def __init__(self, k_el):
         self.k_el = k_el
