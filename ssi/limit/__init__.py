@@ -18,7 +18,16 @@ weights), footing rotation, a beam strip with plastic hinges.
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
-from .geometry import Boundary, Footing, Interface, Material, Site, davis_beta, strip_site
+from .geometry import (
+    Boundary,
+    Footing,
+    Interface,
+    Material,
+    Site,
+    davis_beta,
+    site_from_geometry,
+    strip_site,
+)
 from .lower import LowerBound, lower_bound
 from .mesh import TriMesh, bisect, triangulate
 from .upper import UpperBound, upper_bound
@@ -41,6 +50,7 @@ __all__ = [
     "gap_shares",
     "lower_bound",
     "safety_factor",
+    "site_from_geometry",
     "strip_site",
     "triangulate",
     "upper_bound",
