@@ -459,49 +459,66 @@ class CapacityResult:
         """Whether ``value`` (lambda units) lies in the associated bracket."""
         return bool(self.lb <= value <= self.ub)
 
-    def summary(self) -> str:
-        """A few lines an engineer reads: both brackets in kN/m (or as factors of the loads they scale),
-        the gap, the mesh and the time."""
+    def to_dict(self) -> dict:
+        """The numbers as plain data (JSON): both brackets in lambda units, what lambda scales, the mesh
+        and solver counts, the time [s] and each run's history (one row per mesh)."""
+
+        def rows(run):
+            return None if run is None else [{k: _plain(v) for k, v in r.items()} for r in run.history]
+
         p = self.problem
+        return {
+            "phase": p.phase,
+            "lambda_unit": p.lam_unit or "factor of the phase's loads",
+            "reference": p.reference,
+            "reference_footing_force_N_per_m": p.ref_force or None,
+            "lb": self.lb,
+            "ub": self.ub,
+            "gap": self.gap,
+            "lb_davis": self.lb_davis,
+            "ub_davis": self.ub_davis,
+            "gap_davis": self.gap_davis,
+            "associated": self.davis is None,
+            "triangles": self.n_triangles,
+            "cones_lb_ub": list(self.n_cones),
+            "iterations_lb_ub": list(self.iterations),
+            "time_s": self.time,
+            "history_associated": rows(self.associated),
+            "history_davis": rows(self.davis),
+        }
+
+    def summary(self) -> str:
+        """A few lines an engineer reads: both brackets in kN/m (a Settlement push) or as factors of the
+        loads they scale (with the footing force they mean), the gaps, the mesh and the time."""
+        p = self.problem
+        d = self.davis is not None
         if p.lam_unit == "N/m":
-
-            def fmt(v):
-                return f"{v / 1e3:.1f} kN/m"
-
-            what = "vertical force on the footing (Settlement push)"
-            per = ""
-            if p.footing_width:
-                b = p.footing_width * (2.0 if p.symmetric else 1.0)
-                per = (
-                    f"\n  mean pressure  [{self.lb / b / 1e3:.1f}, {self.ub / b / 1e3:.1f}] kPa over "
-                    f"B = {b:g} m"
-                )
+            head = "capacity: the footing's vertical force V (Settlement push), kN/m"
+            k, unit = 1e-3, " kN/m"
         else:
-
-            def fmt(v):
-                return f"{v:.3f}"
-
-            what = f"load factor of {p.reference}"
-            per = ""
-            if p.ref_force:
-                per = (
-                    f"\n  i.e. a footing force V in [{self.lb * p.ref_force / 1e3:.1f}, "
-                    f"{self.ub * p.ref_force / 1e3:.1f}] kN/m (Davis "
-                    f"[{self.lb_davis * p.ref_force / 1e3:.1f}, "
-                    f"{self.ub_davis * p.ref_force / 1e3:.1f}] kN/m) on top of the held loads"
-                )
+            head = f"capacity: load factor lambda of {p.reference}"
+            k, unit = 1.0, ""
         lines = [
-            f"capacity: {what}",
-            f"  associated bracket  [{fmt(self.lb)}, {fmt(self.ub)}]  gap {100 * self.gap:.2f} % "
-            "(rigorous for psi = phi; the upper bound is a ceiling for any psi <= phi)" + per,
+            head,
+            f"  associated [{k * self.lb:.4g}, {k * self.ub:.4g}]{unit}  gap {100 * self.gap:.2f} %  "
+            "(rigorous for psi = phi; a ceiling for any psi <= phi)",
+            f"  Davis      [{k * self.lb_davis:.4g}, {k * self.ub_davis:.4g}]{unit}  gap "
+            f"{100 * self.gap_davis:.2f} %  "
+            + ("(psi < phi: the conventional engineering value)" if d else "(= associated: psi = phi)"),
         ]
-        if self.davis is not None:
+        if p.lam_unit == "N/m" and p.footing_width:
+            b = p.footing_width * (2.0 if p.symmetric else 1.0)
             lines.append(
-                f"  Davis bracket       [{fmt(self.lb_davis)}, {fmt(self.ub_davis)}]  gap "
-                f"{100 * self.gap_davis:.2f} % (psi < phi: the conventional engineering value)"
+                f"  mean pressure over B = {b:g} m: associated [{self.lb / b / 1e3:.4g}, "
+                f"{self.ub / b / 1e3:.4g}] kPa, Davis [{self.lb_davis / b / 1e3:.4g}, "
+                f"{self.ub_davis / b / 1e3:.4g}] kPa"
             )
-        else:
-            lines.append("  Davis bracket       = associated (every material associated)")
+        elif p.ref_force:
+            f = p.ref_force / 1e3
+            lines.append(
+                f"  footing force on top of the held loads: associated [{self.lb * f:.4g}, "
+                f"{self.ub * f:.4g}] kN/m, Davis [{self.lb_davis * f:.4g}, {self.ub_davis * f:.4g}] kN/m"
+            )
         cl, cu = self.n_cones
         il, iu = self.iterations
         lines.append(
@@ -552,6 +569,12 @@ def limit_analysis(
     if davis and non_assoc:
         dav = adaptive(problem.site.davis(), mesh, progress=report("Davis"), **kw)
     return CapacityResult(problem, res, dav, time.perf_counter() - t0)
+
+
+def _plain(v):
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
 
 
 def _associated(m: Material) -> Material:
