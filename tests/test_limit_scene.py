@@ -263,3 +263,32 @@ def test_check_limit_bad_input():
         check_limit(1.0, (3.0, 2.0))
     with pytest.raises(TypeError, match="bracket must be a CapacityResult or a pair"):
         check_limit(1.0, 5.0)
+
+
+def test_a_site_brackets_prandtl_and_refuses_what_it_cannot_represent():
+    """An ssi.scene.site.Site (its one geometry, Site.geometry()): a plate strip bonded to weightless Tresca
+    clay under a central column N: lambda* = (2 + pi) c B / N exactly (Prandtl) inside the bracket; a
+    DepthVarying layer is refused by name."""
+    from ssi.scene.site import DepthVarying, Site, Strip
+
+    c, N = 20e3, 100e3
+    strip = Strip(Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), Contact(kn=1e10, kt=1e9))
+    site = Site(
+        width=12.0,
+        depth=5.0,
+        layers=[SoilLayer.undrained(5.0, E_u=30e6, s_u=c)],
+        strips=[strip],
+        loads=[ColumnLoad(0.0, N=N)],
+    )
+    cap = site.limit_analysis(gap=0.1)
+    exact = (2.0 + math.pi) * c * 2.0 / N
+    assert cap.lb * (1 - REL) <= exact <= cap.ub * (1 + REL)
+    varying = Site(
+        width=12.0,
+        depth=5.0,
+        layers=[DepthVarying(SoilLayer(5.0, E=3e7, nu=0.3, c=c), c_inc=1e3)],
+        strips=[strip],
+        loads=[ColumnLoad(0.0, N=N)],
+    )
+    with pytest.raises(ValueError, match=r"Site.layers\[0\] is a DepthVarying"):
+        limit_problem(varying)

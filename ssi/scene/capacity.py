@@ -6,6 +6,9 @@ limit-analysis problem (:mod:`ssi.limit`) and solved for both bounds, associated
     cap.lb, cap.ub                             # associated bracket of the load factor lambda
     cap.lb_davis, cap.ub_davis                 # Davis bracket (the conventional value for psi < phi)
 
+An :class:`ssi.scene.site.Site` (any layering and ground, several strips) maps the same way through its own
+:meth:`Site.geometry` (see :func:`_site_problem`): ``site.limit_analysis(gap=0.02)``.
+
 What lambda scales. The loads of one phase (``phase``: a name of ``Scene.phases``, or "loads" for
 ``Scene.loads``; None: the last phase) are the reference loads, multiplied by lambda; the loads of the
 phases before it act at the factors they have at that phase's end (dead loads), and so do the surcharge and
@@ -56,6 +59,7 @@ from ..limit import safety_factor as _limit_safety_factor
 from ..limit.analysis import AdaptiveResult
 from ..limit.geometry import Site
 from ..limit.mesh import TriMesh
+from ..materials.soil_laws import SoilLayer
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
 
@@ -178,8 +182,14 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
+    if hasattr(scene, "geometry") and hasattr(scene, "strips"):
+        if phase is not None:
+            raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
+        return _site_problem(scene)
     if not all(hasattr(scene, a) for a in ("layers", "_block", "_mesh_layers", "_footprint")):
-        raise TypeError(f"scene must be an ssi.scene.Scene, got {type(scene).__name__}")
+        raise TypeError(
+            f"scene must be an ssi.scene.Scene or ssi.scene.site.Site, got {type(scene).__name__}"
+        )
     phases = _phases(scene)
     if not phases:
         raise ValueError("the scene has no loads (Scene.loads and Scene.phases are empty): nothing to scale")
@@ -331,6 +341,105 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
         scene,
         0.0 if settle_ref else -float(fref[1]) / half,
     )
+
+
+def _site_problem(site) -> LimitProblem:
+    """The limit problem of an :class:`ssi.scene.site.Site` (any layering and ground, several strips): its
+    one geometry (:meth:`Site.geometry`, cells cut at the water table) with the buoyant unit weight below
+    the water table, every :class:`Strip` a rigid translating footing on its contact, the site's loads
+    (columns on the strips, pressures on level ground) scaled by lambda. A single :class:`RigidStrip` and no
+    loads: lambda is its vertical force [N/m]. Refused: DepthVarying layers, embedded strips (``level``),
+    a RigidStrip beside other strips or loads, a pressure on sloping ground, eccentric columns."""
+    for i, lay in enumerate(site.layers):
+        if not isinstance(lay, SoilLayer):
+            raise ValueError(
+                f"Site.layers[{i}] is a {type(lay).__name__}: strength varying with depth is not represented "
+                "by ssi.limit (one material per region)"
+            )
+    geo = site.geometry()
+    xs = geo.points[:, 0]
+    width = float(np.ptp(xs))
+    strips = list(site.strips)
+    rigid = [s for s in strips if hasattr(s, "settle")]  # a RigidStrip (the site module imports this one)
+    if rigid and (len(strips) > 1 or site.loads):
+        raise ValueError(
+            "Site.strips: a RigidStrip is pushed by a settlement (lambda = its force); ssi.limit takes it "
+            "only alone, without other strips or loads"
+        )
+    ends = []
+    footings = []
+    for i, st in enumerate(strips):
+        if hasattr(st, "settle"):
+            ends.append((st.x0, st.x1))
+            itf = Interface("rough" if st.rough else "smooth")
+            footings.append(Footing(itf, (0.0, -1.0), (0.0, 0.0), ("z",)))
+            continue
+        if st.level is not None:
+            raise ValueError(f"Site.strips[{i}].level={st.level!r}: an embedded strip is not represented")
+        f = st.foundation
+        ends.append((f.x0, f.x1))
+
+        class _Holder:  # what _interface and _footing_forces read of a scene
+            foundation, contact, water_table, gamma_w = f, st.contact, None, site.gamma_w
+
+        loads = [ld for ld in site.loads if isinstance(ld, ColumnLoad) and f.x0 - 1e-9 <= ld.x <= f.x1 + 1e-9]
+        fx, fz, m, _ = _footing_forces(_Holder, loads, True, f.x0, f.x1, f"Site.strips[{i}] loads")
+        if abs(m) > _TOL * (abs(fz) * (f.x1 - f.x0) + 1.0):
+            raise ValueError(
+                f"Site.strips[{i}]: its columns have a moment {m:g} N m/m about its centre; ssi.limit holds "
+                "the footing's rotation, so an eccentric load is not represented"
+            )
+        itf = _interface(_Holder)
+        moves = ("z",) if itf.kind == "smooth" else ("x", "z")
+        if itf.kind == "smooth" and fx:
+            raise ValueError(f"Site.strips[{i}]: a smooth contact carries no horizontal load")
+        footings.append(Footing(itf, (fx, fz), (0.0, 0.0), moves))
+    pressures = [(ld.x0, ld.x1, ld.q) for ld in site.loads if isinstance(ld, SurfacePressure)]
+    # materials: each layer dry and (below the water table) buoyant; each cell by its centroid
+    mats, region = [], []
+    for i, lay in enumerate(site.layers):
+        sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
+        mats.append(_layer_material(i, lay, lay.unit_weight))
+        mats.append(_layer_material(i, lay, max(sat - site.gamma_w, 0.0)))
+    for cell, k in zip(geo.cells, geo.cell_region):
+        c = geo.points[list(cell)].mean(axis=0)
+        wet = c[1] < float(site.water_z(np.array([c[0]]))[0])
+        region.append(2 * int(k) + int(wet))
+    geo = type(geo)(geo.points, geo.segments, geo.segment_tags, geo.cells, np.array(region, np.int64))
+
+    def boundary(tag, pa, pb):
+        if tag == "bottom":
+            return Boundary("fixed")
+        if tag in ("left", "right"):
+            return Boundary("symmetry")
+        xm = 0.5 * (pa[0] + pb[0])
+        for j, (a, b) in enumerate(ends):
+            if a < xm < b:
+                return Boundary("footing", footing=j)
+        q = sum(v for a, b, v in pressures if a - 1e-12 <= xm <= b + 1e-12)
+        if q and abs(pb[1] - pa[1]) > _TOL * width:
+            raise ValueError(
+                f"Site.loads: a SurfacePressure on sloping ground at x = {xm:g} m (a vertical load per "
+                "horizontal metre there is not a normal pressure): not represented by ssi.limit"
+            )
+        return Boundary("free", pressure_ref=q)
+
+    lsite = site_from_geometry(geo, tuple(mats), boundary, tuple(footings))
+    singular = [(x, float(site.ground_z(np.array([x]))[0])) for a, b in ends for x in (a, b)]
+    singular += [(x, float(site.ground_z(np.array([x]))[0])) for a, b, _ in pressures for x in (a, b)]
+    if rigid:
+        unit, ref, ref_force = "N/m", "the RigidStrip's vertical force V [N/m]", 0.0
+    else:
+        n_total = sum(ld.N for ld in site.loads if isinstance(ld, ColumnLoad))
+        parts = [
+            f"column N={ld.N / 1e3:g} kN/m at x={ld.x:g} m" for ld in site.loads if isinstance(ld, ColumnLoad)
+        ]
+        parts += [f"pressure q={q / 1e3:g} kPa on x=[{a:g}, {b:g}] m" for a, b, q in pressures]
+        unit, ref, ref_force = "", "the site's loads: " + ", ".join(parts), float(n_total)
+    if not (rigid or site.loads):
+        raise ValueError("Site.loads: the site has no load to scale")
+    width_f = ends[0][1] - ends[0][0] if len(ends) == 1 else 0.0
+    return LimitProblem(lsite, "loads", unit, ref, singular, width_f, False, site, ref_force)
 
 
 def _describe(phase, scene) -> str:
