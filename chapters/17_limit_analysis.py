@@ -195,8 +195,10 @@ report.check(
 # ### Time against triangles
 #
 # The rough φ = 20° footing refined to the fine gap: each row of the adaptive history is one lower and one
-# upper bound (Clarabel with its default QDLDL factorisation, on the 2-core machine shared with the rest of
-# the test suite, so the times are upper estimates).
+# upper bound (Clarabel with its QDLDL factorisation on one thread -- its "auto" choice, faer on every core,
+# was 2.4x slower on the lower bound -- on the 2-core machine shared with the rest of the test suite, so
+# the times are upper estimates; the lower bound is solved to 1e-7 and certified afterwards, the upper
+# bound to 1e-9).
 
 # %%
 hist = prandtl_runs[20.0, "rough"].history

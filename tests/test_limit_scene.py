@@ -170,6 +170,7 @@ def _scene(**kw):
             r"layers\[0\]\.drainage='undrained_A'",
         ),
         (dict(loads=[ColumnLoad(0.0, N=100e3, M=10e3)]), r"ColumnLoad.M=10000.0"),
+        (dict(foundation=RigidFooting(-1.0, 1.0), contact=None), r"a ColumnLoad on a RigidFooting"),
         (dict(loads=[ColumnLoad(0.5, N=100e3)]), r"moment 50000 N m/m about its centre"),
         (dict(loads=[StripLoad(1e4, q_end=2e4)]), r"moment .* about its centre"),
         (dict(embedment=1.0, layers=[_layer(1.0), _layer(4.0)]), r"Scene.embedment=1.0"),

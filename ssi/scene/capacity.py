@@ -245,6 +245,12 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
         on_footing = [ld for ld in ph.loads if not isinstance(ld, SurfacePressure)]
         if f is None:
             continue
+        if isinstance(f, RigidFooting) and any(not isinstance(ld, Settlement) for ld in on_footing):
+            bad = next(ld for ld in on_footing if not isinstance(ld, Settlement))
+            raise ValueError(
+                f"{what}: a {type(bad).__name__} on a RigidFooting (it takes a Settlement push only; a force "
+                "load needs a plate Foundation)"
+            )
         fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
         if abs(m) > _TOL * (abs(fz) * (f.x1 - f.x0) + 1.0):
             raise ValueError(
