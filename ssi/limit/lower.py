@@ -277,14 +277,12 @@ def _project(A: sp.csr_matrix, b: np.ndarray, x0: np.ndarray, steps: int = 4) ->
 
 
 def lower_bound(
-    site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e-7, stress: tuple | None = None
+    site: Site, mesh: TriMesh, margin: float = 1e-4, tol: float = 1e-9, stress: tuple | None = None
 ) -> LowerBound:
     """The certified lower bound of the load factor lambda of ``site`` on ``mesh`` (module docstring).
     ``margin``: relative shrink of the yield cones in the solve (dimensionless); ``tol``: Clarabel's
-    tolerances (1e-7: the bound is certified from the projected field whatever the solver's accuracy, which
-    only sets how near the mesh's optimum it lands: -6e-4 relative against 1e-9 on a 2 956-triangle N_gamma
-    mesh, in 20 iterations instead of 28, measured). ``stress``: (sig (n_el, 3, 3) [Pa], lam) a field to
-    certify instead of solving (e.g. a coarser mesh's field carried to a nested finer mesh)."""
+    tolerances. ``stress``: (sig (n_el, 3, 3) [Pa], lam) a field to certify instead of solving (e.g. a
+    coarser mesh's field carried to a nested finer mesh)."""
     if not 0.0 <= margin < 0.1:
         raise ValueError(f"margin must be in [0, 0.1), got {margin!r}")
     sc, eq, ineq, soc, q, n = _assemble(site, mesh, margin)
