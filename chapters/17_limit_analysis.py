@@ -104,6 +104,7 @@ from ssi.limit import (
     Material,
     adaptive,
     bracket,
+    check_limit,
     davis_beta,
     safety_factor,
     strip_site,
@@ -231,9 +232,12 @@ print(f"Davis bracket / Prandtl(c*, phi*): [{davis.lb / exact_d:.4f}, {davis.ub 
 assoc = prandtl_runs[20.0, "rough"]
 print(f"in units of Prandtl(phi=20): Davis [{davis.lb / ex20:.3f}, {davis.ub / ex20:.3f}], "
       f"associated [{assoc.lb / ex20:.3f}, {assoc.ub / ex20:.3f}]")  # fmt: skip
+# each incremental limit also checked as a solver checks it (ssi.limit.check_limit: inside the band
+# [0.97 LB_Davis, 1.03 UB_assoc], a false collapse below it, a mesh overestimate above it)
 for h, v in ((0.25, 1.039), (0.125, 0.995), (0.0625, 0.969)):
     where = "above the associated upper bound" if v * ex20 > assoc.ub else "inside [LB_Davis, UB_assoc]"
-    print(f"chapter 10, psi = 0, h = {h:6.4f} m: {v:.3f} x Prandtl -> {where}")
+    verdict = check_limit(v * ex20, (davis.lb, assoc.ub)).verdict
+    print(f"chapter 10, psi = 0, h = {h:6.4f} m: {v:.3f} x Prandtl -> {where}; check_limit: {verdict}")
 report.check(
     "fela_davis",
     "how far Prandtl(c*, phi*) of the Davis material (phi=20, psi=0) lies outside its bracket (<= 0: inside)",
