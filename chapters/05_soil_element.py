@@ -93,7 +93,7 @@ from ssi.lab.verify import (
     fd_jacobian,
     zero_energy_modes,
 )
-from ssi.materials.mohr_coulomb import B_APEX, B_EDGE12, B_EDGE23, B_PLANE, mc_yield
+from ssi.materials.mc_surface import B_APEX, B_EDGE12, B_EDGE23, B_PLANE, mc_yield
 from ssi.materials.soil_laws import ELASTIC, drive, elastic_matrix, elastic_params, mohr_coulomb_params
 
 FAST = paths.FAST
@@ -352,8 +352,9 @@ for (ng, nu), (ep, ed) in strip_nu.items():
 # %% [markdown]
 # ## 5. Mohr–Coulomb at a material point
 #
-# The plastic soil law (paper §7; `ssi.materials.mohr_coulomb`, written and unit-tested with its own FD
-# checks in `tests/test_mohr_coulomb.py`) is driven here alone, one integration point along prescribed
+# The plastic soil law (paper §7; the surface in `ssi.materials.mc_surface`, the schemes in
+# `ssi.materials.mc_implicit_scheme` and `mc_explicit_scheme`, unit-tested with their own FD checks in
+# `tests/test_mohr_coulomb.py`) is driven here alone, one integration point along prescribed
 # plane-strain strain paths, with the library's driver `ssi.materials.soil_laws.drive` — before it enters a
 # mesh (chapter 10). With principal stresses s1 ≥ s2 ≥ s3 (tension positive) the yield function and the
 # plastic potential are

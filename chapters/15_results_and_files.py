@@ -53,7 +53,7 @@ import numpy as np
 
 from ssi.io import plot
 from ssi.io.cli import summary
-from ssi.io.export import read_series
+from ssi.io.export import read_series, time_value
 from ssi.io.results import max_difference, read_info, read_result, write_result
 from ssi.lab import paths
 from ssi.lab.report import record, save_figure
@@ -113,6 +113,8 @@ KEYS = (
     "phase",
     "phase_load_factor",
     "limit_load_factor",
+    "foundation_load",
+    "capacity",
 )
 cli_ok = {}
 for example in sorted(EXAMPLES.glob("*.toml")):
@@ -129,7 +131,8 @@ for example in sorted(EXAMPLES.glob("*.toml")):
     stored = json.loads(work.with_name(work.stem + "_summary.json").read_text())
     scene, n_steps, settings = read_scene_file(example)
     direct = summary(scene.build().solve(n_steps=n_steps, settings=settings))
-    cli_ok[example.name] = proc.returncode == 0 and all(stored[k] == direct[k] for k in KEYS)
+    # .get: a RigidFooting push-over (pushover_footing.toml) has no contact pressure or moment to compare
+    cli_ok[example.name] = proc.returncode == 0 and all(stored.get(k) == direct.get(k) for k in KEYS)
     print(f"--- ssi run {example.name}  (exit {proc.returncode}, {wall:.1f} s with start-up)")
     print(proc.stdout.split("wrote")[0])
     print("matches the Python API:", cli_ok[example.name])
@@ -201,7 +204,7 @@ soil = np.arange(built.mesh.xy.shape[0])
 n_plate = built.plate.n_el
 vtk_error = 0.0
 for k, (lam, mesh) in enumerate(series):
-    assert lam == back.load_factor[k]
+    assert lam == time_value(back.load_factor[k])  # the .pvd's time: the load factor to 12 digits
     u = back.u[k]
     disp = mesh.point_data["displacement"]
     checks = [

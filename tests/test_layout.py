@@ -200,6 +200,73 @@ def test_every_kernel_lives_in_a_hashed_package():
     assert outside == []
 
 
+# the capabilities ssi.core.protocol.ElementGroup declares (and names groups once answered to probes by)
+CAPABILITIES = {
+    "assemble_elastic_stiffness",
+    "forces_only",
+    "history_fields",
+    "integration_points",
+    "ip_coords",
+    "ip_weights",
+    "point_code_names",
+    "point_codes",
+    "status",
+    "viscosity",
+    "viscous",
+}
+
+
+def capability_probes(package: Path = PACKAGE) -> list[str]:
+    """Every ``hasattr(x, "<capability>")`` or ``getattr(x, "<capability>", ...)`` in the product (``lab`` may
+    probe), as "file:line name"."""
+    found = []
+    for p in sorted(package.rglob("*.py")):
+        if _room(_module_name(p, package), package) == "lab":
+            continue
+        for node in ast.walk(ast.parse(p.read_text(), filename=str(p))):
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Name)
+                and node.func.id in ("hasattr", "getattr")
+                and len(node.args) >= 2
+                and isinstance(node.args[1], ast.Constant)
+                and node.args[1].value in CAPABILITIES
+            ):
+                found.append(f"{p.relative_to(package.parent)}:{node.lineno} {node.args[1].value}")
+    return found
+
+
+def test_group_capabilities_are_declared_not_probed():
+    assert capability_probes() == []
+
+
+def test_the_probe_check_finds_a_probe(tmp_path):
+    pkg = tmp_path / "ssi"
+    (pkg / "solver").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "solver" / "__init__.py").write_text("")
+    (pkg / "solver" / "x.py").write_text("def f(g):\n    return hasattr(g, 'viscosity')\n")
+    assert capability_probes(pkg) == ["ssi/solver/x.py:2 viscosity"]
+
+
+def test_every_element_group_inherits_the_protocol():
+    """Each class in ssi.elements with an ``evaluate`` method is an ElementGroup, so that every capability
+    the solver, the scene and the result files read has its declared default."""
+    import importlib
+    import inspect
+
+    from ssi.core.protocol import ElementGroup
+
+    groups = []
+    for p in sorted((PACKAGE / "elements").glob("*.py")):
+        module = importlib.import_module(_module_name(p))
+        for _, cls in inspect.getmembers(module, inspect.isclass):
+            if cls.__module__ == module.__name__ and callable(getattr(cls, "evaluate", None)):
+                groups.append(cls)
+    assert {cls.__name__ for cls in groups} >= {"SoilQ8", "PlateStrip", "Interface6", "Spring"}
+    assert [cls.__name__ for cls in groups if not issubclass(cls, ElementGroup)] == []
+
+
 def _cache_folder(package_copy: Path) -> str:
     """The numba cache folder a fresh process picks for the package copy under ``package_copy``."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(package_copy / "cache"), PYTHONPATH=str(package_copy))
@@ -228,7 +295,7 @@ def test_editing_a_file_without_kernels_keeps_the_numba_cache(package_copy, edit
     assert _cache_folder(package_copy) == before
 
 
-@pytest.mark.parametrize("edited", ["materials/mohr_coulomb.py", "elements/plate.py", "core/assembly.py"])
+@pytest.mark.parametrize("edited", ["materials/mc_surface.py", "elements/plate.py", "core/assembly.py"])
 def test_editing_a_kernel_file_moves_the_numba_cache(package_copy, edited):
     before = _cache_folder(package_copy)
     with open(package_copy / "ssi" / edited, "a") as fh:

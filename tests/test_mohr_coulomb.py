@@ -18,7 +18,7 @@ from scipy.optimize import nnls
 
 from ssi.core.protocol import CONSISTENT
 from ssi.lab.verify import fd_jacobian
-from ssi.materials.mohr_coulomb import mc_yield
+from ssi.materials.mc_surface import mc_yield
 from ssi.materials.soil_laws import (
     ELASTIC,
     MOHR_COULOMB,

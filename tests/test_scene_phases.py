@@ -326,3 +326,29 @@ def test_ssi_run_writes_every_completed_phase_of_a_stopped_run(tmp_path):
     result = tmp_path / "stop.h5"
     assert read_info(result)["stop"]["phase"] == "overload"
     assert [r["name"] for r in read_result(result).phases] == ["geostatic", "weight", "overload"]
+
+
+def test_excavated_soil_is_left_out_of_plots_and_flagged_in_the_export(tmp_path):
+    """After the pit phase the deformed mesh and the plastic-point plot draw only the soil present, and the
+    ParaView file flags the removed elements (active = 0, their stress NaN, not a zero stress to read)."""
+    import matplotlib.pyplot as plt
+
+    from ssi.io import plot
+    from ssi.io.export import export_vtu, read_vtu
+
+    out = pit_beside_strip(section=STRIP).build().solve()
+    present = out.active_elements()
+    assert 0 < (~present).sum() < present.size
+    fig = plot.deformed_mesh(out)
+    drawn = [len(c.get_paths()) for c in fig.axes[0].collections]
+    assert drawn == [present.sum(), present.sum()]  # the mesh and its deformed shape, both without the pit
+    plt.close(fig)
+    fig = plot.plastic_points(out)
+    assert len(fig.axes[0].collections[0].get_paths()) == present.sum()
+    plt.close(fig)
+    mesh = read_vtu(export_vtu(out, tmp_path / "pit.vtu"))
+    assert np.array_equal(mesh.cell_data["active"][0], present.astype(float))
+    assert np.all(np.isnan(mesh.cell_data["szz"][0][~present]))
+    assert np.all(np.isfinite(mesh.cell_data["szz"][0][present]))
+    before = read_vtu(export_vtu(out, tmp_path / "before.vtu", k=out.phases[-1]["first"] - 1))
+    assert np.all(before.cell_data["active"][0] == 1.0)

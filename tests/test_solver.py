@@ -375,3 +375,12 @@ def test_lbfgs_ring_buffer_gives_the_numpy_two_loop_bit_for_bit():
         expected = _two_loop_reference(kept, Diagonal().solve, r)
         assert np.array_equal(lbfgs.direction(r), expected)
     assert lbfgs.count == 3
+
+
+def test_every_method_has_one_direction_function():
+    """The increment's table of search directions has a row for every method Settings accepts, and no
+    other: a method without a row would fail with a KeyError in its first increment."""
+    from ssi.solver.increment import DIRECTIONS
+
+    assert sorted(DIRECTIONS) == sorted(METHODS)
+    assert len(set(DIRECTIONS.values())) == len(METHODS)  # one function each

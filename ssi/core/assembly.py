@@ -271,19 +271,15 @@ class SparsePattern:
 
     def assemble_elastic(self, groups, data=None):
         """Assemble K0 of the element ``groups`` (in the order of this pattern's ``edofs_list``) into ``data``
-        (reused if given): through a group's ``assemble_elastic_stiffness(smap, data)`` where it has one (no
-        element matrices kept: at 1e6 DOFs their 343 MB cost more to touch than to compute), else by
-        scattering its ``elastic_stiffness()``."""
+        (reused if given), through each group's ``assemble_elastic_stiffness(smap, data)``: by default it
+        scatters the group's ``elastic_stiffness()``; the soil group assembles without keeping element
+        matrices (at 1e6 DOFs their 343 MB cost more to touch than to compute)."""
         if data is None:
             data = self.new_data()
         else:
             data[:] = 0.0
         for smap, group in zip(self.scatter_maps, groups):
-            direct = getattr(group, "assemble_elastic_stiffness", None)
-            if direct is None:
-                scatter_matrix(smap, group.elastic_stiffness(), data)
-            else:
-                direct(smap, data)
+            group.assemble_elastic_stiffness(smap, data)
         return data
 
     def assemble(self, k_el_list, data=None):

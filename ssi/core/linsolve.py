@@ -103,7 +103,16 @@ try:
 except OSError:  # no C library handle (not POSIX): text may then surface late, it is still not lost
     _LIBC = []
 
-_SCRATCH: dict[int, object] = {}  # descriptor -> scratch file it is redirected to, created on first use
+# descriptor -> the raw descriptor of the (unlinked) scratch file it is redirected to, created on first use
+# and kept for the process's life; raw descriptors, not file objects: a file object left open until exit is
+# reported as a ResourceWarning ("unclosed file") at interpreter shutdown
+_SCRATCH: dict[int, int] = {}
+
+
+def _scratch_descriptor() -> int:
+    fd, name = tempfile.mkstemp(prefix="ssi-blas-", suffix=".txt")
+    os.unlink(name)  # anonymous: gone with the process
+    return fd
 
 
 def _trap_c_output(fn, *args, **kw):
@@ -119,9 +128,9 @@ def _trap_c_output(fn, *args, **kw):
     saved = {}
     for fd in (1, 2):
         if fd not in _SCRATCH:
-            _SCRATCH[fd] = tempfile.TemporaryFile()  # noqa: SIM115 -- kept open for the process's life
+            _SCRATCH[fd] = _scratch_descriptor()
         saved[fd] = os.dup(fd)
-        os.dup2(_SCRATCH[fd].fileno(), fd)
+        os.dup2(_SCRATCH[fd], fd)
     try:
         out = fn(*args, **kw)
     finally:
@@ -138,12 +147,15 @@ def _drain_scratch() -> str:
     texts = []
     for fd in (1, 2):
         scratch = _SCRATCH[fd]
-        if os.fstat(scratch.fileno()).st_size == 0:
+        size = os.fstat(scratch).st_size
+        if size == 0:
             continue
-        scratch.seek(0)
-        text = scratch.read()
-        scratch.seek(0)
-        scratch.truncate()
+        os.lseek(scratch, 0, os.SEEK_SET)
+        text = b""
+        while len(text) < size and (chunk := os.read(scratch, size - len(text))):
+            text += chunk
+        os.lseek(scratch, 0, os.SEEK_SET)
+        os.ftruncate(scratch, 0)
         if b"illegal value" in text:
             texts.append(text.decode(errors="replace"))
         else:

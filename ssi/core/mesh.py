@@ -9,9 +9,13 @@ growth starts from the end elements' size. Every layer boundary is a mesh line, 
 in one layer. Nodes are numbered column by column (z fastest), which keeps neighbours close in memory.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .validate import check_array, check_real
 
@@ -19,7 +23,7 @@ MAX_LINES = 100_000  # mesh lines per direction: more is a unit slip (mm for m),
 MAX_END_GRADING = 4.0  # beyond, the end element of a coarse mesh is (2/n)^4 of the half-width: slivers
 
 
-def graded_lines(start, stop, h_start, h_max, growth=1.2):
+def graded_lines(start: float, stop: float, h_start: float, h_max: float, growth: float = 1.2) -> np.ndarray:
     """Mesh-line positions from ``start`` to ``stop`` with sizes growing from ``h_start`` by ``growth`` up to
     ``h_max``; the sizes are scaled slightly so the last line falls exactly on ``stop``."""
     start = check_real("start", start, unit="m")
@@ -58,25 +62,25 @@ class SoilMesh:
     grid: np.ndarray = field(repr=False)  # (2*nx+1, 2*nz+1) node id at each grid position, -1 at centres
 
     @property
-    def surface(self):
+    def surface(self) -> np.ndarray:
         """Node ids of the ground surface ordered by x: the top node of every grid column (z = 0, and the
         trench bottom z = -embedment where the elements above were removed)."""
         top = [col[col >= 0][-1] for col in self.grid]
         return np.array(top, np.int64)
 
     @property
-    def bottom(self):
+    def bottom(self) -> np.ndarray:
         return self.grid[:, 0].copy()
 
     @property
-    def left(self):
+    def left(self) -> np.ndarray:
         return self.grid[0, :].copy()
 
     @property
-    def right(self):
+    def right(self) -> np.ndarray:
         return self.grid[-1, :].copy()
 
-    def nodes_between(self, x0, x1, z=0.0, tol=1e-9):
+    def nodes_between(self, x0: float, x1: float, z: float = 0.0, tol: float = 1e-9) -> np.ndarray:
         """Ids of the nodes on the line z (must be a mesh line) with x0 <= x <= x1, ordered by x."""
         ids = np.flatnonzero(
             (np.abs(self.xy[:, 1] - z) < tol) & (self.xy[:, 0] >= x0 - tol) & (self.xy[:, 0] <= x1 + tol)
@@ -84,7 +88,9 @@ class SoilMesh:
         return ids[np.argsort(self.xy[ids, 0])]
 
 
-def structured_q8(x_lines, z_lines, z_layer_tops=None):
+def structured_q8(
+    x_lines: ArrayLike, z_lines: ArrayLike, z_layer_tops: Sequence[float] | None = None
+) -> SoilMesh:
     """Q8 mesh on the tensor grid of element edges ``x_lines`` (nx+1,) and ``z_lines`` (nz+1,), both
     increasing. ``z_layer_tops`` (descending tops of layers 2, 3, ...) assigns ``el_layer``."""
     x_lines = check_array("x_lines", x_lines, ndim=1, min_size=2)
@@ -125,19 +131,19 @@ def structured_q8(x_lines, z_lines, z_layer_tops=None):
 
 
 def soil_block(
-    width,
-    depth,
-    layer_thicknesses=None,
-    foundation=(-0.5, 0.5),
-    h_fine=0.25,
-    h_coarse=2.0,
-    growth=1.25,
-    x_left=None,
-    breaks=(),
-    embedment=0.0,
-    edges=(),
-    end_grading=1.0,
-):
+    width: float,
+    depth: float,
+    layer_thicknesses: Sequence[float] | None = None,
+    foundation: tuple[float, float] = (-0.5, 0.5),
+    h_fine: float = 0.25,
+    h_coarse: float = 2.0,
+    growth: float = 1.25,
+    x_left: float | None = None,
+    breaks: Sequence[float] = (),
+    embedment: float = 0.0,
+    edges: Sequence[float] = (),
+    end_grading: float = 1.0,
+) -> SoilMesh:
     """The graded soil block of Fig. 1.
 
     Parameters
@@ -223,7 +229,7 @@ def soil_block(
     return mesh
 
 
-def foundation_lines(x0, x1, h_fine, end_grading=1.0):
+def foundation_lines(x0: float, x1: float, h_fine: float, end_grading: float = 1.0) -> np.ndarray:
     """Mesh-line positions [m] under a foundation from ``x0`` to ``x1``: n = round((x1 - x0) / h_fine)
     elements (at least one), spaced evenly for ``end_grading`` = 1, else graded towards both ends by the
     symmetric power map
@@ -244,7 +250,9 @@ def foundation_lines(x0, x1, h_fine, end_grading=1.0):
     return x0 + (x1 - x0) * s
 
 
-def _insert_breaks(lines, breaks, protected, as_edges=False):
+def _insert_breaks(
+    lines: ArrayLike, breaks: Sequence[float], protected: Sequence[float], as_edges: bool = False
+) -> np.ndarray:
     """Make every x in ``breaks`` a node of the surface: move the nearest unprotected line there when both
     neighbouring elements stay at least half their size, else insert a line. ``as_edges``: every x must be
     a line itself (an element edge), a mid-side node is not enough."""
@@ -272,7 +280,7 @@ def _insert_breaks(lines, breaks, protected, as_edges=False):
     return lines
 
 
-def remove_elements(mesh: SoilMesh, keep) -> SoilMesh:
+def remove_elements(mesh: SoilMesh, keep: ArrayLike) -> SoilMesh:
     """The mesh without the elements where ``keep`` (n_el,) is False; nodes no kept element uses are dropped
     and the rest renumbered in their order (``grid`` holds -1 where a node was dropped)."""
     keep = np.asarray(keep, bool)
@@ -285,7 +293,9 @@ def remove_elements(mesh: SoilMesh, keep) -> SoilMesh:
     return SoilMesh(mesh.xy[used], new_id[conn], mesh.el_layer[keep], mesh.x_lines, mesh.z_lines, grid)
 
 
-def surface_pressure_forces(mesh: SoilMesh, x0, x1, z=0.0):
+def surface_pressure_forces(
+    mesh: SoilMesh, x0: float, x1: float, z: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
     """(node ids, nodal force per unit pressure [m]) of a uniform pressure on the surface line z from x0 to
     x1 (both mesh lines): the consistent forces L/6, 4L/6, L/6 of every quadratic edge in the range."""
     nodes = mesh.nodes_between(x0, x1, z)
@@ -309,7 +319,7 @@ class Contact:
     soil_conn: np.ndarray  # (n_el, 3) soil node ids of each interface element's lower side
 
 
-def foundation_contact(mesh: SoilMesh, x0, x1, thickness, z=0.0):
+def foundation_contact(mesh: SoilMesh, x0: float, x1: float, thickness: float, z: float = 0.0) -> Contact:
     """Plate-strip nodes above the soil nodes on the line z (the foundation base) between x0 and x1 (which
     must be mesh lines)."""
     soil = mesh.nodes_between(x0, x1, z)

@@ -158,6 +158,8 @@ class Model:
 
     # ---- groups, supports, loads ----------------------------------------------------------------------
     def add_group(self, group: ElementGroup) -> ElementGroup:
+        """Add an element group (a subclass of :class:`~ssi.core.protocol.ElementGroup`, or an object that
+        forwards its attributes, as a recorder wrapping one does) and return it."""
         if group.edofs.size and group.edofs.max() >= self.n_dof:
             raise ValueError(f"group {group.name!r} refers to DOFs that the model does not have")
         self.groups.append(group)
@@ -423,7 +425,7 @@ class System:
             gather_vector(g.edofs, u, u_el)
             gather_vector(g.edofs, du, du_el)
             if tangent is None:
-                flag = FORCES_ONLY if getattr(g, "forces_only", False) else K0_MATRIX
+                flag = FORCES_ONLY if g.forces_only else K0_MATRIX
             else:
                 flag = tangent
             f_el, k_el, state_new = g.evaluate(u_el, du_el, state, flag)

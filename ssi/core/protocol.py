@@ -1,7 +1,7 @@
 """The element-group protocol: what the model and the solver expect from every element type.
 
-The bottom of the package's layering: materials, elements, the model and the solver all import it, and it
-imports nothing of ``ssi``.
+Near the bottom of the package's layering: materials, elements, the model and the solver all import it, and it
+imports only :mod:`ssi.core.assembly` (the default K0 assembly of a group).
 
 A scene is a set of *element groups* (soil Q8, plate strip, interface). A group holds all elements of one
 type in flat, element-major, C-contiguous arrays and evaluates them in one numba kernel call.
@@ -27,11 +27,31 @@ Signs: x horizontal, z vertical upwards, w positive up, stresses positive in ten
 Incremental laws (soil, interface) update stresses from ``du_el`` and the committed state; total laws
 (plate strip) compute strains from ``u_el`` and use the state only for history (max strains, cracks).
 ``evaluate`` never mutates ``state_old``: the solver alone commits ``state_new`` after convergence.
+
+Capabilities (declared, never probed)
+-------------------------------------
+Every group inherits :class:`ElementGroup`, which declares what the model, the solver, the scene and the
+result files may ask of a group, each with a default that means "this group has no such thing". A group
+overrides what it has; nobody asks ``hasattr(group, ...)``:
+
+=============================  ======================================================================
+``forces_only``                accepts the FORCES_ONLY flag (else it gets K0_MATRIX and k_el is ignored)
+``viscous``, ``viscosity``     takes a Duvaut--Lions viscosity tau = dt / eta per increment [-], which
+                               the solver's viscous recovery sets (only on groups with ``viscous``)
+``history_fields``             name -> index on the last axis of ``state`` (read with :meth:`history`)
+``point_codes(state)``         a state code per integration point (e.g. stick/slip/open), named by
+                               ``point_code_names``, or None
+``integration_points()``       (n_el, n_ip, 2) physical (x, z) of the integration points [m], or None
+``ip_weights()``               (n_el, n_ip) weight times Jacobian of each point [m], or None
+``assemble_elastic_stiffness``  add K0 into CSR values (default: scatter :meth:`elastic_stiffness`)
+=============================  ======================================================================
 """
 
-from typing import Protocol
+from collections.abc import Mapping
 
 import numpy as np
+
+from .assembly import scatter_matrix
 
 # Tangent flags: the last argument of every ``evaluate`` and of every material point kernel. They say which
 # matrix to return, not which law to use: law kinds (``soil_laws.ELASTIC``, ``layer_laws.CONCRETE``, ...) are
@@ -43,23 +63,80 @@ FORCES_ONLY = -1  # internal forces only; k_el may be None. Only groups whose at
 TANGENT_FLAGS = (K0_MATRIX, CONSISTENT, FORCES_ONLY)
 
 
-class ElementGroup(Protocol):
-    name: str
+class ElementGroup:
+    """Base class of every element group: the required methods and the optional capabilities, declared.
+
+    A subclass sets ``name`` and ``edofs`` and implements :meth:`initial_state`, :meth:`evaluate` and
+    :meth:`elastic_stiffness`; it overrides a capability (class attribute or method below) only where it
+    has it. The defaults say "none": no viscosity, no named state slots, no point codes, no integration
+    points, K0 assembled by scattering the element matrices.
+    """
+
+    name: str = "group"
     edofs: np.ndarray
 
+    #: accepts ``FORCES_ONLY`` (internal forces without matrices)
+    forces_only: bool = False
+    #: takes a Duvaut--Lions viscosity (the solver's viscous recovery sets ``viscosity`` on these groups only)
+    viscous: bool = False
+    #: the viscosity in force, tau = dt / eta per increment [-]; 0: rate independent
+    viscosity: float = 0.0
+    #: name -> index on the last axis of ``state`` (several names may share an index where the meaning of a
+    #: slot depends on the point's law, as in the plate's layers)
+    history_fields: Mapping[str, int] = {}
+    #: names of the codes :meth:`point_codes` returns (code i is ``point_code_names[i]``)
+    point_code_names: tuple[str, ...] = ()
+
+    # ---- required --------------------------------------------------------------------------------------
     def initial_state(self) -> np.ndarray:
         """Committed state before the first step (zeros, or geostatic stress for soil)."""
+        raise NotImplementedError(f"{type(self).__name__} must implement initial_state()")
 
     def evaluate(
         self, u_el: np.ndarray, du_el: np.ndarray, state_old: np.ndarray, tangent: int
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
         """Return ``(f_el, k_el, state_new)``; ``tangent`` is K0_MATRIX or CONSISTENT (or FORCES_ONLY)."""
+        raise NotImplementedError(f"{type(self).__name__} must implement evaluate()")
 
     def elastic_stiffness(self) -> np.ndarray:
         """``k_el`` of the undamaged, elastic elements (K0)."""
+        raise NotImplementedError(f"{type(self).__name__} must implement elastic_stiffness()")
 
+    # ---- optional, with defaults -----------------------------------------------------------------------
     def body_force(self) -> np.ndarray | None:
-        """Equivalent nodal forces of body loads (self-weight), shape like ``f_el``, or None."""
+        """Equivalent nodal forces of body loads (self-weight) [N/m], shape like ``f_el``, or None."""
+        return None
 
     def describe(self) -> dict:
         """Plain attributes (numbers, strings, lists) that document the group in result files."""
+        return {"name": self.name}
+
+    def history(self, state: np.ndarray, field: str) -> np.ndarray:
+        """The slot ``field`` of ``state`` (a view, shape ``state.shape[:-1]``), by its name in
+        ``history_fields``."""
+        try:
+            index = self.history_fields[field]
+        except KeyError:
+            raise KeyError(
+                f"{self.name}: no state field {field!r}; its fields are {sorted(self.history_fields)}"
+            ) from None
+        return state[..., index]
+
+    def point_codes(self, state: np.ndarray) -> np.ndarray | None:
+        """An integer state code per integration point (names in ``point_code_names``), or None."""
+        return None
+
+    def integration_points(self) -> np.ndarray | None:
+        """(n_el, n_ip, 2) physical (x, z) of the integration points [m], or None."""
+        return None
+
+    def ip_weights(self) -> np.ndarray | None:
+        """(n_el, n_ip) quadrature weight times Jacobian of each integration point [m], or None."""
+        return None
+
+    def assemble_elastic_stiffness(self, smap: np.ndarray, data: np.ndarray) -> np.ndarray:
+        """Add K0 into the CSR values ``data`` through this group's scatter map ``smap`` and return ``data``.
+        The default scatters :meth:`elastic_stiffness`; a group overrides it to assemble without keeping
+        the element matrices."""
+        scatter_matrix(smap, self.elastic_stiffness(), data)
+        return data

@@ -32,7 +32,7 @@ Layout (see ``base``): coords (n_el, 6, 2) [upper 0-2, lower 3-5]; edofs (n_el, 
 import numpy as np
 from numba import njit
 
-from ..core.protocol import CONSISTENT, K0_MATRIX
+from ..core.protocol import CONSISTENT, K0_MATRIX, ElementGroup
 from ..core.quadrature import gauss_legendre, newton_cotes
 from ..core.shapes import lagrange3, lagrange3_into
 from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, STICK, interface_update
@@ -45,6 +45,9 @@ _lagrange3_py = getattr(
 
 N_VAR = 2 + N_HIST
 V_TAU, V_SIG, V_STATUS, V_GT, V_GN, V_SLIPT, V_SLIPN, V_OPEN, V_BROKEN = range(N_VAR)
+# the state's slots by name (the order of the V_* indices)
+_STATE_NAMES = ("tau", "sig_n", "status", "g_t", "g_n", "slip_t", "slip_n", "open_gap", "broken")
+INTERFACE_STATE_FIELDS = {name: i for i, name in enumerate(_STATE_NAMES)}
 
 
 @njit(cache=True)
@@ -150,7 +153,7 @@ def _points(
                     k_el[e, i, j] += b0 * DB[0, j] + b1 * DB[1, j]
 
 
-class Interface6:
+class Interface6(ElementGroup):
     """A group of 6-node zero-thickness interface elements (see the module docstring).
 
     Parameters
@@ -174,7 +177,13 @@ class Interface6:
     initial_traction : array broadcastable to (n_el, n_ip, 2), optional
         Tractions [tau, sig_n] of the committed state before the first step (e.g. the contact pressure of a
         geostatic or pre-loaded state that the loads already equilibrate; sig_n < 0 compression). Default 0.
+    viscosity : float
+        Duvaut--Lions regularisation tau = dt / eta per increment (dimensionless; 0: rate independent).
     """
+
+    viscous = True
+    history_fields = INTERFACE_STATE_FIELDS
+    point_code_names = tuple(STATE_NAMES[k] for k in sorted(STATE_NAMES))
 
     def __init__(
         self,
@@ -357,6 +366,14 @@ class Interface6:
             "params": "[kt, kn, c, tan_phi, tan_psi, sig_t]",
             "params_first": self.params[0].tolist(),
         }
+
+    def point_codes(self, state) -> np.ndarray:
+        """(n_el, n_ip) 0 stick, 1 slip, 2 open (see :meth:`status`)."""
+        return self.status(state)
+
+    def integration_points(self) -> np.ndarray:
+        """(n_el, n_ip, 2) coordinates (x, z) of the integration points (:meth:`ip_coords`)."""
+        return self.ip_coords()
 
     # ---- reporting ------------------------------------------------------------------------------------
     def ip_coords(self) -> np.ndarray:

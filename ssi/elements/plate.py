@@ -63,11 +63,12 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
-from ..core.protocol import CONSISTENT, K0_MATRIX
+from ..core.protocol import CONSISTENT, K0_MATRIX, ElementGroup
 from ..core.quadrature import gauss_legendre
 from ..core.shapes import lagrange3, lagrange3_into
 from ..materials.layer_laws import (
     CONCRETE,
+    LAYER_HIST_FIELDS,
     N_LAYER_CONSTANTS,
     N_LAYER_HIST,
     P_LS,
@@ -473,7 +474,7 @@ def _line_load(x_el, q_pts, xi, wt, comp, f_el):
                 f_el[e, 3 * a + comp] += nn[a] * q_pts[e, p] * wt[p] * jac
 
 
-class PlateStrip:
+class PlateStrip(ElementGroup):
     """A group of 3-node layered Mindlin plate-strip elements sharing one section.
 
     Parameters
@@ -502,7 +503,11 @@ class PlateStrip:
     ``evaluate(u_el, du_el, state_old, tangent) -> (f_el, k_el, state_new)`` follows ``ssi.core.protocol``.
     Bottom face for the interface element: ``z_bottom`` (< 0, relative to the nodes) and ``bottom_offset =
     -z_bottom`` so that u_g = u_b + bottom_offset * alpha_b (eq. 6.1); ``thickness`` is the section depth.
+    ``history(state, name)`` reads a layer-history slot by the name its law gives it (concrete: ``x_max``,
+    ``e_max``; steel: ``eps_p``), shape (n_el, n_ip, n_layer).
     """
+
+    history_fields = LAYER_HIST_FIELDS
 
     def __init__(
         self,

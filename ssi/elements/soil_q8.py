@@ -14,15 +14,25 @@ import numpy as np
 from numba import njit
 
 from ..core.assembly import scatter_matrix
-from ..core.protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS
+from ..core.protocol import FORCES_ONLY, K0_MATRIX, TANGENT_FLAGS, ElementGroup
 from ..core.quadrature import gauss_2d
 from ..core.shapes import serendipity8
-from ..materials.mohr_coulomb import N_MC_WORK_ROWS
-from ..materials.soil_laws import N_SOIL_HIST, elastic_matrix, law_constants, laws_used, soil_update_among
+from ..materials.mc_implicit_scheme import N_MC_WORK_ROWS
+from ..materials.soil_laws import (
+    N_SOIL_HIST,
+    SOIL_HIST_NAMES,
+    elastic_matrix,
+    law_constants,
+    laws_used,
+    soil_update_among,
+)
 from .q8_elastic import q8_elastic_assemble, q8_elastic_stiffness
 
 N_STRESS = 4
 N_SOIL_STATE = N_STRESS + N_SOIL_HIST
+STRESS_NAMES = ("sxx", "szz", "txz", "syy")
+# the state's slots by name: the stress, then the law's history (names from ssi.materials.soil_laws)
+SOIL_STATE_FIELDS = {name: i for i, name in enumerate(STRESS_NAMES + SOIL_HIST_NAMES)}
 
 
 @njit(cache=True)
@@ -296,7 +306,7 @@ def q8_points(coords, gp, out):
                 out[e, q, 1] += n[a] * coords[e, a, 1]
 
 
-class SoilQ8:
+class SoilQ8(ElementGroup):
     """A group of 8-node plane-strain soil elements.
 
     Parameters
@@ -321,6 +331,9 @@ class SoilQ8:
 
     name = "soil_q8"
     forces_only = True  # accepts the FORCES_ONLY flag
+    viscous = True
+    history_fields = SOIL_STATE_FIELDS
+    point_code_names = ("elastic", "plastic")
 
     def __init__(
         self,
@@ -541,6 +554,10 @@ class SoilQ8:
     def stress(self, state):
         """Stress [sxx, szz, txz, syy] at the integration points, (n_el, n_ip, 4)."""
         return state[:, :, :N_STRESS]
+
+    def point_codes(self, state):
+        """(n_el, n_ip) 1 where the last stress update returned to the yield surface (plastic), else 0."""
+        return (self.history(state, "branch") > 0).astype(int)
 
     def describe(self):
         return {

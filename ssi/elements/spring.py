@@ -21,7 +21,7 @@ full Newton quadratic (``tests/test_solver.py`` checks them by finite difference
 import numpy as np
 from numba import njit
 
-from ..core.protocol import CONSISTENT, K0_MATRIX
+from ..core.protocol import CONSISTENT, K0_MATRIX, ElementGroup
 
 __all__ = ["ELASTOPLASTIC", "LINEAR", "TANH", "Spring", "spring_force"]
 
@@ -90,7 +90,7 @@ def _springs(kinds, params, u_el, du_el, state_old, tangent, f_el, k_el, state_n
         state_new[e, 0, 1] = out[2]
 
 
-class Spring:
+class Spring(ElementGroup):
     """A group of nonlinear springs between pairs of global DOFs.
 
     Parameters
@@ -100,6 +100,8 @@ class Spring:
     params : array (3,) or (n_el, 3), see the module docstring
     name : group name in result files
     """
+
+    history_fields = {"force": 0, "kappa": 1}  # state (n_el, 1, 2): force F [N], plastic elongation [m]
 
     def __init__(self, edofs, kinds, params, name="spring"):
         self.edofs = np.ascontiguousarray(np.atleast_2d(edofs), np.int64)

@@ -22,13 +22,16 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.mesh import SoilMesh, surface_pressure_forces
 from ..core.model import Model
 from ..core.quadrature import gauss_legendre
 from ..core.shapes import lagrange3
+from ..core.solution import Result
 from ..materials.soil_laws import material_table
-from .plate import add_plate_strip
+from .plate import PlateStrip, add_plate_strip
+from .section import Section
 from .soil_q8 import SoilQ8
 from .spring import LINEAR, Spring
 
@@ -44,7 +47,15 @@ __all__ = [
 ]
 
 
-def soil_group(model, mesh: SoilMesh, materials: Sequence, ids=None, el_mat=0, xy=None, **options) -> SoilQ8:
+def soil_group(
+    model: Model,
+    mesh: SoilMesh,
+    materials: Sequence,
+    ids: ArrayLike | None = None,
+    el_mat: int | ArrayLike = 0,
+    xy: ArrayLike | None = None,
+    **options,
+) -> SoilQ8:
     """Add the Q8 soil group of ``mesh`` to ``model`` and return it.
 
     ``materials``: ``[(kind, params), ...]`` (e.g. ``[(ELASTIC, elastic_params(E, nu))]``), stacked by
@@ -60,7 +71,7 @@ def soil_group(model, mesh: SoilMesh, materials: Sequence, ids=None, el_mat=0, x
     return model.add_group(SoilQ8(coords, model.element_dofs(conn), el_mat, kinds, params, **options))
 
 
-def fix_block(model, mesh: SoilMesh, ids=None, sides: bool = True) -> None:
+def fix_block(model: Model, mesh: SoilMesh, ids: ArrayLike | None = None, sides: bool = True) -> None:
     """The soil block's supports: bottom nodes fixed in u and w; with ``sides`` the left and right faces on
     vertical rollers (u = 0). ``ids``: the model node ids of the mesh nodes (default: the same numbers)."""
     node = (lambda n: n) if ids is None else (lambda n: np.asarray(ids)[n])
@@ -72,8 +83,15 @@ def fix_block(model, mesh: SoilMesh, ids=None, sides: bool = True) -> None:
 
 
 def surface_pressure(
-    model, mesh: SoilMesh, x0: float, x1: float, p: float, z: float = 0.0, ids=None, dead: bool = False
-):
+    model: Model,
+    mesh: SoilMesh,
+    x0: float,
+    x1: float,
+    p: float,
+    z: float = 0.0,
+    ids: ArrayLike | None = None,
+    dead: bool = False,
+) -> tuple[np.ndarray, np.ndarray]:
     """Load the mesh line z from x0 to x1 with a uniform pressure ``p`` [Pa] (positive down): the
     consistent nodal forces of :func:`ssi.core.mesh.surface_pressure_forces`, as a reference load (scaled by
     the load factor) or, with ``dead``, a dead load. ``ids``: the model node ids of the mesh nodes. Returns
@@ -87,7 +105,7 @@ def surface_pressure(
     return nodes, f
 
 
-def edge_forces(edge_xy, traction: Callable, n_gauss: int = 4) -> np.ndarray:
+def edge_forces(edge_xy: ArrayLike, traction: Callable, n_gauss: int = 4) -> np.ndarray:
     """Consistent nodal forces of a traction on quadratic (3-node) edges.
 
     Parameters
@@ -117,7 +135,9 @@ def edge_forces(edge_xy, traction: Callable, n_gauss: int = 4) -> np.ndarray:
     return out
 
 
-def plate_strip_model(n_el: int, span: float, section, integration="selective", kappa: float = 5.0 / 6.0):
+def plate_strip_model(
+    n_el: int, span: float, section: Section, integration: str | tuple = "selective", kappa: float = 5.0 / 6.0
+) -> tuple[Model, PlateStrip, np.ndarray]:
     """``(model, group, node ids)``: a new model holding one plate strip of ``n_el`` equal elements from
     x = 0 to ``span`` [m] (:func:`ssi.elements.plate.add_plate_strip`), no supports, no loads."""
     model = Model()
@@ -128,8 +148,14 @@ def plate_strip_model(n_el: int, span: float, section, integration="selective", 
 
 
 def simply_supported_strip(
-    n_el: int, span: float, section, load, integration="selective", kappa: float = 5.0 / 6.0, backend="auto"
-):
+    n_el: int,
+    span: float,
+    section: Section,
+    load: tuple[str, float],
+    integration: str | tuple = "selective",
+    kappa: float = 5.0 / 6.0,
+    backend: str = "auto",
+) -> tuple[Model, PlateStrip, np.ndarray, Result]:
     """A strip pinned at x = 0 (u, w) and on a roller at x = ``span`` (w), solved linearly.
 
     ``load``: ``("uniform", q)`` [N/m per m, positive up] on every element (consistent nodal forces) or
@@ -148,7 +174,14 @@ def simply_supported_strip(
     return model, group, ids, model.solve_linear(backend=backend)
 
 
-def cantilever_strip(n_el: int, span: float, section, P: float, integration="selective", backend="auto"):
+def cantilever_strip(
+    n_el: int,
+    span: float,
+    section: Section,
+    P: float,
+    integration: str | tuple = "selective",
+    backend: str = "auto",
+) -> tuple[Model, PlateStrip, np.ndarray, Result]:
     """A strip clamped at x = 0 (u, w, alpha) with a tip load ``P`` [N/m, positive up] at x = ``span``,
     solved linearly. Returns ``(model, group, ids, Result)``."""
     model, group, ids = plate_strip_model(n_el, span, section, integration)
@@ -158,7 +191,9 @@ def cantilever_strip(n_el: int, span: float, section, P: float, integration="sel
     return model, group, ids, model.solve_linear(backend=backend)
 
 
-def spring_chain(kinds, params, name: str = "spring"):
+def spring_chain(
+    kinds: int | ArrayLike, params: ArrayLike, name: str = "spring"
+) -> tuple[Model, Spring, np.ndarray]:
     """A model of springs in series along x: node 0 (fixed) -- spring 0 -- node 1 -- ... -- node n.
 
     Spring e acts between the u DOFs of nodes e and e + 1. Model nodes carry (u, w); every w is fixed, and the

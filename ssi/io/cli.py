@@ -2,13 +2,20 @@
 
 ``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene.scene_file`) and writes, next to it unless
 told otherwise: ``<name>.h5`` (the result, :func:`ssi.io.results.write_result`), ``<name>.pvd`` +
-``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.io.plot.standard_figures`)
-and ``<name>_summary.json``; it prints the summary (largest settlement, largest contact pressure, largest
-bending moment, the status, wall time). Nothing is overwritten without ``--overwrite``.
+``<name>_steps/*.vtu`` (ParaView, every step), ``<name>_plots/*.png`` (:func:`ssi.io.plot.standard_figures`),
+``<name>_summary.json`` and ``<name>_report.html`` (:mod:`ssi.io.report`: the summary with units, the
+capacity, per-phase tables, warnings and the figures, one page that works offline); it prints the summary
+(the foundation load and capacity, settlement, contact pressure -- mean, peak away from the edges, the edge
+value marked as a singularity --, bending moment, per-phase maxima, the status, wall time). Nothing is
+overwritten without ``--overwrite``.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
 factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
-status 3. ``ssi show result.h5`` prints the summary of a result file and writes its plots.
+status 3. A site file (:mod:`ssi.scene.site_file`) is solved by :mod:`ssi.io.cli_site`: a per-foundation
+summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``; its result file,
+ParaView export, plots and report are not written yet. ``ssi show result.h5`` prints the summary of a result
+file and redraws its plots and report into a new folder (``<result>_plots_2``, ... when the run's exists;
+``--overwrite``: into the run's).
 ``ssi limit scene.toml`` brackets the scene's capacity by finite-element limit analysis
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
 ``<name>_limit.json`` (the numbers) and ``<name>_limit.png`` (the mechanism and the dissipation).
@@ -18,9 +25,17 @@ import argparse
 import json
 import sys
 import time
+import warnings
 from pathlib import Path
 
 EXIT_INCOMPLETE = 3
+
+
+def _column_loads_exist(scene) -> bool:
+    from ..scene import ColumnLoad
+
+    loads = list(scene.loads) + [ld for ph in scene.phases for ld in ph.loads]
+    return any(isinstance(ld, ColumnLoad) for ld in loads)
 
 
 def summary(result, wall_time=None, complete=True, stop=None) -> dict:
@@ -30,10 +45,19 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     path up to the limit is the answer, ``limit_load_factor`` the fraction of the loads -- of a phased scene,
     of the last phase's loads -- that the scene carries) or "stopped" (the solver failed before either;
     ``stop_reason``). ``phase``: of a phased scene, the name of the last phase reached; ``phase_load_factor``
-    the load factor reached in it. ``column_load`` [N/m]: of a single-phase scene, load factor times the sum
-    of the column forces N (None for a phased scene: its phase, load factor and contact resultant say it)."""
-    from ..scene import ColumnLoad
+    the load factor reached in it.
 
+    Loads: ``column_load`` [N/m] the column forces applied at the end (None: the scene has no column);
+    ``foundation_load`` [N/m] the load the foundation carries at the end (of a push-over the soil's
+    reaction); ``capacity``: :meth:`SceneResult.capacity` (the largest load carried over rate-independent
+    equilibrium states, whether it is a limit and how it was found).
+
+    Values at the end (``max_settlement``, ``contact_resultant``, the pressures, ``max_abs_moment``) and
+    over all phases: ``phases`` (:meth:`SceneResult.phase_table`, one row per phase) and ``envelope`` (the
+    largest of each quantity over the phases, with the phase it occurs in). Contact pressure:
+    ``mean_contact_pressure``, ``peak_contact_pressure`` (edge-excluded, with its x) and
+    ``max_contact_pressure`` (the largest anywhere: the corner singularity of a stiff strip, not a bearing
+    pressure)."""
     x_s, s_max = result.max_settlement()
     out = {
         "complete": bool(complete),
@@ -43,28 +67,96 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
         "x_max_settlement": x_s,
     }
     if result.built.plate is not None:
-        c = result.contact()
-        i = int(c["sig_n"].argmin())
-        out["max_contact_pressure"] = float(-c["sig_n"].ravel()[i])
-        out["x_max_contact_pressure"] = float(c["x"].ravel()[i])
+        cp = result.contact_pressure()
+        out["mean_contact_pressure"] = cp["mean"]
+        out["peak_contact_pressure"] = cp["peak"]
+        out["x_peak_contact_pressure"] = cp["x_peak"]
+        out["max_contact_pressure"] = cp["edge"]
+        out["x_max_contact_pressure"] = cp["x_edge"]
         out["contact_resultant"] = result.contact_resultant()["N"]
-        m = result.strip_forces()["M"]
+        forces = result.strip_forces()
+        m = forces["M"]
         j = int(abs(m).argmax())
         out["max_abs_moment"] = float(abs(m).ravel()[j])
-        out["x_max_abs_moment"] = float(result.strip_forces()["x_ax"].ravel()[j])
+        out["x_max_abs_moment"] = float(forces["x_ax"].ravel()[j])
     last = result.phases[-1] if result.phases else None
     out["phase"] = None if last is None else last["name"]
     out["phase_load_factor"] = out["load_factor"] if last is None else float(last["result"].load_factor[-1])
-    total_n = sum(load.N for load in result.built.scene.loads if isinstance(load, ColumnLoad))
-    out["column_load"] = None if result.built.scene.phases else out["load_factor"] * total_n
+    has_columns = _column_loads_exist(result.built.scene)
+    out["column_load"] = float(result.column_load()[-1]) if has_columns else None
+    out["foundation_load"] = float(result.foundation_load()[-1])
+    out["push_over"] = result.is_push_over
+    out["capacity"] = result.capacity()
+    out["phases"] = result.phase_table()
     out["status"] = result.status if complete else "stopped"
     out["limit_load_factor"] = result.limit_load_factor if complete else None
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
         out["design"] = result.design_summary()
+        by_phase = (out["design"] or {}).get("phases", {})
+        for row in out["phases"]:  # EN 1992 crack width w_k [m] of each phase, from the design summary
+            if row["name"] in by_phase:
+                row["max_crack_width"] = 1e-3 * by_phase[row["name"]]["w_k_max_mm"]
+    out["envelope"] = _envelope(out["phases"])
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
+
+
+ENVELOPE_KEYS = (
+    "max_settlement",
+    "max_abs_moment",
+    "peak_pressure",
+    "max_steel_stress",
+    "max_crack_width",
+    "foundation_load",
+)
+
+
+def _envelope(table: list[dict]) -> dict:
+    """The largest of each of ``ENVELOPE_KEYS`` over the phase rows: {key: {"value", "phase"}} (keys no
+    phase has are left out)."""
+    out = {}
+    for key in ENVELOPE_KEYS:
+        rows = [r for r in table if r.get(key) is not None]
+        if rows:
+            best = max(rows, key=lambda r: r[key])
+            out[key] = {"value": best[key], "phase": best["name"]}
+    return out
+
+
+def _capacity_line(s: dict) -> str | None:
+    cap = s.get("capacity")
+    if not cap:
+        return None
+    if s.get("push_over"):
+        word = "capacity" if cap["is_limit"] else "largest load"
+        line = (
+            f"{word:<17}{cap['load'] / 1e3:.2f} kN/m at {1e3 * cap['settlement']:.2f} mm settlement "
+            f"({cap['how']})"
+        )
+    elif cap["is_limit"]:
+        line = f"capacity         {cap['load'] / 1e3:.2f} kN/m of column load ({cap['how']})"
+    else:
+        return None
+    if cap.get("viscous_rows"):
+        line += f"; {cap['viscous_rows']} viscous (not equilibrium) rows left out"
+    est = cap.get("estimate")
+    if est:  # attached by ssi.studies.estimate (solve_with_error, solve_to_target)
+        meshes = ""
+        if est.get("values"):
+            meshes = (
+                "mesh h, h/2, h/4: "
+                + ", ".join(f"{v / 1e3:.2f}" for v in est["values"])
+                + f" kN/m, observed order {est['order']:.2f}; "
+            )
+        line += (
+            f"\ncapacity error   {est['relative']:.1%} estimated ({meshes}extrapolated "
+            f"{est['extrapolated'] / 1e3:.2f} kN/m)"
+        )
+    if cap.get("warning"):
+        line += f"\nWARNING          {cap['warning']}"
+    return line
 
 
 def summary_text(s: dict) -> str:
@@ -79,16 +171,39 @@ def summary_text(s: dict) -> str:
         lines.append(
             f"last phase       {s['phase']!r} at load factor {s['phase_load_factor']:.4g} of its loads"
         )
+    if s.get("push_over"):
+        lines.append(
+            f"footing load     {s['foundation_load'] / 1e3:.2f} kN/m at the end (the soil's reaction)"
+        )
+    cap = _capacity_line(s)
+    if cap:
+        lines.append(cap)
+    env = s.get("envelope", {})
     lines.append(f"max settlement   {1e3 * s['max_settlement']:.3f} mm at x = {s['x_max_settlement']:.3f} m")
+    if len(s.get("phases") or []) > 1 and "max_settlement" in env:
+        lines[-1] += " at the end"
+        lines.append(
+            f"                 {1e3 * env['max_settlement']['value']:.3f} mm largest over the phases "
+            f"(phase {env['max_settlement']['phase']!r})"
+        )
     if "max_contact_pressure" in s:
         lines += [
             (
-                f"max pressure     {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
-                f"{s['x_max_contact_pressure']:.3f} m "
-                f"(contact resultant {s['contact_resultant'] / 1e3:.2f} kN/m)"
+                f"contact pressure {s['mean_contact_pressure'] / 1e3:.2f} kPa mean, "
+                f"{s['peak_contact_pressure'] / 1e3:.2f} kPa peak at x = "
+                f"{s['x_peak_contact_pressure']:.3f} m (edges excluded; contact resultant "
+                f"{s['contact_resultant'] / 1e3:.2f} kN/m)"
+            ),
+            (
+                f"edge pressure    {s['max_contact_pressure'] / 1e3:.2f} kPa at x = "
+                f"{s['x_max_contact_pressure']:.3f} m (a corner singularity: mesh dependent, not a "
+                "bearing pressure)"
             ),
             f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m",
         ]
+    if len(s.get("phases") or []) > 1:
+        lines.append("per phase        " + _phase_header(s["phases"]))
+        lines += ["  " + _phase_line(row, s["phases"]) for row in s["phases"]]
     load = "" if s.get("column_load") is None else f", {s['column_load'] / 1e3:.2f} kN/m of column load"
     if s["status"] == "limit load reached":
         where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
@@ -113,6 +228,33 @@ def summary_text(s: dict) -> str:
     return "\n".join(lines)
 
 
+PHASE_COLUMNS = (  # (key, header with unit, scale from SI, format)
+    ("foundation_load", "load [kN/m]", 1e-3, "{:9.2f}"),
+    ("max_settlement", "settl. [mm]", 1e3, "{:9.3f}"),
+    ("max_abs_moment", "|M| [kNm/m]", 1e-3, "{:9.2f}"),
+    ("peak_pressure", "p peak [kPa]", 1e-3, "{:9.2f}"),
+    ("max_steel_stress", "steel [MPa]", 1e-6, "{:9.1f}"),
+    ("max_crack_width", "w_k [mm]", 1e3, "{:9.3f}"),
+)
+
+
+def _phase_columns(table):
+    """The PHASE_COLUMNS some phase has a value of (the same for the header and every line)."""
+    return [c for c in PHASE_COLUMNS if any(r.get(c[0]) is not None for r in table)]
+
+
+def _phase_header(table):
+    return "max over each phase: " + ", ".join(h for _, h, _, _ in _phase_columns(table))
+
+
+def _phase_line(row, table):
+    cells = [
+        "        -" if row.get(key) is None else fmt.format(row[key] * scale)
+        for key, _, scale, fmt in _phase_columns(table)
+    ]
+    return f"{row['name']:<14} " + " ".join(cells)
+
+
 def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True):
     """What ``ssi run`` does; returns (result, summary dict, written paths)."""
     from ..scene import SceneResult
@@ -120,7 +262,8 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
     from .plot import save_standard_figures
-    from .results import atomic_path, write_result
+    from .report import write_report
+    from .results import OutputExistsError, atomic_path, write_result
 
     scene_path = Path(scene_path)
     stem = scene_path.with_suffix("")
@@ -128,22 +271,28 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
     plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
     summary_path = stem.parent / (stem.name + "_summary.json")
+    report_path = stem.parent / (stem.name + "_report.html")
     scene, n_steps, settings = read_scene_file(scene_path)
-    for target in (out, paraview, summary_path):
+    for target in (out, paraview, summary_path, report_path):
         if target.exists() and not overwrite:
-            raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
+            raise OutputExistsError(target)
     announce_compilation()
     t0 = time.perf_counter()
-    built = scene.build()
     stop = None
-    try:
-        result = built.solve(n_steps=n_steps, settings=settings)
-    except NonConvergence as err:
-        # the converged steps before the failure; of a phased scene every completed phase and the failing
-        # phase's steps (PhaseNonConvergence.scene_result)
-        result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
-        stop = err.report
+    with warnings.catch_warnings(record=True) as caught:  # shown as usual below, and kept for the report
+        warnings.simplefilter("default")
+        built = scene.build()
+        try:
+            result = built.solve(n_steps=n_steps, settings=settings)
+        except NonConvergence as err:
+            # the converged steps before the failure; of a phased scene every completed phase and the
+            # failing phase's steps (PhaseNonConvergence.scene_result)
+            result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
+            stop = err.report
     wall = time.perf_counter() - t0
+    for w in caught:
+        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
     complete = stop is None
     written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
     from .export import export_series
@@ -153,14 +302,34 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
     written.append(summary_path)
-    if figures:
-        written += save_standard_figures(result, plots, overwrite=overwrite)
+    figs = save_standard_figures(result, plots, overwrite=overwrite) if figures else []
+    written += figs
+    written.append(
+        write_report(s, report_path, figs, scene_path.name, run_warnings=run_warnings, overwrite=overwrite)
+    )
     return result, s, written
 
 
+def _free_folder(folder: Path) -> Path:
+    """``folder`` if it does not exist, else the first of ``folder_2``, ``folder_3``, ... that does not."""
+    k = 2
+    candidate = folder
+    while candidate.exists():
+        candidate = folder.with_name(f"{folder.name}_{k}")
+        k += 1
+    return candidate
+
+
 def show_result_file(path, plots=None, overwrite=False, figures=True):
-    """What ``ssi show`` does; returns (result, summary dict, written paths)."""
+    """What ``ssi show`` does; returns (result, summary dict, written paths).
+
+    The figures go to ``plots`` (default ``<result>_plots``, the folder ``ssi run`` drew into); if that
+    default folder exists and ``overwrite`` is False they go to a new folder beside it (``<result>_plots_2``,
+    ...), so showing a result right after its run never fails. A folder given explicitly is used as given:
+    an existing figure in it is replaced only with ``overwrite``. The figures' folder also gets the HTML
+    report (``report.html``, :mod:`ssi.io.report`)."""
     from .plot import save_standard_figures
+    from .report import write_report
     from .results import read_info, read_result
 
     path = Path(path)
@@ -172,7 +341,10 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     written = []
     if figures:
         folder = Path(plots) if plots else path.parent / (path.stem + "_plots")
+        if plots is None and not overwrite:
+            folder = _free_folder(folder)
         written = save_standard_figures(result, folder, overwrite=overwrite)
+        written.append(write_report(s, folder / "report.html", written, path.name, overwrite=overwrite))
     return result, s, written
 
 
@@ -237,10 +409,14 @@ def main(argv=None) -> int:
     run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
     show_p = sub.add_parser("show", help="print the summary of a result file and write its plots")
     show_p.add_argument("result", type=Path)
-    show_p.add_argument("--plots", type=Path, help="folder for the figures (default: <result>_plots)")
-    show_p.add_argument("--no-plots", action="store_true")
-    show_p.add_argument("--overwrite", action="store_true")
-    show_p.add_argument("--json", action="store_true")
+    show_p.add_argument(
+        "--plots",
+        type=Path,
+        help="folder for the figures (default: <result>_plots, or <result>_plots_2, ... if it exists)",
+    )
+    show_p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    show_p.add_argument("--overwrite", action="store_true", help="redraw into <result>_plots, replacing it")
+    show_p.add_argument("--json", action="store_true", help="print the summary as JSON")
     sub.add_parser("schema", help="print the scene file's tables, keys and units")
     lim_p = sub.add_parser("limit", help="bracket the capacity of a TOML scene by limit analysis")
     lim_p.add_argument("scene", type=Path)
@@ -255,6 +431,9 @@ def main(argv=None) -> int:
     lim_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     lim_p.add_argument("--json", action="store_true", help="print the numbers as JSON")
     args = parser.parse_args(argv)
+    from .cli_site import is_site_file, run_site_file, site_summary_text
+    from .results import OutputExistsError
+
     if args.command == "limit":
         try:
             cap, written = limit_scene_file(
@@ -274,16 +453,22 @@ def main(argv=None) -> int:
         print(schema_text())
         return 0
     try:
-        if args.command == "run":
+        if args.command == "run" and is_site_file(args.scene):
+            _, s, written = run_site_file(args.scene, args.overwrite)
+        elif args.command == "run":
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots
             )
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)
+    except OutputExistsError as err:  # the flag, not the Python keyword
+        print(f"ssi: error: {err.path} exists; pass --overwrite to replace it", file=sys.stderr)
+        return 2
     except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
         print(f"ssi: error: {err}", file=sys.stderr)
         return 2
-    print(json.dumps(s, indent=1) if args.json else summary_text(s))
+    text = site_summary_text if s.get("kind") == "site" else summary_text
+    print(json.dumps(s, indent=1) if args.json else text(s))
     for p in written:
         print(f"wrote {p}")
     return 0 if s["complete"] else EXIT_INCOMPLETE

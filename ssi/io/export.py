@@ -13,15 +13,34 @@ integration points),
 ``pore_pressure`` (hydrostatic below the water table plus the excess of undrained_A layers [Pa], compression
 positive, the element mean; the stresses are effective), ``N``, ``M``,
 ``Q`` (strip forces, means over the element's points [N/m, N m/m]), ``contact_pressure``, ``contact_shear``
-(means over the interface element's points [Pa]) and ``contact_open`` (share of open points).
+(means over the interface element's points [Pa]) and ``contact_open`` (share of open points); of an RC
+strip ``steel_stress`` (largest |stress| of its bars over the element's points [Pa]) and ``cracked_fraction``
+(share of its concrete layer points beyond the cracking strain); ``active``
+(1: the soil element is present at that step, 0: excavated by an earlier phase -- its stress, strain and
+pore pressure are then NaN, so ParaView's Threshold on ``active`` >= 1 shows the ground as it is).
+
+Units: every field's unit is in :data:`FIELD_UNITS`, and each VTU carries it as field data: a VTK string
+array per field, ``unit_<name>`` (e.g. ``unit_sxx`` = "Pa"; ParaView lists them under Information, Data
+Arrays), and ``time`` (the load factor or the step number, the .pvd entry's value). meshio neither writes
+field data to a VTU nor reads string arrays, so :func:`export_vtu` adds them to the XML it wrote and
+:func:`read_vtu` takes them out before meshio reads the rest.
 """
 
+from __future__ import annotations
+
+import tempfile
+import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import meshio
 import numpy as np
 
-from .results import atomic_path
+from ..materials.layer_laws import CONCRETE
+from .results import OutputExistsError, atomic_path
+
+if TYPE_CHECKING:  # annotations only
+    from ..scene import SceneResult
 
 STRESS_NAMES = ("sxx", "szz", "txz", "syy")
 CELL_FIELDS = (
@@ -35,10 +54,33 @@ CELL_FIELDS = (
     "contact_pressure",
     "contact_shear",
     "contact_open",
+    "active",
+    "steel_stress",
+    "cracked_fraction",
 )
+FIELD_UNITS = {
+    "displacement": "m",
+    "rotation": "rad",
+    "sxx": "Pa",
+    "szz": "Pa",
+    "txz": "Pa",
+    "syy": "Pa",
+    "plastic_fraction": "-",
+    "plastic_strain": "-",
+    "pore_pressure": "Pa",
+    "N": "N/m",
+    "M": "N m/m",
+    "Q": "N/m",
+    "contact_pressure": "Pa",
+    "contact_shear": "Pa",
+    "contact_open": "-",
+    "active": "-",
+    "steel_stress": "Pa",
+    "cracked_fraction": "-",
+}
 
 
-def mesh_cells(result) -> list:
+def mesh_cells(result: SceneResult) -> list[tuple[str, np.ndarray]]:
     """meshio cell blocks [(type, conn)]: soil quad8, then the strip's and the contact's line3."""
     built = result.built
     cells = [("quad8", built.mesh.conn)]
@@ -51,13 +93,14 @@ def mesh_cells(result) -> list:
     return cells
 
 
-def _interface_lower_nodes(built):
+def _interface_lower_nodes(built) -> np.ndarray:
     from .results import element_nodes
 
     return element_nodes(built.model, built.interface.edofs)[:, 3:]
 
 
-def point_data(result, k=-1) -> dict:
+def point_data(result: SceneResult, k: int = -1) -> dict[str, np.ndarray]:
+    """``displacement`` (n_nodes, 3) [m] and ``rotation`` (n_nodes,) [rad] at step ``k``."""
     built = result.built
     model = built.model
     u = np.asarray(result.u[k])
@@ -74,8 +117,9 @@ def point_data(result, k=-1) -> dict:
     return {"displacement": disp, "rotation": rot}
 
 
-def cell_data(result, k=-1) -> dict:
-    """Per-block cell data (lists in the order of :func:`mesh_cells`)."""
+def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
+    """Per-block cell data (lists in the order of :func:`mesh_cells`); soil fields NaN in excavated
+    elements (``active`` = 0)."""
     built = result.built
     n_soil = built.mesh.conn.shape[0]
     n_plate = 0 if built.plate is None else built.plate.n_el
@@ -87,6 +131,10 @@ def cell_data(result, k=-1) -> dict:
     data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
     data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
     data["pore_pressure"][0] = (built.pore_pressure() + built.excess_pore_pressure(result, k)).mean(axis=1)
+    active = result.active_elements(k) if result.phases else np.ones(n_soil, bool)
+    data["active"][0] = active.astype(np.float64)
+    for name in (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "pore_pressure"):
+        data[name][0][~active] = np.nan  # removed soil carries nothing: not a zero stress to be read
     if n_plate:
         f = result.strip_forces(k)
         data["N"][1], data["M"][1], data["Q"][1] = f["N"].mean(1), f["M"].mean(1), f["Q"].mean(1)
@@ -94,28 +142,87 @@ def cell_data(result, k=-1) -> dict:
         data["contact_pressure"][2] = -c["sig_n"].mean(axis=1)
         data["contact_shear"][2] = c["tau"].mean(axis=1)
         data["contact_open"][2] = (c["zone"] == "open").mean(axis=1)
+        layers = result.plate_layers(k)
+        steel = layers["steel"]
+        if steel.any():  # the largest |stress| of the element's bars, at any of its axial points
+            data["steel_stress"][1] = np.abs(layers["sig"][..., steel]).max(axis=(1, 2))
+        concrete = result.built.plate.section.kind == CONCRETE
+        if concrete.any():  # share of the element's concrete layer points beyond the cracking strain
+            data["cracked_fraction"][1] = layers["cracked"][..., concrete].mean(axis=(1, 2))
     return data
 
 
-def _points(result):
+def _points(result) -> np.ndarray:
     xy = result.built.model.coords
     return np.column_stack([xy, np.zeros(len(xy))])
 
 
-def export_vtu(result, path, k=-1, overwrite=False) -> Path:
-    """One step as a VTU file (atomic write; an existing file is kept unless ``overwrite``)."""
+def time_value(value: float) -> float:
+    """A load factor as a time value without binary noise (0.30000000000000004 -> 0.3): rounded to 12
+    significant digits, far finer than any load step."""
+    return float(f"{float(value):.12g}")
+
+
+def _add_field_data(path: Path, time: float) -> None:
+    """Put the units (VTK string arrays: each string's character codes, 0-terminated, ascii) and the time
+    into the VTU at ``path`` as the grid's FieldData."""
+    tree = ET.parse(path)
+    grid = tree.getroot().find("UnstructuredGrid")
+    fd = ET.Element("FieldData")
+    for name, unit in FIELD_UNITS.items():
+        arr = ET.SubElement(
+            fd, "DataArray", type="String", Name=f"unit_{name}", NumberOfTuples="1", format="ascii"
+        )
+        arr.text = " ".join(str(b) for b in [*unit.encode(), 0])
+    arr = ET.SubElement(fd, "DataArray", type="Float64", Name="time", NumberOfTuples="1", format="ascii")
+    arr.text = repr(time_value(time))
+    grid.insert(0, fd)
+    tree.write(path, xml_declaration=True, encoding="utf-8")
+
+
+def read_vtu(path: str | Path) -> meshio.Mesh:
+    """A VTU written by :func:`export_vtu` as a meshio Mesh, its field data included: ``time`` (1,) and
+    ``unit_<name>`` (1,) str arrays (meshio alone cannot read VTK string arrays)."""
+    tree = ET.parse(path)
+    grid = tree.getroot().find("UnstructuredGrid")
+    fields = {}
+    for fd in grid.findall("FieldData"):
+        for arr in fd:
+            if arr.get("type") == "String":
+                codes = [int(c) for c in arr.text.split()]
+                fields[arr.get("Name")] = np.array([bytes(codes[: codes.index(0)]).decode()])
+            else:
+                fields[arr.get("Name")] = np.array([float(v) for v in arr.text.split()])
+        grid.remove(fd)
+    with tempfile.TemporaryDirectory() as tmp:  # meshio reads VTU from a path only
+        plain = Path(tmp) / "plain.vtu"
+        tree.write(plain, xml_declaration=True, encoding="utf-8")
+        mesh = meshio.read(plain, file_format="vtu")
+    mesh.field_data.update(fields)
+    return mesh
+
+
+def export_vtu(
+    result: SceneResult, path: str | Path, k: int = -1, overwrite: bool = False, time: float | None = None
+) -> Path:
+    """One step as a VTU file (atomic write; an existing file is kept unless ``overwrite``); ``time``: the
+    value written as field data (default: the step's load factor)."""
     path = Path(path)
     if path.suffix != ".vtu":
         raise ValueError(f"path must end in .vtu, got {path.name!r}")
     mesh = meshio.Mesh(
-        _points(result), mesh_cells(result), point_data=point_data(result, k), cell_data=cell_data(result, k)
+        _points(result),
+        mesh_cells(result),
+        point_data=point_data(result, k),
+        cell_data=cell_data(result, k),
     )
     with atomic_path(path, overwrite) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
+        _add_field_data(tmp, result.load_factor[k] if time is None else time)
     return path
 
 
-def export_series(result, path, overwrite=False) -> Path:
+def export_series(result: SceneResult, path: str | Path, overwrite: bool = False) -> Path:
     """Every converged step as a ParaView time series: ``path`` (.pvd, the collection, load factor as
     time) and one VTU per step in the folder ``<stem>_steps`` beside it. Each file is written atomically,
     the .pvd last, so a reader never sees a collection pointing at missing steps. ParaView shows one data
@@ -128,7 +235,7 @@ def export_series(result, path, overwrite=False) -> Path:
     if path.suffix != ".pvd":
         raise ValueError(f"path must end in .pvd, got {path.name!r}")
     if path.exists() and not overwrite:
-        raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+        raise OutputExistsError(path)
     folder = path.parent / f"{path.stem}_steps"
     entries = []
     times = np.asarray(result.load_factor, np.float64)
@@ -136,9 +243,9 @@ def export_series(result, path, overwrite=False) -> Path:
         times = np.arange(len(times), dtype=np.float64)
     for k, lam in enumerate(times):
         step_file = folder / f"{path.stem}_{k:04d}.vtu"
-        export_vtu(result, step_file, k=k, overwrite=overwrite)
+        export_vtu(result, step_file, k=k, overwrite=overwrite, time=lam)
         entries.append(
-            f'    <DataSet timestep="{float(lam)!r}" part="0" file="{folder.name}/{step_file.name}"/>'
+            f'    <DataSet timestep="{time_value(lam)!r}" part="0" file="{folder.name}/{step_file.name}"/>'
         )
     text = (
         '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
@@ -150,18 +257,15 @@ def export_series(result, path, overwrite=False) -> Path:
     return path
 
 
-def read_series(path) -> list:
-    """[(time: load factor or step number, meshio.Mesh)] of a .pvd series written by :func:`export_series`."""
-    import xml.etree.ElementTree as ET
-
+def read_series(path: str | Path) -> list[tuple[float, meshio.Mesh]]:
+    """[(time: load factor or step number, meshio.Mesh with its field data)] of a .pvd series written by
+    :func:`export_series`."""
     path = Path(path)
     root = ET.parse(path).getroot()
-    return [
-        (float(d.get("timestep")), meshio.read(path.parent / d.get("file"))) for d in root.iter("DataSet")
-    ]
+    return [(float(d.get("timestep")), read_vtu(path.parent / d.get("file"))) for d in root.iter("DataSet")]
 
 
-def export(result, path, overwrite=False) -> Path:
+def export(result: SceneResult, path: str | Path, overwrite: bool = False) -> Path:
     """Export to ``path``: ``.pvd`` (every step) or ``.vtu`` (the last step)."""
     suffix = Path(path).suffix
     if suffix == ".pvd":

@@ -8,17 +8,25 @@ Every function takes the result (live or read back with :func:`ssi.io.results.re
 returned). Lengths are plotted in m, settlements in mm, stresses in kPa or MPa, forces in kN/m.
 """
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import PolyCollection
+from matplotlib.figure import Figure
+
+if TYPE_CHECKING:  # annotations only: ssi.scene imports nothing of ssi.io
+    from ..scene import SceneResult
 
 ZONE_COLOURS = {"stick": "C0", "slip": "C1", "open": "C3"}
 _OUTLINE = [0, 4, 1, 5, 2, 6, 3, 7]  # Q8 nodes in order around the element (corner, mid-side, ...)
 
 
-def _axes(ax, n=1, figsize=(8, 3.5)):
+def _axes(ax, n=1, figsize=(8, 3.5)) -> tuple[Figure, Axes]:
     if ax is not None:
         return ax.figure, ax
     fig, axes = plt.subplots(n, 1, figsize=figsize, sharex=True, squeeze=True, layout="constrained")
@@ -32,9 +40,50 @@ def _foundation_window(result, margin=2.0):
     return (f.x0 - margin * (f.x1 - f.x0), f.x1 + margin * (f.x1 - f.x0))
 
 
-def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
+def _present(result: SceneResult, k: int) -> np.ndarray:
+    """(n_el,) bool: the soil elements present at step ``k`` (excavated ones are left out of the plots)."""
+    if result.phases and any(ph.excavate for ph in result.built.scene.phases):
+        return result.active_elements(k)
+    return np.ones(result.built.mesh.conn.shape[0], bool)
+
+
+def _draw_context(ax: Axes, result: SceneResult) -> None:
+    """Layer boundaries (dashed), the water table (blue) and the column loads (arrows) of the scene."""
+    scene = result.built.scene
+    x0, x1 = float(result.built.model.coords[:, 0].min()), float(result.built.model.coords[:, 0].max())
+    z = -np.cumsum([lay.thickness for lay in scene.layers])[:-1]
+    for zi in z:
+        ax.plot([x0, x1], [zi, zi], "--", color="0.45", lw=0.7, zorder=3)
+    if z.size:
+        ax.plot([], [], "--", color="0.45", lw=0.7, label="layer boundary")
+    if scene.water_table is not None:
+        zw = -float(scene.water_table)
+        ax.plot([x0, x1], [zw, zw], "-", color="C9", lw=1.2, zorder=3, label="water table")
+    from ..scene import ColumnLoad
+
+    loads = list(scene.loads) + [ld for ph in scene.phases for ld in ph.loads]
+    columns = sorted({ld.x for ld in loads if isinstance(ld, ColumnLoad)})
+    if columns and result.built.plate_nodes is not None:
+        top = float(result.built.model.coords[result.built.plate_nodes, 1].max())
+        height = 0.08 * (x1 - x0)
+        for xc in columns:
+            ax.annotate(
+                "", (xc, top), (xc, top + height), arrowprops={"arrowstyle": "-|>", "color": "C3", "lw": 1.5}
+            )
+        ax.plot([], [], "-", color="C3", label="column")
+        ax.set_ylim(top=max(ax.get_ylim()[1], top + 1.2 * height))
+
+
+def deformed_mesh(
+    result: SceneResult,
+    k: int = -1,
+    scale: float | None = None,
+    ax: Axes | None = None,
+    window: tuple[float, float] | None = None,
+) -> Figure:
     """The soil mesh (grey) and its deformed shape (blue) with displacements times ``scale`` (default: the
-    largest displacement drawn as 5 % of the block width); the strip as a thick line."""
+    largest displacement drawn as 5 % of the block width); the strip as a thick line. Soil excavated by step
+    ``k`` is left out (the pit shows as a gap)."""
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
@@ -44,10 +93,11 @@ def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
     disp[: len(dofs)] = u[dofs]
     if built.plate_nodes is not None:
         disp[built.plate_nodes] = u[built.model.node_dofs(built.plate_nodes)][:, :2]
-    umax = np.abs(disp).max()
+    present = _present(result, k)
+    umax = np.abs(disp[np.unique(built.mesh.conn[present])]).max()
     if scale is None:
         scale = 0.05 * built.scene.width / umax if umax > 0 else 1.0
-    outline = built.mesh.conn[:, _OUTLINE]
+    outline = built.mesh.conn[present][:, _OUTLINE]
     ax.add_collection(PolyCollection(xy[outline], facecolors="none", edgecolors="0.8", linewidths=0.4))
     moved = xy + scale * disp
     ax.add_collection(PolyCollection(moved[outline], facecolors="none", edgecolors="C0", linewidths=0.5))
@@ -61,21 +111,36 @@ def deformed_mesh(result, k=-1, scale=None, ax=None, window=None):
         ax.set_xlim(*window)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
+    _draw_context(ax, result)
+    handles, _ = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(loc="lower right", fontsize=8)
     ax.set_title(f"deformed mesh, displacements x {scale:.3g} (step {_step(result, k)})")
     return fig
 
 
-def plastic_points(result, k=-1, ax=None, window=None):
-    """Soil integration points yielding at step ``k`` (red) on the mesh outline: where the soil has reached
-    its Mohr--Coulomb strength in that step."""
+def plastic_points(
+    result: SceneResult, k: int = -1, ax: Axes | None = None, window: tuple[float, float] | None = None
+) -> Figure:
+    """Soil integration points yielding at step ``k`` (red): where the soil is at its strength in that step,
+    over the elements shaded by their accumulated plastic strain (largest over their points) up to step
+    ``k``; layer boundaries, the water table and the columns drawn (excavated soil left out)."""
     fig, ax = _axes(ax, figsize=(9, 4))
     built = result.built
     xy = built.model.coords
-    ax.add_collection(
-        PolyCollection(xy[built.mesh.conn[:, _OUTLINE]], facecolors="none", edgecolors="0.8", linewidths=0.4)
+    present = _present(result, k)
+    # the accumulated plastic strain shades the elements: the mechanism of a collapse shows even when the
+    # last step (a relaxation or unloading step) has few points yielding in it
+    strain = result.plastic_strain(k).max(axis=1)[present]
+    shade = PolyCollection(
+        xy[built.mesh.conn[present][:, _OUTLINE]], cmap="Oranges", edgecolors="0.8", linewidths=0.4
     )
+    shade.set_array(strain)
+    shade.set_clim(0.0, max(float(strain.max()), 1e-12))
+    ax.add_collection(shade)
+    fig.colorbar(shade, ax=ax, label="accumulated plastic strain [-]", shrink=0.8)
     pts = result.soil_points()
-    mask = result.plastic_points(k)
+    mask = result.plastic_points(k) & present[:, None]
     ax.plot(pts[mask][:, 0], pts[mask][:, 1], "r.", ms=3, label=f"plastic ({mask.sum()} points)")
     if built.plate_nodes is not None:
         ax.plot(xy[built.plate_nodes, 0], xy[built.plate_nodes, 1], "k-", lw=3)
@@ -84,12 +149,67 @@ def plastic_points(result, k=-1, ax=None, window=None):
     ax.set_xlim(*(window or _foundation_window(result, 3.0) or ax.get_xlim()))
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
-    ax.legend(loc="lower right")
-    ax.set_title(f"plastic points (step {_step(result, k)})")
+    _draw_context(ax, result)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"plastic strain and points yielding in step {_step(result, k)}")
     return fig
 
 
-def contact(result, k=-1, ax=None):
+def mechanism(
+    result: SceneResult,
+    k: int = -1,
+    last: int = 3,
+    ax: Axes | None = None,
+    window: tuple[float, float] | None = None,
+) -> Figure:
+    """The mechanism: the soil's incremental displacement over the ``last`` steps up to step ``k`` (arrows
+    at the element corners, coloured by magnitude [mm]) -- of a collapse, the failure mechanism the
+    plateau's last steps move (the total displacement also holds the elastic part). Excavated soil is left
+    out; layer boundaries, the water table and the columns are drawn."""
+    fig, ax = _axes(ax, figsize=(9, 4))
+    built = result.built
+    xy = built.model.coords
+    k = _step(result, k)
+    k0 = max(k - int(last), 0)
+    present = _present(result, k)
+    corners = np.unique(built.mesh.conn[present][:, :4])
+    du = np.asarray(result.u[k]) - np.asarray(result.u[k0])
+    d = np.column_stack([du[built.model.dof(corners, "u")], du[built.model.dof(corners, "w")]])
+    size = np.hypot(d[:, 0], d[:, 1])
+    ax.add_collection(
+        PolyCollection(
+            xy[built.mesh.conn[present][:, _OUTLINE]], facecolors="none", edgecolors="0.85", linewidths=0.4
+        )
+    )
+    arrows = ax.quiver(
+        xy[corners, 0],
+        xy[corners, 1],
+        d[:, 0],
+        d[:, 1],
+        1e3 * size,
+        cmap="viridis",
+        angles="xy",
+        scale_units="xy",
+        # the longest arrow drawn 4 % of the block width long: the pattern, not the size, is the message
+        scale=max(float(size.max()), 1e-300) / (0.04 * built.scene.width),
+        width=0.003,
+    )
+    fig.colorbar(arrows, ax=ax, label=f"displacement, steps {k0}-{k} [mm]", shrink=0.8)
+    if built.plate_nodes is not None:
+        ax.plot(xy[built.plate_nodes, 0], xy[built.plate_nodes, 1], "k-", lw=3)
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlim(*(window or _foundation_window(result, 3.0) or ax.get_xlim()))
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    _draw_context(ax, result)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"mechanism: incremental displacement of steps {k0}-{k}")
+    return fig
+
+
+def contact(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Contact pressure and shear stress under the foundation [kPa], points coloured by zone (stick, slip,
     open). ``ax``: two axes (pressure, shear) or None."""
     fig, axes = _axes(ax, 2, figsize=(8, 5)) if ax is None else (ax[0].figure, ax)
@@ -111,14 +231,14 @@ def contact(result, k=-1, ax=None):
     return fig
 
 
-def settlement(result, k=-1, ax=None):
+def settlement(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Settlement [mm] of the soil surface and of the foundation (positive down, plotted downwards)."""
     fig, ax = _axes(ax)
     xs, ss = result.surface(k)
     window = _foundation_window(result, 2.0)
     near = np.ones_like(xs, bool) if window is None else (xs >= window[0]) & (xs <= window[1])
     ax.plot(xs[near], 1e3 * ss[near], "k-", lw=1, label="soil surface")
-    if result.built.plate is not None:
+    if result.built.plate is not None or result.built.footing_nodes is not None:
         xp, sp = result.settlement(k)
         ax.plot(xp, 1e3 * sp, "C0o-", ms=3, label="foundation")
     ax.invert_yaxis()
@@ -129,24 +249,44 @@ def settlement(result, k=-1, ax=None):
     return fig
 
 
-def strip_forces(result, k=-1, ax=None):
-    """Bending moment M [kN m/m] (sagging positive, drawn on the tension side: downwards), shear force
-    Q [kN/m] and normal force N [kN/m] along the strip. ``ax``: three axes or None."""
+MOMENT_CONVENTION = "M > 0 sagging (tension at the bottom), drawn downwards: on the tension side"
+
+
+def strip_forces(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
+    """Bending moment M [kN m/m] (sagging positive, drawn on the tension side: downwards -- the convention
+    is written on the figure), shear force Q [kN/m] and normal force N [kN/m] (tension positive) along the
+    strip, at the sampling points; N also as each element's mean (grey steps). ``ax``: three axes or None.
+
+    Why the mean: in the element a crack front passes through, N at the points oscillates (in
+    examples/rc_strip.toml +110 and -43 kN/m at x = +-1.75 m, where the element's points have 2, 5 and 6
+    cracked layers), most likely because a 3-node element's axial strain is linear along it and cannot
+    follow the jump of the section's stiffness, so the point values balance one another. The element's
+    weighted mean -- what its equilibrium fixes -- stays between its neighbours' (27 kN/m there, against 18
+    and 36; checked in tests/test_results.py)."""
     fig, axes = _axes(ax, 3, figsize=(8, 7)) if ax is None else (ax[0].figure, ax)
     f = result.strip_forces(k)
+    plate = result.built.plate
+    w = plate.wt[plate.ax.astype(bool)]
+    n_mean = f["N"] @ w / w.sum()
+    ends = result.built.model.coords[result.built.plate_nodes[::2], 0]
+    axes[2].hlines(n_mean / 1e3, ends[:-1], ends[1:], color="0.4", lw=2.0, label="element mean", zorder=1)
     for a, (xkey, key, label) in zip(
         axes, (("x_ax", "M", "M [kN m/m]"), ("x_sh", "Q", "Q [kN/m]"), ("x_ax", "N", "N [kN/m]"))
     ):
-        a.plot(f[xkey].ravel(), f[key].ravel() / 1e3, ".-")
+        a.plot(f[xkey].ravel(), f[key].ravel() / 1e3, ".-", label="at the points")
         a.axhline(0.0, color="0.5", lw=0.6)
         a.set_ylabel(label)
     axes[0].invert_yaxis()  # moments on the tension side
+    axes[2].legend(fontsize=7, loc="lower right")
     axes[-1].set_xlabel("x [m]")
-    axes[0].set_title(f"strip forces (step {_step(result, k)})")
+    # the conventions in the title, where no curve can hide them
+    axes[0].set_title(
+        f"strip forces (step {_step(result, k)})\n{MOMENT_CONVENTION}; N > 0 tension", fontsize=9
+    )
     return fig
 
 
-def cracks_and_steel(result, k=-1, ax=None):
+def cracks_and_steel(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Cracked concrete layer points (red ticks at their height) and the steel layers' stress [MPa] with
     yielded points marked (x). ``ax``: two axes or None."""
     fig, axes = _axes(ax, 2, figsize=(8, 5)) if ax is None else (ax[0].figure, ax)
@@ -171,32 +311,43 @@ def cracks_and_steel(result, k=-1, ax=None):
     return fig
 
 
-def load_settlement(result, ax=None):
-    """Total column load [kN/m] against the largest settlement [mm], every converged step; of a phased
-    result the phase time (phase i runs from i - 1 to i) against the settlement, each phase named."""
-    fig, ax = _axes(ax, figsize=(5, 4))
+def load_settlement(result: SceneResult, ax: Axes | None = None) -> Figure:
+    """The load the foundation carries [kN/m] (:meth:`SceneResult.foundation_load`: the column load, or of
+    a push-over the soil's reaction) against the largest settlement [mm] at every converged step, with the
+    capacity (:meth:`SceneResult.capacity`) marked and how it was found. Rows that are not rate-independent
+    equilibria (a viscous fallback's) are drawn hollow and never marked as the capacity. Of a phased result
+    each phase's stretch is coloured and named."""
+    fig, ax = _axes(ax, figsize=(6, 4.5))
     path = result.load_settlement()
-    if result.phases:
-        ax.plot(1e3 * path["settlement"], path["load_factor"], "o-", ms=3)
-        for i, record in enumerate(result.phases):
-            ax.axhline(i, color="0.8", lw=0.8, zorder=0)
-            ax.annotate(
-                record["name"],
-                (0.02, i - 0.5 if i else 0.0),
-                xycoords=("axes fraction", "data"),
-                fontsize=8,
-                va="center",
-            )
-        ax.set_ylabel("phase time [-]")
-    else:
-        ax.plot(1e3 * path["settlement"], path["column_load"] / 1e3, "o-")
-        ax.set_ylabel("column load [kN/m]")
+    s_mm, load = 1e3 * path["settlement"], path["load"] / 1e3
+    ax.plot(s_mm, load, "-", color="0.6", lw=0.8, zorder=1)
+    spans = (
+        [(r["name"], max(r["first"] - 1, 0), r["last"]) for r in result.phases[1:]]
+        if result.phases
+        else [(None, 0, len(load) - 1)]
+    )
+    ok = path["equilibrium"]
+    for i, (name, first, last) in enumerate(spans):
+        rows = np.arange(first, last + 1)
+        good, bad = rows[ok[rows]], rows[~ok[rows]]
+        ax.plot(s_mm[good], load[good], "o", ms=3.5, color=f"C{i}", label=name, zorder=2)
+        if bad.size:
+            ax.plot(s_mm[bad], load[bad], "o", ms=4, mfc="none", color=f"C{i}", zorder=2)
+    if (~ok).any():
+        ax.plot([], [], "o", mfc="none", color="0.3", label="viscous state (not an equilibrium)")
+    cap = result.capacity()
+    word = "capacity" if cap["is_limit"] else "largest load carried"
+    ax.plot(1e3 * cap["settlement"], cap["load"] / 1e3, "k*", ms=11, zorder=3,
+            label=f"{word} {cap['load'] / 1e3:.1f} kN/m")  # fmt: skip
+    ax.annotate(cap["how"], (0.02, 0.02), xycoords="axes fraction", fontsize=7, va="bottom", wrap=True)
     ax.set_xlabel("largest settlement [mm]")
-    ax.set_title("load-settlement path")
+    ax.set_ylabel(("footing load (soil reaction)" if result.is_push_over else "column load") + " [kN/m]")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title("load-settlement path" + (" over the phases" if result.phases else ""))
     return fig
 
 
-def standard_figures(result) -> dict:
+def standard_figures(result: SceneResult) -> dict[str, Figure]:
     """Every figure that applies to the result's scene: name -> Figure."""
     figs = {
         "settlement": settlement(result),
@@ -205,6 +356,9 @@ def standard_figures(result) -> dict:
     }
     if any(lay.c is not None for lay in result.built.scene.layers):
         figs["plastic_points"] = plastic_points(result)
+        collapse = result.capacity()["is_limit"] or result.status == "limit load reached"
+        if collapse and result.n_steps >= 2:  # a push-over's plateau or peak, a detected limit: its mechanism
+            figs["mechanism"] = mechanism(result)
     if result.built.plate is not None:
         figs["contact"] = contact(result)
         figs["strip_forces"] = strip_forces(result)
@@ -213,7 +367,7 @@ def standard_figures(result) -> dict:
     return figs
 
 
-def save_standard_figures(result, folder, overwrite=False) -> list[Path]:
+def save_standard_figures(result: SceneResult, folder: str | Path, overwrite: bool = False) -> list[Path]:
     """Write :func:`standard_figures` as PNGs into ``folder`` (atomically, never replacing a file unless
     ``overwrite``); return the paths."""
     from .results import atomic_path

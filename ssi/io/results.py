@@ -24,7 +24,7 @@ Layout::
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
             step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
             with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_load_upper,
-            limit_evidence, relaxed_steps, viscous_from
+            limit_evidence, relaxed_steps, viscous_from, limit_uncertainty, limit_suspect
                                     (the result's; of a SceneResult its solver_result, except of a phased one)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
@@ -37,8 +37,9 @@ loads), a linear scene's without /solver (its Result is rebuilt from /steps, f_i
 a bare linear model's with /solver/reactions only (read as a StoredResult without f_int), a phased scene's
 with the attribute solver_phase (ignored: the phases are joined as for a new file).
 
-Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, then
-moved over the target), and an existing file is never replaced unless ``overwrite=True``. A run that stopped
+Writes are atomic (:func:`atomic_path`: a temporary file in the target's folder, flushed and fsynced, given
+the mode a newly created file gets under the user's umask, then moved over the target), and an existing
+file is never replaced unless ``overwrite=True``. A run that stopped
 mid-path is written with ``complete=False``, its last converged step and the solver's report (``stop``).
 """
 
@@ -68,6 +69,16 @@ _SCENE_RESULT_FIELDS = ("built", "solver_result", "phases")
 
 
 # ---- atomic files ----------------------------------------------------------------------------------------
+class OutputExistsError(FileExistsError):
+    """An output file exists and ``overwrite`` was not given: ``path`` is the file. The command line names
+    its own flag (``--overwrite``), the Python API its keyword."""
+
+    def __init__(self, path: Path, appeared: bool = False) -> None:
+        self.path = Path(path)
+        when = "appeared while writing" if appeared else "exists"
+        super().__init__(f"{self.path} {when}; pass overwrite=True to replace it")
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Path]:
     """Yield a temporary path in ``path``'s folder; on success it is fsynced and moved to ``path``.
@@ -77,7 +88,7 @@ def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Pa
     removed and the target is untouched."""
     path = Path(path)
     if path.exists() and not overwrite:
-        raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+        raise OutputExistsError(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
@@ -86,20 +97,18 @@ def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Pa
         with open(tmp, "rb+") as fh:
             fh.flush()
             os.fsync(fh.fileno())
+        # mkstemp creates the file 0600; the result is the user's file, as open() would have made it
+        os.chmod(tmp, 0o666 & ~current_umask())
         if overwrite:
             os.replace(tmp, path)
         else:
             try:
                 os.link(tmp, path)
             except FileExistsError:
-                raise FileExistsError(
-                    f"{path} appeared while writing; pass overwrite=True to replace it"
-                ) from None
+                raise OutputExistsError(path, appeared=True) from None
             except OSError:  # a file system without hard links: check, then rename
                 if path.exists():
-                    raise FileExistsError(
-                        f"{path} appeared while writing; pass overwrite=True to replace it"
-                    ) from None
+                    raise OutputExistsError(path, appeared=True) from None
                 os.replace(tmp, path)
             if os.path.exists(tmp):
                 os.unlink(tmp)
@@ -107,6 +116,18 @@ def atomic_path(path: str | os.PathLike, overwrite: bool = False) -> Iterator[Pa
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def current_umask() -> int:
+    """The process's file-creation mask (e.g. 0o022), read without changing it where the system says it
+    (Linux: /proc/self/status), else by setting and restoring it."""
+    with contextlib.suppress(OSError, ValueError):
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 def _fsync_dir(folder):
@@ -214,11 +235,11 @@ def _write_mesh(h5, model):
         grp = mesh.create_group(name)
         grp["edofs"] = g.edofs
         grp["conn"] = element_nodes(model, g.edofs)
-        if hasattr(g, "integration_points"):
-            grp["ip_xy"] = g.integration_points()
-        if hasattr(g, "ip_coords"):
-            grp["ip_xy"] = g.ip_coords()
-            grp["ip_weights"] = g.ip_weights()
+        ip_xy, ip_weights = g.integration_points(), g.ip_weights()
+        if ip_xy is not None:
+            grp["ip_xy"] = ip_xy
+        if ip_weights is not None:
+            grp["ip_weights"] = ip_weights
 
 
 def _write_steps(h5, model, load_factor, u, states):
@@ -253,6 +274,9 @@ def _write_solver(grp, res, u, states, names):
     # bound and its evidence, and a relaxed path its viscous stretch
     grp.attrs["limit_load_upper"] = np.nan if res.limit_load_upper is None else res.limit_load_upper
     grp.attrs["limit_evidence"] = res.limit_evidence
+    # the controlled path's limit: its numerical uncertainty (nan: not measured) and why it is suspect
+    grp.attrs["limit_uncertainty"] = np.nan if res.limit_uncertainty is None else res.limit_uncertainty
+    grp.attrs["limit_suspect"] = res.limit_suspect
     for key in ("relaxed_steps", "viscous_from"):
         grp.attrs[key] = -1 if getattr(res, key) is None else getattr(res, key)
     for key in ("u_origin", "f_int_origin", "f_ref", "f_dead"):
@@ -488,6 +512,8 @@ def _solver_result(model, rec, lam, u, states):
         limit_load_factor=_optional_float(rec.get("limit_load_factor")),
         limit_load_upper=_optional_float(rec.get("limit_load_upper")),
         limit_evidence=str(rec.get("limit_evidence", "")),
+        limit_uncertainty=_optional_float(rec.get("limit_uncertainty")),
+        limit_suspect=str(rec.get("limit_suspect", "")),
         relaxed_steps=_optional_count(rec.get("relaxed_steps")),
         viscous_from=_optional_count(rec.get("viscous_from")),
         u_origin=rec.get("u_origin"),

@@ -18,6 +18,7 @@ import numpy as np
 
 from ..core.geometry import Geometry
 from ..core.validate import check_choice, check_int, check_real
+from ..materials.soil_laws import davis_beta
 
 __all__ = [
     "Boundary",
@@ -31,12 +32,6 @@ __all__ = [
 ]
 
 BOUNDARY_KINDS = ("fixed", "symmetry", "free", "footing")
-
-
-def davis_beta(phi_deg: float, psi_deg: float) -> float:
-    """Davis' factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless; 1 for psi = phi)."""
-    phi, psi = math.radians(phi_deg), math.radians(psi_deg)
-    return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
 
 
 @dataclass(frozen=True)

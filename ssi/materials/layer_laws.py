@@ -33,13 +33,24 @@ strain; steel uses 1: plastic strain). Unused entries are copied through.
 
 from numba import njit
 
-from .concrete import N_CONCRETE_CONSTANTS, N_CONCRETE_PARAMS, P_LS, concrete_constants, concrete_update_with
-from .steel import steel_update
+from .concrete import (
+    H_EMAX,
+    H_XMAX,
+    N_CONCRETE_CONSTANTS,
+    N_CONCRETE_PARAMS,
+    P_LS,
+    concrete_constants,
+    concrete_update_with,
+)
+from .steel import H_EPS_P, steel_update
 
 ELASTIC = 0
 CONCRETE = 1
 STEEL = 2
 N_LAYER_HIST = 4  # history variables per layer point (laws may use fewer)
+# the history slots by name, each named by the law that writes it (a slot's meaning depends on the layer's
+# law: slot 0 is concrete's x_max and steel's eps_p)
+LAYER_HIST_FIELDS = {"x_max": H_XMAX, "e_max": H_EMAX, "eps_p": H_EPS_P}
 N_LAYER_PARAMS = N_CONCRETE_PARAMS  # longest parameter vector of any kind
 N_LAYER_CONSTANTS = N_CONCRETE_CONSTANTS  # a layer's precomputed constants (only concrete has any)
 _NO_CONSTANTS = (0.0,) * N_LAYER_CONSTANTS
@@ -48,6 +59,7 @@ __all__ = [
     "CONCRETE",
     "ELASTIC",
     "N_LAYER_CONSTANTS",
+    "LAYER_HIST_FIELDS",
     "N_LAYER_HIST",
     "N_LAYER_PARAMS",
     "P_LS",

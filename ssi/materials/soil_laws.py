@@ -39,22 +39,21 @@ from ..core.validate import (
     check_optional_real,
     check_real,
 )
-from .mohr_coulomb import (
-    N_MC_CONSTANTS,
-    N_MC_WORK_ROWS,
-    elastic_fill,
-    lame,
-    mc_explicit,
-    mc_implicit,
-    mc_material_constants,
-    vm_implicit,
-)
+from .mc_explicit_scheme import mc_explicit
+from .mc_implicit_scheme import N_MC_WORK_ROWS, mc_implicit
+from .mc_surface import N_MC_CONSTANTS, mc_material_constants
+from .principal import elastic_fill, lame
+from .von_mises import vm_implicit
 
 ELASTIC = 0
 MOHR_COULOMB = 1
 MOHR_COULOMB_EXPLICIT = 2
 VON_MISES = 3
 N_SOIL_HIST = 2  # history variables per integration point (laws may use fewer)
+# the history slots the laws write, by name: accumulated plastic strain norm sum |d eps_p| [-], and the
+# branch of the last stress update (0 elastic, 1 plane, 2 edge s1 = s2, 3 edge s2 = s3, 4 apex)
+H_PLASTIC_STRAIN, H_BRANCH = 0, 1
+SOIL_HIST_NAMES = ("plastic_strain", "branch")
 N_SOIL_PARAMS = 8  # width of a padded parameter row
 KIND_NAMES = {
     ELASTIC: "elastic",
@@ -62,6 +61,15 @@ KIND_NAMES = {
     MOHR_COULOMB_EXPLICIT: "mohr_coulomb_explicit",
     VON_MISES: "von_mises",
 }
+
+
+def davis_beta(phi_deg: float, psi_deg: float) -> float:
+    """Davis' (1968) factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless; 1 for psi = phi):
+    the associated material with c* = beta c, tan phi* = beta tan phi bounds the capacity of the
+    non-associated one (phi, psi in degrees). The one definition in the package: the limit analysis
+    (``ssi.limit``) and the solver's Davis mode (``Settings(flow="davis")``) both use it."""
+    phi, psi = math.radians(phi_deg), math.radians(psi_deg)
+    return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
 
 
 @njit(cache=True)

@@ -22,6 +22,7 @@ from ..core.protocol import K0_MATRIX
 S_ES, S_NU, S_FY, S_EH = range(4)
 N_STEEL_PARAMS = 4
 N_STEEL_HIST = 1
+H_EPS_P = 0  # the history slot steel_update writes: the plastic strain eps_p [-]
 
 
 @njit(cache=True)

@@ -5,7 +5,10 @@ engineering quantities (``SceneResult``).
 * ``loads`` -- the loads; ``parts`` -- foundation, contact, mesh size, phases, excavations;
 * ``checks`` -- checks across the fields of a scene; ``scene`` -- ``Scene`` and its builder;
 * ``built`` -- ``BuiltScene``: load effects, water fields, the staged analysis; ``stages`` -- its pieces;
-* ``view`` -- ``SceneResult``; ``scene_file`` -- scenes as TOML and plain dicts.
+* ``view`` -- ``SceneResult``; ``scene_file`` -- scenes as TOML and plain dicts;
+* sites of any layering: ``site`` -- ``Site`` (geometry, mesh); ``site_parts`` -- ``Borehole``,
+  ``DepthVarying``, ``Strip``, ``RigidStrip``; ``site_built`` -- ``BuiltSite``; ``site_view`` --
+  ``SiteResult``; ``site_file`` -- sites as TOML.
 """
 
 from ..materials.soil_laws import SoilLayer
@@ -13,24 +16,33 @@ from .built import BuiltScene
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
+from .site import BuiltSite, Site, SiteResult
+from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
 from .stages import PhaseNonConvergence, join_phases
 from .view import SceneResult
 
 __all__ = [
+    "Borehole",
     "BuiltScene",
+    "BuiltSite",
     "ColumnLoad",
     "Contact",
     "ContactSegment",
+    "DepthVarying",
     "Excavation",
     "Foundation",
     "MeshSize",
     "Phase",
     "PhaseNonConvergence",
     "RigidFooting",
+    "RigidStrip",
     "Scene",
     "SceneResult",
     "Settlement",
+    "Site",
+    "SiteResult",
     "SoilLayer",
+    "Strip",
     "StripLoad",
     "StripWeight",
     "SurfacePressure",

@@ -76,6 +76,7 @@ from ..materials.soil_laws import (
     geostatic_stress,
     material_table,
 )
+from ..solver.progress import announce_compilation
 from .built import BuiltScene
 from .capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from .checks import (
@@ -184,7 +185,9 @@ class Scene:
                 )
 
     def build(self) -> "BuiltScene":
-        """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads."""
+        """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads.
+
+        On a fresh install (numba's cache empty) one line on stderr says the kernels compile now, once."""
         if not self.layers:
             raise ValueError("layers: the scene needs at least one soil layer")
         if isinstance(self.foundation, Foundation) and self.contact is None:
@@ -199,6 +202,8 @@ class Scene:
             )
         if self.embedment and self.foundation is None:
             raise ValueError(f"embedment={self.embedment}: an embedded scene needs a foundation")
+        # the first kernels run while building (geostatic state, a linear solve): say why it takes ~1 min
+        announce_compilation()
         _check_phases(self)
         _warn_implausible_units(self)
         f = self.foundation

@@ -51,107 +51,36 @@ Supports: the bottom fixed, the sides on vertical rollers (the separated block o
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..core.geometry import Geometry, GeometryError, from_cells
 from ..core.gmsh_mesh import UnstructuredMesh, check_quality, mesh_geometry
 from ..core.mesh import soil_block
-from ..core.model import Model
-from ..core.validate import check_choice, check_instance, check_optional_real, check_real
-from ..elements.interface import add_interface
-from ..elements.plate import PlateStrip
-from ..elements.soil_q8 import SoilQ8
-from ..materials.soil_laws import GAMMA_W, SoilLayer, geostatic_stress, material_table
+from ..core.validate import check_choice, check_instance, check_real
+from ..materials.soil_laws import GAMMA_W, SoilLayer
+from ..solver.progress import announce_compilation
 from .capacity import CapacityResult, limit_analysis
 from .loads import ColumnLoad, SurfacePressure
-from .parts import Contact, Foundation, MeshSize
+from .parts import MeshSize
+from .site_built import BuiltSite
+from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
+from .site_view import SiteResult, gibson_settlement
 
-__all__ = ["Borehole", "BuiltSite", "DepthVarying", "RigidStrip", "Site", "SiteResult", "Strip"]
+# the public names of a site, importable from here (the README and chapter 19 do)
+__all__ = [
+    "Borehole",
+    "BuiltSite",
+    "DepthVarying",
+    "RigidStrip",
+    "Site",
+    "SiteResult",
+    "Strip",
+    "gibson_settlement",
+]
 
 TOL = 1e-9  # relative to the site's size: coordinates closer than this are one point
-
-
-@dataclass(frozen=True)
-class Borehole:
-    """A borehole at ``x`` [m]: ``boundaries`` the elevations z [m] of the layer boundaries met from the top
-    down (one fewer than the site's layers; non-increasing, equal values: a layer absent there)."""
-
-    x: float
-    boundaries: tuple = ()
-
-    def __post_init__(self):
-        check_real("Borehole.x", self.x, unit="m")
-        z = tuple(
-            float(check_real(f"Borehole.boundaries[{i}]", v, unit="m")) for i, v in enumerate(self.boundaries)
-        )
-        for i in range(1, len(z)):
-            if z[i] > z[i - 1]:
-                raise GeometryError(
-                    f"Borehole at x={self.x}: boundaries[{i}]={z[i]} lies above boundaries[{i - 1}]="
-                    f"{z[i - 1]}; "
-                    "list them from the top down (equal values: a layer pinched out)"
-                )
-        object.__setattr__(self, "boundaries", z)
-
-
-@dataclass(frozen=True)
-class DepthVarying:
-    """``layer`` whose E and c grow with depth: E = layer.E + E_inc * max(z_ref - z, 0), c = layer.c + c_inc *
-    max(z_ref - z, 0); ``E_inc`` [Pa/m], ``c_inc`` [Pa/m], ``z_ref`` [m] reference elevation (None: the
-    ground surface above the point)."""
-
-    layer: SoilLayer
-    E_inc: float = 0.0
-    c_inc: float = 0.0
-    z_ref: float | None = None
-
-    def __post_init__(self):
-        check_instance("DepthVarying.layer", self.layer, SoilLayer)
-        check_real("DepthVarying.E_inc", self.E_inc, lo=0.0, unit="Pa/m")
-        check_real("DepthVarying.c_inc", self.c_inc, lo=0.0, unit="Pa/m")
-        check_optional_real("DepthVarying.z_ref", self.z_ref, unit="m")
-        if self.c_inc and self.layer.c is None:
-            raise ValueError(f"DepthVarying.c_inc={self.c_inc}: the layer is elastic (c=None), give it a c")
-
-    def at(self, depth: float) -> SoilLayer:
-        """The layer's material at ``depth`` [m] below the reference level."""
-        d = max(float(depth), 0.0)
-        c = None if self.layer.c is None else self.layer.c + self.c_inc * d
-        return replace(self.layer, E=self.layer.E + self.E_inc * d, c=c)
-
-
-@dataclass(frozen=True)
-class Strip:
-    """A foundation strip of a site resting on the ground through its own ``contact``. ``level`` [m]: the
-    elevation of its base (None: the ground under it; the ground must be level there)."""
-
-    foundation: Foundation
-    contact: Contact
-    level: float | None = None
-
-    def __post_init__(self):
-        check_instance("Strip.foundation", self.foundation, Foundation)
-        check_instance("Strip.contact", self.contact, Contact)
-        check_optional_real("Strip.level", self.level, unit="m")
-
-
-@dataclass(frozen=True)
-class RigidStrip:
-    """A rigid strip footing from ``x0`` to ``x1`` [m] on level ground, without plate or interface: the
-    ground nodes under it are its base, pushed down by ``settle`` [m] times the load factor (displacement
-    control: the reaction is the load, :meth:`SiteResult.rigid_pressure`); ``rough``: their u held too."""
-
-    x0: float
-    x1: float
-    settle: float
-    rough: bool = True
-
-    def __post_init__(self):
-        check_real("RigidStrip.x0", self.x0, unit="m")
-        check_real("RigidStrip.x1", self.x1, lo=self.x0, lo_open=True, unit="m (> x0)")
-        check_real("RigidStrip.settle", self.settle, lo=0.0, lo_open=True, unit="m")
 
 
 def _polyline(name, pts):
@@ -413,7 +342,9 @@ class Site:
     # ---- build ---------------------------------------------------------------------------------------------
     def build(self) -> BuiltSite:
         """Mesh the site, add the soil, the strips and their contacts, the supports, the initial stress and
-        the loads."""
+        the loads. On a fresh install (numba's cache empty) one line on stderr says the kernels compile
+        now."""
+        announce_compilation()
         why = self._structured_ok()
         if self.mesher == "structured" and why:
             raise GeometryError(f"Site.mesher='structured' cannot serve: {why}")
@@ -493,269 +424,3 @@ def _unique(xs, scale):
     xs = np.sort(np.asarray(xs, np.float64))
     keep = np.concatenate([[True], np.diff(xs) > TOL * max(scale, 1.0)])
     return xs[keep]
-
-
-@dataclass
-class BuiltSite:
-    """A site built into a model: ``mesh`` (SoilMesh or UnstructuredMesh), ``soil`` group, per strip a dict
-    (``plate``, ``interface``, ``plate_nodes`` model ids ordered by x, ``soil_nodes``; of a RigidStrip:
-    ``rigid``, ``soil_nodes``, ``width``), ``element_layer`` (n_el,) layer index, ``initial_stress_method``
-    "K0", "gravity" or "none" (weightless soil), ``mesher`` "structured" or "gmsh",
-    ``quality`` of the mesh (:func:`ssi.core.gmsh_mesh.check_quality`)."""
-
-    site: Site
-    model: Model
-    mesh: object
-    soil: SoilQ8
-    strips: list
-    element_layer: np.ndarray
-    initial_stress_method: str
-    mesher: str
-    quality: dict
-
-    @classmethod
-    def assemble(cls, site: Site, mesh, method: str, mesher: str, quality: dict) -> BuiltSite:
-        model = Model()
-        model.info["site"] = site
-        ids = model.add_nodes(mesh.xy, ndof=2)
-        centre = mesh.xy[mesh.conn].mean(axis=1)
-        kinds, params, el_mat, weights = _materials(site, mesh, centre)
-        soil = SoilQ8(
-            mesh.xy[mesh.conn],
-            model.element_dofs(ids[mesh.conn]),
-            el_mat,
-            kinds,
-            params,
-            n_gauss=site.mesh.n_gauss,
-            unit_weight=weights if weights.any() else None,
-        )
-        model.add_group(soil)
-        _fix_sides(model, mesh.xy, site)
-        built = cls(site, model, mesh, soil, [], np.asarray(mesh.el_layer, np.int64), method, mesher, quality)
-        if weights.any():
-            soil.initial_stress = built._initial_stress()
-        else:  # weightless soil: no initial stress, whatever the method asked for
-            built.initial_stress_method = "none"
-        for s in site.strips:
-            built._add_strip(s)
-        built._add_loads()
-        return built
-
-    def ground_nodes(self, x0: float, x1: float) -> np.ndarray:
-        """Soil node ids on the ground between x0 and x1 [m], ordered by x."""
-        xy = self.mesh.xy
-        scale = max(1.0, self.site.width)
-        on = np.abs(xy[:, 1] - self.site.ground_z(xy[:, 0])) < 1e-7 * scale
-        on &= (xy[:, 0] >= x0 - 1e-9 * scale) & (xy[:, 0] <= x1 + 1e-9 * scale)
-        ids = np.flatnonzero(on)
-        ids = ids[np.argsort(xy[ids, 0])]
-        if len(ids) < 3 or len(ids) % 2 == 0:
-            raise GeometryError(
-                f"the range ({x0:g}, {x1:g}) m does not start and end on element edges of the ground"
-            )
-        return ids
-
-    def _initial_stress(self) -> np.ndarray:
-        """(n_el, n_ip, 4) initial effective stress [Pa] by the method of the build."""
-        site, soil = self.site, self.soil
-        if self.initial_stress_method == "K0":
-            layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in site.layers]
-            layers = [replace(lay, thickness=t) for lay, t in zip(layers, site.layer_thicknesses())]
-            wt = None if site.water_table is None else -float(site.water_z(0.0))
-            return geostatic_stress(
-                soil.integration_points()[..., 1], layers, water_table=wt, gamma_w=site.gamma_w
-            )
-        # gravity loading: the weight on the soil alone, elastic (every law's E and nu), one linear solve; or
-        # with the soil's own laws, the weight ramped up as the reference load of an incremental solve
-        plastic = self.initial_stress_method == "gravity_plastic"
-        model = Model()
-        ids = model.add_nodes(self.mesh.xy, ndof=2)
-        if plastic:
-            kinds, params = soil.kinds, soil.params
-        else:
-            elastic = []
-            for k in range(len(soil.kinds)):
-                e, nu = soil.params[k, 0], soil.params[k, 1]
-                elastic.append(SoilLayer(1.0, E=e, nu=nu).law())
-            kinds, params = material_table(elastic)
-        g = SoilQ8(
-            soil.coords, model.element_dofs(ids[self.mesh.conn]), soil.el_mat, kinds, params,
-            n_gauss=site.mesh.n_gauss, unit_weight=soil.unit_weight,
-        )  # fmt: skip
-        model.add_group(g)
-        _fix_sides(model, self.mesh.xy, site)
-        if plastic:
-            from .stages import _run_phase
-
-            weight = model.load_vectors()[1]
-            g.unit_weight = None  # the weight becomes the reference load, ramped from zero
-            res = _run_phase(model, [1.0], None, loads=(weight, np.zeros(model.n_dof)))
-        else:
-            res = model.solve_linear()
-        self.gravity_displacement = res.u[-1]
-        return np.ascontiguousarray(res.states[-1][0][..., :4])
-
-    def _add_strip(self, s: Strip | RigidStrip):
-        if isinstance(s, RigidStrip):
-            nodes = self.ground_nodes(s.x0, s.x1)
-            if s.rough:
-                self.model.fix(nodes, "u")
-            self.model.prescribe(nodes, "w", -s.settle)
-            self.strips.append({"rigid": True, "soil_nodes": nodes, "width": s.x1 - s.x0})
-            return
-        f, model = s.foundation, self.model
-        soil_nodes = self.ground_nodes(f.x0, f.x1)
-        xs = self.mesh.xy[soil_nodes, 0]
-        if abs(xs[0] - f.x0) > 1e-9 * self.site.width or abs(xs[-1] - f.x1) > 1e-9 * self.site.width:
-            raise GeometryError(f"the strip ({f.x0:g}, {f.x1:g}) m ends are not mesh nodes of the ground")
-        z_base = float(self.site.ground_z(f.x0))
-        local = np.arange(0, len(soil_nodes) - 2, 2)
-        plate_conn = np.column_stack([local, local + 1, local + 2])
-        plate_xy = np.column_stack([xs, np.full(len(xs), z_base - f.section.z_bottom)])
-        ids = model.add_nodes(plate_xy, ndof=3)
-        plate = PlateStrip(
-            plate_xy[plate_conn], model.element_dofs(ids[plate_conn]), f.strip_section(), **f.strip_options()
-        )
-        model.add_group(plate)
-        iface = add_interface(
-            model, ids[plate_conn], soil_nodes[plate_conn], np.tile(s.contact.params(), (len(plate_conn), 1)),
-            offset=plate.bottom_offset, rule=s.contact.rule,
-        )  # fmt: skip
-        if s.contact.kt == 0.0:
-            held = int(ids[np.argmin(np.abs(xs - 0.5 * (f.x0 + f.x1)))])
-            model.fix([held], "u")
-        self.strips.append({"plate": plate, "interface": iface, "plate_nodes": ids, "soil_nodes": soil_nodes})
-
-    def _add_loads(self):
-        model = self.model
-        for ld in self.site.loads:
-            if isinstance(ld, ColumnLoad):
-                ids = self.strips[self.site._strip_at(ld.x)]["plate_nodes"]
-                i = int(np.argmin(np.abs(model.coords[ids, 0] - ld.x)))
-                if abs(model.coords[ids[i], 0] - ld.x) > 1e-6:
-                    raise GeometryError(f"ColumnLoad at x={ld.x:g} m is not a node of its strip")
-                for comp, v in (("w", -ld.N), ("u", ld.H), ("alpha", ld.M)):
-                    if v:
-                        model.add_load([ids[i]], comp, v)
-            else:  # a vertical pressure per horizontal metre on the ground: L/6, 4L/6, L/6 per quadratic edge
-                nodes = self.ground_nodes(ld.x0, ld.x1)
-                xs = self.mesh.xy[nodes, 0]
-                f = np.zeros(len(nodes))
-                for i in range(0, len(nodes) - 2, 2):
-                    f[i : i + 3] += np.array([1.0, 4.0, 1.0]) * (xs[i + 2] - xs[i]) / 6.0
-                model.add_load(nodes, "w", -ld.q * f)
-
-    @property
-    def is_linear(self) -> bool:
-        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
-        return all(lay.c is None for lay in layers) and all(
-            isinstance(s, RigidStrip)
-            or (s.contact.phi_deg is None and bool(np.all(st["plate"].section.kind == 0)))
-            for s, st in zip(self.site.strips, self.strips)
-        )
-
-    def solve(self, n_steps: int | None = None, settings=None, load_factors=None) -> SiteResult:
-        """Apply the loads to load factor 1 from the initial stress: one linear solve for a linear site, else
-        the solver's automatic increments (``n_steps``, ``settings`` as for a scene; ``load_factors``: the
-        levels themselves, e.g. a graded push of a RigidStrip)."""
-        from ..solver import Settings
-        from .stages import _load_levels, _run_phase
-
-        if self.is_linear and load_factors is None:
-            return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
-        levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)
-        return SiteResult(self, _run_phase(self.model, levels, settings))
-
-
-def _materials(site: Site, mesh, centre):
-    """(kinds, params, el_mat, unit weights) of the soil: one row per layer, or per element of a layer whose
-    properties vary with depth (evaluated at the element's centroid)."""
-    rows, el_mat, weights = [], np.zeros(len(mesh.conn), np.int64), []
-    layer_of = np.asarray(mesh.el_layer, np.int64)
-    wet = centre[:, 1] < site.water_z(centre[:, 0])
-    for k, lay in enumerate(site.layers):
-        base = lay.layer if isinstance(lay, DepthVarying) else lay
-        sat = base.unit_weight if base.unit_weight_sat is None else base.unit_weight_sat
-        for is_wet in (False, True):
-            els = np.flatnonzero((layer_of == k) & (wet == is_wet))
-            if not len(els):
-                continue
-            gamma = max(sat - site.gamma_w, 0.0) if is_wet else base.unit_weight
-            if isinstance(lay, DepthVarying):
-                z_ref = site.ground_z(centre[els, 0]) if lay.z_ref is None else np.full(len(els), lay.z_ref)
-                for e, d in zip(els, z_ref - centre[els, 1]):
-                    el_mat[e] = len(rows)
-                    rows.append(lay.at(d).law())
-                    weights.append(gamma)
-            else:
-                el_mat[els] = len(rows)
-                rows.append(base.law())
-                weights.append(gamma)
-    kinds, params = material_table(rows)
-    return kinds, params, el_mat, np.array(weights)
-
-
-def _fix_sides(model, xy, site):
-    """Bottom fixed (u, w), sides on vertical rollers (u)."""
-    tol = 1e-9 * max(1.0, site.width)
-    bottom = np.flatnonzero(np.abs(xy[:, 1] - site.z_bottom) < tol)
-    sides = np.flatnonzero((np.abs(xy[:, 0] - site.x_left) < tol) | (np.abs(xy[:, 0] - site.x_right) < tol))
-    model.fix(bottom, "u")
-    model.fix(bottom, "w")
-    model.fix(sides, "u")
-
-
-@dataclass
-class SiteResult:
-    """The solution of a :class:`BuiltSite`: ``result`` the solver's :class:`~ssi.core.solution.Result`."""
-
-    built: BuiltSite
-    result: object
-
-    @property
-    def u(self) -> list:
-        return self.result.u
-
-    def rigid_pressure(self, i: int) -> tuple[np.ndarray, np.ndarray]:
-        """(settlement [m], mean pressure [Pa]) histories of the RigidStrip ``i``: the pressure is the
-        vertical support reaction of its base nodes over its width."""
-        st, res = self.built.strips[i], self.result
-        w = res.displacement(st["soil_nodes"][:1], "w")[:, 0]
-        return -w, -res.support_reaction(st["soil_nodes"], "w") / st["width"]
-
-    def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
-        """(x [m], settlement [m], positive down) of the plate nodes of strip ``i`` at step ``k``."""
-        ids = self.built.strips[i]["plate_nodes"]
-        model = self.built.model
-        return model.coords[ids, 0], -self.u[k][model.dof(ids, "w")]
-
-    def strip_summary(self, i: int, k: int = -1) -> dict:
-        """Strip ``i``: ``mean`` settlement [m] (average over its width), ``max`` [m], ``tilt`` [rad] (the
-        slope of the least-squares line through its settlements; > 0: the right end settles more)."""
-        x, w = self.strip_settlement(i, k)
-        slope = np.polyfit(x, w, 1)[0] if len(x) > 1 else 0.0
-        mean = float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(x)) / (x[-1] - x[0]))
-        return {"mean": mean, "max": float(w.max()), "tilt": float(slope)}
-
-    def differential_settlement(self, i: int, j: int, k: int = -1) -> float:
-        """Mean settlement of strip ``i`` minus that of strip ``j`` [m]."""
-        return self.strip_summary(i, k)["mean"] - self.strip_summary(j, k)["mean"]
-
-    def ground_settlement(self, x0: float | None = None, x1: float | None = None, k: int = -1):
-        """(x [m], settlement [m], positive down) of the ground nodes between x0 and x1 (default: all)."""
-        site = self.built.site
-        ids = self.built.ground_nodes(site.x_left if x0 is None else x0, site.x_right if x1 is None else x1)
-        return self.built.mesh.xy[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
-
-    def soil_stress(self, k: int = -1) -> np.ndarray:
-        """(n_el, n_ip, 4) effective stress [sxx, szz, txz, syy] [Pa] at step ``k``."""
-        i = self.built.model.groups.index(self.built.soil)
-        return self.result.states[k][i][..., :4]
-
-
-def gibson_settlement(q: float, m: float) -> float:
-    """Settlement [m] under a uniform strip pressure ``q`` [Pa] on Gibson's incompressible half-space whose
-    shear modulus grows from zero at the surface as G = m z (``m`` [Pa/m]): w = q / (2 m), uniform under the
-    load and zero outside it (Gibson 1967, Geotechnique 17(1), 58-67; the 'Gibson soil' behaves as a Winkler
-    foundation of modulus 2m)."""
-    return float(q) / (2.0 * float(m))

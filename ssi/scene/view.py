@@ -11,10 +11,25 @@ from ..core.solution import Result
 from ..elements.interface import V_SIG, V_TAU, Interface6
 from ..materials.concrete import P_E0, P_FR
 from ..materials.layer_laws import CONCRETE, STEEL
-from .loads import ColumnLoad
+from .loads import ColumnLoad, Settlement
 
 if TYPE_CHECKING:  # for annotations only: these modules import this one
     from .built import BuiltScene
+
+
+class NotInThisScene(ValueError):
+    """A result asked of a scene that has no such part (the contact stresses, strip forces, steel or cracks of
+    a :class:`~ssi.scene.RigidFooting`, which has no plate and no interface): the message says what the scene
+    has instead."""
+
+
+# a push-over's path counts as on its plateau when its last increment's stiffness dP/ds is below this share
+# of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
+# constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
+PLATEAU_STIFFNESS_SHARE = 0.02
+# a capacity whose estimated discretisation error (ssi.studies.estimate) exceeds this share of it carries a
+# warning: issue 34's threshold, a choice (not a measured constant) that capacity()'s warning states
+CAPACITY_ERROR_LIMIT = 0.05
 
 
 @dataclass
@@ -30,6 +45,10 @@ class SceneResult:
     built: BuiltScene
     solver_result: Result
     phases: list | None = None  # phased solve: [{"name", "first", "last" (step indices), "result"}]
+    # the estimated discretisation error of capacity()["load"], attached by ssi.studies.estimate
+    # (solve_with_error, solve_to_target): {"relative", "error" [N/m], "extrapolated" [N/m], "values" [N/m]
+    # on h, h/2, h/4, "order", "asymptotic", "refinements", "how"}; None: not estimated
+    capacity_error: dict | None = None
 
     @property
     def load_factor(self) -> list:
@@ -66,6 +85,21 @@ class SceneResult:
     def _group_state(self, group, k):
         return self.states[k][self.built.model.groups.index(group)]
 
+    def _needs_plate(self, what: str) -> None:
+        """Raise :class:`NotInThisScene` for ``what`` (an accessor's name) unless the scene has a plate strip
+        on an interface."""
+        if self.built.plate is not None and self.built.interface is not None:
+            return
+        f = self.built.scene.foundation
+        if f is None:
+            raise NotInThisScene(
+                f"{what}: the scene has no foundation (read the soil: surface(), soil_stress())"
+            )
+        raise NotInThisScene(
+            f"{what}: a {type(f).__name__} has no plate strip and no contact interface (its base nodes are "
+            "held and pushed): its load is foundation_load() and capacity(), its settlement settlement()"
+        )
+
     def settlement(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x, settlement) along the foundation's nodes (a RigidFooting's: its base), settlement positive
         downwards."""
@@ -75,6 +109,7 @@ class SceneResult:
     def contact(self, k: int = -1) -> dict[str, np.ndarray]:
         """Interface points: dict of x, normal stress sig_n (< 0 compression), shear tau and the zone name
         ('stick', 'slip', 'open') at each integration point."""
+        self._needs_plate("contact()")
         iface = self.built.interface
         st = self._group_state(iface, k)
         names = np.array(["stick", "slip", "open"])[Interface6.status(st)]
@@ -98,6 +133,7 @@ class SceneResult:
         ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers
         whose largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
         """
+        self._needs_plate("plate_layers()")
         plate = self.built.plate
         sec = plate.section
         u_el = self.u[k][plate.edofs]
@@ -105,8 +141,9 @@ class SceneResult:
         eps, _ = plate.layer_strains(u_el)
         sig, _ = plate.layer_stresses(u_el, state)
         cracked = np.zeros(eps.shape, bool)
-        for n in np.flatnonzero(sec.kind == CONCRETE):  # history slot 1: the largest tensile strain
-            cracked[..., n] = state[..., n, 1] > sec.params[n, P_FR] / sec.params[n, P_E0]
+        e_max = plate.history(state, "e_max")  # concrete's largest tensile strain
+        for n in np.flatnonzero(sec.kind == CONCRETE):
+            cracked[..., n] = e_max[..., n] > sec.params[n, P_FR] / sec.params[n, P_E0]
         x_pts = plate.point_x()
         axial = plate.ax.astype(bool)
         return {
@@ -127,13 +164,15 @@ class SceneResult:
     def max_settlement(self, k: int = -1) -> tuple[float, float]:
         """(x [m], settlement [m]) of the foundation node that settles most at step ``k`` (positive down);
         the soil surface's if the scene has no foundation."""
-        x, s = self.settlement(k) if self.built.plate is not None else self.surface(k)
+        has_foundation = self.built.plate is not None or self.built.footing_nodes is not None
+        x, s = self.settlement(k) if has_foundation else self.surface(k)
         i = int(np.argmax(s))
         return float(x[i]), float(s[i])
 
     def contact_weights(self) -> np.ndarray:
         """(n_el, n_ip) integration weight of every contact point times the line Jacobian [m]: the contact
         length each point represents (their sum is the foundation width)."""
+        self._needs_plate("contact_weights()")
         return self.built.interface.ip_weights()
 
     def contact_resultant(self, k: int = -1) -> dict[str, float]:
@@ -141,6 +180,7 @@ class SceneResult:
         (compression positive, = the vertical load the soil carries), ``H`` [N/m] (shear, +x), ``M``
         [N m/m] (moment of the tractions about x = 0, counter-clockwise positive) and the foundation's
         ``eccentricity`` M_p/N [m] of the pressure about x = 0."""
+        self._needs_plate("contact_resultant()")
         c = self.contact(k)
         w = self.contact_weights()
         pressure = -c["sig_n"]
@@ -154,6 +194,7 @@ class SceneResult:
         ``PlateStrip.resultants``: ``x_ax`` (n_el, n_ax) [m] with normal force ``N`` [N/m] and bending moment
         ``M`` [N m/m] (positive sagging: tension at the bottom), ``x_sh`` (n_el, n_sh) [m] with shear force
         ``Q`` [N/m]."""
+        self._needs_plate("strip_forces()")
         plate = self.built.plate
         return plate.resultants(self.u[k][plate.edofs], self._group_state(plate, k))
 
@@ -161,6 +202,7 @@ class SceneResult:
         """Stress [Pa] in every steel layer at the strip's axial points at step ``k``: ``x`` (n_el, n_ax) [m],
         ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
         ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
+        self._needs_plate("steel_stress()")
         from ..materials.steel import S_FY
 
         layers = self.plate_layers(k)
@@ -178,12 +220,14 @@ class SceneResult:
     def crack_map(self, k: int = -1) -> dict[str, np.ndarray]:
         """Cracked concrete layer points at step ``k``: ``x`` (n_el, n_ax) [m], ``z`` (n_layer,) [m],
         ``cracked`` (n_el, n_ax, n_layer) bool (largest tensile strain beyond fr/E0; see ``plate_layers``)."""
+        self._needs_plate("crack_map()")
         layers = self.plate_layers(k)
         return {"x": layers["x"], "z": layers["z"], "cracked": layers["cracked"]}
 
     def crack_width(self, k: int = -1) -> dict[str, np.ndarray]:
         """Crack width w_k [m] (EN 1992-1-1 7.3.4) at the strip's axial points at step ``k``: see
         :func:`ssi.scene.design.crack_width`."""
+        self._needs_plate("crack_width()")
         from .design import crack_width
 
         return crack_width(self, k)
@@ -191,6 +235,8 @@ class SceneResult:
     def design_summary(self, **options) -> dict | None:
         """Crack widths, utilisations and envelopes of an RC strip per phase: see
         :func:`ssi.scene.design.design_summary` (``options``: gamma_c, gamma_s, kt, fck)."""
+        if self.built.plate is None:  # a scene without a strip has nothing to design
+            return None
         from .design import design_summary
 
         return design_summary(self, **options)
@@ -219,23 +265,264 @@ class SceneResult:
 
     def plastic_points(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) bool: soil points whose last stress update at step ``k`` returned to the yield
-        surface (history slot 1, the return branch, non-zero), i.e. the points yielding in that step."""
-        from ..elements.soil_q8 import N_STRESS
-
-        return self._group_state(self.built.soil, k)[..., N_STRESS + 1] > 0.0
+        surface (the history field ``branch`` non-zero), i.e. the points yielding in that step."""
+        soil = self.built.soil
+        return soil.history(self._group_state(soil, k), "branch") > 0.0
 
     def plastic_strain(self, k: int = -1) -> np.ndarray:
         """(n_el, n_ip) accumulated plastic strain norm sum |d eps_p| [-] of the soil points up to step ``k``
-        (history slot 0; zero for elastic layers)."""
-        from ..elements.soil_q8 import N_STRESS
+        (the history field ``plastic_strain``; zero for elastic layers)."""
+        soil = self.built.soil
+        return soil.history(self._group_state(soil, k), "plastic_strain").copy()
 
-        return self._group_state(self.built.soil, k)[..., N_STRESS].copy()
+    def contact_pressure(self, k: int = -1) -> dict[str, float]:
+        """The contact pressure at step ``k`` as an engineer reports it [Pa, m]: ``mean`` (contact resultant N
+        over the contact length), ``peak`` and ``x_peak`` the largest pressure at points farther than
+        ``edge_exclusion`` = 10 % of the foundation width from its edges, and ``edge`` and ``x_edge`` the
+        largest pressure anywhere -- at a stiff foundation's edge the singularity of an elastic corner,
+        which grows as the mesh is refined (up to the soil's strength where it yields): not a bearing
+        pressure."""
+        self._needs_plate("contact_pressure()")
+        c = self.contact(k)
+        x, p = c["x"].ravel(), -c["sig_n"].ravel()
+        f = self.built.scene.foundation
+        exclusion = 0.1 * (f.x1 - f.x0)
+        inner = np.minimum(np.abs(x - f.x0), np.abs(f.x1 - x)) > exclusion
+        if self.built.scene.symmetric:  # the modelled half ends at the axis x = 0, not at an edge
+            inner = np.abs(f.x1 - x) > exclusion
+        if not inner.any():
+            inner[:] = True
+        i = int(np.argmax(np.where(inner, p, -np.inf)))
+        j = int(np.argmax(p))
+        length = float(self.contact_weights().sum())
+        return {
+            "mean": self.contact_resultant(k)["N"] / length,  # both of the modelled part (half if symmetric)
+            "peak": float(p[i]),
+            "x_peak": float(x[i]),
+            "edge": float(p[j]),
+            "x_edge": float(x[j]),
+            "edge_exclusion": float(exclusion),
+        }
+
+    def phase_table(self) -> list[dict]:
+        """Per phase (a single-phase scene: one, named "loading"), its extremes over its rate-independent
+        equilibrium rows that hold states, SI units: ``name``, ``first``/``last`` rows, ``end_load_factor``
+        [-], ``column_load`` and ``foundation_load`` at its end [N/m], ``max_settlement`` [m] with ``x`` and
+        ``row``; with a plate strip ``max_abs_moment`` [N m/m] (and x), ``mean_pressure`` at its end and
+        ``peak_pressure`` (edge-excluded, :meth:`contact_pressure`) [Pa], ``max_steel_stress`` |sigma_s| [Pa]
+        (None without steel). The geostatic phase is left out (no load on the foundation yet)."""
+        if self.phases:
+            spans = [(r["name"], r["first"], r["last"]) for r in self.phases[1:]]
+        else:
+            spans = [("loading", 0, len(self.load_factor) - 1)]
+        n_rows = len(self.load_factor)
+        with_state = n_rows - len(self.states)
+        ok = self.equilibrium_rows()
+        col, load = self.column_load(), self.foundation_load()
+        table = []
+        for name, first, last in spans:
+            rows = [k for k in range(first, last + 1) if ok[k]] or [last]
+            settle = [self.max_settlement(k) for k in rows]
+            i = int(np.argmax([s for _, s in settle]))
+            row = {
+                "name": name,
+                "first": first,
+                "last": last,
+                "end_load_factor": float(self.phases[[r["name"] for r in self.phases].index(name)]["result"]
+                                         .load_factor[-1]) if self.phases else float(self.load_factor[-1]),
+                "column_load": float(col[last]),
+                "foundation_load": float(load[last]),
+                "max_settlement": settle[i][1],
+                "x_max_settlement": settle[i][0],
+                "row_max_settlement": rows[i],
+            }  # fmt: skip
+            if self.built.plate is not None:
+                stated = [k for k in rows if k >= with_state] or [n_rows - 1]
+                m_best, x_m, p_best, x_p, s_best = 0.0, float("nan"), 0.0, float("nan"), None
+                for k in stated:
+                    f = self.strip_forces(k)
+                    j = int(np.abs(f["M"]).argmax())
+                    if abs(f["M"].ravel()[j]) >= m_best:
+                        m_best, x_m = float(abs(f["M"].ravel()[j])), float(f["x_ax"].ravel()[j])
+                    cp = self.contact_pressure(k)
+                    if cp["peak"] >= p_best:
+                        p_best, x_p = cp["peak"], cp["x_peak"]
+                    sig = self.steel_stress(k)["sig"]
+                    if sig.size:
+                        s_best = max(s_best or 0.0, float(np.abs(sig).max()))
+                row |= {
+                    "max_abs_moment": m_best,
+                    "x_max_abs_moment": x_m,
+                    "mean_pressure": self.contact_pressure(stated[-1])["mean"],
+                    "peak_pressure": p_best,
+                    "x_peak_pressure": x_p,
+                    "max_steel_stress": s_best,
+                }
+            table.append(row)
+        return table
+
+    # ---- the load a foundation carries and its capacity (issue 34) ----------------------------------------
+    @property
+    def is_push_over(self) -> bool:
+        """The scene is driven by a prescribed :class:`Settlement` (in ``scene.loads`` or a phase): its load
+        is the reaction the soil gives, not a given force."""
+        loads = list(self.built.scene.loads) + [ld for ph in self.built.scene.phases for ld in ph.loads]
+        return any(isinstance(ld, Settlement) for ld in loads)
+
+    def column_load(self) -> np.ndarray:
+        """(n_steps + 1,) total column force sum N [N/m] applied at every row: lambda * sum N of a
+        single-phase scene; of a phased scene the columns of every phase so far, each scaled by its phase
+        factor, the running phase's ramped by its load factor (zero in the geostatic phase)."""
+        lam = np.asarray(self.load_factor, np.float64)
+
+        def total(loads):
+            return float(sum(ld.N for ld in loads if isinstance(ld, ColumnLoad)))
+
+        if not self.phases:
+            return lam * total(self.built.scene.loads)
+        out = np.zeros(len(lam))
+        factors, own, before = {}, {}, 0.0
+        for ph, record in zip(self.built._phase_list(), self.phases[1:]):
+            own[ph.name] = total(ph.loads)
+            factors[ph.name] = 1.0
+            factors.update(ph.factors)
+            after = sum(factors[name] * own[name] for name in own)
+            rows = np.arange(record["first"], record["last"] + 1)
+            phase_lam = np.asarray(record["result"].load_factor[1:], np.float64)
+            out[rows] = before + phase_lam * (after - before)
+            before = after
+        return out
+
+    def foundation_load(self) -> np.ndarray:
+        """(n_steps + 1,) vertical load [N/m] the foundation carries at every row (downwards positive, per
+        metre of strip; of a symmetric scene the whole foundation's). Of a push-over (:attr:`is_push_over`)
+        the soil's reaction: a RigidFooting's base reaction, or the contact resultant of a plate strip
+        (:meth:`BuiltScene.contact_force`); of a load-controlled scene the applied column load
+        (:meth:`column_load`). Rows that are not rate-independent equilibria are included: see
+        :meth:`load_settlement`'s ``equilibrium`` mask."""
+        if not self.is_push_over:
+            return self.column_load()
+        if self.built.footing_nodes is None:
+            return self.built.contact_force(self)
+        if not self.phases:
+            return self.built.contact_force(self)
+        # a phased push of a RigidFooting: each phase's own reaction record (its loads are its own)
+        whole = 2.0 if self.built.scene.symmetric else 1.0
+        out = np.zeros(len(self.load_factor))
+        for record in self.phases:
+            reaction = -whole * record["result"].support_reaction(self.built.footing_nodes, "w")
+            first = max(record["first"] - 1, 0) if record is not self.phases[0] else 0
+            out[first : first + len(reaction)] = reaction
+        return out
+
+    def equilibrium_rows(self) -> np.ndarray:
+        """(n_steps + 1,) bool: rows that are equilibrium states of the rate-independent laws (False: a
+        viscous state of the solver's fallback, which carries overstress the material cannot; see
+        :meth:`ssi.core.solution.Result.rate_independent_steps`)."""
+        mask = np.zeros(len(self.load_factor), bool)
+        visc = np.asarray(self.solver_result.step_viscosity, np.float64)
+        if len(visc) == len(mask):
+            mask[:] = visc == 0.0
+        else:  # a record without per-row viscosity: every row counts, as it did when written
+            mask[:] = True
+        return mask
+
+    def capacity(self) -> dict:
+        """The largest load the foundation carried and how it was found (only rate-independent equilibrium
+        rows count). Keys: ``load`` [N/m] (:meth:`foundation_load` at ``step``), ``settlement`` [m] there,
+        ``step``, ``is_limit`` (True when the path shows a limit: a peak, a plateau or a limit the solver
+        detected; False: the largest load carried, no limit found), ``how`` (a sentence), ``upper`` [N/m]
+        (a bracketed limit's upper end, else None), ``viscous_rows`` (rows left out), ``estimate`` (the
+        capacity's estimated discretisation error, :attr:`capacity_error`, or None when not estimated) and
+        ``warning`` (a sentence when that estimated error exceeds ``CAPACITY_ERROR_LIMIT`` of the load or
+        could not be extrapolated, else None).
+
+        How: a run the solver stopped (a NonConvergence's partial result): the largest load it carried, no
+        limit. A load-controlled scene whose solver detected a limit load: that load (lambda * sum N, with the
+        solver's bracket); one that completed: its full load, no limit found. A push-over: the peak of the
+        path if the load falls after it by more than 1 %; a plateau if the last increment's stiffness dP/ds is
+        below ``PLATEAU_STIFFNESS_SHARE`` of the first's; else the largest carried load, no limit found."""
+        path = self.load_settlement()
+        load, settle, ok = path["load"], path["settlement"], path["equilibrium"]
+        rows = np.flatnonzero(ok)
+        i = int(rows[np.argmax(load[rows])])
+        out = {
+            "load": float(load[i]),
+            "settlement": float(settle[i]),
+            "step": i,
+            "upper": None,
+            "viscous_rows": int((~ok).sum()),
+            "estimate": self.capacity_error,
+            "warning": capacity_error_warning(self.capacity_error),
+        }
+        if self.status == "stopped":  # a NonConvergence's partial path: what it carried, no more
+            return out | {
+                "is_limit": False,
+                "how": "largest load carried before the solver stopped (a solver failure, not a limit)",
+            }
+        if not self.is_push_over:
+            scale = load[i] / path["load_factor"][i] if path["load_factor"][i] and not self.phases else None
+            if self.status == "limit load reached":
+                upper = self.solver_result.limit_load_upper
+                out["upper"] = None if upper is None or scale is None else float(upper * scale)
+                bracket = (
+                    "" if out["upper"] is None else f"; the limit lies below {out['upper'] / 1e3:.1f} kN/m"
+                )
+                return out | {"is_limit": True, "how": "limit load detected by the solver" + bracket}
+            return out | {"is_limit": False, "how": "largest carried load: the full load, no limit found"}
+        after = load[rows[rows > i]]
+        if after.size and after.min() < 0.99 * load[i]:
+            return out | {
+                "is_limit": True,
+                "how": "peak of the load-settlement path: the load falls after it",
+            }
+        if len(rows) >= 3:
+            ds = np.diff(settle[rows])
+            dp = np.diff(load[rows])
+            first, last = dp[0] / ds[0] if ds[0] else np.inf, dp[-1] / ds[-1] if ds[-1] else np.inf
+            if np.isfinite(first) and first > 0 and last < PLATEAU_STIFFNESS_SHARE * first:
+                return out | {
+                    "is_limit": True,
+                    "how": (
+                        f"plateau of the load-settlement path: last stiffness {last / first:.1%} of the first"
+                    ),
+                }
+        return out | {"is_limit": False, "how": "largest carried load, no limit found: the load still rises"}
 
     def load_settlement(self) -> dict[str, np.ndarray]:
         """The load--settlement path over every converged step (also of a stopped run): ``load_factor``
-        (n_steps + 1,) [-], ``column_load`` (n_steps + 1,) [N/m] = lambda * sum of the column forces N,
-        ``settlement`` (n_steps + 1,) [m] the largest settlement at each step (positive down)."""
+        (n_steps + 1,) [-] (of a phased scene the phase time), ``column_load`` (n_steps + 1,) [N/m] (see
+        :meth:`column_load`), ``load`` [N/m] the load the foundation carries (:meth:`foundation_load`: of a
+        push-over the soil's reaction), ``settlement`` (n_steps + 1,) [m] the largest settlement at each step
+        (positive down) and ``equilibrium`` (n_steps + 1,) bool: the row is a rate-independent equilibrium
+        (:meth:`equilibrium_rows`; False rows are never a result)."""
         lam = np.asarray(self.load_factor, np.float64)
-        total_n = sum(load.N for load in self.built.scene.loads if isinstance(load, ColumnLoad))
         settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
-        return {"load_factor": lam, "column_load": lam * total_n, "settlement": settle}
+        return {
+            "load_factor": lam,
+            "column_load": self.column_load(),
+            "load": self.foundation_load(),
+            "settlement": settle,
+            "equilibrium": self.equilibrium_rows(),
+        }
+
+
+def capacity_error_warning(est: dict | None) -> str | None:
+    """The warning a capacity carries when its estimated discretisation error ``est`` (see
+    :attr:`SceneResult.capacity_error`) exceeds ``CAPACITY_ERROR_LIMIT`` or is not asymptotic; else None."""
+    if est is None:
+        return None
+    rel = est["relative"]
+    where = f"extrapolated {est['extrapolated'] / 1e3:.2f} kN/m"
+    if rel > CAPACITY_ERROR_LIMIT:
+        rough = "" if est["asymptotic"] else "; not in the asymptotic range, so the estimate itself is rough"
+        return (
+            f"the capacity's estimated discretisation error is {rel:.1%} (more than "
+            f"{CAPACITY_ERROR_LIMIT:.0%}; {where}{rough}): refine the mesh before using it"
+        )
+    if not est["asymptotic"]:
+        return (
+            f"the capacity's error estimate ({rel:.1%}) is not reliable: the refined answers are not in the "
+            "asymptotic range (no observed order in the accepted range)"
+        )
+    return None

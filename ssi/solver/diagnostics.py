@@ -4,19 +4,14 @@ activity per group), for ``NonConvergence``.
 
 import numpy as np
 
-GROUP_ACTIVITY = {"interface": ("stick", "slip", "open"), "soil_q8": ("elastic", "plastic")}
-
 
 def _point_codes(group, state):
-    """Per-point state codes of a group (interface: stick/slip/open; soil: elastic/plastic), or None."""
-    status = getattr(group, "status", None)
-    if callable(status):
-        return np.asarray(status(state)).ravel(), GROUP_ACTIVITY["interface"]
-    if group.name == "soil_q8":
-        from ..elements.soil_q8 import N_STRESS
-
-        return (state[..., N_STRESS + 1] > 0).astype(int).ravel(), GROUP_ACTIVITY["soil_q8"]
-    return None
+    """Per-point state codes of a group (interface: stick/slip/open; soil: elastic/plastic) and their
+    names, or None (the group declares none: ``ElementGroup.point_codes``)."""
+    codes = group.point_codes(state)
+    if codes is None:
+        return None
+    return np.asarray(codes).ravel(), group.point_code_names
 
 
 def _activity(model, outcome, worst_dof):

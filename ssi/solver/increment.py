@@ -1,5 +1,9 @@
 """One increment: the iterations of the chosen method (modified or full Newton, L-BFGS with a line search)
 from a converged state to the next, the tangent solve with its trust check, and the convergence test.
+
+Each method's search direction is one function in the table ``DIRECTIONS`` (method name -> function of the
+iteration's state, the element matrices and the free residual); a new method adds its row there and its
+name to ``settings.METHODS``.
 """
 
 import math
@@ -28,21 +32,58 @@ def _force_scale(settings, lam, f_ref, f_ext, f_int, result):
     return max(structural, 1e-7 * _norm(f_int), 1e-30)  # floor: round-off of the geostatic balance
 
 
+class _Iteration:
+    """What a direction function may read and change during one increment: ``use_k0`` (the iterations use
+    K0, not the consistent tangent: modified Newton and L-BFGS always, full Newton after a tangent that
+    could not be factorised) and the L-BFGS memory ``bfgs`` (None for the other methods)."""
+
+    __slots__ = ("bfgs", "fac_k0", "result", "settings", "system", "use_k0")
+
+    def __init__(self, system, settings, fac_k0, result, use_k0, bfgs):
+        self.system, self.settings, self.fac_k0, self.result = system, settings, fac_k0, result
+        self.use_k0, self.bfgs = use_k0, bfgs
+
+
+def _direction_modified(it, k_list, r_f):
+    """Modified Newton: the one K0 factorisation."""
+    return it.fac_k0.solve(r_f)
+
+
+def _direction_full(it, k_list, r_f):
+    """Full Newton: the consistent tangent; where it cannot be factorised (or its solve is not trusted),
+    K0 for the rest of the increment (retrying a singular tangent every iteration measured slower)."""
+    du = None if it.use_k0 else _tangent_solve(it.system, it.settings, k_list, r_f, it.result)
+    if du is None:
+        it.use_k0 = True
+        du = it.fac_k0.solve(r_f)
+    return du
+
+
+def _direction_bfgs(it, k_list, r_f):
+    """L-BFGS: the K0 factorisation updated with the increment's (step, force change) pairs."""
+    return it.bfgs.direction(r_f)
+
+
+# the search direction of each method (settings.METHODS): f(iteration state, element matrices, free residual)
+DIRECTIONS = {"bfgs": _direction_bfgs, "modified": _direction_modified, "full": _direction_full}
+
+
 def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, result, method):
     """Iterate one increment from the committed (u_conv, states) to load factor ``lam`` with ``method``
     (the settings' own, or its fallback: then ``settings.fallback_iter`` iterations at most)."""
     free = system.free
     f_ext = lam * f_ref + f_dead
-    use_k0 = method != "full"
     fallback = method != settings.method
     max_iter = min(settings.fallback_iter, _MAX_ITER[method]) if fallback else settings.max_iter
     line_search = settings.line_search or (fallback and method == "full")
     residuals, energies = [], []
     energy0 = r_first = None
     bfgs = _Lbfgs(fac_k0, settings.bfgs_memory) if method == "bfgs" else None
+    it_state = _Iteration(system, settings, fac_k0, result, use_k0=method != "full", bfgs=bfgs)
+    direction = DIRECTIONS[method]
     outcome = {"converged": False, "residuals": residuals, "energies": energies, "iterations": 0}
     u = system.apply_constraints(u_conv.copy(), lam)
-    evaluated = _evaluate(system, u, u_conv, states, use_k0, f_ext)
+    evaluated = _evaluate(system, u, u_conv, states, it_state.use_k0, f_ext)
     trial_prev = None
     for it in range(1, max_iter + 1):
         if evaluated is None:
@@ -63,13 +104,7 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
         if bfgs is not None and _stagnates(residuals):
             outcome.update(reason="residual stagnates (no decrease over the last 15 iterations)")
             return outcome
-        if bfgs is not None:
-            du = bfgs.direction(r_f)
-        else:
-            du = None if use_k0 else _tangent_solve(system, settings, k_list, r_f, result)
-            if du is None:  # modified Newton, or a tangent that cannot be factorised: K0 for the rest of the
-                use_k0 = True  # increment (retrying a singular tangent every iteration measured slower)
-                du = fac_k0.solve(r_f)
+        du = direction(it_state, k_list, r_f)
         energy = abs(float(du @ r_f))
         energy0 = energy if energy0 is None else energy0
         rel_energy = energy / _energy_scale(energy0, u, f_int, result, settings)
@@ -84,7 +119,7 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
                 bfgs.update(step * du, r_f - evaluated[3][free])
         else:
             u_new, evaluated = _advance(
-                system, settings, u, du, u_conv, states, use_k0, f_ext, _norm(r_f), line_search
+                system, settings, u, du, u_conv, states, it_state.use_k0, f_ext, _norm(r_f), line_search
             )
         u = u_new
     outcome.update(

@@ -18,16 +18,16 @@ if TYPE_CHECKING:  # for annotations only: these modules import this one
 
 
 def _has_viscosity(model) -> bool:
-    return any(hasattr(g, "viscosity") for g in model.groups)
+    return any(g.viscous for g in model.groups)
 
 
 def _viscosity_in_force(model) -> float:
-    return max((g.viscosity for g in model.groups if hasattr(g, "viscosity")), default=0.0)
+    return max((g.viscosity for g in model.groups if g.viscous), default=0.0)
 
 
 def _set_viscosity(model, tau):
     for g in model.groups:
-        if hasattr(g, "viscosity"):
+        if g.viscous:
             g.viscosity = float(tau)
 
 

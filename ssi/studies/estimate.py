@@ -4,6 +4,13 @@
     est = estimate(scene)                 # mesh h/2, h/4; steps x2, x4; plate layers x2, x4
     print(est)                            # value, estimated error, observed order and cost per quantity
 
+The quantity the user asked for leads: of a push-over (a scene driven by a prescribed ``Settlement``) the
+capacity (:meth:`SceneResult.capacity`: the footing load at the peak or plateau of the path; the prescribed
+settlement is an input, not an answer, and is left out), of a load-controlled scene the largest settlement.
+``solve_with_error`` and ``solve_to_target`` attach the capacity's estimate to the result they return
+(``out.capacity_error``), and a capacity whose estimated error exceeds 5 % carries a warning there
+(``out.capacity()["warning"]``, printed in the summary).
+
 A discretisation parameter ``h`` (element size, load increment, plate layer thickness) is halved twice, giving
 three answers q0 (the scene as given), q1 (h/2), q2 (h/4) of every headline quantity. If the error behaves as
 ``C h^p`` (the asymptotic range), the differences d1 = q1 - q0 and d2 = q2 - q1 shrink by 2^p, so
@@ -36,10 +43,12 @@ import numpy as np
 
 from ..elements.section import Section, layered
 from ..scene import Foundation
+from ..scene.view import capacity_error_warning
 from ..solver import Settings
 
 REFINEMENTS = ("mesh", "steps", "layers")
 QUANTITIES = (
+    "capacity",
     "max_settlement",
     "differential_settlement",
     "max_contact_pressure",
@@ -47,6 +56,7 @@ QUANTITIES = (
     "limit_load_factor",
 )
 UNITS = {
+    "capacity": "N/m",
     "max_settlement": "m",
     "differential_settlement": "m",
     "max_contact_pressure": "Pa",
@@ -159,13 +169,24 @@ def refined_steps(n_steps: int | None, settings: Settings | None, level: int):
 
 
 # ---- headline quantities ---------------------------------------------------------------------------------
+def asked_quantity(result) -> str:
+    """The quantity a scene is solved for: ``"capacity"`` of a push-over (:attr:`SceneResult.is_push_over`),
+    ``"max_settlement"`` of a load-controlled scene."""
+    return "capacity" if result.is_push_over else "max_settlement"
+
+
 def headline(result) -> dict:
-    """The headline quantities of a :class:`~ssi.scene.SceneResult` at its last step: ``max_settlement``
-    [m], ``differential_settlement`` [m] (largest minus smallest settlement along the strip),
-    ``max_contact_pressure`` [Pa], ``max_moment`` [N m/m] (largest |M| in the strip) and
+    """The headline quantities of a :class:`~ssi.scene.SceneResult` at its last step: of a push-over
+    ``capacity`` [N/m] (:meth:`SceneResult.capacity`'s load) in place of ``max_settlement`` (its prescribed
+    settlement: an input); else ``max_settlement`` [m]; with a plate strip ``differential_settlement`` [m]
+    (largest minus smallest settlement along the strip), ``max_contact_pressure`` [Pa], ``max_moment``
+    [N m/m] (largest |M| in the strip) and
     ``limit_load_factor`` [-] (only when a limit load was reached). A scene without foundation has only
     the surface's ``max_settlement``."""
-    out = {"max_settlement": result.max_settlement()[1]}
+    if result.is_push_over:
+        out = {"capacity": result.capacity()["load"]}
+    else:
+        out = {"max_settlement": result.max_settlement()[1]}
     if result.built.plate is not None:
         s = result.settlement()[1]
         out["differential_settlement"] = float(s.max() - s.min())
@@ -197,12 +218,42 @@ class ErrorEstimate:
     ``value`` {quantity: value of the scene as given}; ``parts`` {refinement: {quantity: Richardson}};
     ``error`` {quantity: summed |estimated error| of the scene as given}; ``relative`` {quantity: error /
     |value|}; ``cost`` {refinement: wall time [s] of its two refined solves}; ``levels`` every solve;
-    ``asymptotic`` {quantity: every refinement asymptotic}."""
+    ``asymptotic`` {quantity: every refinement asymptotic}; ``quantity`` the quantity asked for
+    (:func:`asked_quantity`: the capacity of a push-over, else the largest settlement)."""
 
     value: dict
     parts: dict
     levels: dict
     base_key: tuple = (0, 0, 0)
+    quantity: str = "max_settlement"
+
+    @property
+    def extrapolated(self) -> dict:
+        """{quantity: value of the scene as given minus every refinement's estimated error}: the
+        Richardson estimate of the converged value (units of the quantity)."""
+        return {
+            q: v - sum(p[q].error_base for p in self.parts.values() if q in p) for q, v in self.value.items()
+        }
+
+    def capacity_error(self) -> dict | None:
+        """The capacity's estimate as a result carries it (``SceneResult.capacity_error``), None if the
+        scene answers no capacity: ``relative`` estimated relative error of the scene as given, ``error``
+        [N/m], ``extrapolated`` [N/m], ``values`` [N/m] of the mesh refinement's levels h, h/2, h/4 (None
+        when the mesh was not refined), ``order`` its observed order, ``asymptotic``, ``refinements``."""
+        q = "capacity"
+        if q not in self.value:
+            return None
+        mesh = self.parts.get("mesh", {}).get(q)
+        return {
+            "relative": float(self.relative[q]),
+            "error": float(self.error[q]),
+            "extrapolated": float(self.extrapolated[q]),
+            "values": None if mesh is None else [float(v) for v in mesh.values],
+            "order": None if mesh is None else float(mesh.order),
+            "asymptotic": bool(self.asymptotic[q]),
+            "refinements": list(self.parts),
+            "how": "Richardson extrapolation over halvings of h (ssi.studies.estimate)",
+        }
 
     @property
     def error(self) -> dict:
@@ -248,6 +299,24 @@ class ErrorEstimate:
             )
             flag = "" if self.asymptotic[q] else "  (not asymptotic)"
             lines.append(f"{q:24s} {v:12.5g} {self.error[q]:10.3g} {self.relative[q]:8.2%}  {orders}{flag}")
+        q = self.quantity
+        if q in self.value:
+            unit = UNITS.get(q, "")
+            for r, part in self.parts.items():
+                if q in part:
+                    lines.append(
+                        f"{q} over {r} halvings (h, h/2, h/4): "
+                        + ", ".join(f"{v:.6g}" for v in part[q].values)
+                        + f" {unit}; extrapolated {part[q].extrapolated:.6g} {unit}; observed order "
+                        f"{part[q].order:.2f}"
+                    )
+            lines.append(
+                f"{q}: {self.value[q]:.6g} {unit} as given, {self.extrapolated[q]:.6g} {unit} extrapolated, "
+                f"estimated error {self.relative[q]:.2%}"
+            )
+            warning = capacity_error_warning(self.capacity_error()) if q == "capacity" else None
+            if warning:
+                lines.append("WARNING: " + warning)
         lines.append(
             f"cost [s]: base {self.base_wall_time:.2f}, "
             + ", ".join(f"{r} {c:.2f}" for r, c in self.cost.items())
@@ -302,7 +371,8 @@ def _estimate(solver, base, refine) -> ErrorEstimate:
         noise = ROUND_OFF if solver.linear else NOISE
         parts[name] = {q: richardson(*(lv.values[q] for lv in levels), noise=noise) for q in common}
     value = {q: v for q, v in base_level.values.items() if all(q in p for p in parts.values())}
-    return ErrorEstimate(value, parts, dict(solver.cache), base)
+    asked = "capacity" if "capacity" in base_level.values else "max_settlement"  # see asked_quantity
+    return ErrorEstimate(value, parts, dict(solver.cache), base, asked)
 
 
 def estimate(
@@ -319,9 +389,12 @@ def estimate(
 
 def solve_with_error(scene, n_steps: int | None = None, settings: Settings | None = None, refine=REFINEMENTS):
     """(SceneResult of the scene as given, its ErrorEstimate): the scene's own solution with
-    the estimate of its error."""
+    the estimate of its error. Of a push-over the result carries its capacity's estimate
+    (``out.capacity_error``; ``out.capacity()["warning"]`` when it exceeds 5 %)."""
     est = estimate(scene, n_steps, settings, refine)
-    return est.levels[est.base_key].result, est
+    out = est.levels[est.base_key].result
+    out.capacity_error = est.capacity_error()
+    return out, est
 
 
 @dataclass
@@ -356,14 +429,17 @@ def _error_at(r: Richardson, j: int) -> float:
 def solve_to_target(
     scene,
     target_error: float = 0.02,
-    quantities=("max_settlement",),
+    quantities=None,
     n_steps=None,
     settings: Settings | None = None,
     refine=REFINEMENTS,
     max_halvings: int = 3,
 ) -> TargetResult:
     """Solve ``scene`` refined just enough that the estimated relative error of every quantity in
-    ``quantities`` is at most ``target_error``.
+    ``quantities`` is at most ``target_error`` (default None: the quantity the scene is solved for,
+    :func:`asked_quantity` -- the capacity of a push-over, the largest settlement of a load-controlled
+    scene). Of a push-over the delivered result carries its capacity's estimated error
+    (``out.capacity_error``: the estimate of the scene as given, or the predicted error of a refined one).
 
     1. :func:`estimate` the scene as given (levels h, h/2, h/4 of every refinement in ``refine``);
     2. stop with status "not asymptotic" (and a warning naming the refinement, quantity and order) if a
@@ -381,6 +457,8 @@ def solve_to_target(
     refine = _check_refine(refine, scene)
     solver = RefinedSolver(scene, n_steps, settings)
     est = _estimate(solver, (0, 0, 0), refine)
+    if quantities is None:
+        quantities = (est.quantity,)
     missing = [q for q in quantities if q not in est.value]
     if missing:
         raise ValueError(
@@ -392,6 +470,8 @@ def solve_to_target(
 
     base = est.levels[(0, 0, 0)]
     rel0 = {q: est.relative[q] for q in quantities}
+    if base.result is not None:
+        base.result.capacity_error = est.capacity_error()
     if all(r <= target_error for r in rel0.values()):
         return TargetResult(
             "target met",
@@ -446,6 +526,8 @@ def solve_to_target(
     _, combo, pred = best
     key = tuple(combo[names.index(r)] if r in names else 0 for r in REFINEMENTS)
     level = solver(key)
+    if level.result is not None:
+        level.result.capacity_error = _predicted_capacity_error(est, level, names, combo, pred)
     return TargetResult(
         "target met",
         f"halvings {dict(zip(REFINEMENTS, key))}: predicted errors {_fmt(pred)} <= {target_error:g}",
@@ -455,6 +537,24 @@ def solve_to_target(
         est,
         wall(),
     )
+
+
+def _predicted_capacity_error(est: ErrorEstimate, level: Level, names, combo, pred) -> dict | None:
+    """The capacity estimate a refined result of :func:`solve_to_target` carries: its error predicted from
+    the base's fitted C h^p per refinement (``relative`` from ``pred`` when the capacity was asked for),
+    the same extrapolated value; None if the scene answers no capacity."""
+    base = est.capacity_error()
+    if base is None or level.key == est.base_key:
+        return base
+    error = sum(_error_at(est.parts[r]["capacity"], j) for r, j in zip(names, combo))
+    value = level.values.get("capacity", est.value["capacity"])
+    return base | {
+        "relative": float(pred.get("capacity", error / abs(value))),
+        "error": float(error),
+        "how": (
+            f"predicted by solve_to_target from the C h^p fitted on the scene as given (halvings {level.key})"
+        ),
+    }
 
 
 def _fmt(rel):

@@ -1,0 +1,221 @@
+"""The run report: one self-contained HTML page per scene that a person opens (``ssi run`` writes it).
+
+    write_report(summary_dict, "strip_report.html", figures=[...png paths...], title="strip.toml")
+
+The page holds the summary as a table with units, the capacity and how it was found, one row per phase
+and the envelope over the phases, the RC design lines, the warnings of the run, and every figure, linked
+by a path relative to the page (the figures stay beside it; nothing is fetched from the network: the style
+is inline, there is no script). Values come from :func:`ssi.io.cli.summary` (SI units), shown in kN, kPa,
+mm, MPa.
+"""
+
+from __future__ import annotations
+
+import html
+import os
+from pathlib import Path
+
+from .results import atomic_path
+
+# (summary key, label, scale from SI, unit, format): the rows of the summary table, in reading order
+SUMMARY_ROWS = (
+    ("foundation_load", "load on the foundation at the end", 1e-3, "kN/m", "{:.2f}"),
+    ("column_load", "column load at the end", 1e-3, "kN/m", "{:.2f}"),
+    ("max_settlement", "largest settlement at the end", 1e3, "mm", "{:.3f}"),
+    ("x_max_settlement", "  at x", 1.0, "m", "{:.3f}"),
+    ("mean_contact_pressure", "contact pressure, mean", 1e-3, "kPa", "{:.2f}"),
+    ("peak_contact_pressure", "contact pressure, peak (edges excluded)", 1e-3, "kPa", "{:.2f}"),
+    ("x_peak_contact_pressure", "  at x", 1.0, "m", "{:.3f}"),
+    ("max_contact_pressure", "edge pressure (corner singularity, not a bearing pressure)", 1e-3, "kPa",
+     "{:.2f}"),
+    ("contact_resultant", "contact resultant", 1e-3, "kN/m", "{:.2f}"),
+    ("max_abs_moment", "largest |bending moment| at the end", 1e-3, "kN m/m", "{:.2f}"),
+    ("x_max_abs_moment", "  at x", 1.0, "m", "{:.3f}"),
+    ("load_factor", "load factor reached (of a phased scene: phase time)", 1.0, "-", "{:.4g}"),
+    ("steps", "converged steps", 1.0, "-", "{:d}"),
+    ("wall_time_s", "wall time", 1.0, "s", "{:.2f}"),
+)  # fmt: skip
+PHASE_COLUMNS = (
+    ("end_load_factor", "load factor at the end", 1.0, "-", "{:.4g}"),
+    ("column_load", "column load at the end", 1e-3, "kN/m", "{:.2f}"),
+    ("foundation_load", "foundation load at the end", 1e-3, "kN/m", "{:.2f}"),
+    ("max_settlement", "max settlement", 1e3, "mm", "{:.3f}"),
+    ("max_abs_moment", "max |M|", 1e-3, "kN m/m", "{:.2f}"),
+    ("mean_pressure", "mean pressure at the end", 1e-3, "kPa", "{:.2f}"),
+    ("peak_pressure", "max peak pressure (edges excluded)", 1e-3, "kPa", "{:.2f}"),
+    ("max_steel_stress", "max |steel stress|", 1e-6, "MPa", "{:.1f}"),
+    ("max_crack_width", "max crack width w_k (EN 1992)", 1e3, "mm", "{:.3f}"),
+)
+ENVELOPE_UNITS = {
+    "max_settlement": ("largest settlement", 1e3, "mm", "{:.3f}"),
+    "max_abs_moment": ("largest |M|", 1e-3, "kN m/m", "{:.2f}"),
+    "peak_pressure": ("largest peak contact pressure (edges excluded)", 1e-3, "kPa", "{:.2f}"),
+    "max_steel_stress": ("largest |steel stress|", 1e-6, "MPa", "{:.1f}"),
+    "max_crack_width": ("largest crack width w_k (EN 1992)", 1e3, "mm", "{:.3f}"),
+    "foundation_load": ("largest load at a phase end", 1e-3, "kN/m", "{:.2f}"),
+}
+STYLE = """
+body { font-family: sans-serif; max-width: 60em; margin: 1em auto; padding: 0 1em; color: #222; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 1.5em; }
+table { border-collapse: collapse; margin: 0.5em 0; }
+td, th { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: left; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.scroll { overflow-x: auto; }
+.warn { background: #fff4e0; border-left: 4px solid #e69500; padding: 0.3em 0.8em; margin: 0.3em 0; }
+.status { font-weight: bold; }
+figure { margin: 1em 0; } figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
+pre { background: #f6f6f6; padding: 0.5em; overflow-x: auto; }
+"""
+
+
+def _fmt(value, scale, fmt) -> str:
+    if value is None:
+        return "–"
+    if fmt == "{:d}":
+        return str(int(value))
+    return fmt.format(value * scale)
+
+
+def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]:
+    """What the reader must not miss: the run's own warnings (``run_warnings``: bad-looking input, solver
+    notes), an incomplete run, a limit load, viscous rows left out, no limit found on a push-over, the
+    corner singularity of the contact pressure."""
+    out = list(run_warnings or [])
+    if s["status"] == "stopped":
+        out.append(
+            f"The run stopped before the end of its load path (solver failure, not a detected limit load): "
+            f"{s.get('stop_reason')}. The values are those of the last converged step."
+        )
+    elif s["status"] == "limit load reached":
+        out.append(
+            f"Limit load reached at load factor {s['limit_load_factor']:.4g}: the scene cannot carry its "
+            "full loads; the path up to the limit is the answer."
+        )
+    cap = s.get("capacity") or {}
+    if cap.get("viscous_rows"):
+        out.append(
+            f"{cap['viscous_rows']} rows are viscous states of the solver's fallback (overstress, not "
+            "equilibria): left out of the capacity and of the maxima."
+        )
+    if s.get("push_over") and cap and not cap.get("is_limit"):
+        out.append(
+            "The push-over did not reach a limit: its largest load is a lower bound of the capacity "
+            "(push further)."
+        )
+    if cap.get("warning"):  # the capacity's error estimate (ssi.studies): above 5 % or not asymptotic
+        out.append(str(cap["warning"]))
+    if "max_contact_pressure" in s:
+        out.append(
+            "The edge pressure is a singularity of the stiff foundation's corner: it grows as the mesh is "
+            "refined and is not a bearing pressure (read the mean and the peak away from the edges)."
+        )
+    return out
+
+
+def report_html(
+    s: dict, figures: list[Path] | None = None, base: Path | None = None, title: str = "ssi run",
+    run_warnings: list[str] | None = None,
+) -> str:  # fmt: skip
+    """The report page as a string: summary dict ``s`` (:func:`ssi.io.cli.summary`), ``figures`` (PNG
+    paths, linked relative to the folder ``base`` the page is written into), ``title`` (the scene's name),
+    ``run_warnings`` (texts)."""
+    esc = html.escape
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{esc(title)}</title>",
+        f"<style>{STYLE}</style></head><body>",
+        f"<h1>{esc(title)}</h1>",
+    ]
+    status = {"completed": "completed", "limit load reached": "limit load reached", "stopped": "INCOMPLETE"}
+    parts.append(
+        f'<p class="status">status: {esc(status.get(s["status"], s["status"]))}'
+        + (f", last phase {esc(repr(s['phase']))}" if s.get("phase") else "")
+        + "</p>"
+    )
+    warn = report_warnings(s, run_warnings)
+    if warn:
+        parts.append("<h2>Warnings</h2>")
+        parts += [f'<div class="warn">{esc(w)}</div>' for w in warn]
+    cap = s.get("capacity")
+    if cap and (s.get("push_over") or cap["is_limit"]):  # a load-controlled run carried its loads
+        word = "Capacity" if cap["is_limit"] else "Largest load carried (no limit found)"
+        parts.append(f"<h2>{word}</h2>")
+        parts.append(
+            "<table><tr><th>quantity</th><th>value</th><th>unit</th></tr>"
+            f"<tr><td>{'footing load (soil reaction)' if s.get('push_over') else 'load'}</td>"
+            f'<td class="num">{cap["load"] / 1e3:.2f}</td><td>kN/m</td></tr>'
+            f'<tr><td>at settlement</td><td class="num">{1e3 * cap["settlement"]:.2f}</td><td>mm</td></tr>'
+            + (
+                f'<tr><td>upper end of the bracket</td><td class="num">{cap["upper"] / 1e3:.2f}</td>'
+                "<td>kN/m</td></tr>"
+                if cap.get("upper") is not None
+                else ""
+            )
+            + f"</table><p>How it was found: {esc(cap['how'])}.</p>"
+        )
+    parts.append("<h2>Summary</h2>")
+    parts.append('<div class="scroll"><table><tr><th>quantity</th><th>value</th><th>unit</th></tr>')
+    for key, label, scale, unit, fmt in SUMMARY_ROWS:
+        if key in s and s[key] is not None:
+            parts.append(
+                f'<tr><td>{esc(label)}</td><td class="num">{_fmt(s[key], scale, fmt)}</td>'
+                f"<td>{esc(unit)}</td></tr>"
+            )
+    parts.append("</table></div>")
+    table = s.get("phases") or []
+    if table:
+        parts.append("<h2>Per phase</h2>" if len(table) > 1 else "<h2>Over the load path</h2>")
+        cols = [c for c in PHASE_COLUMNS if any(r.get(c[0]) is not None for r in table)]
+        parts.append('<div class="scroll"><table><tr><th>phase</th><th>steps</th>')
+        parts += [f"<th>{esc(label)} [{esc(unit)}]</th>" for _, label, _, unit, _ in cols]
+        parts.append("</tr>")
+        for row in table:
+            cells = "".join(
+                f'<td class="num">{_fmt(row.get(key), scale, fmt)}</td>' for key, _, scale, _, fmt in cols
+            )
+            parts.append(f"<tr><td>{esc(row['name'])}</td><td>{row['first']}–{row['last']}</td>{cells}</tr>")
+        parts.append("</table></div>")
+        env = s.get("envelope") or {}
+        if len(table) > 1 and env:
+            parts.append("<h3>Envelope over the phases</h3>")
+            parts.append("<table><tr><th>quantity</th><th>value</th><th>unit</th><th>phase</th></tr>")
+            for key, (label, scale, unit, fmt) in ENVELOPE_UNITS.items():
+                if key in env:
+                    parts.append(
+                        f'<tr><td>{esc(label)}</td><td class="num">{_fmt(env[key]["value"], scale, fmt)}'
+                        f"</td><td>{esc(unit)}</td><td>{esc(env[key]['phase'])}</td></tr>"
+                    )
+            parts.append("</table>")
+    if s.get("design"):
+        from ..scene.design import summary_text as design_text
+
+        parts.append("<h2>RC design</h2>")
+        parts.append(f"<pre>{esc(design_text(s['design']))}</pre>")
+    if figures:
+        parts.append("<h2>Figures</h2>")
+        for fig in figures:
+            rel = os.path.relpath(Path(fig), base) if base is not None else str(fig)
+            rel = Path(rel).as_posix()
+            parts.append(
+                f'<figure><img src="{esc(rel)}" alt="{esc(Path(fig).stem)}">'
+                f"<figcaption>{esc(Path(fig).stem.replace('_', ' '))}</figcaption></figure>"
+            )
+    parts.append(
+        "<p><small>SI units in the result file and the JSON summary; this page shows kN, kPa, mm, MPa. "
+        "Written by ssi.</small></p></body></html>"
+    )
+    return "\n".join(parts) + "\n"
+
+
+def write_report(
+    s: dict, path: str | Path, figures: list[Path] | None = None, title: str | None = None,
+    run_warnings: list[str] | None = None, overwrite: bool = False,
+) -> Path:  # fmt: skip
+    """Write :func:`report_html` to ``path`` (atomically, the user's umask; an existing file is kept unless
+    ``overwrite``), the figures linked relative to its folder. Returns the path."""
+    path = Path(path)
+    text = report_html(s, figures, path.parent.resolve(), title or path.stem, run_warnings)
+    with atomic_path(path, overwrite) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return path

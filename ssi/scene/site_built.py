@@ -1,0 +1,234 @@
+"""A :class:`~ssi.scene.site.Site` built into a model (``BuiltSite``): the soil group with its materials and
+initial stress, the strips (plate and interface, or a rigid base), the supports and the loads."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.geometry import GeometryError
+from ..core.model import Model
+from ..elements.interface import add_interface
+from ..elements.plate import PlateStrip
+from ..elements.soil_q8 import SoilQ8
+from ..materials.soil_laws import SoilLayer, geostatic_stress, material_table
+from .loads import ColumnLoad
+from .site_parts import DepthVarying, RigidStrip, Strip
+from .site_view import SiteResult
+
+if TYPE_CHECKING:  # for annotations only: the site module imports this one
+    from .site import Site
+
+__all__ = ["BuiltSite"]
+
+
+@dataclass
+class BuiltSite:
+    """A site built into a model: ``mesh`` (SoilMesh or UnstructuredMesh), ``soil`` group, per strip a dict
+    (``plate``, ``interface``, ``plate_nodes`` model ids ordered by x, ``soil_nodes``; of a RigidStrip:
+    ``rigid``, ``soil_nodes``, ``width``), ``element_layer`` (n_el,) layer index, ``initial_stress_method``
+    "K0", "gravity" or "none" (weightless soil), ``mesher`` "structured" or "gmsh",
+    ``quality`` of the mesh (:func:`ssi.core.gmsh_mesh.check_quality`)."""
+
+    site: Site
+    model: Model
+    mesh: object
+    soil: SoilQ8
+    strips: list
+    element_layer: np.ndarray
+    initial_stress_method: str
+    mesher: str
+    quality: dict
+
+    @classmethod
+    def assemble(cls, site: Site, mesh, method: str, mesher: str, quality: dict) -> BuiltSite:
+        model = Model()
+        model.info["site"] = site
+        ids = model.add_nodes(mesh.xy, ndof=2)
+        centre = mesh.xy[mesh.conn].mean(axis=1)
+        kinds, params, el_mat, weights = _materials(site, mesh, centre)
+        soil = SoilQ8(
+            mesh.xy[mesh.conn],
+            model.element_dofs(ids[mesh.conn]),
+            el_mat,
+            kinds,
+            params,
+            n_gauss=site.mesh.n_gauss,
+            unit_weight=weights if weights.any() else None,
+        )
+        model.add_group(soil)
+        _fix_sides(model, mesh.xy, site)
+        built = cls(site, model, mesh, soil, [], np.asarray(mesh.el_layer, np.int64), method, mesher, quality)
+        if weights.any():
+            soil.initial_stress = built._initial_stress()
+        else:  # weightless soil: no initial stress, whatever the method asked for
+            built.initial_stress_method = "none"
+        for s in site.strips:
+            built._add_strip(s)
+        built._add_loads()
+        return built
+
+    def ground_nodes(self, x0: float, x1: float) -> np.ndarray:
+        """Soil node ids on the ground between x0 and x1 [m], ordered by x."""
+        xy = self.mesh.xy
+        scale = max(1.0, self.site.width)
+        on = np.abs(xy[:, 1] - self.site.ground_z(xy[:, 0])) < 1e-7 * scale
+        on &= (xy[:, 0] >= x0 - 1e-9 * scale) & (xy[:, 0] <= x1 + 1e-9 * scale)
+        ids = np.flatnonzero(on)
+        ids = ids[np.argsort(xy[ids, 0])]
+        if len(ids) < 3 or len(ids) % 2 == 0:
+            raise GeometryError(
+                f"the range ({x0:g}, {x1:g}) m does not start and end on element edges of the ground"
+            )
+        return ids
+
+    def _initial_stress(self) -> np.ndarray:
+        """(n_el, n_ip, 4) initial effective stress [Pa] by the method of the build."""
+        site, soil = self.site, self.soil
+        if self.initial_stress_method == "K0":
+            layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in site.layers]
+            layers = [replace(lay, thickness=t) for lay, t in zip(layers, site.layer_thicknesses())]
+            wt = None if site.water_table is None else -float(site.water_z(0.0))
+            return geostatic_stress(
+                soil.integration_points()[..., 1], layers, water_table=wt, gamma_w=site.gamma_w
+            )
+        # gravity loading: the weight on the soil alone, elastic (every law's E and nu), one linear solve; or
+        # with the soil's own laws, the weight ramped up as the reference load of an incremental solve
+        plastic = self.initial_stress_method == "gravity_plastic"
+        model = Model()
+        ids = model.add_nodes(self.mesh.xy, ndof=2)
+        if plastic:
+            kinds, params = soil.kinds, soil.params
+        else:
+            elastic = []
+            for k in range(len(soil.kinds)):
+                e, nu = soil.params[k, 0], soil.params[k, 1]
+                elastic.append(SoilLayer(1.0, E=e, nu=nu).law())
+            kinds, params = material_table(elastic)
+        g = SoilQ8(
+            soil.coords, model.element_dofs(ids[self.mesh.conn]), soil.el_mat, kinds, params,
+            n_gauss=site.mesh.n_gauss, unit_weight=soil.unit_weight,
+        )  # fmt: skip
+        model.add_group(g)
+        _fix_sides(model, self.mesh.xy, site)
+        if plastic:
+            from .stages import _run_phase
+
+            weight = model.load_vectors()[1]
+            g.unit_weight = None  # the weight becomes the reference load, ramped from zero
+            res = _run_phase(model, [1.0], None, loads=(weight, np.zeros(model.n_dof)))
+        else:
+            res = model.solve_linear()
+        self.gravity_displacement = res.u[-1]
+        return np.ascontiguousarray(g.stress(res.states[-1][0]))
+
+    def _add_strip(self, s: Strip | RigidStrip):
+        if isinstance(s, RigidStrip):
+            nodes = self.ground_nodes(s.x0, s.x1)
+            if s.rough:
+                self.model.fix(nodes, "u")
+            self.model.prescribe(nodes, "w", -s.settle)
+            self.strips.append({"rigid": True, "soil_nodes": nodes, "width": s.x1 - s.x0})
+            return
+        f, model = s.foundation, self.model
+        soil_nodes = self.ground_nodes(f.x0, f.x1)
+        xs = self.mesh.xy[soil_nodes, 0]
+        if abs(xs[0] - f.x0) > 1e-9 * self.site.width or abs(xs[-1] - f.x1) > 1e-9 * self.site.width:
+            raise GeometryError(f"the strip ({f.x0:g}, {f.x1:g}) m ends are not mesh nodes of the ground")
+        z_base = float(self.site.ground_z(f.x0))
+        local = np.arange(0, len(soil_nodes) - 2, 2)
+        plate_conn = np.column_stack([local, local + 1, local + 2])
+        plate_xy = np.column_stack([xs, np.full(len(xs), z_base - f.section.z_bottom)])
+        ids = model.add_nodes(plate_xy, ndof=3)
+        plate = PlateStrip(
+            plate_xy[plate_conn], model.element_dofs(ids[plate_conn]), f.strip_section(), **f.strip_options()
+        )
+        model.add_group(plate)
+        iface = add_interface(
+            model, ids[plate_conn], soil_nodes[plate_conn], np.tile(s.contact.params(), (len(plate_conn), 1)),
+            offset=plate.bottom_offset, rule=s.contact.rule,
+        )  # fmt: skip
+        if s.contact.kt == 0.0:
+            held = int(ids[np.argmin(np.abs(xs - 0.5 * (f.x0 + f.x1)))])
+            model.fix([held], "u")
+        self.strips.append({"plate": plate, "interface": iface, "plate_nodes": ids, "soil_nodes": soil_nodes})
+
+    def _add_loads(self):
+        model = self.model
+        for ld in self.site.loads:
+            if isinstance(ld, ColumnLoad):
+                ids = self.strips[self.site._strip_at(ld.x)]["plate_nodes"]
+                i = int(np.argmin(np.abs(model.coords[ids, 0] - ld.x)))
+                if abs(model.coords[ids[i], 0] - ld.x) > 1e-6:
+                    raise GeometryError(f"ColumnLoad at x={ld.x:g} m is not a node of its strip")
+                for comp, v in (("w", -ld.N), ("u", ld.H), ("alpha", ld.M)):
+                    if v:
+                        model.add_load([ids[i]], comp, v)
+            else:  # a vertical pressure per horizontal metre on the ground: L/6, 4L/6, L/6 per quadratic edge
+                nodes = self.ground_nodes(ld.x0, ld.x1)
+                xs = self.mesh.xy[nodes, 0]
+                f = np.zeros(len(nodes))
+                for i in range(0, len(nodes) - 2, 2):
+                    f[i : i + 3] += np.array([1.0, 4.0, 1.0]) * (xs[i + 2] - xs[i]) / 6.0
+                model.add_load(nodes, "w", -ld.q * f)
+
+    @property
+    def is_linear(self) -> bool:
+        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
+        return all(lay.c is None for lay in layers) and all(
+            isinstance(s, RigidStrip)
+            or (s.contact.phi_deg is None and bool(np.all(st["plate"].section.kind == 0)))
+            for s, st in zip(self.site.strips, self.strips)
+        )
+
+    def solve(self, n_steps: int | None = None, settings=None, load_factors=None) -> SiteResult:
+        """Apply the loads to load factor 1 from the initial stress: one linear solve for a linear site, else
+        the solver's automatic increments (``n_steps``, ``settings`` as for a scene; ``load_factors``: the
+        levels themselves, e.g. a graded push of a RigidStrip)."""
+        from ..solver import Settings
+        from .stages import _load_levels, _run_phase
+
+        if self.is_linear and load_factors is None:
+            return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
+        levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)
+        return SiteResult(self, _run_phase(self.model, levels, settings))
+
+
+def _materials(site: Site, mesh, centre):
+    """(kinds, params, el_mat, unit weights) of the soil: one row per layer, or per element of a layer whose
+    properties vary with depth (evaluated at the element's centroid)."""
+    rows, el_mat, weights = [], np.zeros(len(mesh.conn), np.int64), []
+    layer_of = np.asarray(mesh.el_layer, np.int64)
+    wet = centre[:, 1] < site.water_z(centre[:, 0])
+    for k, lay in enumerate(site.layers):
+        base = lay.layer if isinstance(lay, DepthVarying) else lay
+        sat = base.unit_weight if base.unit_weight_sat is None else base.unit_weight_sat
+        for is_wet in (False, True):
+            els = np.flatnonzero((layer_of == k) & (wet == is_wet))
+            if not len(els):
+                continue
+            gamma = max(sat - site.gamma_w, 0.0) if is_wet else base.unit_weight
+            if isinstance(lay, DepthVarying):
+                z_ref = site.ground_z(centre[els, 0]) if lay.z_ref is None else np.full(len(els), lay.z_ref)
+                for e, d in zip(els, z_ref - centre[els, 1]):
+                    el_mat[e] = len(rows)
+                    rows.append(lay.at(d).law())
+                    weights.append(gamma)
+            else:
+                el_mat[els] = len(rows)
+                rows.append(base.law())
+                weights.append(gamma)
+    kinds, params = material_table(rows)
+    return kinds, params, el_mat, np.array(weights)
+
+
+def _fix_sides(model, xy, site):
+    """Bottom fixed (u, w), sides on vertical rollers (u)."""
+    tol = 1e-9 * max(1.0, site.width)
+    bottom = np.flatnonzero(np.abs(xy[:, 1] - site.z_bottom) < tol)
+    sides = np.flatnonzero((np.abs(xy[:, 0] - site.x_left) < tol) | (np.abs(xy[:, 0] - site.x_right) < tol))
+    model.fix(bottom, "u")
+    model.fix(bottom, "w")
+    model.fix(sides, "u")

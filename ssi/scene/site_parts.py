@@ -1,0 +1,95 @@
+"""The pieces of a :class:`~ssi.scene.site.Site` that an engineer lists: boreholes, layers whose stiffness and
+strength grow with depth, foundation strips and rigid strips (the site itself, its geometry and its mesh are
+in :mod:`.site`; the built model in :mod:`.site_built`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..core.geometry import GeometryError
+from ..core.validate import check_instance, check_optional_real, check_real
+from ..materials.soil_laws import SoilLayer
+from .parts import Contact, Foundation
+
+__all__ = ["Borehole", "DepthVarying", "RigidStrip", "Strip"]
+
+
+@dataclass(frozen=True)
+class Borehole:
+    """A borehole at ``x`` [m]: ``boundaries`` the elevations z [m] of the layer boundaries met from the top
+    down (one fewer than the site's layers; non-increasing, equal values: a layer absent there)."""
+
+    x: float
+    boundaries: tuple = ()
+
+    def __post_init__(self):
+        check_real("Borehole.x", self.x, unit="m")
+        z = tuple(
+            float(check_real(f"Borehole.boundaries[{i}]", v, unit="m")) for i, v in enumerate(self.boundaries)
+        )
+        for i in range(1, len(z)):
+            if z[i] > z[i - 1]:
+                raise GeometryError(
+                    f"Borehole at x={self.x}: boundaries[{i}]={z[i]} lies above boundaries[{i - 1}]="
+                    f"{z[i - 1]}; "
+                    "list them from the top down (equal values: a layer pinched out)"
+                )
+        object.__setattr__(self, "boundaries", z)
+
+
+@dataclass(frozen=True)
+class DepthVarying:
+    """``layer`` whose E and c grow with depth: E = layer.E + E_inc * max(z_ref - z, 0), c = layer.c + c_inc *
+    max(z_ref - z, 0); ``E_inc`` [Pa/m], ``c_inc`` [Pa/m], ``z_ref`` [m] reference elevation (None: the
+    ground surface above the point)."""
+
+    layer: SoilLayer
+    E_inc: float = 0.0
+    c_inc: float = 0.0
+    z_ref: float | None = None
+
+    def __post_init__(self):
+        check_instance("DepthVarying.layer", self.layer, SoilLayer)
+        check_real("DepthVarying.E_inc", self.E_inc, lo=0.0, unit="Pa/m")
+        check_real("DepthVarying.c_inc", self.c_inc, lo=0.0, unit="Pa/m")
+        check_optional_real("DepthVarying.z_ref", self.z_ref, unit="m")
+        if self.c_inc and self.layer.c is None:
+            raise ValueError(f"DepthVarying.c_inc={self.c_inc}: the layer is elastic (c=None), give it a c")
+
+    def at(self, depth: float) -> SoilLayer:
+        """The layer's material at ``depth`` [m] below the reference level."""
+        d = max(float(depth), 0.0)
+        c = None if self.layer.c is None else self.layer.c + self.c_inc * d
+        return replace(self.layer, E=self.layer.E + self.E_inc * d, c=c)
+
+
+@dataclass(frozen=True)
+class Strip:
+    """A foundation strip of a site resting on the ground through its own ``contact``. ``level`` [m]: the
+    elevation of its base (None: the ground under it; the ground must be level there)."""
+
+    foundation: Foundation
+    contact: Contact
+    level: float | None = None
+
+    def __post_init__(self):
+        check_instance("Strip.foundation", self.foundation, Foundation)
+        check_instance("Strip.contact", self.contact, Contact)
+        check_optional_real("Strip.level", self.level, unit="m")
+
+
+@dataclass(frozen=True)
+class RigidStrip:
+    """A rigid strip footing from ``x0`` to ``x1`` [m] on level ground, without plate or interface: the
+    ground nodes under it are its base, pushed down by ``settle`` [m] times the load factor (displacement
+    control: the reaction is the load, :meth:`SiteResult.rigid_pressure`); ``rough``: their u held too."""
+
+    x0: float
+    x1: float
+    settle: float
+    rough: bool = True
+
+    def __post_init__(self):
+        check_real("RigidStrip.x0", self.x0, unit="m")
+        check_real("RigidStrip.x1", self.x1, lo=self.x0, lo_open=True, unit="m (> x0)")
+        check_real("RigidStrip.settle", self.settle, lo=0.0, lo_open=True, unit="m")
