@@ -1,4 +1,4 @@
-"""The command line: ``ssi run scene.toml``, ``ssi show result.h5``, ``ssi schema``.
+"""The command line: ``ssi run scene.toml``, ``ssi limit scene.toml``, ``ssi show result.h5``, ``ssi schema``.
 
 ``ssi run scene.toml`` solves the scene file (see :mod:`ssi.scene.scene_file`) and writes, next to it unless
 told otherwise: ``<name>.h5`` (the result, :func:`ssi.io.results.write_result`), ``<name>.pvd`` +
@@ -16,6 +16,9 @@ summary (settlement, tilt, differential settlement) printed and in ``<name>_summ
 ParaView export, plots and report are not written yet. ``ssi show result.h5`` prints the summary of a result
 file and redraws its plots and report into a new folder (``<result>_plots_2``, ... when the run's exists;
 ``--overwrite``: into the run's).
+``ssi limit scene.toml`` brackets the scene's capacity by finite-element limit analysis
+(:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
+``<name>_limit.json`` (the numbers) and ``<name>_limit.png`` (the mechanism and the dissipation).
 """
 
 import argparse
@@ -345,6 +348,48 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     return result, s, written
 
 
+def limit_scene_file(
+    scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, plot=None,
+    overwrite=False, figures=True, echo=print,
+):  # fmt: skip
+    """What ``ssi limit`` does; returns (CapacityResult, written paths). ``echo`` gets one line of progress
+    per mesh of the adaptive runs."""
+    from ..scene.scene_file import read_scene_file
+    from .plot import limit_mechanism
+    from .results import atomic_path
+
+    scene_path = Path(scene_path)
+    stem = scene_path.with_suffix("")
+    out = Path(out) if out else stem.parent / (stem.name + "_limit.json")
+    plot = Path(plot) if plot else stem.parent / (stem.name + "_limit.png")
+    for target in (out, plot) if figures else (out,):
+        if target.exists() and not overwrite:
+            raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
+    scene, _, _ = read_scene_file(scene_path)
+
+    def progress(label, r):
+        echo(
+            f"{label:10s} mesh {r['step']:2d}: {r['n_el']:6d} triangles  LB {r['best_lb']:.5g}  "
+            f"UB {r['best_ub']:.5g}  gap {100 * r['gap']:6.2f} %  ({r['t_lb'] + r['t_ub']:.1f} s)"
+        )
+
+    cap = scene.limit_analysis(
+        phase=phase, gap=gap, h=h, h_min=h_min, max_elements=max_elements, progress=progress
+    )
+    with atomic_path(out, overwrite) as tmp:
+        tmp.write_text(json.dumps(cap.to_dict(), indent=1))
+    written = [out]
+    if figures:
+        import matplotlib.pyplot as plt
+
+        fig = limit_mechanism(cap)
+        with atomic_path(plot, overwrite) as tmp:
+            fig.savefig(tmp, dpi=110, format="png")
+        plt.close(fig)
+        written.append(plot)
+    return cap, written
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(
         prog="ssi",
@@ -373,10 +418,35 @@ def main(argv=None) -> int:
     show_p.add_argument("--overwrite", action="store_true", help="redraw into <result>_plots, replacing it")
     show_p.add_argument("--json", action="store_true", help="print the summary as JSON")
     sub.add_parser("schema", help="print the scene file's tables, keys and units")
+    lim_p = sub.add_parser("limit", help="bracket the capacity of a TOML scene by limit analysis")
+    lim_p.add_argument("scene", type=Path)
+    lim_p.add_argument("--phase", help="the phase whose loads are scaled (default: the last)")
+    lim_p.add_argument("--gap", type=float, default=0.02, help="relative gap (UB-LB)/(UB+LB) to reach")
+    lim_p.add_argument("--h", type=float, help="largest initial triangle [m]")
+    lim_p.add_argument("--h-min", type=float, help="initial triangle at the footing's ends [m]")
+    lim_p.add_argument("--max-elements", type=int, default=20000, help="stop refining at this many")
+    lim_p.add_argument("-o", "--out", type=Path, help="numbers as JSON (default: <scene>_limit.json)")
+    lim_p.add_argument("--plot", type=Path, help="mechanism figure (default: <scene>_limit.png)")
+    lim_p.add_argument("--no-plots", action="store_true", help="skip the figure")
+    lim_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
+    lim_p.add_argument("--json", action="store_true", help="print the numbers as JSON")
     args = parser.parse_args(argv)
     from .cli_site import is_site_file, run_site_file, site_summary_text
     from .results import OutputExistsError
 
+    if args.command == "limit":
+        try:
+            cap, written = limit_scene_file(
+                args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
+                args.plot, args.overwrite, not args.no_plots, echo=lambda s: print(s, flush=True),
+            )  # fmt: skip
+        except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
+            print(f"ssi: error: {err}", file=sys.stderr)
+            return 2
+        print(json.dumps(cap.to_dict(), indent=1) if args.json else cap.summary())
+        for p in written:
+            print(f"wrote {p}")
+        return 0
     if args.command == "schema":
         from ..scene.scene_file import schema_text
 

@@ -385,3 +385,40 @@ def save_standard_figures(result: SceneResult, folder: str | Path, overwrite: bo
 
 def _step(result, k):
     return range(len(result.load_factor))[k]
+
+
+def limit_mechanism(capacity, axes=None, window=None):
+    """The collapse mechanism of a limit analysis (:class:`ssi.scene.capacity.CapacityResult`, its upper
+    bound on the last associated mesh): the speed with the velocity arrows (left) and where the plastic
+    dissipation happens, log10 of each triangle's dissipation density over the largest (right).
+    ``axes``: two axes to draw into; ``window`` (x0, x1, z0, z1) [m] (default: the whole block). The
+    velocities are those of unit reference power: only their pattern and ratios mean anything."""
+    mesh = capacity.mesh
+    xy, tri = mesh.xy, mesh.tri
+    if axes is None:
+        fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
+    fig = axes[0].figure
+    vel = capacity.velocity[: len(xy)]
+    speed = np.hypot(vel[:, 0], vel[:, 1])
+    tp = axes[0].tripcolor(xy[:, 0], xy[:, 1], tri, speed, shading="gouraud", cmap="viridis")
+    axes[0].triplot(xy[:, 0], xy[:, 1], tri, lw=0.1, color="w")
+    step = max(1, len(xy) // 400)  # at most ~400 arrows
+    axes[0].quiver(xy[::step, 0], xy[::step, 1], vel[::step, 0], vel[::step, 1], color="w", width=0.002)
+    fig.colorbar(tp, ax=axes[0], label="|velocity| (unit reference power)")
+    dens = np.maximum(capacity.dissipation, 1e-300) / mesh.areas()
+    tp = axes[1].tripcolor(
+        xy[:, 0], xy[:, 1], tri, facecolors=np.log10(dens / dens.max() + 1e-12), cmap="magma"
+    )
+    tp.set_clim(-4, 0)
+    fig.colorbar(tp, ax=axes[1], label="log10 dissipation density / max")
+    if window is None:
+        window = (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
+    x0, x1, z0, z1 = window
+    for ax, title in zip(axes, ("mechanism (upper bound)", "plastic dissipation")):
+        ax.set_aspect("equal")
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(z0, z1)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("z [m]")
+        ax.set_title(title)
+    return fig

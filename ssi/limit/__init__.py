@@ -5,7 +5,9 @@
 - :mod:`.mesh`: Triangle quality meshes and nested longest-edge bisection;
 - :mod:`.lower`: the lower bound (linear-stress triangles, SOCP, certified by projection);
 - :mod:`.upper`: the upper bound (6-node quadratic-velocity triangles, SOCP, recomputed from velocities);
-- :mod:`.analysis`: brackets, the gap split by element, adaptivity, the factor of safety.
+- :mod:`.analysis`: brackets, the gap split by element, adaptivity, the factor of safety;
+- :mod:`.check`: an incremental analysis's limit load against a bracket (inside, false collapse, mesh
+  overestimate).
 
 Imports numpy, scipy, clarabel, triangle and :mod:`ssi.core.validate` only, so a scene can wrap it thinly:
 a scene's block is the :class:`Site` polygon, each soil layer a region below an interior polyline (its c,
@@ -18,7 +20,17 @@ weights), footing rotation, a beam strip with plastic hinges.
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
-from .geometry import Boundary, Footing, Interface, Material, Site, davis_beta, strip_site
+from .check import LimitCheck, check_limit
+from .geometry import (
+    Boundary,
+    Footing,
+    Interface,
+    Material,
+    Site,
+    davis_beta,
+    site_from_geometry,
+    strip_site,
+)
 from .lower import LowerBound, lower_bound
 from .mesh import TriMesh, bisect, triangulate
 from .upper import UpperBound, upper_bound
@@ -29,6 +41,7 @@ __all__ = [
     "Bracket",
     "Footing",
     "Interface",
+    "LimitCheck",
     "LowerBound",
     "Material",
     "Site",
@@ -37,10 +50,12 @@ __all__ = [
     "adaptive",
     "bisect",
     "bracket",
+    "check_limit",
     "davis_beta",
     "gap_shares",
     "lower_bound",
     "safety_factor",
+    "site_from_geometry",
     "strip_site",
     "triangulate",
     "upper_bound",

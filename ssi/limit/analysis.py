@@ -110,7 +110,9 @@ def bracket(site: Site, mesh: TriMesh, label: str = "", previous: Bracket | None
     field: nested refinement then never loses ground even when the solver stops short of the optimum."""
     lo = lower_bound(site, mesh)
     up = upper_bound(site, mesh)
-    if previous is not None and mesh.parent is not None:
+    # a carried field is the previous mesh's own field, so its bound is the previous bound: it is evaluated
+    # (a projection, or an assembly) only where the solved bound fell short of that
+    if previous is not None and mesh.parent is not None and not (lo.certified and lo.lam >= previous.lb):
         lo_c = lower_bound(
             site,
             mesh,
@@ -120,6 +122,7 @@ def bracket(site: Site, mesh: TriMesh, label: str = "", previous: Bracket | None
             lo_c.time, lo_c.iterations, lo_c.status = lo.time, lo.iterations, f"carried ({lo.status})"
             lo_c.lam_solver = lo.lam_solver
             lo = lo_c
+    if previous is not None and mesh.parent is not None and up.lam > previous.ub:
         v, fv = carry_velocity(previous.mesh, mesh, previous.upper.velocity), previous.upper.footing_velocity
         up_c = upper_bound(site, mesh, velocity=(v, fv))
         if up_c.lam < up.lam:

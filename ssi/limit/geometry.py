@@ -16,10 +16,20 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..core.geometry import Geometry
 from ..core.validate import check_choice, check_int, check_real
 from ..materials.soil_laws import davis_beta
 
-__all__ = ["Boundary", "Footing", "Interface", "Material", "Site", "davis_beta", "strip_site"]
+__all__ = [
+    "Boundary",
+    "Footing",
+    "Interface",
+    "Material",
+    "Site",
+    "davis_beta",
+    "site_from_geometry",
+    "strip_site",
+]
 
 BOUNDARY_KINDS = ("fixed", "symmetry", "free", "footing")
 
@@ -265,3 +275,42 @@ def strip_site(
         segs.append((5, 0, far))
     seed = ((0.5 * (x0 + B / 2), -0.5 * depth, 0),)
     return Site(np.array(pts, float), tuple(segs), seed, (material,), footings)
+
+
+def site_from_geometry(
+    geometry: Geometry,
+    materials: tuple,
+    boundary,
+    footings: tuple = (),
+) -> Site:
+    """The limit-analysis :class:`Site` of a site's one geometry description (:class:`ssi.core.geometry.
+    Geometry`, the graph the soil mesher meshes too): every cell's region indexes ``materials``; every
+    segment tagged "interior" stays an interior polyline (the triangles conform to it); every outer segment
+    gets ``boundary(tag, pa, pb)`` -> :class:`Boundary`, with pa, pb its end points (2,) [m] oriented so the
+    domain lies on the left of pa -> pb (counter-clockwise, the orientation :class:`Site` needs)."""
+    if not isinstance(geometry, Geometry):
+        raise TypeError(f"geometry must be an ssi.core.geometry.Geometry, got {type(geometry).__name__}")
+    n_reg = int(np.max(geometry.cell_region)) + 1 if len(geometry.cells) else 0
+    if len(materials) < n_reg:
+        raise ValueError(f"materials: the geometry has {n_reg} regions, {len(materials)} materials given")
+    # the orientation of each cell edge in its (counter-clockwise) cell: an outer edge has exactly one
+    oriented = {}
+    for cell in geometry.cells:
+        for a, b in zip(cell, cell[1:] + cell[:1]):
+            oriented[(min(a, b), max(a, b))] = (a, b)
+    pts = geometry.points
+    segments = []
+    for (a, b), tag in zip(geometry.segments, geometry.segment_tags):
+        a, b = int(a), int(b)
+        if tag == "interior":
+            segments.append((a, b, None))
+            continue
+        i, j = oriented[(min(a, b), max(a, b))]
+        bnd = boundary(tag, pts[i], pts[j])
+        if not isinstance(bnd, Boundary):
+            raise TypeError(f"boundary({tag!r}, ...) must return a Boundary, got {type(bnd).__name__}")
+        segments.append((i, j, bnd))
+    seeds = tuple(
+        (*pts[list(c)].mean(axis=0).tolist(), int(r)) for c, r in zip(geometry.cells, geometry.cell_region)
+    )
+    return Site(pts, tuple(segments), seeds, tuple(materials), tuple(footings))

@@ -165,20 +165,49 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     c2, sphi, cphi = (np.array(v) for v in zip(*(strength(m, sc.S) for m in site.materials)))
     c_cos = 0.5 * c2[mesh.material]  # c cos phi / S
     sinm = sphi[mesh.material]
-    for e in range(n_el):
-        for v in range(3):
-            gx, gz = G[e, v, :, 0], G[e, v, :, 1]
-            ev = ie + 3 * e + v
-            # eps_x = gx . u, eps_z = gz . w, gamma = gz . u + gx . w
-            cu, cw = du[e], dw[e]
-            ok_u, ok_w = cu >= 0, cw >= 0
-            vol_c = list(cu[ok_u]) + list(cw[ok_w]) + [ev]
-            vol_v = list(gx[ok_u]) + list(gz[ok_w]) + [-sinm[e]]
-            eq.add(vol_c, vol_v, 0.0)
-            soc.add([ev], [-1.0], 0.0)
-            soc.add(list(cu[ok_u]) + list(cw[ok_w]), list(-gx[ok_u]) + list(gz[ok_w]), 0.0)
-            soc.add(list(cu[ok_u]) + list(cw[ok_w]), list(-gz[ok_u]) + list(-gx[ok_w]), 0.0)
-            q[ev] += c_cos[e] * A[e] / 3.0
+    # one flow-rule row and one cone (3 rows) per vertex, vertex index 3 e + v (vectorised over vertices):
+    # eps_x = gx . u, eps_z = gz . w, gamma = gz . u + gx . w; a held velocity (dof -1) drops its entry
+    nv = 3 * n_el
+    gx = G[..., 0].reshape(nv, 6)
+    gz = G[..., 1].reshape(nv, 6)
+    cu = np.repeat(du, 3, axis=0)  # (nv, 6) the variables of u at the element's 6 nodes
+    cw = np.repeat(dw, 3, axis=0)
+    ev = ie + np.arange(nv)
+    s_v = np.repeat(sinm, 3)
+    row = np.repeat(np.arange(nv), 12)
+    cols_uw = np.concatenate([cu, cw], axis=1).ravel()
+    keep = cols_uw >= 0
+
+    def add_rows(block: Rows, rows, vals, rhs, extra=None):
+        r, c, v = rows[keep], cols_uw[keep], vals.ravel()[keep]
+        if extra is not None:  # (rows, cols, vals) appended
+            r, c, v = (
+                np.concatenate([r, extra[0]]),
+                np.concatenate([c, extra[1]]),
+                np.concatenate([v, extra[2]]),
+            )
+        order = np.argsort(r, kind="stable")
+        block.add_many(r[order], c[order], v[order], rhs)
+
+    # volumetric rate = sin(phi) e
+    add_rows(eq, row, np.concatenate([gx, gz], axis=1), np.zeros(nv), (np.arange(nv), ev, -s_v))
+    # cone rows (s = b - A x): (e, eps_x - eps_z, gamma) in SOC_3
+    soc_rows = 3 * row
+    add_rows(
+        soc,
+        soc_rows + 1,
+        np.concatenate([-gx, gz], axis=1),
+        np.zeros(3 * nv),
+        (3 * np.arange(nv), ev, -np.ones(nv)),
+    )
+    # the third row of each cone, appended as its own block of entries (the rhs is already there)
+    r3 = (soc_rows + 2)[keep]
+    v3 = np.concatenate([-gz, -gx], axis=1).ravel()[keep]
+    r0 = len(soc.rhs) - 3 * nv
+    soc.rows.extend((r3 + r0).tolist())
+    soc.cols.extend(cols_uw[keep].tolist())
+    soc.vals.extend(v3.tolist())
+    q[ev] += np.repeat(c_cos * A / 3.0, 3)
     # oblique symmetry rollers
     for g, nx, nz in dict(((g, (g, nx, nz)) for g, nx, nz in oblique)).values():
         cols = [dof[g, 0], dof[g, 1]]
@@ -220,11 +249,10 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     p_ref = np.zeros(n)
     p_dead = np.zeros(n)
     gam = np.array([m.gamma for m in site.materials])[mesh.material] * sc.L / sc.S
-    for e in range(n_el):  # weight (0, -gamma): integral of a midside shape function is A/3, of a corner 0
-        for k in range(3):
-            d = dw[e, 3 + k]
-            if d >= 0:
-                p_dead[d] += -gam[e] * A[e] / 3.0
+    # weight (0, -gamma): the integral of a midside shape function is A/3, of a corner 0
+    d_mid = dw[:, 3:].ravel()
+    w_mid = np.repeat(-gam * A / 3.0, 3)
+    np.add.at(p_dead, d_mid[d_mid >= 0], w_mid[d_mid >= 0])
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
         if bnd.kind != "free":

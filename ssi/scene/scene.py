@@ -78,6 +78,7 @@ from ..materials.soil_laws import (
 )
 from ..solver.progress import announce_compilation
 from .built import BuiltScene
+from .capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from .checks import (
     _check_excavations,
     _check_phases,
@@ -254,6 +255,22 @@ class Scene:
         for load in self.loads:
             built._register(load)
         return built
+
+    def limit_analysis(self, phase: str | None = None, gap: float = 0.02, **options) -> CapacityResult:
+        """The scene's capacity as a certified bracket by finite-element limit analysis: lambda scales the
+        loads of ``phase`` (None: the last phase; a Settlement push: lambda is the footing's vertical force
+        [N/m]) with the earlier phases' loads, the surcharge and the soil's weight held; refined until the
+        relative gap (UB - LB)/(UB + LB) <= ``gap``. Returns the associated and the Davis brackets, the
+        mesh, the mechanism and the stress field (:class:`ssi.scene.capacity.CapacityResult`; ``options``:
+        see :func:`ssi.scene.capacity.limit_analysis`). Raises ValueError naming any part of the scene that
+        the limit analysis cannot represent."""
+        return limit_analysis(self, phase=phase, gap=gap, **options)
+
+    def safety_factor(self, phase: str | None = None, **options) -> SafetyFactorResult:
+        """The factor of safety by strength reduction (c / F, tan phi / F of the soil and the contact) under
+        the dead loads plus the loads of ``phase`` at factor 1, bracketed [F_LB, F_UB] by both bounds
+        (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
+        return safety_factor(self, phase=phase, **options)
 
     def _block(self) -> tuple[float, float]:
         """(x_left, x_right) [m] of the modelled block: the whole width centred on x = 0, or its half x >= 0

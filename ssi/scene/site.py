@@ -61,6 +61,7 @@ from ..core.mesh import soil_block
 from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
+from .capacity import CapacityResult, limit_analysis
 from .loads import ColumnLoad, SurfacePressure
 from .parts import MeshSize
 from .site_built import BuiltSite
@@ -307,6 +308,13 @@ class Site:
                     polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
                     regions.append(k)
         return from_cells(polys, regions, tol=TOL)
+
+    def limit_analysis(self, gap: float = 0.02, **options) -> CapacityResult:
+        """The site's capacity as a certified bracket by finite-element limit analysis: lambda scales the
+        site's loads (a lone RigidStrip: lambda is its vertical force [N/m]), the soil's weight held; every
+        strip a rigid translating body on its contact (see :mod:`ssi.scene.capacity`; ``options`` of
+        :func:`ssi.scene.capacity.limit_analysis`)."""
+        return limit_analysis(self, gap=gap, **options)
 
     def is_level(self) -> bool:
         """Level ground at z = 0, level layer boundaries and a level water table (or none): the K0 state and

@@ -1,0 +1,295 @@
+"""A whole scene's capacity by limit analysis (ssi.scene.capacity, ``ssi limit``) and the check of an
+incremental limit against its bracket (ssi.limit.check), on small meshes.
+
+Exact references, from closed forms, not from the code under test:
+- Prandtl, weightless rough strip of width B: V = c N_c B, N_q = e^{pi tan phi} tan^2(45 + phi/2),
+  N_c = (N_q - 1) cot phi (N_c = 2 + pi for phi = 0); of the Davis material the same with c* = beta c,
+  tan phi* = beta tan phi, beta = cos psi cos phi / (1 - sin psi sin phi);
+- strength reduction of a weightless Tresca footing: its capacity (2 + pi) c B is proportional to c, so
+  loaded at half of it the factor of safety is exactly 2.
+Each bound is rigorous for its mesh, so "exact inside [LB, UB]" needs no tolerance beyond the solver's
+relative accuracy REL (1e-6: Clarabel's tolerances are 1e-9 and the lower bound is certified).
+"""
+
+import contextlib
+import io
+import json
+import math
+import pathlib
+import re
+import shutil
+
+import pytest
+
+from ssi.elements.section import homogeneous
+from ssi.io.cli import main
+from ssi.limit import bracket, check_limit
+from ssi.scene import (
+    ColumnLoad,
+    Contact,
+    ContactSegment,
+    Excavation,
+    Foundation,
+    Phase,
+    RigidFooting,
+    Scene,
+    Settlement,
+    SoilLayer,
+    StripLoad,
+)
+from ssi.scene.capacity import limit_problem
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+REL = 1e-6
+
+
+def prandtl_nc(phi_deg):
+    if phi_deg == 0.0:
+        return 2.0 + math.pi
+    t = math.tan(math.radians(phi_deg))
+    nq = math.exp(math.pi * t) * math.tan(math.radians(45.0 + phi_deg / 2.0)) ** 2
+    return (nq - 1.0) / t
+
+
+def davis(c, phi_deg, psi_deg):
+    phi, psi = math.radians(phi_deg), math.radians(psi_deg)
+    beta = math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
+    return beta * c, math.degrees(math.atan(beta * math.tan(phi)))
+
+
+def footing(symmetric=True, psi_deg=0.0, **kw):
+    """Chapter 10's footing: B = 2 m rough, c = 10 kPa, phi = 20 deg, weightless, pushed (lambda = V)."""
+    layer = SoilLayer(5.0, E=20e6, nu=0.3, c=10e3, phi_deg=20.0, psi_deg=psi_deg)
+    return Scene(
+        width=12.0,
+        depth=5.0,
+        symmetric=symmetric,
+        layers=[layer],
+        foundation=RigidFooting(-1.0, 1.0),
+        loads=[Settlement(0.05)],
+        **kw,
+    )
+
+
+def test_readme_capacity_block_prints_what_the_readme_shows():
+    """The README's capacity block, executed as written: its printed brackets are the README's (every line
+    but the last, mesh and time), and they contain Prandtl's V = c N_c B (associated) and that of the Davis
+    material (Davis bracket), the Davis bracket lying below the associated one."""
+    readme = (ROOT / "README.md").read_text()
+    code = next(b for b in re.findall(r"```python\n(.*?)```", readme, re.S) if "limit_analysis" in b)
+    shown = re.search(r"limit_analysis.*?```text\n(.*?)```", readme, re.S).group(1).strip().splitlines()
+    env = {}
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "README.md", "exec"), env)
+    printed = out.getvalue().strip().splitlines()
+    assert printed[: len(shown)] == shown
+    cap = env["cap"]
+    assert cap.lb <= 10e3 * prandtl_nc(20.0) * 2.0 * (1 + REL)
+    assert cap.ub >= 10e3 * prandtl_nc(20.0) * 2.0 * (1 - REL)
+    c_d, phi_d = davis(10e3, 20.0, 0.0)
+    v_d = c_d * prandtl_nc(phi_d) * 2.0
+    assert cap.lb_davis * (1 - REL) <= v_d <= cap.ub_davis * (1 + REL)
+    assert cap.ub_davis < cap.lb and cap.lb_davis < cap.lb
+    assert cap.n_triangles == cap.mesh.n_el > 0 and min(cap.n_cones) > 0 and min(cap.iterations) > 0
+    assert cap.stress.shape == (cap.n_triangles, 3, 3)
+    assert cap.velocity.shape[1] == 2 and cap.dissipation.shape == (cap.n_triangles,)
+
+
+def test_whole_model_brackets_the_same_force_as_the_half():
+    """The whole footing (no symmetry, lambda = V of the whole footing) on a coarse mesh: Prandtl inside."""
+    cap = footing(symmetric=False, psi_deg=None).limit_analysis(gap=0.08, max_steps=3)
+    v = 10e3 * prandtl_nc(20.0) * 2.0
+    assert cap.davis is None and cap.lb_davis == cap.lb
+    assert cap.lb * (1 - REL) <= v <= cap.ub * (1 + REL)
+    problem = limit_problem(footing(symmetric=False))
+    assert problem.lam_unit == "N/m" and problem.site.footings[0].load_ref == (0.0, -1.0)
+
+
+def test_safety_factor_of_a_footing_loaded_at_half_its_capacity():
+    """A plate strip bonded (rough) to weightless Tresca clay under a central column of half Prandtl's
+    (2 + pi) c B: the capacity is proportional to c, so F* = 2 exactly (module docstring); both
+    strength-reduction bounds on one coarse mesh bracket it, and are that mesh's bracket of the load."""
+    c, B = 20e3, 2.0
+    scene = Scene(
+        width=12.0,
+        depth=5.0,
+        layers=[SoilLayer.undrained(5.0, E_u=30e6, s_u=c)],
+        foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9),
+        loads=[ColumnLoad(0.0, N=0.5 * (2.0 + math.pi) * c * B)],
+    )
+    tol = 5e-3
+    sf = scene.safety_factor(rel_tol=tol)
+    assert sf.f_lb <= 2.0 * (1 + REL) and sf.f_ub >= 2.0 * (1 - REL)
+    # the capacity is proportional to c, so on this mesh F_LB and F_UB are the bracket of the unreduced
+    # scene (lambda in units of the applied load) to within the bisection's relative tolerance
+    br = bracket(limit_problem(scene).site, sf.mesh)
+    assert br.lb / (1 + tol) * (1 - REL) <= sf.f_lb <= br.lb * (1 + REL)
+    assert br.ub * (1 - REL) <= sf.f_ub <= br.ub * (1 + tol) * (1 + REL)
+    assert "factor of safety" in sf.summary()
+
+
+def test_cli_limit_runs_the_example(tmp_path, capsys):
+    """``ssi limit examples/capacity.toml``: one progress line per mesh, the summary, a JSON and a PNG."""
+    scene = tmp_path / "capacity.toml"
+    shutil.copy(ROOT / "examples" / "capacity.toml", scene)
+    assert main(["limit", str(scene), "--gap", "0.15", "--max-elements", "400"]) == 0
+    out = capsys.readouterr().out
+    data = json.loads((tmp_path / "capacity_limit.json").read_text())
+    n_meshes = len(data["history_associated"]) + len(data["history_davis"] or [])
+    assert len(re.findall(r"^(associated|Davis) +mesh", out, re.M)) == n_meshes
+    assert "Davis" in out and "kN/m" in out
+    assert 0.0 < data["lb"] <= data["ub"] and 0.0 < data["lb_davis"] <= data["ub_davis"] < data["ub"]
+    assert (tmp_path / "capacity_limit.png").stat().st_size > 0
+    assert main(["limit", str(scene)]) == 2  # the outputs exist: refused without --overwrite
+
+
+def _layer(thickness):
+    return SoilLayer(thickness, E=2e7, nu=0.3, c=1e4, phi_deg=20.0)
+
+
+def _scene(**kw):
+    base = dict(
+        width=12.0,
+        depth=5.0,
+        layers=[SoilLayer(5.0, E=20e6, nu=0.3, c=10e3, phi_deg=20.0)],
+        foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0),
+        loads=[ColumnLoad(0.0, N=100e3)],
+    )
+    return Scene(**(base | kw))
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        (dict(layers=[SoilLayer(5.0, E=20e6, nu=0.3)]), r"layers\[0\] is elastic \(c=None\)"),
+        (
+            dict(layers=[SoilLayer(5.0, E=20e6, nu=0.3, c=1e3, phi_deg=30.0, drainage="undrained_A")]),
+            r"layers\[0\]\.drainage='undrained_A'",
+        ),
+        (dict(loads=[ColumnLoad(0.0, N=100e3, M=10e3)]), r"ColumnLoad.M=10000.0"),
+        (dict(foundation=RigidFooting(-1.0, 1.0), contact=None), r"a ColumnLoad on a RigidFooting"),
+        (dict(loads=[ColumnLoad(0.5, N=100e3)]), r"moment 50000 N m/m about its centre"),
+        (dict(loads=[StripLoad(1e4, q_end=2e4)]), r"moment .* about its centre"),
+        (dict(embedment=1.0, layers=[_layer(1.0), _layer(4.0)]), r"Scene.embedment=1.0"),
+        (
+            dict(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=1e3)),
+            r"Scene.contact.sig_t=1000.0",
+        ),
+        (
+            dict(
+                contact=[
+                    ContactSegment(-1.0, 0.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0)),
+                    ContactSegment(0.0, 1.0, Contact(kn=1e10, kt=1e9, phi_deg=30.0)),
+                ]
+            ),
+            r"contact segments with different laws",
+        ),  # fmt: skip
+        (
+            dict(phases=[Phase("dig", excavate=(Excavation(3.0, 5.0, 1.0),))]),
+            r"Phase\('dig'\)\.excavate",
+        ),
+        (
+            dict(loads=[Settlement(0.01)], phases=[Phase("more", loads=(ColumnLoad(0.0, N=1e3),))]),
+            r"a Settlement among the held loads",
+        ),
+    ],
+)
+def test_what_limit_analysis_cannot_represent_is_refused_by_name(kw, message):
+    with pytest.raises(ValueError, match=message):
+        limit_problem(_scene(**kw))
+
+
+def test_bad_arguments_are_refused_by_name():
+    scene = _scene()
+    with pytest.raises(
+        ValueError, match=r"phase='nope' is not a phase of the scene; its phases are \['loads'\]"
+    ):
+        scene.limit_analysis(phase="nope")
+    with pytest.raises(ValueError, match=r"gap must be a finite number in \(0, 1\]"):
+        scene.limit_analysis(gap=0.0)
+    with pytest.raises(ValueError, match=r"h_min must be a finite number in \(0, inf\)"):
+        scene.limit_analysis(h_min=-1.0)
+    with pytest.raises(ValueError, match=r"Settlement push: it has no load to carry"):
+        footing().safety_factor()
+
+
+def test_held_and_scaled_phases():
+    """Phase 'loads' held at its factor in the later phase, the later phase's loads scaled; the surcharge
+    on the ground beside the strip and on the strip's own width is a dead load; the first phase's
+    loads scaled when it is named."""
+    scene = _scene(
+        surcharge=5e3,
+        phases=[Phase("more", loads=(ColumnLoad(0.0, N=50e3),), factors={"loads": 0.5})],
+    )
+    p = limit_problem(scene)
+    (ft,) = p.site.footings
+    assert p.phase == "more" and ft.load_ref == (0.0, -50e3)
+    assert ft.load_dead == pytest.approx((0.0, -0.5 * 100e3 - 5e3 * 2.0))
+    free = [b for _, _, b in p.site.segments if b is not None and b.kind == "free"]
+    assert free and all(b.pressure_dead == 5e3 and b.pressure_ref == 0.0 for b in free)
+    p0 = limit_problem(scene, phase="loads")
+    assert p0.site.footings[0].load_ref == (0.0, -100e3) and p0.site.footings[0].load_dead == (0.0, -1e4)
+
+
+def test_water_table_gives_the_buoyant_unit_weight_below_it():
+    layer = SoilLayer(5.0, E=2e7, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3, c=1e4, phi_deg=25.0)
+    p = limit_problem(_scene(layers=[layer], water_table=2.0))
+    assert sorted(m.gamma for m in p.site.materials) == pytest.approx([20e3 - 9.81e3, 18e3], rel=1e-3)
+
+
+@pytest.mark.parametrize(
+    "limit, verdict, size",
+    [
+        (100.0, "inside", 0.0),
+        (90.0, "false collapse", 1 - 90 / 97),
+        (130.0, "mesh overestimate", 130 / 123.6 - 1),
+    ],
+)
+def test_check_limit_classifies_an_incremental_limit(limit, verdict, size):
+    """Band [0.97 LB_Davis, 1.03 UB_assoc] = [97, 123.6] for the pair (100, 120): the size is computed here
+    by hand from the band's ends."""
+    res = check_limit(limit, (100.0, 120.0))
+    assert res.verdict == verdict and res.size == pytest.approx(size, rel=1e-12)
+    assert (res.low, res.high) == pytest.approx((97.0, 123.6))
+    assert res.ok == (verdict == "inside") and verdict.split()[0].upper() in str(res).upper()
+
+
+def test_check_limit_bad_input():
+    with pytest.raises(ValueError, match=r"limit_load must be a finite number in \[0, inf\)"):
+        check_limit(float("nan"), (1.0, 2.0))
+    with pytest.raises(ValueError, match="LB_Davis = 3 must not exceed UB_assoc = 2"):
+        check_limit(1.0, (3.0, 2.0))
+    with pytest.raises(TypeError, match="bracket must be a CapacityResult or a pair"):
+        check_limit(1.0, 5.0)
+
+
+def test_a_site_brackets_prandtl_and_refuses_what_it_cannot_represent():
+    """An ssi.scene.site.Site (its one geometry, Site.geometry()): a plate strip bonded to weightless Tresca
+    clay under a central column N: lambda* = (2 + pi) c B / N exactly (Prandtl) inside the bracket; a
+    DepthVarying layer is refused by name."""
+    from ssi.scene.site import DepthVarying, Site, Strip
+
+    c, N = 20e3, 100e3
+    strip = Strip(Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), Contact(kn=1e10, kt=1e9))
+    site = Site(
+        width=12.0,
+        depth=5.0,
+        layers=[SoilLayer.undrained(5.0, E_u=30e6, s_u=c)],
+        strips=[strip],
+        loads=[ColumnLoad(0.0, N=N)],
+    )
+    cap = site.limit_analysis(gap=0.1)
+    exact = (2.0 + math.pi) * c * 2.0 / N
+    assert cap.lb * (1 - REL) <= exact <= cap.ub * (1 + REL)
+    varying = Site(
+        width=12.0,
+        depth=5.0,
+        layers=[DepthVarying(SoilLayer(5.0, E=3e7, nu=0.3, c=c), c_inc=1e3)],
+        strips=[strip],
+        loads=[ColumnLoad(0.0, N=N)],
+    )
+    with pytest.raises(ValueError, match=r"Site.layers\[0\] is a DepthVarying"):
+        limit_problem(varying)
