@@ -14,6 +14,7 @@ is driven by a prescribed deflection (displacement control, ``Model.prescribe``)
 load P per unit width; mid-span moment M = P a (per width).
 """
 
+import itertools
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -157,31 +158,61 @@ def build_four_point(
 
 
 def load_path(
-    beam: FourPointBeam, w_load_max, n_steps, settings: Settings | None = None, allow_partial=False
+    beam: FourPointBeam,
+    w_load_max,
+    n_steps,
+    settings: Settings | None = None,
+    allow_partial=False,
+    self_weight: float = 0.0,
 ):
     """Drive the load point down to ``w_load_max`` (> 0, a deflection) in ``n_steps`` equal steps.
+
+    ``self_weight`` [N/m per unit width, >= 0]: a distributed weight carried first (one load step, consistent
+    nodal forces 1/6, 2/3, 1/6 of q L_e per element) and held while the load point is driven from where the
+    weight left it; ``P``, ``M`` and the deflections are then those of the test, measured from that state (the
+    gauges zeroed under the beam's own weight).
 
     Returns a dict of arrays (n_steps + 1,): ``P`` (load per unit width at the load point, positive
     down), ``M`` (mid-span moment per unit width), ``delta`` (mid-span deflection, positive down),
     ``delta_load``; plus ``wall_time``, ``iterations``, ``result`` and ``failure`` (None, or the solver's
     report when ``allow_partial`` kept the converged steps of a run that stopped early)."""
+    if not (math.isfinite(self_weight) and self_weight >= 0.0):
+        raise ValueError(f"self_weight must be >= 0 N/m per unit width, got {self_weight!r}")
     m = beam.model
-    m.prescribe([beam.load], "w", -float(w_load_max))
+    settings = settings or Settings()
+    load_w, mid_w = int(m.dof([beam.load], "w")[0]), int(m.dof([beam.mid], "w")[0])
     t0 = time.perf_counter()
+    weight = np.zeros(m.n_dof)
+    start, u0 = None, np.zeros(m.n_dof)
+    if self_weight > 0.0:
+        x, w_dofs = m.coords[:, 0], m.dof(np.arange(m.n_nodes), "w")
+        for x0, x1 in itertools.pairwise(beam.x_ends):
+            for xn, share in ((x0, 1.0 / 6.0), (0.5 * (x0 + x1), 2.0 / 3.0), (x1, 1.0 / 6.0)):
+                weight[w_dofs[int(np.argmin(np.abs(x - xn)))]] -= self_weight * (x1 - x0) * share
+        start = run(m, [1.0], settings, loads=(weight, np.zeros(m.n_dof)))
+        u0 = np.asarray(start.u[-1])
+    factors = np.linspace(0.0, 1.0, int(n_steps) + 1)[1:]
     failure = None
     try:
-        res = run(m, np.linspace(0.0, 1.0, int(n_steps) + 1)[1:], settings or Settings())
+        if start is None:
+            m.prescribe([beam.load], "w", -float(w_load_max))
+            res = run(m, factors, settings)
+        else:  # the load point held where the weight left it, then driven; the weight stays as dead load
+            m.hold_dofs([load_w], [u0[load_w]], [-float(w_load_max)])
+            res = run(m, factors, settings, start=start, loads=(np.zeros(m.n_dof), weight))
     except NonConvergence as err:
         if not allow_partial:
             raise
         res, failure = err.result, err.report
     wall = time.perf_counter() - t0
-    P = -res.reaction([beam.load], "w")
+    # the reaction at the held load point is its internal force: the weight's own nodal share is not load
+    P = -res.reaction([beam.load], "w") + weight[load_w]
+    u = np.asarray(res.u)
     return {
         "P": P,
         "M": P * beam.a,
-        "delta": -res.displacement([beam.mid], "w")[:, 0],
-        "delta_load": -res.displacement([beam.load], "w")[:, 0],
+        "delta": -(u[:, mid_w] - u0[mid_w]),
+        "delta_load": -(u[:, load_w] - u0[load_w]),
         "wall_time": wall,
         "iterations": np.array(res.iterations),
         "result": res,
