@@ -3,7 +3,9 @@
 * ``ch11_h0125_s``: chapter 11's foundation scene (RC strip on two Mohr–Coulomb layers with contact) at
   h = 0.125 m under the foundation, 10 load steps, the solver's default settings (what ``scene.solve`` runs).
   The scene is taken from the chapter's own source (its definitions up to the first solve), not retyped.
-  Goal <= 3 s.
+  Goal <= 3 s. ``ch11_h0125_controlled_s``: the same scene and steps on the controlled path
+  (``Settings(control="work")``, issue 31), measured in the same run; its ratio to ``ch11_h0125_s`` is
+  printed.
 * ``footing_mc_psi0_h0125_s``: chapter 10's rigid rough strip footing on Mohr–Coulomb soil (c = 10 kPa,
   phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement steps, ``push_footing``'s default settings
   (``footing_settings``).
@@ -31,6 +33,7 @@ from goals import verdict
 import ssi  # noqa: F401  (first: keys numba's cache before numba is imported)
 from ssi.core import assembly, linsolve, model
 from ssi.lab.bearing_capacity import push_footing
+from ssi.solver import Settings, path
 from ssi.solver import control as solver  # the load-path control, which calls _increment
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -77,6 +80,19 @@ class Split:
             return out
 
         solver._increment = counted
+        # the controlled path's steps (Settings(control="work")): a step returns None when it failed
+        step = self.saved_step = path._Follower._step
+
+        def counted_step(follower, *a, **kw):
+            t0 = time.perf_counter()
+            out = step(follower, *a, **kw)
+            row = self.attempts[out is not None]
+            row[0] += 1
+            row[1] += (out or follower.last_failure)["iterations"]
+            row[2] += time.perf_counter() - t0
+            return out
+
+        path._Follower._step = counted_step
         for key, (cls, name) in self.TARGETS.items():
             original = getattr(cls, name)
             self.saved[key] = original
@@ -96,6 +112,7 @@ class Split:
         for key, (cls, name) in self.TARGETS.items():
             setattr(cls, name, self.saved[key])
         solver._increment = self.saved_increment
+        path._Follower._step = self.saved_step
 
 
 def report(key, solve, n_iterations):
@@ -134,6 +151,10 @@ def report(key, solve, n_iterations):
             f"{key}_ms_per_iteration: {1e3 * per_iter:.2f}   (one residual + one back-substitution: "
             f"{1e3 * (residual + back):.2f} ms; ratio {per_iter / (residual + back):.2f})"
         )
+    status = getattr(out, "status", None)
+    if status is not None:
+        print(f"{key}_status: {status} at lambda = {out.load_factor[-1]:.4g}")
+    return wall
 
 
 def main():
@@ -143,7 +164,15 @@ def main():
     def ch11():
         return scene_of(0.125).build().solve(n_steps=10)
 
-    report("ch11_h0125_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
+    t_default = report("ch11_h0125_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
+
+    def ch11_controlled():
+        return scene_of(0.125).build().solve(n_steps=10, settings=Settings(control="work"))
+
+    t_ctrl = report(
+        "ch11_h0125_controlled_s", ch11_controlled, lambda out: int(sum(out.solver_result.iterations))
+    )
+    print(f"ch11_h0125_controlled_ratio: {t_ctrl / t_default:.3f}   (controlled path / default, same run)")
 
     def footing(h):
         return push_footing(footing_scene(0.0, h), n_steps=12)

@@ -26,7 +26,10 @@
 # - check that a level borehole site on the structured path gives the layered scene's numbers;
 # - compute the initial stress by gravity loading and check it against the K0 state on level ground;
 # - check a strip load on Gibson's soil (G = m z, ν → ½) against Gibson's exact settlement;
-# - put two strips on a four-layer borehole site and check elastic superposition on one mesh.
+# - put two strips on a four-layer borehole site and check elastic superposition on one mesh;
+# - push a smooth rigid strip at the crest of a 30° slope and compare its capacity with the exact
+#   slip-line value N_c = π + 2 − 2β;
+# - re-check the 1-D column estimate of a beam over a dipping boundary.
 #
 # ## Theory
 #
@@ -71,9 +74,10 @@ import numpy as np
 
 from ssi.elements.section import homogeneous
 from ssi.lab import paths
+from ssi.lab.bearing_capacity import footing_settings
 from ssi.lab.report import check, record, save_figure
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer, SurfacePressure
-from ssi.scene.site import Borehole, DepthVarying, Site, Strip, gibson_settlement
+from ssi.scene.site import Borehole, DepthVarying, RigidStrip, Site, Strip, gibson_settlement
 
 FAST = paths.FAST
 H_FINE = 0.25 if FAST else 0.125
@@ -250,9 +254,23 @@ for gap in gaps:
 # soft soil (E = 5 MPa) over stiff soil (E = 50 MPa) whose boundary dips 10° to the right: the soft layer is
 # 2 m thick under the left end and 3.76 m under the right one, the block 8 m deep. The beam must tilt towards
 # the soft side. A 1-D column estimate under each end, s = q Σ t_i / E_oed,i with q the mean pressure and
-# E_oed = E (1 − ν) / ((1 + ν)(1 − 2ν)), gives a differential settlement to compare with; it ignores the load
-# spreading sideways and the beam's stiffness, both of which make the real difference smaller. The issue's
-# 20 % is recorded, not asserted: the FE result, converged under refinement, is what it is.
+# E_oed = E (1 − ν) / ((1 + ν)(1 − 2ν)), gives a differential settlement to compare with. The issue's 20 % is
+# recorded, not asserted: the FE result, converged under refinement, is what it is.
+#
+# *Is the estimate a correct one?* Re-checked term by term: E_oed (not E) is the modulus of a column that
+# cannot strain sideways, which is the 1-D assumption; the column runs from the ground to the block's fixed
+# base at 8 m, the depth the FE soil has; the soft thicknesses under the ends (2.00 and 3.76 m) follow from
+# the 10° dip. Within the 1-D model the beam's stiffness changes nothing: the column compliance
+# Σ t_i / E_oed,i varies linearly along the beam (the boundary is straight), so the settlement q Σ t_i/E_oed,i
+# is itself a straight line and a beam of any stiffness follows it under a uniform reaction, without bending.
+# So the estimate is a correct 1-D estimate; what it leaves out is two-dimensional. The beam is 10 m long on
+# 8 m of soil (L/H = 1.25), far from the wide-load limit where a column is confined: near the ends the load
+# spreads sideways into unloaded soil, and the stiff beam draws pressure towards its ends. Replacing q by the
+# elastic vertical stress under the end of a flexible strip load (Flamant's solution for a homogeneous
+# half-space, σ_z = (q/π)(α + sin α cos(α + 2δ)), ≈ q/2 at an edge) goes too far the other way: it halves the
+# estimate, while the beam's ends, carried by the stiff beam, settle with its middle. The FE differential lies
+# between the two simple estimates (asserted below), within 20 % of neither, so the row stays FAIL: the FE is
+# converged and the 1-D estimate is too crude for this geometry.
 
 # %%
 E_SOFT, E_STIFF, NU_D = 5e6, 50e6, 0.3
@@ -289,8 +307,84 @@ diffs = [wr - wl for wl, wr in dip.values()]
 dip_ratio = diffs[-1] / (s_1d[5.0] - s_1d[-5.0])
 dip_change = abs(diffs[-1] - diffs[-2]) / abs(diffs[-1])
 
+
+def flamant_sigma_z(x, z, q, x0, x1):
+    """Vertical stress [Pa] at (x, depth z > 0) under a uniform strip load q [Pa] on [x0, x1] of a homogeneous
+    elastic half-space (Flamant's line load integrated over the strip; Poulos & Davis 1974)."""
+    t1, t2 = np.arctan((x - x0) / z), np.arctan((x - x1) / z)
+    alpha = t1 - t2
+    return q / np.pi * (alpha + np.sin(alpha) * np.cos(alpha + 2.0 * t2))
+
+
+depth_d = np.linspace(1e-6, 8.0, 8001)  # column depth [m]: trapezoidal rule, converged to < 1e-6 relative
+s_spread = {}
+for xe in (-5.0, 5.0):
+    eo = np.where(-depth_d > z_dip(xe), e_oed(E_SOFT), e_oed(E_STIFF))
+    s_spread[xe] = float(np.trapezoid(flamant_sigma_z(xe, depth_d, q_dip, -5.0, 5.0) / eo, depth_d))
+diff_1d, diff_spread = s_1d[5.0] - s_1d[-5.0], s_spread[5.0] - s_spread[-5.0]
+print(f"differential: FE {1e3 * diffs[-1]:.2f} mm; 1-D columns under q {1e3 * diff_1d:.2f} mm "
+      f"(FE/1-D {diffs[-1] / diff_1d:.3f}); 1-D columns under Flamant's edge stress "
+      f"{1e3 * diff_spread:.2f} mm (FE/that {diffs[-1] / diff_spread:.3f})")  # fmt: skip
+
 # %% [markdown]
-# ## 6. Solve time per DOF: gmsh mesh against the structured block
+# ## 6. A strip footing at the crest of a slope: push-over capacity
+#
+# A smooth rigid strip (B = 1 m) on weightless undrained clay (Tresca: Mohr–Coulomb with φ = ψ = 0,
+# c_u = 20 kPa), its right edge at the crest (λ = b/B = 0) of a β = 30° slope 2 m high, is pushed down
+# (`RigidStrip`, displacement control) until the pressure levels off.
+#
+# **Reference.** For weightless soil the slip-line field is Prandtl's with its fan shrunk from π/2 to π/2 − β:
+# the passive triangle now lies under the slope face, whose major principal stress runs along the face. Along
+# the fan the mean stress grows by 2 c_u per radian, so q_u = c_u (1 + 2(π/2 − β) + 1), i.e.
+# N_c = π + 2 − 2β = 4.094 for β = 30°. Its stress field is statically admissible (a lower bound) and its
+# mechanism, the rigid triangle under the footing sliding along the smooth base, kinematically admissible (an
+# upper bound): for a smooth base the value is exact. It is also the φ = 0 ground-inclination factor of
+# Vesić (1975), N_c = 5.14 − 2β. The issue asks for a table value of Georgiadis (2010) or of Shiau,
+# Merifield, Lyamin & Sloan (2011), whose undrained slope charts address this problem; their tables could not
+# be obtained here (only abstracts), so none is quoted, and the closed form is the limit-analysis value this
+# row checks. A *rough* base forbids the triangle's sliding, so for it π + 2 − 2β is only a lower bound (the
+# rough base is printed below in full mode: 14 % above π + 2 − 2β at h = B/16, and 4.58 c_u, 12 % above, at
+# h = B/32 while this section was written, still falling slowly); the smooth base is the case with an exact
+# value.
+#
+# The slope is 2B high: the mechanism's passive triangle has its hypotenuse, of length B, on the face, so it
+# reaches 0.5 m below the crest, well above the toe. Displacement FE over-estimates a limit load on
+# coarse meshes; the error must shrink under refinement and be within 5 % on the finest mesh (full mode).
+
+# %%
+B_SL, H_SL, CU_SL, BETA_SL = 1.0, 2.0, 20e3, np.radians(30.0)
+NC_SLOPE = np.pi + 2.0 - 2.0 * BETA_SL  # exact for a smooth strip at the crest of a weightless Tresca slope
+X_TOE = H_SL / np.tan(BETA_SL)
+SLOPE_MESHES = [0.25] if FAST else [0.125, 0.0625]  # element size at the footing and the crest [m]
+
+
+def slope_capacity(h, rough=False):
+    """q_u / c_u of the rigid strip [-B, 0] at the crest x = 0 (smooth unless ``rough``), element size h [m]
+    there."""
+    site = Site(2.0 * (2.0 + X_TOE), 4.0,
+                [SoilLayer(1.0, E=20e6, nu=0.3, unit_weight=0.0, c=CU_SL, phi_deg=0.0, psi_deg=0.0)],
+                ground=[(-4.0, 0.0), (0.0, 0.0), (X_TOE, -H_SL), (2.0 + X_TOE, -H_SL)],
+                strips=[RigidStrip(-B_SL, 0.0, settle=0.03, rough=rough)], mesher="gmsh",
+                mesh=MeshSize(h_fine=h, h_coarse=max(0.25, 2 * h), growth=1.1))  # fmt: skip
+    n_push = 8 if FAST else 15  # settlement increments to 3 cm = 0.03 B: the pressure has levelled off
+    out = site.build().solve(load_factors=np.arange(1, n_push + 1) / n_push, settings=footing_settings())
+    assert out.result.status == "completed"
+    return float(out.rigid_pressure(0)[1].max() / CU_SL)
+
+
+nc_fe = {h: slope_capacity(h) for h in SLOPE_MESHES}
+for h, nc in nc_fe.items():
+    print(f"h = {h:6.4f} m: N_c,FE = q_u/c_u = {nc:.3f}; pi + 2 - 2 beta = {NC_SLOPE:.3f}; "
+          f"error {nc / NC_SLOPE - 1:+.2%}")  # fmt: skip
+slope_err = nc_fe[SLOPE_MESHES[-1]] / NC_SLOPE - 1.0
+if not FAST:  # the rough base on the finest mesh, for the text's remark (not a check of the row)
+    nc_rough = slope_capacity(SLOPE_MESHES[-1], rough=True)
+    print(f"rough base, h = {SLOPE_MESHES[-1]} m: N_c,FE = {nc_rough:.3f} ({nc_rough / NC_SLOPE - 1:+.1%})")
+    # holding u too only adds constraints to the same mesh: its limit load cannot be lower
+    assert nc_rough >= nc_fe[SLOPE_MESHES[-1]], (nc_rough, nc_fe)
+
+# %% [markdown]
+# ## 7. Solve time per DOF: gmsh mesh against the structured block
 #
 # The level site of section 1 on both meshes (linear: one factorisation and one solve each), best of three.
 
@@ -335,8 +429,16 @@ assert all(i > 0.0 for i in interaction) and all(a > b for a, b in zip(interacti
 )
 assert all(d > 0.0 for d in diffs)  # the right (soft) end settles more: the beam tilts towards the soft side
 assert dip_change <= 0.01, dip_change  # converged: the finest two meshes agree within 1 %
+assert diff_spread < diffs[-1] < diff_1d  # the FE lies between the spread and the unspread column estimates
 record("site_dipping_layer", "FE / 1-D column differential settlement - 1 (recorded, see section 5)",
        dip_ratio - 1.0, 0.2, abs(dip_ratio - 1.0) <= 0.2)  # fmt: skip
+# the FE limit load lies above the exact one and falls under refinement (displacement FE over-estimates);
+# 5 % (the issue's) on the finest mesh: a claim of full mode only (fast mode's coarse mesh is not reported)
+assert all(nc > NC_SLOPE for nc in nc_fe.values()), nc_fe
+assert all(a > b for a, b in zip(nc_fe.values(), list(nc_fe.values())[1:])), nc_fe
+if not FAST:
+    metric = f"N_c,FE/(pi+2-2beta) - 1, smooth strip at a 30 deg crest, h={SLOPE_MESHES[-1]} m"
+    check("site_slope_capacity", metric, slope_err, 0.05)
 record("site_mesh_s", "4-layer borehole site, two strips: gmsh mesh + build [s] (goal 2 s)", mesh_s, 2.0,
        mesh_s <= 2.0)  # fmt: skip
 record("site_solve_per_dof_vs_structured", "solve time per DOF, gmsh / structured (goal 1.3)", per_dof_ratio,
@@ -386,13 +488,20 @@ save_figure(fig, "19_sites")
 # strips check the new pieces.
 #
 # The beam over the dipping boundary tilts towards the soft side, converged under refinement, but its
-# differential settlement is about 0.72 of the 1-D column estimate (28 % below it, outside the issue's 20 %):
-# the 1-D columns neglect the lateral spreading of the load and the beam's stiffness, which both even out the
-# settlement. A better reference (a 2-D elastic layer solution) would be needed to assert this row.
+# differential settlement is about 0.72 of the 1-D column estimate (28 % below it, outside the issue's 20 %).
+# The estimate was re-checked (E_oed, the column depth, the thicknesses; the beam's stiffness does not enter a
+# 1-D model whose compliance is linear along the beam) and is a correct 1-D estimate; it is too crude for a
+# beam only 1.25 times as long as the soil is deep, and the version with Flamant's stress spreading errs as
+# far the other way (the FE is about 1.4 times it). A 2-D reference (an elastic layer solution for this
+# geometry) would be needed to assert this row.
+#
+# The smooth strip at the crest of the 30° slope reaches the exact slip-line capacity π + 2 − 2β within the
+# issue's 5 % on the finest mesh of full mode, from above and falling under refinement; no table value of the
+# published slope charts (Georgiadis 2010; Shiau et al. 2011) could be obtained, so none is quoted.
 #
 # **Not yet here** (issue 32): side contact on embedded strips, embedded strips on a site, slope capacity
-# against a published limit analysis, the command line, result plots
-# and ParaView export of sites.
+# against a published *table* value (and inside the limit-analysis bracket), the result file, result plots
+# and ParaView export of sites (`ssi run` on a site file prints and writes only the per-foundation summary).
 #
 # ## References
 #
@@ -400,5 +509,13 @@ save_figure(fig, "19_sites")
 #   half-space, *Géotechnique* 17(1), 58–67.
 # - C. Geuzaine, J.-F. Remacle (2009), Gmsh: a 3-D finite element mesh generator with built-in pre- and
 #   post-processing facilities, *Int. J. Numer. Meth. Eng.* 79(11), 1309–1331.
+# - L. Prandtl (1920), Über die Härte plastischer Körper, *Nachr. Ges. Wiss. Göttingen*, 74–85.
+# - A. S. Vesić (1975), Bearing capacity of shallow foundations, in *Foundation Engineering Handbook*
+#   (Winterkorn & Fang, eds.), ch. 3.
+# - K. Georgiadis (2010), Undrained bearing capacity of strip footings on slopes, *J. Geotech. Geoenviron.
+#   Eng.* 136(5), 677–685 (its tables were not consulted; see section 6).
+# - J. S. Shiau, R. S. Merifield, A. V. Lyamin, S. W. Sloan (2011), Undrained stability of footings on
+#   slopes, *Int. J. Geomech.* 11(5), 381–390 (its tables were not consulted; see section 6).
+# - H. G. Poulos, E. H. Davis (1974), *Elastic Solutions for Soil and Rock Mechanics*, Wiley.
 # - W. Szajna, *A set of finite elements for 2D analysis of reinforced concrete foundations on deformable
 #   subsoil* (§1, §2 Fig. 1, §11: arbitrary layered subsoil).

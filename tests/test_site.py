@@ -339,3 +339,88 @@ def test_water_table_is_a_mesh_line_and_gravity_matches_buoyant_k0(mesher):
     for b, t in ((built, tol), (k0, 1e-9)):
         sv = sigma_v(b.soil.integration_points()[..., 1])
         assert np.abs(b.soil.initial_stress[..., 1] - sv).max() <= t * np.abs(sv).max()
+
+
+def test_ssi_run_on_a_site_file_prints_the_per_foundation_summary(tmp_path, capsys):
+    """`ssi run` recognises a site file and reports each strip's settlement and tilt and the differential
+    settlement, the same numbers as the site solved in Python (read back from the JSON it writes)."""
+    import json
+
+    from ssi.io.cli import main
+    from ssi.io.cli_site import is_site_file
+    from ssi.scene.site_file import read_site_file
+
+    text = """
+width = 30.0
+depth = 12.0
+[[layers]]
+E = 10e6
+nu = 0.3
+[[layers]]
+E = 40e6
+nu = 0.3
+[[boreholes]]
+x = -10.0
+boundaries = [-2.0]
+[[boreholes]]
+x = 10.0
+boundaries = [-4.0]
+[[strips]]
+foundation = { x0 = -6.0, x1 = -4.0, section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } } }
+contact = { kn = 1e10, kt = 1e9 }
+[[strips]]
+foundation = { x0 = 3.0, x1 = 5.0, section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } } }
+contact = { kn = 1e10, kt = 1e9 }
+[[loads]]
+x = -5.0
+N = 300e3
+[[loads]]
+x = 4.0
+N = 200e3
+[mesh]
+h_fine = 0.5
+h_coarse = 3.0
+"""
+    path = tmp_path / "two.toml"
+    path.write_text(text)
+    assert is_site_file(path)
+    assert main(["run", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "#0 strip [-6, -4] m: settlement mean" in out and "differential settlement #0 - #1" in out
+    s = json.loads((tmp_path / "two_summary.json").read_text())
+    site, _, _ = read_site_file(path)
+    ref = site.build().solve()  # independent of the command line: the same site solved directly
+    # 1e-12: the same deterministic mesh and linear solve, so only the JSON round trip (exact) separates them
+    for i, f in enumerate(s["foundations"]):
+        assert f["mean_settlement_m"] == pytest.approx(ref.strip_summary(i)["mean"], rel=1e-12)
+        assert f["tilt_rad"] == pytest.approx(ref.strip_summary(i)["tilt"], rel=1e-12)
+    (d,) = s["differential_settlement"]
+    assert d["mean_settlement_i_minus_j_m"] == pytest.approx(ref.differential_settlement(0, 1), rel=1e-12)
+    assert d["mean_settlement_i_minus_j_m"] > 0.0  # 300 kN/m on the left strip against 200 on the right
+    assert main(["run", str(path)]) == 2  # the summary exists: refused without --overwrite
+    assert "exists" in capsys.readouterr().err
+
+
+def test_a_scene_file_is_not_taken_for_a_site_file(tmp_path):
+    from ssi.io.cli_site import is_site_file
+
+    scene = tmp_path / "scene.toml"
+    scene.write_text("width = 10.0\ndepth = 5.0\n[foundation]\nx0 = -1.0\nx1 = 1.0\n")
+    assert not is_site_file(scene)
+    (tmp_path / "bad.toml").write_text("width = = 1")
+    assert not is_site_file(tmp_path / "bad.toml")  # left to the scene reader's "not valid TOML" error
+
+
+def test_site_summary_of_a_rigid_strip_reports_its_push_and_pressure():
+    from ssi.io.cli_site import site_summary, site_summary_text
+    from ssi.scene.site import RigidStrip
+
+    site = Site(12.0, 5.0, [SoilLayer(1.0, E=20e6, nu=0.3)], strips=[RigidStrip(-1.0, 1.0, settle=0.01)],
+                mesh=COARSE, mesher="gmsh")  # fmt: skip
+    out = site.build().solve(load_factors=[0.5, 1.0])
+    s = site_summary(out)
+    (f,) = s["foundations"]
+    settle, q = out.rigid_pressure(0)
+    assert f["type"] == "rigid strip" and f["settlement_m"] == pytest.approx(0.01, rel=1e-12)
+    assert f["pressure_Pa"] == q[-1] > 0.0 and s["differential_settlement"] == []
+    assert "rigid strip [-1, 1] m: settlement 10.00 mm" in site_summary_text(s)

@@ -52,6 +52,10 @@ class Result:
     limit_load_upper: float | None = None  # limit found by relaxing a viscous path: the smallest load
     # factor at which no rate-independent equilibrium was found (the limit lies in [factor, upper])
     limit_evidence: str = ""  # why the stop was taken for a collapse (viscous path)
+    limit_uncertainty: float | None = None  # controlled path (Settings(control="work")): relative change
+    # of the peak load when the last steps before it are redone at half size (its numerical uncertainty)
+    limit_suspect: str = ""  # controlled path: why the limit is not to be read as a capacity ("" if no check
+    # failed: beyond small strain, below/above a limit-analysis bracket, uncertainty not measured)
     relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
     # when the path was cut back to a bracketed limit load)
     viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
@@ -167,6 +171,11 @@ class Result:
                 f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent "
                 f"equilibrium found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
             )
+        if self.collapsed and self.limit_evidence.startswith("controlled path"):
+            unc = "not measured" if self.limit_uncertainty is None else f"{self.limit_uncertainty:.2e}"
+            text = f"limit load reached at lambda = {self.limit_load_factor:.6g} ({self.limit_evidence}; "
+            text += f"relative uncertainty {unc})"
+            return text + (f"; suspect: {self.limit_suspect}" if self.limit_suspect else "")
         if self.collapsed:
             return (
                 f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "

@@ -11,8 +11,11 @@ overwritten without ``--overwrite``.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
 factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
-status 3. ``ssi show result.h5`` prints the summary of a result file and redraws its plots and report into
-a new folder (``<result>_plots_2``, ... when the run's exists; ``--overwrite``: into the run's).
+status 3. A site file (:mod:`ssi.scene.site_file`) is solved by :mod:`ssi.io.cli_site`: a per-foundation
+summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``; its result file,
+ParaView export, plots and report are not written yet. ``ssi show result.h5`` prints the summary of a result
+file and redraws its plots and report into a new folder (``<result>_plots_2``, ... when the run's exists;
+``--overwrite``: into the run's).
 """
 
 import argparse
@@ -371,6 +374,7 @@ def main(argv=None) -> int:
     show_p.add_argument("--json", action="store_true", help="print the summary as JSON")
     sub.add_parser("schema", help="print the scene file's tables, keys and units")
     args = parser.parse_args(argv)
+    from .cli_site import is_site_file, run_site_file, site_summary_text
     from .results import OutputExistsError
 
     if args.command == "schema":
@@ -379,7 +383,9 @@ def main(argv=None) -> int:
         print(schema_text())
         return 0
     try:
-        if args.command == "run":
+        if args.command == "run" and is_site_file(args.scene):
+            _, s, written = run_site_file(args.scene, args.overwrite)
+        elif args.command == "run":
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots
             )
@@ -391,7 +397,8 @@ def main(argv=None) -> int:
     except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
         print(f"ssi: error: {err}", file=sys.stderr)
         return 2
-    print(json.dumps(s, indent=1) if args.json else summary_text(s))
+    text = site_summary_text if s.get("kind") == "site" else summary_text
+    print(json.dumps(s, indent=1) if args.json else text(s))
     for p in written:
         print(f"wrote {p}")
     return 0 if s["complete"] else EXIT_INCOMPLETE

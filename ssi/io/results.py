@@ -24,7 +24,7 @@ Layout::
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
             step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
             with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_load_upper,
-            limit_evidence, relaxed_steps, viscous_from
+            limit_evidence, relaxed_steps, viscous_from, limit_uncertainty, limit_suspect
                                     (the result's; of a SceneResult its solver_result, except of a phased one)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
@@ -274,6 +274,9 @@ def _write_solver(grp, res, u, states, names):
     # bound and its evidence, and a relaxed path its viscous stretch
     grp.attrs["limit_load_upper"] = np.nan if res.limit_load_upper is None else res.limit_load_upper
     grp.attrs["limit_evidence"] = res.limit_evidence
+    # the controlled path's limit: its numerical uncertainty (nan: not measured) and why it is suspect
+    grp.attrs["limit_uncertainty"] = np.nan if res.limit_uncertainty is None else res.limit_uncertainty
+    grp.attrs["limit_suspect"] = res.limit_suspect
     for key in ("relaxed_steps", "viscous_from"):
         grp.attrs[key] = -1 if getattr(res, key) is None else getattr(res, key)
     for key in ("u_origin", "f_int_origin", "f_ref", "f_dead"):
@@ -509,6 +512,8 @@ def _solver_result(model, rec, lam, u, states):
         limit_load_factor=_optional_float(rec.get("limit_load_factor")),
         limit_load_upper=_optional_float(rec.get("limit_load_upper")),
         limit_evidence=str(rec.get("limit_evidence", "")),
+        limit_uncertainty=_optional_float(rec.get("limit_uncertainty")),
+        limit_suspect=str(rec.get("limit_suspect", "")),
         relaxed_steps=_optional_count(rec.get("relaxed_steps")),
         viscous_from=_optional_count(rec.get("viscous_from")),
         u_origin=rec.get("u_origin"),

@@ -17,16 +17,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..core.validate import check_choice, check_int, check_real
+from ..materials.soil_laws import davis_beta
 
 __all__ = ["Boundary", "Footing", "Interface", "Material", "Site", "davis_beta", "strip_site"]
 
 BOUNDARY_KINDS = ("fixed", "symmetry", "free", "footing")
-
-
-def davis_beta(phi_deg: float, psi_deg: float) -> float:
-    """Davis' factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless; 1 for psi = phi)."""
-    phi, psi = math.radians(phi_deg), math.radians(psi_deg)
-    return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
 
 
 @dataclass(frozen=True)

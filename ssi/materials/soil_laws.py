@@ -63,6 +63,15 @@ KIND_NAMES = {
 }
 
 
+def davis_beta(phi_deg: float, psi_deg: float) -> float:
+    """Davis' (1968) factor beta = cos psi cos phi / (1 - sin psi sin phi) (dimensionless; 1 for psi = phi):
+    the associated material with c* = beta c, tan phi* = beta tan phi bounds the capacity of the
+    non-associated one (phi, psi in degrees). The one definition in the package: the limit analysis
+    (``ssi.limit``) and the solver's Davis mode (``Settings(flow="davis")``) both use it."""
+    phi, psi = math.radians(phi_deg), math.radians(psi_deg)
+    return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
+
+
 @njit(cache=True)
 def elastic_matrix(E, nu, D):
     """Fill ``D`` (4, 4) with the isotropic linear-elastic matrix in the [xx, zz, xz, yy] order."""

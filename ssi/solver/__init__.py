@@ -6,6 +6,8 @@ only place that commits state.
 * ``control`` -- the load-path control: ``run``, stepping, step cuts, fallbacks, limit-load detection;
 * ``increment`` -- one increment: the iterations of each method, line search, tangent solve, convergence;
 * ``viscous`` -- viscous recovery of a stalled path and the bracketing of a limit load;
+* ``path`` -- controlled path following (``Settings(control="work")``): a limit only where the path peaks;
+* ``davis`` -- Davis mode (``Settings(flow="davis")``); ``record`` -- the start of a path, its step record;
 * ``arc_length`` -- ``run_arc_length``;
 * ``diagnostics`` -- what a failed increment reports;
 * ``lbfgs`` -- the L-BFGS two-loop kernels; ``progress`` -- the progress bar and the compile notice.

@@ -8,9 +8,9 @@ import numpy as np
 
 from ..core.model import Model
 from ..core.solution import Result
-from .control import _record, _start
 from .diagnostics import _failure_report
 from .increment import _converged, _energy_scale, _force_scale, _norm
+from .record import _record, _start
 from .settings import NonConvergence, Settings
 from .viscous import _viscosity_in_force
 

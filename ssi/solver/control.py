@@ -11,11 +11,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.model import Model, System
+from ..core.model import Model
 from ..core.solution import LIMIT_LOAD, STOPPED, Result
+from .davis import davis_mode
 from .diagnostics import _failure_report
 from .increment import _increment
+from .path import run_path
 from .progress import SolverProgress, announce_compilation, log, solver_progress
+from .record import _record, _start
 from .settings import NonConvergence, Settings
 from .viscous import _has_viscosity, _set_viscosity, _viscosity_in_force, relax
 
@@ -39,6 +42,9 @@ def run(
     loads of the previous phase as dead load and the phase's change as reference load. Prescribed
     displacements are absolute: fixed value + lambda * prescribed value.
 
+    ``settings.control == "work"``: the controlled path of :mod:`ssi.solver.path` (rising targets only).
+    ``settings.flow == "davis"``: the run in Davis mode (:mod:`ssi.solver.davis`).
+
     Returns a :class:`Result` whose ``status`` says whether the targets were reached or a limit load was
     detected. Raises :class:`NonConvergence` if an increment fails before either.
     """
@@ -48,6 +54,13 @@ def run(
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
     model.check()
     announce_compilation()
+    with davis_mode(model, settings.flow == "davis"):
+        if settings.control == "work":
+            return run_path(model, targets, settings, start, loads)
+        return _run_load_control(model, targets, settings, start, loads)
+
+
+def _run_load_control(model, targets, settings, start, loads):
     t_start = time.perf_counter()
     _set_viscosity(model, settings.viscosity)
     path = _Path(model, settings, start, loads, scale=float(np.abs(targets).max()) or 1.0)
@@ -369,42 +382,3 @@ class _LoadMeasure:
             self.first = slope if slope != 0.0 else np.nan
             return 1.0
         return float(slope / self.first)
-
-
-def _start(model, settings, start=None, loads=None):
-    """Assembly machinery, loads, the initial state recorded as step 0, and the one factorisation of K0."""
-    system = System(model)
-    f_ref, f_dead = model.load_vectors() if loads is None else (np.asarray(v, np.float64) for v in loads)
-    if f_ref.shape != (model.n_dof,) or f_dead.shape != (model.n_dof,):
-        raise ValueError(f"loads must be two vectors of length n_dof = {model.n_dof}")
-    if start is None:
-        u, states = system.start(0.0)
-    else:
-        if start.model is not model:
-            raise ValueError("start must be a Result of the same model")
-        states, u = start.final_state, start.u[-1].copy()
-    f_int0, _, _ = system.evaluate(u, np.zeros_like(u), states, None)
-    result = Result(model=model, f_ref=f_ref, f_dead=f_dead)
-    if start is None:
-        result.u_origin, result.f_int_origin = u.copy(), f_int0.copy()
-    else:
-        result.u_origin, result.f_int_origin = start.u_origin, start.f_int_origin
-    _record(result, 0.0, u, f_int0, states, 0, [], [], settings)
-    result.stiffness.append(np.nan)
-    fac_k0 = system.factorize_k0(settings.backend)
-    result.factorizations = 1
-    return system, f_ref, f_dead, states, u, result, fac_k0
-
-
-def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings, viscosity=0.0):
-    result.load_factor.append(lam)
-    result.step_viscosity.append(float(viscosity))
-    result.u.append(u.copy())
-    result.f_int.append(f_int.copy())
-    if settings.keep_states or not result.states:
-        result.states.append(states)
-    else:
-        result.states[-1] = states
-    result.iterations.append(iterations)
-    result.residuals.append(list(residuals))
-    result.energies.append(list(energies))

@@ -15,11 +15,22 @@ STEPPINGS = ("auto", "fixed")
 REFERENCES = ("structural", "total")
 
 
+CONTROLS = ("load", "work")  # see Settings.control and ssi/solver/path.py
+
+
+FLOWS = ("user", "davis")  # see Settings.flow
+
+
 # per method: default iteration cap of an increment and the iteration count automatic stepping aims at
 _MAX_ITER = {"bfgs": 100, "modified": 300, "full": 30}
 
 
 _DESIRED_ITER = {"bfgs": 20, "modified": 60, "full": 8}
+
+
+# control="work" (path.py): iteration cap and target of its one corrector (lagged consistent tangent with
+# L-BFGS), those of the L-BFGS method: the zoo's contact scenes take 70-90 K0-based iterations per step
+_MAX_ITER_PATH, _DESIRED_ITER_PATH = 100, 20
 
 
 @dataclass
@@ -40,6 +51,19 @@ class Settings:
     relative to the first step's) tells a collapse from a numerical failure: below ``collapse_stiffness``
     the result ends with ``status == "limit load reached"``; otherwise :class:`NonConvergence` is raised.
     Step sizes are fractions of the largest target load factor; tolerances are relative (dimensionless).
+
+    ``control``: ``"load"`` (default) -- the load factor is prescribed increment by increment, with the
+    fallbacks above; ``"work"`` -- controlled path following (:mod:`ssi.solver.path`): each step prescribes
+    the work of the reference load f_ref . (u - u_0) (with prescribed displacements and no force load, the
+    load factor itself, i.e. displacement control), so the path passes limit points; one corrector, a
+    continuous step-size rule, and a limit only where the path peaks or stays on a plateau. ``method``,
+    ``fallback``, ``viscous_fallback`` and ``collapse_stiffness`` are not used there; ``max_iter`` and
+    ``desired_iterations`` default to 100 and 20.
+
+    ``flow``: ``"user"`` (default) -- each law's own dilation angle; ``"davis"`` -- Davis mode for capacity:
+    every Mohr-Coulomb soil and Coulomb interface is solved associated with beta-reduced strength
+    (c* = beta c, tan phi* = beta tan phi, psi* = phi*, beta = cos psi cos phi / (1 - sin psi sin phi)):
+    a convex problem per increment with a symmetric tangent and a unique limit.
     """
 
     method: str = "bfgs"
@@ -81,15 +105,20 @@ class Settings:
     # 59 s with the plain K0 retry, 1 of 64 retries converging in 300
     # iterations, and 11 s with BFGS); None: no retry
     fallback_iter: int = 300  # iterations of the fallback retry
+    control: str = "load"  # "load" or "work" (controlled path following, see above)
+    flow: str = "user"  # "user" or "davis" (see above)
 
     def __post_init__(self):
         check_choice("Settings.method", self.method, METHODS)
         check_choice("Settings.stepping", self.stepping, STEPPINGS)
         check_choice("Settings.convergence_reference", self.convergence_reference, REFERENCES)
+        check_choice("Settings.control", self.control, CONTROLS)
+        check_choice("Settings.flow", self.flow, FLOWS)
+        path = self.control == "work"
         if self.max_iter is None:
-            self.max_iter = _MAX_ITER[self.method]
+            self.max_iter = _MAX_ITER_PATH if path else _MAX_ITER[self.method]
         if self.desired_iterations is None:
-            self.desired_iterations = _DESIRED_ITER[self.method]
+            self.desired_iterations = _DESIRED_ITER_PATH if path else _DESIRED_ITER[self.method]
         if self.line_search is None:
             self.line_search = self.method == "bfgs"
         if self.fallback == "auto":

@@ -1,0 +1,123 @@
+"""``ssi run site.toml``: solve a site file (:mod:`ssi.scene.site_file`) and summarise it per foundation.
+
+A site file is told from a scene file by its keys (:func:`is_site_file`). The run prints, for each strip, its
+mean and largest settlement and its tilt, the differential settlement of every pair of strips, and for a
+rigid strip its settlement and pressure; the same numbers go to ``<name>_summary.json`` (atomically, with the
+user's umask). A site's result file, ParaView export, plots and HTML report are not written yet."""
+
+from __future__ import annotations
+
+import json
+import time
+import tomllib
+from pathlib import Path
+
+__all__ = ["SITE_ONLY_KEYS", "is_site_file", "run_site_file", "site_summary", "site_summary_text"]
+
+# top-level keys a site file may have and a scene file may not (a scene file has a ``foundation``)
+SITE_ONLY_KEYS = frozenset({"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress"})
+
+
+def is_site_file(path) -> bool:
+    """True if the TOML file at ``path`` describes a site: it has a key only a site file has and no
+    ``foundation`` (a scene's). A file that is not valid TOML is left to the scene reader's error."""
+    try:
+        with open(path, "rb") as fh:
+            data = tomllib.load(fh)
+    except tomllib.TOMLDecodeError:
+        return False
+    return "foundation" not in data and bool(SITE_ONLY_KEYS & data.keys())
+
+
+def site_summary(result, wall_time: float | None = None, complete: bool = True, stop=None) -> dict:
+    """The per-foundation summary of a solved site (:class:`ssi.scene.site_view.SiteResult`), SI units in
+    the key names: settlement [m] positive down, tilt [rad] (> 0: the right end settles more), pressure
+    [Pa]."""
+    built = result.built
+    foundations, plates = [], []
+    for i, (part, st) in enumerate(zip(built.site.strips, built.strips)):
+        if st.get("rigid"):
+            s, q = result.rigid_pressure(i)
+            foundations.append({
+                "index": i, "type": "rigid strip", "x0_m": part.x0, "x1_m": part.x1,
+                "settlement_m": float(s[-1]), "pressure_Pa": float(q[-1]), "max_pressure_Pa": float(q.max()),
+            })  # fmt: skip
+            continue
+        d = result.strip_summary(i)
+        foundations.append({
+            "index": i, "type": "strip", "x0_m": part.foundation.x0, "x1_m": part.foundation.x1,
+            "mean_settlement_m": d["mean"], "max_settlement_m": d["max"], "tilt_rad": d["tilt"],
+        })  # fmt: skip
+        plates.append(i)
+    differential = [
+        {"i": i, "j": j, "mean_settlement_i_minus_j_m": float(result.differential_settlement(i, j))}
+        for k, i in enumerate(plates)
+        for j in plates[k + 1 :]
+    ]
+    return {
+        "kind": "site",
+        "complete": bool(complete),
+        "status": "completed" if complete else "stopped before the end of the load path",
+        "stop": None if stop is None else str(stop),
+        "mesher": built.mesher,
+        "initial_stress": built.initial_stress_method,
+        "n_elements": int(len(built.mesh.conn)),
+        "n_dof": int(built.model.n_dof),
+        "wall_time_s": None if wall_time is None else float(wall_time),
+        "foundations": foundations,
+        "differential_settlement": differential,
+    }
+
+
+def site_summary_text(s: dict) -> str:
+    """The printed form of :func:`site_summary` (mm, mm/m, kPa)."""
+    lines = [
+        f"site: {s['n_elements']} elements ({s['mesher']} mesh), {s['n_dof']} DOFs, initial stress "
+        f"{s['initial_stress']}; status: {s['status']}"
+    ]
+    if s["stop"]:
+        lines.append(f"  stopped: {s['stop']}")
+    for f in s["foundations"]:
+        where = f"#{f['index']} {f['type']} [{f['x0_m']:g}, {f['x1_m']:g}] m"
+        if f["type"] == "rigid strip":
+            lines.append(f"  {where}: settlement {1e3 * f['settlement_m']:.2f} mm, pressure "
+                         f"{f['pressure_Pa'] / 1e3:.1f} kPa (largest "
+                         f"{f['max_pressure_Pa'] / 1e3:.1f} kPa)")  # fmt: skip
+        else:
+            lines.append(f"  {where}: settlement mean {1e3 * f['mean_settlement_m']:.2f} mm, max "
+                         f"{1e3 * f['max_settlement_m']:.2f} mm, "
+                         f"tilt {1e3 * f['tilt_rad']:.3f} mm/m")  # fmt: skip
+    for d in s["differential_settlement"]:
+        lines.append(f"  differential settlement #{d['i']} - #{d['j']}: "
+                     f"{1e3 * d['mean_settlement_i_minus_j_m']:.2f} mm (mean settlements)")  # fmt: skip
+    if s["wall_time_s"] is not None:
+        lines.append(f"  wall time {s['wall_time_s']:.2f} s")
+    return "\n".join(lines)
+
+
+def run_site_file(site_path, overwrite: bool = False):
+    """What ``ssi run`` does with a site file; returns (result, summary dict, written paths)."""
+    from ..scene.site_file import read_site_file
+    from ..scene.site_view import SiteResult
+    from ..solver import NonConvergence
+    from ..solver.progress import announce_compilation
+    from .results import OutputExistsError, atomic_path
+
+    site_path = Path(site_path)
+    stem = site_path.with_suffix("")
+    summary_path = stem.parent / (stem.name + "_summary.json")
+    site, n_steps, settings = read_site_file(site_path)
+    if summary_path.exists() and not overwrite:
+        raise OutputExistsError(summary_path)
+    announce_compilation()
+    t0 = time.perf_counter()
+    built = site.build()
+    stop = None
+    try:
+        result = built.solve(n_steps=n_steps, settings=settings)
+    except NonConvergence as err:  # the converged steps before the failure
+        result, stop = SiteResult(built, err.result), err.report
+    s = site_summary(result, time.perf_counter() - t0, stop is None, stop)
+    with atomic_path(summary_path, overwrite) as tmp:
+        tmp.write_text(json.dumps(s, indent=1))
+    return result, s, [summary_path]

@@ -1,0 +1,486 @@
+"""Controlled path following (``Settings(control="work")``): a limit only where the path peaks.
+
+Each step prescribes an increment ds of a control that keeps rising through a limit point, and the load
+factor lambda is an unknown of the step:
+
+* force loads: the work of the reference load, s = f_ref . (u - u_0) (indirect displacement control); the
+  load measure P whose peak is the limit is lambda;
+* prescribed displacements and no force load: s = lambda (displacement control, monotone by itself); P is
+  the reaction along the prescribed displacements.
+
+One corrector: Newton on a lagged factorisation of the consistent tangent (refactorised only when the
+observed contraction |r_k| / |r_k-1| stays above ``POOR_CONTRACTION``), L-BFGS updates on that factor, and a
+line search; no retry ladder. With work control each iteration solves the bordered system by two solves
+with that operator H ~ K^-1: a = H r, b = H f_ref, d lambda = -(f_ref . a) / (f_ref . b), du = a + d lambda b,
+which keeps f_ref . du = 0 after a predictor that meets the constraint exactly (the previous step scaled,
+or the tangent b at the first step).
+
+State table (one row per transition; a "step" is one control increment ds)::
+
+    state  | event                                    | action                              | next
+    -------+------------------------------------------+-------------------------------------+-------
+    START  | residual above the tolerance             | load-controlled step at lambda_0    | FIRST
+    START  | balanced                                 | --                                  | FIRST
+    FIRST  | --                                       | load-controlled step to             | WATCH
+           |                                          |   lambda_0 + ds / (f_ref K0^-1 f_ref)|
+    STEP   | secant predictor passes the target       | load-controlled step to the target  | FINAL
+    STEP   | converged, lambda below the target       | commit; ds <- ds clip(sqrt(N*/N),   | WATCH
+           |                                          |   1/2, 2) within [ds_min, ds_max]   |
+    STEP   | converged, lambda passes the target      | redo as one load-controlled step    | FINAL
+           |                                          |   to the target                     |
+    any    | not converged                            | ds <- ds / 2; next step from K0     | STEP
+    any    | not converged, ds < ds_min               | NonConvergence (diagnosis: groups,  | end
+           |                                          |   points changing state, lambda, s) |
+    FINAL  | converged                                | commit (ds kept)                    | WATCH,
+           |                                          |                                     | next
+           |                                          |                                     | target
+    WATCH  | P below (1 - PLATEAU_RISE) P_max, for    | the steps around the peak redone    | LIMIT
+           |   FALL_STEPS steps or a continuation     |   at half size: uncertainty;        |
+           |   as below                               |   checks: limit_suspect             |
+    WATCH  | P within PLATEAU_RISE of P_max since the | as above                            | LIMIT
+           |   control was s_p, and s - s_p >=        |                                     |
+           |   s_p / 2 over >= PLATEAU_STEPS steps    |                                     |
+    WATCH  | otherwise                                | --                                  | STEP
+
+ds_max is ``max_step`` of the elastic work at the largest target, or of the work done so far if larger
+(a softened path's work grows faster than the elastic one). FIRST exists because from the start state a
+contact that carries no load yet lets a work step follow a mechanism at lambda = 0 (a weightless strip
+lifting off).
+
+A failure to converge is never read as a limit. A limit is reported with ``limit_uncertainty`` and, when
+a check fails, ``limit_suspect`` with the reason (:func:`bracket_check` adds the limit-analysis bracket).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import deque
+
+import numpy as np
+
+from ..core.linsolve import Factorization
+from ..core.model import Model
+from ..core.protocol import CONSISTENT
+from ..core.solution import LIMIT_LOAD, STOPPED, Result
+from .diagnostics import _failure_report
+from .increment import _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
+from .progress import SolverProgress, solver_progress
+from .record import _record, _start
+from .settings import NonConvergence, Settings
+
+PLATEAU_RISE = 2e-3  # a load rising less than 0.2 % over the continuation below is on a plateau
+PLATEAU_STEPS = 10  # ... continuation of at least this many steps ...
+PLATEAU_CONTROL = 0.5  # ... and of this fraction of the control value where the plateau began (both: with
+# "or", 10 small steps of a crawl made chapter 11's cracking strip at h = 1/8 a false limit at 0.969)
+FALL_STEPS = 3  # a load below its maximum for this many successive steps has passed a peak (one or two
+# lower steps are a cracking dip the path may climb out of)
+POOR_CONTRACTION = 0.9  # |r_k| / |r_k-1| above this ...
+POOR_RUN = {True: 2, False: 8}  # ... in this many successive iterations (symmetric tangent: True)
+GROWTH = (0.5, 2.0)  # bounds of the step factor (N_target / N)^(1/2)
+BACKTRACK, BACKTRACK_GROWTH = 0, 2.0  # line search: halvings of a step whose residual norm grows > 2x
+SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
+KEPT_STEPS = 24  # committed steps kept for the half-size redo of the steps around a peak
+REDO_STEPS = 3  # steps before (and after) the peak that the redo covers; the uncertainty is the larger
+# of the redo's change of the peak and the excess of the parabola through the peak and its neighbours
+
+
+def run_path(
+    model: Model, targets: np.ndarray, settings: Settings, start: Result | None, loads: tuple | None
+) -> Result:
+    """The controlled path through the rising ``targets`` (load factors); see the module docstring. Called by
+    :func:`ssi.solver.run` when ``settings.control == "work"``."""
+    if np.any(np.diff(np.concatenate([[0.0], targets])) <= 0.0):
+        raise ValueError(f"control='work' needs rising positive load_factors, got {targets.tolist()}")
+    t0 = time.perf_counter()
+    path = _Follower(model, settings, start, loads, scale=float(targets[-1]))
+    try:
+        with solver_progress(settings.progress, total=path.scale) as path.bar:
+            path.equilibrate()
+            for target in targets:
+                if path.follow(float(target)):
+                    break
+    finally:
+        path.result.wall_time = time.perf_counter() - t0
+    return path.result
+
+
+class _Follower:
+    """The committed path (u, states, lambda, control s) and the step rule of one controlled run."""
+
+    def __init__(self, model, settings, start, loads, scale):
+        self.model, self.settings = model, settings
+        self.system, self.f_ref, self.f_dead, self.states, self.u, self.result, k0 = _start(
+            model, settings, start, loads
+        )
+        self.k0 = self.fac = k0  # the lagged factor starts as K0 (SPD)
+        free = self.system.free
+        self.f = self.f_ref[free]
+        self.work = bool(np.any(self.f))  # work control; else displacement control on lambda
+        ref = np.zeros(model.n_dof)
+        ref[self.system.cons_dofs] = self.system.cons_ref
+        if not self.work and not np.any(ref):
+            raise ValueError("control='work' needs a reference load or prescribed displacements")
+        self.ref = ref
+        self.lam = 0.0
+        self.s = float(self.f @ (self.u[free] - self.result.u_origin[free])) if self.work else 0.0
+        self.scale = scale
+        self.bar = SolverProgress(None, 1.0)
+        self.w1 = float(self.f @ k0.solve(self.f)) if self.work else 1.0  # elastic d s / d lambda
+        unit = self.w1 * scale  # the control of lambda = scale on the elastic path
+        self.started = False  # the first step is load-controlled (see follow)
+        self.ds = settings.first_step * unit  # elastically: the work of the first load step
+        self.ds_min, self.ds_max = settings.min_step * unit, settings.max_step * unit
+        # iterations of poor contraction before the tangent is refactorised: an unsymmetric (non-associated
+        # soil, slipping contact) consistent tangent replaced K0 + L-BFGS too early on the zoo's scenes (their
+        # K0 iterations fluctuate for a few iterations, then converge: 70-90 per step)
+        self.poor_run = POOR_RUN[bool(settings.symmetric_tangent)]
+        self.dlam_cap = settings.max_step * scale  # the largest load-factor correction of one iteration
+        self.prev = None  # (du, dlam, ds) of the last committed step: the secant predictor
+        self.kept = deque(maxlen=KEPT_STEPS)  # (k, u, states, lam, s, P)
+        self.loads = [self._load_measure(self.u, self.result.f_int[0], 0.0)]
+        self.controls = [self.s]
+        self.kept.append((0, self.u, self.states, 0.0, self.s, self.loads[0]))
+
+    # ----------------------------------------------------------------------------------------------------
+    def equilibrate(self):
+        """Bring the start state into equilibrium at its own load factor first, under load control, when it
+        is not (e.g. dead load added to a geostatic state): the controlled steps then carry only the
+        reference load (measured: 8 of the random zoo's scenes failed at lambda ~ 0 while one step had to
+        balance both). Recorded as a step only if it moved; raises NonConvergence if it fails."""
+        r = (self.lam * self.f_ref + self.f_dead - self.result.f_int[-1])[self.system.free]
+        reference = _norm(self.f) * self.scale if self.work else _norm(self.result.f_int[-1])
+        if _norm(r) <= self.settings.force_tol * reference:  # balanced (to the tolerance of the first
+            return  # step's load; the geostatic round-off is not to be iterated on: zoo scenes 2, 3, 9)
+        out = self._step(self.u, self.states, self.lam, None, self.lam)
+        if out is None:
+            self._fail()
+        if out["iterations"] > 1:
+            self._commit(out)
+        self.prev = None  # the balancing move is no predictor for the controlled steps
+
+    def follow(self, target) -> bool:
+        """Advance to ``target``; True if the path ended at a limit."""
+        while self.lam < target * (1.0 - 1e-12):
+            if not self.started:  # from the start state, whose contact may carry no load yet, a work step
+                # can follow a mechanism at lambda = 0 (a weightless strip lifting off: zoo scene 24)
+                lam_next = min(target, self.lam + self.ds / self.w1)
+                out = self._step(self.u, self.states, self.lam, None, lam_next)
+                self.started, final = out is not None, False
+            elif self._predicted_lam(self.ds) > target:  # the secant predictor passes the target: the
+                out = self._step(self.u, self.states, self.lam, None, target)  # step ends on it instead
+                final = True
+            else:
+                out = self._step(self.u, self.states, self.lam, self.ds)
+                final = out is not None and out["lam"] > target
+                if final:
+                    out = self._step(self.u, self.states, self.lam, None, target)
+            if out is None:
+                self.result.cuts += 1
+                self.ds *= 0.5
+                if self.ds < self.ds_min * (1.0 - 1e-9):
+                    self._fail()
+                continue
+            self._commit(out, adapt=not final)  # a step cut short by the target says nothing of the size
+            if self._limit():
+                return True
+        return False
+
+    def _predicted_lam(self, ds):
+        """The load factor the secant predictor reaches with the control step ``ds`` (current lambda if
+        there is no previous step to scale)."""
+        if self.prev is None:
+            return self.lam
+        return self.lam + ds / self.prev[2] * self.prev[1]
+
+    def _fail(self):
+        out = self.last_failure
+        report = _failure_report(self.model, self.system.free, out, self.lam, out.get("lam", self.lam))
+        report.update(control_value=self.s, control_step=self.ds, control="work" if self.work else "lambda")
+        self.result.status = STOPPED
+        raise NonConvergence(report, self.result)
+
+    def _commit(self, out, adapt=True):
+        du = out["u"][self.system.free] - self.u[self.system.free]
+        ds = out["s"] - self.s
+        self.prev = (du, out["lam"] - self.lam, ds) if ds > 0.0 else None
+        self.u, self.states, self.lam, self.s = out["u"], out["states"], out["lam"], out["s"]
+        _record(
+            self.result, self.lam, self.u, out["f_int"], self.states, out["iterations"], out["residuals"],
+            out["energies"], self.settings,
+        )  # fmt: skip
+        self.result.stiffness.append(np.nan)
+        self.loads.append(self._load_measure(self.u, out["f_int"], self.lam))
+        self.controls.append(self.s)
+        self.kept.append((self.result.n_steps, self.u, self.states, self.lam, self.s, self.loads[-1]))
+        self.bar.update(self.result.n_steps, self.lam, out["iterations"], out["residuals"][-1])
+        if not adapt:
+            return
+        n = max(out["iterations"], 1)
+        grow = min(max(math.sqrt(self.settings.desired_iterations / n), GROWTH[0]), GROWTH[1])
+        # the largest step: max_step of the elastic work at the largest target, or of the work done so far
+        # where the path has softened (else a soft path crawls: 427 steps on chapter 11's scene at h = 1/8)
+        ds_max = max(self.ds_max, self.settings.max_step * abs(self.s - self.controls[0]))
+        self.ds = min(max(grow * max(ds, self.ds_min), self.ds_min), ds_max)
+
+    def _load_measure(self, u, f_int, lam):
+        if self.work:
+            return float(lam)
+        return float((f_int - self.result.f_int_origin) @ self.ref)
+
+    # ----------------------------------------------------------------------------------------------------
+    def _limit(self) -> bool:
+        """The WATCH rows of the state table; on a limit, the half-size redo and the checks."""
+        p = np.asarray(self.loads)
+        k_max = int(np.argmax(p))
+        n = len(p) - 1
+        if p[k_max] <= 0.0 or k_max == 0:
+            return False
+        on = np.flatnonzero(p >= p[k_max] / (1.0 + PLATEAU_RISE))[0]  # where the plateau began
+        s = np.asarray(self.controls) - self.controls[0]
+        continued = s[on] > 0.0 and s[-1] - s[on] >= PLATEAU_CONTROL * s[on] and n - on >= PLATEAU_STEPS
+        below = p[-1] < (1.0 - PLATEAU_RISE) * p[k_max]
+        fell = below and (n - k_max >= FALL_STEPS or continued)
+        plateau = continued and not below
+        if not (fell or plateau):
+            return False
+        res = self.result
+        res.status, res.limit_load_factor = LIMIT_LOAD, float(res.load_factor[k_max])
+        what = "peak passed" if fell else f"plateau over {n - on} steps"
+        res.limit_evidence = f"controlled path: {what}, load measure {p[k_max]:.6g} at step {k_max}"
+        reasons = []
+        redo = self._redo(k_max)
+        vertex = self._vertex_excess(k_max) if fell else 0.0  # a plateau's corner is no smooth peak
+        res.limit_uncertainty = None if redo is None else max(redo, vertex)
+        if res.limit_uncertainty is None:
+            reasons.append("the half-size redo of the steps around the peak did not converge")
+        strain = self._loaded_strain(k_max)
+        if strain is not None and strain[0] > SMALL_STRAIN * strain[1]:
+            reasons.append(
+                f"loaded displacement {strain[0]:.3g} m > {SMALL_STRAIN:g} x the loaded width "
+                f"{strain[1]:.3g} m: beyond small strain"
+            )
+        res.limit_suspect = "; ".join(reasons)
+        self.bar.note(res.message)
+        return True
+
+    def _redo(self, k_max):
+        """Relative change of the peak load when the kept steps from REDO_STEPS before the peak to
+        REDO_STEPS after it are redone with each control increment split in two (None: a redo failed)."""
+        kept = [row for row in self.kept if k_max - REDO_STEPS <= row[0] <= k_max + REDO_STEPS]
+        if len(kept) < 2:
+            return None
+        _, u, states, lam, s, _ = kept[0]
+        peak = kept[0][5]
+        for before, row in zip(kept, kept[1:]):
+            # predictor of the half steps: the kept step itself (the secant predictor scales it)
+            self.prev = (
+                row[1][self.system.free] - before[1][self.system.free],
+                row[3] - before[3],
+                row[4] - s,
+            )
+            for c in (0.5 * (s + row[4]), row[4]):  # the control at the half and the end of the kept step
+                out = self._step(u, states, lam, c - s) if self.work else self._step(u, states, lam, None, c)
+                if out is None:
+                    return None
+                self.prev = (out["u"][self.system.free] - u[self.system.free], out["lam"] - lam, out["s"] - s)
+                u, states, lam, s = out["u"], out["states"], out["lam"], out["s"]
+                peak = max(peak, self._load_measure(u, out["f_int"], lam))
+        p_max = max(row[5] for row in kept)
+        return abs(peak - p_max) / abs(p_max)
+
+    def _vertex_excess(self, k):
+        """Relative excess of the vertex of the parabola through the load measure at the steps k - 1, k,
+        k + 1 (over the control) above the largest step value: how far the discrete maximum may lie below the
+        path's (0 without neighbours on both sides)."""
+        if not 0 < k < len(self.loads) - 1:
+            return 0.0
+        x, y = np.asarray(self.controls[k - 1 : k + 2]), np.asarray(self.loads[k - 1 : k + 2])
+        a, b, c = np.polyfit(x - x[1], y, 2)
+        if not a < 0.0:
+            return 0.0
+        return float((c - b * b / (4.0 * a) - y[1]) / abs(y[1]))
+
+    def _loaded_strain(self, k):
+        """(largest loaded displacement [m], x-extent of the loaded nodes [m]) at step k, or None."""
+        dofs = np.flatnonzero(self.f_ref if self.work else self.ref)
+        start = np.concatenate([[0], np.cumsum(self.model.node_ndof)])
+        nodes = np.unique(np.searchsorted(start, dofs, side="right") - 1)
+        width = float(np.ptp(self.model.coords[nodes, 0])) if nodes.size else 0.0
+        if width <= 0.0:
+            return None
+        return float(np.abs(self.result.u[k][dofs] - self.result.u_origin[dofs]).max()), width
+
+    # ----------------------------------------------------------------------------------------------------
+    def _step(self, u_n, states_n, lam_n, ds, lam_target=None):
+        """One step from a committed state: work control (``ds``) or, with ``lam_target`` (or displacement
+        control), the load factor prescribed. Returns the converged step (dict) or None (kept in
+        ``last_failure``)."""
+        st, sy = self.settings, self.system
+        free = sy.free
+        fixed_lam = lam_target is not None or not self.work
+        if fixed_lam and lam_target is None:  # displacement control: the control is lambda itself
+            lam_target = lam_n + ds
+        u = u_n.copy()
+        if self.prev is not None:  # secant predictor: the last step scaled (meets the constraint exactly)
+            du_p, dlam_p, ds_p = self.prev
+            if fixed_lam:
+                ratio = max((lam_target - lam_n) / dlam_p, 0.0) if dlam_p != 0.0 else 0.0
+            else:
+                ratio = ds / ds_p
+            lam = lam_target if fixed_lam else lam_n + ratio * dlam_p
+            u[free] += ratio * du_p
+        elif fixed_lam:
+            lam = lam_target
+        else:  # tangent predictor: du = dlam H f_ref with f_ref . du = ds
+            b = self.fac.solve(self.f)
+            lam = lam_n + ds / float(self.f @ b)
+            u[free] += (lam - lam_n) * b
+        sy.apply_constraints(u, lam)
+        bfgs = _Lbfgs(self.fac, st.bfgs_memory)
+        residuals, energies = [], []
+        out = {"converged": False, "residuals": residuals, "energies": energies, "iterations": 0, "lam": lam}
+        ev = self._evaluate(u, u_n, states_n, lam)
+        energy0 = None
+        poor = 0
+        for it in range(1, st.max_iter + 1):
+            if ev is None:
+                out.update(reason="material update failed", iterations=it)
+                break
+            f_int, trial, r = ev
+            r_f = r[free]
+            f_ext = lam * self.f_ref + self.f_dead
+            rel = _norm(r_f) / _force_scale(st, lam, self.f_ref, f_ext, f_int, self.result)
+            residuals.append(rel)
+            out.update(iterations=it, residual=r, u=u, trial=trial, lam=lam)
+            if not np.isfinite(rel):
+                out.update(reason="residual is not finite")
+                break
+            if it > 1 and rel > st.divergence_ratio * max(residuals[0], st.force_tol):
+                out.update(reason=f"residual grew by more than {st.divergence_ratio:g}")
+                break
+            if _stagnates(residuals):
+                out.update(reason="residual stagnates (no decrease over the last 15 iterations)")
+                break
+            poor = poor + 1 if it > 1 and rel > POOR_CONTRACTION * residuals[-2] else 0
+            if poor >= self.poor_run and self._refactor(u, u_n, states_n):
+                bfgs, poor = _Lbfgs(self.fac, st.bfgs_memory), 0
+            a = bfgs.direction(r_f)
+            dlam = 0.0
+            if not fixed_lam:
+                b = bfgs.direction(self.f)
+                dlam = -float(self.f @ a) / float(self.f @ b)
+                if not abs(dlam) <= self.dlam_cap:  # f . b ~ 0: the factor is nearly singular along f_ref
+                    out.update(reason=f"load-factor correction {dlam:.3g} beyond the largest step")
+                    break
+                a = a + dlam * b
+            if not np.all(np.isfinite(a)):
+                out.update(reason="the correction is not finite (singular tangent factor)")
+                break
+            energy = abs(float(a @ r_f))
+            energy0 = energy if energy0 is None else energy0
+            energies.append(energy / _energy_scale(energy0, u, f_int, self.result, st))
+            # no "energy == 0" shortcut: with work control du may vanish while lambda still moves
+            if _converged(rel, energies[-1], it, st) or rel <= 1e-14 * st.force_tol:
+                s = float(self.f @ (u[free] - self.result.u_origin[free])) if self.work else lam
+                out.update(converged=True, f_int=f_int, states=trial, s=s)
+                return out
+            u, lam, ev_new, step = self._line_search(u, u_n, states_n, lam, a, dlam, r_f)
+            if ev_new is not None:
+                bfgs.update(step * a, ev_new[0][free] - f_int[free])
+            ev = ev_new
+        else:
+            out.update(reason=f"no convergence in {st.max_iter} iterations")
+        out.setdefault("reason", "unknown")
+        self.last_failure = out
+        self.fac = self.k0  # a failed step's factor is suspect: the next starts on K0
+        self.bar.note(f"step halved at lambda={lam_n:.6g}: {out['reason']}")
+        return None
+
+    def _evaluate(self, u, u_n, states_n, lam):
+        try:
+            f_int, _, trial = self.system.evaluate(u, u - u_n, states_n, None)
+        except FloatingPointError:
+            return None
+        return f_int, trial, lam * self.f_ref + self.f_dead - f_int
+
+    def _refactor(self, u, u_n, states_n) -> bool:
+        """Factorise the consistent tangent at ``u`` (False, the old factor kept, if it cannot be)."""
+        try:
+            _, k_list, _ = self.system.evaluate(u, u - u_n, states_n, CONSISTENT)
+            kt = self.system.pattern.matrix(self.system.pattern.assemble(k_list))
+            fac = Factorization(kt, symmetric=self.settings.symmetric_tangent, backend=self.settings.backend)
+            fac.solve(np.ones(kt.shape[0]))  # a singular factor shows here, not in the next direction
+        except (FloatingPointError, RuntimeError):
+            return False
+        self.fac = fac
+        self.result.factorizations += 1
+        return True
+
+    def _line_search(self, u, u_n, states_n, lam, du, dlam, r_f):
+        """Step t along (du, dlam) with G(t) = du . r(u + t du, lambda + t dlam) ~ 0 (Matthies & Strang):
+        t = 1 if |G(1)| <= |G(0)| / 2, else up to three secant / regula-falsi trials in [0.05, 4]. A step
+        whose residual norm exceeds ``BACKTRACK_GROWTH`` times the current one is then halved (at most
+        ``BACKTRACK`` times, the smallest norm kept): with a non-associated tangent G has no potential
+        behind it, and a full step near a corner of the yield surface overshoots far."""
+        free = self.system.free
+        g0 = float(du @ r_f)
+        r0 = _norm(r_f)
+
+        def trial(t):
+            v = u.copy()
+            v[free] += t * du
+            lt = lam + t * dlam
+            self.system.apply_constraints(v, lt)
+            ev = self._evaluate(v, u_n, states_n, lt)
+            return v, lt, ev, (np.inf if ev is None else float(du @ ev[2][free]))
+
+        def norm(cand):
+            return np.inf if cand[2] is None else _norm(cand[2][2][free])
+
+        t_lo, g_lo, t = 0.0, g0, 1.0
+        best = trial(t)
+        if not self.settings.line_search:
+            return best[0], best[1], best[2], t
+        for _ in range(3 if g0 > 0.0 else 0):
+            g = best[3]
+            if best[2] is not None and abs(g) <= 0.5 * g0:
+                break
+            if best[2] is None or not np.isfinite(g):
+                t_new = 0.5 * (t_lo + t)
+            elif g < 0.0:
+                t_new = t - g * (t - t_lo) / (g - g_lo)
+            else:
+                t_lo, g_lo = t, g
+                t_new = 2.0 * t
+            t_new = min(max(t_new, 0.05), 4.0)
+            if t_new == t:
+                break
+            t, best = t_new, trial(t_new)
+        best_norm, t_best = norm(best), t
+        for _ in range(BACKTRACK):
+            if best_norm <= BACKTRACK_GROWTH * r0:
+                break
+            t = 0.5 * min(t, 1.0)
+            cand = trial(t)
+            if norm(cand) < best_norm:
+                best, best_norm, t_best = cand, norm(cand), t
+        t = t_best
+        return best[0], best[1], best[2], t
+
+
+def bracket_check(result: Result, limit_load: float, lb_davis: float, ub_assoc: float) -> str:
+    """Check a controlled path's limit ``limit_load`` against a limit-analysis bracket (same units: a load
+    factor or a pressure [Pa]): below 0.97 ``lb_davis`` it is a false collapse, above 1.03 ``ub_assoc`` a
+    mesh overestimate, reported with its excess. Appends the reason to ``result.limit_suspect`` and returns
+    it ("" when the limit is inside)."""
+    if not (lb_davis > 0.0 and ub_assoc >= lb_davis):
+        raise ValueError(f"bracket must satisfy 0 < lb_davis <= ub_assoc, got [{lb_davis}, {ub_assoc}]")
+    reason = ""
+    if limit_load < 0.97 * lb_davis:
+        reason = f"false collapse: {limit_load:.6g} < 0.97 x the Davis lower bound {lb_davis:.6g}"
+    elif limit_load > 1.03 * ub_assoc:
+        reason = f"mesh overestimate: {limit_load / ub_assoc - 1.0:+.2%} above the associated upper bound"
+    if reason:
+        result.limit_suspect = "; ".join(x for x in (result.limit_suspect, reason) if x)
+    return reason
