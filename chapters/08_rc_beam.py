@@ -39,7 +39,8 @@
 # $E_0$, $f_r$, $G_f$ (`ssi.materials.rc.designer_concrete`); $\varepsilon_c = 2f_c/E_0$ (the smallest peak
 # strain for which (5.1) stays below its initial tangent), $\varepsilon_{cu}$ = 0.0035; bars $E_s$ = 200 GPa,
 # $f_y$ = 333 MPa, $E_H$ = 0 as reported; the open defaults of paper-notes §3 ($\alpha_{ts}$ = 0.5,
-# $\beta_0$ = 0.25, $\nu$ = 0.2, $\kappa_s$ = 5/6). Self-weight is left out (the measured moment starts at 0).
+# $\beta_0$ = 0.25, $\nu$ = 0.2, $\kappa_s$ = 5/6). Self-weight is left out of the main model (the measured
+# moment starts at 0; its effect is measured below).
 #
 # **The beam's width.** The strip works per unit width. The bar layer gets the equivalent thickness
 # $A_s/b$; forces and moments per beam are $b$ times the strip's values (exact for a prismatic beam).
@@ -363,7 +364,157 @@ print(
 # With crushing regularised (chapter 03) the curve stays on the plateau (smallest moment after yield
 # 38.5 kN m, full mode); it stops at 41 mm when modified Newton exhausts its 3000 iterations in one step,
 # which the figure shows as the end of the curve.
+
+# %% [markdown]
+# ## Where the over-stiffness of the cracked branch comes from: one measurement per source
 #
+# The model is +75, +31 and +13 % too stiff at 1, 2.5 and 5 mm (full mode). Each candidate source is switched
+# alone around the main model (41 layers, band = crack spacing, tension stiffening on every cracked layer) on
+# a short path to 5.5 mm at the load point, and the change of the moment at the three measured points of the
+# cracked branch is measured (1, 2.5 and 5 mm: the data's own points, so 2.5 rather than 3 mm). Nothing is
+# fitted to the beam; where a source needs an input the data do not report, the input is a stated assumption.
+#
+# * **(a) Shear stiffness kept after cracking.** The Mindlin strip keeps $\beta_0 G$ = 0.25 $G$ in a cracked
+#   layer (Fig. 6). Run with $\beta_0$ = 0.001 (the floor): the largest effect this source can have.
+# * **(b) Tension stiffening.** Run with $\alpha_{ts}$ = 0 (off), and with stiffening only in the effective
+#   tension area $h_{c,ef}$ (the code rule of chapter 03).
+# * **(c) Pre-cracking by shrinkage.** Bonded bars restrain the concrete's shrinkage, which puts the
+#   concrete around them in tension before the test. $\varepsilon_{cs}$ by EN 1992-1-1 §3.1.4 / Annex B.2
+#   (`rc_beam.shrinkage_strain_en1992`) with **assumed** conditions (not reported): cement class N, curing
+#   7 days, test at 28 days, RH 50 %; the restraint stress from the uncracked transformed section
+#   (`rc_beam.shrinkage_restraint_stress`, short-term $\alpha_e$ = $E_s/E_0$, the same section as the
+#   shrinkage curvature $1/r_{cs}=\varepsilon_{cs}\alpha_e S/I$ of EN 1992-1-1 §7.4.3), and the concrete
+#   layers then crack at $f_r-\sigma_{cs}(z)$ (`rc_beam.with_shrinkage_restraint`; the bars' small
+#   pre-compression is not carried over). The shrinkage curvature itself happened before the gauges were
+#   zeroed and is not part of the measured deflection.
+# * **(c') Self-weight.** The measured moment starts at 0 after the beam carries its own weight
+#   (25 kN/m³, EN 1991-1-1 Table A.1: 1.16 kN/m, 1.09 kN m at mid-span), so the real beam cracked at a smaller
+#   *applied* moment. The strip carries the weight first, then its load point is driven from there and
+#   load and deflection are counted from that state (`rc_beam.load_path(..., self_weight=q)`); checked with
+#   the curvature integral from the self-weight state (`rc_beam.four_point_deflection_after_self_weight`).
+# * **(d) Bond slip.** Not modelled: the bars are perfectly bonded to their layer; the smeared tension
+#   stiffening law (b) is the model's only stand-in for the slip between cracks, so no separate number.
+
+# %%
+D_SRC = np.array([1.0, 2.5, 5.0])  # the measured points of the cracked branch [mm]
+N_EL_SRC = 2 if FAST else 4
+SRC_STEPS = 22 if FAST else 44
+UNIT_WEIGHT_RC = 25e3  # N/m^3, EN 1991-1-1 Table A.1, reinforced normal-weight concrete
+SHRINK_ASSUMED = {"t_days": 28.0, "ts_days": 7.0, "rh": 0.5, "cement": "N"}  # not reported: assumed
+H0 = 2 * B * G["h"] / (2 * (B + G["h"]))  # notional size 2 Ac / u of the beam [m]
+shrink = rb.shrinkage_strain_en1992(G["fc"], H0, **SHRINK_ASSUMED)
+sig_cs, kap_cs = rb.shrinkage_restraint_stress(section, shrink["eps_cs"])
+
+
+def source_moments(sec, q=0.0):
+    """Mid-span moment [kN m] at D_SRC of the strip (N_EL_SRC + N_EL_SRC elements) with section ``sec``,
+    driven from the state under the self-weight ``q`` [N/m per unit width] when q > 0."""
+    b_s = rb.build_four_point(sec, SPAN, A, N_EL_SRC, N_EL_SRC, crack_band=None, self_bending=SELF)
+    out = rb.load_path(b_s, 0.0055, SRC_STEPS, SETTINGS, self_weight=q)
+    assert out["delta"][-1] * 1e3 >= D_SRC[-1], "the short path must pass the last point"
+    return moment_at(D_SRC, out["delta"] * 1e3, out["M"] * KNM)
+
+
+Q_SW = UNIT_WEIGHT_RC * G["h"]  # self-weight per unit length and unit width [N/m per m]
+m_src0 = source_moments(section)
+sources = {
+    "(a) shear retention beta0 0.25 -> 0.001": source_moments(rb.janney_band_section(N_LAYERS, beta0=1e-3)),
+    "(b) tension stiffening off": source_moments(rb.janney_band_section(N_LAYERS, alpha_ts=0.0)),
+    "(b) tension stiffening in h_c,ef only": source_moments(
+        rb.janney_band_section(N_LAYERS, "effective_area")
+    ),
+    "(c) shrinkage restraint (EN 1992)": source_moments(
+        rb.with_shrinkage_restraint(section, shrink["eps_cs"])[0]
+    ),
+    "(c') self-weight (strip, from its state)": source_moments(section, Q_SW),
+}
+change = {k: m / m_src0 - 1 for k, m in sources.items()}
+m_all = source_moments(
+    rb.with_shrinkage_restraint(rb.janney_band_section(N_LAYERS, "effective_area"), shrink["eps_cs"])[0], Q_SW
+)
+change["(b h_c,ef) + (c) + (c') together (strip)"] = m_all / m_src0 - 1
+
+# (c') checked by the independent curvature integral (21 layers): moments at D_SRC from P(delta)
+P_GRID = np.linspace(1e-3, 0.95 * M_Y / A, 300)
+
+
+def integral_moments(mc_s, q):
+    d_mm = rb.four_point_deflection_after_self_weight(mc_s, P_GRID, q, SPAN, A) * 1e3
+    ok = np.isfinite(d_mm)  # NaN once P a + the self-weight moment leaves the monotone branch
+    assert d_mm[ok][-1] > D_SRC[-1]
+    return moment_at(D_SRC, d_mm[ok], P_GRID[ok] * A * KNM)
+
+
+change["(c') self-weight (curvature integral)"] = integral_moments(mc, Q_SW) / integral_moments(mc, 0.0) - 1
+m_measured = np.interp(D_SRC, JAN[:, 0], JAN[:, 1])  # D_SRC are measured points: no interpolation
+err_src0 = m_src0 / m_measured - 1
+print(
+    f"eps_cs = {shrink['eps_cs']:.3e} (drying {shrink['eps_cd']:.3e}, autogenous {shrink['eps_ca']:.3e}); "
+    f"restraint stress at the bottom layer {sig_cs[0] / 1e6:.2f} MPa of fr = {DES['fr'] / 1e6:.2f} MPa; "
+    f"1/r_cs = {kap_cs:.2e} 1/m; self-weight moment {Q_SW * SPAN**2 / 8 * KNM:.2f} kN m"
+)
+print(f"{'source':46s}" + "".join(f"{d:>9.1f} mm" for d in D_SRC))
+print(f"{'main model: error vs measured':46s}" + "".join(f"{e:+12.1%}" for e in err_src0))
+for k, c in change.items():
+    print(f"{k:46s}" + "".join(f"{v:+12.1%}" for v in c))
+remaining = m_all / m_measured - 1
+LEFT = "error left with (b h_c,ef) + (c) + (c')"
+print(f"{LEFT:46s}" + "".join(f"{e:+12.1%}" for e in remaining))
+inside = np.abs(remaining) <= TOL_POINTS[: len(D_SRC)]  # D_SRC are the first three measured points
+print("inside the reading tolerance with the three estimated sources:", dict(zip(D_SRC, inside, strict=True)))
+# the claims of the table below: the shear source is negligible (< 1 %), shrinkage and self-weight each
+# lower the cracked branch at every point, and with all three the model is still stiffer at 1 mm
+assert np.all(np.abs(change["(a) shear retention beta0 0.25 -> 0.001"]) < 0.01)
+assert np.all(change["(c) shrinkage restraint (EN 1992)"] < 0)
+assert np.all(change["(c') self-weight (strip, from its state)"] < 0)
+# the strip and the curvature integral agree on the self-weight's effect within 1.5 % of the moment (the
+# integral's 21-layer section, initial self-bending and no element error; measured 0.9 % at 1 mm)
+assert np.allclose(
+    change["(c') self-weight (strip, from its state)"],
+    change["(c') self-weight (curvature integral)"],
+    atol=0.015,
+)
+assert 0 < remaining[0] < err_src0[0]
+
+# %% [markdown]
+# **What each source is worth** (full mode; the printout above is the current mode's run). Change of the
+# mid-span moment at a given deflection, each source alone against the main model:
+#
+# | source | how measured | 1 mm | 2.5 mm | 5 mm |
+# |---|---|---|---|---|
+# | main model against the measurement | strip, 8 elements, 41 layers | +76.7 % | +30.9 % | +13.2 % |
+# | (a) shear stiffness kept after cracking | strip with $\beta_0$ 0.25 → 0.001 | −0.0 % | −0.1 % | −0.1 % |
+# | (b) tension stiffening switched off | strip with $\alpha_{ts}$ = 0 | +0.0 % | −17.6 % | −11.7 % |
+# | (b) tension stiffening in $h_{c,ef}$ only | strip, code rule of chapter 03 | +0.0 % | −4.0 % | −5.3 % |
+# | (c) shrinkage restraint, 196 µε | strip cracking at $f_r-\sigma_{cs}$ | −12.0 % | −7.9 % | −3.8 % |
+# | (c') self-weight, 1.09 kN m | strip driven from its self-weight state | −9.0 % | −5.9 % | −4.0 % |
+# | (c') the same, checked | curvature integral from the self-weight state | −9.0 % | −5.9 % | −4.0 % |
+# | (d) bond slip | not modelled (perfect bond; (b) is its smeared stand-in) | — | — | — |
+# | (b, $h_{c,ef}$) + (c) + (c') together | strip with all three | −19.8 % | −14.8 % | −11.4 % |
+# | error left with the three together | the same strip against the measurement | +41.7 % | +11.4 % | +0.3 % |
+#
+# The reading tolerances at these points are 67, 24 and 11 %.
+#
+# * **Shear (a) is not a source.** Cutting the shear stiffness a cracked layer retains by a factor 250
+#   changes the moment by at most 0.1 %: the Mindlin strip's shear stiffness after cracking does not make
+#   this beam stiff.
+# * **At 1 mm, tension stiffening (b) is not a source either**: the model is barely cracked there (its
+#   cracking moment 7.8 kN m is above the measured 6 kN m at 1 mm). Its +77 % is a cracking-onset error: the
+#   real beam cracked earlier. Shrinkage restraint (c) and self-weight (c') are the two measured causes of
+#   that, −12 % and −9 % each.
+# * **At 2.5–5 mm**, where the beam is cracked, tension stiffening is the largest lever; the code's
+#   effective-area rule takes 4–5 % off, switching it off altogether 12–18 %.
+# * **Together** the three standard models leave +42, +11 and +0.3 %, inside the reading tolerance of each
+#   point. This
+#   is not adopted as the model's default and the row below still scores the main model: self-weight and the
+#   effective-area rule need no new input, but the shrinkage estimate rests on curing, age and humidity that
+#   the data do not report (assumed: 7 days, 28 days, RH 50 %); with RH 80 % $\varepsilon_{cs}$ would be 123
+#   instead of 196 µε. In a
+#   scene, self-weight is the user's `StripWeight` load; shrinkage is not modelled in the product.
+# * **What is left** at 1 mm (+42 %, inside the tolerance only because that tolerance is wide) is bond slip
+#   (d) and the spread of the concrete's real tensile strength about the MC2010 mean, neither measured here.
+
+# %% [markdown]
 # ## Mesh sensitivity: the band tied to the element, or to the crack spacing
 
 # %%
@@ -521,7 +672,14 @@ report.record(
     f"{JAN[POINTS[worst_k], 0]:g} mm; errors "
     + " ".join(f"{e:+.3f}" for e in err_all)
     + f"; tension stiffening in the effective area only: worst {err_area[worst_area_k]:+.3f} at "
-    f"{JAN[POINTS[worst_area_k], 0]:g} mm",
+    f"{JAN[POINTS[worst_area_k], 0]:g} mm; sources at 1/2.5/5 mm: shear retention "
+    + "/".join(f"{v:+.3f}" for v in change["(a) shear retention beta0 0.25 -> 0.001"])
+    + ", shrinkage restraint (EN 1992, assumed 28 d, RH 50 %) "
+    + "/".join(f"{v:+.3f}" for v in change["(c) shrinkage restraint (EN 1992)"])
+    + ", self-weight "
+    + "/".join(f"{v:+.3f}" for v in change["(c') self-weight (strip, from its state)"])
+    + ", bond slip not modelled; left with TS in h_c,ef + shrinkage + self-weight "
+    + "/".join(f"{v:+.3f}" for v in remaining),
     abs(err_all[worst_k]),
     TOL_POINTS[worst_k],
     passed_sub,
@@ -681,10 +839,16 @@ plt.show()
 #   count is set by the layer-free section error (row `fig12_layer_count`: 41 layers 0.1 %, 11 layers 1.2 %).
 # * Against the substitute beam (designer values only) every measured point is scored (row
 #   `fig12_substitute_beam`, Fig. 8.3d). The row fails: the cracked branch is too stiff at 1–2.5 mm (+75 %,
-#   +31 %; shrinkage/pre-cracking and bond slip are missing), the moment at yield is met (+1.8 %), and after
+#   +31 %), the moment at yield is met (+1.8 %), and after
 #   yield the model stays flat while the bars of the real beam harden (−4.7 % at 30 mm, −7.5 % at 42 mm).
 #   Tension stiffening only in the effective tension area helps in the cracked range (+26 % at 2.5 mm) and
 #   changes nothing after yield; no parameter was fitted to the beam.
+# * The cracked-branch over-stiffness, source by source (table above): the shear stiffness kept after
+#   cracking −0.1 % at most (not a source); shrinkage restraint by EN 1992 (assumed curing and humidity)
+#   −12/−8/−4 % and self-weight −9/−6/−4 % at 1/2.5/5 mm, the two causes of the early cracking at 1 mm;
+#   tension stiffening −4/−5 % with the effective-area rule at 2.5/5 mm; bond slip not modelled. With the
+#   three estimated sources together +42/+11/+0.3 % would remain, inside the reading tolerances; they are
+#   not the default (shrinkage needs unreported inputs), so the row still scores the main model and fails.
 # * A band tied to the element makes the *reinforced* beam mesh-dependent (distributed cracking does not
 #   localise before yield); a band equal to the MC2010 crack spacing — the scene default — removes that
 #   (row `fig12_mesh_spread`: 0.55 % over 2–32 elements per half beam from 2 to 42 mm in full mode, 0.5 % in

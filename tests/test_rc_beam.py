@@ -15,7 +15,8 @@ from ssi.elements.section import layered
 from ssi.lab import rc_beam as rb
 from ssi.lab.digitize import read_reference
 from ssi.materials import rc
-from ssi.materials.layer_laws import ELASTIC, STEEL
+from ssi.materials.concrete import P_FR
+from ssi.materials.layer_laws import CONCRETE, ELASTIC, STEEL
 from ssi.solver import Settings
 
 G = rb.JANNEY
@@ -139,3 +140,88 @@ def test_layered_section_converges_to_layer_free_reference():
         mc = sa.moment_curvature(rb.janney_section(n, ls=0.1), 0.03, 600, self_bending="none")
         errs.append(np.max(np.abs(np.interp(kaps[1:], mc.kap, mc.M) / ref.M[1:] - 1)))
     assert errs[1] < errs[0] and errs[1] < 2e-3, errs
+
+
+# ---- the over-stiffness sources of chapter 08: shrinkage restraint and self-weight
+@pytest.mark.parametrize(
+    ("fck", "rh", "table"),
+    # EN 1992-1-1 Table 3.2 (cement class N), nominal drying shrinkage eps_cd,0 in per mille, printed to two
+    # digits: the tolerance is half the last printed digit, 0.005 per mille
+    [(20e6, 0.4, 0.58), (40e6, 0.6, 0.38), (60e6, 0.8, 0.19), (20e6, 0.9, 0.17)],
+)
+def test_shrinkage_strain_matches_en1992_table_3_2(fck, rh, table):
+    # h0 = 100 mm (k_h = 1) and drying for 1e9 days (beta_ds = 1): eps_cd is eps_cd,0 of the table
+    out = rb.shrinkage_strain_en1992(fck + 8e6, 0.1, 1e9, 0.0, rh=rh, cement="N")
+    assert out["eps_cd"] * 1e3 == pytest.approx(table, abs=0.005)
+
+
+def test_shrinkage_strain_of_the_janney_beam_by_hand():
+    """Hand calculation (EN 1992-1-1 3.1.4, B.2; fcm 36.2 MPa, h0 = 101.6 mm, drying 7 -> 28 d, RH 50 %,
+    class N): eps_cd,0 = 0.85 * 660 * exp(-0.4344) * 1.55 * 0.875 = 492.8e-6, k_h = 0.9976,
+    beta_ds = 21 / (21 + 40.96) = 0.3389, eps_cd = 166.6e-6; eps_ca = (1 - exp(-0.2 sqrt 28)) 2.5 (28.2 - 10)
+    = 0.6530 * 45.5e-6 = 29.71e-6. Tolerance 0.1 %: the hand values' four digits."""
+    b, h = G["b"], G["h"]
+    out = rb.shrinkage_strain_en1992(G["fc"], b * h / (b + h), 28.0, 7.0, rh=0.5, cement="N")
+    assert out["eps_cd"] == pytest.approx(166.6e-6, rel=1e-3)
+    assert out["eps_ca"] == pytest.approx(29.71e-6, rel=1e-3)
+    assert out["eps_cs"] == pytest.approx(out["eps_cd"] + out["eps_ca"], rel=1e-12)
+    with pytest.raises(ValueError, match="rh must be"):
+        rb.shrinkage_strain_en1992(G["fc"], 0.1, 28.0, 7.0, rh=0.2)
+    with pytest.raises(ValueError, match="ts_days"):
+        rb.shrinkage_strain_en1992(G["fc"], 0.1, 7.0, 28.0)
+    with pytest.raises(ValueError, match="cement must be"):
+        rb.shrinkage_strain_en1992(G["fc"], 0.1, 28.0, 7.0, cement="X")
+
+
+def test_shrinkage_restraint_of_the_janney_section_by_hand():
+    """Transformed uncracked section by hand (per beam, mm): alpha_e = 200 / 33.01 = 6.06, A_t = 46452 +
+    5.06 * 600 = 49488 mm^2, centroid 156.0 mm from the top, e = 54.8 mm to the bars, I_t = 369.3e6 mm^4;
+    F = eps_cs Es As = 1.9631e-4 * 200e3 * 600 = 23.56 kN; bottom face (y = 148.8 mm): sigma = F / A_t +
+    F e y / I_t = 0.476 + 0.520 = 0.996 MPa; 1/r_cs = F e / (E0 I_t) = 1.059e-4 1/m. Tolerance 0.5 %: the
+    hand calculation's rounding (three to four digits)."""
+    sec = rb.janney_band_section(41)
+    sigma, kap = rb.shrinkage_restraint_stress(sec, 1.9631e-4)
+    conc = sec.kind == CONCRETE
+    line = np.polyfit(sec.z_mid[conc], sigma[conc], 1)  # the stress is linear in z over the concrete
+    assert np.polyval(line, sec.z_bottom) / 1e6 == pytest.approx(0.996, rel=5e-3)
+    assert kap == pytest.approx(1.059e-4, rel=5e-3)
+    shr, _ = rb.with_shrinkage_restraint(sec, 1.9631e-4)
+    fr = sec.params[conc, P_FR]
+    assert np.allclose(shr.params[conc, P_FR], fr - np.maximum(sigma[conc], 0.0), rtol=1e-12)
+    with pytest.raises(ValueError, match="eps_cs must be"):
+        rb.shrinkage_restraint_stress(sec, -1e-4)
+    with pytest.raises(ValueError, match="cracked by shrinkage alone"):
+        rb.with_shrinkage_restraint(sec, 1.5e-3)
+
+
+def test_deflection_after_self_weight_is_superposition_for_an_elastic_section():
+    """Linear section: the deflection measured from the self-weight state is the Timoshenko deflection of the
+    point loads alone, whatever q (superposition); q = 0 is the plain curvature integral."""
+    sec = rb.janney_section(11, elastic=True)
+    k = sec.elastic_resultant_stiffness()
+    mc = sa.moment_curvature(sec, 1e-3, 200)
+    P = np.array([0.0, 0.3, 0.6]) * mc.M[-1] / G["a"]
+    ref = sa.four_point_deflection_elastic(P, G["span"], G["a"], k["D_na"], k["S"])
+    q = 0.2 * mc.M[-1] * 8 / G["span"] ** 2  # a self-weight moment of a fifth of the table's range
+    for qq in (0.0, q):
+        got = rb.four_point_deflection_after_self_weight(mc, P, qq, G["span"], G["a"])
+        assert np.allclose(got, ref, rtol=1e-6, atol=1e-12)
+    assert np.isnan(
+        rb.four_point_deflection_after_self_weight(mc, [mc.M[-1] / G["a"]], q, G["span"], G["a"])
+    )[0]
+
+
+def test_load_path_after_self_weight_is_superposition_for_an_elastic_beam():
+    """Linear beam: driven from the self-weight state, the load-deflection path is the path without it (the
+    weight's own share at the load node is not counted as load: P = 0 at the start); a negative weight is
+    refused by name."""
+    sec = rb.janney_section(11, elastic=True)
+    runs = []
+    for q in (0.0, 7.6e3):
+        beam = rb.build_four_point(sec, G["span"], G["a"], 2, 2, crack_band=None)
+        runs.append(rb.load_path(beam, 0.004, 4, Settings(), self_weight=q))
+    (a, b) = runs
+    assert b["P"][0] == pytest.approx(0.0, abs=1e-9 * a["P"][-1])
+    assert np.allclose(b["P"], a["P"], rtol=1e-9) and np.allclose(b["delta"], a["delta"], rtol=1e-9)
+    with pytest.raises(ValueError, match="self_weight must be"):
+        rb.load_path(rb.build_four_point(sec, G["span"], G["a"], 2, 2), 0.004, 2, self_weight=-1.0)

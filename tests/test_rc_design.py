@@ -166,3 +166,24 @@ def test_scene_design_view():
     rows = range(out.n_steps + 1)
     assert np.array_equal(env["M"][0], np.max([out.strip_forces(k)["M"] for k in rows], axis=0))
     assert 1e-3 * env["p"][0].max() == pytest.approx(s["phases"]["loading"]["p_max_kPa"], rel=1e-12)
+    # the crack width as a field: the ParaView cell data (the widest crack at each element's axial points),
+    # the compared quantities of a result file, and the strip-forces plot (a second axis of the M panel)
+    from ssi.io.export import FIELD_UNITS, cell_data
+    from ssi.io.plot import strip_forces
+    from ssi.io.results import scene_quantities
+
+    n_plate = out.built.plate.n_el
+    assert (
+        np.array_equal(cell_data(out)["crack_width"][1], cw["w_k"].max(axis=1))
+        and FIELD_UNITS["crack_width"] == "m"
+    )
+    assert np.all(np.isnan(cell_data(out)["crack_width"][0]))  # soil cells carry no crack width
+    last = len(out.load_factor) - 1
+    assert np.array_equal(scene_quantities(out)[f"crack_width[{last}].w_k"], cw["w_k"])
+    fig = strip_forces(out)
+    lines = [ln for a in fig.axes for ln in a.get_lines() if ln.get_label() == "crack width $w_k$"]
+    assert len(lines) == 1 and np.array_equal(lines[0].get_ydata(), 1e3 * cw["w_k"].ravel())
+    assert n_plate == cw["w_k"].shape[0]
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)

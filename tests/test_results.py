@@ -958,6 +958,10 @@ def test_rc_strip_export_has_steel_stress_and_cracks(tmp_path):
     share = cm["cracked"][..., concrete].reshape(n_plate, -1).mean(axis=1)
     assert np.array_equal(mesh.cell_data["cracked_fraction"][1][:n_plate], share) and share.max() > 0.0
     assert str(mesh.field_data["unit_steel_stress"][0]) == "Pa"
+    # the file's crack width of each strip element is the widest at its axial points (crack_width())
+    w_el = out.crack_width()["w_k"].max(axis=1)
+    assert np.array_equal(mesh.cell_data["crack_width"][1][:n_plate], w_el) and w_el.max() > 0.0
+    assert str(mesh.field_data["unit_crack_width"][0]) == "m"
     s = summary(out)
     assert s["phases"][-1]["max_steel_stress"] >= by_element.max()
     # the crack width of the design summary is a per-phase column and enters the envelope

@@ -14,8 +14,9 @@ integration points),
 positive, the element mean; the stresses are effective), ``N``, ``M``,
 ``Q`` (strip forces, means over the element's points [N/m, N m/m]), ``contact_pressure``, ``contact_shear``
 (means over the interface element's points [Pa]) and ``contact_open`` (share of open points); of an RC
-strip ``steel_stress`` (largest |stress| of its bars over the element's points [Pa]) and ``cracked_fraction``
-(share of its concrete layer points beyond the cracking strain); ``active``
+strip ``steel_stress`` (largest |stress| of its bars over the element's points [Pa]), ``cracked_fraction``
+(share of its concrete layer points beyond the cracking strain) and ``crack_width`` (the largest EN 1992-1-1
+§7.3.4 crack width w_k over the element's axial points [m], :meth:`SceneResult.crack_width`); ``active``
 (1: the soil element is present at that step, 0: excavated by an earlier phase -- its stress, strain and
 pore pressure are then NaN, so ParaView's Threshold on ``active`` >= 1 shows the ground as it is).
 
@@ -57,6 +58,7 @@ CELL_FIELDS = (
     "active",
     "steel_stress",
     "cracked_fraction",
+    "crack_width",
 )
 FIELD_UNITS = {
     "displacement": "m",
@@ -77,6 +79,7 @@ FIELD_UNITS = {
     "active": "-",
     "steel_stress": "Pa",
     "cracked_fraction": "-",
+    "crack_width": "m",
 }
 
 
@@ -149,6 +152,10 @@ def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
         concrete = result.built.plate.section.kind == CONCRETE
         if concrete.any():  # share of the element's concrete layer points beyond the cracking strain
             data["cracked_fraction"][1] = layers["cracked"][..., concrete].mean(axis=(1, 2))
+        from ..scene.design import design_of  # lazily, as the other io modules import the scene
+
+        if design_of(result) is not None:  # an RC strip: the widest crack at the element's axial points
+            data["crack_width"][1] = result.crack_width(k)["w_k"].max(axis=1)
     return data
 
 

@@ -255,7 +255,9 @@ MOMENT_CONVENTION = "M > 0 sagging (tension at the bottom), drawn downwards: on 
 def strip_forces(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Bending moment M [kN m/m] (sagging positive, drawn on the tension side: downwards -- the convention
     is written on the figure), shear force Q [kN/m] and normal force N [kN/m] (tension positive) along the
-    strip, at the sampling points; N also as each element's mean (grey steps). ``ax``: three axes or None.
+    strip, at the sampling points; N also as each element's mean (grey steps); of an RC strip the crack width
+    w_k [mm] (:meth:`SceneResult.crack_width`) on a second axis of the moment panel. ``ax``: three axes or
+    None.
 
     Why the mean: in the element a crack front passes through, N at the points oscillates (in
     examples/rc_strip.toml +110 and -43 kN/m at x = +-1.75 m, where the element's points have 2, 5 and 6
@@ -277,6 +279,15 @@ def strip_forces(result: SceneResult, k: int = -1, ax: Axes | None = None) -> Fi
         a.axhline(0.0, color="0.5", lw=0.6)
         a.set_ylabel(label)
     axes[0].invert_yaxis()  # moments on the tension side
+    from ..scene.design import design_of  # lazily, as ssi.io's other scene imports
+
+    if design_of(result) is not None:  # an RC strip: its EN 1992 crack width on a second axis of the M panel
+        cw = result.crack_width(k)
+        tw = axes[0].twinx()
+        tw.plot(cw["x"].ravel(), 1e3 * cw["w_k"].ravel(), "C3.:", ms=3, label="crack width $w_k$")
+        tw.set_ylabel("$w_k$ [mm] (EN 1992 7.3.4)", color="C3")
+        tw.set_ylim(bottom=0.0)
+        tw.legend(fontsize=7, loc="lower right")
     axes[2].legend(fontsize=7, loc="lower right")
     axes[-1].set_xlabel("x [m]")
     # the conventions in the title, where no curve can hide them

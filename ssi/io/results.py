@@ -585,6 +585,11 @@ def scene_quantities(result: "SceneResult") -> dict[str, np.ndarray]:
                 steel_stress=result.steel_stress(k),
                 crack_map=result.crack_map(k),
             )
+            from ..scene.design import design_of  # lazily, as ssi.io's other scene imports
+
+            if design_of(result) is not None:  # an RC strip: EN 1992 crack width w_k [m] at the axial points
+                cw = result.crack_width(k)
+                q["crack_width"] = {"x": cw["x"], "w_k": cw["w_k"], "sig_s": cw["sig_s"]}
         for name, value in q.items():
             if isinstance(value, dict):
                 items = value.items()
