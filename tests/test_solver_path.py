@@ -12,10 +12,11 @@ import pytest
 from ssi.core.protocol import CONSISTENT
 from ssi.elements.spring import ELASTOPLASTIC, LINEAR, TANH, Spring
 from ssi.elements.supports import spring_chain
+from ssi.limit import check_limit, flag_suspect
 from ssi.materials.soil_laws import davis_beta, mohr_coulomb_params
 from ssi.solver import COMPLETED, LIMIT_LOAD, NonConvergence, Settings, run
 from ssi.solver.davis import davis_interface_row, davis_soil_row
-from ssi.solver.path import PLATEAU_RISE, bracket_check
+from ssi.solver.path import PLATEAU_RISE
 
 K0, D0 = 1e6, 1e-3  # stiffness [N/m] and peak elongation [m] of the softening spring
 PEAK = K0 * D0 / math.e  # its peak force [N]: F = k0 d exp(-d / d0) is largest at d = d0
@@ -125,12 +126,13 @@ def test_settings_reject_unknown_control_and_flow():
 
 
 def test_bracket_check_flags_false_collapse_and_overestimate():
+    """Band [0.97 x 0.9, 1.03 x 1.1] = [0.873, 1.133]: 1.0 inside, 0.8 below (false collapse), 1.2 above."""
     model, _ = _softening_model()
     res = run(model, [2.0], Settings(control="work"))
-    assert bracket_check(res, 1.0, 0.9, 1.1) == ""
-    assert "false collapse" in bracket_check(res, 0.8, 0.9, 1.1)
-    assert "overestimate" in bracket_check(res, 1.2, 0.9, 1.1)
-    assert "false collapse" in res.limit_suspect and "overestimate" in res.limit_suspect
+    assert flag_suspect(res, check_limit(1.0, (0.9, 1.1))) == ""
+    assert "FALSE COLLAPSE" in flag_suspect(res, check_limit(0.8, (0.9, 1.1)))
+    assert "MESH OVERESTIMATE" in flag_suspect(res, check_limit(1.2, (0.9, 1.1)))
+    assert "FALSE COLLAPSE" in res.limit_suspect and "MESH OVERESTIMATE" in res.limit_suspect
 
 
 def test_davis_rows():
@@ -156,9 +158,9 @@ def test_limit_uncertainty_and_suspect_are_written_to_the_result_file(tmp_path):
 
     model, _ = _softening_model()
     res = run(model, [2.0], Settings(control="work"))
-    bracket_check(res, 1.0, 1.1, 1.2)  # a made-up bracket above the peak: a suspect "false collapse"
+    flag_suspect(res, check_limit(1.0, (1.1, 1.2)))  # a made-up bracket above the peak: a false collapse
     write_result(tmp_path / "r.h5", res)
     with h5py.File(tmp_path / "r.h5", "r") as h5:
         attrs = dict(h5["solver"].attrs)
     assert attrs["limit_uncertainty"] == res.limit_uncertainty
-    assert "false collapse" in str(attrs["limit_suspect"])
+    assert "FALSE COLLAPSE" in str(attrs["limit_suspect"])

@@ -20,7 +20,7 @@ weights), footing rotation, a beam strip with plastic hinges.
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
-from .check import LimitCheck, check_limit
+from .check import LimitCheck, check_limit, flag_suspect
 from .geometry import (
     Boundary,
     Footing,
@@ -51,6 +51,7 @@ __all__ = [
     "bisect",
     "bracket",
     "check_limit",
+    "flag_suspect",
     "davis_beta",
     "gap_shares",
     "lower_bound",

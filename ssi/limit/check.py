@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from ..core.validate import check_real
 
-__all__ = ["LimitCheck", "check_limit"]
+__all__ = ["LimitCheck", "check_limit", "flag_suspect"]
 
 VERDICTS = ("inside", "false collapse", "mesh overestimate")
 
@@ -82,3 +82,14 @@ def check_limit(limit_load: float, bracket, low: float = 0.03, high: float = 0.0
     if limit_load > hi_end:
         return LimitCheck("mesh overestimate", limit_load, lo_end, hi_end, limit_load / hi_end - 1.0)
     return LimitCheck("inside", limit_load, lo_end, hi_end, 0.0)
+
+
+def flag_suspect(result, check: LimitCheck) -> str:
+    """Record a failed ``check`` on the incremental ``result`` (an :class:`ssi.core.solution.Result` whose
+    limit it checked): its reason is appended to ``result.limit_suspect``. Returns the reason, "" when the
+    limit is inside the band (nothing is recorded then)."""
+    if check.ok:
+        return ""
+    reason = str(check)
+    result.limit_suspect = "; ".join(x for x in (result.limit_suspect, reason) if x)
+    return reason

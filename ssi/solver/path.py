@@ -48,7 +48,8 @@ contact that carries no load yet lets a work step follow a mechanism at lambda =
 lifting off).
 
 A failure to converge is never read as a limit. A limit is reported with ``limit_uncertainty`` and, when
-a check fails, ``limit_suspect`` with the reason (:func:`bracket_check` adds the limit-analysis bracket).
+a check fails, ``limit_suspect`` with the reason (:func:`ssi.limit.flag_suspect` adds the limit-analysis
+bracket's verdict).
 """
 
 from __future__ import annotations
@@ -467,20 +468,3 @@ class _Follower:
                 best, best_norm, t_best = cand, norm(cand), t
         t = t_best
         return best[0], best[1], best[2], t
-
-
-def bracket_check(result: Result, limit_load: float, lb_davis: float, ub_assoc: float) -> str:
-    """Check a controlled path's limit ``limit_load`` against a limit-analysis bracket (same units: a load
-    factor or a pressure [Pa]): below 0.97 ``lb_davis`` it is a false collapse, above 1.03 ``ub_assoc`` a
-    mesh overestimate, reported with its excess. Appends the reason to ``result.limit_suspect`` and returns
-    it ("" when the limit is inside)."""
-    if not (lb_davis > 0.0 and ub_assoc >= lb_davis):
-        raise ValueError(f"bracket must satisfy 0 < lb_davis <= ub_assoc, got [{lb_davis}, {ub_assoc}]")
-    reason = ""
-    if limit_load < 0.97 * lb_davis:
-        reason = f"false collapse: {limit_load:.6g} < 0.97 x the Davis lower bound {lb_davis:.6g}"
-    elif limit_load > 1.03 * ub_assoc:
-        reason = f"mesh overestimate: {limit_load / ub_assoc - 1.0:+.2%} above the associated upper bound"
-    if reason:
-        result.limit_suspect = "; ".join(x for x in (result.limit_suspect, reason) if x)
-    return reason
