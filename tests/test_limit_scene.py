@@ -37,7 +37,7 @@ from ssi.scene import (
     SoilLayer,
     StripLoad,
 )
-from ssi.scene.capacity import limit_problem
+from ssi.scene.limit_problem import limit_problem
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 REL = 1e-6

@@ -1,0 +1,449 @@
+"""A :class:`~ssi.scene.Scene` or a :class:`~ssi.scene.site.Site` as a limit-analysis problem
+(:mod:`ssi.limit`): what its collapse load factor lambda scales and what is held (the bracket itself:
+:mod:`ssi.scene.capacity`).
+
+How the scene maps (anything else raises a ValueError naming the part):
+
+- the block (``width`` x ``depth``, the half x >= 0 of a ``symmetric`` scene, the axis a symmetry roller),
+  its sides on vertical rollers and its base fixed, as the incremental scene's supports; cut into cells
+  at every layer boundary, the water table, the foundation's ends and every load's ends: one
+  :class:`ssi.core.geometry.Geometry`, made a :class:`ssi.limit.Site` by
+  :func:`ssi.limit.site_from_geometry`;
+- each layer a rigid-plastic Mohr--Coulomb :class:`ssi.limit.Material` (c, phi, psi), with its unit weight
+  above the water table and its buoyant unit weight gamma_sat - gamma_w below it (effective stress under
+  hydrostatic pore pressure, which then does no work in any mechanism); an undrained layer
+  (:meth:`SoilLayer.undrained`, phi = 0) is Tresca with c = s_u. Refused: an elastic layer (``c=None``,
+  no strength), an effective-stress undrained layer (``drainage="undrained_A"``: its strength depends on
+  the pore pressure the loading path generates, which limit analysis does not know);
+- the foundation, a :class:`RigidFooting` or a plate :class:`Foundation` alike, is a **rigid body that
+  translates** (its rotation is held: ``ssi.limit`` has no rotating footing), so loads with a moment about
+  its centre are refused; a plate strip's bending capacity is not modelled (a rigid strip is the stronger
+  one: for a slender or lightly reinforced strip the beam's own mechanism may govern, not checked here);
+- the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
+  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket); refused: a tension
+  cut-off ``sig_t`` (the Coulomb joint's own apex is its only tension limit), contact segments with
+  different laws;
+- loads: :class:`ColumnLoad` N, H (M must be 0), :class:`StripLoad`, :class:`StripWeight` (less its
+  buoyancy in free water) and the strip's ``self_weight`` (a load of the first phase, as in the
+  incremental scene) on the footing; :class:`SurfacePressure` and the ``surcharge`` on the ground beside
+  it (a plate strip carries the surcharge over its own width, as the incremental scene's initial state
+  does). Refused: ``embedment``, excavations, drainage switches, a Settlement among the dead loads.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.geometry import from_cells
+from ..limit import Boundary, Footing, Interface, Material, site_from_geometry
+from ..limit.geometry import Site
+from ..materials.soil_laws import SoilLayer
+from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
+
+__all__ = ["LimitProblem", "limit_problem"]
+
+_TOL = 1e-9  # relative: coordinates and moments this small (of the scene's size, of F B) count as zero
+
+
+@dataclass
+class LimitProblem:
+    """A scene as a limit-analysis problem: ``site`` (:class:`ssi.limit.Site`), ``phase`` the name of the
+    phase whose loads lambda scales, ``lam_unit`` what lambda is ("N/m": the footing's vertical force of a
+    Settlement push; "": a factor of the phase's loads), ``reference`` a description of what lambda
+    multiplies, ``singular`` (x, z) [m] points where the stress field is singular (footing and load ends:
+    the initial mesh is finest there), ``footing_width`` [m] of the modelled footing (0: none) and
+    ``symmetric``."""
+
+    site: Site
+    phase: str
+    lam_unit: str
+    reference: str
+    singular: list = field(default_factory=list)
+    footing_width: float = 0.0
+    symmetric: bool = False
+    scene: object = None
+    ref_force: float = 0.0  # the whole footing's downward force at lambda = 1 [N/m] (0: none)
+
+
+def _phases(scene) -> list:
+    return ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
+
+
+def _layer_material(i: int, layer, gamma: float) -> Material:
+    name = f"Scene.layers[{i}]"
+    if layer.c is None:
+        raise ValueError(
+            f"{name} is elastic (c=None): limit analysis needs every layer's strength; give c and phi_deg"
+        )
+    if layer.drainage != "drained":
+        raise ValueError(
+            f"{name}.drainage={layer.drainage!r}: an effective-stress undrained layer's strength depends on "
+            "the pore pressure of the loading path, which limit analysis does not represent; use "
+            "SoilLayer.undrained (total stress, phi = 0, c = s_u) for its undrained capacity"
+        )
+    try:
+        return Material(float(layer.c), float(layer.phi_deg), gamma=float(gamma), psi_deg=layer.psi_deg)
+    except ValueError as err:
+        raise ValueError(f"{name}: {err}") from None
+
+
+def _interface(scene) -> Interface:
+    f = scene.foundation
+    if isinstance(f, RigidFooting):
+        return Interface("rough" if f.rough else "smooth")
+    contact = scene.contact
+    if isinstance(contact, list | tuple):
+        laws = {seg.contact for seg in contact if isinstance(seg, ContactSegment)}
+        if len(laws) != 1:
+            raise ValueError(
+                "Scene.contact: contact segments with different laws are not represented by ssi.limit (one "
+                "interface per footing); give one Contact"
+            )
+        contact = laws.pop()
+    if not isinstance(contact, Contact):
+        raise ValueError("Scene.contact: a plate Foundation needs a Contact")
+    if contact.phi_deg is None or math.isinf(contact.c):
+        return Interface("rough")
+    if contact.sig_t is not None:
+        raise ValueError(
+            f"Scene.contact.sig_t={contact.sig_t!r}: a tension cut-off of the contact is not represented by "
+            "ssi.limit (its Coulomb joint opens only at its own apex c / tan phi); give sig_t=None"
+        )
+    if contact.phi_deg > 60.0:
+        raise ValueError(f"Scene.contact.phi_deg={contact.phi_deg!r}: ssi.limit takes 0 <= phi_deg <= 60")
+    return Interface("coulomb", c=float(contact.c), phi_deg=float(contact.phi_deg), psi_deg=contact.psi_deg)
+
+
+def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what: str):
+    """(Fx, Fz [N/m], moment about the centre [N m/m], settlement?) of ``loads`` on the footing."""
+    fx = fz = m = 0.0
+    settle = False
+    xc = 0.5 * (x0 + x1)
+    f = scene.foundation
+    for i, ld in enumerate(loads):
+        if isinstance(ld, ColumnLoad):
+            if ld.M != 0.0:
+                raise ValueError(
+                    f"{what}[{i}]: ColumnLoad.M={ld.M!r} N m/m: ssi.limit holds the footing's rotation, so a "
+                    "moment load is not represented"
+                )
+            fx += ld.H
+            fz -= ld.N
+            m += ld.N * (ld.x - xc)
+        elif isinstance(ld, StripLoad):
+            a = f.x0 if ld.x0 is None else ld.x0
+            b = f.x1 if ld.x1 is None else ld.x1
+            q0, q1 = ld.q, ld.q if ld.q_end is None else ld.q_end
+            r = 0.5 * (q0 + q1) * (b - a)
+            xr = a + (b - a) * (q0 + 2 * q1) / (3 * (q0 + q1)) if q0 + q1 != 0.0 else 0.5 * (a + b)
+            fz -= r
+            m += r * (xr - xc)
+        elif isinstance(ld, StripWeight):
+            t = f.section.thickness
+            wt = scene.water_table
+            submerged = 0.0 if wt is None else min(max(-float(wt), 0.0), t)
+            fz -= (ld.unit_weight * t - scene.gamma_w * submerged) * (f.x1 - f.x0)
+        elif isinstance(ld, Settlement):
+            if ld.x is not None:
+                raise ValueError(
+                    f"{what}[{i}]: Settlement at the columns x={ld.x!r} pushes a flexible strip; ssi.limit "
+                    "pushes the footing as a rigid body: give Settlement(w) with x=None"
+                )
+            settle = True
+    if first_phase and isinstance(f, Foundation) and f.self_weight:
+        fz -= f.self_weight * (f.x1 - f.x0)
+    return fx, fz, m, settle
+
+
+def limit_problem(scene, phase: str | None = None) -> LimitProblem:
+    """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
+    docstring; None: the last phase). Raises ValueError naming whatever the scene holds that
+    :mod:`ssi.limit` cannot represent."""
+    if hasattr(scene, "geometry") and hasattr(scene, "strips"):
+        if phase is not None:
+            raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
+        return _site_problem(scene)
+    if not all(hasattr(scene, a) for a in ("layers", "_block", "_mesh_layers", "_footprint")):
+        raise TypeError(
+            f"scene must be an ssi.scene.Scene or ssi.scene.site.Site, got {type(scene).__name__}"
+        )
+    phases = _phases(scene)
+    if not phases:
+        raise ValueError("the scene has no loads (Scene.loads and Scene.phases are empty): nothing to scale")
+    names = [ph.name for ph in phases]
+    if phase is None:
+        k = len(phases) - 1
+    elif phase in names:
+        k = names.index(phase)
+    else:
+        raise ValueError(f"phase={phase!r} is not a phase of the scene; its phases are {names}")
+    if scene.embedment:
+        raise ValueError(
+            f"Scene.embedment={scene.embedment!r}: an embedded strip is not represented by ssi.limit yet"
+        )
+    for ph in phases[: k + 1]:
+        if ph.excavate:
+            raise ValueError(f"Phase({ph.name!r}).excavate: excavations are not represented by ssi.limit")
+        if ph.drainage:
+            raise ValueError(
+                f"Phase({ph.name!r}).drainage: drainage switches are not represented by ssi.limit"
+            )
+    factors: dict = {}
+    for ph in phases[: k + 1]:
+        factors[ph.name] = 1.0
+        factors.update(ph.factors)
+    dead = [(factors[ph.name], ph, j == 0) for j, ph in enumerate(phases[:k]) if factors[ph.name] != 0.0]
+    ref_phase = phases[k]
+
+    f = scene.foundation
+    xl, xr = scene._block()
+    width = xr - xl
+    fx0, fx1 = scene._footprint() if f is not None else (None, None)
+    # ---- ground pressures and the footing's forces, dead and reference
+    pressures_dead: list = []  # (x0, x1, q)
+    pressures_ref: list = []
+    fdead = np.zeros(2)
+    fref = np.zeros(2)
+    settle_ref = False
+    for factor, ph, first in dead + [(1.0, ref_phase, k == 0)]:
+        is_ref = ph is ref_phase
+        what = f"Phase({ph.name!r}).loads" if ph.name != "loads" or scene.phases else "Scene.loads"
+        for i, ld in enumerate(ph.loads):
+            if isinstance(ld, SurfacePressure):
+                a, b = max(ld.x0, xl), min(ld.x1, xr)
+                if b - a > _TOL * width:
+                    (pressures_ref if is_ref else pressures_dead).append((a, b, factor * ld.q))
+            elif isinstance(ld, Settlement) and not is_ref:
+                raise ValueError(
+                    f"{what}[{i}]: a Settlement among the held loads (phase {ph.name!r} before the scaled "
+                    f"phase {ref_phase.name!r}) prescribes a displacement, not a force: ssi.limit cannot "
+                    "hold it"
+                )
+        on_footing = [ld for ld in ph.loads if not isinstance(ld, SurfacePressure)]
+        if f is None:
+            continue
+        if isinstance(f, RigidFooting) and any(not isinstance(ld, Settlement) for ld in on_footing):
+            bad = next(ld for ld in on_footing if not isinstance(ld, Settlement))
+            raise ValueError(
+                f"{what}: a {type(bad).__name__} on a RigidFooting (it takes a Settlement push only; a force "
+                "load needs a plate Foundation)"
+            )
+        fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
+        if abs(m) > _TOL * (abs(fz) * (f.x1 - f.x0) + 1.0):
+            raise ValueError(
+                f"{what}: the loads on the foundation have a moment {m:g} N m/m about its centre x = "
+                f"{0.5 * (f.x0 + f.x1):g} m; ssi.limit holds the footing's rotation, so an eccentric load is "
+                "not represented (give loads symmetric about the centre)"
+            )
+        if is_ref:
+            fref += (fx, fz)
+            settle_ref = settle
+        else:
+            fdead += (factor * fx, factor * fz)
+    if settle_ref and (np.any(fref != 0.0) or pressures_ref):
+        raise ValueError(
+            f"Phase {ref_phase.name!r} mixes a Settlement with force loads: lambda scales either the loads "
+            "or the pushed footing's force, not both"
+        )
+    if isinstance(f, Foundation) and scene._has_geostatic_stress():
+        fdead[1] -= scene.surcharge * (f.x1 - f.x0)  # the strip carries the surcharge over its width
+    half = 0.5 if scene.symmetric else 1.0  # a symmetric scene's footing: the modelled half's share
+    if settle_ref:
+        fref = np.array([0.0, -half])  # lambda = the whole footing's vertical force [N/m]
+    if f is None and (np.any(fref) or settle_ref):
+        raise ValueError("loads on a foundation need Scene.foundation")
+    if not (np.any(fref != 0.0) or any(q for _, _, q in pressures_ref)):
+        raise ValueError(f"phase {ref_phase.name!r} has no load ssi.limit can scale (its loads are all zero)")
+
+    # ---- the geometry: columns at every break, cells per (sub-)layer
+    xs = {xl, xr}
+    for a, b, _ in pressures_dead + pressures_ref:
+        xs |= {a, b}
+    if f is not None:
+        xs |= {fx0, fx1}
+    xs = sorted(x for x in xs if xl - _TOL * width <= x <= xr + _TOL * width)
+    sub = scene._mesh_layers()  # (thickness, layer, unit weight of its body force), split at the water table
+    owner = [next(i for i, lay in enumerate(scene.layers) if lay is own) for _, own, _ in sub]
+    materials = tuple(_layer_material(i, lay, g) for i, (_, lay, g) in zip(owner, sub))
+    z_tops = -np.concatenate([[0.0], np.cumsum([t for t, _, _ in sub])])
+    polys, regions = [], []
+    for a, b in zip(xs[:-1], xs[1:]):
+        for r in range(len(sub)):
+            zt, zb = z_tops[r], z_tops[r + 1]
+            polys.append([(a, zb), (b, zb), (b, zt), (a, zt)])
+            regions.append(r)
+    geo = from_cells(polys, regions)
+
+    footings = ()
+    if f is not None:
+        itf = _interface(scene)
+        if isinstance(f, RigidFooting) or scene.symmetric:
+            moves = ("z",)  # the scene holds a rigid footing horizontally (rough: u = 0; the axis)
+            if fref[0] or fdead[0]:
+                raise ValueError("a horizontal load on a RigidFooting or on a symmetric scene's footing")
+        elif itf.kind == "smooth":
+            moves = ("z",)
+        else:
+            moves = ("x", "z")
+        if itf.kind == "smooth" and (fref[0] or fdead[0]):
+            raise ValueError("a smooth contact carries no horizontal load (ColumnLoad.H != 0)")
+        footings = (Footing(itf, tuple(fref.tolist()), tuple(fdead.tolist()), moves),)
+
+    def ground_pressure(items, x):
+        return sum(q for a, b, q in items if a - 1e-12 <= x <= b + 1e-12)
+
+    def boundary(tag, pa, pb):
+        if tag == "bottom":
+            return Boundary("fixed")
+        if tag in ("left", "right"):
+            return Boundary("symmetry")
+        xm = 0.5 * (pa[0] + pb[0])
+        if f is not None and fx0 < xm < fx1:
+            return Boundary("footing", footing=0)
+        q_dead = ground_pressure(pressures_dead, xm) + scene.surcharge
+        return Boundary("free", pressure_dead=q_dead, pressure_ref=ground_pressure(pressures_ref, xm))
+
+    site = site_from_geometry(geo, materials, boundary, footings)
+    singular = []
+    if f is not None:
+        singular += [(x, 0.0) for x in (fx0, fx1) if not (scene.symmetric and abs(x) < _TOL * width)]
+    for a, b, _ in pressures_ref + pressures_dead:
+        singular += [(x, 0.0) for x in (a, b) if xl < x < xr]
+    if settle_ref:
+        unit, ref = "N/m", "the footing's vertical force V [N/m] (Settlement push)"
+    else:
+        unit, ref = "", _describe(ref_phase, scene)
+    return LimitProblem(
+        site,
+        ref_phase.name,
+        unit,
+        ref,
+        singular,
+        0.0 if f is None else fx1 - fx0,
+        bool(scene.symmetric),
+        scene,
+        0.0 if settle_ref else -float(fref[1]) / half,
+    )
+
+
+def _site_problem(site) -> LimitProblem:
+    """The limit problem of an :class:`ssi.scene.site.Site` (any layering and ground, several strips): its
+    one geometry (:meth:`Site.geometry`, cells cut at the water table) with the buoyant unit weight below
+    the water table, every :class:`Strip` a rigid translating footing on its contact, the site's loads
+    (columns on the strips, pressures on level ground) scaled by lambda. A single :class:`RigidStrip` and no
+    loads: lambda is its vertical force [N/m]. Refused: DepthVarying layers, embedded strips (``level``),
+    a RigidStrip beside other strips or loads, a pressure on sloping ground, eccentric columns."""
+    for i, lay in enumerate(site.layers):
+        if not isinstance(lay, SoilLayer):
+            raise ValueError(
+                f"Site.layers[{i}] is a {type(lay).__name__}: strength varying with depth is not represented "
+                "by ssi.limit (one material per region)"
+            )
+    geo = site.geometry()
+    xs = geo.points[:, 0]
+    width = float(np.ptp(xs))
+    strips = list(site.strips)
+    rigid = [s for s in strips if hasattr(s, "settle")]  # a RigidStrip (the site module imports this one)
+    if rigid and (len(strips) > 1 or site.loads):
+        raise ValueError(
+            "Site.strips: a RigidStrip is pushed by a settlement (lambda = its force); ssi.limit takes it "
+            "only alone, without other strips or loads"
+        )
+    ends = []
+    footings = []
+    for i, st in enumerate(strips):
+        if hasattr(st, "settle"):
+            ends.append((st.x0, st.x1))
+            itf = Interface("rough" if st.rough else "smooth")
+            footings.append(Footing(itf, (0.0, -1.0), (0.0, 0.0), ("z",)))
+            continue
+        if st.level is not None:
+            raise ValueError(f"Site.strips[{i}].level={st.level!r}: an embedded strip is not represented")
+        f = st.foundation
+        ends.append((f.x0, f.x1))
+
+        class _Holder:  # what _interface and _footing_forces read of a scene
+            foundation, contact, water_table, gamma_w = f, st.contact, None, site.gamma_w
+
+        loads = [ld for ld in site.loads if isinstance(ld, ColumnLoad) and f.x0 - 1e-9 <= ld.x <= f.x1 + 1e-9]
+        fx, fz, m, _ = _footing_forces(_Holder, loads, True, f.x0, f.x1, f"Site.strips[{i}] loads")
+        if abs(m) > _TOL * (abs(fz) * (f.x1 - f.x0) + 1.0):
+            raise ValueError(
+                f"Site.strips[{i}]: its columns have a moment {m:g} N m/m about its centre; ssi.limit holds "
+                "the footing's rotation, so an eccentric load is not represented"
+            )
+        itf = _interface(_Holder)
+        moves = ("z",) if itf.kind == "smooth" else ("x", "z")
+        if itf.kind == "smooth" and fx:
+            raise ValueError(f"Site.strips[{i}]: a smooth contact carries no horizontal load")
+        footings.append(Footing(itf, (fx, fz), (0.0, 0.0), moves))
+    pressures = [(ld.x0, ld.x1, ld.q) for ld in site.loads if isinstance(ld, SurfacePressure)]
+    # materials: each layer dry and (below the water table) buoyant; each cell by its centroid
+    mats, region = [], []
+    for i, lay in enumerate(site.layers):
+        sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
+        mats.append(_layer_material(i, lay, lay.unit_weight))
+        mats.append(_layer_material(i, lay, max(sat - site.gamma_w, 0.0)))
+    for cell, k in zip(geo.cells, geo.cell_region):
+        c = geo.points[list(cell)].mean(axis=0)
+        wet = c[1] < float(site.water_z(np.array([c[0]]))[0])
+        region.append(2 * int(k) + int(wet))
+    geo = type(geo)(geo.points, geo.segments, geo.segment_tags, geo.cells, np.array(region, np.int64))
+
+    def boundary(tag, pa, pb):
+        if tag == "bottom":
+            return Boundary("fixed")
+        if tag in ("left", "right"):
+            return Boundary("symmetry")
+        xm = 0.5 * (pa[0] + pb[0])
+        for j, (a, b) in enumerate(ends):
+            if a < xm < b:
+                return Boundary("footing", footing=j)
+        q = sum(v for a, b, v in pressures if a - 1e-12 <= xm <= b + 1e-12)
+        if q and abs(pb[1] - pa[1]) > _TOL * width:
+            raise ValueError(
+                f"Site.loads: a SurfacePressure on sloping ground at x = {xm:g} m (a vertical load per "
+                "horizontal metre there is not a normal pressure): not represented by ssi.limit"
+            )
+        return Boundary("free", pressure_ref=q)
+
+    lsite = site_from_geometry(geo, tuple(mats), boundary, tuple(footings))
+    singular = [(x, float(site.ground_z(np.array([x]))[0])) for a, b in ends for x in (a, b)]
+    singular += [(x, float(site.ground_z(np.array([x]))[0])) for a, b, _ in pressures for x in (a, b)]
+    if rigid:
+        unit, ref, ref_force = "N/m", "the RigidStrip's vertical force V [N/m]", 0.0
+    else:
+        n_total = sum(ld.N for ld in site.loads if isinstance(ld, ColumnLoad))
+        parts = [
+            f"column N={ld.N / 1e3:g} kN/m at x={ld.x:g} m" for ld in site.loads if isinstance(ld, ColumnLoad)
+        ]
+        parts += [f"pressure q={q / 1e3:g} kPa on x=[{a:g}, {b:g}] m" for a, b, q in pressures]
+        unit, ref, ref_force = "", "the site's loads: " + ", ".join(parts), float(n_total)
+    if not (rigid or site.loads):
+        raise ValueError("Site.loads: the site has no load to scale")
+    width_f = ends[0][1] - ends[0][0] if len(ends) == 1 else 0.0
+    return LimitProblem(lsite, "loads", unit, ref, singular, width_f, False, site, ref_force)
+
+
+def _describe(phase, scene) -> str:
+    """What lambda = 1 means: the phase's loads in kN/m and kPa."""
+    parts = []
+    for ld in phase.loads:
+        if isinstance(ld, ColumnLoad):
+            parts.append(
+                f"column N={ld.N / 1e3:g} kN/m"
+                + (f" H={ld.H / 1e3:g} kN/m" if ld.H else "")
+                + f" at x={ld.x:g} m"
+            )
+        elif isinstance(ld, SurfacePressure):
+            parts.append(f"pressure q={ld.q / 1e3:g} kPa on x=[{ld.x0:g}, {ld.x1:g}] m")
+        elif isinstance(ld, StripLoad):
+            q1 = ld.q if ld.q_end is None else ld.q_end
+            parts.append(f"strip load q={ld.q / 1e3:g}..{q1 / 1e3:g} kPa")
+        elif isinstance(ld, StripWeight):
+            parts.append(f"strip weight {ld.unit_weight / 1e3:g} kN/m^3")
+    return f"the loads of phase {phase.name!r}: " + ", ".join(parts)
