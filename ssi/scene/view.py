@@ -11,7 +11,7 @@ from ..core.solution import Result
 from ..elements.interface import V_SIG, V_TAU, Interface6
 from ..materials.concrete import P_E0, P_FR
 from ..materials.layer_laws import CONCRETE, STEEL
-from .loads import ColumnLoad, Settlement
+from .view_load_path import LoadPathView
 
 if TYPE_CHECKING:  # for annotations only: these modules import this one
     from .built import BuiltScene
@@ -23,17 +23,8 @@ class NotInThisScene(ValueError):
     has instead."""
 
 
-# a push-over's path counts as on its plateau when its last increment's stiffness dP/ds is below this share
-# of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
-# constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
-PLATEAU_STIFFNESS_SHARE = 0.02
-# a capacity whose estimated discretisation error (ssi.studies.estimate) exceeds this share of it carries a
-# warning: issue 34's threshold, a choice (not a measured constant) that capacity()'s warning states
-CAPACITY_ERROR_LIMIT = 0.05
-
-
 @dataclass
-class SceneResult:
+class SceneResult(LoadPathView):
     """What a foundation engineer reads off a scene, at step ``k`` (default: the last): a view of one
     :class:`~ssi.core.solution.Result`, ``solver_result``, whose rows (load_factor, u, f_int, states) it
     reads.
@@ -360,169 +351,3 @@ class SceneResult:
                 }
             table.append(row)
         return table
-
-    # ---- the load a foundation carries and its capacity (issue 34) ----------------------------------------
-    @property
-    def is_push_over(self) -> bool:
-        """The scene is driven by a prescribed :class:`Settlement` (in ``scene.loads`` or a phase): its load
-        is the reaction the soil gives, not a given force."""
-        loads = list(self.built.scene.loads) + [ld for ph in self.built.scene.phases for ld in ph.loads]
-        return any(isinstance(ld, Settlement) for ld in loads)
-
-    def column_load(self) -> np.ndarray:
-        """(n_steps + 1,) total column force sum N [N/m] applied at every row: lambda * sum N of a
-        single-phase scene; of a phased scene the columns of every phase so far, each scaled by its phase
-        factor, the running phase's ramped by its load factor (zero in the geostatic phase)."""
-        lam = np.asarray(self.load_factor, np.float64)
-
-        def total(loads):
-            return float(sum(ld.N for ld in loads if isinstance(ld, ColumnLoad)))
-
-        if not self.phases:
-            return lam * total(self.built.scene.loads)
-        out = np.zeros(len(lam))
-        factors, own, before = {}, {}, 0.0
-        for ph, record in zip(self.built._phase_list(), self.phases[1:]):
-            own[ph.name] = total(ph.loads)
-            factors[ph.name] = 1.0
-            factors.update(ph.factors)
-            after = sum(factors[name] * own[name] for name in own)
-            rows = np.arange(record["first"], record["last"] + 1)
-            phase_lam = np.asarray(record["result"].load_factor[1:], np.float64)
-            out[rows] = before + phase_lam * (after - before)
-            before = after
-        return out
-
-    def foundation_load(self) -> np.ndarray:
-        """(n_steps + 1,) vertical load [N/m] the foundation carries at every row (downwards positive, per
-        metre of strip; of a symmetric scene the whole foundation's). Of a push-over (:attr:`is_push_over`)
-        the soil's reaction: a RigidFooting's base reaction, or the contact resultant of a plate strip
-        (:meth:`BuiltScene.contact_force`); of a load-controlled scene the applied column load
-        (:meth:`column_load`). Rows that are not rate-independent equilibria are included: see
-        :meth:`load_settlement`'s ``equilibrium`` mask."""
-        if not self.is_push_over:
-            return self.column_load()
-        if self.built.footing_nodes is None:
-            return self.built.contact_force(self)
-        if not self.phases:
-            return self.built.contact_force(self)
-        # a phased push of a RigidFooting: each phase's own reaction record (its loads are its own)
-        whole = 2.0 if self.built.scene.symmetric else 1.0
-        out = np.zeros(len(self.load_factor))
-        for record in self.phases:
-            reaction = -whole * record["result"].support_reaction(self.built.footing_nodes, "w")
-            first = max(record["first"] - 1, 0) if record is not self.phases[0] else 0
-            out[first : first + len(reaction)] = reaction
-        return out
-
-    def equilibrium_rows(self) -> np.ndarray:
-        """(n_steps + 1,) bool: rows that are equilibrium states of the rate-independent laws (False: a
-        viscous state of the solver's fallback, which carries overstress the material cannot; see
-        :meth:`ssi.core.solution.Result.rate_independent_steps`)."""
-        mask = np.zeros(len(self.load_factor), bool)
-        visc = np.asarray(self.solver_result.step_viscosity, np.float64)
-        if len(visc) == len(mask):
-            mask[:] = visc == 0.0
-        else:  # a record without per-row viscosity: every row counts, as it did when written
-            mask[:] = True
-        return mask
-
-    def capacity(self) -> dict:
-        """The largest load the foundation carried and how it was found (only rate-independent equilibrium
-        rows count). Keys: ``load`` [N/m] (:meth:`foundation_load` at ``step``), ``settlement`` [m] there,
-        ``step``, ``is_limit`` (True when the path shows a limit: a peak, a plateau or a limit the solver
-        detected; False: the largest load carried, no limit found), ``how`` (a sentence), ``upper`` [N/m]
-        (a bracketed limit's upper end, else None), ``viscous_rows`` (rows left out), ``estimate`` (the
-        capacity's estimated discretisation error, :attr:`capacity_error`, or None when not estimated) and
-        ``warning`` (a sentence when that estimated error exceeds ``CAPACITY_ERROR_LIMIT`` of the load or
-        could not be extrapolated, else None).
-
-        How: a run the solver stopped (a NonConvergence's partial result): the largest load it carried, no
-        limit. A load-controlled scene whose solver detected a limit load: that load (lambda * sum N, with the
-        solver's bracket); one that completed: its full load, no limit found. A push-over: the peak of the
-        path if the load falls after it by more than 1 %; a plateau if the last increment's stiffness dP/ds is
-        below ``PLATEAU_STIFFNESS_SHARE`` of the first's; else the largest carried load, no limit found."""
-        path = self.load_settlement()
-        load, settle, ok = path["load"], path["settlement"], path["equilibrium"]
-        rows = np.flatnonzero(ok)
-        i = int(rows[np.argmax(load[rows])])
-        out = {
-            "load": float(load[i]),
-            "settlement": float(settle[i]),
-            "step": i,
-            "upper": None,
-            "viscous_rows": int((~ok).sum()),
-            "estimate": self.capacity_error,
-            "warning": capacity_error_warning(self.capacity_error),
-        }
-        if self.status == "stopped":  # a NonConvergence's partial path: what it carried, no more
-            return out | {
-                "is_limit": False,
-                "how": "largest load carried before the solver stopped (a solver failure, not a limit)",
-            }
-        if not self.is_push_over:
-            scale = load[i] / path["load_factor"][i] if path["load_factor"][i] and not self.phases else None
-            if self.status == "limit load reached":
-                upper = self.solver_result.limit_load_upper
-                out["upper"] = None if upper is None or scale is None else float(upper * scale)
-                bracket = (
-                    "" if out["upper"] is None else f"; the limit lies below {out['upper'] / 1e3:.1f} kN/m"
-                )
-                return out | {"is_limit": True, "how": "limit load detected by the solver" + bracket}
-            return out | {"is_limit": False, "how": "largest carried load: the full load, no limit found"}
-        after = load[rows[rows > i]]
-        if after.size and after.min() < 0.99 * load[i]:
-            return out | {
-                "is_limit": True,
-                "how": "peak of the load-settlement path: the load falls after it",
-            }
-        if len(rows) >= 3:
-            ds = np.diff(settle[rows])
-            dp = np.diff(load[rows])
-            first, last = dp[0] / ds[0] if ds[0] else np.inf, dp[-1] / ds[-1] if ds[-1] else np.inf
-            if np.isfinite(first) and first > 0 and last < PLATEAU_STIFFNESS_SHARE * first:
-                return out | {
-                    "is_limit": True,
-                    "how": (
-                        f"plateau of the load-settlement path: last stiffness {last / first:.1%} of the first"
-                    ),
-                }
-        return out | {"is_limit": False, "how": "largest carried load, no limit found: the load still rises"}
-
-    def load_settlement(self) -> dict[str, np.ndarray]:
-        """The load--settlement path over every converged step (also of a stopped run): ``load_factor``
-        (n_steps + 1,) [-] (of a phased scene the phase time), ``column_load`` (n_steps + 1,) [N/m] (see
-        :meth:`column_load`), ``load`` [N/m] the load the foundation carries (:meth:`foundation_load`: of a
-        push-over the soil's reaction), ``settlement`` (n_steps + 1,) [m] the largest settlement at each step
-        (positive down) and ``equilibrium`` (n_steps + 1,) bool: the row is a rate-independent equilibrium
-        (:meth:`equilibrium_rows`; False rows are never a result)."""
-        lam = np.asarray(self.load_factor, np.float64)
-        settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
-        return {
-            "load_factor": lam,
-            "column_load": self.column_load(),
-            "load": self.foundation_load(),
-            "settlement": settle,
-            "equilibrium": self.equilibrium_rows(),
-        }
-
-
-def capacity_error_warning(est: dict | None) -> str | None:
-    """The warning a capacity carries when its estimated discretisation error ``est`` (see
-    :attr:`SceneResult.capacity_error`) exceeds ``CAPACITY_ERROR_LIMIT`` or is not asymptotic; else None."""
-    if est is None:
-        return None
-    rel = est["relative"]
-    where = f"extrapolated {est['extrapolated'] / 1e3:.2f} kN/m"
-    if rel > CAPACITY_ERROR_LIMIT:
-        rough = "" if est["asymptotic"] else "; not in the asymptotic range, so the estimate itself is rough"
-        return (
-            f"the capacity's estimated discretisation error is {rel:.1%} (more than "
-            f"{CAPACITY_ERROR_LIMIT:.0%}; {where}{rough}): refine the mesh before using it"
-        )
-    if not est["asymptotic"]:
-        return (
-            f"the capacity's error estimate ({rel:.1%}) is not reliable: the refined answers are not in the "
-            "asymptotic range (no observed order in the accepted range)"
-        )
-    return None

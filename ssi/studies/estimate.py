@@ -43,7 +43,7 @@ import numpy as np
 
 from ..elements.section import Section, layered
 from ..scene import Foundation
-from ..scene.view import capacity_error_warning
+from ..scene.view_load_path import capacity_error_warning
 from ..solver import Settings
 
 REFINEMENTS = ("mesh", "steps", "layers")
