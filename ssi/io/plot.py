@@ -142,6 +142,16 @@ def plastic_points(
     pts = result.soil_points()
     mask = result.plastic_points(k) & present[:, None]
     ax.plot(pts[mask][:, 0], pts[mask][:, 1], "r.", ms=3, label=f"plastic ({mask.sum()} points)")
+    _finish_soil_axes(ax, result, xy, window)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"plastic strain and points yielding in step {_step(result, k)}")
+    return fig
+
+
+def _finish_soil_axes(ax: Axes, result: SceneResult, xy: np.ndarray, window) -> None:
+    """The common frame of a plot over the soil: the strip drawn, equal scales, the foundation's window
+    (``window`` (x0, x1) or 3 widths around it), axis labels and the context (layers, water, columns)."""
+    built = result.built
     if built.plate_nodes is not None:
         ax.plot(xy[built.plate_nodes, 0], xy[built.plate_nodes, 1], "k-", lw=3)
     ax.set_aspect("equal")
@@ -150,9 +160,6 @@ def plastic_points(
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
     _draw_context(ax, result)
-    ax.legend(loc="lower right", fontsize=8)
-    ax.set_title(f"plastic strain and points yielding in step {_step(result, k)}")
-    return fig
 
 
 def mechanism(
@@ -195,14 +202,7 @@ def mechanism(
         width=0.003,
     )
     fig.colorbar(arrows, ax=ax, label=f"displacement, steps {k0}-{k} [mm]", shrink=0.8)
-    if built.plate_nodes is not None:
-        ax.plot(xy[built.plate_nodes, 0], xy[built.plate_nodes, 1], "k-", lw=3)
-    ax.set_aspect("equal")
-    ax.autoscale_view()
-    ax.set_xlim(*(window or _foundation_window(result, 3.0) or ax.get_xlim()))
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("z [m]")
-    _draw_context(ax, result)
+    _finish_soil_axes(ax, result, xy, window)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="lower right", fontsize=8)
     ax.set_title(f"mechanism: incremental displacement of steps {k0}-{k}")

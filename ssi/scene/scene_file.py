@@ -380,10 +380,10 @@ def _check_keys(args, allowed, where):
 
 
 # ---- files ---------------------------------------------------------------------------------------------
-def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
-    """``(scene, n_steps, settings)`` from a TOML scene file; the optional ``[solve]`` table holds
-    ``n_steps`` (an integer >= 1: that many equal load levels; left out: None, automatic stepping) and any
-    :class:`ssi.solver.Settings` field."""
+def read_toml_and_solve(path) -> tuple[dict, int | None, dict]:
+    """``(data, n_steps, solve)`` of a TOML scene or site file: its tables, and its optional ``[solve]``
+    table split into ``n_steps`` (an integer >= 1: that many equal load levels; left out: None, automatic
+    stepping) and the :class:`ssi.solver.Settings` fields (checked by name)."""
     path = Path(path)
     with open(path, "rb") as fh:
         try:
@@ -398,8 +398,14 @@ def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
             f"stepping), got {n_steps!r}"
         )
     _check_keys(solve, {f.name for f in dataclasses.fields(Settings)}, f"{path.name}: solve")
-    scene = _build(Scene, data, path.name)
-    return scene, n_steps, Settings(**solve)
+    return data, n_steps, solve
+
+
+def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
+    """``(scene, n_steps, settings)`` from a TOML scene file; the optional ``[solve]`` table holds
+    ``n_steps`` and any :class:`ssi.solver.Settings` field (:func:`read_toml_and_solve`)."""
+    data, n_steps, solve = read_toml_and_solve(path)
+    return _build(Scene, data, Path(path).name), n_steps, Settings(**solve)
 
 
 def schema_text() -> str:

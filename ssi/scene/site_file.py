@@ -33,13 +33,12 @@ reuses). SI units::
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 
 from ..solver import Settings
 from .loads import ColumnLoad, SurfacePressure
 from .parts import Contact, Foundation, MeshSize
-from .scene_file import _build, _check_keys, _check_table
+from .scene_file import _build, _check_keys, _check_table, read_toml_and_solve
 from .site import Borehole, DepthVarying, Site, Strip
 
 __all__ = ["read_site_file", "site_from_dict"]
@@ -100,15 +99,7 @@ def site_from_dict(data: dict, where: str = "site") -> Site:
 
 
 def read_site_file(path) -> tuple[Site, int | None, Settings]:
-    """``(site, n_steps, settings)`` from a TOML site file (see the module docstring)."""
-    path = Path(path)
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as err:
-            raise ValueError(f"{path}: not valid TOML: {err}") from err
-    solve = dict(data.pop("solve", {}))
-    n_steps = solve.pop("n_steps", None)
-    if n_steps is not None and (isinstance(n_steps, bool) or not isinstance(n_steps, int) or n_steps < 1):
-        raise ValueError(f"{path.name}: solve: 'n_steps' must be an integer >= 1, got {n_steps!r}")
-    return site_from_dict(data, path.name), n_steps, Settings(**solve)
+    """``(site, n_steps, settings)`` from a TOML site file (see the module docstring; the ``[solve]`` table
+    as in a scene file: :func:`ssi.scene.scene_file.read_toml_and_solve`)."""
+    data, n_steps, solve = read_toml_and_solve(path)
+    return site_from_dict(data, Path(path).name), n_steps, Settings(**solve)
