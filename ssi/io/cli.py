@@ -142,6 +142,13 @@ def _capacity_line(s: dict) -> str | None:
     if cap.get("viscous_rows"):
         line += f"; {cap['viscous_rows']} viscous (not equilibrium) rows left out"
     est = cap.get("estimate")
+    if not est and cap["is_limit"]:
+        # a displacement-based mesh is too stiff at collapse: its capacity lies above the true one (a Tresca
+        # footing on the default mesh by ~10 %); the reader is told how to check it, not left to trust it
+        line += (
+            "\ncapacity error   not estimated (a finite-element mesh overstates a capacity): "
+            "`ssi limit` brackets it, ssi.studies.solve_with_error estimates its mesh error"
+        )
     if est:  # attached by ssi.studies.estimate (solve_with_error, solve_to_target)
         meshes = ""
         if est.get("values"):
