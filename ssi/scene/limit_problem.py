@@ -69,6 +69,16 @@ class LimitProblem:
     ref_force: float = 0.0  # the whole footing's downward force at lambda = 1 [N/m] (0: none)
 
 
+# the block's sides on vertical rollers (the symmetry boundary of ssi.limit) and its base fixed, as the
+# incremental scene's supports; the ground edges are free or under a footing
+_BLOCK_SUPPORTS = {"bottom": Boundary("fixed"), "left": Boundary("symmetry"), "right": Boundary("symmetry")}
+
+
+def _ground_pressure(items, x: float) -> float:
+    """The sum of the pressures (a, b, q) acting at ``x`` (ends included, to 1e-12 m)."""
+    return sum(q for a, b, q in items if a - 1e-12 <= x <= b + 1e-12)
+
+
 def _phases(scene) -> list:
     return ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
 
@@ -293,19 +303,14 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
             raise ValueError("a smooth contact carries no horizontal load (ColumnLoad.H != 0)")
         footings = (Footing(itf, tuple(fref.tolist()), tuple(fdead.tolist()), moves),)
 
-    def ground_pressure(items, x):
-        return sum(q for a, b, q in items if a - 1e-12 <= x <= b + 1e-12)
-
     def boundary(tag, pa, pb):
-        if tag == "bottom":
-            return Boundary("fixed")
-        if tag in ("left", "right"):
-            return Boundary("symmetry")
+        if tag in _BLOCK_SUPPORTS:
+            return _BLOCK_SUPPORTS[tag]
         xm = 0.5 * (pa[0] + pb[0])
         if f is not None and fx0 < xm < fx1:
             return Boundary("footing", footing=0)
-        q_dead = ground_pressure(pressures_dead, xm) + scene.surcharge
-        return Boundary("free", pressure_dead=q_dead, pressure_ref=ground_pressure(pressures_ref, xm))
+        q_dead = _ground_pressure(pressures_dead, xm) + scene.surcharge
+        return Boundary("free", pressure_dead=q_dead, pressure_ref=_ground_pressure(pressures_ref, xm))
 
     site = site_from_geometry(geo, materials, boundary, footings)
     singular = []
@@ -395,15 +400,13 @@ def _site_problem(site) -> LimitProblem:
     geo = type(geo)(geo.points, geo.segments, geo.segment_tags, geo.cells, np.array(region, np.int64))
 
     def boundary(tag, pa, pb):
-        if tag == "bottom":
-            return Boundary("fixed")
-        if tag in ("left", "right"):
-            return Boundary("symmetry")
+        if tag in _BLOCK_SUPPORTS:
+            return _BLOCK_SUPPORTS[tag]
         xm = 0.5 * (pa[0] + pb[0])
         for j, (a, b) in enumerate(ends):
             if a < xm < b:
                 return Boundary("footing", footing=j)
-        q = sum(v for a, b, v in pressures if a - 1e-12 <= xm <= b + 1e-12)
+        q = _ground_pressure(pressures, xm)
         if q and abs(pb[1] - pa[1]) > _TOL * width:
             raise ValueError(
                 f"Site.loads: a SurfacePressure on sloping ground at x = {xm:g} m (a vertical load per "
