@@ -51,9 +51,10 @@ lint: $(STAMP)
 
 # `make test` runs the unit tests and the chapters in one pytest session on two worker processes
 # (pytest-xdist), fed one test at a time (--maxschedchunk 1) in the order given: the chapters slowest first
-# (fast mode, measured in a fresh clone: 10, 12, 13, 15 14-17 s; 06, 14 ~10 s; 08, 05, 11 5-6 s; the rest
-# 2-4 s), then the slowest unit test files (test_kernel_regression.py compiles kernels in a fresh process,
-# 18 s; test_browser.py executes two chapters and opens them in Chromium, ~25 s), then the rest, so that both
+# (fast mode, measured on this machine under nbmake, 2026-12-04: 10 ~49 s, 13 ~44 s, 15 ~37 s, 12, 06 ~24 s,
+# 14 ~16 s, 08, 05, 17 10-12 s; the rest below 10 s), then the slowest unit test files
+# (test_kernel_regression.py compiles kernels in a fresh process, ~30 s; test_browser.py executes two chapters
+# and opens them and the run reports in Chromium, ~45 s), then the rest, so that both
 # workers end together. One failing test, unit or chapter, fails the target; -rs lists every skipped test
 # with its reason.
 SLOW_FIRST := 10_bearing_capacity 12_engineering_scenes 13_accuracy 15_results_and_files 06_solver \
@@ -74,7 +75,8 @@ test: $(STAMP) notebooks
 	status=$$?; echo "make_test_s: $(ELAPSED)"; exit $$status
 
 # `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first (full
-# mode, measured on this machine: 06 ~230 s, 10 and 13 ~60 s, 14, 11, 12, 16 29-32 s, 08 15 s); report
+# mode, measured on this machine 2026-12-04: 06 ~454 s, 17 ~148 s, 10 ~106 s, 13 ~85 s, 16 ~74 s, 11, 14 ~55 s,
+# 12, 08, 19 36-47 s; make_reproduce_s 616, over its 360 s goal); report
 # rows are one file per id, written atomically, so the workers cannot mix them
 FULL_SLOW_FIRST := 06_solver 17_limit_analysis 13_accuracy 10_bearing_capacity 12_engineering_scenes 16_bad_input 14_uncertainty \
 	11_foundation_scene 08_rc_beam
