@@ -187,3 +187,26 @@ def test_scene_design_view():
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+
+
+def test_readme_rc_design_lines_are_what_ssi_run_prints():
+    """The README's RC design block is the summary `ssi run examples/rc_strip.toml` prints, line for line:
+    the numbers a designer reads there (w_k, utilisations, M_Rd) are the run's, not a hand copy gone stale."""
+    import os
+    import pathlib
+    import re
+
+    from ssi.io.cli import summary, summary_text
+    from ssi.scene.scene_file import read_scene_file
+
+    root = pathlib.Path(__file__).resolve().parent.parent
+    readme = (root / "README.md").read_text()
+    block = re.search(r"```text\n(RC design \(EN 1992.*?)```", readme, re.S)
+    assert block, "README: the RC design block is missing"
+    scene, n_steps, settings = read_scene_file(os.path.join(root, "examples", "rc_strip.toml"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        out = scene.build().solve(n_steps=n_steps, settings=settings)
+    printed = summary_text(summary(out)).splitlines()
+    for line in block.group(1).strip().splitlines():
+        assert line in printed, f"README line not printed by ssi run: {line!r}"
