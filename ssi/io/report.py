@@ -54,6 +54,17 @@ ENVELOPE_UNITS = {
     "max_crack_width": ("largest crack width w_k (EN 1992)", 1e3, "mm", "{:.3f}"),
     "foundation_load": ("largest load at a phase end", 1e-3, "kN/m", "{:.2f}"),
 }
+# (scale from SI, unit shown) of each estimated quantity (ssi.scene.estimate.QUANTITIES)
+ESTIMATE_UNITS = {
+    "capacity": (1e-3, "kN/m"),
+    "max_settlement": (1e3, "mm"),
+    "differential_settlement": (1e3, "mm"),
+    "max_contact_pressure": (1e-3, "kPa"),
+    "max_moment": (1e-3, "kN m/m"),
+    "limit_load_factor": (1.0, "-"),
+}
+
+
 STYLE = """
 body { font-family: sans-serif; max-width: 60em; margin: 1em auto; padding: 0 1em; color: #222; }
 h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 1.5em; }
@@ -102,13 +113,66 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             "The push-over did not reach a limit: its largest load is a lower bound of the capacity "
             "(push further)."
         )
-    if cap.get("warning"):  # the capacity's error estimate (ssi.studies): above 5 % or not asymptotic
+    if cap.get("warning"):  # the capacity's error estimate (ssi.scene.estimate): above 5 % or not asymptotic
         out.append(str(cap["warning"]))
     if "max_contact_pressure" in s:
         out.append(
             "The edge pressure is a singularity of the stiff foundation's corner: it grows as the mesh is "
             "refined and is not a bearing pressure (read the mean and the peak away from the edges)."
         )
+    return out
+
+
+def _capacity_estimate_rows(est: dict | None) -> str:
+    """The capacity table's rows of its estimated discretisation error (``capacity["estimate"]``)."""
+    if not est:
+        return ""
+    rows = [
+        ("estimated discretisation error", f"{100 * est['relative']:.1f}", "%"),
+        ("extrapolated capacity (Richardson)", f"{est['extrapolated'] / 1e3:.2f}", "kN/m"),
+    ]
+    if est.get("values"):
+        rows.append(("capacity on meshes h, h/2, h/4", ", ".join(f"{v / 1e3:.2f}" for v in est["values"]),
+                     "kN/m"))  # fmt: skip
+        rows.append(("observed order of convergence", f"{est['order']:.2f}", "-"))
+    return "".join(
+        f'<tr><td>{html.escape(a)}</td><td class="num">{b}</td><td>{c}</td></tr>' for a, b, c in rows
+    )
+
+
+def _estimate_section(s: dict) -> list[str]:
+    """The error estimate's table (``s["error_estimate"]``): each headline quantity's value, estimated
+    error, extrapolated value and whether the refinements were in the asymptotic range."""
+    est = s.get("error_estimate")
+    if not est:
+        return []
+    esc = html.escape
+    if est.get("failed"):
+        return [
+            "<h2>Discretisation error</h2>",
+            f'<div class="warn">not estimated: {esc(est["failed"])}</div>',
+        ]
+    out = [
+        "<h2>Discretisation error</h2>",
+        f"<p>Richardson extrapolation over halvings of {esc(', '.join(est['refinements']))} (the scene as "
+        "given, h/2 and h/4); the quantity asked for first.</p>",
+        '<div class="scroll"><table><tr><th>quantity</th><th>value</th><th>extrapolated</th><th>unit</th>'
+        "<th>estimated error [%]</th><th>observed order</th><th>asymptotic</th></tr>",
+    ]
+    qs = est["quantities"]
+    for q in [est["asked"]] + [q for q in qs if q != est["asked"]]:
+        if q not in qs:
+            continue
+        e = qs[q]
+        scale, unit = ESTIMATE_UNITS.get(q, (1.0, e["unit"]))
+        orders = ", ".join(f"{r} {p:.2f}" for r, p in e["orders"].items())
+        out.append(
+            f'<tr><td>{esc(q)}</td><td class="num">{e["value"] * scale:.4g}</td>'
+            f'<td class="num">{e["extrapolated"] * scale:.4g}</td><td>{esc(unit)}</td>'
+            f'<td class="num">{100 * e["relative"]:.2f}</td><td>{esc(orders)}</td>'
+            f"<td>{'yes' if e['asymptotic'] else 'NO (a rough bound)'}</td></tr>"
+        )
+    out.append("</table></div>")
     return out
 
 
@@ -152,8 +216,10 @@ def report_html(
                 if cap.get("upper") is not None
                 else ""
             )
+            + _capacity_estimate_rows(cap.get("estimate"))
             + f"</table><p>How it was found: {esc(cap['how'])}.</p>"
         )
+    parts += _estimate_section(s)
     parts.append("<h2>Summary</h2>")
     parts.append('<div class="scroll"><table><tr><th>quantity</th><th>value</th><th>unit</th></tr>')
     for key, label, scale, unit, fmt in SUMMARY_ROWS:
