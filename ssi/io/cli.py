@@ -15,10 +15,10 @@ A run that ends at a detected limit load is a complete answer (status "limit loa
 factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
 status 3. A site file (:mod:`ssi.scene.site_file`) is solved by :mod:`ssi.io.cli_site`: a per-foundation
-summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``; its result file,
-ParaView export, plots and report are not written yet. ``ssi show result.h5`` prints the summary of a result
-file and redraws its plots and report into a new folder (``<result>_plots_2``, ... when the run's exists;
-``--overwrite``: into the run's).
+summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``, and the result
+file, ParaView series, figures and report as for a scene. ``ssi show result.h5`` prints the summary of a
+result file (a scene's or a site's) and redraws its plots and report into a new folder (``<result>_plots_2``,
+... when the run's exists; ``--overwrite``: into the run's).
 ``ssi limit scene.toml`` brackets the scene's capacity by finite-element limit analysis
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
 ``<name>_limit.json`` (the numbers) and ``<name>_limit.png`` (the mechanism and the dissipation).
@@ -422,15 +422,22 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     path = Path(path)
     result = read_result(path)
     info = read_info(path)
-    wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
-    s = summary(result, wall, info["complete"], info["stop"])
-    s["wall_time_of"] = "the solver, as stored in the file"
+    if info.get("kind") == "site":
+        from .cli_site import site_summary
+        from .plot_site import save_site_figures as save_figures
+
+        s = site_summary(result, result.result.wall_time, info["complete"], info["stop"])
+    else:
+        wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
+        s = summary(result, wall, info["complete"], info["stop"])
+        s["wall_time_of"] = "the solver, as stored in the file"
+        save_figures = save_standard_figures
     written = []
     if figures:
         folder = Path(plots) if plots else path.parent / (path.stem + "_plots")
         if plots is None and not overwrite:
             folder = _free_folder(folder)
-        written = save_standard_figures(result, folder, overwrite=overwrite)
+        written = save_figures(result, folder, overwrite=overwrite)
         written.append(write_report(s, folder / "report.html", written, path.name, overwrite=overwrite))
     return result, s, written
 
@@ -569,7 +576,9 @@ def main(argv=None) -> int:
                     f"--estimate: not available for a site file ({args.scene.name}); the estimate refines "
                     "a scene's mesh (ssi.scene.estimate)"
                 )
-            _, s, written = run_site_file(args.scene, args.overwrite)
+            _, s, written = run_site_file(
+                args.scene, args.overwrite, args.out, args.plots, args.paraview, not args.no_plots
+            )
         elif args.command == "run":
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,

@@ -1,4 +1,4 @@
-"""The run report: one self-contained HTML page per scene that a person opens (``ssi run`` writes it).
+"""The run report: one self-contained HTML page per scene or site that a person opens (``ssi run`` writes it).
 
     write_report(summary_dict, "strip_report.html", figures=[...png paths...], title="strip.toml")
 
@@ -6,7 +6,8 @@ The page holds the summary as a table with units, the capacity and how it was fo
 and the envelope over the phases, the RC design lines, the warnings of the run, and every figure, linked
 by a path relative to the page (the figures stay beside it; nothing is fetched from the network: the style
 is inline, there is no script). Values come from :func:`ssi.io.cli.summary` (SI units), shown in kN, kPa,
-mm, MPa.
+mm, MPa. A site's page (:func:`site_report_html`, from :func:`ssi.io.cli_site.site_summary`) holds one row
+per foundation and the differential settlements.
 """
 
 from __future__ import annotations
@@ -258,20 +259,86 @@ def report_html(
 
         parts.append("<h2>RC design</h2>")
         parts.append(f"<pre>{esc(design_text(s['design']))}</pre>")
-    if figures:
-        parts.append("<h2>Figures</h2>")
-        for fig in figures:
-            rel = os.path.relpath(Path(fig), base) if base is not None else str(fig)
-            rel = Path(rel).as_posix()
-            parts.append(
-                f'<figure><img src="{esc(rel)}" alt="{esc(Path(fig).stem)}">'
-                f"<figcaption>{esc(Path(fig).stem.replace('_', ' '))}</figcaption></figure>"
-            )
+    parts += _figures(figures, base)
     parts.append(
         "<p><small>SI units in the result file and the JSON summary; this page shows kN, kPa, mm, MPa. "
         "Written by ssi.</small></p></body></html>"
     )
     return "\n".join(parts) + "\n"
+
+
+def site_report_html(
+    s: dict, figures: list[Path] | None = None, base: Path | None = None, title: str = "ssi run",
+    run_warnings: list[str] | None = None,
+) -> str:  # fmt: skip
+    """The report page of a site (``s`` from :func:`ssi.io.cli_site.site_summary`): the mesh and the initial
+    stress, one row per foundation (settlement, tilt, pressure), the differential settlements, the
+    warnings and the figures."""
+    esc = html.escape
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{esc(title)}</title>",
+        f"<style>{STYLE}</style></head><body>",
+        f"<h1>{esc(title)}</h1>",
+        f'<p class="status">status: {esc(s["status"])}</p>',
+        f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial stress "
+        f"{esc(s['initial_stress'])}.</p>",
+    ]
+    warn = list(run_warnings or []) + ([f"The run stopped: {s['stop']}"] if s.get("stop") else [])
+    if warn:
+        parts.append("<h2>Warnings</h2>")
+        parts += [f'<div class="warn">{esc(w)}</div>' for w in warn]
+    parts.append("<h2>Foundations</h2>")
+    parts.append(
+        '<div class="scroll"><table><tr><th>#</th><th>type</th><th>x0 [m]</th><th>x1 [m]</th>'
+        "<th>mean settlement [mm]</th><th>max settlement [mm]</th><th>tilt [mm/m]</th>"
+        "<th>mean pressure [kPa]</th></tr>"
+    )
+    for f in s["foundations"]:
+        rigid = f["type"] == "rigid strip"
+        cells = [
+            _fmt(f["settlement_m"] if rigid else f["mean_settlement_m"], 1e3, "{:.3f}"),
+            _fmt(None if rigid else f["max_settlement_m"], 1e3, "{:.3f}"),
+            _fmt(None if rigid else f["tilt_rad"], 1e3, "{:.3f}"),
+            _fmt(f.get("pressure_Pa"), 1e-3, "{:.2f}"),
+        ]
+        parts.append(
+            f"<tr><td>{f['index']}</td><td>{esc(f['type'])}</td>"
+            f'<td class="num">{f["x0_m"]:g}</td><td class="num">{f["x1_m"]:g}</td>'
+            + "".join(f'<td class="num">{c}</td>' for c in cells)
+            + "</tr>"
+        )
+    parts.append("</table></div>")
+    if s["differential_settlement"]:
+        parts.append("<h2>Differential settlement</h2>")
+        parts.append("<table><tr><th>strips</th><th>mean settlement difference [mm]</th></tr>")
+        for d in s["differential_settlement"]:
+            parts.append(
+                f"<tr><td>#{d['i']} - #{d['j']}</td>"
+                f'<td class="num">{1e3 * d["mean_settlement_i_minus_j_m"]:.3f}</td></tr>'
+            )
+        parts.append("</table>")
+    parts += _figures(figures, base)
+    parts.append(
+        "<p><small>SI units in the result file and the JSON summary; this page shows kN, kPa, mm. "
+        "Written by ssi.</small></p></body></html>"
+    )
+    return "\n".join(parts) + "\n"
+
+
+def _figures(figures, base) -> list[str]:
+    if not figures:
+        return []
+    esc = html.escape
+    out = ["<h2>Figures</h2>"]
+    for fig in figures:
+        rel = Path(os.path.relpath(Path(fig), base) if base is not None else str(fig)).as_posix()
+        out.append(
+            f'<figure><img src="{esc(rel)}" alt="{esc(Path(fig).stem)}">'
+            f"<figcaption>{esc(Path(fig).stem.replace('_', ' '))}</figcaption></figure>"
+        )
+    return out
 
 
 def write_report(
@@ -281,7 +348,8 @@ def write_report(
     """Write :func:`report_html` to ``path`` (atomically, the user's umask; an existing file is kept unless
     ``overwrite``), the figures linked relative to its folder. Returns the path."""
     path = Path(path)
-    text = report_html(s, figures, path.parent.resolve(), title or path.stem, run_warnings)
+    page = site_report_html if s.get("kind") == "site" else report_html
+    text = page(s, figures, path.parent.resolve(), title or path.stem, run_warnings)
     with atomic_path(path, overwrite) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path
