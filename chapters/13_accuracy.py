@@ -15,7 +15,7 @@
 #
 # *Beyond the paper.* Every chapter so far measured its discretisation error once, by hand, against a
 # reference it happened to have. A user's scene has no reference. This chapter turns the refinement studies
-# into a tool: `ssi.studies.estimate` re-solves a scene on systematically refined copies and estimates the
+# into a tool: `ssi.scene.estimate` re-solves a scene on systematically refined copies and estimates the
 # error of each headline answer from how the answers change.
 #
 # In this chapter you will
@@ -39,7 +39,7 @@
 #   q_2 - q^\* \approx -\frac{d_2}{2^p - 1}.$$
 #
 # The estimate is only as good as the power law. When $d_1$ and $d_2$ differ in sign, or $p$ lies outside
-# [0.5, 5], the answers are not in the asymptotic range and `ssi.studies.estimate` flags the estimate instead
+# [0.5, 5], the answers are not in the asymptotic range and `ssi.scene.estimate` flags the estimate instead
 # of using it. Differences smaller than the nonlinear solver's iteration error (10⁻³ relative; chapter 11
 # measured 10⁻⁴ between two solvers at the same tolerance) carry no order: the error is then bounded by the
 # differences themselves. The three refinements (mesh, steps, layers) are estimated one at a time from one
@@ -73,8 +73,8 @@ from ssi.lab.digitize import read_reference
 from ssi.lab.examples import chapter11_foundation, punch_settlement, winkler_strip
 from ssi.lab.report import check, record, record_empty, save_figure
 from ssi.materials.soil_laws import ELASTIC, elastic_params
+from ssi.scene.estimate import RefinedSolver, richardson, solve_to_target
 from ssi.solver import NonConvergence, Settings
-from ssi.studies.estimate import RefinedSolver, richardson, solve_to_target
 
 FAST = paths.FAST
 print("fast mode" if FAST else "full mode")
@@ -633,7 +633,7 @@ assert by_mc["h=0.125 30 steps line_search"]["error"] < by_mc["h=0.5 30 steps li
 
 # %% [markdown]
 # ## Summary
-# `ssi.studies.estimate.estimate(scene)` answers "how wrong is this?" for the headline quantities from three
+# `ssi.scene.estimate.estimate(scene)` answers "how wrong is this?" for the headline quantities from three
 # refinement levels of the mesh, the steps and the plate layers, with the observed order of each; on three
 # closed forms its efficiency index lies in the table above (row `error_estimate_efficiency`).
 # `solve_to_target(scene, 0.02)` turns it round: it extrapolates each refinement's error and solves the

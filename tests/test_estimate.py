@@ -1,4 +1,4 @@
-"""Error estimates (ssi.studies.estimate): Richardson analysis against sequences whose limit and order are
+"""Error estimates (ssi.scene.estimate): Richardson analysis against sequences whose limit and order are
 known, refined copies that keep what they must keep, and the estimate of a linear scene."""
 
 import math
@@ -11,8 +11,7 @@ from ssi.elements.section import homogeneous
 from ssi.lab.bearing_capacity import footing_scene, footing_settings
 from ssi.lab.zoo import rc_strip
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.solver import Settings
-from ssi.studies.estimate import (
+from ssi.scene.estimate import (
     Level,
     RefinedSolver,
     estimate,
@@ -23,6 +22,7 @@ from ssi.studies.estimate import (
     solve_with_error,
     split_section,
 )
+from ssi.solver import Settings
 
 
 def linear_scene(h_fine=1.0):

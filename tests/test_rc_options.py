@@ -90,13 +90,13 @@ def test_foundation_options_reach_the_strip():
 
 
 def test_crack_spacing_does_not_depend_on_how_a_bar_layer_is_split():
-    """A layer-count refinement (ssi.studies.estimate.split_section) splits each bar layer into thinner steel
+    """A layer-count refinement (ssi.scene.estimate.split_section) splits each bar layer into thinner steel
     layers; the MC2010 spacing must still see one bar layer of the same area and centroid (before, each
     half-layer counted as a bar of half the area, and the band grew past the snap-back limit)."""
     from ssi.elements.section import rc_section, with_crack_spacing_band
     from ssi.materials.layer_laws import CONCRETE, STEEL
     from ssi.materials.rc import concrete_params, designer_concrete, steel_params
-    from ssi.studies.estimate import split_section
+    from ssi.scene.estimate import split_section
 
     d = designer_concrete(38e6)
     concrete = (CONCRETE, concrete_params(38e6, d["E0"], d["eps_c"], d["fr"], d["Gf"], 0.1, 500e6 / 200e9))

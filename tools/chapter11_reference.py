@@ -19,8 +19,8 @@ from pathlib import Path
 from ssi.core.linsolve import pardiso_available
 from ssi.lab.digitize import write_reference
 from ssi.lab.examples import chapter11_foundation
+from ssi.scene.estimate import headline
 from ssi.solver import NonConvergence
-from ssi.studies.estimate import headline
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUT = ROOT / "reference_data" / "chapter11_graded_reference.csv"

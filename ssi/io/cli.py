@@ -7,15 +7,18 @@ told otherwise: ``<name>.h5`` (the result, :func:`ssi.io.results.write_result`),
 capacity, per-phase tables, warnings and the figures, one page that works offline); it prints the summary
 (the foundation load and capacity, settlement, contact pressure -- mean, peak away from the edges, the edge
 value marked as a singularity --, bending moment, per-phase maxima, the status, wall time). Nothing is
-overwritten without ``--overwrite``.
+overwritten without ``--overwrite``. ``ssi run scene.toml --estimate`` also solves the scene at h/2 and h/4
+(:func:`ssi.scene.estimate.estimate_solved`) and prints, stores and reports the estimated discretisation
+error of its answer: of a push-over the capacity (a capacity whose estimated error exceeds 5 % says so),
+else the settlement.
 A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
 factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
 status 3. A site file (:mod:`ssi.scene.site_file`) is solved by :mod:`ssi.io.cli_site`: a per-foundation
-summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``; its result file,
-ParaView export, plots and report are not written yet. ``ssi show result.h5`` prints the summary of a result
-file and redraws its plots and report into a new folder (``<result>_plots_2``, ... when the run's exists;
-``--overwrite``: into the run's).
+summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``, and the result
+file, ParaView series, figures and report as for a scene. ``ssi show result.h5`` prints the summary of a
+result file (a scene's or a site's) and redraws its plots and report into a new folder (``<result>_plots_2``,
+... when the run's exists; ``--overwrite``: into the run's).
 ``ssi limit scene.toml`` brackets the scene's capacity by finite-element limit analysis
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
 ``<name>_limit.json`` (the numbers) and ``<name>_limit.png`` (the mechanism and the dissipation).
@@ -57,7 +60,11 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     largest of each quantity over the phases, with the phase it occurs in). Contact pressure:
     ``mean_contact_pressure``, ``peak_contact_pressure`` (edge-excluded, with its x) and
     ``max_contact_pressure`` (the largest anywhere: the corner singularity of a stiff strip, not a bearing
-    pressure)."""
+    pressure).
+
+    ``error_estimate``: :meth:`ssi.scene.estimate.ErrorEstimate.to_dict` of the result (``ssi run
+    --estimate``; the capacity's part is also ``capacity["estimate"]``), ``{"failed": reason}`` when a
+    refined copy could not be solved, None when not asked."""
     x_s, s_max = result.max_settlement()
     out = {
         "complete": bool(complete),
@@ -99,6 +106,9 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
             if row["name"] in by_phase:
                 row["max_crack_width"] = 1e-3 * by_phase[row["name"]]["w_k_max_mm"]
     out["envelope"] = _envelope(out["phases"])
+    # the discretisation error of the headline quantities (ssi run --estimate, solve_with_error): None when
+    # not estimated, {"failed": why} when a refined copy could not be solved
+    out["error_estimate"] = result.error_estimate
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
 
@@ -142,14 +152,16 @@ def _capacity_line(s: dict) -> str | None:
     if cap.get("viscous_rows"):
         line += f"; {cap['viscous_rows']} viscous (not equilibrium) rows left out"
     est = cap.get("estimate")
-    if not est and cap["is_limit"]:
+    if not est and cap["is_limit"] and not s.get("error_estimate"):
         # a displacement-based mesh is too stiff at collapse: its capacity lies above the true one (a Tresca
         # footing on the default mesh by ~10 %); the reader is told how to check it, not left to trust it
         line += (
             "\ncapacity error   not estimated (a finite-element mesh overstates a capacity): "
-            "`ssi limit` brackets it, ssi.studies.solve_with_error estimates its mesh error"
+            "`ssi limit` brackets it, ssi.scene.estimate.solve_with_error estimates its mesh error"
         )
-    if est:  # attached by ssi.studies.estimate (solve_with_error, solve_to_target)
+    if not est and (s.get("error_estimate") or {}).get("failed"):
+        line += f"\ncapacity error   not estimated: {s['error_estimate']['failed']}"
+    if est:  # attached by ssi.scene.estimate (solve_with_error, solve_to_target, ssi run --estimate)
         meshes = ""
         if est.get("values"):
             meshes = (
@@ -208,6 +220,7 @@ def summary_text(s: dict) -> str:
             ),
             f"max |moment|     {s['max_abs_moment'] / 1e3:.2f} kN m/m at x = {s['x_max_abs_moment']:.3f} m",
         ]
+    lines += _estimate_lines(s)
     if len(s.get("phases") or []) > 1:
         lines.append("per phase        " + _phase_header(s["phases"]))
         lines += ["  " + _phase_line(row, s["phases"]) for row in s["phases"]]
@@ -232,7 +245,41 @@ def summary_text(s: dict) -> str:
         lines.append(
             f"wall time        {s['wall_time_s']:.2f} s ({s.get('wall_time_of', 'build and solve')})"
         )
+    if s.get("estimate_wall_time_s") is not None:
+        lines.append(
+            f"                 {s['estimate_wall_time_s']:.2f} s (the error estimate's refined solves)"
+        )
     return "\n".join(lines)
+
+
+def _estimate_lines(s: dict) -> list[str]:
+    """The error estimate's lines (the capacity's is on the capacity line): the quantity asked for first,
+    then the others, each with its estimated error, extrapolated value and a flag when not asymptotic."""
+    from .report import ESTIMATE_UNITS
+
+    est = s.get("error_estimate")
+    if not est:
+        return []
+    if est.get("failed"):
+        return [] if s.get("push_over") else [f"error estimate   not available: {est['failed']}"]
+    qs = est["quantities"]
+    order = [est["asked"]] + [q for q in qs if q != est["asked"]]
+    lines = []
+    for q in order:
+        if q not in qs or q == "capacity":
+            continue
+        e = qs[q]
+        scale, unit = ESTIMATE_UNITS.get(q, (1.0, e["unit"]))
+        flag = "" if e["asymptotic"] else ", NOT asymptotic: the estimate is a rough bound"
+        asked = " (asked for)" if q == est["asked"] else ""
+        lines.append(
+            f"  {q + asked:<31}{e['value'] * scale:.4g} {unit}, error {e['relative']:.1%} "
+            f"(extrapolated {e['extrapolated'] * scale:.4g} {unit}{flag})"
+        )
+    if not lines:  # the capacity alone: on its own line
+        return []
+    head = f"error estimate   over {', '.join(est['refinements'])} halvings (h, h/2, h/4; Richardson)"
+    return [head, *lines]
 
 
 PHASE_COLUMNS = (  # (key, header with unit, scale from SI, format)
@@ -262,8 +309,17 @@ def _phase_line(row, table):
     return f"{row['name']:<14} " + " ".join(cells)
 
 
-def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True):
-    """What ``ssi run`` does; returns (result, summary dict, written paths)."""
+def run_scene_file(
+    scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True, estimate=None, echo=None,
+):  # fmt: skip
+    """What ``ssi run`` does; returns (result, summary dict, written paths).
+
+    ``estimate``: None (default) or the refinements whose discretisation error is estimated (a subset of
+    ``("mesh", "steps", "layers")``, :func:`ssi.scene.estimate.estimate_solved`): the scene as solved is the
+    base level, its copies at h/2 and h/4 are solved in addition (about 4 and 16 times the base solve for
+    the mesh) and the estimate goes to the summary, the result file and the report. A refined copy that
+    the solver cannot finish leaves the estimate ``{"failed": why}``. ``echo``: gets a line before the
+    refined solves start (the command line prints it)."""
     from ..scene import SceneResult
     from ..scene.scene_file import read_scene_file
     from ..solver import NonConvergence
@@ -296,7 +352,9 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
             # failing phase's steps (PhaseNonConvergence.scene_result)
             result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
             stop = err.report
-    wall = time.perf_counter() - t0
+        wall = time.perf_counter() - t0
+        if estimate and stop is None:
+            estimate_wall = _estimate_run(result, n_steps, settings, estimate, wall, echo)
     for w in caught:
         warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
@@ -306,6 +364,8 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
 
     written.append(export_series(result, paraview, overwrite=overwrite))
     s = summary(result, wall, complete, stop)
+    if estimate and stop is None:
+        s["estimate_wall_time_s"] = estimate_wall
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
     written.append(summary_path)
@@ -315,6 +375,26 @@ def run_scene_file(scene_path, out=None, plots=None, paraview=None, overwrite=Fa
         write_report(s, report_path, figs, scene_path.name, run_warnings=run_warnings, overwrite=overwrite)
     )
     return result, s, written
+
+
+def _estimate_run(result, n_steps, settings, refine, wall, echo) -> float:
+    """Estimate ``result``'s error over ``refine`` (:func:`ssi.scene.estimate.estimate_solved`), attached
+    to it; a refined copy the solver cannot finish leaves ``result.error_estimate = {"failed": why}``.
+    Returns the wall time of the refined solves [s]."""
+    from ..scene.estimate import estimate_solved
+    from ..solver import NonConvergence
+
+    if echo is not None:
+        echo(
+            f"estimating the discretisation error: solving the scene again at h/2 and h/4 over "
+            f"{', '.join(refine)} (about 20 times the {wall:.1f} s of the run for the mesh)"
+        )
+    t0 = time.perf_counter()
+    try:
+        estimate_solved(result, n_steps, settings, refine, wall_time=wall)
+    except NonConvergence as err:
+        result.error_estimate = {"failed": f"a refined copy did not finish its load path ({err})"}
+    return time.perf_counter() - t0
 
 
 def _free_folder(folder: Path) -> Path:
@@ -342,15 +422,22 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     path = Path(path)
     result = read_result(path)
     info = read_info(path)
-    wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
-    s = summary(result, wall, info["complete"], info["stop"])
-    s["wall_time_of"] = "the solver, as stored in the file"
+    if info.get("kind") == "site":
+        from .cli_site import site_summary
+        from .plot_site import save_site_figures as save_figures
+
+        s = site_summary(result, result.result.wall_time, info["complete"], info["stop"])
+    else:
+        wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
+        s = summary(result, wall, info["complete"], info["stop"])
+        s["wall_time_of"] = "the solver, as stored in the file"
+        save_figures = save_standard_figures
     written = []
     if figures:
         folder = Path(plots) if plots else path.parent / (path.stem + "_plots")
         if plots is None and not overwrite:
             folder = _free_folder(folder)
-        written = save_standard_figures(result, folder, overwrite=overwrite)
+        written = save_figures(result, folder, overwrite=overwrite)
         written.append(write_report(s, folder / "report.html", written, path.name, overwrite=overwrite))
     return result, s, written
 
@@ -397,6 +484,20 @@ def limit_scene_file(
     return cap, written
 
 
+def _refinements(text: str | None) -> tuple | None:
+    """``--estimate``'s comma list as a tuple of refinements (None: no estimate); an unknown name is a
+    ValueError naming the flag, the value and the allowed names."""
+    if text is None:
+        return None
+    from ..scene.estimate import REFINEMENTS
+
+    names = tuple(n.strip() for n in text.split(",") if n.strip())
+    bad = [n for n in names if n not in REFINEMENTS]
+    if bad or not names:
+        raise ValueError(f"--estimate must be a comma list of {', '.join(REFINEMENTS)}, got {text!r}")
+    return names
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(
         prog="ssi",
@@ -414,6 +515,15 @@ def main(argv=None) -> int:
     run_p.add_argument("--no-plots", action="store_true", help="skip the figures")
     run_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run_p.add_argument(
+        "--estimate",
+        nargs="?",
+        const="mesh",
+        metavar="REFINEMENTS",
+        help="estimate the discretisation error by re-solving at h/2 and h/4 (Richardson): the capacity of "
+        "a push-over, the settlement otherwise; REFINEMENTS a comma list of mesh, steps, layers (default: "
+        "mesh). Costs about 20 times the run per refinement",
+    )
     show_p = sub.add_parser("show", help="print the summary of a result file and write its plots")
     show_p.add_argument("result", type=Path)
     show_p.add_argument(
@@ -461,11 +571,19 @@ def main(argv=None) -> int:
         return 0
     try:
         if args.command == "run" and is_site_file(args.scene):
-            _, s, written = run_site_file(args.scene, args.overwrite)
+            if args.estimate is not None:
+                raise ValueError(
+                    f"--estimate: not available for a site file ({args.scene.name}); the estimate refines "
+                    "a scene's mesh (ssi.scene.estimate)"
+                )
+            _, s, written = run_site_file(
+                args.scene, args.overwrite, args.out, args.plots, args.paraview, not args.no_plots
+            )
         elif args.command == "run":
             _, s, written = run_scene_file(
-                args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots
-            )
+                args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,
+                _refinements(args.estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
+            )  # fmt: skip
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)
     except OutputExistsError as err:  # the flag, not the Python keyword

@@ -3,7 +3,9 @@
 A site file is told from a scene file by its keys (:func:`is_site_file`). The run prints, for each strip, its
 mean and largest settlement and its tilt, the differential settlement of every pair of strips, and for a
 rigid strip its settlement and pressure; the same numbers go to ``<name>_summary.json`` (atomically, with the
-user's umask). A site's result file, ParaView export, plots and HTML report are not written yet."""
+user's umask), and as for a scene the result file, the ParaView series, the figures (the site's geometry
+under each) and the HTML report are written (:func:`run_site_file`); ``ssi show`` reads the result file
+back."""
 
 from __future__ import annotations
 
@@ -95,20 +97,32 @@ def site_summary_text(s: dict) -> str:
     return "\n".join(lines)
 
 
-def run_site_file(site_path, overwrite: bool = False):
-    """What ``ssi run`` does with a site file; returns (result, summary dict, written paths)."""
+def run_site_file(site_path, overwrite: bool = False, out=None, plots=None, paraview=None, figures=True):
+    """What ``ssi run`` does with a site file; returns (result, summary dict, written paths): the result
+    file ``<name>.h5`` (:func:`ssi.io.results.write_result`; ``ssi show`` reads it back), the ParaView
+    series ``<name>.pvd`` (a material id per soil element), the figures ``<name>_plots/*.png``
+    (:mod:`ssi.io.plot_site`: the geometry under each), ``<name>_summary.json`` and ``<name>_report.html``.
+    Nothing is overwritten without ``overwrite``; a run the solver stops is written marked incomplete."""
     from ..scene.site_file import read_site_file
     from ..scene.site_view import SiteResult
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
-    from .results import OutputExistsError, atomic_path
+    from .export import export_series
+    from .plot_site import save_site_figures
+    from .report import write_report
+    from .results import OutputExistsError, atomic_path, write_result
 
     site_path = Path(site_path)
     stem = site_path.with_suffix("")
+    out = Path(out) if out else stem.with_suffix(".h5")
+    paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
+    plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
     summary_path = stem.parent / (stem.name + "_summary.json")
+    report_path = stem.parent / (stem.name + "_report.html")
     site, n_steps, settings = read_site_file(site_path)
-    if summary_path.exists() and not overwrite:
-        raise OutputExistsError(summary_path)
+    for target in (out, paraview, summary_path, report_path):
+        if target.exists() and not overwrite:
+            raise OutputExistsError(target)
     announce_compilation()
     t0 = time.perf_counter()
     built = site.build()
@@ -118,6 +132,12 @@ def run_site_file(site_path, overwrite: bool = False):
     except NonConvergence as err:  # the converged steps before the failure
         result, stop = SiteResult(built, err.result), err.report
     s = site_summary(result, time.perf_counter() - t0, stop is None, stop)
+    written = [write_result(out, result, settings, overwrite=overwrite, complete=stop is None, stop=stop)]
+    written.append(export_series(result, paraview, overwrite=overwrite))
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
-    return result, s, [summary_path]
+    written.append(summary_path)
+    figs = save_site_figures(result, plots, overwrite=overwrite) if figures else []
+    written += figs
+    written.append(write_report(s, report_path, figs, site_path.name, overwrite=overwrite))
+    return result, s, written

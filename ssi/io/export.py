@@ -18,7 +18,12 @@ strip ``steel_stress`` (largest |stress| of its bars over the element's points [
 (share of its concrete layer points beyond the cracking strain) and ``crack_width`` (the largest EN 1992-1-1
 §7.3.4 crack width w_k over the element's axial points [m], :meth:`SceneResult.crack_width`); ``active``
 (1: the soil element is present at that step, 0: excavated by an earlier phase -- its stress, strain and
-pore pressure are then NaN, so ParaView's Threshold on ``active`` >= 1 shows the ground as it is).
+pore pressure are then NaN, so ParaView's Threshold on ``active`` >= 1 shows the ground as it is);
+``material_id`` (the soil element's layer: its index in ``scene.layers`` or ``site.layers``).
+
+A :class:`ssi.scene.SiteResult` is written the same way: the soil, then each plate strip and its contact
+(rigid strips are ground nodes and have no cells of their own); its pore pressure is the hydrostatic one
+below the site's water table.
 
 Units: every field's unit is in :data:`FIELD_UNITS`, and each VTU carries it as field data: a VTK string
 array per field, ``unit_<name>`` (e.g. ``unit_sxx`` = "Pa"; ParaView lists them under Information, Data
@@ -59,6 +64,7 @@ CELL_FIELDS = (
     "steel_stress",
     "cracked_fraction",
     "crack_width",
+    "material_id",
 )
 FIELD_UNITS = {
     "displacement": "m",
@@ -80,13 +86,34 @@ FIELD_UNITS = {
     "steel_stress": "Pa",
     "cracked_fraction": "-",
     "crack_width": "m",
+    "material_id": "-",
 }
 
 
+def _is_site(result) -> bool:
+    return hasattr(result.built, "site")
+
+
+def _plate_strips(result) -> list[dict]:
+    """The plate strips of a site's result ({"plate", "interface", "plate_nodes"}; rigid strips have none)."""
+    return [st for st in result.built.strips if not st.get("rigid")]
+
+
 def mesh_cells(result: SceneResult) -> list[tuple[str, np.ndarray]]:
-    """meshio cell blocks [(type, conn)]: soil quad8, then the strip's and the contact's line3."""
+    """meshio cell blocks [(type, conn)]: soil quad8, then the strip's and the contact's line3 (of a site:
+    each plate strip's and its contact's, strip by strip)."""
     built = result.built
     cells = [("quad8", built.mesh.conn)]
+    if _is_site(result):
+        from .results import element_nodes
+
+        for st in _plate_strips(result):
+            p = st["plate_nodes"]
+            conn = np.column_stack([p[0:-2:2], p[1:-1:2], p[2::2]])
+            cells.append(("line3", conn[:, [0, 2, 1]]))
+            lower = element_nodes(built.model, st["interface"].edofs)[:, 3:]
+            cells.append(("line3", lower[:, [0, 2, 1]]))
+        return cells
     if built.plate is not None:
         p = built.plate_nodes
         conn = np.column_stack([p[0:-2:2], p[1:-1:2], p[2::2]])
@@ -112,8 +139,14 @@ def point_data(result: SceneResult, k: int = -1) -> dict[str, np.ndarray]:
     soil = np.arange(built.mesh.xy.shape[0])
     disp[soil, 0] = u[model.dof(soil, "u")]
     disp[soil, 1] = u[model.dof(soil, "w")]
-    if built.plate_nodes is not None:
-        p = built.plate_nodes
+    plates = (
+        [st["plate_nodes"] for st in _plate_strips(result)]
+        if _is_site(result)
+        else [built.plate_nodes]
+        if built.plate_nodes is not None
+        else []
+    )
+    for p in plates:
         disp[p, 0] = u[model.dof(p, "u")]
         disp[p, 1] = u[model.dof(p, "w")]
         rot[p] = u[model.dof(p, "alpha")]
@@ -122,7 +155,10 @@ def point_data(result: SceneResult, k: int = -1) -> dict[str, np.ndarray]:
 
 def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
     """Per-block cell data (lists in the order of :func:`mesh_cells`); soil fields NaN in excavated
-    elements (``active`` = 0)."""
+    elements (``active`` = 0); ``material_id`` the soil element's layer index (in ``scene.layers`` or
+    ``site.layers``)."""
+    if _is_site(result):
+        return _site_cell_data(result, k)
     built = result.built
     n_soil = built.mesh.conn.shape[0]
     n_plate = 0 if built.plate is None else built.plate.n_el
@@ -136,6 +172,7 @@ def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
     data["pore_pressure"][0] = (built.pore_pressure() + built.excess_pore_pressure(result, k)).mean(axis=1)
     active = result.active_elements(k) if result.phases else np.ones(n_soil, bool)
     data["active"][0] = active.astype(np.float64)
+    data["material_id"][0] = np.asarray(built.element_layer, np.float64)
     for name in (*STRESS_NAMES, "plastic_fraction", "plastic_strain", "pore_pressure"):
         data[name][0][~active] = np.nan  # removed soil carries nothing: not a zero stress to be read
     if n_plate:
@@ -156,6 +193,36 @@ def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
 
         if design_of(result) is not None:  # an RC strip: the widest crack at the element's axial points
             data["crack_width"][1] = result.crack_width(k)["w_k"].max(axis=1)
+    return data
+
+
+def _site_cell_data(result, k: int) -> dict[str, list[np.ndarray]]:
+    """:func:`cell_data` of a :class:`ssi.scene.SiteResult`: the soil block, then per plate strip its plate
+    (N, M, Q) and its contact (pressure, shear, open share); pore pressure hydrostatic below the water
+    table."""
+    built = result.built
+    strips = _plate_strips(result)
+    blocks = [built.mesh.conn.shape[0]] + [
+        n for st in strips for n in (st["plate"].n_el, st["interface"].n_el)
+    ]
+    data = {name: [np.full(n, np.nan) for n in blocks] for name in CELL_FIELDS}
+    sig = result.soil_stress(k).mean(axis=1)
+    for i, name in enumerate(STRESS_NAMES):
+        data[name][0] = sig[:, i]
+    data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
+    data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
+    data["pore_pressure"][0] = result.pore_pressure().mean(axis=1)
+    data["active"][0] = np.ones(blocks[0])
+    data["material_id"][0] = np.asarray(built.element_layer, np.float64)
+    plate_index = [i for i, st in enumerate(built.strips) if not st.get("rigid")]
+    for j, i in enumerate(plate_index):
+        f = result.strip_forces(i, k)
+        b = 1 + 2 * j
+        data["N"][b], data["M"][b], data["Q"][b] = f["N"].mean(1), f["M"].mean(1), f["Q"].mean(1)
+        c = result.contact(i, k)
+        data["contact_pressure"][b + 1] = -c["sig_n"].mean(axis=1)
+        data["contact_shear"][b + 1] = c["tau"].mean(axis=1)
+        data["contact_open"][b + 1] = (c["zone"] == "open").mean(axis=1)
     return data
 
 

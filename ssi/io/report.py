@@ -1,4 +1,4 @@
-"""The run report: one self-contained HTML page per scene that a person opens (``ssi run`` writes it).
+"""The run report: one self-contained HTML page per scene or site that a person opens (``ssi run`` writes it).
 
     write_report(summary_dict, "strip_report.html", figures=[...png paths...], title="strip.toml")
 
@@ -6,7 +6,8 @@ The page holds the summary as a table with units, the capacity and how it was fo
 and the envelope over the phases, the RC design lines, the warnings of the run, and every figure, linked
 by a path relative to the page (the figures stay beside it; nothing is fetched from the network: the style
 is inline, there is no script). Values come from :func:`ssi.io.cli.summary` (SI units), shown in kN, kPa,
-mm, MPa.
+mm, MPa. A site's page (:func:`site_report_html`, from :func:`ssi.io.cli_site.site_summary`) holds one row
+per foundation and the differential settlements.
 """
 
 from __future__ import annotations
@@ -54,6 +55,17 @@ ENVELOPE_UNITS = {
     "max_crack_width": ("largest crack width w_k (EN 1992)", 1e3, "mm", "{:.3f}"),
     "foundation_load": ("largest load at a phase end", 1e-3, "kN/m", "{:.2f}"),
 }
+# (scale from SI, unit shown) of each estimated quantity (ssi.scene.estimate.QUANTITIES)
+ESTIMATE_UNITS = {
+    "capacity": (1e-3, "kN/m"),
+    "max_settlement": (1e3, "mm"),
+    "differential_settlement": (1e3, "mm"),
+    "max_contact_pressure": (1e-3, "kPa"),
+    "max_moment": (1e-3, "kN m/m"),
+    "limit_load_factor": (1.0, "-"),
+}
+
+
 STYLE = """
 body { font-family: sans-serif; max-width: 60em; margin: 1em auto; padding: 0 1em; color: #222; }
 h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 1.5em; }
@@ -102,13 +114,66 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             "The push-over did not reach a limit: its largest load is a lower bound of the capacity "
             "(push further)."
         )
-    if cap.get("warning"):  # the capacity's error estimate (ssi.studies): above 5 % or not asymptotic
+    if cap.get("warning"):  # the capacity's error estimate (ssi.scene.estimate): above 5 % or not asymptotic
         out.append(str(cap["warning"]))
     if "max_contact_pressure" in s:
         out.append(
             "The edge pressure is a singularity of the stiff foundation's corner: it grows as the mesh is "
             "refined and is not a bearing pressure (read the mean and the peak away from the edges)."
         )
+    return out
+
+
+def _capacity_estimate_rows(est: dict | None) -> str:
+    """The capacity table's rows of its estimated discretisation error (``capacity["estimate"]``)."""
+    if not est:
+        return ""
+    rows = [
+        ("estimated discretisation error", f"{100 * est['relative']:.1f}", "%"),
+        ("extrapolated capacity (Richardson)", f"{est['extrapolated'] / 1e3:.2f}", "kN/m"),
+    ]
+    if est.get("values"):
+        rows.append(("capacity on meshes h, h/2, h/4", ", ".join(f"{v / 1e3:.2f}" for v in est["values"]),
+                     "kN/m"))  # fmt: skip
+        rows.append(("observed order of convergence", f"{est['order']:.2f}", "-"))
+    return "".join(
+        f'<tr><td>{html.escape(a)}</td><td class="num">{b}</td><td>{c}</td></tr>' for a, b, c in rows
+    )
+
+
+def _estimate_section(s: dict) -> list[str]:
+    """The error estimate's table (``s["error_estimate"]``): each headline quantity's value, estimated
+    error, extrapolated value and whether the refinements were in the asymptotic range."""
+    est = s.get("error_estimate")
+    if not est:
+        return []
+    esc = html.escape
+    if est.get("failed"):
+        return [
+            "<h2>Discretisation error</h2>",
+            f'<div class="warn">not estimated: {esc(est["failed"])}</div>',
+        ]
+    out = [
+        "<h2>Discretisation error</h2>",
+        f"<p>Richardson extrapolation over halvings of {esc(', '.join(est['refinements']))} (the scene as "
+        "given, h/2 and h/4); the quantity asked for first.</p>",
+        '<div class="scroll"><table><tr><th>quantity</th><th>value</th><th>extrapolated</th><th>unit</th>'
+        "<th>estimated error [%]</th><th>observed order</th><th>asymptotic</th></tr>",
+    ]
+    qs = est["quantities"]
+    for q in [est["asked"]] + [q for q in qs if q != est["asked"]]:
+        if q not in qs:
+            continue
+        e = qs[q]
+        scale, unit = ESTIMATE_UNITS.get(q, (1.0, e["unit"]))
+        orders = ", ".join(f"{r} {p:.2f}" for r, p in e["orders"].items())
+        out.append(
+            f'<tr><td>{esc(q)}</td><td class="num">{e["value"] * scale:.4g}</td>'
+            f'<td class="num">{e["extrapolated"] * scale:.4g}</td><td>{esc(unit)}</td>'
+            f'<td class="num">{100 * e["relative"]:.2f}</td><td>{esc(orders)}</td>'
+            f"<td>{'yes' if e['asymptotic'] else 'NO (a rough bound)'}</td></tr>"
+        )
+    out.append("</table></div>")
     return out
 
 
@@ -152,8 +217,10 @@ def report_html(
                 if cap.get("upper") is not None
                 else ""
             )
+            + _capacity_estimate_rows(cap.get("estimate"))
             + f"</table><p>How it was found: {esc(cap['how'])}.</p>"
         )
+    parts += _estimate_section(s)
     parts.append("<h2>Summary</h2>")
     parts.append('<div class="scroll"><table><tr><th>quantity</th><th>value</th><th>unit</th></tr>')
     for key, label, scale, unit, fmt in SUMMARY_ROWS:
@@ -192,20 +259,86 @@ def report_html(
 
         parts.append("<h2>RC design</h2>")
         parts.append(f"<pre>{esc(design_text(s['design']))}</pre>")
-    if figures:
-        parts.append("<h2>Figures</h2>")
-        for fig in figures:
-            rel = os.path.relpath(Path(fig), base) if base is not None else str(fig)
-            rel = Path(rel).as_posix()
-            parts.append(
-                f'<figure><img src="{esc(rel)}" alt="{esc(Path(fig).stem)}">'
-                f"<figcaption>{esc(Path(fig).stem.replace('_', ' '))}</figcaption></figure>"
-            )
+    parts += _figures(figures, base)
     parts.append(
         "<p><small>SI units in the result file and the JSON summary; this page shows kN, kPa, mm, MPa. "
         "Written by ssi.</small></p></body></html>"
     )
     return "\n".join(parts) + "\n"
+
+
+def site_report_html(
+    s: dict, figures: list[Path] | None = None, base: Path | None = None, title: str = "ssi run",
+    run_warnings: list[str] | None = None,
+) -> str:  # fmt: skip
+    """The report page of a site (``s`` from :func:`ssi.io.cli_site.site_summary`): the mesh and the initial
+    stress, one row per foundation (settlement, tilt, pressure), the differential settlements, the
+    warnings and the figures."""
+    esc = html.escape
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{esc(title)}</title>",
+        f"<style>{STYLE}</style></head><body>",
+        f"<h1>{esc(title)}</h1>",
+        f'<p class="status">status: {esc(s["status"])}</p>',
+        f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial stress "
+        f"{esc(s['initial_stress'])}.</p>",
+    ]
+    warn = list(run_warnings or []) + ([f"The run stopped: {s['stop']}"] if s.get("stop") else [])
+    if warn:
+        parts.append("<h2>Warnings</h2>")
+        parts += [f'<div class="warn">{esc(w)}</div>' for w in warn]
+    parts.append("<h2>Foundations</h2>")
+    parts.append(
+        '<div class="scroll"><table><tr><th>#</th><th>type</th><th>x0 [m]</th><th>x1 [m]</th>'
+        "<th>mean settlement [mm]</th><th>max settlement [mm]</th><th>tilt [mm/m]</th>"
+        "<th>mean pressure [kPa]</th></tr>"
+    )
+    for f in s["foundations"]:
+        rigid = f["type"] == "rigid strip"
+        cells = [
+            _fmt(f["settlement_m"] if rigid else f["mean_settlement_m"], 1e3, "{:.3f}"),
+            _fmt(None if rigid else f["max_settlement_m"], 1e3, "{:.3f}"),
+            _fmt(None if rigid else f["tilt_rad"], 1e3, "{:.3f}"),
+            _fmt(f.get("pressure_Pa"), 1e-3, "{:.2f}"),
+        ]
+        parts.append(
+            f"<tr><td>{f['index']}</td><td>{esc(f['type'])}</td>"
+            f'<td class="num">{f["x0_m"]:g}</td><td class="num">{f["x1_m"]:g}</td>'
+            + "".join(f'<td class="num">{c}</td>' for c in cells)
+            + "</tr>"
+        )
+    parts.append("</table></div>")
+    if s["differential_settlement"]:
+        parts.append("<h2>Differential settlement</h2>")
+        parts.append("<table><tr><th>strips</th><th>mean settlement difference [mm]</th></tr>")
+        for d in s["differential_settlement"]:
+            parts.append(
+                f"<tr><td>#{d['i']} - #{d['j']}</td>"
+                f'<td class="num">{1e3 * d["mean_settlement_i_minus_j_m"]:.3f}</td></tr>'
+            )
+        parts.append("</table>")
+    parts += _figures(figures, base)
+    parts.append(
+        "<p><small>SI units in the result file and the JSON summary; this page shows kN, kPa, mm. "
+        "Written by ssi.</small></p></body></html>"
+    )
+    return "\n".join(parts) + "\n"
+
+
+def _figures(figures, base) -> list[str]:
+    if not figures:
+        return []
+    esc = html.escape
+    out = ["<h2>Figures</h2>"]
+    for fig in figures:
+        rel = Path(os.path.relpath(Path(fig), base) if base is not None else str(fig)).as_posix()
+        out.append(
+            f'<figure><img src="{esc(rel)}" alt="{esc(Path(fig).stem)}">'
+            f"<figcaption>{esc(Path(fig).stem.replace('_', ' '))}</figcaption></figure>"
+        )
+    return out
 
 
 def write_report(
@@ -215,7 +348,8 @@ def write_report(
     """Write :func:`report_html` to ``path`` (atomically, the user's umask; an existing file is kept unless
     ``overwrite``), the figures linked relative to its folder. Returns the path."""
     path = Path(path)
-    text = report_html(s, figures, path.parent.resolve(), title or path.stem, run_warnings)
+    page = site_report_html if s.get("kind") == "site" else report_html
+    text = page(s, figures, path.parent.resolve(), title or path.stem, run_warnings)
     with atomic_path(path, overwrite) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path

@@ -1,18 +1,21 @@
 """Result files (HDF5, h5py): write any result, read it back as an object that answers and replots.
 
-``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped) or
-a :class:`ssi.core.solution.Result` (of ``ssi.solver.run`` or ``Model.solve_linear``). ``read_result(path)``
-gives back a ``SceneResult`` (the scene is rebuilt from its stored description, so every ``SceneResult``
-method and every ``ssi.io.plot`` function works without the original script) or, for a bare model, a
+``write_result(path, result)`` takes a :class:`ssi.scene.SceneResult` (linear or not, complete or stopped), a
+:class:`ssi.scene.SiteResult` or a :class:`ssi.core.solution.Result` (of ``ssi.solver.run`` or
+``Model.solve_linear``). ``read_result(path)`` gives back a ``SceneResult`` (the scene is rebuilt from its
+stored description, so every ``SceneResult`` method and every ``ssi.io.plot`` function works without the
+original script), a ``SiteResult`` (the site rebuilt likewise) or, for a bare model, a
 :class:`StoredResult`.
 
 Layout::
 
-    /attrs  format, ssi_version, kind ('scene' | 'model'), complete (bool), stop (JSON: why a run stopped),
-            scene (JSON, ssi.scene.scene_file.scene_to_dict: every layer, load, section layer), model (JSON,
+    /attrs  format, ssi_version, kind ('scene' | 'site' | 'model'), complete (bool), stop (JSON: why a run
+            stopped), scene (JSON, ssi.scene.scene_file.scene_to_dict: every layer, load, section layer) or
+            site (JSON, ssi.scene.site_file.site_to_dict), model (JSON,
             Model.describe), settings (JSON), extra (JSON: further scalar fields of the result object)
     /mesh/coords                    (n_nodes, 2) node coordinates [m]
     /mesh/node_ndof                 (n_nodes,)
+    /mesh/element_layer             (n_soil_el,) a site's soil elements' layer index (site files only)
     /mesh/<group>/conn              (n_el, n_nodes_el) node ids of each element (soil Q8, plate, interface)
     /mesh/<group>/edofs             (n_el, n_edof)
     /mesh/<group>/ip_xy             (n_el, n_ip, 2) integration points (soil, interface) [m]
@@ -186,7 +189,9 @@ def write_result(
         h5.attrs["stop"] = json.dumps(stop, default=_jsonable)
         if settings is not None:
             h5.attrs["settings"] = json.dumps(asdict(settings) if is_dataclass(settings) else settings)
-        if hasattr(result, "built"):
+        if _is_site_result(result):
+            _write_site_result(h5, result)
+        elif hasattr(result, "built"):
             _write_scene_result(h5, result)
         else:
             _write_model_result(h5, result)
@@ -216,6 +221,29 @@ def _write_scene_result(h5, result):
         _write_solver(grp, record["result"], result.u, result.states, names)
     if not result.phases:  # a phased result's own is its phases' joined (scene.join_phases): rebuilt
         _write_solver(h5.create_group("solver"), result.solver_result, result.u, result.states, names)
+
+
+def _is_site_result(result) -> bool:
+    from ..scene.site_view import SiteResult
+
+    return isinstance(result, SiteResult)
+
+
+def _write_site_result(h5, result):
+    """A :class:`ssi.scene.SiteResult`: the site's description (rebuilt on reading, its mesh compared with
+    the stored one), the mesh with each soil element's layer index, the steps and the solver's record."""
+    from ..scene.site_file import site_to_dict
+
+    built, res = result.built, result.result
+    h5.attrs["kind"] = "site"
+    h5.attrs["site"] = json.dumps(site_to_dict(built.site), default=_jsonable)
+    h5.attrs["extra"] = json.dumps(
+        {"mesher": built.mesher, "initial_stress_method": built.initial_stress_method}
+    )
+    _write_mesh(h5, built.model)
+    h5["mesh"].create_dataset("element_layer", data=np.asarray(built.element_layer, np.int64))
+    _write_steps(h5, built.model, res.load_factor, res.u, res.states)
+    _write_solver(h5.create_group("solver"), res, res.u, res.states, group_names(built.model))
 
 
 def _write_model_result(h5, result):
@@ -336,7 +364,7 @@ def _info(h5):
     out = {}
     for key, value in h5.attrs.items():
         value = value.decode() if isinstance(value, bytes) else value
-        if key in ("stop", "settings", "scene", "model", "extra"):
+        if key in ("stop", "settings", "scene", "site", "model", "extra"):
             value = json.loads(value)
         elif isinstance(value, np.bool_ | np.generic):
             value = value.item()
@@ -394,6 +422,8 @@ def read_result(path: str | os.PathLike) -> "SceneResult | StoredResult":
             [solver["state_own"][name][i] for name in group_order]
             for i in range(len(solver["state_own"][group_order[0]]))
         ]
+    if info["kind"] == "site":
+        return _site_result(info, lam, u, states, solver, coords)
     if info["kind"] != "scene":
         return StoredResult(
             coords=coords,
@@ -470,6 +500,21 @@ def _scene_result(info, lam, u, states, solver, phases, coords):
         if k in {f.name for f in dataclasses.fields(SceneResult)}
     }
     return SceneResult(built, solver_result, phases=records or None, **extra)
+
+
+def _site_result(info, lam, u, states, solver, coords):
+    """A :class:`ssi.scene.SiteResult` from a file: the site rebuilt from its description (its mesh must
+    be the stored one), its solver result from the stored record."""
+    from ..scene.site_file import site_from_dict
+    from ..scene.site_view import SiteResult
+
+    built = site_from_dict(info["site"], "the result file's site").build()
+    if built.model.coords.shape != coords.shape or not np.array_equal(built.model.coords, coords):
+        raise ValueError(
+            "the rebuilt site's mesh differs from the stored one (file written by another ssi or gmsh "
+            f"version? this is ssi {__version__}, the file {info.get('ssi_version')})"
+        )
+    return SiteResult(built, _solver_result(built.model, solver, lam, list(u), states))
 
 
 def _linear_result(model, u, states):

@@ -27,12 +27,14 @@ reuses). SI units::
     x = -5.0
     N = 300e3
 
-``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes. The optional
-``[solve]`` table holds ``n_steps`` and :class:`ssi.solver.Settings` fields, as in a scene file.
+``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes. A strip table
+with ``type = "RigidStrip"`` holds a :class:`RigidStrip`'s fields (``x0``, ``x1``, ``settle``, ``rough``).
+The optional ``[solve]`` table holds ``n_steps`` and :class:`ssi.solver.Settings` fields, as in a scene file.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 from ..solver import Settings
@@ -40,8 +42,9 @@ from .loads import ColumnLoad, SurfacePressure
 from .parts import Contact, Foundation, MeshSize
 from .scene_file import _build, _check_keys, _check_table, read_toml_and_solve
 from .site import Borehole, DepthVarying, Site, Strip
+from .site_parts import RigidStrip
 
-__all__ = ["read_site_file", "site_from_dict"]
+__all__ = ["read_site_file", "site_from_dict", "site_to_dict"]
 
 SITE_KEYS = {
     "width", "depth", "layers", "boreholes", "boundaries", "ground", "water_table", "strips", "loads", "mesh",
@@ -72,6 +75,11 @@ def site_from_dict(data: dict, where: str = "site") -> Site:
     strips = []
     for i, s in enumerate(data.get("strips", [])):
         _check_table(s, f"{where}.strips[{i}]")
+        if s.get("type") == "RigidStrip":  # a rigid strip footing: its fields (x0, x1, settle, rough)
+            strips.append(
+                _build(RigidStrip, {k: v for k, v in s.items() if k != "type"}, f"{where}.strips[{i}]")
+            )
+            continue
         _check_keys(s, {"foundation", "contact", "level"}, f"{where}.strips[{i}]")
         strips.append(
             Strip(
@@ -103,3 +111,31 @@ def read_site_file(path) -> tuple[Site, int | None, Settings]:
     as in a scene file: :func:`ssi.scene.scene_file.read_toml_and_solve`)."""
     data, n_steps, solve = read_toml_and_solve(path)
     return site_from_dict(data, Path(path).name), n_steps, Settings(**solve)
+
+
+def site_to_dict(site: Site) -> dict:
+    """Every field of ``site`` as plain values in the form :func:`site_from_dict` reads (what a site's result
+    file stores to rebuild it): a DepthVarying layer as its SoilLayer's keys with ``E_inc``, ``c_inc``,
+    ``z_ref``; a RigidStrip as a strip table with ``type = "RigidStrip"``; loads tagged by ``type``."""
+    from .scene_file import _to_plain
+
+    out = {}
+    for f in dataclasses.fields(site):
+        value = getattr(site, f.name)
+        if f.name == "layers":
+            value = [
+                {**_to_plain(lay.layer), **{k: getattr(lay, k) for k in DEPTH_KEYS}}
+                if isinstance(lay, DepthVarying)
+                else _to_plain(lay)
+                for lay in value
+            ]
+        elif f.name == "strips":
+            value = [
+                {"type": "RigidStrip", **_to_plain(s)} if isinstance(s, RigidStrip) else _to_plain(s)
+                for s in value
+            ]
+        else:
+            value = _to_plain(value)
+        if value is not None:
+            out[f.name] = value
+    return out

@@ -61,6 +61,65 @@ class SiteResult:
         soil = self.built.soil
         return soil.stress(self.result.states[k][self.built.model.groups.index(soil)])
 
+    # ---- the fields the outputs read (result file, ParaView, plots) -------------------------------------
+    @property
+    def load_factor(self) -> list:
+        """Load factor of every row (0 the initial state, 1 the full loads)."""
+        return self.result.load_factor
+
+    @property
+    def states(self) -> list:
+        """Committed states of every kept row, one array per element group."""
+        return self.result.states
+
+    @property
+    def status(self) -> str:
+        """The solver result's status ("completed" or "limit load reached")."""
+        return self.result.status
+
+    def _state(self, group, k):
+        return self.result.states[k][self.built.model.groups.index(group)]
+
+    def plastic_points(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip) bool: soil points yielding in step ``k`` (history ``branch`` non-zero)."""
+        return self.built.soil.history(self._state(self.built.soil, k), "branch") > 0.0
+
+    def plastic_strain(self, k: int = -1) -> np.ndarray:
+        """(n_el, n_ip) accumulated plastic strain norm [-] of the soil points up to step ``k``."""
+        return self.built.soil.history(self._state(self.built.soil, k), "plastic_strain").copy()
+
+    def pore_pressure(self) -> np.ndarray:
+        """(n_el, n_ip) hydrostatic pore pressure [Pa] (compression positive) below the site's water table:
+        gamma_w times the depth of each soil point below it (the soil stresses are effective)."""
+        xy = self.built.soil.integration_points()
+        head = self.built.site.water_z(xy[..., 0]) - xy[..., 1]
+        return self.built.site.gamma_w * np.where(np.isfinite(head), np.maximum(head, 0.0), 0.0)
+
+    def strip_forces(self, i: int, k: int = -1) -> dict[str, np.ndarray]:
+        """Stress resultants of the plate strip ``i`` at step ``k`` (``PlateStrip.resultants``): ``x_ax``
+        (n_el, n_ax) [m], ``N`` [N/m], ``M`` [N m/m] (sagging positive), ``x_sh``, ``Q`` [N/m]. A rigid
+        strip has none: ValueError naming it."""
+        plate = self._plate(i)["plate"]
+        return plate.resultants(self.u[k][plate.edofs], self._state(plate, k))
+
+    def contact(self, i: int, k: int = -1) -> dict[str, np.ndarray]:
+        """The interface under plate strip ``i`` at step ``k``: ``x`` [m], ``sig_n`` [Pa] (< 0 compression),
+        ``tau`` [Pa] and ``zone`` ("stick", "slip", "open") at each integration point."""
+        from ..elements.interface import V_SIG, V_TAU, Interface6
+
+        iface = self._plate(i)["interface"]
+        st = self._state(iface, k)
+        zone = np.array(["stick", "slip", "open"])[Interface6.status(st)]
+        return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": zone}
+
+    def _plate(self, i: int) -> dict:
+        st = self.built.strips[i]
+        if st.get("rigid"):
+            raise ValueError(
+                f"strip {i} is a RigidStrip: it has no plate or interface (read rigid_pressure({i}))"
+            )
+        return st
+
 
 def gibson_settlement(q: float, m: float) -> float:
     """Settlement [m] under a uniform strip pressure ``q`` [Pa] on Gibson's incompressible half-space whose

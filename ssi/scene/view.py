@@ -36,10 +36,14 @@ class SceneResult(LoadPathView):
     built: BuiltScene
     solver_result: Result
     phases: list | None = None  # phased solve: [{"name", "first", "last" (step indices), "result"}]
-    # the estimated discretisation error of capacity()["load"], attached by ssi.studies.estimate
+    # the estimated discretisation error of capacity()["load"], attached by ssi.scene.estimate
     # (solve_with_error, solve_to_target): {"relative", "error" [N/m], "extrapolated" [N/m], "values" [N/m]
     # on h, h/2, h/4, "order", "asymptotic", "refinements", "how"}; None: not estimated
     capacity_error: dict | None = None
+    # the estimate of every headline quantity (ssi.scene.estimate.ErrorEstimate.to_dict: the asked one, each
+    # quantity's value, error, relative error, extrapolated value, orders), attached with capacity_error by
+    # solve_with_error and estimate_solved (ssi run --estimate); kept by the result file. None: not estimated
+    error_estimate: dict | None = None
 
     @property
     def load_factor(self) -> list:

@@ -13,7 +13,7 @@ from .loads import ColumnLoad, Settlement
 # of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
 # constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
 PLATEAU_STIFFNESS_SHARE = 0.02
-# a capacity whose estimated discretisation error (ssi.studies.estimate) exceeds this share of it carries a
+# a capacity whose estimated discretisation error (ssi.scene.estimate) exceeds this share of it carries a
 # warning: issue 34's threshold, a choice (not a measured constant) that capacity()'s warning states
 CAPACITY_ERROR_LIMIT = 0.05
 

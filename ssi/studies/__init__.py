@@ -1,6 +1,2 @@
-"""Studies built on scenes: error estimates by systematic refinement (``estimate``) and parameter sweeps on a
-dask cluster (``sweep``). They solve scenes; no scene calls them."""
-
-from .estimate import estimate, solve_to_target, solve_with_error
-
-__all__ = ["estimate", "solve_to_target", "solve_with_error"]
+"""Studies over many scenes: parameter sweeps on a dask cluster (``sweep``). They solve scenes; no scene calls
+them. (A scene's error estimate is a property of its answer and lives with it: :mod:`ssi.scene.estimate`.)"""

@@ -69,10 +69,10 @@ def run_scene(
     """Build and solve ``scene_factory(**params)``; write its result file and row; return the row.
 
     The row: ``key``, ``params``, ``status`` ("completed", "collapsed": a limit load was reached, "failed":
-    the factory, build or solve raised), headline quantities (:func:`ssi.studies.estimate.headline`),
+    the factory, build or solve raised), headline quantities (:func:`ssi.scene.estimate.headline`),
     ``n_dof``, ``wall_time`` [s] (build + solve), ``error`` (the exception of a failed scene), ``worker``
     (pid)."""
-    from .estimate import headline
+    from ..scene.estimate import headline
 
     key = scene_key(params)
     folder = Path(out_dir) / "scenes"

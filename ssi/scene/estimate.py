@@ -1,6 +1,6 @@
 """Error estimates of a scene's answers: re-solve on systematically refined copies, Richardson extrapolation.
 
-    from ssi.studies.estimate import estimate
+    from ssi.scene.estimate import estimate
     est = estimate(scene)                 # mesh h/2, h/4; steps x2, x4; plate layers x2, x4
     print(est)                            # value, estimated error, observed order and cost per quantity
 
@@ -42,9 +42,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..elements.section import Section, layered
-from ..scene import Foundation
-from ..scene.view_load_path import capacity_error_warning
 from ..solver import Settings
+from .parts import Foundation
+from .view_load_path import capacity_error_warning
 
 REFINEMENTS = ("mesh", "steps", "layers")
 QUANTITIES = (
@@ -252,7 +252,34 @@ class ErrorEstimate:
             "order": None if mesh is None else float(mesh.order),
             "asymptotic": bool(self.asymptotic[q]),
             "refinements": list(self.parts),
-            "how": "Richardson extrapolation over halvings of h (ssi.studies.estimate)",
+            "how": "Richardson extrapolation over halvings of h (ssi.scene.estimate)",
+        }
+
+    def to_dict(self) -> dict:
+        """The estimate as plain numbers (what a result file, the JSON summary and the report keep):
+        ``asked`` the quantity asked for, ``refinements``, ``quantities`` {quantity: {``unit``, ``value``
+        (the scene as given), ``error`` (summed |estimated error|), ``relative``, ``extrapolated``,
+        ``asymptotic``, ``orders`` {refinement: observed order (nan: changed nothing or resolved to the
+        noise)}, ``values`` {refinement: [h, h/2, h/4]}}}, ``cost_s`` {refinement: wall time of its two
+        refined solves [s]}."""
+        return {
+            "asked": self.quantity,
+            "refinements": list(self.parts),
+            "quantities": {
+                q: {
+                    "unit": UNITS.get(q, ""),
+                    "value": float(v),
+                    "error": float(self.error[q]),
+                    "relative": float(self.relative[q]),
+                    "extrapolated": float(self.extrapolated[q]),
+                    "asymptotic": bool(self.asymptotic[q]),
+                    "orders": {r: float(p[q].order) for r, p in self.parts.items() if q in p},
+                    "values": {r: [float(x) for x in p[q].values] for r, p in self.parts.items() if q in p},
+                }
+                for q, v in self.value.items()
+            },
+            "cost_s": {r: float(c) for r, c in self.cost.items()},
+            "how": "Richardson extrapolation over halvings of h, h/2, h/4 (ssi.scene.estimate)",
         }
 
     @property
@@ -394,7 +421,31 @@ def solve_with_error(scene, n_steps: int | None = None, settings: Settings | Non
     est = estimate(scene, n_steps, settings, refine)
     out = est.levels[est.base_key].result
     out.capacity_error = est.capacity_error()
+    out.error_estimate = est.to_dict()
     return out, est
+
+
+def estimate_solved(
+    result, n_steps: int | None = None, settings: Settings | None = None, refine=("mesh",),
+    wall_time: float = float("nan"),
+) -> ErrorEstimate:  # fmt: skip
+    """The :class:`ErrorEstimate` of a scene already solved (``result``, a SceneResult of
+    ``result.built.scene`` solved with ``n_steps`` and ``settings``), which is the base level and is not
+    solved again; only the refined copies are (h/2 and h/4 for each of ``refine``: by default the mesh, the
+    error that dominates a capacity). Of a push-over the capacity's estimate is attached to ``result``
+    (``result.capacity_error``). ``wall_time`` [s]: what the given solve cost (for the estimate's cost
+    table; nan if unknown). What ``ssi run --estimate`` calls."""
+    scene = result.built.scene
+    solver = RefinedSolver(scene, n_steps, settings)
+    solver.linear = bool(result.built.is_linear and not scene.phases)
+    base = (0, 0, 0)
+    solver.cache[base] = Level(
+        base, headline(result), float(wall_time), result.built.model.n_dof, result.status, result
+    )
+    est = _estimate(solver, base, _check_refine(refine, scene))
+    result.capacity_error = est.capacity_error()
+    result.error_estimate = est.to_dict()
+    return est
 
 
 @dataclass
@@ -472,6 +523,7 @@ def solve_to_target(
     rel0 = {q: est.relative[q] for q in quantities}
     if base.result is not None:
         base.result.capacity_error = est.capacity_error()
+        base.result.error_estimate = est.to_dict()
     if all(r <= target_error for r in rel0.values()):
         return TargetResult(
             "target met",
