@@ -122,30 +122,60 @@ class Interface:
 
 @dataclass(frozen=True)
 class Footing:
-    """A rigid footing (translation only: its rotation is held) on the ``footing`` segments of a site.
+    """A rigid footing on the ``footing`` segments of a site: a rigid body with velocity (U, W) of its
+    reference point ``centre`` (x_c, z_c) [m] and, if "r" is among its ``moves``, the rotation rate theta
+    (counter-clockwise, x right and z up): a point (x, z) of it moves with (U - theta (z - z_c), W + theta
+    (x - x_c)).
 
-    ``load_ref`` (Fx, Fz) [N/m] is the reference force on the footing that the load factor lambda scales,
-    ``load_dead`` (Fx, Fz) [N/m] the force held fixed (e.g. a column's vertical load while lambda scales a
-    horizontal push). ``moves``: the translations that are free ("x", "z" or both); a held one is a support
-    whose reaction needs no equilibrium (the symmetry axis of a half model holds "x")."""
+    ``load_ref`` (Fx, Fz) [N/m] and ``moment_ref`` [N m/m] (counter-clockwise about ``centre``) are the
+    reference load that the load factor lambda scales, ``load_dead`` and ``moment_dead`` the load held
+    fixed (e.g. a column's vertical load while lambda scales a horizontal push). ``moves``: the free
+    motions, "x", "z" (translations) and "r" (rotation; needs ``centre``); a held one is a support whose
+    reaction needs no equilibrium (the symmetry axis of a half model holds "x" and "r")."""
 
     interface: Interface = field(default_factory=Interface)
     load_ref: tuple[float, float] = (0.0, -1.0)
     load_dead: tuple[float, float] = (0.0, 0.0)
     moves: tuple[str, ...] = ("x", "z")
+    centre: tuple[float, float] | None = None
+    moment_ref: float = 0.0
+    moment_dead: float = 0.0
 
     def __post_init__(self):
         for m in self.moves:
-            check_choice("moves", m, ("x", "z"))
+            check_choice("moves", m, ("x", "z", "r"))
         for name in ("load_ref", "load_dead"):
             given = getattr(self, name)
             v = tuple(float(check_real(f"{name}[{i}]", x, unit="N/m")) for i, x in enumerate(given))
             if len(v) != 2:
                 raise ValueError(f"{name} must be (Fx, Fz), got {getattr(self, name)!r}")
             object.__setattr__(self, name, v)
+        for name in ("moment_ref", "moment_dead"):
+            object.__setattr__(self, name, float(check_real(name, getattr(self, name), unit="N m/m")))
         for i, d in enumerate("xz"):
             if d not in self.moves and (self.load_ref[i] != 0.0 or self.load_dead[i] != 0.0):
                 raise ValueError(f"Footing load along {d} needs '{d}' in moves, got moves={self.moves!r}")
+        if "r" not in self.moves and (self.moment_ref != 0.0 or self.moment_dead != 0.0):
+            raise ValueError(f"a Footing moment needs 'r' in moves (rotation free), got moves={self.moves!r}")
+        if self.centre is not None:
+            c = tuple(float(check_real(f"centre[{i}]", x, unit="m")) for i, x in enumerate(self.centre))
+            if len(c) != 2:
+                raise ValueError(f"centre must be (x_c, z_c) [m], got {self.centre!r}")
+            object.__setattr__(self, "centre", c)
+        elif "r" in self.moves:
+            raise ValueError("a rotating Footing ('r' in moves) needs its reference point centre=(x_c, z_c)")
+
+    @property
+    def rotates(self) -> bool:
+        return "r" in self.moves
+
+    def velocity_at(self, motion: np.ndarray, xy: np.ndarray) -> np.ndarray:
+        """The rigid-body velocity (n, 2) at points ``xy`` (n, 2) [m] of the motion (U, W, theta) (3,)."""
+        xc, zc = self.centre if self.centre is not None else (0.0, 0.0)
+        out = np.empty((len(xy), 2))
+        out[:, 0] = motion[0] - motion[2] * (xy[:, 1] - zc)
+        out[:, 1] = motion[1] + motion[2] * (xy[:, 0] - xc)
+        return out
 
 
 @dataclass(frozen=True)

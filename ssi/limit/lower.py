@@ -8,7 +8,8 @@ Constraints (all linear in the nodal stresses, so met at the nodes means met eve
 - on every interior edge, at both its ends, equal tractions (t_x, t_z) from the two triangles;
 - on a free or loaded edge, t = -(p_dead + lambda p_ref) n at both ends; on a symmetry roller t . s = 0;
 - under a rigid footing, the resultant of the soil tractions equals load_dead + lambda load_ref along each
-  free translation, and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
+  free translation (and, if the footing rotates, their moment about its centre moment_dead + lambda
+  moment_ref), and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
   sigma_n tan phi_i (two linear rows), rough nothing (the soil's own strength governs);
 - Mohr-Coulomb at every vertex as the 3-D cone ||(sig_x - sig_z, 2 tau)|| <= 2 c cos phi - (sig_x + sig_z)
   sin phi (Tresca: phi = 0), and, with a tension cut-off T, ||(sig_x - sig_z, 2 tau)|| <= 2 T - (sig_x +
@@ -87,6 +88,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
     eq.add_many(r, cols, vals, 2.0 * A * gam)
     # boundary edges
     be = boundary_edges(mesh, xy)
+    cen = [np.zeros(2) if ft.centre is None else np.asarray(ft.centre) / sc.L for ft in site.footings]
     prescribed = {}  # flat index of a vertex on a free edge: (nx, nz, stress zero, p_dead, p_ref)
     # a cohesionless triangle vertex at a point of a traction-free edge: its traction on some plane is zero
     # (on the free edge, or on an interior edge shared with a vertex that has it), and a Mohr circle through
@@ -103,11 +105,12 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
         zero.add(int(9 * e + 3 * v))
         for cc in range(3):
             eq.add([9 * e + 3 * v + cc], [1.0], 0.0)
-    F = {i: [[], [], []] for i in range(len(site.footings))}  # footing: cols, x-vals, z-vals of resultant
+    # footing: cols, x-vals, z-vals of the resultant, moment-vals about its centre
+    F = {i: [[], [], [], []] for i in range(len(site.footings))}
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
         nx, nz = be.n[j]
-        for loc in (be.lp[j], be.lq[j]):
+        for end, loc in enumerate((be.lp[j], be.lq[j])):
             s0 = 9 * be.el[j] + 3 * loc
             tx = ([s0, s0 + 2], [nx, nz])
             tz = ([s0 + 2, s0 + 1], [nx, nz])
@@ -128,7 +131,17 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
                 h = 0.5 * be.length[j]
                 f[1] += [h * nx, h * nz, 0.0]
                 f[2] += [0.0, h * nx, h * nz]
-                itf = site.footings[bnd.footing].interface
+                ft = site.footings[bnd.footing]
+                if ft.rotates:
+                    # int (r_x t_z - r_z t_x) ds of linear r and t: this end's traction times
+                    # L/6 (2 r_here + r_other), r the lever arm from the centre
+                    here, other = (be.p[j], be.q[j]) if end == 0 else (be.q[j], be.p[j])
+                    lj = be.length[j]
+                    cx, cz = (2.0 * xy[here] + xy[other]) * lj / 6.0 - 0.5 * lj * cen[bnd.footing]
+                    f[3] += [-cz * nx, cx * nx - cz * nz, cx * nz]
+                else:
+                    f[3] += [0.0, 0.0, 0.0]
+                itf = ft.interface
                 # sigma_n = nx t_x + nz t_z ; tau = -nz t_x + nx t_z
                 sn = ([s0, s0 + 2, s0 + 1], [nx * nx, 2 * nx * nz, nz * nz])
                 ta = ([s0, s0 + 2, s0 + 1], [-nz * nx, nx * nx - nz * nz, nx * nz])
@@ -173,13 +186,17 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             eq.add(*tx, 0.0)
             eq.add(*tz, 0.0)
     for i, ft in enumerate(site.footings):
-        cols, vx, vz = F[i]
+        cols, vx, vz, vm = F[i]
         for d_, vals in (("x", vx), ("z", vz)):
             ax = 0 if d_ == "x" else 1
             if d_ in ft.moves:
                 fr = ft.load_ref[ax] / (sc.S * sc.L)
                 fd = ft.load_dead[ax] / (sc.S * sc.L)
                 eq.add(cols + [imu], vals + [-fr / sc.k], fd)
+        if ft.rotates:  # the moment of the base tractions about the centre balances the applied moment
+            mr = ft.moment_ref / (sc.S * sc.L**2)
+            md = ft.moment_dead / (sc.S * sc.L**2)
+            eq.add(cols + [imu], vm + [-mr / sc.k], md)
     # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x
     mats = site.materials
     two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in mats)))

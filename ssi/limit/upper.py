@@ -17,7 +17,11 @@ control point of the jump.
   hull, so the Coulomb rule n.b_k = tan phi_i s_k, |t.b_k| <= s_k at the control points holds along the edge
   and the dissipation c_i sum_k s_k L/3 bounds c_i times the integral of |d_t| from above. Rough: d = 0.
 - Velocity conditions: fixed u = 0; symmetry u . n = 0 (axis-aligned rollers, eliminated); a footing's held
-  translation is zero.
+  translation or rotation is zero. A footing is a rigid body (U, W, theta about its centre): a point of it
+  moves with (U - theta (z - z_c), W + theta (x - x_c)), linear along a straight edge and so exactly
+  interpolated by the quadratic field; a rough base's nodes are tied to it (eliminated when the footing
+  only translates, by equality rows when it rotates, and set to the rigid motion exactly before the
+  recomputation).
 - Normalisation: the power of the reference loads is 1; the objective is the dissipation minus the power
   of the dead loads (weight, surcharge, dead footing loads), which is lambda.
 
@@ -46,7 +50,8 @@ class UpperBound:
     """A recomputed upper bound. ``lam`` from the velocity field, ``lam_solver`` the solver's objective;
     ``velocity`` (n_nodes + n_edges, 2) [m/s] (corner nodes, then one midside node per edge of
     ``mesh.edges()``; scaled so that the reference loads' power is 1 N/m . m/s); ``footing_velocity``
-    (n_footings, 2); ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference
+    (n_footings, 2) of each footing's centre, ``footing_rotation`` (n_footings,) [1/s] counter-clockwise
+    (0 where held); ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference
     power; interface shares added to the element under the edge), ``dead_power`` the dead loads' share
     (lam = dissipation.sum() - dead_power); ``strain`` (n_el, 3, 3) vertex strain rates (eps_x, eps_z,
     gamma) [1/s];
@@ -56,6 +61,7 @@ class UpperBound:
     lam_solver: float
     velocity: np.ndarray
     footing_velocity: np.ndarray
+    footing_rotation: np.ndarray
     dissipation: np.ndarray
     dead_power: float
     strain: np.ndarray
@@ -90,6 +96,7 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
     n_all = n_nodes + n_mid
     state = np.zeros((n_all, 2), np.int64)  # 0 free, -1 zero, f+1: tied to footing f (rough)
     oblique = []
+    ties: dict = {}  # node: footing, for the rough base of a rotating footing
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
         nodes = (be.p[j], be.q[j], n_nodes + be.edge[j])
@@ -105,14 +112,17 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
                 else:
                     oblique.append((g, nx, nz))
             elif bnd.kind == "footing" and site.footings[bnd.footing].interface.kind == "rough":
+                if site.footings[bnd.footing].rotates:
+                    ties.setdefault(int(g), bnd.footing)  # a free node tied by rows (its velocity varies)
+                    continue
                 for d in range(2):
                     if state[g, d] == 0:
                         state[g, d] = bnd.footing + 1
     n_f = len(site.footings)
-    fvar = -np.ones((n_f, 2), np.int64)
+    fvar = -np.ones((n_f, 3), np.int64)
     nxt = 0
     for f, ft in enumerate(site.footings):
-        for d, name in enumerate("xz"):
+        for d, name in enumerate("xzr"):
             if name in ft.moves:
                 fvar[f, d] = nxt
                 nxt += 1
@@ -125,20 +135,30 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
                 nxt += 1
             elif s > 0:
                 dof[g, d] = fvar[s - 1, d]
-    return dof, fvar, nxt, oblique
+    return dof, fvar, nxt, oblique, ties
 
 
 def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> UpperBound:
     """The upper bound of the load factor lambda of ``site`` on ``mesh`` (module docstring), recomputed from
     the velocity field. ``tol``: Clarabel's tolerances. ``velocity``: (nodal (n_nodes + n_edges, 2), footing
-    (n_footings, 2)) velocities to evaluate instead of solving (any scale; a held component must be zero)."""
+    (n_footings, 2)[, footing rotation (n_footings,) [1/s]]) velocities to evaluate instead of solving (any
+    scale; a held component must be zero)."""
     sc = scales(site)
     xy = mesh.xy / sc.L
     n_nodes, n_el = len(xy), mesh.n_el
     edges, el_edge = mesh.edges()
     n_mid = len(edges)
     be = boundary_edges(mesh, xy)
-    dof, fvar, n_v, oblique = _dof_map(site, mesh, be, n_nodes, n_mid)
+    dof, fvar, n_v, oblique, ties = _dof_map(site, mesh, be, n_nodes, n_mid)
+    # every node's position (corners, then midsides of the straight edges) and each footing's centre
+    xy_all = np.concatenate([xy, 0.5 * (xy[edges[:, 0]] + xy[edges[:, 1]])])
+    cen = np.array([(0.0, 0.0) if ft.centre is None else ft.centre for ft in site.footings]).reshape(-1, 2)
+    cen = cen / sc.L
+
+    def arm(f: int, g: int) -> tuple[float, float]:
+        """d(u, w)/d theta of footing f's rigid motion at node g: (-(z - z_c), x - x_c) (scaled)."""
+        return -(xy_all[g, 1] - cen[f, 1]), xy_all[g, 0] - cen[f, 0]
+
     ie = n_v  # e variables
     n_e = 3 * n_el
     # interface control points (non-rough footings): keyed per corner node and per midside node
@@ -229,7 +249,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         nx, nz = be.n[j]
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
         weights = {0: {a_: 1.0}, 2: {b_: 1.0}, 1: {m_: 2.0, a_: -0.5, b_: -0.5}}[w]
-        wsum = sum(weights.values())  # the footing's U enters with the same weights (U is constant)
+        wsum = sum(weights.values())  # the footing's (U, W) enters with the same weights
         for comp, (vx, vz) in (("n", (nx, nz)), ("t", (-nz, nx))):
             cols, vals = [], []
             for d, vv in ((0, vx), (1, vz)):
@@ -240,11 +260,25 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                     if dof[g, d] >= 0:
                         cols.append(dof[g, d])
                         vals.append(-wt * vv)
+            if fvar[f, 2] >= 0:  # the rotation's velocity at each node, with the nodes' weights
+                cols.append(fvar[f, 2])
+                vals.append(sum(wt * (vx * arm(f, g)[0] + vz * arm(f, g)[1]) for g, wt in weights.items()))
             if comp == "n":
                 eq.add(cols + [k], vals + [-tphi], 0.0)
             else:
                 ineq.add(cols + [k], vals + [-1.0], 0.0)
                 ineq.add(cols + [k], [-v for v in vals] + [-1.0], 0.0)
+    # the rough base of a rotating footing: each node moves with the footing's rigid motion
+    for g, f in ties.items():
+        for d in range(2):
+            cols = [dof[g, d]] if dof[g, d] >= 0 else []
+            vals = [1.0] * len(cols)
+            for col, v in ((fvar[f, d], -1.0), (fvar[f, 2], -arm(f, g)[d])):
+                if col >= 0:
+                    cols.append(col)
+                    vals.append(v)
+            if cols:
+                eq.add(cols, vals, 0.0)
     # powers: reference (= 1) and dead (subtracted in the objective)
     p_ref = np.zeros(n)
     p_dead = np.zeros(n)
@@ -269,23 +303,40 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
             if fvar[f, d] >= 0:
                 p_ref[fvar[f, d]] += ft.load_ref[d] / (sc.S * sc.L) / sc.k
                 p_dead[fvar[f, d]] += ft.load_dead[d] / (sc.S * sc.L)
+        if fvar[f, 2] >= 0:
+            p_ref[fvar[f, 2]] += ft.moment_ref / (sc.S * sc.L**2) / sc.k
+            p_dead[fvar[f, 2]] += ft.moment_dead / (sc.S * sc.L**2)
     nz_ = np.flatnonzero(p_ref)
     eq.add(list(nz_), list(p_ref[nz_]), 1.0)
     q -= p_dead
     if velocity is None:
         sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
         x = sol.x
-    else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing translations)
-        vel_in, fv_in = velocity
+    else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing motions)
+        vel_in, fv_in = velocity[0], np.asarray(velocity[1], float)
+        rot_in = np.asarray(velocity[2], float) if len(velocity) > 2 else np.zeros(len(fv_in))
         x = np.zeros(n)
         m_ = dof >= 0
         x[dof[m_]] = vel_in[m_]
+        motion = np.column_stack([fv_in.reshape(-1, 2), rot_in.reshape(-1) * sc.L])  # theta in scaled units
         mf_ = fvar >= 0
-        x[fvar[mf_]] = fv_in[mf_]
+        x[fvar[mf_]] = motion[mf_]
         sol = ConicSolution(x, "given", 0, 0.0, len(soc.rhs) // 3)
     # ---- recomputation from the velocities alone
     vel = np.where(dof >= 0, x[np.maximum(dof, 0)], 0.0)
-    fv = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)
+    fm = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)  # (n_f, 3): U, W, theta (scaled)
+    fv = fm[:, :2]
+    # a tied node takes its footing's rigid motion exactly (the solver meets the tie rows to its tolerance
+    # only): the field evaluated is then kinematically admissible, with no jump at the rough base
+    for g, f in ties.items():
+        for d in range(2):
+            if dof[g, d] >= 0:
+                vel[g, d] = fm[f, d] + fm[f, 2] * arm(f, g)[d]
+
+    def footing_vel(f: int, g: int) -> np.ndarray:
+        a = arm(f, g)
+        return fv[f] + fm[f, 2] * np.array(a)
+
     ue, we = vel[nodes6, 0], vel[nodes6, 1]  # (n_el, 6)
     ex = np.einsum("evn,en->ev", G[..., 0], ue)
     ez = np.einsum("evn,en->ev", G[..., 1], we)
@@ -305,16 +356,15 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         itf = site.footings[f].interface
         ci, tphi = itf.strength
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
-        U = fv[f]
-        da, dm, db = U - vel[a_], U - vel[m_], U - vel[b_]
+        da, dm, db = (footing_vel(f, g) - vel[g] for g in (a_, m_, b_))
         bk = {0: da, 1: 2 * dm - 0.5 * (da + db), 2: db}[w]
         nx, nz = be.n[j]
         dn, dt = bk[0] * nx + bk[1] * nz, -bk[0] * nz + bk[1] * nx
         s_need = abs(dt) if tphi == 0 else max(abs(dt), dn / tphi)
         flow_res = max(flow_res, abs(dn - tphi * s_need) / v_scale)
         diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
-    pr = _power(p_ref, dof, fvar, vel, fv, n)
-    pd = _power(p_dead, dof, fvar, vel, fv, n)
+    pr = _power(p_ref, dof, fvar, vel, fm, n)
+    pd = _power(p_dead, dof, fvar, vel, fm, n)
     lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
     unit = 1.0 / (sc.S * sc.L * sc.k * pr)  # real velocities with a reference power of 1 N/m . m/s
     return UpperBound(
@@ -322,6 +372,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         lam_solver=float(q @ x) / sc.k,
         velocity=vel * unit,
         footing_velocity=fv * unit,
+        footing_rotation=fm[:, 2] * unit / sc.L,
         dissipation=diss / (pr * sc.k),
         dead_power=pd / (pr * sc.k),
         strain=np.stack([ex, ez, gm], axis=2) * unit / sc.L,
