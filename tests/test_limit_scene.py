@@ -77,7 +77,8 @@ def test_readme_capacity_block_prints_what_the_readme_shows():
     material (Davis bracket), the Davis bracket lying below the associated one."""
     readme = (ROOT / "README.md").read_text()
     code = next(b for b in re.findall(r"```python\n(.*?)```", readme, re.S) if "limit_analysis" in b)
-    shown = re.search(r"limit_analysis.*?```text\n(.*?)```", readme, re.S).group(1).strip().splitlines()
+    shown = re.search(r"cap = scene.limit_analysis.*?```text\n(.*?)```", readme, re.S).group(1)
+    shown = shown.strip().splitlines()
     env = {}
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
