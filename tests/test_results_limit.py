@@ -94,3 +94,37 @@ def test_a_stored_limit_writes_again_unchanged(limit_run, tmp_path):
         np.testing.assert_array_equal(getattr(again, key), getattr(stored, key))
     with pytest.raises(FileExistsError):
         write_limit_result(tmp_path / "copy.h5", stored)
+
+
+SITE = """
+width = 12.0
+depth = 5.0
+mesher = "gmsh"
+[[layers]]
+E = 20e6
+nu = 0.3
+c = 50e3
+phi_deg = 0.0
+psi_deg = 0.0
+[[strips]]
+type = "RigidStrip"
+x0 = -1.0
+x1 = 1.0
+settle = 0.1
+"""
+
+
+def test_ssi_limit_brackets_a_site_file_and_writes_its_result(tmp_path, capsys):
+    """A site file (a lone rough RigidStrip, B = 2 m, on weightless Tresca soil, the whole block): lambda
+    is the strip's vertical force, whose bracket holds Prandtl's; the result file and the VTU are written
+    as for a scene; a phase is refused by name (a site has none)."""
+    path = tmp_path / "site.toml"
+    path.write_text(SITE)
+    assert main(["limit", str(path), "--gap", "0.1", "--max-elements", "600"]) == 0
+    stored = read_limit_result(tmp_path / "site_limit.h5")
+    assert stored.lb <= PRANDTL <= stored.ub
+    assert stored.dissipation.sum() == pytest.approx(stored.ub, rel=1e-9)
+    assert read_vtu(tmp_path / "site_limit.vtu").cells[0].type == "triangle6"
+    capsys.readouterr()
+    assert main(["limit", str(path), "--phase", "loads", "--overwrite"]) == 2
+    assert "--phase='loads': a site file has no phases" in capsys.readouterr().err
