@@ -159,7 +159,7 @@ def _capacity_line(s: dict) -> str | None:
         # footing on the default mesh by ~10 %); the reader is told how to check it, not left to trust it
         line += (
             "\ncapacity error   not estimated (a finite-element mesh overstates a capacity): "
-            "`ssi limit` brackets it, ssi.scene.estimate.solve_with_error estimates its mesh error"
+            "`ssi run --estimate` estimates its mesh error, `ssi limit` brackets it"
         )
     if not est and (s.get("error_estimate") or {}).get("failed"):
         line += f"\ncapacity error   not estimated: {s['error_estimate']['failed']}"
