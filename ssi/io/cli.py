@@ -360,6 +360,8 @@ def run_scene_file(
         wall = time.perf_counter() - t0
         if estimate and stop is None:
             estimate_wall = _estimate_run(result, n_steps, settings, estimate, wall, echo)
+        elif estimate:  # a stopped run has no answer whose error could be estimated
+            result.error_estimate = {"failed": "the run stopped before the end of its load path"}
     for w in caught:
         warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
