@@ -285,7 +285,7 @@ from ssi.scene.site_file import read_site_file  # noqa: E402
 site_work = OUT / "boreholes.toml"
 site_work.write_text((EXAMPLES / "sites" / "boreholes.toml").read_text())
 proc = subprocess.run(
-    [sys.executable, "-m", "ssi.io.cli", "run", str(site_work), "--overwrite"],
+    [sys.executable, "-m", "ssi.io.cli", "run", str(site_work), "--overwrite", "--no-plots"],  # drawn below
     capture_output=True, text=True, check=False,
 )  # fmt: skip
 print(proc.stdout.split("wrote")[0])
