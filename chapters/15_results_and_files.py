@@ -261,6 +261,69 @@ fig3.suptitle(
 save_figure(fig3, "ch15_phased_figures")
 
 # %% [markdown]
+# ## A site and a capacity bracket, through the same files
+#
+# A site (chapter 19: layers from boreholes, several strips, a gmsh mesh) goes through the same outputs:
+# `ssi run site.toml` prints each foundation's settlement and tilt and writes the result file, the ParaView
+# series (with each soil element's layer as `material_id`), the figures -- the site's ground, layer
+# boundaries, water table and foundations drawn under each -- and the report. The file gives back a
+# `SiteResult`: the site is rebuilt from its stored description and its mesh compared with the stored one,
+# so the displacements must equal a direct solve of the same file to round-off.
+#
+# `ssi limit scene.toml` brackets a capacity (chapter 17) and writes its result file beside the JSON: both
+# brackets, the finest mesh, the mechanism's velocity field, each triangle's dissipation and the
+# lower-bound stress field, and the mechanism for ParaView as 6-node triangles. Read back, the stored
+# fields still satisfy the upper-bound identity: the triangles' dissipation sums to the upper bound (the
+# push-over example's soil is weightless, so no dead load does work). Its exact capacity, Prandtl's
+# (2 + π) s_u B = 514.2 kN/m, lies in the stored bracket.
+
+# %%
+from ssi.io.plot_site import site_deformed_mesh, site_settlement  # noqa: E402
+from ssi.io.results_limit import read_limit_result  # noqa: E402
+from ssi.scene.site_file import read_site_file  # noqa: E402
+
+site_work = OUT / "boreholes.toml"
+site_work.write_text((EXAMPLES / "sites" / "boreholes.toml").read_text())
+proc = subprocess.run(
+    [sys.executable, "-m", "ssi.io.cli", "run", str(site_work), "--overwrite", "--no-plots"],  # drawn below
+    capture_output=True, text=True, check=False,
+)  # fmt: skip
+print(proc.stdout.split("wrote")[0])
+site_back = read_result(site_work.with_suffix(".h5"))
+site, site_steps, site_settings = read_site_file(site_work)
+site_direct = site.build().solve(n_steps=site_steps, settings=site_settings)
+site_du = np.abs(np.asarray(site_back.u[-1]) - np.asarray(site_direct.u[-1])).max()
+site_ok = proc.returncode == 0 and site_du <= 1e-12 * np.abs(np.asarray(site_direct.u[-1])).max()
+print(f"site result file read back: largest displacement difference to a direct solve {site_du:.1e} m")
+assert site_ok
+
+limit_work = OUT / "pushover_footing.toml"
+limit_work.write_text((EXAMPLES / "pushover_footing.toml").read_text())
+proc = subprocess.run(
+    [sys.executable, "-m", "ssi.io.cli", "limit", str(limit_work), "--gap", "0.1", "--max-elements", "600",
+     "--overwrite", "--no-plots"],
+    capture_output=True, text=True, check=False,
+)  # fmt: skip
+print(proc.stdout.split("wrote")[0])
+bracket = read_limit_result(OUT / "pushover_footing_limit.h5")
+prandtl = (2.0 + np.pi) * 50e3 * 2.0  # [N/m] s_u = 50 kPa, B = 2 m
+identity = abs(bracket.dissipation.sum() - bracket.ub) / bracket.ub
+print(
+    f"stored bracket [{bracket.lb / 1e3:.1f}, {bracket.ub / 1e3:.1f}] kN/m on {bracket.mesh.n_el} triangles; "
+    f"Prandtl {prandtl / 1e3:.1f} kN/m; sum of the stored dissipation against the upper bound: {identity:.1e}"
+)
+assert proc.returncode == 0 and bracket.lb <= prandtl <= bracket.ub and identity <= 1e-9
+
+fig4, ax4 = plt.subplots(2, 1, figsize=(10, 8), layout="constrained")
+site_deformed_mesh(site_back, ax=ax4[0])
+site_settlement(site_back, ax=ax4[1])
+fig4.suptitle("Fig. 15.4 — examples/sites/boreholes.toml redrawn from its result file")
+save_figure(fig4, "ch15_site_figures")
+fig5 = plot.limit_mechanism(bracket, window=(0.0, 5.0, -3.0, 0.0))  # the modelled half, x >= 0
+fig5.suptitle("Fig. 15.5 — the push-over's collapse mechanism, redrawn from its limit-analysis file")
+save_figure(fig5, "ch15_limit_figures")
+
+# %% [markdown]
 # ## The command line's verdict
 
 # %%
@@ -285,6 +348,9 @@ record(
 #   their solver records included (`result_roundtrip`, tolerance 0), so figures can be redrawn without the
 #   script.
 # - The ParaView export reads back with meshio to the last bit of its float64 data (`vtk_roundtrip`).
+# - A site's run writes the same files (a `material_id` per element in ParaView, the geometry under every
+#   figure) and reads back as a `SiteResult`; a limit analysis's result file keeps both brackets, the mesh,
+#   the mechanism, the dissipation and the stress field.
 #
 # Not shown here (`tests/test_results.py`): a run that ends at a detected limit load is written as a complete
 # result with its status and limit load factor, and `ssi show` reports the limit load; a run the solver

@@ -162,3 +162,43 @@ def test_run_reports_render_offline(name, tmp_path, chromium):
     assert "largest settlement at the end" in report.text and "mm" in report.text
     if s["push_over"]:
         assert "Capacity" in report.text and f"{s['capacity']['load'] / 1e3:.2f}" in report.text
+
+
+def test_site_run_report_renders_offline(tmp_path, chromium):
+    """``ssi run`` on the example borehole site: its report (one row per foundation, the differential
+    settlement, the figures with the site's geometry) in the browser with no network: every figure decodes,
+    no console error, no request leaving the machine."""
+    from ssi.io.cli_site import run_site_file
+
+    site = tmp_path / "boreholes.toml"
+    shutil.copy2(ROOT / "examples" / "sites" / "boreholes.toml", site)
+    _, s, written = run_site_file(site)
+    page = tmp_path / "boreholes_report.html"
+    report = browser.inspect_page(chromium, page, SHOTS / "report-site-boreholes.png", width=1280, height=900)
+    assert report.problems() == []
+    pngs = [p for p in written if p.suffix == ".png"]
+    assert len(report.images) == len(pngs) >= 3 and all(i["naturalWidth"] > 0 for i in report.images)
+    assert "Foundations" in report.text and "Differential settlement" in report.text
+    assert f"{1e3 * s['foundations'][0]['mean_settlement_m']:.3f}" in report.text
+
+
+def test_estimated_push_over_report_renders_offline(tmp_path, chromium):
+    """``ssi run --estimate`` on a coarse copy of the push-over example (h = 1 m, 8 increments: a few
+    seconds with its two refined copies): the report's capacity table with the estimate, the error table
+    and the 5 % warning render offline with every figure."""
+    from ssi.io.cli import run_scene_file
+
+    text = (ROOT / "examples" / "pushover_footing.toml").read_text()
+    text = text.replace("h_fine = 0.25", "h_fine = 1.0").replace("h_coarse = 1.0", "h_coarse = 4.0")
+    text = text.replace("n_steps = 30", "n_steps = 8")
+    scene = tmp_path / "push.toml"
+    scene.write_text(text)
+    _, s, written = run_scene_file(scene, estimate=("mesh",))
+    assert s["capacity"]["estimate"] is not None
+    page = tmp_path / "push_report.html"
+    report = browser.inspect_page(chromium, page, SHOTS / "report-push-estimate.png", width=1280, height=900)
+    assert report.problems() == []
+    pngs = [p for p in written if p.suffix == ".png"]
+    assert len(report.images) == len(pngs) >= 3 and all(i["naturalWidth"] > 0 for i in report.images)
+    assert "estimated discretisation error" in report.text and "Discretisation error" in report.text
+    assert "more than 5%" in report.text

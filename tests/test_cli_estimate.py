@@ -10,11 +10,13 @@ copies (h = 0.5, 0.25 m) take a few seconds. The refined copies' capacities are 
 import html
 import json
 import math
+from pathlib import Path
 
 import pytest
 
 from ssi.io.cli import main
 
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 S_U, B = 50e3, 2.0  # [Pa] undrained strength, [m] footing width
 PRANDTL = (2.0 + math.pi) * S_U * B  # [N/m] exact collapse load of a rigid strip on weightless Tresca soil
 
@@ -105,6 +107,21 @@ def test_run_estimate_prints_stores_and_reports_the_capacity_error(estimated_run
     code, shown_json, _ = _run(capsys, ["show", str(folder / "push.h5"), "--no-plots", "--json"])
     stored = json.loads(shown_json.split("\n}\n")[0] + "\n}")
     assert stored["error_estimate"] == est and stored["capacity"]["estimate"] == cap["estimate"]
+    # the Python reader gives the estimate back on the result, and the load-settlement plot draws it
+    import matplotlib.pyplot as plt
+
+    from ssi.io.plot import load_settlement
+    from ssi.io.results import read_result
+
+    result = read_result(folder / "push.h5")
+    assert result.capacity_error == cap["estimate"] and result.error_estimate == est
+    fig = load_settlement(result)
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    plt.close(fig)
+    assert (
+        f"extrapolated {cap['estimate']['extrapolated'] / 1e3:.1f} kN/m (estimated error {100 * rel:.1f} %)"
+        in labels
+    )
 
 
 def test_refined_capacities_are_those_of_separate_runs_and_extrapolate_towards_prandtl(estimated_run, capsys):
@@ -133,3 +150,33 @@ def test_estimate_flag_refuses_an_unknown_refinement(estimated_run, capsys):
     code, _, err = _run(capsys, ["run", str(scene), "--estimate", "mesh,grid", "--overwrite"])
     assert code == 2
     assert "--estimate must be a comma list of mesh, steps, layers, got 'mesh,grid'" in err
+
+
+def test_a_load_controlled_run_estimates_its_settlement(tmp_path, capsys):
+    """``examples/strip_linear.toml`` (a linear strip under one column) with ``--estimate``: the settlement
+    is the quantity asked for, printed first; its h/2 value is that of the file run with the mesh halved by
+    hand (the same linear solve: 1e-12 relative); the corner pressure is named a singularity, not given an
+    error."""
+    import tomllib
+
+    text = (EXAMPLES / "strip_linear.toml").read_text()
+    (tmp_path / "strip.toml").write_text(text)
+    code, out, err = _run(capsys, ["run", str(tmp_path / "strip.toml"), "--estimate", "--no-plots"])
+    assert code == 0, err
+    s = json.loads((tmp_path / "strip_summary.json").read_text())
+    est = s["error_estimate"]
+    assert est["asked"] == "max_settlement" and s["capacity"]["estimate"] is None
+    settle = est["quantities"]["max_settlement"]
+    assert settle["values"]["mesh"][0] == s["max_settlement"]
+    line = f"  max_settlement (asked for)     {1e3 * settle['value']:.4g} mm, error {settle['relative']:.1%}"
+    assert line in out
+    assert "max_contact_pressure" in out and "no error to estimate" in out
+    mesh = tomllib.loads(text)["mesh"]
+    half = text.replace(f"h_fine = {mesh['h_fine']}", f"h_fine = {mesh['h_fine'] / 2}").replace(
+        f"h_coarse = {mesh['h_coarse']}", f"h_coarse = {mesh['h_coarse'] / 2}"
+    )
+    assert half != text
+    (tmp_path / "half.toml").write_text(half)
+    assert main(["run", str(tmp_path / "half.toml"), "--no-plots"]) == 0
+    direct = json.loads((tmp_path / "half_summary.json").read_text())["max_settlement"]
+    assert settle["values"]["mesh"][1] == pytest.approx(direct, rel=1e-12)

@@ -1,5 +1,7 @@
-"""What leaves the computation: result files (``results``: HDF5, written atomically), ParaView export
-(``export``), the standard figures (``plot``) and the command line (``cli``: ``ssi run scene.toml``)."""
+"""What leaves the computation: result files (``results``: HDF5, written atomically, of a scene, a site or a
+bare model; ``results_limit``: of a limit analysis), ParaView export (``export``), the standard figures
+(``plot``; a site's ``plot_site``), the HTML run report (``report``) and the command line (``cli``:
+``ssi run | show | limit``; ``cli_site`` for site files)."""
 
 from .results import read_result, write_result
 

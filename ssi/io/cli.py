@@ -21,7 +21,9 @@ result file (a scene's or a site's) and redraws its plots and report into a new 
 ... when the run's exists; ``--overwrite``: into the run's).
 ``ssi limit scene.toml`` brackets the scene's capacity by finite-element limit analysis
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
-``<name>_limit.json`` (the numbers) and ``<name>_limit.png`` (the mechanism and the dissipation).
+``<name>_limit.json`` (the numbers), ``<name>_limit.h5`` (the result file: bounds, Davis bounds, gaps, the
+mesh, the mechanism's velocity, the dissipation and the stress field; ``ssi show`` reads it back),
+``<name>_limit.vtu`` (ParaView) and ``<name>_limit.png`` (the mechanism and the dissipation).
 """
 
 import argparse
@@ -157,7 +159,7 @@ def _capacity_line(s: dict) -> str | None:
         # footing on the default mesh by ~10 %); the reader is told how to check it, not left to trust it
         line += (
             "\ncapacity error   not estimated (a finite-element mesh overstates a capacity): "
-            "`ssi limit` brackets it, ssi.scene.estimate.solve_with_error estimates its mesh error"
+            "`ssi run --estimate` estimates its mesh error, `ssi limit` brackets it"
         )
     if not est and (s.get("error_estimate") or {}).get("failed"):
         line += f"\ncapacity error   not estimated: {s['error_estimate']['failed']}"
@@ -255,7 +257,7 @@ def summary_text(s: dict) -> str:
 def _estimate_lines(s: dict) -> list[str]:
     """The error estimate's lines (the capacity's is on the capacity line): the quantity asked for first,
     then the others, each with its estimated error, extrapolated value and a flag when not asymptotic."""
-    from .report import ESTIMATE_UNITS
+    from .report import ESTIMATE_UNITS, SINGULAR_ESTIMATES
 
     est = s.get("error_estimate")
     if not est:
@@ -270,6 +272,9 @@ def _estimate_lines(s: dict) -> list[str]:
             continue
         e = qs[q]
         scale, unit = ESTIMATE_UNITS.get(q, (1.0, e["unit"]))
+        if q in SINGULAR_ESTIMATES:
+            lines.append(f"  {q:<31}{e['value'] * scale:.4g} {unit}: {SINGULAR_ESTIMATES[q]}")
+            continue
         flag = "" if e["asymptotic"] else ", NOT asymptotic: the estimate is a rough bound"
         asked = " (asked for)" if q == est["asked"] else ""
         lines.append(
@@ -355,6 +360,8 @@ def run_scene_file(
         wall = time.perf_counter() - t0
         if estimate and stop is None:
             estimate_wall = _estimate_run(result, n_steps, settings, estimate, wall, echo)
+        elif estimate:  # a stopped run has no answer whose error could be estimated
+            result.error_estimate = {"failed": "the run stopped before the end of its load path"}
     for w in caught:
         warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
@@ -387,7 +394,8 @@ def _estimate_run(result, n_steps, settings, refine, wall, echo) -> float:
     if echo is not None:
         echo(
             f"estimating the discretisation error: solving the scene again at h/2 and h/4 over "
-            f"{', '.join(refine)} (about 20 times the {wall:.1f} s of the run for the mesh)"
+            f"{', '.join(refine)} (the mesh's copies cost about 4 and 16 times the {wall:.1f} s of the run, "
+            "the steps' and layers' about 2 and 4 times)"
         )
     t0 = time.perf_counter()
     try:
@@ -420,8 +428,10 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     from .results import read_info, read_result
 
     path = Path(path)
-    result = read_result(path)
     info = read_info(path)
+    if info.get("kind") == "limit":
+        return _show_limit_file(path, plots, overwrite, figures)
+    result = read_result(path)
     if info.get("kind") == "site":
         from .cli_site import site_summary
         from .plot_site import save_site_figures as save_figures
@@ -442,24 +452,57 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     return result, s, written
 
 
+def _show_limit_file(path: Path, plots, overwrite: bool, figures: bool):
+    """``ssi show`` of a limit analysis's file: (StoredLimit, its numbers with ``kind`` "limit" and
+    ``summary_text``, the mechanism figure redrawn into ``plots`` -- default ``<file>_plots``, or a new
+    folder beside it)."""
+    from .results_limit import read_limit_result
+
+    stored = read_limit_result(path)
+    s = {"kind": "limit", "complete": True, **stored.to_dict(), "summary_text": stored.summary()}
+    written = []
+    if figures:
+        folder = Path(plots) if plots else path.parent / (path.stem + "_plots")
+        if plots is None and not overwrite:
+            folder = _free_folder(folder)
+        written.append(_save_limit_figure(stored, folder / "mechanism.png", overwrite))
+    return stored, s, written
+
+
 def limit_scene_file(
     scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, plot=None,
     overwrite=False, figures=True, echo=print,
 ):  # fmt: skip
-    """What ``ssi limit`` does; returns (CapacityResult, written paths). ``echo`` gets one line of progress
-    per mesh of the adaptive runs."""
+    """What ``ssi limit`` does with a scene or a site file (:meth:`ssi.scene.Site.limit_analysis`: its loads
+    scaled, no ``phase``); returns (CapacityResult, written paths): ``<name>_limit.json`` (the numbers,
+    ``out``), ``<name>_limit.h5`` (the result file: bounds, meshes, mechanism, dissipation, stress field;
+    :mod:`ssi.io.results_limit`), ``<name>_limit.vtu`` (ParaView: the mechanism's triangles with velocity,
+    dissipation and stress) and ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``). ``echo``
+    gets one line of progress per mesh of the adaptive runs."""
     from ..scene.scene_file import read_scene_file
-    from .plot import limit_mechanism
     from .results import atomic_path
+    from .results_limit import export_limit_vtu, write_limit_result
 
     scene_path = Path(scene_path)
     stem = scene_path.with_suffix("")
     out = Path(out) if out else stem.parent / (stem.name + "_limit.json")
     plot = Path(plot) if plot else stem.parent / (stem.name + "_limit.png")
-    for target in (out, plot) if figures else (out,):
+    h5_path = stem.parent / (stem.name + "_limit.h5")
+    vtu_path = stem.parent / (stem.name + "_limit.vtu")
+    for target in (out, h5_path, vtu_path, plot) if figures else (out, h5_path, vtu_path):
         if target.exists() and not overwrite:
             raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
-    scene, _, _ = read_scene_file(scene_path)
+    from .cli_site import is_site_file
+
+    if is_site_file(scene_path):  # a site: its loads scale with lambda (Site.limit_analysis); no phases
+        from ..scene.site_file import read_site_file
+
+        if phase is not None:
+            raise ValueError(f"--phase={phase!r}: a site file has no phases (its loads are the ones scaled)")
+        scene, _, _ = read_site_file(scene_path)
+    else:
+        scene, _, _ = read_scene_file(scene_path)
+    options = {} if phase is None else {"phase": phase}
 
     def progress(label, r):
         echo(
@@ -468,20 +511,27 @@ def limit_scene_file(
         )
 
     cap = scene.limit_analysis(
-        phase=phase, gap=gap, h=h, h_min=h_min, max_elements=max_elements, progress=progress
+        gap=gap, h=h, h_min=h_min, max_elements=max_elements, progress=progress, **options
     )
     with atomic_path(out, overwrite) as tmp:
         tmp.write_text(json.dumps(cap.to_dict(), indent=1))
-    written = [out]
+    written = [out, write_limit_result(h5_path, cap, overwrite), export_limit_vtu(cap, vtu_path, overwrite)]
     if figures:
-        import matplotlib.pyplot as plt
-
-        fig = limit_mechanism(cap)
-        with atomic_path(plot, overwrite) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
-        plt.close(fig)
-        written.append(plot)
+        written.append(_save_limit_figure(cap, plot, overwrite))
     return cap, written
+
+
+def _save_limit_figure(cap, path: Path, overwrite: bool) -> Path:
+    import matplotlib.pyplot as plt
+
+    from .plot import limit_mechanism
+    from .results import atomic_path
+
+    fig = limit_mechanism(cap)
+    with atomic_path(path, overwrite) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+    return path
 
 
 def _refinements(text: str | None) -> tuple | None:
@@ -592,7 +642,7 @@ def main(argv=None) -> int:
     except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
         print(f"ssi: error: {err}", file=sys.stderr)
         return 2
-    text = site_summary_text if s.get("kind") == "site" else summary_text
+    text = {"site": site_summary_text, "limit": lambda d: d["summary_text"]}.get(s.get("kind"), summary_text)
     print(json.dumps(s, indent=1) if args.json else text(s))
     for p in written:
         print(f"wrote {p}")

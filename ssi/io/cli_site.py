@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import time
 import tomllib
+import warnings
 from pathlib import Path
 
 __all__ = ["SITE_ONLY_KEYS", "is_site_file", "run_site_file", "site_summary", "site_summary_text"]
@@ -125,12 +126,17 @@ def run_site_file(site_path, overwrite: bool = False, out=None, plots=None, para
             raise OutputExistsError(target)
     announce_compilation()
     t0 = time.perf_counter()
-    built = site.build()
     stop = None
-    try:
-        result = built.solve(n_steps=n_steps, settings=settings)
-    except NonConvergence as err:  # the converged steps before the failure
-        result, stop = SiteResult(built, err.result), err.report
+    with warnings.catch_warnings(record=True) as caught:  # shown as usual below, and kept for the report
+        warnings.simplefilter("default")
+        built = site.build()
+        try:
+            result = built.solve(n_steps=n_steps, settings=settings)
+        except NonConvergence as err:  # the converged steps before the failure
+            result, stop = SiteResult(built, err.result), err.report
+    for w in caught:
+        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
     s = site_summary(result, time.perf_counter() - t0, stop is None, stop)
     written = [write_result(out, result, settings, overwrite=overwrite, complete=stop is None, stop=stop)]
     written.append(export_series(result, paraview, overwrite=overwrite))
@@ -139,5 +145,7 @@ def run_site_file(site_path, overwrite: bool = False, out=None, plots=None, para
     written.append(summary_path)
     figs = save_site_figures(result, plots, overwrite=overwrite) if figures else []
     written += figs
-    written.append(write_report(s, report_path, figs, site_path.name, overwrite=overwrite))
+    written.append(
+        write_report(s, report_path, figs, site_path.name, run_warnings=run_warnings, overwrite=overwrite)
+    )
     return result, s, written

@@ -238,18 +238,24 @@ def time_value(value: float) -> float:
 
 
 def _add_field_data(path: Path, time: float) -> None:
-    """Put the units (VTK string arrays: each string's character codes, 0-terminated, ascii) and the time
-    into the VTU at ``path`` as the grid's FieldData."""
+    """Put the units of :data:`FIELD_UNITS` and the time into the VTU at ``path`` (:func:`_add_units`)."""
+    _add_units(path, FIELD_UNITS, time)
+
+
+def _add_units(path: Path, units: dict[str, str], time: float | None) -> None:
+    """Put ``units`` {field: unit} (VTK string arrays ``unit_<field>``: each string's character codes,
+    0-terminated, ascii) and the ``time`` (None: none) into the VTU at ``path`` as the grid's FieldData."""
     tree = ET.parse(path)
     grid = tree.getroot().find("UnstructuredGrid")
     fd = ET.Element("FieldData")
-    for name, unit in FIELD_UNITS.items():
+    for name, unit in units.items():
         arr = ET.SubElement(
             fd, "DataArray", type="String", Name=f"unit_{name}", NumberOfTuples="1", format="ascii"
         )
         arr.text = " ".join(str(b) for b in [*unit.encode(), 0])
-    arr = ET.SubElement(fd, "DataArray", type="Float64", Name="time", NumberOfTuples="1", format="ascii")
-    arr.text = repr(time_value(time))
+    if time is not None:
+        arr = ET.SubElement(fd, "DataArray", type="Float64", Name="time", NumberOfTuples="1", format="ascii")
+        arr.text = repr(time_value(time))
     grid.insert(0, fd)
     tree.write(path, xml_declaration=True, encoding="utf-8")
 

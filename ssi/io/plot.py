@@ -325,7 +325,8 @@ def cracks_and_steel(result: SceneResult, k: int = -1, ax: Axes | None = None) -
 def load_settlement(result: SceneResult, ax: Axes | None = None) -> Figure:
     """The load the foundation carries [kN/m] (:meth:`SceneResult.foundation_load`: the column load, or of
     a push-over the soil's reaction) against the largest settlement [mm] at every converged step, with the
-    capacity (:meth:`SceneResult.capacity`) marked and how it was found. Rows that are not rate-independent
+    capacity (:meth:`SceneResult.capacity`) marked and how it was found (and, when its error was estimated,
+    the extrapolated capacity as a dashed line). Rows that are not rate-independent
     equilibria (a viscous fallback's) are drawn hollow and never marked as the capacity. Of a phased result
     each phase's stretch is coloured and named."""
     fig, ax = _axes(ax, figsize=(6, 4.5))
@@ -350,10 +351,15 @@ def load_settlement(result: SceneResult, ax: Axes | None = None) -> Figure:
     word = "capacity" if cap["is_limit"] else "largest load carried"
     ax.plot(1e3 * cap["settlement"], cap["load"] / 1e3, "k*", ms=11, zorder=3,
             label=f"{word} {cap['load'] / 1e3:.1f} kN/m")  # fmt: skip
+    est = cap.get("estimate")
+    if est:  # ssi run --estimate, solve_with_error: where the capacity goes as the mesh is refined
+        ax.axhline(est["extrapolated"] / 1e3, ls="--", color="0.3", lw=0.9,
+                   label=f"extrapolated {est['extrapolated'] / 1e3:.1f} kN/m "
+                   f"(estimated error {100 * est['relative']:.1f} %)")  # fmt: skip
     ax.annotate(cap["how"], (0.02, 0.02), xycoords="axes fraction", fontsize=7, va="bottom", wrap=True)
     ax.set_xlabel("largest settlement [mm]")
     ax.set_ylabel(("footing load (soil reaction)" if result.is_push_over else "column load") + " [kN/m]")
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="center right")  # clear of the sentence at the bottom
     ax.set_title("load-settlement path" + (" over the phases" if result.phases else ""))
     return fig
 

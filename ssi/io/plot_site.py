@@ -123,9 +123,12 @@ def site_stress(result: SiteResult, k: int = -1, ax: Axes | None = None) -> Figu
 
 def site_settlement(result: SiteResult, k: int = -1, ax: Axes | None = None) -> Figure:
     """Settlement [mm] (positive down, plotted downwards) of the ground and of every foundation at step
-    ``k``, the foundations numbered as in the summary."""
+    ``k``, the foundations numbered as in the summary and their extents shaded."""
     fig, ax = _axes(ax, figsize=(9, 3.8))
     built = result.built
+    for s in built.site.strips:  # where the foundations stand, shaded under the curves
+        x0, x1 = (s.foundation.x0, s.foundation.x1) if hasattr(s, "foundation") else (s.x0, s.x1)
+        ax.axvspan(x0, x1, color="C1", alpha=0.12, lw=0)
     xs, ws = result.ground_settlement(k=k)
     ax.plot(xs, 1e3 * ws, "k-", lw=1, label="ground")
     for i, st in enumerate(built.strips):

@@ -124,6 +124,14 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
     return out
 
 
+# estimated quantities that are singular: the largest contact pressure sits at a stiff strip's corner, where
+# the elastic pressure is infinite and grows under every refinement -- no discretisation error exists to be
+# estimated (its "extrapolation" can even be negative), so its row says so instead of giving numbers
+SINGULAR_ESTIMATES = {
+    "max_contact_pressure": "the corner singularity: grows under refinement, no error to estimate"
+}
+
+
 def _capacity_estimate_rows(est: dict | None) -> str:
     """The capacity table's rows of its estimated discretisation error (``capacity["estimate"]``)."""
     if not est:
@@ -166,6 +174,12 @@ def _estimate_section(s: dict) -> list[str]:
             continue
         e = qs[q]
         scale, unit = ESTIMATE_UNITS.get(q, (1.0, e["unit"]))
+        if q in SINGULAR_ESTIMATES:
+            out.append(
+                f'<tr><td>{esc(q)}</td><td class="num">{e["value"] * scale:.4g}</td><td>–</td>'
+                f'<td>{esc(unit)}</td><td colspan="3">{esc(SINGULAR_ESTIMATES[q])}</td></tr>'
+            )
+            continue
         orders = ", ".join(f"{r} {p:.2f}" for r, p in e["orders"].items())
         out.append(
             f'<tr><td>{esc(q)}</td><td class="num">{e["value"] * scale:.4g}</td>'

@@ -64,7 +64,7 @@ from .. import __version__
 if TYPE_CHECKING:  # for annotations only: the functions import ssi.scene and ssi.solver lazily
     from ..core.model import Model
     from ..core.solution import Result
-    from ..scene import SceneResult
+    from ..scene import SceneResult, SiteResult
     from ..solver import Settings
 
 FORMAT = "ssi-result-1"
@@ -372,14 +372,20 @@ def _info(h5):
     return out
 
 
-def read_result(path: str | os.PathLike) -> "SceneResult | StoredResult":
+def read_result(path: str | os.PathLike) -> "SceneResult | SiteResult | StoredResult":
     """Read a result file: a :class:`ssi.scene.SceneResult` (scene rebuilt from its description; its
-    ``solver_result`` a :class:`ssi.solver.Result` when one was written) or a :class:`StoredResult`."""
+    ``solver_result`` a :class:`ssi.solver.Result` when one was written), a :class:`ssi.scene.SiteResult`
+    (the site rebuilt likewise) or a :class:`StoredResult`. A limit analysis's file is read by
+    :func:`ssi.io.results_limit.read_limit_result`."""
     with h5py.File(path, "r") as h5:
         info = _info(h5)
         if info.get("format") != FORMAT:
             raise ValueError(
                 f"{path}: not an ssi result file of format {FORMAT} (found {info.get('format')})"
+            )
+        if info.get("kind") == "limit":
+            raise ValueError(
+                f"{path}: a limit-analysis file; read it with ssi.io.results_limit.read_limit_result"
             )
         lam = h5["steps/load_factor"][...]
         u = h5["steps/u"][...]

@@ -129,9 +129,11 @@ def site_to_dict(site: Site) -> dict:
                 else _to_plain(lay)
                 for lay in value
             ]
-        elif f.name == "strips":
+        elif f.name == "strips":  # a field left at None is left out: the reader's default restores it
             value = [
-                {"type": "RigidStrip", **_to_plain(s)} if isinstance(s, RigidStrip) else _to_plain(s)
+                {"type": "RigidStrip", **_to_plain(s)}
+                if isinstance(s, RigidStrip)
+                else {k: v for k, v in _to_plain(s).items() if v is not None}
                 for s in value
             ]
         else:
