@@ -147,9 +147,9 @@ def test_refined_capacities_are_those_of_separate_runs_and_extrapolate_towards_p
 
 def test_estimate_flag_refuses_an_unknown_refinement(estimated_run, capsys):
     folder, scene = estimated_run
-    code, _, err = _run(capsys, ["run", str(scene), "--estimate", "mesh,grid", "--overwrite"])
+    code, _, err = _run(capsys, ["run", str(scene), "--estimate-over", "mesh,grid", "--overwrite"])
     assert code == 2
-    assert "--estimate must be a comma list of mesh, steps, layers, got 'mesh,grid'" in err
+    assert "--estimate-over must be a comma list of mesh, steps, layers, got 'mesh,grid'" in err
 
 
 def test_a_load_controlled_run_estimates_its_settlement(tmp_path, capsys):
@@ -161,7 +161,8 @@ def test_a_load_controlled_run_estimates_its_settlement(tmp_path, capsys):
 
     text = (EXAMPLES / "strip_linear.toml").read_text()
     (tmp_path / "strip.toml").write_text(text)
-    code, out, err = _run(capsys, ["run", str(tmp_path / "strip.toml"), "--estimate", "--no-plots"])
+    # the flag before the path (argparse must not take the path for the flag's value)
+    code, out, err = _run(capsys, ["run", "--estimate", str(tmp_path / "strip.toml"), "--no-plots"])
     assert code == 0, err
     s = json.loads((tmp_path / "strip_summary.json").read_text())
     est = s["error_estimate"]

@@ -535,7 +535,7 @@ def _save_limit_figure(cap, path: Path, overwrite: bool) -> Path:
 
 
 def _refinements(text: str | None) -> tuple | None:
-    """``--estimate``'s comma list as a tuple of refinements (None: no estimate); an unknown name is a
+    """``--estimate-over``'s comma list as a tuple of refinements (None: no estimate); an unknown name is a
     ValueError naming the flag, the value and the allowed names."""
     if text is None:
         return None
@@ -544,7 +544,7 @@ def _refinements(text: str | None) -> tuple | None:
     names = tuple(n.strip() for n in text.split(",") if n.strip())
     bad = [n for n in names if n not in REFINEMENTS]
     if bad or not names:
-        raise ValueError(f"--estimate must be a comma list of {', '.join(REFINEMENTS)}, got {text!r}")
+        raise ValueError(f"--estimate-over must be a comma list of {', '.join(REFINEMENTS)}, got {text!r}")
     return names
 
 
@@ -565,14 +565,19 @@ def main(argv=None) -> int:
     run_p.add_argument("--no-plots", action="store_true", help="skip the figures")
     run_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    # a flag, and the refinements under their own option: an optional value on --estimate would swallow
+    # the scene's path in `ssi run --estimate scene.toml`
     run_p.add_argument(
         "--estimate",
-        nargs="?",
-        const="mesh",
-        metavar="REFINEMENTS",
+        action="store_true",
         help="estimate the discretisation error by re-solving at h/2 and h/4 (Richardson): the capacity of "
-        "a push-over, the settlement otherwise; REFINEMENTS a comma list of mesh, steps, layers (default: "
-        "mesh). Costs about 20 times the run per refinement",
+        "a push-over, the settlement otherwise; over the mesh unless --estimate-over says otherwise. Costs "
+        "about 20 times the run per refinement",
+    )
+    run_p.add_argument(
+        "--estimate-over",
+        metavar="REFINEMENTS",
+        help="the refinements of --estimate (implies it): a comma list of mesh, steps, layers",
     )
     show_p = sub.add_parser("show", help="print the summary of a result file and write its plots")
     show_p.add_argument("result", type=Path)
@@ -620,8 +625,11 @@ def main(argv=None) -> int:
         print(schema_text())
         return 0
     try:
+        estimate = None  # the refinements of --estimate / --estimate-over
+        if args.command == "run" and (args.estimate or args.estimate_over is not None):
+            estimate = "mesh" if args.estimate_over is None else args.estimate_over
         if args.command == "run" and is_site_file(args.scene):
-            if args.estimate is not None:
+            if estimate is not None:
                 raise ValueError(
                     f"--estimate: not available for a site file ({args.scene.name}); the estimate refines "
                     "a scene's mesh (ssi.scene.estimate)"
@@ -632,7 +640,7 @@ def main(argv=None) -> int:
         elif args.command == "run":
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,
-                _refinements(args.estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
+                _refinements(estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
             )  # fmt: skip
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)
