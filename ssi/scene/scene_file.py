@@ -92,6 +92,7 @@ UNITS = {
         "water_table": "m (depth below the ground; < 0: free water above it, ponding; leave out: dry)",
         "gamma_w": "N/m^3",
         "symmetric": "bool (true: model the half x >= 0 of a scene symmetric about x = 0)",
+        "side_contact": "Contact table on the sides of an embedded strip (leave out: none)",
     },
     "SoilLayer": {
         "thickness": "m",
@@ -185,6 +186,7 @@ _NESTED = {
     (Phase, "loads"): (_LOAD, "tuple"),
     (Phase, "excavate"): (Excavation, "tuple"),
     (ContactSegment, "contact"): (Contact, "one"),
+    (Scene, "side_contact"): (Contact, "one"),
 }
 # plain lists that the dataclass holds as tuples
 _TUPLES = {(Settlement, "x")}
