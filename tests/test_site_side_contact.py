@@ -137,3 +137,14 @@ def test_push_with_side_contact_exceeds_base_sliding():
         out[name] = res.solver_result.support_reaction(built.plate_nodes, "u")[-1]
     assert out["base"] == pytest.approx(10e3 * 2.0, rel=1e-6)
     assert out["side"] - out["base"] > 0.5 * 18e3 + 2 * 20e3
+
+
+def test_side_contact_in_a_scene_file_dict():
+    """scene_to_dict / scene_from_dict carry side_contact (a Contact table), like contact."""
+    from ssi.scene.scene_file import scene_from_dict, scene_to_dict
+
+    scene = _embedded(SMOOTH)
+    data = scene_to_dict(scene)
+    assert data["side_contact"]["kn"] == 1e10 and data["side_contact"]["kt"] == 0.0
+    assert scene_from_dict(data).side_contact == SMOOTH
+    assert scene_from_dict(scene_to_dict(_embedded(None))).side_contact is None
