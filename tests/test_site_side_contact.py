@@ -1,6 +1,8 @@
 """Side contact of an embedded strip (issue 32 item 5): the rigid-face interface element against the six-node
 interface it is built from, its friction against Coulomb's law, and a scene's initial state and push."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -148,3 +150,31 @@ def test_side_contact_in_a_scene_file_dict():
     assert data["side_contact"]["kn"] == 1e10 and data["side_contact"]["kt"] == 0.0
     assert scene_from_dict(data).side_contact == SMOOTH
     assert scene_from_dict(scene_to_dict(_embedded(None))).side_contact is None
+
+
+def test_frictional_sides_carry_a_settling_strip():
+    """A strip pushed down 10 mm between frictional sides (delta = 20 deg, c = 0): every closed side point
+    slips with |tau| = tan(delta) |sig_n| (1e-9: the law's return), and the strip's vertical reaction is the
+    base contact force plus the side friction minus the dead load holding the base's initial pressure p0 B
+    (equilibrium of the strip, to the solver's force tolerance, 1e-6 relative): the friction of both walls
+    acts upwards on the strip."""
+    from ssi.elements.interface import V_STATUS
+    from ssi.scene.loads import Settlement
+
+    scene = _embedded(Contact(kn=1e10, kt=1e9, phi_deg=20.0, c=0.0))
+    scene = dataclasses.replace(scene, contact=Contact(kn=1e10, kt=1e9), loads=[Settlement(0.01)])
+    built = scene.build()
+    out = built.solve(n_steps=4)
+    model = built.model
+    friction = 0.0
+    for g in built.side_interfaces:
+        st = out.states[-1][model.groups.index(g)]
+        closed = st[..., V_STATUS] < 1.5  # the top point, at sig_n = 0, is open
+        assert np.all(st[..., V_STATUS][closed & (st[..., V_SIG] < -1e3)] == 1.0)  # slipping
+        tau, sig = st[..., V_TAU][closed], st[..., V_SIG][closed]
+        assert np.allclose(np.abs(tau), np.tan(np.radians(20.0)) * np.abs(sig), rtol=1e-9, atol=1e-9 * 1e5)
+        friction += np.sum(np.abs(st[..., V_TAU]) * g.ip_weights())
+    reaction = -out.solver_result.support_reaction(built.plate_nodes, "w")[-1]
+    base = built.contact_force(out)[-1]
+    assert friction > 0.05 * base  # not a negligible term: the check below would not see its sign
+    assert reaction == pytest.approx(base + friction - built.base_pressure * 2.0, rel=1e-6)
