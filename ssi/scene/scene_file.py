@@ -55,6 +55,9 @@ one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of :class:`ssi.
     x1 = 0.0
     contact = { kn = 1e10, kt = 0.0 }
 
+An embedded strip's side contact is a ``[side_contact]`` table (:class:`ssi.scene.Contact`, with
+``embedment`` > 0): ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` is a smooth side.
+
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.elements.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.elements.section.rc_section` with
 ``bars = [[z, As], ...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``,
