@@ -537,8 +537,8 @@ SMOOTH_SIDE = Contact(kn=1e10, kt=0.0, phi_deg=0.0, c=0.0)
 
 
 def side_push(h, side, push=0.05, n_steps=20):
-    """Push resistance [N/m] of the embedded rigid strip at a horizontal displacement ``push`` [m]: every
-    plate node's u prescribed (rotations held, w free), the reaction summed."""
+    """(displacement [m], push resistance [N/m]) of the embedded rigid strip pushed to ``push`` [m] in
+    ``n_steps`` equal steps: every plate node's u prescribed (rotations held, w free), the reaction summed."""
     n_sub = round(D_S / h)  # sublayers of the backfill: mesh lines through the passive wedge
 
     def clay(t):
@@ -553,13 +553,16 @@ def side_push(h, side, push=0.05, n_steps=20):
     built.model.prescribe(built.plate_nodes, "u", push)
     built.model.fix(built.plate_nodes, "alpha")
     out = built.solve(n_steps=n_steps)
-    return float(out.solver_result.support_reaction(built.plate_nodes, "u")[-1])
+    u = np.array([ui[built.model.dof(built.plate_nodes[:1], "u")[0]] for ui in out.u])
+    return u, out.solver_result.support_reaction(built.plate_nodes, "u")
 
 
-h_base_only = side_push(0.25, None)
+curve_base = side_push(0.25, None)
+h_base_only = float(curve_base[1][-1])
 H_HAND = C_I * B_S + 0.5 * GAMMA_B * D_S**2 + 2 * S_U * D_S
 SIDE_MESHES = [0.25] if FAST else [0.25, 0.125, 0.0625]
-h_side = {h: side_push(h, SMOOTH_SIDE) for h in SIDE_MESHES}
+curves_side = {h: side_push(h, SMOOTH_SIDE) for h in SIDE_MESHES}
+h_side = {h: float(c[1][-1]) for h, c in curves_side.items()}
 for h, v in h_side.items():
     print(f"h={h} m, {round(D_S / h)} sublayers: H = {v / 1e3:.2f} kN/m (hand {H_HAND / 1e3:.1f})")
 print(f"base only: {h_base_only / 1e3:.3f} kN/m (c_i B = {C_I * B_S / 1e3:.1f})")
@@ -653,11 +656,29 @@ ax2.set(xlabel="clear distance between the strips [m]", ylabel="extra settlement
         title="Fig. 19.1c — plastic interaction of two strips")  # fmt: skip
 save_figure(fig, "19_sites")
 
+fig, ax = plt.subplots(figsize=(6.5, 4.5))
+ax.plot(1e3 * curve_base[0], curve_base[1] / 1e3, "k-", label="base only (no side contact)")
+for h, (u_c, f_c) in curves_side.items():
+    ax.plot(1e3 * u_c, f_c / 1e3, "o-", ms=3, label=f"smooth side contact, h = {h} m")
+ax.axhline(H_HAND / 1e3, color="r", ls="--", label="c_i B + Rankine passive P_p (hand)")
+ax.axhline(C_I * B_S / 1e3, color="0.5", ls=":", label="c_i B")
+if not FAST:
+    ax.axhline(h_side_extrap / 1e3, color="b", ls="-.", lw=0.8, label="Richardson, 3 meshes")
+ax.set(xlabel="horizontal displacement of the strip [mm]", ylabel="push resistance H [kN/m]",
+       title="Fig. 19.2 — embedded rigid strip pushed sideways")  # fmt: skip
+ax.legend(fontsize=8)
+save_figure(fig, "19_sites_side_contact")
+
 # %% [markdown]
 # *Fig. 19.1* (a) The gmsh Q8 mesh of the two-strip site: it conforms to the interpolated boundaries and
 # to the pinch-out of the second layer at x = 0, and is finest at the strips. (b) Settlement of the ground
 # under a strip load on Gibson's soil against the exact uniform value. (c) Extra mean settlement of strip A
 # caused by an equally loaded strip B on Mohr–Coulomb soil, against their clear distance.
+#
+# *Fig. 19.2* The embedded rigid strip of section 8 pushed sideways: without side contact it slides at its
+# base's c_i B; with smooth side contact the backfill's passive resistance adds to it. Each mesh levels off
+# above the hand value c_i B + P_p and the level falls under refinement through the passive wedge; the
+# extrapolation of the three meshes (full mode) lands on the hand value.
 #
 # ## Summary
 #
