@@ -74,3 +74,18 @@ def test_gauss_point_sampling_converges_faster_than_the_centroid_one():
 def test_depth_varying_sampling_is_checked():
     with pytest.raises(ValueError, match="depth_varying"):
         Site(4.0, 4.0, [SoilLayer(1.0, E=1e6, nu=0.3)], depth_varying="nodes")
+
+
+def test_gravity_loading_with_stiffness_growing_with_depth():
+    """Gravity loading on level ground through the per-point group (E sampled at the Gauss points): the
+    vertical stress is the weight above whatever the stiffness (1-D equilibrium with rollers on the sides;
+    1e-6 relative, as for a uniform layer) and sigma_h/sigma_v = nu/(1 - nu)."""
+    lay = DepthVarying(SoilLayer(1.0, E=2e6, nu=0.3, unit_weight=18e3), E_inc=3e6)
+    site = Site(12.0, 8.0, [lay], initial_stress="gravity", mesher="structured",
+                mesh=MeshSize(h_fine=0.5, h_coarse=2.0))  # fmt: skip
+    built = site.build()
+    assert isinstance(built.soil, SoilQ8Points) and built.initial_stress_method == "gravity"
+    sig = built.soil.initial_stress
+    sv = 18e3 * built.soil.integration_points()[..., 1]
+    assert np.abs(sig[..., 1] - sv).max() <= 1e-6 * np.abs(sv).max()
+    assert np.abs(sig[..., 0] / sig[..., 1] - 0.3 / 0.7).max() <= 1e-6
