@@ -85,11 +85,13 @@ def _embedded(side, soil_c=20e3, h=0.25):
 SMOOTH = Contact(kn=1e10, kt=0.0, phi_deg=0.0, c=0.0)
 
 
-def test_side_contact_starts_in_equilibrium_and_replaces_the_wall_load():
+@pytest.mark.parametrize("rule", ["newton_cotes", "gauss"])
+def test_side_contact_starts_in_equilibrium_and_replaces_the_wall_load(rule):
     """The built scene with side contact is at rest under its dead loads (the interfaces carry the walls'
     geostatic stress): the residual at u = 0 is round-off, and the wall's own dead load plus the interface's
-    force at rest is round-off on the soil (the wall is free once the contact opens)."""
-    built = _embedded(SMOOTH).build()
+    force at rest is round-off on the soil (the wall is free once the contact opens). Both rules integrate
+    the linear wall stress times a quadratic shape function exactly."""
+    built = _embedded(dataclasses.replace(SMOOTH, rule=rule)).build()
     model = built.model
     assert [g.name for g in built.side_interfaces] == ["side_interface_left", "side_interface_right"]
     assert all(isinstance(g, SideInterface) for g in built.side_interfaces)
