@@ -64,6 +64,7 @@ import numpy as np
 from ..core.assembly import scatter_vector
 from ..core.mesh import foundation_contact, soil_block, surface_pressure_forces
 from ..core.model import Model
+from ..core.protocol import K0_MATRIX
 from ..core.shapes import lagrange3
 from ..core.validate import (
     check_bool,
@@ -454,7 +455,9 @@ class Scene:
                 group.initial_traction = t0
                 z0 = np.zeros(group.edofs.shape)
                 scatter_vector(
-                    group.edofs, group.evaluate(z0, z0, group.initial_state(), 0)[0], built.geostatic_load
+                    group.edofs,
+                    group.evaluate(z0, z0, group.initial_state(), K0_MATRIX)[0],
+                    built.geostatic_load,
                 )
             groups.append(group)
         built.side_interfaces = groups
