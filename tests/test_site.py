@@ -173,11 +173,16 @@ def test_depth_varying_modulus_per_element():
     lay = DepthVarying(SoilLayer(1.0, E=1e6, nu=0.3, c=10e3, phi_deg=20.0), E_inc=2e6, c_inc=1e3)
     assert lay.at(3.0).E == pytest.approx(7e6) and lay.at(3.0).c == pytest.approx(13e3)
     assert lay.at(-1.0).E == pytest.approx(1e6)  # above the reference level: the reference value
-    site = Site(10.0, 5.0, [DepthVarying(SoilLayer(1.0, E=1e6, nu=0.3), E_inc=2e6)], mesh=COARSE,
-                loads=[SurfacePressure(-1.0, 1.0, 1e3)])  # fmt: skip
-    built = site.build()
+    layers = [DepthVarying(SoilLayer(1.0, E=1e6, nu=0.3), E_inc=2e6)]
+    load = [SurfacePressure(-1.0, 1.0, 1e3)]
+    built = Site(10.0, 5.0, layers, mesh=COARSE, loads=load, depth_varying="centroid").build()
     zc = built.mesh.xy[built.mesh.conn].mean(axis=1)[:, 1]
     np.testing.assert_allclose(built.soil.params[built.soil.el_mat, 0], 1e6 + 2e6 * (-zc), rtol=1e-12)
+    # the default: E at each Gauss point (a material row per point)
+    built = Site(10.0, 5.0, layers, mesh=COARSE, loads=load).build()
+    zg = built.soil.integration_points()[..., 1]
+    e_points = np.column_stack([built.soil.params[m, 0] for m in built.soil.point_mat])
+    np.testing.assert_allclose(e_points, 1e6 + 2e6 * (-zg), rtol=1e-12)
 
 
 def test_gibson_settlement_small_mesh():

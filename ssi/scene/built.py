@@ -48,6 +48,7 @@ class BuiltScene:
     element_layer: np.ndarray | None = None  # (n_el,) index in scene.layers of every soil element
     footing_nodes: np.ndarray | None = None  # soil node ids under a RigidFooting (its base), ordered by x
     slide_support: int | None = None  # plate node whose u is held because every Contact.kt = 0 (frictionless)
+    side_interfaces: list | None = None  # SideInterface groups of the left and right walls (side_contact)
 
     def plate_node_at(self, x: float, tol: float = 1e-6) -> np.integer:
         xs = self.model.coords[self.plate_nodes, 0]
@@ -65,6 +66,7 @@ class BuiltScene:
         contact_linear = self.scene.contact is None or all(
             seg.contact.phi_deg is None for seg in _segments(self.scene)
         )
+        contact_linear &= self.scene.side_contact is None or self.scene.side_contact.phi_deg is None
         return soil_linear and plate_linear and contact_linear
 
     # ---- loads -----------------------------------------------------------------------------------------

@@ -40,6 +40,11 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **Embedment**: ``embedment`` D puts the strip's base D below the ground in a trench; the soil beside it is
   the layer(s) above depth D (the backfill).
 * **Contact along the strip**: ``contact`` is one :class:`Contact` or a list of :class:`ContactSegment`.
+* **Side contact** of an embedded strip: ``side_contact`` (a :class:`Contact`, its own Coulomb parameters)
+  puts interfaces between the trench walls and the strip's vertical sides, which move as the strip's end
+  sections (:mod:`ssi.elements.side_interface`), so a horizontal load mobilises the passive resistance and
+  the friction of the backfill. They start carrying the walls' geostatic horizontal stress. None (default):
+  the walls keep that stress as a dead load and touch nothing.
 * **A rigid footing and the half model**: ``foundation`` may be a :class:`RigidFooting` (no plate, no
   interface: the soil nodes under it pushed by a ``Settlement``, rough or smooth), and ``symmetric=True``
   models only the half x >= 0 of a scene symmetric about x = 0 (u = 0 on the axis) -- the bearing-capacity
@@ -59,6 +64,7 @@ import numpy as np
 from ..core.assembly import scatter_vector
 from ..core.mesh import foundation_contact, soil_block, surface_pressure_forces
 from ..core.model import Model
+from ..core.protocol import K0_MATRIX
 from ..core.shapes import lagrange3
 from ..core.validate import (
     check_bool,
@@ -68,6 +74,7 @@ from ..core.validate import (
 )
 from ..elements.interface import add_interface
 from ..elements.plate import PlateStrip
+from ..elements.side_interface import add_side_interface
 from ..elements.soil_q8 import SoilQ8
 from ..elements.supports import fix_block
 from ..materials.soil_laws import (
@@ -101,7 +108,8 @@ class Scene:
     strip carries it over its own width); ``phases`` after ``loads``; ``embedment`` D [m] of the strip's base
     below the ground (a layer boundary); ``water_table`` [m] depth of the water table below the ground (None:
     dry; negative: free water stands -water_table above the ground, ponding); ``gamma_w`` [N/m^3] unit weight
-    of water; ``symmetric``: model only the half x >= 0 (see below).
+    of water; ``symmetric``: model only the half x >= 0 (see below); ``side_contact`` a :class:`Contact` on
+    the vertical sides of an embedded strip (None: none; see the module docstring).
 
     ``foundation`` is a plate :class:`Foundation` (resting on the soil through ``contact``) or a
     :class:`RigidFooting` (its base is the soil's surface nodes, pushed by a :class:`Settlement`; no contact).
@@ -136,6 +144,7 @@ class Scene:
     water_table: float | None = None
     gamma_w: float = GAMMA_W
     symmetric: bool = False
+    side_contact: Contact | None = None
 
     def __post_init__(self):
         width = check_real("Scene.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -150,6 +159,14 @@ class Scene:
         else:
             check_instance("Scene.contact", self.contact, Contact, optional=True)
         check_instance("Scene.mesh", self.mesh, MeshSize)
+        check_instance("Scene.side_contact", self.side_contact, Contact, optional=True)
+        if self.side_contact is not None and not (
+            self.embedment > 0.0 and isinstance(self.foundation, Foundation)
+        ):
+            raise ValueError(
+                f"Scene.side_contact={self.side_contact!r}: side contact needs an embedded plate Foundation "
+                f"(embedment > 0, got {self.embedment!r}; foundation {type(self.foundation).__name__})"
+            )
         _check_list("Scene.phases", self.phases, Phase)
         check_real("Scene.embedment", self.embedment, lo=0.0, hi=depth, hi_open=True, unit="m")
         check_optional_real(
@@ -405,6 +422,45 @@ class Scene:
             model.fix([built.slide_support], "u")
         if p0:
             scatter_vector(plate.edofs, plate.distributed_load(-p0, comp="w"), built.geostatic_load)
+        if self.side_contact is not None:
+            self._add_side_contact(built)
+
+    def _add_side_contact(self, built):
+        """Interfaces between each trench wall and the strip's side (:mod:`ssi.elements.side_interface`), the
+        side moving with the strip's end node. They start with the wall's geostatic horizontal stress as
+        their normal traction; the dead load that holds that state adds their internal force at rest to the
+        wall loads: on the structure the earth pressure's resultant, on the soil (wall load + interface) a
+        round-off residue, so the wall is traction-free once the contact opens."""
+        model, mesh, ids = built.model, built.mesh, built.plate_nodes
+        groups = []
+        for x_wall, body, down in ((self.foundation.x0, ids[0], True), (self.foundation.x1, ids[-1], False)):
+            on = np.flatnonzero(
+                (np.abs(mesh.xy[:, 0] - x_wall) < 1e-9) & (mesh.xy[:, 1] >= -self.embedment - 1e-9)
+            )
+            # the structure on the left walking from node 0 to 2: down the left wall, up the right one
+            nodes = on[np.argsort(-mesh.xy[on, 1] if down else mesh.xy[on, 1])]
+            conn = np.column_stack([nodes[0:-2:2], nodes[1:-1:2], nodes[2::2]])
+            group = add_side_interface(
+                model, body, conn, self.side_contact.params(), rule=self.side_contact.rule,
+                name=f"side_interface_{'left' if down else 'right'}",
+            )  # fmt: skip
+            if self._has_geostatic_stress():
+                # sig_n of each point: the wall's sig_xx0, taken just inside its element (a point on a layer
+                # boundary then reads its own element's layer)
+                pts = group.ip_coords()[..., 1]
+                centre = group.coords[:, 4:5, 1]
+                z = pts + 1e-9 * (centre - pts)
+                t0 = np.zeros(pts.shape + (2,))
+                t0[..., 1] = self._geostatic(z)[..., 0]
+                group.initial_traction = t0
+                z0 = np.zeros(group.edofs.shape)
+                scatter_vector(
+                    group.edofs,
+                    group.evaluate(z0, z0, group.initial_state(), K0_MATRIX)[0],
+                    built.geostatic_load,
+                )
+            groups.append(group)
+        built.side_interfaces = groups
 
     def _add_rigid_footing(self, built, soil_ids):
         """The soil nodes under a :class:`RigidFooting` are its base: held at rest (w = 0; rough: u = 0 too)

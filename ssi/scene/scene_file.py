@@ -55,6 +55,9 @@ one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of :class:`ssi.
     x1 = 0.0
     contact = { kn = 1e10, kt = 0.0 }
 
+An embedded strip's side contact is a ``[side_contact]`` table (:class:`ssi.scene.Contact`, with
+``embedment`` > 0): ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` is a smooth side.
+
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.elements.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.elements.section.rc_section` with
 ``bars = [[z, As], ...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``,
@@ -92,6 +95,7 @@ UNITS = {
         "water_table": "m (depth below the ground; < 0: free water above it, ponding; leave out: dry)",
         "gamma_w": "N/m^3",
         "symmetric": "bool (true: model the half x >= 0 of a scene symmetric about x = 0)",
+        "side_contact": "Contact table on the sides of an embedded strip (leave out: none)",
     },
     "SoilLayer": {
         "thickness": "m",
@@ -185,6 +189,7 @@ _NESTED = {
     (Phase, "loads"): (_LOAD, "tuple"),
     (Phase, "excavate"): (Excavation, "tuple"),
     (ContactSegment, "contact"): (Contact, "one"),
+    (Scene, "side_contact"): (Contact, "one"),
 }
 # plain lists that the dataclass holds as tuples
 _TUPLES = {(Settlement, "x")}

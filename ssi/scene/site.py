@@ -43,8 +43,11 @@ out-of-balance, which "gravity_plastic" avoids.
 ``"auto"``: K0 where it applies, else gravity. ``BuiltSite.initial_stress_method`` says which was used.
 
 Stiffness and strength growing with depth: :class:`DepthVarying` (PLAXIS's E_inc, c_inc): E = E_ref + E_inc
-(z_ref - z) below the reference elevation z_ref (above it E_ref), the same for c; evaluated at each element's
-centroid (one material row per element: a piecewise-constant field whose error falls with the element size).
+(z_ref - z) below the reference elevation z_ref (above it E_ref), the same for c; ``depth_varying="gauss"``
+(default) evaluates them at each Gauss point of the soil elements (a material row per point,
+:class:`ssi.elements.soil_q8_points.SoilQ8Points`), ``"centroid"`` once per element at its centroid (a
+piecewise-constant field, whose error falls only with the element size). A site without DepthVarying
+layers builds the element-wise group either way.
 
 Supports: the bottom fixed, the sides on vertical rollers (the separated block of the paper's Fig. 1).
 """
@@ -100,7 +103,7 @@ class Site:
     ``water_table``: elevation [m] or polyline (None: dry), the weight below it is the buoyant one;
     ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
-    "gravity_plastic"."""
+    "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled)."""
 
     width: float
     depth: float
@@ -115,6 +118,7 @@ class Site:
     mesher: str = "auto"
     initial_stress: str = "auto"
     gamma_w: float = GAMMA_W
+    depth_varying: str = "gauss"
 
     def __post_init__(self):
         self.width = check_real("Site.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -122,6 +126,7 @@ class Site:
         check_choice("Site.mesher", self.mesher, ("auto", "structured", "gmsh"))
         check_choice("Site.initial_stress", self.initial_stress, ("auto", "K0", "gravity", "gravity_plastic"))
         check_instance("Site.mesh", self.mesh, MeshSize)
+        check_choice("Site.depth_varying", self.depth_varying, ("gauss", "centroid"))
         if not self.layers:
             raise ValueError("Site.layers: a site needs at least one soil layer")
         for i, lay in enumerate(self.layers):

@@ -10,9 +10,11 @@ import numpy as np
 
 from ..core.geometry import GeometryError
 from ..core.model import Model
+from ..core.quadrature import gauss_2d
 from ..elements.interface import add_interface
 from ..elements.plate import PlateStrip
-from ..elements.soil_q8 import SoilQ8
+from ..elements.soil_q8 import SoilQ8, q8_points
+from ..elements.soil_q8_points import SoilQ8Points
 from ..materials.soil_laws import SoilLayer, geostatic_stress, material_table
 from .loads import ColumnLoad
 from .site_parts import DepthVarying, RigidStrip, Strip
@@ -48,16 +50,12 @@ class BuiltSite:
         model.info["site"] = site
         ids = model.add_nodes(mesh.xy, ndof=2)
         centre = mesh.xy[mesh.conn].mean(axis=1)
-        kinds, params, el_mat, weights = _materials(site, mesh, centre)
-        soil = SoilQ8(
-            mesh.xy[mesh.conn],
-            model.element_dofs(ids[mesh.conn]),
-            el_mat,
-            kinds,
-            params,
-            n_gauss=site.mesh.n_gauss,
-            unit_weight=weights if weights.any() else None,
-        )
+        coords = mesh.xy[mesh.conn]
+        kinds, params, mat, weights = _materials(site, mesh, centre, _gauss_points(coords, site.mesh.n_gauss))
+        soil = _soil_group(
+            coords, model.element_dofs(ids[mesh.conn]), mat, kinds, params, site.mesh.n_gauss,
+            weights if weights.any() else None,
+        )  # fmt: skip
         model.add_group(soil)
         _fix_sides(model, mesh.xy, site)
         built = cls(site, model, mesh, soil, [], np.asarray(mesh.el_layer, np.int64), method, mesher, quality)
@@ -107,9 +105,10 @@ class BuiltSite:
                 e, nu = soil.params[k, 0], soil.params[k, 1]
                 elastic.append(SoilLayer(1.0, E=e, nu=nu).law())
             kinds, params = material_table(elastic)
-        g = SoilQ8(
-            soil.coords, model.element_dofs(ids[self.mesh.conn]), soil.el_mat, kinds, params,
-            n_gauss=site.mesh.n_gauss, unit_weight=soil.unit_weight,
+        mat = np.column_stack(soil.point_mat) if isinstance(soil, SoilQ8Points) else soil.el_mat
+        g = _soil_group(
+            soil.coords, model.element_dofs(ids[self.mesh.conn]), mat, kinds, params, site.mesh.n_gauss,
+            soil.unit_weight,
         )  # fmt: skip
         model.add_group(g)
         _fix_sides(model, self.mesh.xy, site)
@@ -196,10 +195,28 @@ class BuiltSite:
         return SiteResult(self, _run_phase(self.model, levels, settings))
 
 
-def _materials(site: Site, mesh, centre):
-    """(kinds, params, el_mat, unit weights) of the soil: one row per layer, or per element of a layer whose
-    properties vary with depth (evaluated at the element's centroid)."""
+def _gauss_points(coords, n_gauss):
+    """(n_el, n_ip, 2) coordinates [m] of the soil elements' Gauss points (the group's order)."""
+    gp, _ = gauss_2d(n_gauss)
+    out = np.empty((len(coords), len(gp), 2))
+    q8_points(np.ascontiguousarray(coords, np.float64), gp, out)
+    return out
+
+
+def _soil_group(coords, edofs, mat, kinds, params, n_gauss, unit_weight):
+    """The soil group: element-wise (``mat`` (n_el,)) or with a material row per Gauss point (``mat``
+    (n_el, n_ip))."""
+    cls = SoilQ8Points if np.ndim(mat) == 2 else SoilQ8
+    return cls(coords, edofs, mat, kinds, params, n_gauss=n_gauss, unit_weight=unit_weight)
+
+
+def _materials(site: Site, mesh, centre, points):
+    """(kinds, params, material index, unit weights) of the soil: one row per layer, or, in a layer whose
+    properties vary with depth, one per Gauss point (``points`` (n_el, n_ip, 2); site.depth_varying
+    "gauss": the index is (n_el, n_ip)) or per element (evaluated at its ``centre``; "centroid")."""
     rows, el_mat, weights = [], np.zeros(len(mesh.conn), np.int64), []
+    per_point = site.depth_varying == "gauss" and any(isinstance(lay, DepthVarying) for lay in site.layers)
+    point_mat = np.zeros(points.shape[:2], np.int64)
     layer_of = np.asarray(mesh.el_layer, np.int64)
     wet = centre[:, 1] < site.water_z(centre[:, 0])
     for k, lay in enumerate(site.layers):
@@ -210,7 +227,15 @@ def _materials(site: Site, mesh, centre):
             if not len(els):
                 continue
             gamma = max(sat - site.gamma_w, 0.0) if is_wet else base.unit_weight
-            if isinstance(lay, DepthVarying):
+            if isinstance(lay, DepthVarying) and per_point:
+                p = points[els]
+                z_ref = site.ground_z(p[..., 0]) if lay.z_ref is None else np.full(p.shape[:2], lay.z_ref)
+                for e, depths in zip(els, z_ref - p[..., 1]):
+                    for q, d in enumerate(depths):
+                        point_mat[e, q] = len(rows)
+                        rows.append(lay.at(d).law())
+                        weights.append(gamma)
+            elif isinstance(lay, DepthVarying):
                 z_ref = site.ground_z(centre[els, 0]) if lay.z_ref is None else np.full(len(els), lay.z_ref)
                 for e, d in zip(els, z_ref - centre[els, 1]):
                     el_mat[e] = len(rows)
@@ -218,10 +243,11 @@ def _materials(site: Site, mesh, centre):
                     weights.append(gamma)
             else:
                 el_mat[els] = len(rows)
+                point_mat[els] = len(rows)
                 rows.append(base.law())
                 weights.append(gamma)
     kinds, params = material_table(rows)
-    return kinds, params, el_mat, np.array(weights)
+    return kinds, params, (point_mat if per_point else el_mat), np.array(weights)
 
 
 def _fix_sides(model, xy, site):

@@ -48,7 +48,7 @@ __all__ = ["read_site_file", "site_from_dict", "site_to_dict"]
 
 SITE_KEYS = {
     "width", "depth", "layers", "boreholes", "boundaries", "ground", "water_table", "strips", "loads", "mesh",
-    "mesher", "initial_stress", "gamma_w",
+    "mesher", "initial_stress", "gamma_w", "depth_varying",
 }  # fmt: skip
 DEPTH_KEYS = ("E_inc", "c_inc", "z_ref")
 
