@@ -26,9 +26,10 @@ __all__ = ["BeamLayout", "beam_layout"]
 
 @dataclass
 class BeamLayout:
-    """``nodes`` (n_k,) mesh corner nodes along the base, sorted by x; ``x`` (n_k,) their x (scaled);
-    ``length`` (n_e,) element lengths (scaled); ``edge`` (n_e,) the boundary-edge index (into
-    :class:`ssi.limit._common.BoundaryEdges`) of each element; ``left_is_p`` (n_e,) whether that edge's p
+    """``nodes`` (n_k,) mesh corner nodes along the base, sorted by x (negative: a node of the beam alone,
+    over a gap in the soil); ``x`` (n_k,) their x (scaled); ``length`` (n_e,) element lengths (scaled);
+    ``edge`` (n_e,) the boundary-edge index (into :class:`ssi.limit._common.BoundaryEdges`) of each element
+    (-1: it spans a gap, no soil below); ``left_is_p`` (n_e,) whether that edge's p
     is the element's left node; ``loads_ref`` / ``loads_dead`` (n_k, 3): Fx, Fz [N/m], C [N m/m] at each
     node."""
 
@@ -43,10 +44,11 @@ class BeamLayout:
 
 def beam_layout(site: Site, f: int, be, xy: np.ndarray, L: float) -> BeamLayout:
     """The layout of footing ``f``'s beam from the boundary edges ``be`` and node coordinates ``xy`` scaled
-    by ``L`` [m]. Raises ValueError if the base is not one straight horizontal chain from x0 to x1 or a
-    point load is not at a base node."""
+    by ``L`` [m]. Raises ValueError if the base is not straight and horizontal from x0 to x1 or a point load
+    on soil is not at a base node."""
     ft = site.footings[f]
     beam = ft.beam
+    virtual: dict = {}
     js = [j for j in range(len(be.p)) if site.segments[be.seg[j]][2].kind == "footing"]
     js = [j for j in js if site.segments[be.seg[j]][2].footing == f]
     if not js:
@@ -60,17 +62,35 @@ def beam_layout(site: Site, f: int, be, xy: np.ndarray, L: float) -> BeamLayout:
     left_is_p = xy[be.p[js], 0] < xy[be.q[js], 0]
     left = np.where(left_is_p, be.p[js], be.q[js])
     right = np.where(left_is_p, be.q[js], be.p[js])
-    if np.any(left[1:] != right[:-1]):
-        raise ValueError(f"footing {f}: the beam's base segments do not form one chain")
-    nodes = np.append(left, right[-1])
-    x = xy[nodes, 0]
     tol = 1e-9 * max(1.0, abs(beam.x1 - beam.x0) / L)
+    # the chain of base edges, left to right; where it breaks (a trench, a void under the strip) the beam
+    # spans the gap with elements of its own (edge -1, no soil below), a node at each point load there
+    xl_all = [ld[0] / L for ld in beam.loads_ref + beam.loads_dead]
+    nodes, edge, lip = [int(left[0])], [], []
+    for i in range(len(js)):
+        if i and left[i] != right[i - 1]:
+            xa, xb = xy[right[i - 1], 0], xy[left[i], 0]
+            if xb <= xa + tol:
+                raise ValueError(f"footing {f}: the beam's base segments overlap at x = {xa * L:g} m")
+            for xv in sorted({x_ for x_ in xl_all if xa + tol < x_ < xb - tol}):
+                nodes.append(-1 - len(nodes))  # a node of the beam alone, at x = xv
+                virtual[nodes[-1]] = xv
+                edge.append(-1)
+                lip.append(True)
+            nodes.append(int(left[i]))
+            edge.append(-1)
+            lip.append(True)
+        nodes.append(int(right[i]))
+        edge.append(int(js[i]))
+        lip.append(bool(left_is_p[i]))
+    nodes = np.array(nodes)
+    x = np.array([virtual[g] if g < 0 else xy[g, 0] for g in nodes])
     if abs(x[0] - beam.x0 / L) > tol or abs(x[-1] - beam.x1 / L) > tol:
         raise ValueError(
             f"footing {f}: its base runs over x = [{x[0] * L:g}, {x[-1] * L:g}] m, its Beam over "
             f"[{beam.x0:g}, {beam.x1:g}] m"
         )
-    z = xy[nodes, 1]
+    z = xy[nodes[nodes >= 0], 1]
     if np.ptp(z) > tol:
         raise ValueError(
             f"footing {f}: a beam needs a horizontal base (z from {z.min() * L:g} to {z.max() * L:g} m)"
@@ -87,7 +107,8 @@ def beam_layout(site: Site, f: int, be, xy: np.ndarray, L: float) -> BeamLayout:
                 )
             out[k] += (fx, fz, c)
         loads[name] = out
-    return BeamLayout(nodes, x, np.diff(x), js, left_is_p, loads["loads_ref"], loads["loads_dead"])
+    edge, lip = np.array(edge, np.int64), np.array(lip)
+    return BeamLayout(nodes, x, np.diff(x), edge, lip, loads["loads_ref"], loads["loads_dead"])
 
 
 @dataclass
@@ -121,6 +142,12 @@ def lower_bound_statics(
     p_loc = []  # per element: the upward load on the beam at its left and right end, local vectors
     for e in range(n_e):
         j = lay.edge[e]
+        if j < 0:  # over a gap: the beam's own pressure only
+            v = np.zeros(m)
+            v[4 * n_e] = -beam.pressure_ref / S / k
+            v[4 * n_e + 1] = -beam.pressure_dead / S
+            p_loc.append([v, v.copy()])
+            continue
         nx, nz = be.n[j]
         ends = (be.lp[j], be.lq[j]) if lay.left_is_p[e] else (be.lq[j], be.lp[j])
         pair = []

@@ -196,7 +196,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
             n += len(cols)
     node_w = {}  # (footing, mesh node) -> the beam's w variable there
     for f, (lay, w_col, _, _) in beams.items():
-        node_w.update({(f, int(g)): int(c) for g, c in zip(lay.nodes, w_col)})
+        node_w.update({(f, int(g)): int(c) for g, c in zip(lay.nodes, w_col) if g >= 0})
 
     def terms(f: int, g: int) -> tuple[list, list]:
         """Footing f's velocity at node g as [(variable, coefficient)] for u and for w."""
@@ -433,7 +433,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         theta = np.diff(w) / lay.length
         rot = np.stack([theta - phi[:-1], phi[1:] - theta], axis=1)  # (n_e, 2): left, right hinge
         d_h = (beam.mp_sag * np.maximum(rot, 0.0) + beam.mp_hog * np.maximum(-rot, 0.0)) / (sc.S * sc.L**2)
-        np.add.at(diss, be.el[lay.edge], d_h.sum(axis=1))
+        np.add.at(diss, _beam_elements(be, lay), d_h.sum(axis=1))
         beam_out[f] = (lay, w, phi, rot)
     x_rec = np.zeros(n)  # the solution vector rebuilt from the recomputed velocities
     x_rec[dof[dof >= 0]] = vel[dof >= 0]
@@ -451,7 +451,11 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         footing_rotation=fm[:, 2] * unit / sc.L,
         beam={
             f: dict(
-                x=lay.x * sc.L, w=w * unit, phi=phi * unit / sc.L, hinge=rot * unit / sc.L, el=be.el[lay.edge]
+                x=lay.x * sc.L,
+                w=w * unit,
+                phi=phi * unit / sc.L,
+                hinge=rot * unit / sc.L,
+                el=_beam_elements(be, lay),
             )
             for f, (lay, w, phi, rot) in beam_out.items()
         },
@@ -466,6 +470,15 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         n_cones=sol.n_soc,
         n_rows=len(eq.rhs) + len(ineq.rhs) + len(soc.rhs),
     )
+
+
+def _beam_elements(be, lay) -> np.ndarray:
+    """The triangle under each beam element (over a gap: the nearest one to its left, else right), where
+    its hinges' dissipation is booked."""
+    el = np.where(lay.edge >= 0, be.el[np.maximum(lay.edge, 0)], -1)
+    have = np.flatnonzero(el >= 0)
+    nearest = have[np.clip(np.searchsorted(have, np.arange(len(el))) - 1, 0, len(have) - 1)]
+    return np.where(el >= 0, el, el[nearest])
 
 
 def carry_beam(given: dict, x: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:

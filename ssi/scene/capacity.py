@@ -221,19 +221,22 @@ def limit_analysis(
     max_steps: int = 12,
     davis: bool = True,
     progress=None,
+    strip: str | None = None,
 ) -> CapacityResult:
     """The scene's capacity as a certified bracket (module docstring): the associated bracket refined until
     its relative gap (ub - lb)/(ub + lb) <= ``gap`` (or ``max_elements`` triangles / ``max_steps``
     refinements), then, for a non-associated scene and ``davis``, the Davis bracket likewise. ``h`` [m]
     the largest initial triangle (default: the block's size / 6), ``h_min`` [m] at the footing's and loads'
     ends (default: max(footing width, size / 10) / 8). ``progress(label, row)`` is called once per mesh
-    (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`)."""
+    (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`). ``strip``: a plate
+    strip "rigid" or a "beam" with plastic hinges (None: a beam for a ductile RC section;
+    :func:`ssi.scene.limit_problem.limit_problem`)."""
     gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
     check_optional_real("h", h, lo=0.0, lo_open=True, unit="m")
     check_optional_real("h_min", h_min, lo=0.0, lo_open=True, unit="m")
     max_elements = check_int("max_elements", max_elements, lo=1)
     max_steps = check_int("max_steps", max_steps, lo=0)
-    problem = limit_problem(scene, phase)
+    problem = limit_problem(scene, phase, strip)
     t0 = time.perf_counter()
     mesh = initial_mesh(problem, h, h_min)
 
@@ -311,15 +314,17 @@ def safety_factor(
     refine: int = 0,
     rel_tol: float = 3e-3,
     davis: bool = True,
+    strip: str | None = None,
 ) -> SafetyFactorResult:
     """The factor of safety of the scene by strength reduction, bracketed by both bounds on one mesh (the
     initial mesh of :func:`limit_analysis`, bisected uniformly ``refine`` times): the loads are the
     scene's dead loads plus the scaled phase's loads at factor 1 (of a Settlement push there is no load
     to carry: refused). ``davis``: reduce the Davis materials (the conventional value for psi < phi);
-    else the associated ones. ``rel_tol``: the relative width of each bisection in F."""
+    else the associated ones. ``rel_tol``: the relative width of each bisection in F. ``strip``: as in
+    :func:`limit_analysis` (the beam's M_p is not reduced)."""
     from ..limit import bisect
 
-    problem = limit_problem(scene, phase)
+    problem = limit_problem(scene, phase, strip)
     if problem.lam_unit:
         raise ValueError(
             f"phase {problem.phase!r} is a Settlement push: it has no load to carry at factor 1, so no "

@@ -36,12 +36,13 @@ How the scene maps (anything else raises a ValueError naming the part):
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..core.geometry import from_cells
-from ..limit import Boundary, Footing, Interface, Material, site_from_geometry
+from ..limit import Beam, Boundary, Footing, Interface, Material, site_from_geometry
 from ..limit.geometry import Site
 from ..materials.soil_laws import SoilLayer
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
@@ -170,13 +171,101 @@ def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what:
     return fx, fz, m, settle
 
 
-def limit_problem(scene, phase: str | None = None) -> LimitProblem:
+def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, float]:
+    """(M_p sagging, M_p hogging) [N m/m] of a plate strip's RC ``section`` as plastic hinges: its bending
+    resistance M_Rd at N = 0 from ssi's own section analysis (:class:`ssi.elements.rc_design.RCDesign`,
+    characteristic strengths, the extreme fibre at eps_cu), per metre width. Unsafe where the section is
+    brittle: a face whose cracking moment exceeds its yield moment (below minimum reinforcement, or no
+    bars) cracks and loses its moment at once, no plastic hinge forms, and the limit theorems (which need
+    a ductile hinge that keeps M_p) do not hold: refused (ValueError). Also not represented: the axial
+    force's effect on M_p (a strip's axial force comes from the base shear only) and the rotation
+    capacity (a hinge here rotates without limit)."""
+    from ..elements.rc_design import RCDesign
+
+    design = RCDesign(section, bar_diameter=bar_diameter)
+    brittle = design.brittle()
+    for face, b in brittle.items():
+        if b["brittle"]:
+            raise ValueError(
+                f"the strip's section is brittle on its {face} face (cracking moment {b['M_cr']:.4g} N m/m > "
+                f"yield moment {b['M_y']:.4g} N m/m: below minimum reinforcement): it forms no plastic "
+                "hinge, so the beam's capacity by limit analysis is unsafe; add reinforcement or give "
+                "strip='rigid' (which ignores the strip's bending: unsafe too)"
+            )
+    return float(design.M_Rd(0.0, 1)), float(-design.M_Rd(0.0, -1))
+
+
+def _is_rc(section) -> bool:
+    from ..materials.layer_laws import CONCRETE, STEEL
+
+    return bool(np.any(section.kind == CONCRETE) and np.any(section.kind == STEEL))
+
+
+def _beam_mode(scene, strip: str | None):
+    """(mp_sag, mp_hog) [N m/m] if the scene's strip is a beam in the limit problem, else None."""
+    f = scene.foundation
+    if strip == "rigid" or f is None:
+        return None
+    if isinstance(f, RigidFooting):
+        if strip == "beam":
+            raise ValueError("strip='beam': a RigidFooting is rigid; a beam strip needs a plate Foundation")
+        return None
+    if not _is_rc(f.section):
+        if strip == "beam":
+            raise ValueError(
+                "strip='beam': the Foundation's section is not reinforced concrete (no CONCRETE and STEEL "
+                "layers), so it has no bending resistance to form plastic hinges from; give strip='rigid'"
+            )
+        return None  # an elastic strip has no strength of its own: held rigid (the stronger assumption)
+    if strip is None:
+        try:
+            return strip_beam_capacity(f.section)
+        except ValueError as err:
+            warnings.warn(f"{err}; the strip is taken rigid", stacklevel=3)
+            return None
+    return strip_beam_capacity(f.section)
+
+
+def _beam_loads(scene, loads, first_phase: bool, what: str) -> tuple[list, float]:
+    """A beam strip's loads: point loads [(x [m], Fx, Fz [N/m], C [N m/m])] at the base (a column's H at
+    the plate's nodes, e above the base, adds the couple -H e) and the uniform downward pressure [Pa]."""
+    f = scene.foundation
+    lever = -float(f.section.z_bottom)
+    points, p = [], 0.0
+    for i, ld in enumerate(loads):
+        if isinstance(ld, ColumnLoad):
+            points.append((float(ld.x), float(ld.H), -float(ld.N), float(ld.M) - float(ld.H) * lever))
+        elif isinstance(ld, StripLoad):
+            full = (ld.x0 is None or ld.x0 <= f.x0) and (ld.x1 is None or ld.x1 >= f.x1)
+            if not full or (ld.q_end is not None and ld.q_end != ld.q):
+                raise ValueError(
+                    f"{what}[{i}]: a StripLoad not uniform over the whole strip is not represented on a "
+                    "beam strip by ssi.limit; give strip='rigid'"
+                )
+            p += ld.q
+        elif isinstance(ld, StripWeight):
+            t = f.section.thickness
+            wt = scene.water_table
+            submerged = 0.0 if wt is None else min(max(-float(wt), 0.0), t)
+            p += ld.unit_weight * t - scene.gamma_w * submerged
+    if first_phase and f.self_weight:
+        p += f.self_weight
+    return points, p
+
+
+def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
-    docstring; None: the last phase). Raises ValueError naming whatever the scene holds that
+    docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
+    with plastic hinges, :func:`strip_beam_capacity`); None: "beam" for an RC section that is not brittle
+    and a force load, else "rigid". Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
+    if strip is not None and strip not in ("rigid", "beam"):
+        raise ValueError(f"strip must be 'rigid', 'beam' or None, got {strip!r}")
     if hasattr(scene, "geometry") and hasattr(scene, "strips"):
         if phase is not None:
             raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
+        if strip == "beam":
+            raise ValueError("strip='beam': a Site's strips are rigid in ssi.limit (a beam strip: a Scene)")
         return _site_problem(scene)
     if not all(hasattr(scene, a) for a in ("layers", "_block", "_mesh_layers", "_footprint")):
         raise TypeError(
@@ -221,6 +310,8 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
     fref = np.zeros(2)
     mdead = mref = 0.0  # moments about the centre of the base [N m/m], counter-clockwise
     settle_ref = False
+    mp = _beam_mode(scene, strip)  # (mp_sag, mp_hog) [N m/m] of a beam strip, None: rigid
+    beam_loads = {"ref": [], "dead": [], "p_ref": 0.0, "p_dead": 0.0}  # point loads (x, Fx, Fz, C), pressures
     for factor, ph, first in dead + [(1.0, ref_phase, k == 0)]:
         is_ref = ph is ref_phase
         what = f"Phase({ph.name!r}).loads" if ph.name != "loads" or scene.phases else "Scene.loads"
@@ -245,6 +336,11 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
                 "load needs a plate Foundation)"
             )
         fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
+        if mp is not None:
+            pts, p = _beam_loads(scene, on_footing, first, what)
+            key = "ref" if is_ref else "dead"
+            beam_loads[key] += [(x, factor * a, factor * b, factor * c) for x, a, b, c in pts]
+            beam_loads["p_" + key] += factor * p
         if abs(m) <= _TOL * (abs(fz) * (f.x1 - f.x0) + abs(fx) * (f.x1 - f.x0) + 1.0):
             m = 0.0  # round-off of loads symmetric about the centre
         if is_ref:
@@ -261,6 +357,14 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
         )
     if isinstance(f, Foundation) and scene._has_geostatic_stress():
         fdead[1] -= scene.surcharge * (f.x1 - f.x0)  # the strip carries the surcharge over its width
+        beam_loads["p_dead"] += scene.surcharge
+    if mp is not None and settle_ref:
+        if strip == "beam":
+            raise ValueError(
+                "strip='beam' with a Settlement push: the push prescribes a uniform settlement of the strip, "
+                "so it cannot bend; give strip='rigid' or force loads"
+            )
+        mp = None
     half = 0.5 if scene.symmetric else 1.0  # a symmetric scene's footing: the modelled half's share
     if settle_ref:
         fref = np.array([0.0, -half])  # lambda = the whole footing's vertical force [N/m]
@@ -275,6 +379,8 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
         xs |= {a, b}
     if f is not None:
         xs |= {fx0, fx1}
+    if mp is not None:  # a beam's point loads act at base points
+        xs |= {x for x, *_ in beam_loads["ref"] + beam_loads["dead"]}
     xs = sorted(x for x in xs if xl - _TOL * width <= x <= xr + _TOL * width)
     sub = scene._mesh_layers()  # (thickness, layer, unit weight of its body force), split at the water table
     owner = [next(i for i, lay in enumerate(scene.layers) if lay is own) for _, own, _ in sub]
@@ -313,7 +419,17 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
             raise ValueError("a smooth contact carries no horizontal load (ColumnLoad.H != 0)")
         centre = (0.5 * (f.x0 + f.x1), 0.0)
         forces = (tuple(fref.tolist()), tuple(fdead.tolist()))
-        footings = (Footing(itf, *forces, moves, centre, float(mref), float(mdead)),)
+        beam = None
+        if mp is not None:
+            beam = Beam(f.x0, f.x1, mp[0], mp[1], tuple(beam_loads["ref"]), tuple(beam_loads["dead"]),
+                        beam_loads["p_ref"], beam_loads["p_dead"])  # fmt: skip
+            # the footing's resultants are the beam's loads' (checked: the same loads, summed two ways)
+            for which, fo, mo in (("ref", fref, mref), ("dead", fdead, mdead)):
+                bx, bz, bm = beam.resultant(which, centre[0])
+                scale = abs(fo).sum() * (f.x1 - f.x0) + abs(mo) + 1.0
+                if abs(bx - fo[0]) + abs(bz - fo[1]) + abs(bm - mo) / (f.x1 - f.x0) > 1e-9 * scale:
+                    raise AssertionError(f"beam loads {(bx, bz, bm)} differ from the footing's {(fo, mo)}")
+        footings = (Footing(itf, *forces, moves, centre, float(mref), float(mdead), beam),)
 
     def boundary(tag, pa, pb):
         if tag in _BLOCK_SUPPORTS:
