@@ -168,7 +168,23 @@ class CapacityResult:
             "time_s": self.time,
             "history_associated": rows(self.associated),
             "history_davis": rows(self.davis),
+            "strip": self.strip,
+            "strip_mp_sag_hog_N_m_per_m": self.strip_mp,
         }
+
+    @property
+    def strip(self) -> str | None:
+        """How the foundation enters the limit analysis: "beam" (plastic hinges), "rigid" or None (none)."""
+        fts = self.problem.site.footings
+        if not fts:
+            return None
+        return "beam" if any(ft.beam is not None for ft in fts) else "rigid"
+
+    @property
+    def strip_mp(self) -> list | None:
+        """[M_p sagging, M_p hogging] [N m/m] of a beam strip's hinges (None: no beam)."""
+        beams = [ft.beam for ft in self.problem.site.footings if ft.beam is not None]
+        return [beams[0].mp_sag, beams[0].mp_hog] if beams else None
 
     def summary(self) -> str:
         """A few lines an engineer reads: both brackets in kN/m (a Settlement push) or as factors of the
@@ -189,6 +205,12 @@ class CapacityResult:
             f"{100 * self.gap_davis:.2f} %  "
             + ("(psi < phi: the conventional engineering value)" if d else "(= associated: psi = phi)"),
         ]
+        if self.strip_mp is not None:
+            ms, mh = (m / 1e3 for m in self.strip_mp)
+            lines.append(
+                f"  strip: a beam with plastic hinges, M_p {ms:.4g} kN m/m sagging, {mh:.4g} hogging (its RC "
+                "section at N = 0; strip='rigid' ignores its bending)"
+            )
         if p.lam_unit == "N/m" and p.footing_width:
             b = p.footing_width * (2.0 if p.symmetric else 1.0)
             lines.append(
