@@ -339,6 +339,11 @@ def test_an_rc_strip_is_a_beam_with_the_sections_plastic_moment():
         ValueError, match=r"strip='beam': the Foundation's section is not reinforced concrete"
     ):
         limit_problem(_scene(), strip="beam")
+    trapezoid = _scene(foundation=rc, loads=[StripLoad(1e4, q_end=2e4)])
+    with pytest.raises(ValueError, match=r"a StripLoad not uniform over the whole strip"):
+        limit_problem(trapezoid, strip="beam")
+    with pytest.warns(UserWarning, match=r"the strip is taken rigid"):
+        assert limit_problem(trapezoid).site.footings[0].beam is None
     push = _scene(foundation=rc, loads=[Settlement(0.01)])
     assert limit_problem(push).site.footings[0].beam is None
     with pytest.raises(ValueError, match=r"strip='beam' with a Settlement push"):

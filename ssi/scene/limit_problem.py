@@ -19,9 +19,15 @@ How the scene maps (anything else raises a ValueError naming the part):
   which prescribes a uniform settlement) translates only; a plate :class:`Foundation` of a full
   (non-symmetric) scene also rotates about the centre of its base, so eccentric loads and a column's
   moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
-  plate nodes' height above the base); held loads with a moment before a Settlement push are refused. A
-  plate strip's bending capacity is not modelled (a rigid strip is the stronger one: for a slender or
-  lightly reinforced strip the beam's own mechanism may govern, not checked here);
+  plate nodes' height above the base); held loads with a moment before a Settlement push are refused;
+- a plate strip with an RC section is by default (``strip=None`` or "beam") a **beam with plastic hinges**
+  (:class:`ssi.limit.Beam`): M_p sagging and hogging its section's M_Rd at N = 0
+  (:func:`strip_beam_capacity`), the columns point loads at base points (H at the base plus its couple
+  -H e), self weight, strip weight, surcharge and a uniform StripLoad a uniform pressure. A brittle
+  section (below minimum reinforcement) forms no hinge: refused as a beam, taken rigid by default with a
+  warning, as is a load a beam does not represent (a StripLoad not uniform over the whole strip); an
+  elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
+  stronger assumption: for a slender or lightly reinforced strip the beam's own mechanism may govern);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
   is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket); refused: a tension
   cut-off ``sig_t`` (the Coulomb joint's own apex is its only tension limit), contact segments with
@@ -226,6 +232,10 @@ def _beam_mode(scene, strip: str | None):
     return strip_beam_capacity(f.section)
 
 
+class _NotOnBeam(ValueError):
+    """A load the beam strip does not represent (by default the strip is then taken rigid)."""
+
+
 def _beam_loads(scene, loads, first_phase: bool, what: str) -> tuple[list, float]:
     """A beam strip's loads: point loads [(x [m], Fx, Fz [N/m], C [N m/m])] at the base (a column's H at
     the plate's nodes, e above the base, adds the couple -H e) and the uniform downward pressure [Pa]."""
@@ -238,7 +248,7 @@ def _beam_loads(scene, loads, first_phase: bool, what: str) -> tuple[list, float
         elif isinstance(ld, StripLoad):
             full = (ld.x0 is None or ld.x0 <= f.x0) and (ld.x1 is None or ld.x1 >= f.x1)
             if not full or (ld.q_end is not None and ld.q_end != ld.q):
-                raise ValueError(
+                raise _NotOnBeam(
                     f"{what}[{i}]: a StripLoad not uniform over the whole strip is not represented on a "
                     "beam strip by ssi.limit; give strip='rigid'"
                 )
@@ -257,7 +267,8 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
     with plastic hinges, :func:`strip_beam_capacity`); None: "beam" for an RC section that is not brittle
-    and a force load, else "rigid". Raises ValueError naming whatever the scene holds that
+    under force loads a beam represents, else "rigid" (with a warning for a brittle section or such a
+    load). Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
     if strip is not None and strip not in ("rigid", "beam"):
         raise ValueError(f"strip must be 'rigid', 'beam' or None, got {strip!r}")
@@ -337,7 +348,14 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
             )
         fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
         if mp is not None:
-            pts, p = _beam_loads(scene, on_footing, first, what)
+            try:
+                pts, p = _beam_loads(scene, on_footing, first, what)
+            except _NotOnBeam as err:
+                if strip == "beam":
+                    raise
+                warnings.warn(f"{err}: the strip is taken rigid", stacklevel=2)
+                mp = None
+        if mp is not None:
             key = "ref" if is_ref else "dead"
             beam_loads[key] += [(x, factor * a, factor * b, factor * c) for x, a, b, c in pts]
             beam_loads["p_" + key] += factor * p
