@@ -477,6 +477,39 @@ print(
 )
 print(f"lower bound: max |M| / M_p = {fb.lower.beam[0]['utilisation']:.6f}")
 
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(12, 3.8))
+mt = fb.mesh
+speed_t = np.hypot(*fb.upper.velocity[: len(mt.xy)].T)
+tp = axes[0].tripcolor(mt.xy[:, 0], mt.xy[:, 1], mt.tri, speed_t, shading="gouraud", cmap="viridis")
+axes[0].triplot(mt.xy[:, 0], mt.xy[:, 1], mt.tri, lw=0.1, color="w")
+axes[0].plot(bm["x"], 0.05 + 0.2 * bm["w"] / np.abs(bm["w"]).max(), "r-o", ms=3, label="beam w (scaled)")
+fig.colorbar(tp, ax=axes[0], label="|soil velocity|")
+axes[0].set_aspect("equal")
+axes[0].set_ylim(-4, 0.4)
+axes[0].legend(fontsize=8, loc="lower left")
+m_lb = fb.lower.beam[0]
+xb = bm["x"]
+axes[1].step(xb, m_lb["M_right"] / 1e3, where="post", color="C0", lw=0.6)
+axes[1].plot(xb, m_lb["M_left"] / 1e3, "o", ms=3, color="C0", label="lower bound: M at the nodes")
+# the hand diagram at collapse: knife-edge supports at the trench edges, N_beam at each column
+xh = np.array([-X_S, -HALF_L, -A_COL, A_COL, HALF_L, X_S])
+axes[1].plot(xh, [0, 0, MP_SAG / 1e3, MP_SAG / 1e3, 0, 0], "k--", label="hand: four-point bending at N_beam")
+axes[1].axhline(MP_SAG / 1e3, color="r", lw=0.8, label="M_p")
+axes[1].set_xlabel("x [m]")
+axes[1].set_ylabel("M [kN m/m], sagging > 0")
+axes[1].legend(fontsize=8)
+report.save_figure(fig, "fig17_3_beam_mechanism")
+plt.show()
+
+# %% [markdown]
+# *Figure 17.3 — The RC strip bridging a trench. Left: the upper-bound mechanism on the last mesh (soil
+# speed; the beam's deflection in red: the span between the trench edges sags about hinges under the
+# columns, the overhangs lift off the no-tension joint). Right: the lower bound's bending moment at the
+# beam's nodes against the hand calculation's diagram (knife-edge supports at the trench edges): the
+# certified field reaches M_p between the columns with the reactions spread a few millimetres beyond the
+# edges.*
+
 # %% [markdown]
 # ## Smith & Griffiths, program 6.1: a flexible footing on undrained clay
 #
@@ -623,11 +656,18 @@ plt.show()
 #   request, N_γ 3 %), with the numbers printed above.
 # - Nested bisection makes the sequence monotone; the carried fields make it so even where the interior-point
 #   solver reports success short of the optimum.
+# - A footing rotates (the upper bound's rigid motion (U, W, θ), the lower bound's moment equation): an
+#   eccentric load's bracket lies above Meyerhof's rigorous V_M, the bonded strip's moment capacity is
+#   pinned between the certified lower bound and the 0.690 s_u B² scoop.
+# - A footing bends (a `Beam`: rigid elements, hinges of M_p at every base node, the moment bounded at the
+#   Bernstein points): chapter 11's RC strip bridging a trench brackets the hand four-point-bending
+#   mechanism load M_p/(l/2 − a) (`fela_beam_mechanism`).
 # - For ψ < φ the associated bracket is a ceiling and the Davis bracket the conventional value; chapter 10's
 #   ψ = 0 incremental limit on its coarsest mesh lies above every associated upper bound here: a mesh
 #   overestimate, not a capacity.
 #
 # References: Sloan (2013) Géotechnique 63(7); Makrodimopoulos & Martin (2006) IJNME 66, (2007) IJNAMG 31;
 # Lyamin & Sloan (2002); Krabbenhøft et al. (2012); Davis (1968); Drescher & Detournay (1993); Martin (2005);
-# Radenković (1961); Rivara (1984) on longest-edge bisection; Goulart & Chen (2024) Clarabel; Shewchuk (1996)
-# Triangle.
+# Radenković (1961); Meyerhof (1953) on the effective width; Bransby & Randolph (1998) on the scoop
+# mechanism (its least value 0.690 s_u B² derived above); Heyman (1971) on beam mechanisms; Rivara (1984) on
+# longest-edge bisection; Goulart & Chen (2024) Clarabel; Shewchuk (1996) Triangle.
