@@ -295,8 +295,8 @@ def test_a_site_brackets_prandtl_and_refuses_what_it_cannot_represent():
     with pytest.raises(ValueError, match=r"Site.layers\[0\] is a DepthVarying"):
         limit_problem(varying)
     # an eccentric column: the strip rotates about the centre of its base, moment -N e
-    eccentric = Site(width=12.0, depth=5.0, layers=[SoilLayer.undrained(5.0, E_u=30e6, s_u=c)], strips=[strip],
-                     loads=[ColumnLoad(0.25, N=N)])  # fmt: skip
+    clay = [SoilLayer.undrained(5.0, E_u=30e6, s_u=c)]
+    eccentric = Site(width=12.0, depth=5.0, layers=clay, strips=[strip], loads=[ColumnLoad(0.25, N=N)])
     (ft,) = limit_problem(eccentric).site.footings
     assert (
         "r" in ft.moves and ft.centre == (0.0, 0.0) and ft.moment_ref == pytest.approx(-0.25 * N, rel=1e-12)
