@@ -116,7 +116,7 @@ from ssi.limit import (
     strip_site,
     triangulate,
 )
-from ssi.scene.limit_problem import strip_beam_capacity
+from ssi.scene.limit_strip import strip_beam_capacity
 
 FAST = paths.FAST
 # the requested relative gaps (UB-LB)/(UB+LB): the 2 %, 1 % on request and 3 % for N_gamma in full

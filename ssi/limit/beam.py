@@ -196,3 +196,71 @@ def lower_bound_statics(
     return BeamStatics(
         B, b0, beam.mp_sag / (S * L**2), beam.mp_hog / (S * L**2), to_global(m_left), to_global(m_right)
     )
+
+
+# ---- the upper bound's beam: variables (lay, w_col, phi_col, hinge (n_e, 2 ends, 2 signs)) per footing
+def hinge_rows(beam, lay: BeamLayout, w_col, phi_col, hinge, eq, ineq, q: np.ndarray, unit: float) -> None:
+    """The hinge at each end of each element: theta_e - phi_left = s+ - s- (left end), phi_right - theta_e
+    = s+ - s- (right end), theta_e = (w_right - w_left) / L_e, s >= 0, dissipating mp_sag s+ + mp_hog s-
+    (``unit``: the moment scale S L^2 [N m/m])."""
+    for e, le in enumerate(lay.length):
+        th = ([w_col[e + 1], w_col[e]], [1.0 / le, -1.0 / le])  # the element's rotation
+        for end, (k, sgn) in enumerate(((e, -1.0), (e + 1, 1.0))):
+            sp_, sm_ = hinge[e, end]
+            eq.add(th[0] + [phi_col[k], sp_, sm_], [-sgn * v for v in th[1]] + [sgn, -1.0, 1.0], 0.0)
+            ineq.add([sp_], [-1.0], 0.0)
+            ineq.add([sm_], [-1.0], 0.0)
+            q[sp_] += beam.mp_sag / unit
+            q[sm_] += beam.mp_hog / unit
+
+
+def beam_powers(beam, lay, w_col, phi_col, hinge, u_col: int, p_ref, p_dead, S: float, L: float, k: float):
+    """The beam's loads' power coefficients: point forces on w (and U, the column ``u_col`` if free),
+    couples on phi, the uniform downward pressure on w (linear along each element: its integral
+    L (w_a + w_b) / 2); reference loads divided by the load scale ``k``."""
+    for pw, loads, p, scale in (
+        (p_ref, lay.loads_ref, beam.pressure_ref, 1 / k),
+        (p_dead, lay.loads_dead, beam.pressure_dead, 1.0),
+    ):
+        if u_col >= 0:
+            pw[u_col] += loads[:, 0].sum() / (S * L) * scale
+        np.add.at(pw, w_col, loads[:, 1] / (S * L) * scale)
+        np.add.at(pw, phi_col, loads[:, 2] / (S * L**2) * scale)
+        np.add.at(pw, w_col[:-1], -p / S * lay.length / 2 * scale)
+        np.add.at(pw, w_col[1:], -p / S * lay.length / 2 * scale)
+
+
+def hinge_dissipation(
+    beam, lay, w_col, phi_col, hinge, x: np.ndarray, el: np.ndarray, diss: np.ndarray, unit
+):
+    """The hinges recomputed from the beam's w and phi in ``x``: their dissipation added to ``diss`` at the
+    triangles ``el``; returns (lay, w, phi, rotations (n_e, 2): left and right end, sagging positive)."""
+    w, phi = x[w_col], x[phi_col]
+    theta = np.diff(w) / lay.length
+    rot = np.stack([theta - phi[:-1], phi[1:] - theta], axis=1)
+    d_h = (beam.mp_sag * np.maximum(rot, 0.0) + beam.mp_hog * np.maximum(-rot, 0.0)) / unit
+    np.add.at(diss, el, d_h.sum(axis=1))
+    return lay, w, phi, rot
+
+
+def beam_elements(be, lay: BeamLayout) -> np.ndarray:
+    """The triangle under each beam element (over a gap: the nearest one to its left, else right), where
+    its hinges' dissipation is booked."""
+    el = np.where(lay.edge >= 0, be.el[np.maximum(lay.edge, 0)], -1)
+    have = np.flatnonzero(el >= 0)
+    nearest = have[np.clip(np.searchsorted(have, np.arange(len(el))) - 1, 0, len(have) - 1)]
+    return np.where(el >= 0, el, el[nearest])
+
+
+def carry_beam(given: dict, x: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
+    """A beam motion ``given`` (dict x [m], w [m/s], phi [1/s] of an upper bound) at the nodes ``x`` [m]
+    of a nested finer beam: w linear between the given nodes (rigid elements), phi the given node's where
+    a node is kept, else the rotation of the element it splits (no hinge there); (w, phi scaled by L) as
+    the solver's variables."""
+    xg, wg, pg = given["x"], given["w"], given["phi"]
+    w = np.interp(x, xg, wg)
+    slope = np.diff(wg) / np.diff(xg)
+    e = np.clip(np.searchsorted(xg, x) - 1, 0, len(slope) - 1)
+    same = np.isclose(x[:, None], xg[None, :], rtol=0.0, atol=1e-9 * max(1.0, np.ptp(xg))).any(axis=1)
+    phi = np.where(same, np.interp(x, xg, pg), slope[e])
+    return w, phi * L

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._common import boundary_edges, gradients, scales, strength
-from .beam import beam_layout
+from .beam import beam_elements, beam_layout, beam_powers, carry_beam, hinge_dissipation, hinge_rows
 from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
@@ -310,18 +310,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 vals.append(-cf)
             if cols:
                 eq.add(cols, vals, 0.0)
-    # beam hinges: theta_e - phi_left = s+ - s- (left end), phi_right - theta_e = s+ - s- (right end)
-    for f, (lay, w_col, phi_col, hinge) in beams.items():
-        beam = site.footings[f].beam
-        for e, le in enumerate(lay.length):
-            th = ([w_col[e + 1], w_col[e]], [1.0 / le, -1.0 / le])  # the element's rotation
-            for end, (k, sgn) in enumerate(((e, -1.0), (e + 1, 1.0))):
-                sp_, sm_ = hinge[e, end]
-                eq.add(th[0] + [phi_col[k], sp_, sm_], [-sgn * v for v in th[1]] + [sgn, -1.0, 1.0], 0.0)
-                ineq.add([sp_], [-1.0], 0.0)
-                ineq.add([sm_], [-1.0], 0.0)
-                q[sp_] += beam.mp_sag / (sc.S * sc.L**2)
-                q[sm_] += beam.mp_hog / (sc.S * sc.L**2)
+    for f, vars_ in beams.items():  # hinge rows, their dissipation in the objective
+        hinge_rows(site.footings[f].beam, *vars_, eq, ineq, q, sc.S * sc.L**2)
     # powers: reference (= 1) and dead (subtracted in the objective)
     p_ref = np.zeros(n)
     p_dead = np.zeros(n)
@@ -341,19 +331,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 if dof[g, d] >= 0:
                     p_ref[dof[g, d]] += -bnd.pressure_ref / sc.S * nn * wt / sc.k
                     p_dead[dof[g, d]] += -bnd.pressure_dead / sc.S * nn * wt
-    for f, (lay, w_col, phi_col, _) in beams.items():
-        beam = site.footings[f].beam
-        for pw, loads, p, scale in (
-            (p_ref, lay.loads_ref, beam.pressure_ref, 1 / sc.k),
-            (p_dead, lay.loads_dead, beam.pressure_dead, 1.0),
-        ):
-            if fvar[f, 0] >= 0:
-                pw[fvar[f, 0]] += loads[:, 0].sum() / (sc.S * sc.L) * scale
-            np.add.at(pw, w_col, loads[:, 1] / (sc.S * sc.L) * scale)
-            np.add.at(pw, phi_col, loads[:, 2] / (sc.S * sc.L**2) * scale)
-            # the downward pressure on each element: w linear, its integral L (w_a + w_b) / 2
-            np.add.at(pw, w_col[:-1], -p / sc.S * lay.length / 2 * scale)
-            np.add.at(pw, w_col[1:], -p / sc.S * lay.length / 2 * scale)
+    for f, vars_ in beams.items():  # the beam's loads do work on w, U and phi
+        beam_powers(site.footings[f].beam, *vars_, fvar[f, 0], p_ref, p_dead, sc.S, sc.L, sc.k)
     for f, ft in enumerate(site.footings):
         if f in beams:
             continue
@@ -427,14 +406,9 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
     # beam hinges recomputed from w and phi
     beam_out = {}
-    for f, (lay, w_col, phi_col, _) in beams.items():
-        beam = site.footings[f].beam
-        w, phi = x[w_col], x[phi_col]
-        theta = np.diff(w) / lay.length
-        rot = np.stack([theta - phi[:-1], phi[1:] - theta], axis=1)  # (n_e, 2): left, right hinge
-        d_h = (beam.mp_sag * np.maximum(rot, 0.0) + beam.mp_hog * np.maximum(-rot, 0.0)) / (sc.S * sc.L**2)
-        np.add.at(diss, _beam_elements(be, lay), d_h.sum(axis=1))
-        beam_out[f] = (lay, w, phi, rot)
+    for f, vars_ in beams.items():
+        el = beam_elements(be, vars_[0])
+        beam_out[f] = hinge_dissipation(site.footings[f].beam, *vars_, x, el, diss, sc.S * sc.L**2)
     x_rec = np.zeros(n)  # the solution vector rebuilt from the recomputed velocities
     x_rec[dof[dof >= 0]] = vel[dof >= 0]
     x_rec[fvar[fvar >= 0]] = fm[fvar >= 0]
@@ -455,7 +429,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 w=w * unit,
                 phi=phi * unit / sc.L,
                 hinge=rot * unit / sc.L,
-                el=_beam_elements(be, lay),
+                el=beam_elements(be, lay),
             )
             for f, (lay, w, phi, rot) in beam_out.items()
         },
@@ -470,29 +444,6 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         n_cones=sol.n_soc,
         n_rows=len(eq.rhs) + len(ineq.rhs) + len(soc.rhs),
     )
-
-
-def _beam_elements(be, lay) -> np.ndarray:
-    """The triangle under each beam element (over a gap: the nearest one to its left, else right), where
-    its hinges' dissipation is booked."""
-    el = np.where(lay.edge >= 0, be.el[np.maximum(lay.edge, 0)], -1)
-    have = np.flatnonzero(el >= 0)
-    nearest = have[np.clip(np.searchsorted(have, np.arange(len(el))) - 1, 0, len(have) - 1)]
-    return np.where(el >= 0, el, el[nearest])
-
-
-def carry_beam(given: dict, x: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
-    """A beam motion ``given`` (dict x [m], w [m/s], phi [1/s] of an :class:`UpperBound`) at the nodes
-    ``x`` [m] of a nested finer beam: w linear between the given nodes (rigid elements), phi the given
-    node's where a node is kept, else the rotation of the element it splits (no hinge there); (w, phi
-    scaled by L) as the solver's variables."""
-    xg, wg, pg = given["x"], given["w"], given["phi"]
-    w = np.interp(x, xg, wg)
-    slope = np.diff(wg) / np.diff(xg)
-    e = np.clip(np.searchsorted(xg, x) - 1, 0, len(slope) - 1)
-    same = np.isclose(x[:, None], xg[None, :], rtol=0.0, atol=1e-9 * max(1.0, np.ptp(xg))).any(axis=1)
-    phi = np.where(same, np.interp(x, xg, pg), slope[e])
-    return w, phi * L
 
 
 def footing_velocity_at(site: Site, upper: UpperBound, f: int, pts: np.ndarray) -> np.ndarray:

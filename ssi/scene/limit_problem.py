@@ -21,9 +21,9 @@ How the scene maps (anything else raises a ValueError naming the part):
   moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
   plate nodes' height above the base); held loads with a moment before a Settlement push are refused;
 - a plate strip with an RC section is by default (``strip=None`` or "beam") a **beam with plastic hinges**
-  (:class:`ssi.limit.Beam`): M_p sagging and hogging its section's M_Rd at N = 0
-  (:func:`strip_beam_capacity`), the columns point loads at base points (H at the base plus its couple
-  -H e), self weight, strip weight, surcharge and a uniform StripLoad a uniform pressure. A brittle
+  (:class:`ssi.limit.Beam`, :mod:`ssi.scene.limit_strip`): M_p sagging and hogging its section's M_Rd at
+  N = 0, the columns point loads at base points (H at the base plus its couple -H e), self weight, strip
+  weight, surcharge and a uniform StripLoad a uniform pressure. A brittle
   section (below minimum reinforcement) forms no hinge: refused as a beam, taken rigid by default with a
   warning, as is a load a beam does not represent (a StripLoad not uniform over the whole strip); an
   elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
@@ -51,6 +51,7 @@ from ..core.geometry import from_cells
 from ..limit import Beam, Boundary, Footing, Interface, Material, site_from_geometry
 from ..limit.geometry import Site
 from ..materials.soil_laws import SoilLayer
+from .limit_strip import NotOnBeam, beam_loads_of, beam_mode
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
 
@@ -177,98 +178,12 @@ def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what:
     return fx, fz, m, settle
 
 
-def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, float]:
-    """(M_p sagging, M_p hogging) [N m/m] of a plate strip's RC ``section`` as plastic hinges: its bending
-    resistance M_Rd at N = 0 from ssi's own section analysis (:class:`ssi.elements.rc_design.RCDesign`,
-    characteristic strengths, the extreme fibre at eps_cu), per metre width. Unsafe where the section is
-    brittle: a face whose cracking moment exceeds its yield moment (below minimum reinforcement, or no
-    bars) cracks and loses its moment at once, no plastic hinge forms, and the limit theorems (which need
-    a ductile hinge that keeps M_p) do not hold: refused (ValueError). Also not represented: the axial
-    force's effect on M_p (a strip's axial force comes from the base shear only) and the rotation
-    capacity (a hinge here rotates without limit)."""
-    from ..elements.rc_design import RCDesign
-
-    design = RCDesign(section, bar_diameter=bar_diameter)
-    brittle = design.brittle()
-    for face, b in brittle.items():
-        if b["brittle"]:
-            raise ValueError(
-                f"the strip's section is brittle on its {face} face (cracking moment {b['M_cr']:.4g} N m/m > "
-                f"yield moment {b['M_y']:.4g} N m/m: below minimum reinforcement): it forms no plastic "
-                "hinge, so the beam's capacity by limit analysis is unsafe; add reinforcement or give "
-                "strip='rigid' (which ignores the strip's bending: unsafe too)"
-            )
-    return float(design.M_Rd(0.0, 1)), float(-design.M_Rd(0.0, -1))
-
-
-def _is_rc(section) -> bool:
-    from ..materials.layer_laws import CONCRETE, STEEL
-
-    return bool(np.any(section.kind == CONCRETE) and np.any(section.kind == STEEL))
-
-
-def _beam_mode(scene, strip: str | None):
-    """(mp_sag, mp_hog) [N m/m] if the scene's strip is a beam in the limit problem, else None."""
-    f = scene.foundation
-    if strip == "rigid" or f is None:
-        return None
-    if isinstance(f, RigidFooting):
-        if strip == "beam":
-            raise ValueError("strip='beam': a RigidFooting is rigid; a beam strip needs a plate Foundation")
-        return None
-    if not _is_rc(f.section):
-        if strip == "beam":
-            raise ValueError(
-                "strip='beam': the Foundation's section is not reinforced concrete (no CONCRETE and STEEL "
-                "layers), so it has no bending resistance to form plastic hinges from; give strip='rigid'"
-            )
-        return None  # an elastic strip has no strength of its own: held rigid (the stronger assumption)
-    if strip is None:
-        try:
-            return strip_beam_capacity(f.section)
-        except ValueError as err:
-            warnings.warn(f"{err}; the strip is taken rigid", stacklevel=3)
-            return None
-    return strip_beam_capacity(f.section)
-
-
-class _NotOnBeam(ValueError):
-    """A load the beam strip does not represent (by default the strip is then taken rigid)."""
-
-
-def _beam_loads(scene, loads, first_phase: bool, what: str) -> tuple[list, float]:
-    """A beam strip's loads: point loads [(x [m], Fx, Fz [N/m], C [N m/m])] at the base (a column's H at
-    the plate's nodes, e above the base, adds the couple -H e) and the uniform downward pressure [Pa]."""
-    f = scene.foundation
-    lever = -float(f.section.z_bottom)
-    points, p = [], 0.0
-    for i, ld in enumerate(loads):
-        if isinstance(ld, ColumnLoad):
-            points.append((float(ld.x), float(ld.H), -float(ld.N), float(ld.M) - float(ld.H) * lever))
-        elif isinstance(ld, StripLoad):
-            full = (ld.x0 is None or ld.x0 <= f.x0) and (ld.x1 is None or ld.x1 >= f.x1)
-            if not full or (ld.q_end is not None and ld.q_end != ld.q):
-                raise _NotOnBeam(
-                    f"{what}[{i}]: a StripLoad not uniform over the whole strip is not represented on a "
-                    "beam strip by ssi.limit; give strip='rigid'"
-                )
-            p += ld.q
-        elif isinstance(ld, StripWeight):
-            t = f.section.thickness
-            wt = scene.water_table
-            submerged = 0.0 if wt is None else min(max(-float(wt), 0.0), t)
-            p += ld.unit_weight * t - scene.gamma_w * submerged
-    if first_phase and f.self_weight:
-        p += f.self_weight
-    return points, p
-
-
 def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
-    with plastic hinges, :func:`strip_beam_capacity`); None: "beam" for an RC section that is not brittle
-    under force loads a beam represents, else "rigid" (with a warning for a brittle section or such a
-    load). Raises ValueError naming whatever the scene holds that
+    with plastic hinges, :mod:`ssi.scene.limit_strip`); None: "beam" for an RC section that is not
+    brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
+    a load). Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
     if strip is not None and strip not in ("rigid", "beam"):
         raise ValueError(f"strip must be 'rigid', 'beam' or None, got {strip!r}")
@@ -321,7 +236,7 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
     fref = np.zeros(2)
     mdead = mref = 0.0  # moments about the centre of the base [N m/m], counter-clockwise
     settle_ref = False
-    mp = _beam_mode(scene, strip)  # (mp_sag, mp_hog) [N m/m] of a beam strip, None: rigid
+    mp = beam_mode(scene, strip)  # (mp_sag, mp_hog) [N m/m] of a beam strip, None: rigid
     beam_loads = {"ref": [], "dead": [], "p_ref": 0.0, "p_dead": 0.0}  # point loads (x, Fx, Fz, C), pressures
     for factor, ph, first in dead + [(1.0, ref_phase, k == 0)]:
         is_ref = ph is ref_phase
@@ -349,8 +264,8 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
         fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
         if mp is not None:
             try:
-                pts, p = _beam_loads(scene, on_footing, first, what)
-            except _NotOnBeam as err:
+                pts, p = beam_loads_of(scene, on_footing, first, what)
+            except NotOnBeam as err:
                 if strip == "beam":
                     raise
                 warnings.warn(f"{err}: the strip is taken rigid", stacklevel=2)
