@@ -1,9 +1,9 @@
 """Upper bound: a kinematically admissible velocity field on 6-node triangles, one SOCP, then recomputed.
 
 Unknowns: velocities (u, w) at the corner and midside nodes (quadratic in each triangle, continuous),
-each footing's translation (U, W), a plastic multiplier e at each vertex of each triangle (layout
-``e[n_el, 3]``), and, under a footing with a Coulomb or smooth interface, a slip bound s at each
-control point of the jump.
+each footing's translation (U, W) and rotation theta (where free; a bending footing's nodal w and phi and
+its hinges instead), a plastic multiplier e at each vertex of each triangle (layout ``e[n_el, 3]``), and,
+under a footing with a Coulomb or smooth interface, a slip bound s at each control point of the jump.
 
 - The strain rate is linear in a triangle. At each vertex the associated Mohr-Coulomb flow rule reads
   eps_x + eps_z = sin phi e and ||(eps_x - eps_z, gamma_xz)|| <= e (a 3-D cone). e is linear between the
