@@ -36,6 +36,7 @@ from ssi.scene import (
     Settlement,
     SoilLayer,
     StripLoad,
+    SurfacePressure,
 )
 from ssi.scene.limit_problem import limit_problem
 
@@ -316,6 +317,11 @@ def test_eccentric_column_and_strip_loads_become_the_footing_moment():
     assert ft.load_ref == pytest.approx((5e3, -100e3), rel=1e-12)
     p = limit_problem(_scene(loads=[StripLoad(1e4, q_end=2e4)]))
     assert p.site.footings[0].moment_ref == pytest.approx(-30e3 / 9.0, rel=1e-12)
+    # a problem that is its own mirror image about the strip's centre holds the rotation (the same exact
+    # load, a tighter bracket); a pressure on one side breaks the symmetry and frees it
+    assert limit_problem(_scene()).site.footings[0].moves == ("x", "z")
+    one_side = _scene(loads=[ColumnLoad(0.0, N=100e3), SurfacePressure(2.0, 4.0, 10e3)])
+    assert limit_problem(one_side).site.footings[0].moves == ("x", "z", "r")
 
 
 def test_an_rc_strip_is_a_beam_with_the_sections_plastic_moment():

@@ -17,8 +17,9 @@ How the scene maps (anything else raises a ValueError naming the part):
   the pore pressure the loading path generates, which limit analysis does not know);
 - the foundation is a **rigid body**: a :class:`RigidFooting` (and any footing pushed by a Settlement,
   which prescribes a uniform settlement) translates only; a plate :class:`Foundation` of a full
-  (non-symmetric) scene also rotates about the centre of its base, so eccentric loads and a column's
-  moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
+  (non-symmetric) scene also rotates about the centre of its base (held where the whole problem is its
+  own mirror image about that centre: the same exact load, a tighter bracket), so eccentric loads and a
+  column's moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
   plate nodes' height above the base); held loads with a moment before a Settlement push are refused;
 - a plate strip with an RC section is by default (``strip=None`` or "beam") a **beam with plastic hinges**
   (:class:`ssi.limit.Beam`, :mod:`ssi.scene.limit_strip`): M_p sagging and hogging its section's M_Rd at
@@ -176,6 +177,20 @@ def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what:
     if first_phase and isinstance(f, Foundation) and f.self_weight:
         fz -= f.self_weight * (f.x1 - f.x0)
     return fx, fz, m, settle
+
+
+def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width) -> bool:
+    """Whether the scene is its own mirror image about the foundation's centre: the block centred on it,
+    the ground pressures mirrored, no moment and no horizontal force on the foundation (the layers and the
+    water table are level)."""
+    xc, tol = 0.5 * (f.x0 + f.x1), _TOL * width
+    if abs(0.5 * (xl + xr) - xc) > tol or mref or mdead or fref[0] or fdead[0]:
+        return False
+    for items in (p_dead, p_ref):
+        mirrored = sorted((round(2 * xc - b, 9), round(2 * xc - a, 9), q) for a, b, q in items)
+        if mirrored != sorted((round(a, 9), round(b, 9), q) for a, b, q in items):
+            return False
+    return True
 
 
 def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
@@ -338,9 +353,16 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
             moves = ("z",)
         else:
             moves = ("x", "z")
-        if isinstance(f, Foundation) and not scene.symmetric and not settle_ref:
+        tilts = isinstance(f, Foundation) and not scene.symmetric and not settle_ref
+        symmetric_problem = _mirror_symmetric(
+            f, xl, xr, fref, fdead, mref, mdead, pressures_dead, pressures_ref, width
+        )
+        if tilts and (mp is not None or not symmetric_problem):
             # a plate strip tilts as freely as the incremental scene's: its rotation is free (a Settlement
-            # push prescribes a uniform settlement and so holds it)
+            # push prescribes a uniform settlement and so holds it). Held where the whole problem is the
+            # mirror image of itself about the strip's centre: the exact collapse load is then the same
+            # (a tilting mechanism and its mirror image cost the same and their average does not tilt;
+            # the dissipation is convex), and the held footing's bracket is tighter on a given mesh
             moves += ("r",)
         elif mref or mdead:
             raise ValueError(
