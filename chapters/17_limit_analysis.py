@@ -348,8 +348,9 @@ report.check(
 #   rigorous *lower* bound of the exact load for any interface that can carry zero shear: Prandtl's field,
 #   which extends statically admissibly into the whole half-space for Tresca, under the width B − 2e centred
 #   on the load and zero traction on the rest of the base (the footing is then in equilibrium, moment
-#   included). So the upper bound must lie above V_M; the exact load of a no-tension (Coulomb c_i = 0)
-#   interface is known from FE studies to lie close to V_M, a bonded one above it (it can pull).
+#   included). So the upper bound must lie above V_M (asserted). Meyerhof's V_M is otherwise only an
+#   approximation of the exact load; how close it is, the brackets below show (for a no-tension Coulomb
+#   joint, c_i = 0, and for a bonded base, which can also pull).
 # - **Moment alone, bonded base.** The circular "scoop" (the footing and a circular block of soil under it
 #   rotating about a point on the axis, slip at s_u on the arc through the footing's edges) is a rigorous
 #   upper bound M = (B²/2) s_u α / sin²α, least at tan α = 2α (α = 1.1656): **M = 0.690 s_u B²**. The lower
