@@ -391,9 +391,11 @@ print(f"moment capacity of the bonded strip in [{rot['moment, bonded'].lb / (C *
       f"{min(rot['moment, bonded'].ub, scoop) / (C * B**2):.4f}] s_u B^2")  # fmt: skip
 
 # %% [markdown]
-# The bonded strip's moment capacity is pinned between the certified lower bound and the scoop; the
-# no-tension eccentric bracket contains Meyerhof's V_M (an approximation there: the bracket, not V_M, is
-# the answer), and the bonded one lies above it.
+# The bonded strip's moment capacity is pinned between the certified lower bound and the scoop (full mode:
+# [0.6835, 0.6900] s_u B²). Both eccentric brackets contain Meyerhof's V_M at these gaps (full mode: no
+# tension [0.985, 1.083] V_M, bonded [0.979, 1.100] V_M): here V_M is close to the exact load, and the
+# bonded base (which can also pull, so carries at least as much) is not resolved from the no-tension one
+# at a 6 % gap.
 #
 # ## The strip as a beam with plastic hinges: `fela_beam_mechanism`
 #
