@@ -18,7 +18,8 @@ forms, not by the code under test:
   through the footing's edges at s_u) is a rigorous upper bound M = (B^2 / 2) s_u alpha / sin^2 alpha,
   least at tan alpha = 2 alpha (alpha = 1.1656): M = 0.6900 s_u B^2, so LB <= 0.6900 s_u B^2;
 - on one mesh, freeing a footing's rotation (one more unknown in the upper bound, one more equation in the
-  lower bound) can only lower both bounds.
+  lower bound) can only lower both bounds; so can letting it bend (a beam with plastic hinges: more
+  mechanisms, more constraints on the stress field), and a beam too strong to yield is the rigid footing.
 Each bound is rigorous for its mesh, so the assertions LB <= exact <= UB have no tolerance beyond the
 solver's relative accuracy REL (1e-6: Clarabel's tolerances are 1e-9 and the lower bound is certified).
 """
@@ -30,6 +31,7 @@ import numpy as np
 import pytest
 
 from ssi.limit import (
+    Beam,
     Footing,
     Interface,
     Material,
@@ -285,6 +287,11 @@ def scoop_moment(B, su):
     return 0.5 * B**2 * su * alpha / math.sin(alpha) ** 2
 
 
+def two_edge_size(p):
+    """Element size [m] graded towards both edges (x = -1, 1 m) of a 2 m footing."""
+    return 0.15 + 0.3 * np.minimum(np.hypot(p[:, 0] - 1, p[:, 1]), np.hypot(p[:, 0] + 1, p[:, 1]))
+
+
 def rotating_strip(kind="rough", V=1.0, M=0.0, moves=("x", "z", "r")):
     """A weightless Tresca strip B = 2 m, s_u = 10 kPa, whole model, the footing free to rotate about the
     centre of its base; lambda scales (0, -V) and the moment M [N m/m]."""
@@ -293,14 +300,10 @@ def rotating_strip(kind="rough", V=1.0, M=0.0, moves=("x", "z", "r")):
     centre = (0.0, 0.0) if "r" in moves else None
     ft = Footing(itf, (0.0, -V), (0.0, 0.0), moves, centre=centre, moment_ref=M)
     site = replace(site, footings=(ft,))
-
-    def size(p):  # graded towards both edges of the footing
-        return 0.15 + 0.3 * np.minimum(np.hypot(p[:, 0] - 1, p[:, 1]), np.hypot(p[:, 0] + 1, p[:, 1]))
-
-    return site, triangulate(site, 1.0, size=size)
+    return site, triangulate(site, 1.0, size=two_edge_size)
 
 
-@pytest.mark.parametrize("kind", ["rough", "coulomb"])
+@pytest.mark.parametrize("kind", ["coulomb"])  # rough rotating bases: the moment and free-rotation tests
 def test_eccentric_load_on_a_rotating_footing(kind):
     """V at e = B/8 (moment -V e about the centre): certified, UB above Meyerhof's rigorous lower bound, the
     virtual-work identity of the two fields exact (it checks the moment row of the lower bound against the
@@ -338,3 +341,35 @@ def test_a_free_rotation_lowers_both_bounds_on_one_mesh():
     for br in (held, free):
         assert br.lower.certified and br.lb <= exact * (1 + REL) and exact <= br.ub * (1 + REL)
     assert free.lb <= held.lb * (1 + REL) and free.ub <= held.ub * (1 + REL)
+
+
+def beam_strip(mp, kind="rough"):
+    """rotating_strip's footing as a beam with M_p = ``mp`` [N m/m] (sagging and hogging) under two columns
+    of lambda x 0.5 N/m at x = -0.5 and 0.5 m."""
+    itf = Interface(kind) if kind != "coulomb" else Interface("coulomb", c=0.0, phi_deg=45.0)
+    site = strip_site(2.0, Material(10e3, 0.0), itf, half_width=4.0, depth=3.0, symmetric=False,
+                      base_points=(-0.5, 0.5))  # fmt: skip
+    beam = Beam(-1.0, 1.0, mp, mp, loads_ref=((-0.5, 0.0, -0.5, 0.0), (0.5, 0.0, -0.5, 0.0)))
+    site = replace(site, footings=(Footing(itf, moves=("x", "z", "r"), centre=(0.0, 0.0), beam=beam),))
+    return site
+
+
+@pytest.mark.parametrize("kind", ["rough"])  # a beam on a Coulomb joint: chapter 17's fela_beam_mechanism
+def test_a_beam_footing_between_rigid_and_weak(kind):
+    """Same mesh: a beam whose M_p (1e9 N m/m) no load on this soil reaches gives the rigid rotating
+    footing's bounds; a weak one (1 kN m/m) gives both bounds lower, certified, its moment within M_p and
+    the virtual-work identity exact with the hinges' term."""
+    rigid_site = beam_strip(1.0, kind)
+    rigid_site = replace(
+        rigid_site, footings=(replace(rigid_site.footings[0], beam=None, load_ref=(0.0, -1.0)),)
+    )
+    mesh = triangulate(rigid_site, 1.0, size=two_edge_size)
+    rigid = bracket(rigid_site, mesh)
+    strong = bracket(beam_strip(1e9, kind), mesh)
+    weak = bracket(beam_strip(1e3, kind), mesh)
+    assert strong.lb == pytest.approx(rigid.lb, rel=REL) and strong.ub == pytest.approx(rigid.ub, rel=REL)
+    assert weak.lower.certified, weak.lower.reason
+    assert weak.lb <= rigid.lb * (1 + REL) and weak.ub <= rigid.ub * (1 + REL)
+    assert weak.ub < 0.8 * rigid.ub  # the beam's mechanism governs (measured 0.52)
+    assert weak.lower.beam[0]["utilisation"] <= 1.0
+    assert weak.identity_error < 1e-9 and strong.identity_error < 1e-9

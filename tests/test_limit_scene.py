@@ -36,6 +36,7 @@ from ssi.scene import (
     Settlement,
     SoilLayer,
     StripLoad,
+    SurfacePressure,
 )
 from ssi.scene.limit_problem import limit_problem
 
@@ -295,6 +296,13 @@ def test_a_site_brackets_prandtl_and_refuses_what_it_cannot_represent():
     )
     with pytest.raises(ValueError, match=r"Site.layers\[0\] is a DepthVarying"):
         limit_problem(varying)
+    # an eccentric column: the strip rotates about the centre of its base, moment -N e
+    clay = [SoilLayer.undrained(5.0, E_u=30e6, s_u=c)]
+    eccentric = Site(width=12.0, depth=5.0, layers=clay, strips=[strip], loads=[ColumnLoad(0.25, N=N)])
+    (ft,) = limit_problem(eccentric).site.footings
+    assert (
+        "r" in ft.moves and ft.centre == (0.0, 0.0) and ft.moment_ref == pytest.approx(-0.25 * N, rel=1e-12)
+    )
 
 
 def test_eccentric_column_and_strip_loads_become_the_footing_moment():
@@ -310,3 +318,61 @@ def test_eccentric_column_and_strip_loads_become_the_footing_moment():
     assert ft.load_ref == pytest.approx((5e3, -100e3), rel=1e-12)
     p = limit_problem(_scene(loads=[StripLoad(1e4, q_end=2e4)]))
     assert p.site.footings[0].moment_ref == pytest.approx(-30e3 / 9.0, rel=1e-12)
+    # a problem that is its own mirror image about the strip's centre holds the rotation (the same exact
+    # load, a tighter bracket); a pressure on one side breaks the symmetry and frees it
+    assert limit_problem(_scene()).site.footings[0].moves == ("x", "z")
+    one_side = _scene(loads=[ColumnLoad(0.0, N=100e3), SurfacePressure(2.0, 4.0, 10e3)])
+    assert limit_problem(one_side).site.footings[0].moves == ("x", "z", "r")
+
+
+def test_an_rc_strip_is_a_beam_with_the_sections_plastic_moment():
+    """Chapter 11's RC section (As = 1.5e-3 m^2/m top and bottom, d = 0.35 m, f_ck = 30 MPa, f_y = 500
+    MPa): by default the strip is a beam whose M_p is within 3 % of the rectangular stress block's
+    As f_y (d - 0.4 x), x = As f_y / (0.8 f_ck) (253.1 kN m/m; the section analysis' parabola-rectangle and
+    compression bars add ~2 %); its columns are point loads at base points; strip='rigid' drops the beam;
+    an elastic section or a Settlement push cannot be a beam."""
+    from ssi.lab.examples import chapter11_section
+
+    rc = Foundation(-1.0, 1.0, chapter11_section())
+    loads = [ColumnLoad(-0.5, N=100e3), ColumnLoad(0.5, N=100e3, H=2e3)]
+    p = limit_problem(_scene(foundation=rc, loads=loads))
+    (ft,) = p.site.footings
+    x_blk = 1.5e-3 * 500e6 / (0.8 * 30e6)
+    mp_hand = 1.5e-3 * 500e6 * (0.35 - 0.4 * x_blk)
+    assert (
+        ft.beam is not None
+        and abs(ft.beam.mp_sag / mp_hand - 1) < 0.03
+        and abs(ft.beam.mp_hog / mp_hand - 1) < 0.03
+    )
+    # the H of a column at the plate's mid-plane (0.2 m above the base) is a force at the base and a couple
+    assert ft.beam.loads_ref == ((-0.5, 0.0, -100e3, 0.0), (0.5, 2e3, -100e3, -2e3 * 0.2))
+    xs = {round(float(x), 9) for x, z in p.site.points if z == 0.0}
+    assert {-0.5, 0.5} <= xs
+    assert limit_problem(_scene(foundation=rc, loads=loads), strip="rigid").site.footings[0].beam is None
+    with pytest.raises(
+        ValueError, match=r"strip='beam': the Foundation's section is not reinforced concrete"
+    ):
+        limit_problem(_scene(), strip="beam")
+    trapezoid = _scene(foundation=rc, loads=[StripLoad(1e4, q_end=2e4)])
+    with pytest.raises(ValueError, match=r"a StripLoad not uniform over the whole strip"):
+        limit_problem(trapezoid, strip="beam")
+    with pytest.warns(UserWarning, match=r"the strip is taken rigid"):
+        assert limit_problem(trapezoid).site.footings[0].beam is None
+    push = _scene(foundation=rc, loads=[Settlement(0.01)])
+    assert limit_problem(push).site.footings[0].beam is None
+    with pytest.raises(ValueError, match=r"strip='beam' with a Settlement push"):
+        limit_problem(push, strip="beam")
+
+
+def test_a_brittle_strip_forms_no_hinge():
+    """0.5 cm^2/m of bars in a 0.4 m section (far below minimum reinforcement: the cracking moment exceeds
+    the yield moment): strip='beam' is refused by name; by default the strip is taken rigid with a
+    warning saying why."""
+    from ssi.lab.examples import chapter11_section
+
+    weak = Foundation(-1.0, 1.0, chapter11_section(area=0.5e-4))
+    scene = _scene(foundation=weak)
+    with pytest.raises(ValueError, match=r"brittle on its bottom face .* below minimum reinforcement"):
+        limit_problem(scene, strip="beam")
+    with pytest.warns(UserWarning, match=r"brittle .* the strip is taken rigid"):
+        assert limit_problem(scene).site.footings[0].beam is None

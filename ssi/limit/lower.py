@@ -11,6 +11,8 @@ Constraints (all linear in the nodal stresses, so met at the nodes means met eve
   free translation (and, if the footing rotates, their moment about its centre moment_dead + lambda
   moment_ref), and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
   sigma_n tan phi_i (two linear rows), rough nothing (the soil's own strength governs);
+- a bending footing (:class:`~ssi.limit.geometry.Beam`): its moment, from the base tractions and its
+  loads (:mod:`ssi.limit.beam`), within -mp_hog..mp_sag at the Bernstein points of every element;
 - Mohr-Coulomb at every vertex as the 3-D cone ||(sig_x - sig_z, 2 tau)|| <= 2 c cos phi - (sig_x + sig_z)
   sin phi (Tresca: phi = 0), and, with a tension cut-off T, ||(sig_x - sig_z, 2 tau)|| <= 2 T - (sig_x +
   sig_z). A linear field in a convex set at the vertices stays in it inside the triangle. (The upper bound
@@ -34,6 +36,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ._common import boundary_edges, gradients, interior_edges, scales, strength
+from .beam import beam_layout, lower_bound_statics
 from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
@@ -48,7 +51,9 @@ CUT_TOL = 1e-12  # likewise on a tension cut-off (round-off of the projected fie
 class LowerBound:
     """A certified lower bound. ``lam`` the certified load factor (NaN if not certified), ``lam_solver`` the
     solver's, ``lam_projected`` that of the projected field (= lam when certified); ``stress``
-    (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex); ``min_margin`` the smallest
+    (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex); ``beam``: per bending
+    footing, dict of ``M_left`` / ``M_right`` (n_k,) [N m/m] the moment just left / right of each beam node
+    and ``utilisation`` max |M| / M_p over the beam (its Bernstein points); ``min_margin`` the smallest
     distance inside the true yield cone over all vertices [Pa] (negative: outside); ``n_apex`` vertices at
     the apex within APEX_TOL S; ``eq_residual`` the largest equality residual after projection [Pa];
     time [s], iterations, status, n_cones, n_rows of the solve."""
@@ -59,6 +64,7 @@ class LowerBound:
     certified: bool
     reason: str
     stress: np.ndarray
+    beam: dict
     min_margin: float
     n_apex: int
     eq_residual: float
@@ -197,6 +203,20 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             mr = ft.moment_ref / (sc.S * sc.L**2)
             md = ft.moment_dead / (sc.S * sc.L**2)
             eq.add(cols + [imu], vm + [-mr / sc.k], md)
+    # a bending footing: -mp_hog <= M <= mp_sag at the Bernstein points of every element (shrunk by the
+    # margin in the solve, checked against the true capacity in the certification)
+    n_itf = len(ineq.rhs)
+    beams = {}
+    for f, ft in enumerate(site.footings):
+        if ft.beam is None:
+            continue
+        lay = beam_layout(site, f, be, xy, sc.L)
+        st = lower_bound_statics(site, f, lay, be, n, imu, sc.S, sc.L, sc.k)
+        B = st.B.tocoo()
+        r = B.row
+        ineq.add_many(r, B.col, B.data, (1.0 - margin) * st.mp_sag - st.b0)
+        ineq.add_many(r, B.col, -B.data, (1.0 - margin) * st.mp_hog + st.b0)
+        beams[f] = st
     # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x
     mats = site.materials
     two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in mats)))
@@ -225,7 +245,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             soc.add([3 * v + 2], [-2.0], 0.0)
     q = np.zeros(n)
     q[imu] = -1.0
-    return sc, _independent_local_rows(eq, 9 * n_el), ineq, soc, q, n
+    return sc, _independent_local_rows(eq, 9 * n_el), ineq, soc, q, n, n_itf, beams
 
 
 def _independent_local_rows(eq: Rows, n_sig: int) -> Rows:
@@ -302,7 +322,7 @@ def lower_bound(
     coarser mesh's field carried to a nested finer mesh)."""
     if not 0.0 <= margin < 0.1:
         raise ValueError(f"margin must be in [0, 0.1), got {margin!r}")
-    sc, eq, ineq, soc, q, n = _assemble(site, mesh, margin)
+    sc, eq, ineq, soc, q, n, n_itf, beams = _assemble(site, mesh, margin)
     if stress is None:
         sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
     else:
@@ -331,7 +351,17 @@ def lower_bound(
     bad = ((marg <= 0.0) & ~apex) | ((cut_marg <= 0.0) & ~on_cut)
     marg = np.minimum(marg, np.where(on_cut, np.inf, cut_marg))
     Ai, bi = ineq.matrix(n)
-    ineq_bad = int(np.sum(Ai @ x > bi)) if len(bi) else 0
+    ineq_bad = int(np.sum(Ai[:n_itf] @ x > bi[:n_itf])) if n_itf else 0
+    beam_out, beam_bad = {}, 0
+    for f, st in beams.items():
+        mb = st.B @ x + st.b0
+        beam_bad += int(np.sum(mb > st.mp_sag) + np.sum(mb < -st.mp_hog))
+        unit = sc.S * sc.L**2
+        beam_out[f] = dict(
+            M_left=(st.M_left[0] @ x + st.M_left[1]) * unit,
+            M_right=(st.M_right[0] @ x + st.M_right[1]) * unit,
+            utilisation=float(max(np.max(mb) / st.mp_sag, np.max(-mb) / st.mp_hog)),
+        )
     reasons = []
     if not np.all(np.isfinite(x)):
         reasons.append("the solver returned no finite point")
@@ -342,6 +372,8 @@ def lower_bound(
         reasons.append(f"{nb} vertices outside or on the yield surface (min margin {marg.min():.2e} S)")
     if ineq_bad:
         reasons.append(f"{ineq_bad} interface rows violated")
+    if beam_bad:
+        reasons.append(f"{beam_bad} beam moments beyond M_p")
     certified = not reasons
     lam = x[-1] / sc.k
     return LowerBound(
@@ -353,6 +385,7 @@ def lower_bound(
         if reasons
         else f"certified ({int(apex.sum())} vertices at the apex, {int(on_cut.sum())} on the cut-off)",
         stress=sig * sc.S,
+        beam=beam_out,
         min_margin=float(np.min(np.where(apex, np.inf, marg), initial=np.inf)) * sc.S,
         n_apex=int(apex.sum()),
         eq_residual=res * sc.S,

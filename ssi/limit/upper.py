@@ -1,9 +1,9 @@
 """Upper bound: a kinematically admissible velocity field on 6-node triangles, one SOCP, then recomputed.
 
 Unknowns: velocities (u, w) at the corner and midside nodes (quadratic in each triangle, continuous),
-each footing's translation (U, W), a plastic multiplier e at each vertex of each triangle (layout
-``e[n_el, 3]``), and, under a footing with a Coulomb or smooth interface, a slip bound s at each
-control point of the jump.
+each footing's translation (U, W) and rotation theta (where free; a bending footing's nodal w and phi and
+its hinges instead), a plastic multiplier e at each vertex of each triangle (layout ``e[n_el, 3]``), and,
+under a footing with a Coulomb or smooth interface, a slip bound s at each control point of the jump.
 
 - The strain rate is linear in a triangle. At each vertex the associated Mohr-Coulomb flow rule reads
   eps_x + eps_z = sin phi e and ||(eps_x - eps_z, gamma_xz)|| <= e (a 3-D cone). e is linear between the
@@ -21,7 +21,11 @@ control point of the jump.
   moves with (U - theta (z - z_c), W + theta (x - x_c)), linear along a straight edge and so exactly
   interpolated by the quadratic field; a rough base's nodes are tied to it (eliminated when the footing
   only translates, by equality rows when it rotates, and set to the rigid motion exactly before the
-  recomputation).
+  recomputation). A footing with a :class:`~ssi.limit.geometry.Beam` bends instead: each base edge a rigid
+  inextensible element (w linear along it, u = U), the nodes' vertical velocity w_k and rotation phi_k its
+  variables, a hinge at each element end with rotation theta_e - phi_left (phi_right - theta_e), split
+  into s+ - s- (s >= 0) dissipating mp_sag s+ + mp_hog s-; the beam's loads do work on w (forces), U
+  (horizontal forces) and phi (couples).
 - Normalisation: the power of the reference loads is 1; the objective is the dissipation minus the power
   of the dead loads (weight, surcharge, dead footing loads), which is lambda.
 
@@ -38,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._common import boundary_edges, gradients, scales, strength
+from .beam import beam_elements, beam_layout, beam_powers, carry_beam, hinge_dissipation, hinge_rows
 from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
@@ -51,8 +56,11 @@ class UpperBound:
     ``velocity`` (n_nodes + n_edges, 2) [m/s] (corner nodes, then one midside node per edge of
     ``mesh.edges()``; scaled so that the reference loads' power is 1 N/m . m/s); ``footing_velocity``
     (n_footings, 2) of each footing's centre, ``footing_rotation`` (n_footings,) [1/s] counter-clockwise
-    (0 where held); ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference
-    power; interface shares added to the element under the edge), ``dead_power`` the dead loads' share
+    (0 where held); ``beam``: per bending footing, dict of ``x`` [m] of its nodes, ``w`` [m/s] their
+    vertical velocity, ``phi`` [1/s] their rotation, ``hinge`` (n_e, 2) [1/s] the hinge rotations at each
+    element's left and right end (sagging positive), ``el`` the triangle under each element;
+    ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference power; interface
+    and hinge shares added to the element under the edge), ``dead_power`` the dead loads' share
     (lam = dissipation.sum() - dead_power); ``strain`` (n_el, 3, 3) vertex strain rates (eps_x, eps_z,
     gamma) [1/s];
     ``flow_residual`` the largest relative flow-rule residual; time [s], iterations, status, n_cones."""
@@ -62,6 +70,7 @@ class UpperBound:
     velocity: np.ndarray
     footing_velocity: np.ndarray
     footing_rotation: np.ndarray
+    beam: dict
     dissipation: np.ndarray
     dead_power: float
     strain: np.ndarray
@@ -112,7 +121,7 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
                 else:
                     oblique.append((g, nx, nz))
             elif bnd.kind == "footing" and site.footings[bnd.footing].interface.kind == "rough":
-                if site.footings[bnd.footing].rotates:
+                if site.footings[bnd.footing].rotates:  # (a beam rotates too)
                     ties.setdefault(int(g), bnd.footing)  # a free node tied by rows (its velocity varies)
                     continue
                 for d in range(2):
@@ -123,7 +132,7 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
     nxt = 0
     for f, ft in enumerate(site.footings):
         for d, name in enumerate("xzr"):
-            if name in ft.moves:
+            if name in ft.moves and not (ft.beam is not None and d > 0):  # a beam: its nodes' own w, phi
                 fvar[f, d] = nxt
                 nxt += 1
     dof = -np.ones((n_all, 2), np.int64)
@@ -175,6 +184,33 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 cp_rows.append((key, bnd.footing, j, w))
     i_s = ie + n_e
     n = i_s + len(cp)
+    # a beam's variables: w and phi at each node, a hinge (s+, s-) at each end of each element
+    beams = {}
+    for f, ft in enumerate(site.footings):
+        if ft.beam is not None:
+            lay = beam_layout(site, f, be, xy, sc.L)
+            n_k = len(lay.nodes)
+            cols = n + np.arange(2 * n_k + 4 * (n_k - 1))
+            w_col, phi_col = cols[:n_k], cols[n_k : 2 * n_k]
+            beams[f] = (lay, w_col, phi_col, cols[2 * n_k :].reshape(n_k - 1, 2, 2))
+            n += len(cols)
+    node_w = {}  # (footing, mesh node) -> the beam's w variable there
+    for f, (lay, w_col, _, _) in beams.items():
+        node_w.update({(f, int(g)): int(c) for g, c in zip(lay.nodes, w_col) if g >= 0})
+
+    def terms(f: int, g: int) -> tuple[list, list]:
+        """Footing f's velocity at node g as [(variable, coefficient)] for u and for w."""
+        if f in beams:
+            tu = [(fvar[f, 0], 1.0)] if fvar[f, 0] >= 0 else []
+            if g < n_nodes:
+                return tu, [(node_w[(f, g)], 1.0)]
+            a, b = edges[g - n_nodes]  # a midside node: the element is rigid, w linear along it
+            return tu, [(node_w[(f, int(a))], 0.5), (node_w[(f, int(b))], 0.5)]
+        ax, az = arm(f, g)
+        tu = [(fvar[f, 0], 1.0), (fvar[f, 2], ax)]
+        tw = [(fvar[f, 1], 1.0), (fvar[f, 2], az)]
+        return [t for t in tu if t[0] >= 0], [t for t in tw if t[0] >= 0]
+
     eq, ineq, soc = Rows(), Rows(), Rows()
     q = np.zeros(n)
     # flow rule at the vertices
@@ -249,36 +285,33 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         nx, nz = be.n[j]
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
         weights = {0: {a_: 1.0}, 2: {b_: 1.0}, 1: {m_: 2.0, a_: -0.5, b_: -0.5}}[w]
-        wsum = sum(weights.values())  # the footing's (U, W) enters with the same weights
         for comp, (vx, vz) in (("n", (nx, nz)), ("t", (-nz, nx))):
             cols, vals = [], []
             for d, vv in ((0, vx), (1, vz)):
-                if fvar[f, d] >= 0:
-                    cols.append(fvar[f, d])
-                    vals.append(wsum * vv)
                 for g, wt in weights.items():
+                    for col, cf in terms(f, g)[d]:  # the footing's velocity at g
+                        cols.append(col)
+                        vals.append(wt * vv * cf)
                     if dof[g, d] >= 0:
                         cols.append(dof[g, d])
                         vals.append(-wt * vv)
-            if fvar[f, 2] >= 0:  # the rotation's velocity at each node, with the nodes' weights
-                cols.append(fvar[f, 2])
-                vals.append(sum(wt * (vx * arm(f, g)[0] + vz * arm(f, g)[1]) for g, wt in weights.items()))
             if comp == "n":
                 eq.add(cols + [k], vals + [-tphi], 0.0)
             else:
                 ineq.add(cols + [k], vals + [-1.0], 0.0)
                 ineq.add(cols + [k], [-v for v in vals] + [-1.0], 0.0)
-    # the rough base of a rotating footing: each node moves with the footing's rigid motion
+    # the rough base of a rotating or bending footing: each node moves with the footing
     for g, f in ties.items():
         for d in range(2):
             cols = [dof[g, d]] if dof[g, d] >= 0 else []
             vals = [1.0] * len(cols)
-            for col, v in ((fvar[f, d], -1.0), (fvar[f, 2], -arm(f, g)[d])):
-                if col >= 0:
-                    cols.append(col)
-                    vals.append(v)
+            for col, cf in terms(f, g)[d]:
+                cols.append(col)
+                vals.append(-cf)
             if cols:
                 eq.add(cols, vals, 0.0)
+    for f, vars_ in beams.items():  # hinge rows, their dissipation in the objective
+        hinge_rows(site.footings[f].beam, *vars_, eq, ineq, q, sc.S * sc.L**2)
     # powers: reference (= 1) and dead (subtracted in the objective)
     p_ref = np.zeros(n)
     p_dead = np.zeros(n)
@@ -298,7 +331,11 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 if dof[g, d] >= 0:
                     p_ref[dof[g, d]] += -bnd.pressure_ref / sc.S * nn * wt / sc.k
                     p_dead[dof[g, d]] += -bnd.pressure_dead / sc.S * nn * wt
+    for f, vars_ in beams.items():  # the beam's loads do work on w, U and phi
+        beam_powers(site.footings[f].beam, *vars_, fvar[f, 0], p_ref, p_dead, sc.S, sc.L, sc.k)
     for f, ft in enumerate(site.footings):
+        if f in beams:
+            continue
         for d in range(2):
             if fvar[f, d] >= 0:
                 p_ref[fvar[f, d]] += ft.load_ref[d] / (sc.S * sc.L) / sc.k
@@ -321,21 +358,25 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         motion = np.column_stack([fv_in.reshape(-1, 2), rot_in.reshape(-1) * sc.L])  # theta in scaled units
         mf_ = fvar >= 0
         x[fvar[mf_]] = motion[mf_]
+        given = velocity[3] if len(velocity) > 3 else {}
+        for f, (lay, w_col, phi_col, _) in beams.items():
+            x[w_col], x[phi_col] = carry_beam(given[f], lay.x * sc.L, sc.L)
         sol = ConicSolution(x, "given", 0, 0.0, len(soc.rhs) // 3)
     # ---- recomputation from the velocities alone
     vel = np.where(dof >= 0, x[np.maximum(dof, 0)], 0.0)
     fm = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)  # (n_f, 3): U, W, theta (scaled)
     fv = fm[:, :2]
-    # a tied node takes its footing's rigid motion exactly (the solver meets the tie rows to its tolerance
-    # only): the field evaluated is then kinematically admissible, with no jump at the rough base
-    for g, f in ties.items():
-        for d in range(2):
-            if dof[g, d] >= 0:
-                vel[g, d] = fm[f, d] + fm[f, 2] * arm(f, g)[d]
 
     def footing_vel(f: int, g: int) -> np.ndarray:
-        a = arm(f, g)
-        return fv[f] + fm[f, 2] * np.array(a)
+        return np.array([sum(cf * x[col] for col, cf in t) for t in terms(f, g)])
+
+    # a tied node takes its footing's motion exactly (the solver meets the tie rows to its tolerance
+    # only): the field evaluated is then kinematically admissible, with no jump at the rough base
+    for g, f in ties.items():
+        fvg = footing_vel(f, g)
+        for d in range(2):
+            if dof[g, d] >= 0:
+                vel[g, d] = fvg[d]
 
     ue, we = vel[nodes6, 0], vel[nodes6, 1]  # (n_el, 6)
     ex = np.einsum("evn,en->ev", G[..., 0], ue)
@@ -363,8 +404,17 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         s_need = abs(dt) if tphi == 0 else max(abs(dt), dn / tphi)
         flow_res = max(flow_res, abs(dn - tphi * s_need) / v_scale)
         diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
-    pr = _power(p_ref, dof, fvar, vel, fm, n)
-    pd = _power(p_dead, dof, fvar, vel, fm, n)
+    # beam hinges recomputed from w and phi
+    beam_out = {}
+    for f, vars_ in beams.items():
+        el = beam_elements(be, vars_[0])
+        beam_out[f] = hinge_dissipation(site.footings[f].beam, *vars_, x, el, diss, sc.S * sc.L**2)
+    x_rec = np.zeros(n)  # the solution vector rebuilt from the recomputed velocities
+    x_rec[dof[dof >= 0]] = vel[dof >= 0]
+    x_rec[fvar[fvar >= 0]] = fm[fvar >= 0]
+    for _lay, w_col, phi_col, _ in beams.values():
+        x_rec[w_col], x_rec[phi_col] = x[w_col], x[phi_col]
+    pr, pd = float(p_ref @ x_rec), float(p_dead @ x_rec)
     lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
     unit = 1.0 / (sc.S * sc.L * sc.k * pr)  # real velocities with a reference power of 1 N/m . m/s
     return UpperBound(
@@ -373,6 +423,16 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         velocity=vel * unit,
         footing_velocity=fv * unit,
         footing_rotation=fm[:, 2] * unit / sc.L,
+        beam={
+            f: dict(
+                x=lay.x * sc.L,
+                w=w * unit,
+                phi=phi * unit / sc.L,
+                hinge=rot * unit / sc.L,
+                el=beam_elements(be, lay),
+            )
+            for f, (lay, w, phi, rot) in beam_out.items()
+        },
         dissipation=diss / (pr * sc.k),
         dead_power=pd / (pr * sc.k),
         strain=np.stack([ex, ez, gm], axis=2) * unit / sc.L,
@@ -386,11 +446,12 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     )
 
 
-def _power(coef: np.ndarray, dof, fvar, vel, fv, n) -> float:
-    """coef . x with x rebuilt from the recomputed nodal and footing velocities (not the solver's vector)."""
-    x = np.zeros(n)
-    m = dof >= 0
-    x[dof[m]] = vel[m]
-    mf = fvar >= 0
-    x[fvar[mf]] = fv[mf]
-    return float(coef @ x)
+def footing_velocity_at(site: Site, upper: UpperBound, f: int, pts: np.ndarray) -> np.ndarray:
+    """Footing ``f``'s velocity (n, 2) [m/s] at base points ``pts`` (n, 2) [m] in the field of ``upper``."""
+    ft = site.footings[f]
+    if ft.beam is not None:
+        b = upper.beam[f]
+        return np.column_stack(
+            [np.full(len(pts), upper.footing_velocity[f, 0]), np.interp(pts[:, 0], b["x"], b["w"])]
+        )
+    return ft.velocity_at(np.append(upper.footing_velocity[f], upper.footing_rotation[f]), pts)

@@ -168,7 +168,23 @@ class CapacityResult:
             "time_s": self.time,
             "history_associated": rows(self.associated),
             "history_davis": rows(self.davis),
+            "strip": self.strip,
+            "strip_mp_sag_hog_N_m_per_m": self.strip_mp,
         }
+
+    @property
+    def strip(self) -> str | None:
+        """How the foundation enters the limit analysis: "beam" (plastic hinges), "rigid" or None (none)."""
+        fts = self.problem.site.footings
+        if not fts:
+            return None
+        return "beam" if any(ft.beam is not None for ft in fts) else "rigid"
+
+    @property
+    def strip_mp(self) -> list | None:
+        """[M_p sagging, M_p hogging] [N m/m] of a beam strip's hinges (None: no beam)."""
+        beams = [ft.beam for ft in self.problem.site.footings if ft.beam is not None]
+        return [beams[0].mp_sag, beams[0].mp_hog] if beams else None
 
     def summary(self) -> str:
         """A few lines an engineer reads: both brackets in kN/m (a Settlement push) or as factors of the
@@ -189,6 +205,12 @@ class CapacityResult:
             f"{100 * self.gap_davis:.2f} %  "
             + ("(psi < phi: the conventional engineering value)" if d else "(= associated: psi = phi)"),
         ]
+        if self.strip_mp is not None:
+            ms, mh = (m / 1e3 for m in self.strip_mp)
+            lines.append(
+                f"  strip: a beam with plastic hinges, M_p {ms:.4g} kN m/m sagging, {mh:.4g} hogging (its RC "
+                "section at N = 0; strip='rigid' ignores its bending)"
+            )
         if p.lam_unit == "N/m" and p.footing_width:
             b = p.footing_width * (2.0 if p.symmetric else 1.0)
             lines.append(
@@ -221,19 +243,22 @@ def limit_analysis(
     max_steps: int = 12,
     davis: bool = True,
     progress=None,
+    strip: str | None = None,
 ) -> CapacityResult:
     """The scene's capacity as a certified bracket (module docstring): the associated bracket refined until
     its relative gap (ub - lb)/(ub + lb) <= ``gap`` (or ``max_elements`` triangles / ``max_steps``
     refinements), then, for a non-associated scene and ``davis``, the Davis bracket likewise. ``h`` [m]
     the largest initial triangle (default: the block's size / 6), ``h_min`` [m] at the footing's and loads'
     ends (default: max(footing width, size / 10) / 8). ``progress(label, row)`` is called once per mesh
-    (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`)."""
+    (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`). ``strip``: a plate
+    strip "rigid" or a "beam" with plastic hinges (None: a beam for a ductile RC section;
+    :func:`ssi.scene.limit_problem.limit_problem`)."""
     gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
     check_optional_real("h", h, lo=0.0, lo_open=True, unit="m")
     check_optional_real("h_min", h_min, lo=0.0, lo_open=True, unit="m")
     max_elements = check_int("max_elements", max_elements, lo=1)
     max_steps = check_int("max_steps", max_steps, lo=0)
-    problem = limit_problem(scene, phase)
+    problem = limit_problem(scene, phase, strip)
     t0 = time.perf_counter()
     mesh = initial_mesh(problem, h, h_min)
 
@@ -311,15 +336,17 @@ def safety_factor(
     refine: int = 0,
     rel_tol: float = 3e-3,
     davis: bool = True,
+    strip: str | None = None,
 ) -> SafetyFactorResult:
     """The factor of safety of the scene by strength reduction, bracketed by both bounds on one mesh (the
     initial mesh of :func:`limit_analysis`, bisected uniformly ``refine`` times): the loads are the
     scene's dead loads plus the scaled phase's loads at factor 1 (of a Settlement push there is no load
     to carry: refused). ``davis``: reduce the Davis materials (the conventional value for psi < phi);
-    else the associated ones. ``rel_tol``: the relative width of each bisection in F."""
+    else the associated ones. ``rel_tol``: the relative width of each bisection in F. ``strip``: as in
+    :func:`limit_analysis` (the beam's M_p is not reduced)."""
     from ..limit import bisect
 
-    problem = limit_problem(scene, phase)
+    problem = limit_problem(scene, phase, strip)
     if problem.lam_unit:
         raise ValueError(
             f"phase {problem.phase!r} is a Settlement push: it has no load to carry at factor 1, so no "

@@ -17,11 +17,18 @@ How the scene maps (anything else raises a ValueError naming the part):
   the pore pressure the loading path generates, which limit analysis does not know);
 - the foundation is a **rigid body**: a :class:`RigidFooting` (and any footing pushed by a Settlement,
   which prescribes a uniform settlement) translates only; a plate :class:`Foundation` of a full
-  (non-symmetric) scene also rotates about the centre of its base, so eccentric loads and a column's
-  moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
-  plate nodes' height above the base); held loads with a moment before a Settlement push are refused. A
-  plate strip's bending capacity is not modelled (a rigid strip is the stronger one: for a slender or
-  lightly reinforced strip the beam's own mechanism may govern, not checked here);
+  (non-symmetric) scene also rotates about the centre of its base (held where the whole problem is its
+  own mirror image about that centre: the same exact load, a tighter bracket), so eccentric loads and a
+  column's moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
+  plate nodes' height above the base); held loads with a moment before a Settlement push are refused;
+- a plate strip with an RC section is by default (``strip=None`` or "beam") a **beam with plastic hinges**
+  (:class:`ssi.limit.Beam`, :mod:`ssi.scene.limit_strip`): M_p sagging and hogging its section's M_Rd at
+  N = 0, the columns point loads at base points (H at the base plus its couple -H e), self weight, strip
+  weight, surcharge and a uniform StripLoad a uniform pressure. A brittle
+  section (below minimum reinforcement) forms no hinge: refused as a beam, taken rigid by default with a
+  warning, as is a load a beam does not represent (a StripLoad not uniform over the whole strip); an
+  elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
+  stronger assumption: for a slender or lightly reinforced strip the beam's own mechanism may govern);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
   is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket); refused: a tension
   cut-off ``sig_t`` (the Coulomb joint's own apex is its only tension limit), contact segments with
@@ -36,14 +43,16 @@ How the scene maps (anything else raises a ValueError naming the part):
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..core.geometry import from_cells
-from ..limit import Boundary, Footing, Interface, Material, site_from_geometry
+from ..limit import Beam, Boundary, Footing, Interface, Material, site_from_geometry
 from ..limit.geometry import Site
 from ..materials.soil_laws import SoilLayer
+from .limit_strip import NotOnBeam, beam_loads_of, beam_mode
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
 
@@ -170,13 +179,34 @@ def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what:
     return fx, fz, m, settle
 
 
-def limit_problem(scene, phase: str | None = None) -> LimitProblem:
+def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width) -> bool:
+    """Whether the scene is its own mirror image about the foundation's centre: the block centred on it,
+    the ground pressures mirrored, no moment and no horizontal force on the foundation (the layers and the
+    water table are level)."""
+    xc, tol = 0.5 * (f.x0 + f.x1), _TOL * width
+    if abs(0.5 * (xl + xr) - xc) > tol or mref or mdead or fref[0] or fdead[0]:
+        return False
+    for items in (p_dead, p_ref):
+        mirrored = sorted((round(2 * xc - b, 9), round(2 * xc - a, 9), q) for a, b, q in items)
+        if mirrored != sorted((round(a, 9), round(b, 9), q) for a, b, q in items):
+            return False
+    return True
+
+
+def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
-    docstring; None: the last phase). Raises ValueError naming whatever the scene holds that
+    docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
+    with plastic hinges, :mod:`ssi.scene.limit_strip`); None: "beam" for an RC section that is not
+    brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
+    a load). Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
+    if strip is not None and strip not in ("rigid", "beam"):
+        raise ValueError(f"strip must be 'rigid', 'beam' or None, got {strip!r}")
     if hasattr(scene, "geometry") and hasattr(scene, "strips"):
         if phase is not None:
             raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
+        if strip == "beam":
+            raise ValueError("strip='beam': a Site's strips are rigid in ssi.limit (a beam strip: a Scene)")
         return _site_problem(scene)
     if not all(hasattr(scene, a) for a in ("layers", "_block", "_mesh_layers", "_footprint")):
         raise TypeError(
@@ -221,6 +251,8 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
     fref = np.zeros(2)
     mdead = mref = 0.0  # moments about the centre of the base [N m/m], counter-clockwise
     settle_ref = False
+    mp = beam_mode(scene, strip)  # (mp_sag, mp_hog) [N m/m] of a beam strip, None: rigid
+    beam_loads = {"ref": [], "dead": [], "p_ref": 0.0, "p_dead": 0.0}  # point loads (x, Fx, Fz, C), pressures
     for factor, ph, first in dead + [(1.0, ref_phase, k == 0)]:
         is_ref = ph is ref_phase
         what = f"Phase({ph.name!r}).loads" if ph.name != "loads" or scene.phases else "Scene.loads"
@@ -245,6 +277,18 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
                 "load needs a plate Foundation)"
             )
         fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
+        if mp is not None:
+            try:
+                pts, p = beam_loads_of(scene, on_footing, first, what)
+            except NotOnBeam as err:
+                if strip == "beam":
+                    raise
+                warnings.warn(f"{err}: the strip is taken rigid", stacklevel=2)
+                mp = None
+        if mp is not None:
+            key = "ref" if is_ref else "dead"
+            beam_loads[key] += [(x, factor * a, factor * b, factor * c) for x, a, b, c in pts]
+            beam_loads["p_" + key] += factor * p
         if abs(m) <= _TOL * (abs(fz) * (f.x1 - f.x0) + abs(fx) * (f.x1 - f.x0) + 1.0):
             m = 0.0  # round-off of loads symmetric about the centre
         if is_ref:
@@ -261,6 +305,14 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
         )
     if isinstance(f, Foundation) and scene._has_geostatic_stress():
         fdead[1] -= scene.surcharge * (f.x1 - f.x0)  # the strip carries the surcharge over its width
+        beam_loads["p_dead"] += scene.surcharge
+    if mp is not None and settle_ref:
+        if strip == "beam":
+            raise ValueError(
+                "strip='beam' with a Settlement push: the push prescribes a uniform settlement of the strip, "
+                "so it cannot bend; give strip='rigid' or force loads"
+            )
+        mp = None
     half = 0.5 if scene.symmetric else 1.0  # a symmetric scene's footing: the modelled half's share
     if settle_ref:
         fref = np.array([0.0, -half])  # lambda = the whole footing's vertical force [N/m]
@@ -275,6 +327,8 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
         xs |= {a, b}
     if f is not None:
         xs |= {fx0, fx1}
+    if mp is not None:  # a beam's point loads act at base points
+        xs |= {x for x, *_ in beam_loads["ref"] + beam_loads["dead"]}
     xs = sorted(x for x in xs if xl - _TOL * width <= x <= xr + _TOL * width)
     sub = scene._mesh_layers()  # (thickness, layer, unit weight of its body force), split at the water table
     owner = [next(i for i, lay in enumerate(scene.layers) if lay is own) for _, own, _ in sub]
@@ -299,9 +353,16 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
             moves = ("z",)
         else:
             moves = ("x", "z")
-        if isinstance(f, Foundation) and not scene.symmetric and not settle_ref:
+        tilts = isinstance(f, Foundation) and not scene.symmetric and not settle_ref
+        symmetric_problem = _mirror_symmetric(
+            f, xl, xr, fref, fdead, mref, mdead, pressures_dead, pressures_ref, width
+        )
+        if tilts and (mp is not None or not symmetric_problem):
             # a plate strip tilts as freely as the incremental scene's: its rotation is free (a Settlement
-            # push prescribes a uniform settlement and so holds it)
+            # push prescribes a uniform settlement and so holds it). Held where the whole problem is the
+            # mirror image of itself about the strip's centre: the exact collapse load is then the same
+            # (a tilting mechanism and its mirror image cost the same and their average does not tilt;
+            # the dissipation is convex), and the held footing's bracket is tighter on a given mesh
             moves += ("r",)
         elif mref or mdead:
             raise ValueError(
@@ -313,7 +374,17 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
             raise ValueError("a smooth contact carries no horizontal load (ColumnLoad.H != 0)")
         centre = (0.5 * (f.x0 + f.x1), 0.0)
         forces = (tuple(fref.tolist()), tuple(fdead.tolist()))
-        footings = (Footing(itf, *forces, moves, centre, float(mref), float(mdead)),)
+        beam = None
+        if mp is not None:
+            beam = Beam(f.x0, f.x1, mp[0], mp[1], tuple(beam_loads["ref"]), tuple(beam_loads["dead"]),
+                        beam_loads["p_ref"], beam_loads["p_dead"])  # fmt: skip
+            # the footing's resultants are the beam's loads' (checked: the same loads, summed two ways)
+            for which, fo, mo in (("ref", fref, mref), ("dead", fdead, mdead)):
+                bx, bz, bm = beam.resultant(which, centre[0])
+                scale = abs(fo).sum() * (f.x1 - f.x0) + abs(mo) + 1.0
+                if abs(bx - fo[0]) + abs(bz - fo[1]) + abs(bm - mo) / (f.x1 - f.x0) > 1e-9 * scale:
+                    raise AssertionError(f"beam loads {(bx, bz, bm)} differ from the footing's {(fo, mo)}")
+        footings = (Footing(itf, *forces, moves, centre, float(mref), float(mdead), beam),)
 
     def boundary(tag, pa, pb):
         if tag in _BLOCK_SUPPORTS:

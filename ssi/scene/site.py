@@ -317,8 +317,8 @@ class Site:
     def limit_analysis(self, gap: float = 0.02, **options) -> CapacityResult:
         """The site's capacity as a certified bracket by finite-element limit analysis: lambda scales the
         site's loads (a lone RigidStrip: lambda is its vertical force [N/m]), the soil's weight held; every
-        strip a rigid translating body on its contact (see :mod:`ssi.scene.capacity`; ``options`` of
-        :func:`ssi.scene.capacity.limit_analysis`)."""
+        strip a rigid body on its contact, a RigidStrip translating, a Strip also rotating (see
+        :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`)."""
         return limit_analysis(self, gap=gap, **options)
 
     def is_level(self) -> bool:

@@ -1,0 +1,101 @@
+"""A plate strip in the limit problem as a beam with plastic hinges (:class:`ssi.limit.Beam`): whether it is
+one (:func:`beam_mode`), its hinges' M_p from ssi's own RC section analysis (:func:`strip_beam_capacity`)
+and its loads as a beam carries them (:func:`beam_loads_of`); :mod:`ssi.scene.limit_problem` assembles the
+rest of the problem."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from .loads import ColumnLoad, StripLoad, StripWeight
+from .parts import RigidFooting
+
+__all__ = ["NotOnBeam", "beam_loads_of", "beam_mode", "is_rc", "strip_beam_capacity"]
+
+
+def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, float]:
+    """(M_p sagging, M_p hogging) [N m/m] of a plate strip's RC ``section`` as plastic hinges: its bending
+    resistance M_Rd at N = 0 from ssi's own section analysis (:class:`ssi.elements.rc_design.RCDesign`,
+    characteristic strengths, the extreme fibre at eps_cu), per metre width. Unsafe where the section is
+    brittle: a face whose cracking moment exceeds its yield moment (below minimum reinforcement, or no
+    bars) cracks and loses its moment at once, no plastic hinge forms, and the limit theorems (which need
+    a ductile hinge that keeps M_p) do not hold: refused (ValueError). Also not represented: the axial
+    force's effect on M_p (a strip's axial force comes from the base shear only) and the rotation
+    capacity (a hinge here rotates without limit)."""
+    from ..elements.rc_design import RCDesign
+
+    design = RCDesign(section, bar_diameter=bar_diameter)
+    brittle = design.brittle()
+    for face, b in brittle.items():
+        if b["brittle"]:
+            raise ValueError(
+                f"the strip's section is brittle on its {face} face (cracking moment {b['M_cr']:.4g} N m/m > "
+                f"yield moment {b['M_y']:.4g} N m/m: below minimum reinforcement): it forms no plastic "
+                "hinge, so the beam's capacity by limit analysis is unsafe; add reinforcement or give "
+                "strip='rigid' (which ignores the strip's bending: unsafe too)"
+            )
+    return float(design.M_Rd(0.0, 1)), float(-design.M_Rd(0.0, -1))
+
+
+def is_rc(section) -> bool:
+    from ..materials.layer_laws import CONCRETE, STEEL
+
+    return bool(np.any(section.kind == CONCRETE) and np.any(section.kind == STEEL))
+
+
+def beam_mode(scene, strip: str | None):
+    """(mp_sag, mp_hog) [N m/m] if the scene's strip is a beam in the limit problem, else None."""
+    f = scene.foundation
+    if strip == "rigid" or f is None:
+        return None
+    if isinstance(f, RigidFooting):
+        if strip == "beam":
+            raise ValueError("strip='beam': a RigidFooting is rigid; a beam strip needs a plate Foundation")
+        return None
+    if not is_rc(f.section):
+        if strip == "beam":
+            raise ValueError(
+                "strip='beam': the Foundation's section is not reinforced concrete (no CONCRETE and STEEL "
+                "layers), so it has no bending resistance to form plastic hinges from; give strip='rigid'"
+            )
+        return None  # an elastic strip has no strength of its own: held rigid (the stronger assumption)
+    if strip is None:
+        try:
+            return strip_beam_capacity(f.section)
+        except ValueError as err:
+            warnings.warn(f"{err}; the strip is taken rigid", stacklevel=3)
+            return None
+    return strip_beam_capacity(f.section)
+
+
+class NotOnBeam(ValueError):
+    """A load the beam strip does not represent (by default the strip is then taken rigid)."""
+
+
+def beam_loads_of(scene, loads, first_phase: bool, what: str) -> tuple[list, float]:
+    """A beam strip's loads: point loads [(x [m], Fx, Fz [N/m], C [N m/m])] at the base (a column's H at
+    the plate's nodes, e above the base, adds the couple -H e) and the uniform downward pressure [Pa]."""
+    f = scene.foundation
+    lever = -float(f.section.z_bottom)
+    points, p = [], 0.0
+    for i, ld in enumerate(loads):
+        if isinstance(ld, ColumnLoad):
+            points.append((float(ld.x), float(ld.H), -float(ld.N), float(ld.M) - float(ld.H) * lever))
+        elif isinstance(ld, StripLoad):
+            full = (ld.x0 is None or ld.x0 <= f.x0) and (ld.x1 is None or ld.x1 >= f.x1)
+            if not full or (ld.q_end is not None and ld.q_end != ld.q):
+                raise NotOnBeam(
+                    f"{what}[{i}]: a StripLoad not uniform over the whole strip is not represented on a "
+                    "beam strip by ssi.limit; give strip='rigid'"
+                )
+            p += ld.q
+        elif isinstance(ld, StripWeight):
+            t = f.section.thickness
+            wt = scene.water_table
+            submerged = 0.0 if wt is None else min(max(-float(wt), 0.0), t)
+            p += ld.unit_weight * t - scene.gamma_w * submerged
+    if first_phase and f.self_weight:
+        p += f.self_weight
+    return points, p
