@@ -145,6 +145,9 @@ def test_cli_limit_runs_the_example(tmp_path, capsys):
     assert 0.0 < data["lb"] <= data["ub"] and 0.0 < data["lb_davis"] <= data["ub_davis"] < data["ub"]
     assert (tmp_path / "capacity_limit.png").stat().st_size > 0
     assert main(["limit", str(scene)]) == 2  # the outputs exist: refused without --overwrite
+    # --strip reaches the limit problem: the example's elastic strip cannot be a beam (no plastic moment)
+    assert main(["limit", str(scene), "--strip", "beam", "--overwrite"]) == 2
+    assert "strip='beam': the Foundation's section is not reinforced concrete" in capsys.readouterr().err
 
 
 def _layer(thickness):

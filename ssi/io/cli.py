@@ -471,14 +471,15 @@ def _show_limit_file(path: Path, plots, overwrite: bool, figures: bool):
 
 def limit_scene_file(
     scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, plot=None,
-    overwrite=False, figures=True, echo=print,
+    overwrite=False, figures=True, echo=print, strip=None,
 ):  # fmt: skip
     """What ``ssi limit`` does with a scene or a site file (:meth:`ssi.scene.Site.limit_analysis`: its loads
     scaled, no ``phase``); returns (CapacityResult, written paths): ``<name>_limit.json`` (the numbers,
     ``out``), ``<name>_limit.h5`` (the result file: bounds, meshes, mechanism, dissipation, stress field;
     :mod:`ssi.io.results_limit`), ``<name>_limit.vtu`` (ParaView: the mechanism's triangles with velocity,
     dissipation and stress) and ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``). ``echo``
-    gets one line of progress per mesh of the adaptive runs."""
+    gets one line of progress per mesh of the adaptive runs. ``strip``: a plate strip "rigid" or a "beam"
+    with plastic hinges (None: the scene's default, :func:`ssi.scene.limit_problem.limit_problem`)."""
     from ..scene.scene_file import read_scene_file
     from .results import atomic_path
     from .results_limit import export_limit_vtu, write_limit_result
@@ -503,6 +504,8 @@ def limit_scene_file(
     else:
         scene, _, _ = read_scene_file(scene_path)
     options = {} if phase is None else {"phase": phase}
+    if strip is not None:
+        options["strip"] = strip
 
     def progress(label, r):
         echo(
@@ -597,6 +600,12 @@ def main(argv=None) -> int:
     lim_p.add_argument("--h", type=float, help="largest initial triangle [m]")
     lim_p.add_argument("--h-min", type=float, help="initial triangle at the footing's ends [m]")
     lim_p.add_argument("--max-elements", type=int, default=20000, help="stop refining at this many")
+    lim_p.add_argument(
+        "--strip",
+        choices=("rigid", "beam"),
+        help="a plate strip as a rigid body or a beam with plastic hinges (default: a beam for a ductile RC "
+        "section, rigid otherwise)",
+    )
     lim_p.add_argument("-o", "--out", type=Path, help="numbers as JSON (default: <scene>_limit.json)")
     lim_p.add_argument("--plot", type=Path, help="mechanism figure (default: <scene>_limit.png)")
     lim_p.add_argument("--no-plots", action="store_true", help="skip the figure")
@@ -611,6 +620,7 @@ def main(argv=None) -> int:
             cap, written = limit_scene_file(
                 args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
                 args.plot, args.overwrite, not args.no_plots, echo=lambda s: print(s, flush=True),
+                strip=args.strip,
             )  # fmt: skip
         except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
             print(f"ssi: error: {err}", file=sys.stderr)
