@@ -19,11 +19,13 @@ import pathlib
 import re
 import shutil
 
+import numpy as np
 import pytest
 
 from ssi.elements.section import homogeneous
 from ssi.io.cli import main
 from ssi.limit import bracket, check_limit
+from ssi.limit.upper import FLOW_TOL
 from ssi.scene import (
     ColumnLoad,
     Contact,
@@ -379,3 +381,23 @@ def test_a_brittle_strip_forms_no_hinge():
         limit_problem(scene, strip="beam")
     with pytest.warns(UserWarning, match=r"brittle .* the strip is taken rigid"):
         assert limit_problem(scene).site.footings[0].beam is None
+
+
+def test_a_footing_confined_across_the_block_has_no_upper_bound():
+    """A footing over the whole top of a block on rollers with a fixed base, centred load, associated soil
+    (phi > 0 dilates under any plastic flow): no kinematically admissible mechanism does work against the
+    load (the block cannot lose volume), so the capacity is unbounded. The upper-bound program is then
+    infeasible and its returned field violates the flow rule by O(1): no upper bound may come of it (it once
+    gave 0.20 against a certified lower bound of 2.57). A footing that can collapse keeps a certified one."""
+    confined = _scene(
+        width=4.0,
+        foundation=Foundation(-2.0, 2.0, homogeneous(0.5, 30e9, 0.2)),
+        loads=[ColumnLoad(0.0, N=200e3)],
+    )
+    cap = confined.limit_analysis(gap=0.05, max_elements=400, davis=False)
+    up = cap.associated.final.upper
+    assert not up.certified and up.flow_residual > 1e3 * FLOW_TOL
+    assert cap.ub == np.inf and cap.gap == 1.0 and cap.lb > 0.0
+    assert "no associated upper bound" in cap.summary() and cap.to_dict()["ub"] is None
+    free = _scene().limit_analysis(gap=0.2, max_elements=400, davis=False)
+    assert free.associated.final.upper.certified and np.isfinite(free.ub) and free.lb <= free.ub

@@ -59,7 +59,7 @@ class Bracket:
 
     @property
     def gap(self) -> float:
-        return (self.ub - self.lb) / (self.ub + self.lb)
+        return relative_gap(self.lb, self.ub)
 
     @property
     def identity_error(self) -> float:
@@ -201,7 +201,14 @@ class AdaptiveResult:
 
     @property
     def gap(self) -> float:
-        return (self.ub - self.lb) / (self.ub + self.lb)
+        return relative_gap(self.lb, self.ub)
+
+
+def relative_gap(lb: float, ub: float) -> float:
+    """(ub - lb) / (ub + lb); 1 (the largest gap) when no upper bound is certified (ub = +inf)."""
+    if np.isinf(ub) and ub > 0:
+        return 1.0
+    return (ub - lb) / (ub + lb)
 
 
 def adaptive(
@@ -262,10 +269,12 @@ def adaptive(
         out.final = br
         if progress is not None:
             progress(row)
-        if (best_ub - best_lb) / (best_ub + best_lb) <= gap:
+        if relative_gap(best_lb, best_ub) <= gap:
             out.converged = True
             break
         if mesh.n_el >= max_elements or step == max_steps:
+            break
+        if not br.upper.certified:  # no mechanism to compare with: the gap shares say nothing
             break
         eta = np.maximum(br.shares, 0.0)
         order = np.argsort(-eta, kind="stable")
@@ -293,7 +302,9 @@ def safety_factor(
     def lam(kind, F):
         s = site.reduced(F, interface=interface)
         v = lower_bound(s, mesh).lam if kind == "lb" else upper_bound(s, mesh).lam
-        v = -np.inf if not np.isfinite(v) else v
+        # an uncertified lower bound (NaN) proves nothing safe; an uncertified upper bound (+inf) proves
+        # nothing failing, and stays +inf
+        v = -np.inf if kind == "lb" and not np.isfinite(v) else v
         trials.append((kind, F, v))
         return v
 

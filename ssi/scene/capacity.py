@@ -155,12 +155,12 @@ class CapacityResult:
             "lambda_unit": p.lam_unit or "factor of the phase's loads",
             "reference": p.reference,
             "reference_footing_force_N_per_m": p.ref_force or None,
-            "lb": self.lb,
-            "ub": self.ub,
-            "gap": self.gap,
-            "lb_davis": self.lb_davis,
-            "ub_davis": self.ub_davis,
-            "gap_davis": self.gap_davis,
+            "lb": _plain(self.lb),
+            "ub": _plain(self.ub),
+            "gap": _plain(self.gap),
+            "lb_davis": _plain(self.lb_davis),
+            "ub_davis": _plain(self.ub_davis),
+            "gap_davis": _plain(self.gap_davis),
             "associated": self.davis is None,
             "triangles": self.n_triangles,
             "cones_lb_ub": list(self.n_cones),
@@ -224,6 +224,15 @@ class CapacityResult:
                 f"  footing force on top of the held loads: associated [{self.lb * f:.4g}, "
                 f"{self.ub * f:.4g}] kN/m, Davis [{self.lb_davis * f:.4g}, {self.ub_davis * f:.4g}] kN/m"
             )
+        for name, run in (("associated", self.associated), ("Davis", self.davis)):
+            if run is not None and not np.isfinite(run.ub):
+                up = run.final.upper
+                lines.append(
+                    f"  no {name} upper bound: the velocity field of the last mesh is not a mechanism "
+                    f"(solver status {up.status}, flow-rule residual {up.flow_residual:.2g}); none may exist "
+                    "(e.g. a footing confined across the whole block under a centred load): the capacity is "
+                    "then unbounded, and the lower bound is only what was proven"
+                )
         cl, cu = self.n_cones
         il, iu = self.iterations
         lines.append(
@@ -280,8 +289,11 @@ def limit_analysis(
 
 
 def _plain(v):
+    """A JSON value: numpy scalars as Python ones, a non-finite number (no certified bound) as None."""
     if isinstance(v, np.generic):
-        return v.item()
+        v = v.item()
+    if isinstance(v, float) and not np.isfinite(v):
+        return None
     return v
 
 
