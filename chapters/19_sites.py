@@ -77,7 +77,7 @@ from ssi.elements.section import homogeneous
 from ssi.lab import paths
 from ssi.lab.bearing_capacity import footing_settings
 from ssi.lab.report import check, record, save_figure
-from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer, SurfacePressure
+from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Push, Scene, SoilLayer, SurfacePressure
 from ssi.scene.site import Borehole, DepthVarying, RigidStrip, Site, Strip, gibson_settlement
 
 FAST = paths.FAST
@@ -525,6 +525,11 @@ print(f"solve time per DOF, gmsh / structured: {per_dof_ratio:.2f}")
 # sliding block with the front wedge is a kinematically admissible mechanism, an upper bound of the exact
 # capacity. Capacity here: the push resistance at 5 cm (5 % of D), where it has levelled off.
 #
+# The push is a load of the scene, `Push(u)`: every plate node's horizontal displacement prescribed (the
+# rotations held, w free), so the strip translates; the push-over's `foundation_load()` (and `capacity()`)
+# is then the horizontal reaction. (Before `Push` existed this section prescribed u on the model by hand;
+# the push resistance is the same to the last digit, see the closing note.)
+#
 # The passive wedge is only 1 m deep, so the mesh is refined through it: the backfill is split into n
 # equal sublayers (mesh lines) as h_fine halves, n = 1/h · 1 m. A displacement-based mesh overstates a
 # capacity, most at the wall's toe (the corner where the wedge leaves the base), so the row takes the
@@ -538,7 +543,8 @@ SMOOTH_SIDE = Contact(kn=1e10, kt=0.0, phi_deg=0.0, c=0.0)
 
 def side_push(h, side, push=0.05, n_steps=20):
     """(displacement [m], push resistance [N/m]) of the embedded rigid strip pushed to ``push`` [m] in
-    ``n_steps`` equal steps: every plate node's u prescribed (rotations held, w free), the reaction summed."""
+    ``n_steps`` equal steps by a `Push` load: every plate node's u prescribed (rotations held, w free), the
+    horizontal reaction summed (the push-over's `foundation_load()`)."""
     n_sub = round(D_S / h)  # sublayers of the backfill: mesh lines through the passive wedge
 
     def clay(t):
@@ -547,14 +553,9 @@ def side_push(h, side, push=0.05, n_steps=20):
     scene = Scene(width=16.0, depth=8.0, layers=[clay(D_S / n_sub) for _ in range(n_sub)] + [clay(7.0)],
                   foundation=Foundation(-B_S / 2, B_S / 2, SECTION),
                   contact=Contact(kn=1e10, kt=1e9, phi_deg=0.0, c=C_I), embedment=D_S,
-                  mesh=MeshSize(h_fine=h, h_coarse=2.0), side_contact=side)  # fmt: skip
-    built = scene.build()
-    # a horizontal push is no load type of a scene: the plate nodes' u is prescribed on the model itself
-    built.model.prescribe(built.plate_nodes, "u", push)
-    built.model.fix(built.plate_nodes, "alpha")
-    out = built.solve(n_steps=n_steps)
-    u = np.array([ui[built.model.dof(built.plate_nodes[:1], "u")[0]] for ui in out.u])
-    return u, out.solver_result.support_reaction(built.plate_nodes, "u")
+                  mesh=MeshSize(h_fine=h, h_coarse=2.0), side_contact=side, loads=[Push(push)])  # fmt: skip
+    out = scene.build().solve(n_steps=n_steps)
+    return out.load_settlement()["settlement"], out.foundation_load()
 
 
 curve_base = side_push(0.25, None)

@@ -65,7 +65,7 @@ from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
 from .capacity import CapacityResult, limit_analysis
-from .loads import ColumnLoad, SurfacePressure
+from .loads import ColumnLoad, Push, SurfacePressure
 from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
@@ -101,7 +101,8 @@ class Site:
     """A site: see the module docstring. ``layers`` (SoilLayer or DepthVarying) from the top down;
     ``boreholes`` or ``boundaries`` (len(layers) - 1 boundaries); ``ground`` polyline [(x, z)] [m];
     ``water_table``: elevation [m] or polyline (None: dry), the weight below it is the buoyant one;
-    ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground); ``mesh`` sizes;
+    ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground, Push of a strip sideways:
+    its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
     "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled)."""
 
@@ -134,7 +135,7 @@ class Site:
         for i, s in enumerate(self.strips):
             check_instance(f"Site.strips[{i}]", s, (Strip, RigidStrip))
         for i, ld in enumerate(self.loads):
-            check_instance(f"Site.loads[{i}]", ld, (ColumnLoad, SurfacePressure))
+            check_instance(f"Site.loads[{i}]", ld, (ColumnLoad, SurfacePressure, Push))
         n_b = len(self.layers) - 1
         if self.boreholes is not None and self.boundaries is not None:
             raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
@@ -204,8 +205,7 @@ class Site:
             xs += list(bx)
         for a, b in self._strip_ends():
             xs += [a, b]
-        for ld in self.loads:
-            xs += [ld.x] if isinstance(ld, ColumnLoad) else [ld.x0, ld.x1]
+        xs += self._load_points()
         xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
         if self.water_table is not None and np.ndim(self.water_table):
             xs = np.unique(np.clip(np.concatenate([xs, _polyline("Site.water_table", self.water_table)[0]]),
@@ -274,6 +274,13 @@ class Site:
                     "site are not built: give level=None"
                 )
         for i, ld in enumerate(self.loads):
+            if isinstance(ld, Push):
+                s = self.strips[self.pushed_strip(ld)]
+                if isinstance(s, RigidStrip) and not s.rough:
+                    raise GeometryError(
+                        f"loads[{i}]: {ld!r} pushes a smooth RigidStrip (rough=False), whose base nodes "
+                        "slide freely: nothing carries the push; give rough=True"
+                    )
             if isinstance(ld, ColumnLoad) and self._strip_at(ld.x) is None:
                 raise GeometryError(f"loads[{i}]: ColumnLoad at x={ld.x:g} m lies on no strip {ends}")
             if isinstance(ld, SurfacePressure):
@@ -370,8 +377,26 @@ class Site:
     def _load_points(self) -> list[float]:
         out = []
         for ld in self.loads:
-            out += [ld.x] if isinstance(ld, ColumnLoad) else [ld.x0, ld.x1]
+            if isinstance(ld, ColumnLoad):
+                out.append(ld.x)
+            elif isinstance(ld, SurfacePressure):
+                out += [ld.x0, ld.x1]
         return out
+
+    def pushed_strip(self, push: Push) -> int:
+        """Index of the strip a :class:`Push` moves: the strip under ``push.x`` (None: the only strip)."""
+        if push.x is None:
+            if len(self.strips) != 1:
+                raise GeometryError(
+                    f"{push!r}: the site has {len(self.strips)} strips; give Push.x, a point on the pushed "
+                    "one"
+                )
+            return 0
+        for i, s in enumerate(self.strips):
+            x0, x1 = _ends(s)
+            if x0 - TOL * self.width <= push.x <= x1 + TOL * self.width:
+                return i
+        raise GeometryError(f"{push!r}: Push.x={push.x:g} m lies on no strip {self._strip_ends()}")
 
     def _structured_mesh(self):
         m = self.mesh

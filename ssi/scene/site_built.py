@@ -16,7 +16,7 @@ from ..elements.plate import PlateStrip
 from ..elements.soil_q8 import SoilQ8, q8_points
 from ..elements.soil_q8_points import SoilQ8Points
 from ..materials.soil_laws import SoilLayer, geostatic_stress, material_table
-from .loads import ColumnLoad
+from .loads import ColumnLoad, Push
 from .site_parts import DepthVarying, RigidStrip, Strip
 from .site_view import SiteResult
 
@@ -149,10 +149,19 @@ class BuiltSite:
             model, ids[plate_conn], soil_nodes[plate_conn], np.tile(s.contact.params(), (len(plate_conn), 1)),
             offset=plate.bottom_offset, rule=s.contact.rule,
         )  # fmt: skip
+        held = None
         if s.contact.kt == 0.0:
             held = int(ids[np.argmin(np.abs(xs - 0.5 * (f.x0 + f.x1)))])
             model.fix([held], "u")
-        self.strips.append({"plate": plate, "interface": iface, "plate_nodes": ids, "soil_nodes": soil_nodes})
+        self.strips.append(
+            {
+                "plate": plate,
+                "interface": iface,
+                "plate_nodes": ids,
+                "soil_nodes": soil_nodes,
+                "slide_support": held,
+            }
+        )
 
     def _add_loads(self):
         model = self.model
@@ -165,6 +174,17 @@ class BuiltSite:
                 for comp, v in (("w", -ld.N), ("u", ld.H), ("alpha", ld.M)):
                     if v:
                         model.add_load([ids[i]], comp, v)
+            elif isinstance(ld, Push):  # the strip's nodes' u prescribed (a plate's rotations held)
+                st = self.strips[self.site.pushed_strip(ld)]
+                nodes = st["soil_nodes"] if st.get("rigid") else st["plate_nodes"]
+                if not st.get("rigid"):
+                    if st["slide_support"] is not None:
+                        raise GeometryError(
+                            f"{ld!r} on a frictionless contact (Contact.kt = 0): nothing but the held middle "
+                            "node resists the push; give Contact.kt > 0"
+                        )
+                    model.fix(nodes, "alpha")
+                model.prescribe(nodes, "u", ld.u)
             else:  # a vertical pressure per horizontal metre on the ground: L/6, 4L/6, L/6 per quadratic edge
                 nodes = self.ground_nodes(ld.x0, ld.x1)
                 xs = self.mesh.xy[nodes, 0]

@@ -23,7 +23,7 @@ reuses). SI units::
     foundation = { x0 = -6.0, x1 = -4.0, section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } } }
     contact = { kn = 1e10, kt = 1e9 }
 
-    [[loads]]                             # ColumnLoad (default) or type = "SurfacePressure"
+    [[loads]]                             # ColumnLoad (default); type = "SurfacePressure", "Push"
     x = -5.0
     N = 300e3
 
@@ -38,7 +38,7 @@ import dataclasses
 from pathlib import Path
 
 from ..solver import Settings
-from .loads import ColumnLoad, SurfacePressure
+from .loads import ColumnLoad, Push, SurfacePressure
 from .parts import Contact, Foundation, MeshSize
 from .scene_file import _build, _check_keys, _check_table, read_toml_and_solve
 from .site import Borehole, DepthVarying, Site, Strip
@@ -90,7 +90,7 @@ def site_from_dict(data: dict, where: str = "site") -> Site:
         )
     kw["strips"] = strips
     loads = []
-    kinds = {"ColumnLoad": ColumnLoad, "SurfacePressure": SurfacePressure}
+    kinds = {"ColumnLoad": ColumnLoad, "SurfacePressure": SurfacePressure, "Push": Push}
     for i, ld in enumerate(data.get("loads", [])):
         _check_table(ld, f"{where}.loads[{i}]")
         fields = dict(ld)

@@ -32,6 +32,14 @@ class SiteResult:
         w = res.displacement(st["soil_nodes"][:1], "w")[:, 0]
         return -w, -res.support_reaction(st["soil_nodes"], "w") / st["width"]
 
+    def push_force(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """(horizontal displacement [m], horizontal force [N/m]) histories of strip ``i`` pushed by a
+        :class:`~ssi.scene.loads.Push`, both > 0 in +x: the displacement of its first pushed node and the
+        summed support reaction at its pushed u DOFs (a plate's nodes, a RigidStrip's base)."""
+        st, res = self.built.strips[i], self.result
+        nodes = st["soil_nodes"] if st.get("rigid") else st["plate_nodes"]
+        return res.displacement(nodes[:1], "u")[:, 0], res.support_reaction(nodes, "u")
+
     def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x [m], settlement [m], positive down) of the plate nodes of strip ``i`` at step ``k``."""
         ids = self.built.strips[i]["plate_nodes"]
