@@ -71,9 +71,10 @@ class BuiltSite:
         built._add_loads()
         return built
 
-    def ground_nodes(self, x0: float, x1: float, z: float | None = None) -> np.ndarray:
+    def ground_nodes(self, x0: float, x1: float, z: float | None = None, chain: bool = True) -> np.ndarray:
         """Soil node ids on the ground between x0 and x1 [m], ordered by x; at elevation ``z`` [m] if given
-        (an embedded strip's trench bottom)."""
+        (an embedded strip's trench bottom). ``chain``: they must form a chain of element edges (refused
+        otherwise); False: any such nodes (the ground on both sides of a trench)."""
         xy = self.mesh.xy
         scale = max(1.0, self.site.width)
         z_on = self.site.ground_z(xy[:, 0]) if z is None else z
@@ -81,7 +82,7 @@ class BuiltSite:
         on &= (xy[:, 0] >= x0 - 1e-9 * scale) & (xy[:, 0] <= x1 + 1e-9 * scale)
         ids = np.flatnonzero(on)
         ids = ids[np.argsort(xy[ids, 0])]
-        if len(ids) < 3 or len(ids) % 2 == 0:
+        if chain and (len(ids) < 3 or len(ids) % 2 == 0):
             raise GeometryError(
                 f"the range ({x0:g}, {x1:g}) m does not start and end on element edges of the ground"
             )

@@ -28,6 +28,8 @@ reuses). SI units::
     N = 300e3
 
 ``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes. A strip table
+with ``level`` below the ground is embedded (a trench); its optional ``side_contact`` is a Contact table on
+the trench walls, e.g. ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` (smooth). A strip table
 with ``type = "RigidStrip"`` holds a :class:`RigidStrip`'s fields (``x0``, ``x1``, ``settle``, ``rough``).
 The optional ``[solve]`` table holds ``n_steps`` and :class:`ssi.solver.Settings` fields, as in a scene file.
 """
@@ -80,12 +82,14 @@ def site_from_dict(data: dict, where: str = "site") -> Site:
                 _build(RigidStrip, {k: v for k, v in s.items() if k != "type"}, f"{where}.strips[{i}]")
             )
             continue
-        _check_keys(s, {"foundation", "contact", "level"}, f"{where}.strips[{i}]")
+        _check_keys(s, {"foundation", "contact", "level", "side_contact"}, f"{where}.strips[{i}]")
+        side = s.get("side_contact")
         strips.append(
             Strip(
                 _build(Foundation, s["foundation"], f"{where}.strips[{i}].foundation"),
                 _build(Contact, s["contact"], f"{where}.strips[{i}].contact"),
                 s.get("level"),
+                None if side is None else _build(Contact, side, f"{where}.strips[{i}].side_contact"),
             )
         )
     kw["strips"] = strips

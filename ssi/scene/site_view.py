@@ -59,9 +59,12 @@ class SiteResult:
         return self.strip_summary(i, k)["mean"] - self.strip_summary(j, k)["mean"]
 
     def ground_settlement(self, x0: float | None = None, x1: float | None = None, k: int = -1):
-        """(x [m], settlement [m], positive down) of the ground nodes between x0 and x1 (default: all)."""
+        """(x [m], settlement [m], positive down) of the ground nodes between x0 and x1 (default: all); of an
+        embedded strip the ground beside its trench (its base is :meth:`strip_settlement`)."""
         site = self.built.site
-        ids = self.built.ground_nodes(site.x_left if x0 is None else x0, site.x_right if x1 is None else x1)
+        ids = self.built.ground_nodes(
+            site.x_left if x0 is None else x0, site.x_right if x1 is None else x1, chain=False
+        )
         return self.built.mesh.xy[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
     def soil_stress(self, k: int = -1) -> np.ndarray:
