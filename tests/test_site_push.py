@@ -111,3 +111,12 @@ def test_push_in_a_site_file_dict():
     site = _site([Push(0.02)])
     data = site_to_dict(site)
     assert site_from_dict(data).loads == [Push(0.02)]
+
+
+def test_push_in_a_scene_file_dict():
+    """A scene file's load table ``type = "Push"`` (the one load registry) round-trips."""
+    from ssi.scene.scene_file import scene_from_dict, scene_to_dict
+
+    data = scene_to_dict(_scene([Push(0.02, x=0.5)]))
+    assert data["loads"] == [{"type": "Push", "u": 0.02, "x": 0.5}]
+    assert scene_from_dict(data).loads == [Push(0.02, x=0.5)]
