@@ -178,3 +178,36 @@ h_coarse = 2.0
     ref = parsed.build().solve()
     mean = summary["foundations"][0]["mean_settlement_m"]
     assert mean == pytest.approx(ref.strip_summary(0)["mean"], rel=1e-12) and mean > 0.0
+
+
+def test_trench_through_a_layer_boundary():
+    """The trench may cut a layer boundary: level at -1 m through a boundary at -0.5 m (the backfill two
+    layers) on both meshes, and a boundary dipping through the base level under the strip (gmsh). The
+    trench's soil is gone (area: block minus B D), and the level site's two meshes agree within 3x the gmsh
+    result's change under halving h (at least 1 %)."""
+    thin = SoilLayer(1.0, E=5e6, nu=0.3, unit_weight=17e3)
+
+    def site(mesher, h, boreholes):
+        return Site(
+            width=16.0, depth=8.0, layers=[thin, TOP, LOW], boreholes=boreholes,
+            strips=[Strip(Foundation(-1.0, 1.0, SEC), BASE, level=-1.0, side_contact=SIDE)],
+            loads=LOADS, mesh=MeshSize(h_fine=h, h_coarse=2.0), mesher=mesher,
+        )  # fmt: skip
+
+    level = [Borehole(0.0, [-0.5, -3.0])]
+    mean = {}
+    for mesher, h in (("structured", 0.25), ("gmsh", 0.5), ("gmsh", 0.25)):
+        built = site(mesher, h, level).build()
+        assert built.mesher == mesher
+        mean[mesher, h] = float(np.mean(built.solve().strip_settlement(0)[1]))
+    change = abs(mean["gmsh", 0.25] / mean["gmsh", 0.5] - 1.0)
+    assert abs(mean["gmsh", 0.25] / mean["structured", 0.25] - 1.0) <= max(3.0 * change, 0.01), mean
+    dipping = site("gmsh", 0.5, [Borehole(-4.0, [-0.5, -3.0]), Borehole(4.0, [-1.5, -3.0])])
+    assert dipping.geometry().area() == pytest.approx(16.0 * 8.0 - 2.0, rel=1e-12)
+    built = dipping.build()
+    centre = built.mesh.xy[built.mesh.conn].mean(axis=1)
+    assert not np.any((np.abs(centre[:, 0]) < 1.0) & (centre[:, 1] > -1.0))
+    # the boundary crosses the base level at x = 0 (z = -1): both layers lie under the strip's base
+    under = (np.abs(centre[:, 0]) < 1.0) & (centre[:, 1] > -1.5)
+    assert set(built.element_layer[under & (centre[:, 0] < 0.0)]) == {1}
+    assert 0 in set(built.element_layer[under & (centre[:, 0] > 0.0)])
