@@ -99,6 +99,8 @@ def test_site_push_picks_its_strip_and_names_errors():
         _site([Push(0.01, x=0.0)], two)
     with pytest.raises(GeometryError, match="smooth RigidStrip"):
         _site([Push(0.01)], [RigidStrip(-1.0, 1.0, settle=0.01, rough=False)])
+    with pytest.raises(ValueError, match="horizontal push is not built in the limit analysis"):
+        _site([Push(0.01)]).limit_analysis()
     out = _site([Push(0.03, x=3.0)], two).build().solve(load_factors=np.arange(1, 7) / 6)
     assert out.push_force(1)[1][-1] == pytest.approx(C_I * 2.0, rel=1e-6)
     x, _ = out.strip_settlement(0)

@@ -394,7 +394,15 @@ class Site:
         """The site's capacity as a certified bracket by finite-element limit analysis: lambda scales the
         site's loads (a lone RigidStrip: lambda is its vertical force [N/m]), the soil's weight held; every
         strip a rigid translating body on its contact (see :mod:`ssi.scene.capacity`; ``options`` of
-        :func:`ssi.scene.capacity.limit_analysis`)."""
+        :func:`ssi.scene.capacity.limit_analysis`). A :class:`Push` is refused: a horizontal push is not
+        built in the limit analysis."""
+        pushes = [ld for ld in self.loads if isinstance(ld, Push)]
+        if pushes:
+            raise ValueError(
+                f"Site.limit_analysis: {pushes[0]!r} in Site.loads: a horizontal push is not built in the "
+                "limit analysis; give the horizontal force as ColumnLoad.H, or read the push-over's "
+                "SiteResult.push_force"
+            )
         return limit_analysis(self, gap=gap, **options)
 
     def is_level(self) -> bool:
