@@ -122,3 +122,16 @@ def test_push_in_a_scene_file_dict():
     data = scene_to_dict(_scene([Push(0.02, x=0.5)]))
     assert data["loads"] == [{"type": "Push", "u": 0.02, "x": 0.5}]
     assert scene_from_dict(data).loads == [Push(0.02, x=0.5)]
+
+
+def test_push_in_a_later_phase():
+    """A column load first, then the push (a phase of its own): the horizontal reaction is read from each
+    phase's record, zero before the push and C_I B (1e-6) at its end; the displacement is the push."""
+    from ssi.scene import ColumnLoad, Phase
+
+    phases = [Phase("load", (ColumnLoad(0.0, N=100e3),), n_steps=2), Phase("push", (Push(0.03),), n_steps=6)]
+    out = _scene([], phases=phases).build().solve()
+    load, u = out.foundation_load(), out.load_settlement()["settlement"]
+    last_load = out.phases[1]["last"]
+    assert np.abs(load[: last_load + 1]).max() < 1e-6 * C_I * 2.0  # no horizontal load before the push
+    assert load[-1] == pytest.approx(C_I * 2.0, rel=1e-6) and u[-1] == pytest.approx(0.03, rel=1e-12)
