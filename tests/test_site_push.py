@@ -135,3 +135,5 @@ def test_push_in_a_later_phase():
     last_load = out.phases[1]["last"]
     assert np.abs(load[: last_load + 1]).max() < 1e-6 * C_I * 2.0  # no horizontal load before the push
     assert load[-1] == pytest.approx(C_I * 2.0, rel=1e-6) and u[-1] == pytest.approx(0.03, rel=1e-12)
+    cap = out.capacity()  # the plateau of the push, its stiffness measured from the push's first increment
+    assert cap["is_limit"] and "plateau" in cap["how"], cap

@@ -156,6 +156,12 @@ class LoadPathView:
         if len(rows) >= 3:
             ds = np.diff(settle[rows])
             dp = np.diff(load[rows])
+            moving = np.abs(ds) > 1e-9 * np.abs(settle[rows]).max()  # beyond round-off of the displacement
+            if self.is_horizontal_push and moving.any():
+                # a push in a later phase: the rows before it do not move the strip sideways (ds: round-off);
+                # the path's first stiffness is that of the push's first increment
+                start = int(np.flatnonzero(moving)[0])
+                ds, dp = ds[start:], dp[start:]
             first, last = dp[0] / ds[0] if ds[0] else np.inf, dp[-1] / ds[-1] if ds[-1] else np.inf
             if np.isfinite(first) and first > 0 and last < PLATEAU_STIFFNESS_SHARE * first:
                 return out | {
