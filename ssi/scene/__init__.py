@@ -13,7 +13,7 @@ engineering quantities (``SceneResult``).
 
 from ..materials.soil_laws import SoilLayer
 from .built import BuiltScene
-from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .loads import ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
 from .site import BuiltSite, Site, SiteResult
@@ -34,6 +34,7 @@ __all__ = [
     "MeshSize",
     "Phase",
     "PhaseNonConvergence",
+    "Push",
     "RigidFooting",
     "RigidStrip",
     "Scene",

@@ -25,7 +25,7 @@ from ..materials.soil_laws import (
 )
 from ..solver import NonConvergence, Settings
 from .checks import _segments
-from .loads import LOAD_TYPES, ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Phase
 from .stages import _hold, _load_levels, _phase_failure, _phase_record, _run_phase, join_phases
 from .view import SceneResult
@@ -71,14 +71,12 @@ class BuiltScene:
 
     # ---- loads -----------------------------------------------------------------------------------------
     def load_effect(
-        self, load: SurfacePressure | ColumnLoad | StripLoad | StripWeight | Settlement
+        self, load: SurfacePressure | ColumnLoad | StripLoad | StripWeight | Settlement | Push
     ) -> tuple[np.ndarray, dict[int, float]]:
         """(force vector (n_dof,) [N/m], {dof: prescribed displacement increment [m]}) of one load: its own
         ``effect`` on this built scene (``ssi.scene.loads``)."""
         if not isinstance(load, tuple(LOAD_TYPES.values())):
-            raise TypeError(
-                f"loads: {load!r} is not a SurfacePressure, StripLoad, StripWeight, ColumnLoad or Settlement"
-            )
+            raise TypeError(f"loads: {load!r} is not a load type of a scene ({', '.join(LOAD_TYPES)})")
         return load.effect(self)
 
     def submerged_depth(self) -> float:
@@ -132,6 +130,24 @@ class BuiltScene:
         k = self.model.groups.index(self.interface)
         w = self.interface.ip_weights()
         return np.array([-np.sum(st[k][..., V_SIG] * w) for st in out.states])
+
+    def pushed_nodes(self) -> np.ndarray:
+        """Node ids a :class:`Push` moves: a RigidFooting's base, else the plate nodes."""
+        return self.footing_nodes if self.footing_nodes is not None else self.plate_nodes
+
+    def push_force(self, out: SceneResult) -> np.ndarray:
+        """Horizontal force [N/m] (> 0 in +x) the pushed foundation carries at every row of ``out`` (a
+        :class:`Push`): the support reactions at the pushed u DOFs, summed (of a phased solve: each phase's
+        own record, zero in the geostatic phase)."""
+        nodes = self.pushed_nodes()
+        if not out.phases:
+            return np.asarray(out.solver_result.support_reaction(nodes, "u"), np.float64)
+        force = np.zeros(len(out.load_factor))
+        for record in out.phases:
+            reaction = record["result"].support_reaction(nodes, "u")
+            first = max(record["first"] - 1, 0) if record is not out.phases[0] else 0
+            force[first : first + len(reaction)] = reaction
+        return force
 
     def _footing_reaction(self, out: SceneResult) -> np.ndarray:
         """Downward reaction [N/m] of a RigidFooting's base at every step of a single-phase solve: the

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
+from .loads import ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation
 
 
@@ -41,6 +41,12 @@ def _segment_at(segments, x):
 def _check_symmetric(scene):
     """A symmetric scene: a RigidFooting (or no foundation) centred on the axis x = 0."""
     f = scene.foundation
+    pushes = [ld for ld in scene._all_loads() if isinstance(ld, Push)]
+    if pushes:
+        raise ValueError(
+            f"Scene.symmetric=True: {pushes[0]!r} pushes the footing sideways, which is not symmetric about "
+            "x = 0; model the whole block (symmetric=False)"
+        )
     if isinstance(f, Foundation):
         raise ValueError(
             "Scene.symmetric=True models the half x >= 0 of a rigid footing or of bare ground; a plate "
@@ -63,11 +69,11 @@ def _check_rigid_footing(scene):
     if scene.embedment:
         raise ValueError(f"embedment={scene.embedment}: a RigidFooting sits on the ground (embedment 0)")
     for load in scene._all_loads():
-        if isinstance(load, SurfacePressure) or (isinstance(load, Settlement) and load.x is None):
+        if isinstance(load, (SurfacePressure, Push)) or (isinstance(load, Settlement) and load.x is None):
             continue
         raise ValueError(
-            f"loads: a RigidFooting takes only Settlement(w) (x=None: it settles as a whole) and the ground "
-            f"SurfacePressure; {load!r} needs a plate Foundation"
+            f"loads: a RigidFooting takes only Settlement(w) (x=None: it settles as a whole), Push(u) and "
+            f"the ground SurfacePressure; {load!r} needs a plate Foundation"
         )
 
 

@@ -1,5 +1,5 @@
 """The loads a scene can carry: column loads and strip loads on the foundation, its self-weight, pressures on
-the ground, and a prescribed settlement of a rigid footing.
+the ground, a prescribed settlement of a rigid footing and a prescribed horizontal push of the strip.
 
 Each load class knows what it does to a built scene and to its mesh: ``effect(built)`` gives its force vector
 (n_dof,) [N/m] and the DOFs it prescribes {dof: displacement increment [m]}; ``mesh_lines()`` the x [m] that
@@ -174,6 +174,57 @@ class Settlement:
         return np.zeros(model.n_dof), held
 
 
+@dataclass(frozen=True)
+class Push:
+    """Horizontal push-over: a prescribed further horizontal displacement ``u`` [m] (> 0 in +x) of the whole
+    foundation during the phase that lists it: every plate node's u by ``u``, their rotations held, their
+    w free (the strip translates as a rigid body and may rise or settle); of a RigidFooting its base nodes'
+    u (their w stays held). The reaction is the load: read it with :meth:`BuiltScene.push_force` (the
+    push-over's ``foundation_load()`` and ``capacity()`` then report this horizontal force). ``x`` [m]: a
+    point on the pushed strip, which picks the strip of a :class:`~ssi.scene.site.Site` with several (None:
+    the only one). The pushed nodes stay held in later phases."""
+
+    u: float
+    x: float | None = None
+
+    def __post_init__(self):
+        check_real("Push.u", self.u, unit="m")
+        if self.x is not None:
+            check_real("Push.x", self.x, unit="m")
+
+    def mesh_lines(self) -> list[float]:
+        """None: the push moves the whole strip."""
+        return []
+
+    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
+        """No force: the pushed DOFs prescribed (a rigid footing's base u; the plate nodes' u with their
+        rotations held)."""
+        model, held = built.model, {}
+        if built.footing_nodes is not None:  # a RigidFooting's base
+            if not built.scene.foundation.rough:
+                raise ValueError(
+                    f"Push(u={self.u:g}) on a smooth RigidFooting (rough=False): its base nodes slide "
+                    "freely, nothing carries the push; give RigidFooting(rough=True) or a plate Foundation"
+                )
+            held.update({int(d): float(self.u) for d in model.dof(built.footing_nodes, "u")})
+            return np.zeros(model.n_dof), held
+        if built.plate_nodes is None:
+            raise ValueError(f"Push(u={self.u:g}): the scene has no foundation to push")
+        f = built.scene.foundation
+        if self.x is not None and not (f.x0 - 1e-9 <= self.x <= f.x1 + 1e-9):
+            raise ValueError(f"Push.x={self.x:g} m lies off the strip ({f.x0:g}, {f.x1:g}) m")
+        if built.slide_support is not None:
+            raise ValueError(
+                f"Push(u={self.u:g}) on a frictionless contact (every Contact.kt = 0): the strip's middle "
+                "node is held against sliding; give Contact.kt > 0"
+            )
+        held.update({int(d): float(self.u) for d in model.dof(built.plate_nodes, "u")})
+        held.update({int(d): 0.0 for d in model.dof(built.plate_nodes, "alpha")})
+        return np.zeros(model.n_dof), held
+
+
 # the one registry of load types (class name -> class): what Scene.loads and a Phase's loads may hold, and
 # the names a scene file's load tables take under ``type``
-LOAD_TYPES = {cls.__name__: cls for cls in (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement)}
+LOAD_TYPES = {
+    cls.__name__: cls for cls in (ColumnLoad, SurfacePressure, StripLoad, StripWeight, Settlement, Push)
+}

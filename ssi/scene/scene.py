@@ -24,7 +24,8 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 * **Loads** (``Scene.loads`` and ``Phase.loads``): :class:`SurfacePressure` on the ground, with or without a
   foundation; :class:`StripLoad` along the strip (uniform or linear); :class:`ColumnLoad` anywhere on the
   strip (the mesh gets a node there); :class:`StripWeight` from the section depth; :class:`Settlement` of the
-  strip (push-over: rigid or at the columns, the contact force is the load).
+  strip (push-over: rigid or at the columns, the contact force is the load); :class:`Push` of the strip
+  sideways (horizontal push-over: the horizontal reaction is the load).
 * **The geostatic state** is in equilibrium with everything that acts before the structural loads: the soil's
   weight, the ``surcharge`` on the ground (a dead surface load, so nothing moves before the loads), the
   overburden of an embedded strip (the strip starts carrying the geostatic vertical stress of its base level,
@@ -95,7 +96,7 @@ from .checks import (
     _segments,
     _warn_implausible_units,
 )
-from .loads import LOAD_TYPES, ColumnLoad, SurfacePressure
+from .loads import LOAD_TYPES, ColumnLoad, Push, SurfacePressure
 from .parts import CONTACT_SEGMENT_TYPES, Contact, Foundation, MeshSize, Phase, RigidFooting, _check_list
 
 
@@ -280,14 +281,25 @@ class Scene:
         relative gap (UB - LB)/(UB + LB) <= ``gap``. Returns the associated and the Davis brackets, the
         mesh, the mechanism and the stress field (:class:`ssi.scene.capacity.CapacityResult`; ``options``:
         see :func:`ssi.scene.capacity.limit_analysis`). Raises ValueError naming any part of the scene that
-        the limit analysis cannot represent."""
+        the limit analysis cannot represent (a horizontal :class:`Push` among them)."""
+        self._refuse_push("limit_analysis")
         return limit_analysis(self, phase=phase, gap=gap, **options)
 
     def safety_factor(self, phase: str | None = None, **options) -> SafetyFactorResult:
         """The factor of safety by strength reduction (c / F, tan phi / F of the soil and the contact) under
         the dead loads plus the loads of ``phase`` at factor 1, bracketed [F_LB, F_UB] by both bounds
         (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
+        self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
+
+    def _refuse_push(self, what: str) -> None:
+        """A horizontal Push is not represented by the limit analysis (ssi.limit pushes vertically)."""
+        pushes = [ld for ld in self._all_loads() if isinstance(ld, Push)]
+        if pushes:
+            raise ValueError(
+                f"{what}: {pushes[0]!r} in the scene's loads: a horizontal push is not built in the limit "
+                "analysis; give the horizontal force as ColumnLoad.H, or read the push-over's capacity()"
+            )
 
     def _block(self) -> tuple[float, float]:
         """(x_left, x_right) [m] of the modelled block: the whole width centred on x = 0, or its half x >= 0

@@ -41,9 +41,10 @@ not have is refused with its name and where it was found. SI units throughout (s
     method = "full"
 
 A load table names its class with ``type`` (:data:`LOAD_TYPES`: ``ColumnLoad`` -- the default, so a table
-without ``type`` is a column --, ``SurfacePressure``, ``StripLoad``, ``StripWeight``, ``Settlement``); its
-other keys are that class's fields. Phases are ``[[phases]]`` tables (``name``, ``factors = {earlier = 0.0}``,
-``n_steps``, ``drainage = {1 = "undrained_A"}`` by layer index) with their loads in ``[[phases.loads]]`` and
+without ``type`` is a column --, ``SurfacePressure``, ``StripLoad``, ``StripWeight``, ``Settlement``,
+``Push``); its other keys are that class's fields. Phases are ``[[phases]]`` tables (``name``,
+``factors = {earlier = 0.0}``, ``n_steps``, ``drainage = {1 = "undrained_A"}`` by layer index) with their
+loads in ``[[phases.loads]]`` and
 their excavations in ``[[phases.excavate]]`` (``x0``, ``x1``, ``bottom``, ``top`` [m]); ``embedment``,
 ``water_table``, ``gamma_w`` and ``symmetric`` are top-level keys; a ``[foundation]`` table with
 ``type = "RigidFooting"`` is a :class:`ssi.scene.RigidFooting` (``x0``, ``x1``, ``rough``); ``contact`` is
@@ -76,7 +77,7 @@ from ..elements import section as section_mod
 from ..elements.section import Section
 from ..materials.soil_laws import SoilLayer
 from ..solver import Settings
-from .loads import LOAD_TYPES, ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure  # noqa: F401
+from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure  # noqa: F401
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
 
@@ -147,6 +148,7 @@ UNITS = {
     },
     "StripWeight": {"unit_weight": "N/m^3"},
     "Settlement": {"w": "m (down positive)", "x": "[m, ...] settled columns (leave out: the rigid strip)"},
+    "Push": {"u": "m (+x positive)", "x": "m, a point on the pushed strip (leave out: the only strip)"},
     "Phase": {
         "name": "text",
         "loads": "list of load tables (type = ...)",

@@ -27,10 +27,21 @@ vertices, boreholes, polyline vertices, foundation ends, load points, and where 
 boundary) into columns, each column cut by the layer boundaries into cells. The soil mesh meshes every cell,
 and a triangle mesher (limit analysis) can take the same description (:meth:`Geometry.as_pslg`).
 
+Embedded strips. A :class:`Strip` whose ``level`` lies below the ground is embedded: the site gets a trench
+between its ends from the ground down to that level (the soil there is removed; the base level is a mesh
+line across the site, so the trench walls end at a node), the soil beside it is the backfill, and the
+strip's ``side_contact`` puts interfaces on both walls. The ground over the strip must be level; refused
+with a named error: a trench against the block's side, another foundation touching or overlapping the
+trench, a water table above the base level in the trench (a flooded trench), a level in the air or at the
+block bottom. A layer boundary may pass through the backfill or the trench (the trench removes what lies
+above the level). The initial stress is gravity loading with the trench open (the walls are free faces,
+not K0 ground: ``initial_stress="K0"`` is refused), so the side interfaces start without traction.
+
 Mesh. ``mesher="structured"`` uses the graded block of :func:`ssi.core.mesh.soil_block` (level ground at
 z = 0 and level boundaries only; the fast path); ``"gmsh"`` the unstructured Q8 mesh of
 :func:`ssi.core.gmsh_mesh.mesh_geometry`; ``"auto"`` (default) the structured one wherever it can serve (level
-ground and boundaries, at most one strip).
+ground and boundaries, at most one strip, embedded or not: the block's trench of
+:func:`ssi.core.mesh.soil_block`).
 
 Initial stress. ``initial_stress="K0"``: the geostatic K0 state (:func:`ssi.materials.soil_laws.
 geostatic_stress`), valid for level ground over level layer boundaries only (refused otherwise);
@@ -40,7 +51,8 @@ displacement is discarded; ``"gravity_plastic"``: the same with the soil's own (
 ramped up in automatic increments (the stress is kept, the plastic history of that phase is not). The
 elastic state may lie outside a soil's strength (a steep slope); the first loaded step then carries that
 out-of-balance, which "gravity_plastic" avoids.
-``"auto"``: K0 where it applies, else gravity. ``BuiltSite.initial_stress_method`` says which was used.
+``"auto"``: K0 where it applies (level and no embedded strip), else gravity.
+``BuiltSite.initial_stress_method`` says which was used.
 
 Stiffness and strength growing with depth: :class:`DepthVarying` (PLAXIS's E_inc, c_inc): E = E_ref + E_inc
 (z_ref - z) below the reference elevation z_ref (above it E_ref), the same for c; ``depth_varying="gauss"``
@@ -65,7 +77,7 @@ from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
 from .capacity import CapacityResult, limit_analysis
-from .loads import ColumnLoad, SurfacePressure
+from .loads import ColumnLoad, Push, SurfacePressure
 from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
@@ -101,7 +113,8 @@ class Site:
     """A site: see the module docstring. ``layers`` (SoilLayer or DepthVarying) from the top down;
     ``boreholes`` or ``boundaries`` (len(layers) - 1 boundaries); ``ground`` polyline [(x, z)] [m];
     ``water_table``: elevation [m] or polyline (None: dry), the weight below it is the buoyant one;
-    ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground); ``mesh`` sizes;
+    ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground, Push of a strip sideways:
+    its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
     "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled)."""
 
@@ -134,7 +147,7 @@ class Site:
         for i, s in enumerate(self.strips):
             check_instance(f"Site.strips[{i}]", s, (Strip, RigidStrip))
         for i, ld in enumerate(self.loads):
-            check_instance(f"Site.loads[{i}]", ld, (ColumnLoad, SurfacePressure))
+            check_instance(f"Site.loads[{i}]", ld, (ColumnLoad, SurfacePressure, Push))
         n_b = len(self.layers) - 1
         if self.boreholes is not None and self.boundaries is not None:
             raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
@@ -197,6 +210,29 @@ class Site:
     def _strip_ends(self):
         return sorted((_ends(s)) for s in self.strips)
 
+    def embedded(self) -> list[tuple[int, float, float, float]]:
+        """(index, x0 [m], x1 [m], base level [m]) of every embedded strip (a Strip whose ``level`` lies below
+        the ground at its left end): the site has a trench there, its soil removed down to the level."""
+        out = []
+        for i, s in enumerate(self.strips):
+            if isinstance(s, Strip) and s.level is not None:
+                x0, x1 = _ends(s)
+                if s.level < float(self.ground_z(x0)) - TOL * self.width:
+                    out.append((i, x0, x1, float(s.level)))
+        return out
+
+    def base_z(self, i: int) -> float:
+        """Elevation [m] of the base of strip ``i``: its level if embedded, else the ground under it."""
+        s = self.strips[i]
+        x0, _ = _ends(s)
+        return float(self.ground_z(x0)) if not isinstance(s, Strip) or s.level is None else float(s.level)
+
+    def _cut_lines(self, xs) -> list[np.ndarray]:
+        """Elevations [m] at ``xs`` of the lines every layer is cut along (mesh lines): the water table and
+        the base level of every embedded strip (so the trench walls end at a mesh node)."""
+        cuts = [] if self.water_table is None else [self.water_z(xs)]
+        return cuts + [np.full(np.shape(xs), lv) for _, _, _, lv in self.embedded()]
+
     def breaks(self) -> np.ndarray:
         """x [m] of the vertical cuts of the geometry (see the module docstring), sorted, unique."""
         xs = [self.x_left, self.x_right, *self._ground[0]]
@@ -204,19 +240,18 @@ class Site:
             xs += list(bx)
         for a, b in self._strip_ends():
             xs += [a, b]
-        for ld in self.loads:
-            xs += [ld.x] if isinstance(ld, ColumnLoad) else [ld.x0, ld.x1]
+        xs += self._load_points()
         xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
         if self.water_table is not None and np.ndim(self.water_table):
             xs = np.unique(np.clip(np.concatenate([xs, _polyline("Site.water_table", self.water_table)[0]]),
                                    self.x_left, self.x_right))  # fmt: skip
-        # where the ground crosses a boundary (the cut boundary has a kink there) and where the water table
-        # crosses the ground or a boundary (the cells are cut by the water table)
+        # where the ground crosses a boundary (the cut boundary has a kink there) and where a cut line (the
+        # water table, an embedded strip's base level) crosses the ground, a boundary or another cut line
         lines = [np.interp(xs, *r) for r in self._raw]
         pairs = [(self.ground_z(xs), b) for b in lines]
-        if self.water_table is not None:
-            w = self.water_z(xs)
-            pairs += [(w, self.ground_z(xs))] + [(w, b) for b in lines]
+        cuts = self._cut_lines(xs)
+        for k, c in enumerate(cuts):
+            pairs += [(c, self.ground_z(xs))] + [(c, b) for b in lines] + [(c, d) for d in cuts[k + 1 :]]
         extra = []
         for f, g in pairs:
             d = f - g
@@ -266,14 +301,21 @@ class Site:
                     f"(z from {gz.min():g} "
                     f"to {gz.max():g} m); level the ground under the strip (a berm)"
                 )
-            if isinstance(s, Strip) and s.level is not None and abs(s.level - gz[0]) > TOL * self.width:
-                where = "above the ground: a foundation in the air" if s.level > gz[0] else "below the ground"
+            if isinstance(s, Strip) and s.level is not None and s.level > gz[0] + TOL * self.width:
                 raise GeometryError(
-                    f"strips[{i}].level={s.level:g} m lies {where} (z={gz[0]:g} m there); embedded strips "
-                    "on a "
-                    "site are not built: give level=None"
+                    f"strips[{i}].level={s.level:g} m lies above the ground (z={gz[0]:g} m there): a "
+                    "foundation in the air"
                 )
+        for i, x0, x1, lv in self.embedded():
+            self._check_trench(i, x0, x1, lv, xs)
         for i, ld in enumerate(self.loads):
+            if isinstance(ld, Push):
+                s = self.strips[self.pushed_strip(ld)]
+                if isinstance(s, RigidStrip) and not s.rough:
+                    raise GeometryError(
+                        f"loads[{i}]: {ld!r} pushes a smooth RigidStrip (rough=False), whose base nodes "
+                        "slide freely: nothing carries the push; give rough=True"
+                    )
             if isinstance(ld, ColumnLoad) and self._strip_at(ld.x) is None:
                 raise GeometryError(f"loads[{i}]: ColumnLoad at x={ld.x:g} m lies on no strip {ends}")
             if isinstance(ld, SurfacePressure):
@@ -288,6 +330,33 @@ class Site:
                             f"({a:g}, {b:g})"
                         )
 
+    def _check_trench(self, i, x0, x1, level, xs):
+        """An embedded strip's trench: inside the block, clear of every other foundation (a wall of backfill
+        between them) and dry (a flooded trench is not built)."""
+        if level <= self.z_bottom + TOL * self.width:
+            raise GeometryError(
+                f"strips[{i}].level={level:g} m lies at or below the block bottom z={self.z_bottom:g} m"
+            )
+        if x0 <= self.x_left + TOL * self.width or x1 >= self.x_right - TOL * self.width:
+            raise GeometryError(
+                f"strips[{i}] ({x0:g}, {x1:g}) m is embedded (level {level:g} m) against the block's side: "
+                "its trench needs backfill on both sides; widen the block"
+            )
+        for j, other in enumerate(self.strips):
+            a, b = _ends(other)
+            if j != i and b >= x0 - TOL * self.width and a <= x1 + TOL * self.width:
+                raise GeometryError(
+                    f"strips[{j}] ({a:g}, {b:g}) m touches or overlaps the trench of the embedded "
+                    f"strips[{i}] ({x0:g}, {x1:g}) m, level {level:g} m: leave backfill between them"
+                )
+        inside = xs[(xs >= x0) & (xs <= x1)]
+        if self.water_table is not None and np.any(self.water_z(inside) > level + TOL * self.width):
+            raise GeometryError(
+                f"strips[{i}]: the water table (z up to {float(self.water_z(inside).max()):g} m) lies above "
+                f"its base level {level:g} m: a flooded trench is not built; lower the water table or "
+                "raise the strip"
+            )
+
     def _strip_at(self, x):
         for i, s in enumerate(self.strips):
             x0, x1 = _ends(s)
@@ -301,15 +370,22 @@ class Site:
         xs = self.breaks()
         polys, regions = [], []
         n = len(self.layers)
+        trenches = self.embedded()
+        eps = TOL * self.width
         for xa, xb in zip(xs[:-1], xs[1:]):
-            tops = [self.ground_z(np.array([xa, xb]))]
-            tops += [self.boundary_z(k, np.array([xa, xb])) for k in range(n - 1)]
+            ends = np.array([xa, xb])
+            top = self.ground_z(ends)
+            for _, x0, x1, lv in trenches:  # inside a trench the soil ends at the strip's base level
+                if xa >= x0 - eps and xb <= x1 + eps:
+                    top = np.minimum(top, lv)
+            tops = [top] + [np.minimum(self.boundary_z(k, ends), top) for k in range(n - 1)]
             tops.append(np.array([self.z_bottom, self.z_bottom]))
-            w = self.water_z(np.array([xa, xb]))
+            cuts = self._cut_lines(ends)
             for k in range(n):
                 t, b = tops[k], tops[k + 1]
-                cut = np.clip(w, b, t)  # the water table within the layer (on its top or bottom if outside)
-                for lo, hi in ((b, cut), (cut, t)):  # a cell of zero area is dropped by from_cells
+                # the cut lines within the layer (on its top or bottom if outside), bottom up
+                inner = sorted((np.clip(c, b, t) for c in cuts), key=lambda c: float(c.sum()))
+                for lo, hi in zip([b, *inner], [*inner, t]):  # a cell of zero area is dropped by from_cells
                     polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
                     regions.append(k)
         return from_cells(polys, regions, tol=TOL)
@@ -318,7 +394,15 @@ class Site:
         """The site's capacity as a certified bracket by finite-element limit analysis: lambda scales the
         site's loads (a lone RigidStrip: lambda is its vertical force [N/m]), the soil's weight held; every
         strip a rigid body on its contact, a RigidStrip translating, a Strip also rotating (see
-        :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`)."""
+        :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`). A
+        :class:`Push` is refused: a horizontal push is not built in the limit analysis."""
+        pushes = [ld for ld in self.loads if isinstance(ld, Push)]
+        if pushes:
+            raise ValueError(
+                f"Site.limit_analysis: {pushes[0]!r} in Site.loads: a horizontal push is not built in the "
+                "limit analysis; give the horizontal force as ColumnLoad.H, or read the push-over's "
+                "SiteResult.push_force"
+            )
         return limit_analysis(self, gap=gap, **options)
 
     def is_level(self) -> bool:
@@ -361,8 +445,14 @@ class Site:
                 "Site.initial_stress='K0' is wrong here: the ground or a layer boundary is not level, so the "
                 "vertical stress is not the weight of the column above; use 'gravity' (or 'auto')"
             )
+        if method == "K0" and self.embedded():
+            raise ValueError(
+                "Site.initial_stress='K0' is wrong here: an embedded strip's trench walls are free faces, "
+                "not K0 ground (the horizontal stress beside them is not K0 times the vertical); use "
+                "'gravity' (or 'auto')"
+            )
         if method == "auto":
-            method = "K0" if level else "gravity"
+            method = "K0" if level and not self.embedded() else "gravity"
         mesh = self._structured_mesh() if use_structured else self._gmsh_mesh()
         quality = mesh.quality if not use_structured else check_quality(mesh.xy, mesh.conn)
         return BuiltSite.assemble(self, mesh, method, "structured" if use_structured else "gmsh", quality)
@@ -370,8 +460,26 @@ class Site:
     def _load_points(self) -> list[float]:
         out = []
         for ld in self.loads:
-            out += [ld.x] if isinstance(ld, ColumnLoad) else [ld.x0, ld.x1]
+            if isinstance(ld, ColumnLoad):
+                out.append(ld.x)
+            elif isinstance(ld, SurfacePressure):
+                out += [ld.x0, ld.x1]
         return out
+
+    def pushed_strip(self, push: Push) -> int:
+        """Index of the strip a :class:`Push` moves: the strip under ``push.x`` (None: the only strip)."""
+        if push.x is None:
+            if len(self.strips) != 1:
+                raise GeometryError(
+                    f"{push!r}: the site has {len(self.strips)} strips; give Push.x, a point on the pushed "
+                    "one"
+                )
+            return 0
+        for i, s in enumerate(self.strips):
+            x0, x1 = _ends(s)
+            if x0 - TOL * self.width <= push.x <= x1 + TOL * self.width:
+                return i
+        raise GeometryError(f"{push!r}: Push.x={push.x:g} m lies on no strip {self._strip_ends()}")
 
     def _structured_mesh(self):
         m = self.mesh
@@ -386,20 +494,20 @@ class Site:
             )
         breaks = self._load_points()
         # the layers split at the water table (a mesh line there, as the layered scene does): each element
-        # wholly above or below it
+        # wholly above or below it; and at an embedded strip's base (the trench's bottom, as soil_block needs)
         d_w = np.inf if self.water_table is None else -float(self.water_z(0.0))
+        trench = self.embedded()
+        d_base = -trench[0][3] if trench else 0.0
         thick, owner, top = [], [], 0.0
         for k, t in enumerate(self.layer_thicknesses()):
-            if 1e-9 * t < d_w - top < t * (1 - 1e-9):
-                thick += [d_w - top, top + t - d_w]
-                owner += [k, k]
-            else:
-                thick.append(t)
+            inner = sorted({d for d in (d_w, d_base) if 1e-9 * t < d - top < t * (1 - 1e-9)})
+            for a, b in zip([top, *inner], [*inner, top + t]):
+                thick.append(b - a)
                 owner.append(k)
             top += t
         mesh = soil_block(
             self.width, self.depth, thick, foot, m.h_fine, m.h_coarse, m.growth,
-            breaks=breaks, end_grading=m.end_grading,
+            breaks=breaks, embedment=d_base, end_grading=m.end_grading,
         )  # fmt: skip
         mesh.el_layer = np.array(owner, np.int64)[mesh.el_layer]
         return mesh
@@ -407,11 +515,15 @@ class Site:
     def _gmsh_mesh(self) -> UnstructuredMesh:
         m = self.mesh
         ref = []
-        for s in self.strips:
+        for i, s in enumerate(self.strips):
             x0, x1 = _ends(s)
             n = max(1, round((x1 - x0) / m.h_fine))
             xs = np.linspace(x0, x1, n + 1)
-            ref += [(x, float(self.ground_z(x))) for x in xs]
+            ref += [(x, self.base_z(i)) for x in xs]
+            top = float(self.ground_z(x0))
+            if top - self.base_z(i) > TOL * self.width:  # the trench walls of an embedded strip
+                n_w = max(1, round((top - self.base_z(i)) / m.h_fine))
+                ref += [(x, z) for x in (x0, x1) for z in np.linspace(self.base_z(i), top, n_w + 1)]
         for ld in self.loads:
             if isinstance(ld, SurfacePressure):
                 n = max(1, round((ld.x1 - ld.x0) / m.h_fine))

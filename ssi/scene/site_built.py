@@ -13,10 +13,11 @@ from ..core.model import Model
 from ..core.quadrature import gauss_2d
 from ..elements.interface import add_interface
 from ..elements.plate import PlateStrip
+from ..elements.side_interface import add_side_interface
 from ..elements.soil_q8 import SoilQ8, q8_points
 from ..elements.soil_q8_points import SoilQ8Points
 from ..materials.soil_laws import SoilLayer, geostatic_stress, material_table
-from .loads import ColumnLoad
+from .loads import ColumnLoad, Push
 from .site_parts import DepthVarying, RigidStrip, Strip
 from .site_view import SiteResult
 
@@ -65,18 +66,23 @@ class BuiltSite:
             built.initial_stress_method = "none"
         for s in site.strips:
             built._add_strip(s)
+            if isinstance(s, Strip) and s.side_contact is not None:
+                built._add_side_contact(len(built.strips) - 1)
         built._add_loads()
         return built
 
-    def ground_nodes(self, x0: float, x1: float) -> np.ndarray:
-        """Soil node ids on the ground between x0 and x1 [m], ordered by x."""
+    def ground_nodes(self, x0: float, x1: float, z: float | None = None, chain: bool = True) -> np.ndarray:
+        """Soil node ids on the ground between x0 and x1 [m], ordered by x; at elevation ``z`` [m] if given
+        (an embedded strip's trench bottom). ``chain``: they must form a chain of element edges (refused
+        otherwise); False: any such nodes (the ground on both sides of a trench)."""
         xy = self.mesh.xy
         scale = max(1.0, self.site.width)
-        on = np.abs(xy[:, 1] - self.site.ground_z(xy[:, 0])) < 1e-7 * scale
+        z_on = self.site.ground_z(xy[:, 0]) if z is None else z
+        on = np.abs(xy[:, 1] - z_on) < 1e-7 * scale
         on &= (xy[:, 0] >= x0 - 1e-9 * scale) & (xy[:, 0] <= x1 + 1e-9 * scale)
         ids = np.flatnonzero(on)
         ids = ids[np.argsort(xy[ids, 0])]
-        if len(ids) < 3 or len(ids) % 2 == 0:
+        if chain and (len(ids) < 3 or len(ids) % 2 == 0):
             raise GeometryError(
                 f"the range ({x0:g}, {x1:g}) m does not start and end on element edges of the ground"
             )
@@ -132,11 +138,11 @@ class BuiltSite:
             self.strips.append({"rigid": True, "soil_nodes": nodes, "width": s.x1 - s.x0})
             return
         f, model = s.foundation, self.model
-        soil_nodes = self.ground_nodes(f.x0, f.x1)
+        z_base = self.site.base_z(len(self.strips))
+        soil_nodes = self.ground_nodes(f.x0, f.x1, z_base)
         xs = self.mesh.xy[soil_nodes, 0]
         if abs(xs[0] - f.x0) > 1e-9 * self.site.width or abs(xs[-1] - f.x1) > 1e-9 * self.site.width:
             raise GeometryError(f"the strip ({f.x0:g}, {f.x1:g}) m ends are not mesh nodes of the ground")
-        z_base = float(self.site.ground_z(f.x0))
         local = np.arange(0, len(soil_nodes) - 2, 2)
         plate_conn = np.column_stack([local, local + 1, local + 2])
         plate_xy = np.column_stack([xs, np.full(len(xs), z_base - f.section.z_bottom)])
@@ -149,10 +155,55 @@ class BuiltSite:
             model, ids[plate_conn], soil_nodes[plate_conn], np.tile(s.contact.params(), (len(plate_conn), 1)),
             offset=plate.bottom_offset, rule=s.contact.rule,
         )  # fmt: skip
+        held = None
         if s.contact.kt == 0.0:
             held = int(ids[np.argmin(np.abs(xs - 0.5 * (f.x0 + f.x1)))])
             model.fix([held], "u")
-        self.strips.append({"plate": plate, "interface": iface, "plate_nodes": ids, "soil_nodes": soil_nodes})
+        self.strips.append(
+            {
+                "plate": plate,
+                "interface": iface,
+                "plate_nodes": ids,
+                "soil_nodes": soil_nodes,
+                "slide_support": held,
+            }
+        )
+
+    def _add_side_contact(self, i: int):
+        """Interfaces between the trench walls of the embedded strip ``i`` and its vertical sides
+        (:func:`ssi.elements.side_interface.add_side_interface`), each side moving rigidly with the strip's
+        end node. They start without traction: the initial stress is that of gravity loading with the trench
+        open, so the walls are free faces (the strip cast against them presses on them only as it moves)."""
+        s, st, site = self.site.strips[i], self.strips[i], self.site
+        f, ids, xy = s.foundation, st["plate_nodes"], self.mesh.xy
+        z_base, scale = site.base_z(i), max(1.0, site.width)
+        groups = []
+        for x_wall, body, down in ((f.x0, ids[0], True), (f.x1, ids[-1], False)):
+            top = float(site.ground_z(x_wall))
+            on = np.flatnonzero(
+                (np.abs(xy[:, 0] - x_wall) < 1e-9 * scale)
+                & (xy[:, 1] >= z_base - 1e-9 * scale)
+                & (xy[:, 1] <= top + 1e-9 * scale)
+            )
+            # the structure on the left walking from node 0 to 2: down the left wall, up the right one
+            nodes = on[np.argsort(-xy[on, 1] if down else xy[on, 1])]
+            if len(nodes) < 3 or len(nodes) % 2 == 0:
+                raise GeometryError(
+                    f"strips[{i}]: the trench wall at x={x_wall:g} m is not a chain of element edges "
+                    f"({len(nodes)} nodes from z={z_base:g} to {top:g} m)"
+                )
+            conn = np.column_stack([nodes[0:-2:2], nodes[1:-1:2], nodes[2::2]])
+            groups.append(
+                add_side_interface(
+                    self.model,
+                    body,
+                    conn,
+                    s.side_contact.params(),
+                    rule=s.side_contact.rule,
+                    name=f"side_interface_{i}_{'left' if down else 'right'}",
+                )  # fmt: skip
+            )
+        st["side_interfaces"] = groups
 
     def _add_loads(self):
         model = self.model
@@ -165,6 +216,17 @@ class BuiltSite:
                 for comp, v in (("w", -ld.N), ("u", ld.H), ("alpha", ld.M)):
                     if v:
                         model.add_load([ids[i]], comp, v)
+            elif isinstance(ld, Push):  # the strip's nodes' u prescribed (a plate's rotations held)
+                st = self.strips[self.site.pushed_strip(ld)]
+                nodes = st["soil_nodes"] if st.get("rigid") else st["plate_nodes"]
+                if not st.get("rigid"):
+                    if st["slide_support"] is not None:
+                        raise GeometryError(
+                            f"{ld!r} on a frictionless contact (Contact.kt = 0): nothing but the held middle "
+                            "node resists the push; give Contact.kt > 0"
+                        )
+                    model.fix(nodes, "alpha")
+                model.prescribe(nodes, "u", ld.u)
             else:  # a vertical pressure per horizontal metre on the ground: L/6, 4L/6, L/6 per quadratic edge
                 nodes = self.ground_nodes(ld.x0, ld.x1)
                 xs = self.mesh.xy[nodes, 0]
@@ -178,7 +240,11 @@ class BuiltSite:
         layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
         return all(lay.c is None for lay in layers) and all(
             isinstance(s, RigidStrip)
-            or (s.contact.phi_deg is None and bool(np.all(st["plate"].section.kind == 0)))
+            or (
+                s.contact.phi_deg is None
+                and (s.side_contact is None or s.side_contact.phi_deg is None)
+                and bool(np.all(st["plate"].section.kind == 0))
+            )
             for s, st in zip(self.site.strips, self.strips)
         )
 

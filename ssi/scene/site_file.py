@@ -23,11 +23,13 @@ reuses). SI units::
     foundation = { x0 = -6.0, x1 = -4.0, section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } } }
     contact = { kn = 1e10, kt = 1e9 }
 
-    [[loads]]                             # ColumnLoad (default) or type = "SurfacePressure"
+    [[loads]]                             # ColumnLoad (default); type = "SurfacePressure", "Push"
     x = -5.0
     N = 300e3
 
 ``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes. A strip table
+with ``level`` below the ground is embedded (a trench); its optional ``side_contact`` is a Contact table on
+the trench walls, e.g. ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` (smooth). A strip table
 with ``type = "RigidStrip"`` holds a :class:`RigidStrip`'s fields (``x0``, ``x1``, ``settle``, ``rough``).
 The optional ``[solve]`` table holds ``n_steps`` and :class:`ssi.solver.Settings` fields, as in a scene file.
 """
@@ -38,7 +40,7 @@ import dataclasses
 from pathlib import Path
 
 from ..solver import Settings
-from .loads import ColumnLoad, SurfacePressure
+from .loads import ColumnLoad, Push, SurfacePressure
 from .parts import Contact, Foundation, MeshSize
 from .scene_file import _build, _check_keys, _check_table, read_toml_and_solve
 from .site import Borehole, DepthVarying, Site, Strip
@@ -80,17 +82,19 @@ def site_from_dict(data: dict, where: str = "site") -> Site:
                 _build(RigidStrip, {k: v for k, v in s.items() if k != "type"}, f"{where}.strips[{i}]")
             )
             continue
-        _check_keys(s, {"foundation", "contact", "level"}, f"{where}.strips[{i}]")
+        _check_keys(s, {"foundation", "contact", "level", "side_contact"}, f"{where}.strips[{i}]")
+        side = s.get("side_contact")
         strips.append(
             Strip(
                 _build(Foundation, s["foundation"], f"{where}.strips[{i}].foundation"),
                 _build(Contact, s["contact"], f"{where}.strips[{i}].contact"),
                 s.get("level"),
+                None if side is None else _build(Contact, side, f"{where}.strips[{i}].side_contact"),
             )
         )
     kw["strips"] = strips
     loads = []
-    kinds = {"ColumnLoad": ColumnLoad, "SurfacePressure": SurfacePressure}
+    kinds = {"ColumnLoad": ColumnLoad, "SurfacePressure": SurfacePressure, "Push": Push}
     for i, ld in enumerate(data.get("loads", [])):
         _check_table(ld, f"{where}.loads[{i}]")
         fields = dict(ld)

@@ -66,16 +66,27 @@ class DepthVarying:
 @dataclass(frozen=True)
 class Strip:
     """A foundation strip of a site resting on the ground through its own ``contact``. ``level`` [m]: the
-    elevation of its base (None: the ground under it; the ground must be level there)."""
+    elevation of its base (None: the ground under it; the ground must be level there). A level below the
+    ground embeds the strip: the site gets a trench from the ground down to ``level`` between the strip's
+    ends (its soil removed), the soil beside it is the backfill, and ``side_contact`` (a :class:`Contact`,
+    its own Coulomb parameters; None: none) puts interfaces between the trench walls and the strip's
+    vertical sides, which move rigidly with the strip's end nodes (:mod:`ssi.elements.side_interface`)."""
 
     foundation: Foundation
     contact: Contact
     level: float | None = None
+    side_contact: Contact | None = None
 
     def __post_init__(self):
         check_instance("Strip.foundation", self.foundation, Foundation)
         check_instance("Strip.contact", self.contact, Contact)
         check_optional_real("Strip.level", self.level, unit="m")
+        check_instance("Strip.side_contact", self.side_contact, Contact, optional=True)
+        if self.side_contact is not None and self.level is None:
+            raise GeometryError(
+                "Strip.side_contact needs an embedded strip: give Strip.level, the elevation of its base "
+                "below the ground [m]"
+            )
 
 
 @dataclass(frozen=True)

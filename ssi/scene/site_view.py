@@ -32,6 +32,14 @@ class SiteResult:
         w = res.displacement(st["soil_nodes"][:1], "w")[:, 0]
         return -w, -res.support_reaction(st["soil_nodes"], "w") / st["width"]
 
+    def push_force(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """(horizontal displacement [m], horizontal force [N/m]) histories of strip ``i`` pushed by a
+        :class:`~ssi.scene.loads.Push`, both > 0 in +x: the displacement of its first pushed node and the
+        summed support reaction at its pushed u DOFs (a plate's nodes, a RigidStrip's base)."""
+        st, res = self.built.strips[i], self.result
+        nodes = st["soil_nodes"] if st.get("rigid") else st["plate_nodes"]
+        return res.displacement(nodes[:1], "u")[:, 0], res.support_reaction(nodes, "u")
+
     def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x [m], settlement [m], positive down) of the plate nodes of strip ``i`` at step ``k``."""
         ids = self.built.strips[i]["plate_nodes"]
@@ -51,9 +59,12 @@ class SiteResult:
         return self.strip_summary(i, k)["mean"] - self.strip_summary(j, k)["mean"]
 
     def ground_settlement(self, x0: float | None = None, x1: float | None = None, k: int = -1):
-        """(x [m], settlement [m], positive down) of the ground nodes between x0 and x1 (default: all)."""
+        """(x [m], settlement [m], positive down) of the ground nodes between x0 and x1 (default: all); of an
+        embedded strip the ground beside its trench (its base is :meth:`strip_settlement`)."""
         site = self.built.site
-        ids = self.built.ground_nodes(site.x_left if x0 is None else x0, site.x_right if x1 is None else x1)
+        ids = self.built.ground_nodes(
+            site.x_left if x0 is None else x0, site.x_right if x1 is None else x1, chain=False
+        )
         return self.built.mesh.xy[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
     def soil_stress(self, k: int = -1) -> np.ndarray:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .loads import ColumnLoad, Settlement
+from .loads import ColumnLoad, Push, Settlement
 
 # a push-over's path counts as on its plateau when its last increment's stiffness dP/ds is below this share
 # of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
@@ -25,10 +25,22 @@ class LoadPathView:
     # ---- the load a foundation carries and its capacity (issue 34) ----------------------------------------
     @property
     def is_push_over(self) -> bool:
-        """The scene is driven by a prescribed :class:`Settlement` (in ``scene.loads`` or a phase): its load
-        is the reaction the soil gives, not a given force."""
-        loads = list(self.built.scene.loads) + [ld for ph in self.built.scene.phases for ld in ph.loads]
-        return any(isinstance(ld, Settlement) for ld in loads)
+        """The scene is driven by a prescribed :class:`Settlement` or :class:`Push` (in ``scene.loads`` or a
+        phase): its load is the reaction the soil gives, not a given force."""
+        return any(isinstance(ld, (Settlement, Push)) for ld in self._all_loads())
+
+    @property
+    def is_horizontal_push(self) -> bool:
+        """The scene is driven by a :class:`Push`: its load is the horizontal reaction, its displacement the
+        foundation's horizontal one."""
+        return any(isinstance(ld, Push) for ld in self._all_loads())
+
+    def _push_direction(self) -> float:
+        """+1 or -1: the sign of the first Push's u (the direction a horizontal push-over reports in)."""
+        return 1.0 if next(ld for ld in self._all_loads() if isinstance(ld, Push)).u >= 0.0 else -1.0
+
+    def _all_loads(self) -> list:
+        return list(self.built.scene.loads) + [ld for ph in self.built.scene.phases for ld in ph.loads]
 
     def column_load(self) -> np.ndarray:
         """(n_steps + 1,) total column force sum N [N/m] applied at every row: lambda * sum N of a
@@ -59,10 +71,14 @@ class LoadPathView:
         metre of strip; of a symmetric scene the whole foundation's). Of a push-over (:attr:`is_push_over`)
         the soil's reaction: a RigidFooting's base reaction, or the contact resultant of a plate strip
         (:meth:`BuiltScene.contact_force`); of a load-controlled scene the applied column load
-        (:meth:`column_load`). Rows that are not rate-independent equilibria are included: see
-        :meth:`load_settlement`'s ``equilibrium`` mask."""
+        (:meth:`column_load`). Of a horizontal push-over (:attr:`is_horizontal_push`) the horizontal force
+        [N/m] at the pushed nodes (:meth:`BuiltScene.push_force`) in the direction of the first Push's u
+        (> 0: resisting the push). Rows that are not
+        rate-independent equilibria are included: see :meth:`load_settlement`'s ``equilibrium`` mask."""
         if not self.is_push_over:
             return self.column_load()
+        if self.is_horizontal_push:
+            return self._push_direction() * self.built.push_force(self)
         if self.built.footing_nodes is None:
             return self.built.contact_force(self)
         if not self.phases:
@@ -140,6 +156,12 @@ class LoadPathView:
         if len(rows) >= 3:
             ds = np.diff(settle[rows])
             dp = np.diff(load[rows])
+            moving = np.abs(ds) > 1e-9 * np.abs(settle[rows]).max()  # beyond round-off of the displacement
+            if self.is_horizontal_push and moving.any():
+                # a push in a later phase: the rows before it do not move the strip sideways (ds: round-off);
+                # the path's first stiffness is that of the push's first increment
+                start = int(np.flatnonzero(moving)[0])
+                ds, dp = ds[start:], dp[start:]
             first, last = dp[0] / ds[0] if ds[0] else np.inf, dp[-1] / ds[-1] if ds[-1] else np.inf
             if np.isfinite(first) and first > 0 and last < PLATEAU_STIFFNESS_SHARE * first:
                 return out | {
@@ -155,10 +177,15 @@ class LoadPathView:
         (n_steps + 1,) [-] (of a phased scene the phase time), ``column_load`` (n_steps + 1,) [N/m] (see
         :meth:`column_load`), ``load`` [N/m] the load the foundation carries (:meth:`foundation_load`: of a
         push-over the soil's reaction), ``settlement`` (n_steps + 1,) [m] the largest settlement at each step
-        (positive down) and ``equilibrium`` (n_steps + 1,) bool: the row is a rate-independent equilibrium
+        (positive down; of a horizontal push-over the pushed nodes' mean horizontal displacement in the push's
+        direction) and ``equilibrium`` (n_steps + 1,) bool: the row is a rate-independent equilibrium
         (:meth:`equilibrium_rows`; False rows are never a result)."""
         lam = np.asarray(self.load_factor, np.float64)
-        settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
+        if self.is_horizontal_push:
+            dofs = self.built.model.dof(self.built.pushed_nodes(), "u")
+            settle = self._push_direction() * np.array([float(np.mean(u[dofs])) for u in self.u])
+        else:
+            settle = np.array([self.max_settlement(k)[1] for k in range(len(lam))])
         return {
             "load_factor": lam,
             "column_load": self.column_load(),
