@@ -27,10 +27,11 @@ vertices, boreholes, polyline vertices, foundation ends, load points, and where 
 boundary) into columns, each column cut by the layer boundaries into cells. The soil mesh meshes every cell,
 and a triangle mesher (limit analysis) can take the same description (:meth:`Geometry.as_pslg`).
 
-Embedded strips. A :class:`Strip` whose ``level`` lies below the ground is embedded: the site gets a trench
-between its ends from the ground down to that level (the soil there is removed; the base level is a mesh
-line across the site, so the trench walls end at a node), the soil beside it is the backfill, and the
-strip's ``side_contact`` puts interfaces on both walls. The ground over the strip must be level; refused
+Embedded strips. A :class:`Strip` or :class:`RigidStrip` whose ``level`` lies below the ground is
+embedded: the site gets a trench between its ends from the ground down to that level (the soil there is
+removed; the base level is a mesh line across the site, so the trench walls end at a node), the soil
+beside it is the backfill, and the strip's ``side_contact`` puts interfaces on both walls. The ground over
+the strip must be level; refused
 with a named error: a trench against the block's side, another foundation touching or overlapping the
 trench, a water table above the base level in the trench (a flooded trench), a level in the air or at the
 block bottom. A layer boundary may pass through the backfill or the trench (the trench removes what lies
@@ -212,10 +213,11 @@ class Site:
 
     def embedded(self) -> list[tuple[int, float, float, float]]:
         """(index, x0 [m], x1 [m], base level [m]) of every embedded strip (a Strip whose ``level`` lies below
-        the ground at its left end): the site has a trench there, its soil removed down to the level."""
+        the ground at its left end; a Strip or a RigidStrip): the site has a trench there, its soil removed
+        down to the level."""
         out = []
         for i, s in enumerate(self.strips):
-            if isinstance(s, Strip) and s.level is not None:
+            if s.level is not None:
                 x0, x1 = _ends(s)
                 if s.level < float(self.ground_z(x0)) - TOL * self.width:
                     out.append((i, x0, x1, float(s.level)))
@@ -225,7 +227,7 @@ class Site:
         """Elevation [m] of the base of strip ``i``: its level if embedded, else the ground under it."""
         s = self.strips[i]
         x0, _ = _ends(s)
-        return float(self.ground_z(x0)) if not isinstance(s, Strip) or s.level is None else float(s.level)
+        return float(self.ground_z(x0)) if s.level is None else float(s.level)
 
     def _cut_lines(self, xs) -> list[np.ndarray]:
         """Elevations [m] at ``xs`` of the lines every layer is cut along (mesh lines): the water table and
@@ -301,7 +303,7 @@ class Site:
                     f"(z from {gz.min():g} "
                     f"to {gz.max():g} m); level the ground under the strip (a berm)"
                 )
-            if isinstance(s, Strip) and s.level is not None and s.level > gz[0] + TOL * self.width:
+            if s.level is not None and s.level > gz[0] + TOL * self.width:
                 raise GeometryError(
                     f"strips[{i}].level={s.level:g} m lies above the ground (z={gz[0]:g} m there): a "
                     "foundation in the air"
@@ -397,6 +399,12 @@ class Site:
         :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`). A
         :class:`Push` is refused: a horizontal push is not built in the limit analysis."""
         pushes = [ld for ld in self.loads if isinstance(ld, Push)]
+        for i, _, _, lv in self.embedded():
+            if isinstance(self.strips[i], RigidStrip):
+                raise ValueError(
+                    f"Site.strips[{i}].level={lv:g} m: an embedded RigidStrip is not represented by the "
+                    "limit analysis; read the push-over's SiteResult.rigid_pressure"
+                )
         if pushes:
             raise ValueError(
                 f"Site.limit_analysis: {pushes[0]!r} in Site.loads: a horizontal push is not built in the "

@@ -31,9 +31,10 @@ __all__ = ["BuiltSite"]
 class BuiltSite:
     """A site built into a model: ``mesh`` (SoilMesh or UnstructuredMesh), ``soil`` group, per strip a dict
     (``plate``, ``interface``, ``plate_nodes`` model ids ordered by x, ``soil_nodes``; of a RigidStrip:
-    ``rigid``, ``soil_nodes``, ``width``), ``element_layer`` (n_el,) layer index, ``initial_stress_method``
-    "K0", "gravity" or "none" (weightless soil), ``mesher`` "structured" or "gmsh",
-    ``quality`` of the mesh (:func:`ssi.core.gmsh_mesh.check_quality`)."""
+    ``rigid``, ``soil_nodes``, ``width``, ``body`` the side contact's rigid body node or None),
+    ``element_layer`` (n_el,) layer index, ``initial_stress_method`` "K0", "gravity" or "none" (weightless
+    soil), ``mesher`` "structured" or "gmsh", ``quality`` of the mesh
+    (:func:`ssi.core.gmsh_mesh.check_quality`)."""
 
     site: Site
     model: Model
@@ -66,7 +67,7 @@ class BuiltSite:
             built.initial_stress_method = "none"
         for s in site.strips:
             built._add_strip(s)
-            if isinstance(s, Strip) and s.side_contact is not None:
+            if s.side_contact is not None:
                 built._add_side_contact(len(built.strips) - 1)
         built._add_loads()
         return built
@@ -131,11 +132,20 @@ class BuiltSite:
 
     def _add_strip(self, s: Strip | RigidStrip):
         if isinstance(s, RigidStrip):
-            nodes = self.ground_nodes(s.x0, s.x1)
+            z_base = self.site.base_z(len(self.strips))
+            nodes = self.ground_nodes(s.x0, s.x1, None if s.level is None else z_base)
             if s.rough:
                 self.model.fix(nodes, "u")
             self.model.prescribe(nodes, "w", -s.settle)
-            self.strips.append({"rigid": True, "soil_nodes": nodes, "width": s.x1 - s.x0})
+            body = None
+            if s.side_contact is not None:
+                # the structure side of the wall interfaces: one rigid body (u, w, alpha) at the base's
+                # middle, settling with the base, not rotating, held sideways (a Push prescribes its u)
+                body = int(self.model.add_nodes(np.array([[0.5 * (s.x0 + s.x1), z_base]]), ndof=3)[0])
+                self.model.prescribe([body], "w", -s.settle)
+                self.model.fix([body], "u")
+                self.model.fix([body], "alpha")
+            self.strips.append({"rigid": True, "soil_nodes": nodes, "width": s.x1 - s.x0, "body": body})
             return
         f, model = s.foundation, self.model
         z_base = self.site.base_z(len(self.strips))
@@ -172,13 +182,19 @@ class BuiltSite:
     def _add_side_contact(self, i: int):
         """Interfaces between the trench walls of the embedded strip ``i`` and its vertical sides
         (:func:`ssi.elements.side_interface.add_side_interface`), each side moving rigidly with the strip's
-        end node. They start without traction: the initial stress is that of gravity loading with the trench
-        open, so the walls are free faces (the strip cast against them presses on them only as it moves)."""
+        end node (a RigidStrip: its one rigid body node, both walls). They start without traction: the
+        initial stress is that of gravity loading with the trench open, so the walls are free faces (the
+        strip cast against them presses on them only as it moves)."""
         s, st, site = self.site.strips[i], self.strips[i], self.site
-        f, ids, xy = s.foundation, st["plate_nodes"], self.mesh.xy
+        xy = self.mesh.xy
         z_base, scale = site.base_z(i), max(1.0, site.width)
+        if st.get("rigid"):
+            x0, x1, left, right = s.x0, s.x1, st["body"], st["body"]
+        else:
+            ids = st["plate_nodes"]
+            x0, x1, left, right = s.foundation.x0, s.foundation.x1, ids[0], ids[-1]
         groups = []
-        for x_wall, body, down in ((f.x0, ids[0], True), (f.x1, ids[-1], False)):
+        for x_wall, body, down in ((x0, left, True), (x1, right, False)):
             top = float(site.ground_z(x_wall))
             on = np.flatnonzero(
                 (np.abs(xy[:, 0] - x_wall) < 1e-9 * scale)
@@ -218,7 +234,7 @@ class BuiltSite:
                         model.add_load([ids[i]], comp, v)
             elif isinstance(ld, Push):  # the strip's nodes' u prescribed (a plate's rotations held)
                 st = self.strips[self.site.pushed_strip(ld)]
-                nodes = st["soil_nodes"] if st.get("rigid") else st["plate_nodes"]
+                nodes = _pushed_nodes(st)
                 if not st.get("rigid"):
                     if st["slide_support"] is not None:
                         raise GeometryError(
@@ -239,11 +255,10 @@ class BuiltSite:
     def is_linear(self) -> bool:
         layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
         return all(lay.c is None for lay in layers) and all(
-            isinstance(s, RigidStrip)
-            or (
-                s.contact.phi_deg is None
-                and (s.side_contact is None or s.side_contact.phi_deg is None)
-                and bool(np.all(st["plate"].section.kind == 0))
+            (s.side_contact is None or s.side_contact.phi_deg is None)
+            and (
+                isinstance(s, RigidStrip)
+                or (s.contact.phi_deg is None and bool(np.all(st["plate"].section.kind == 0)))
             )
             for s, st in zip(self.site.strips, self.strips)
         )
@@ -259,6 +274,15 @@ class BuiltSite:
             return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
         levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)
         return SiteResult(self, _run_phase(self.model, levels, settings))
+
+
+def _pushed_nodes(st: dict) -> np.ndarray:
+    """Model ids of the nodes a Push moves of the built strip ``st``: a plate's nodes; a RigidStrip's base
+    nodes and its side contact's rigid body node (if any)."""
+    if not st.get("rigid"):
+        return st["plate_nodes"]
+    body = [] if st.get("body") is None else [st["body"]]
+    return np.concatenate([st["soil_nodes"], np.array(body, np.int64)])
 
 
 def _gauss_points(coords, n_gauss):

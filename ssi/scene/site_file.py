@@ -30,7 +30,8 @@ reuses). SI units::
 ``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes. A strip table
 with ``level`` below the ground is embedded (a trench); its optional ``side_contact`` is a Contact table on
 the trench walls, e.g. ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` (smooth). A strip table
-with ``type = "RigidStrip"`` holds a :class:`RigidStrip`'s fields (``x0``, ``x1``, ``settle``, ``rough``).
+with ``type = "RigidStrip"`` holds a :class:`RigidStrip`'s fields (``x0``, ``x1``, ``settle``, ``rough``,
+``level``, ``side_contact``).
 The optional ``[solve]`` table holds ``n_steps`` and :class:`ssi.solver.Settings` fields, as in a scene file.
 """
 
@@ -77,10 +78,12 @@ def site_from_dict(data: dict, where: str = "site") -> Site:
     strips = []
     for i, s in enumerate(data.get("strips", [])):
         _check_table(s, f"{where}.strips[{i}]")
-        if s.get("type") == "RigidStrip":  # a rigid strip footing: its fields (x0, x1, settle, rough)
-            strips.append(
-                _build(RigidStrip, {k: v for k, v in s.items() if k != "type"}, f"{where}.strips[{i}]")
-            )
+        if s.get("type") == "RigidStrip":  # a rigid strip footing: its fields (x0, x1, settle, rough, level)
+            fields = {k: v for k, v in s.items() if k != "type"}
+            if fields.get("side_contact") is not None:
+                where_side = f"{where}.strips[{i}].side_contact"
+                fields["side_contact"] = _build(Contact, fields["side_contact"], where_side)
+            strips.append(_build(RigidStrip, fields, f"{where}.strips[{i}]"))
             continue
         _check_keys(s, {"foundation", "contact", "level", "side_contact"}, f"{where}.strips[{i}]")
         side = s.get("side_contact")
@@ -135,7 +138,7 @@ def site_to_dict(site: Site) -> dict:
             ]
         elif f.name == "strips":  # a field left at None is left out: the reader's default restores it
             value = [
-                {"type": "RigidStrip", **_to_plain(s)}
+                {"type": "RigidStrip", **{k: v for k, v in _to_plain(s).items() if v is not None}}
                 if isinstance(s, RigidStrip)
                 else {k: v for k, v in _to_plain(s).items() if v is not None}
                 for s in value

@@ -93,14 +93,27 @@ class Strip:
 class RigidStrip:
     """A rigid strip footing from ``x0`` to ``x1`` [m] on level ground, without plate or interface: the
     ground nodes under it are its base, pushed down by ``settle`` [m] times the load factor (displacement
-    control: the reaction is the load, :meth:`SiteResult.rigid_pressure`); ``rough``: their u held too."""
+    control: the reaction is the load, :meth:`SiteResult.rigid_pressure`); ``rough``: their u held too.
+    ``level`` [m] and ``side_contact`` as for :class:`Strip`: a level below the ground embeds it in a trench
+    (its base the trench bottom), and ``side_contact`` puts interfaces on the trench walls whose structure
+    side is one rigid body moving with the base: settling by ``settle`` times the load factor, not
+    rotating, its horizontal motion held (or prescribed by a :class:`~ssi.scene.loads.Push`)."""
 
     x0: float
     x1: float
     settle: float
     rough: bool = True
+    level: float | None = None
+    side_contact: Contact | None = None
 
     def __post_init__(self):
         check_real("RigidStrip.x0", self.x0, unit="m")
         check_real("RigidStrip.x1", self.x1, lo=self.x0, lo_open=True, unit="m (> x0)")
         check_real("RigidStrip.settle", self.settle, lo=0.0, lo_open=True, unit="m")
+        check_optional_real("RigidStrip.level", self.level, unit="m")
+        check_instance("RigidStrip.side_contact", self.side_contact, Contact, optional=True)
+        if self.side_contact is not None and self.level is None:
+            raise GeometryError(
+                "RigidStrip.side_contact needs an embedded strip: give RigidStrip.level, the elevation of "
+                "its base below the ground [m]"
+            )

@@ -27,17 +27,22 @@ class SiteResult:
 
     def rigid_pressure(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         """(settlement [m], mean pressure [Pa]) histories of the RigidStrip ``i``: the pressure is the
-        vertical support reaction of its base nodes over its width."""
+        vertical support reaction of its base nodes (and of an embedded strip's side contact body, the
+        friction on its walls) over its width."""
+        from .site_built import _pushed_nodes
+
         st, res = self.built.strips[i], self.result
         w = res.displacement(st["soil_nodes"][:1], "w")[:, 0]
-        return -w, -res.support_reaction(st["soil_nodes"], "w") / st["width"]
+        return -w, -res.support_reaction(_pushed_nodes(st), "w") / st["width"]
 
     def push_force(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         """(horizontal displacement [m], horizontal force [N/m]) histories of strip ``i`` pushed by a
         :class:`~ssi.scene.loads.Push`, both > 0 in +x: the displacement of its first pushed node and the
         summed support reaction at its pushed u DOFs (a plate's nodes, a RigidStrip's base)."""
+        from .site_built import _pushed_nodes
+
         st, res = self.built.strips[i], self.result
-        nodes = st["soil_nodes"] if st.get("rigid") else st["plate_nodes"]
+        nodes = _pushed_nodes(st)
         return res.displacement(nodes[:1], "u")[:, 0], res.support_reaction(nodes, "u")
 
     def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
