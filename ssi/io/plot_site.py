@@ -24,6 +24,7 @@ if TYPE_CHECKING:  # annotations only
 
 __all__ = [
     "draw_site",
+    "ground_line",
     "save_site_figures",
     "site_deformed_mesh",
     "site_figures",
@@ -33,28 +34,49 @@ __all__ = [
 ]
 
 
+def ground_line(site) -> tuple[np.ndarray, np.ndarray]:
+    """(x, z) [m] of the soil's top surface: the ground polyline with every embedded strip's trench cut in
+    (down its left wall, along the base level, up its right wall), x non-decreasing (a wall: two points at
+    the same x)."""
+    xs = np.unique(np.concatenate([np.linspace(site.x_left, site.x_right, 401), site.breaks()]))
+    pts = [(x, float(site.ground_z(x))) for x in xs]
+    for _, x0, x1, lv in site.embedded():
+        left = [p for p in pts if p[0] < x0]  # the ground over the trench (x0 to x1) is gone
+        right = [p for p in pts if p[0] > x1]
+        walls = [(x0, float(site.ground_z(x0))), (x0, lv), (x1, lv), (x1, float(site.ground_z(x1)))]
+        pts = left + walls + right
+    a = np.array(pts)
+    return a[:, 0], a[:, 1]
+
+
 def draw_site(ax: Axes, site, result: SiteResult | None = None, k: int = -1) -> None:
-    """The site's geometry on ``ax``: the ground (black), every layer boundary (dashed grey, cut by the
-    ground), the water table (blue) and the foundations (thick: a plate strip at its reference surface,
-    a rigid strip on the ground), the column loads as arrows, each foundation numbered as in the summary."""
-    xs = np.linspace(site.x_left, site.x_right, 401)
-    ax.plot(xs, site.ground_z(xs), "k-", lw=1.0, zorder=4, label="ground")
+    """The site's geometry on ``ax``: the ground (black, with every embedded strip's trench cut in), every
+    layer boundary (dashed grey, cut by the ground and the trenches), the water table (blue), the side
+    contact on the trench walls (green) and the foundations (thick, at their base level: a plate strip at
+    its reference surface, a rigid strip), the column loads as arrows, each foundation numbered as in the
+    summary."""
+    xs, top = ground_line(site)
+    ax.plot(xs, top, "k-", lw=1.0, zorder=4, label="ground")
     for b in range(len(site.layers) - 1):
-        ax.plot(xs, site.boundary_z(b, xs), "--", color="0.4", lw=0.8, zorder=4,
+        ax.plot(xs, np.minimum(site.boundary_z(b, xs), top), "--", color="0.4", lw=0.8, zorder=4,
                 label="layer boundary" if b == 0 else None)  # fmt: skip
+    first = True
+    for i, x0, x1, lv in site.embedded():
+        if site.strips[i].side_contact is not None:
+            for x in (x0, x1):
+                ax.plot([x, x], [float(site.ground_z(x)), lv], "-", color="C2", lw=2.5, zorder=5,
+                        label="side contact" if first else None)  # fmt: skip
+                first = False
     zw = site.water_z(xs)
     if np.isfinite(zw).any():
-        wet = zw <= site.ground_z(xs) + 1e-9  # the water table where it lies in the ground
+        wet = zw <= top + 1e-9  # the water table where it lies in the ground
         ax.plot(np.where(wet, xs, np.nan), zw, "-", color="C9", lw=1.3, zorder=4, label="water table")
     from ..scene import ColumnLoad
 
     height = 0.04 * site.width
     for i, s in enumerate(site.strips):
-        if hasattr(s, "foundation"):
-            x0, x1 = s.foundation.x0, s.foundation.x1
-            z = float(site.ground_z(x0)) if s.level is None else float(s.level)
-        else:  # a RigidStrip: its base is the ground
-            x0, x1, z = s.x0, s.x1, float(site.ground_z(s.x0))
+        x0, x1 = (s.foundation.x0, s.foundation.x1) if hasattr(s, "foundation") else (s.x0, s.x1)
+        z = site.base_z(i)  # the ground under it, or its level if embedded
         ax.plot([x0, x1], [z, z], "-", color="C1", lw=4, solid_capstyle="butt", zorder=5,
                 label="foundation" if i == 0 else None)  # fmt: skip
         ax.annotate(f"#{i}", (0.5 * (x0 + x1), z + 0.3 * height), ha="center", fontsize=8, zorder=6)
