@@ -25,6 +25,7 @@ import numpy as np
 from ..core.mesh import SoilMesh
 from ..core.validate import check_real
 from ..limit import LimitCheck, check_limit
+from ..scene import MeshSize
 from ..solver import LIMIT_LOAD
 from . import paths
 from .digitize import read_reference
@@ -38,6 +39,7 @@ __all__ = [
     "bracket_verdict",
     "perturb_soil_modulus",
     "limit_check",
+    "limit_key",
     "permute_nodes",
     "read_zoo_brackets",
     "renumbered_nodes",
@@ -53,6 +55,21 @@ def bracket_scenes() -> list[tuple[str, object]]:
     """The scenes the table covers, in its order: the 100 random scenes of seed 1 (chapter 06 (d), (h))
     then the fixed ordinary scenes (tests/test_zoo.py)."""
     return random_scenes(100, seed=1) + ordinary_scenes()
+
+
+def limit_key(scene) -> str:
+    """A key equal for scenes that are the same limit problem: the scene with what limit analysis does not
+    read -- the soil's stiffness (E, nu, nu_u, K0), its integration scheme, the contact's stiffnesses and
+    the incremental mesh -- set to fixed values (the zoo's nu and h_fine variants of one scene share a
+    bracket)."""
+    layers = [
+        replace(lay, E=1e7, nu=0.3, K0=None, nu_u=0.495, scheme="implicit", n_sub=1, drift=False)
+        for lay in scene.layers
+    ]
+    contact = scene.contact
+    if contact is not None and hasattr(contact, "kn"):
+        contact = replace(contact, kn=1e10, kt=1e9)
+    return repr(replace(scene, layers=layers, contact=contact, mesh=MeshSize()))
 
 
 def zoo_bracket(scene, gap: float, **options) -> dict:
