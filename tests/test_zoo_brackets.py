@@ -1,8 +1,8 @@
-"""The stored brackets of the zoo's scenes (reference_data/zoo_brackets.csv, written by tools/zoo_brackets.py)
-and the helpers of chapter 06's checks against them (ssi.lab.zoo_limits).
+"""The stored brackets of the zoo's scenes (reference_data/zoo_brackets_*.csv, written by
+tools/zoo_brackets.py) and the helpers of chapter 06's checks against them (ssi.lab.zoo_limits).
 
-The table must not go stale silently: one stored scene (the one with the fewest triangles, so the test stays
-within a few seconds) is recomputed with the stored requested gap and compared with its row.
+The tables must not go stale silently: in each, one stored scene (the one with the fewest triangles, so the
+test stays within a few seconds) is recomputed with the stored requested gap and compared with its row.
 """
 
 import numpy as np
@@ -11,7 +11,7 @@ import pytest
 from ssi.core.mesh import soil_block
 from ssi.lab.zoo import _base
 from ssi.lab.zoo_limits import (
-    BRACKETS_FILE,
+    BRACKETS_FILES,
     bracket_scenes,
     bracket_verdict,
     permute_nodes,
@@ -22,11 +22,15 @@ from ssi.lab.zoo_limits import (
 from ssi.scene import ColumnLoad
 
 
-@pytest.mark.skipif(not BRACKETS_FILE.exists(), reason="reference_data/zoo_brackets.csv not written yet")
-def test_a_stored_bracket_is_recomputed_to_the_solver_tolerance():
-    meta, rows = read_zoo_brackets()
-    assert rows, "the table holds no bracket"
-    certified = [n for n in rows if np.isfinite(rows[n]["lb"]) and np.isfinite(rows[n]["lb_davis"])]
+@pytest.mark.parametrize("part", list(BRACKETS_FILES))
+def test_a_stored_bracket_is_recomputed_to_the_solver_tolerance(part):
+    if not BRACKETS_FILES[part].exists():
+        pytest.skip(f"{BRACKETS_FILES[part].name} not written yet (tools/zoo_brackets.py {part})")
+    metas, rows = read_zoo_brackets()
+    meta = metas[part]
+    mine = [n for n in rows if n.startswith("random ") == (part == "random")]
+    certified = [n for n in mine if np.isfinite(rows[n]["lb"]) and np.isfinite(rows[n]["lb_davis"])]
+    assert certified, f"{part}: the table holds no certified bracket"
     name = min(certified, key=lambda n: (rows[n]["triangles"], n))
     scene = dict(bracket_scenes())[name]
     row = zoo_bracket(scene, float(meta["gap_requested"]), max_elements=int(meta["max_elements"]))

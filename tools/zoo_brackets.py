@@ -1,8 +1,8 @@
 """Compute the limit-analysis bracket of every zoo scene and store them as a reference CSV (chapter 06's rows
 ``fela_zoo`` and ``zoo_limits_certified`` check the zoo's incremental limits against them).
 
-    python tools/zoo_brackets.py [--gap 0.05] [--max-elements 3000] [--scenes all|random|ordinary]
-                                 [--first N] [--out FILE] [--overwrite]
+    python tools/zoo_brackets.py random|ordinary [--gap 0.05] [--max-elements 3000] [--first N]
+                                 [--out FILE] [--overwrite]
 
 The scenes are :func:`ssi.lab.zoo_limits.bracket_scenes` (the 100 random scenes of seed 1, then the ordinary
 scenes); for each, ``scene.limit_analysis(gap=GAP)``: the associated bracket [lb, ub] and the Davis bracket
@@ -10,7 +10,8 @@ scenes); for each, ``scene.limit_analysis(gap=GAP)``: the associated bracket [lb
 until its relative gap (ub - lb)/(ub + lb) <= GAP. A scene the limit problem cannot represent (an embedded
 strip, an excavation, ...) is listed in the file's ``refused`` line with the reason; a scene that is the same
 limit problem as one before it (another nu, E or incremental mesh: :func:`ssi.lab.zoo_limits.limit_key`)
-shares its bracket (column ``same_as``). ``--scenes random|ordinary`` computes one part only.
+shares its bracket (column ``same_as``). One part of the zoo per run and per file (``random``:
+reference_data/zoo_brackets_random.csv, ``ordinary``: zoo_brackets_ordinary.csv).
 
 The gap: the check accepts an incremental limit in [0.97 LB_Davis, 1.03 UB_assoc], so its own slack is 3 %
 either side; a bracket much coarser than that would make the band wider than the bracket's meaning, a finer
@@ -29,7 +30,7 @@ import time
 from pathlib import Path
 
 from ssi.lab.digitize import write_reference
-from ssi.lab.zoo_limits import BRACKETS_FILE, COLUMNS, bracket_scenes, limit_key, zoo_bracket
+from ssi.lab.zoo_limits import BRACKETS_FILES, COLUMNS, bracket_scenes, limit_key, zoo_bracket
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_GAP = 0.05
@@ -44,18 +45,15 @@ def main(argv=None):
     ap.add_argument(
         "--max-elements", type=int, default=DEFAULT_MAX_ELEMENTS, help="size limit of each adaptive mesh"
     )
-    ap.add_argument(
-        "--scenes", choices=("all", "random", "ordinary"), default="all", help="which of the zoo's scenes"
-    )
+    ap.add_argument("scenes", choices=tuple(BRACKETS_FILES), help="which part of the zoo (one file each)")
     ap.add_argument("--first", type=int, default=None, help="only the first N scenes (trying the tool)")
-    ap.add_argument("--out", type=Path, default=BRACKETS_FILE)
+    ap.add_argument("--out", type=Path, default=None, help="default: the part's file in reference_data/")
     ap.add_argument("--overwrite", action="store_true")
     args = ap.parse_args(argv)
+    args.out = BRACKETS_FILES[args.scenes] if args.out is None else args.out
     if args.out.exists() and not args.overwrite:
         raise SystemExit(f"{args.out} exists; pass --overwrite to replace it")
-    scenes = bracket_scenes()
-    if args.scenes != "all":
-        scenes = [(n, sc) for n, sc in scenes if n.startswith("random ") == (args.scenes == "random")]
+    scenes = [(n, sc) for n, sc in bracket_scenes() if n.startswith("random ") == (args.scenes == "random")]
     scenes = scenes[: args.first]
     rows, refused = [], []
     computed = {}  # limit_key -> the row of the first scene with that limit problem
@@ -97,7 +95,8 @@ def main(argv=None):
         "material lies in [lb, ub] whatever the mesh; the Davis bracket likewise for the Davis material)",
         "uncertainty": f"the bracket itself: each refined to a relative gap <= {args.gap:g} (the stored gap "
         "column: larger only where the size limit stopped the refinement)",
-        "how_obtained": f"python tools/zoo_brackets.py --gap {args.gap:g} --max-elements {args.max_elements}"
+        "how_obtained": f"python tools/zoo_brackets.py {args.scenes} --gap {args.gap:g} "
+        f"--max-elements {args.max_elements}"
         + (f" --first {args.first}" if args.first else "")
         + f" at commit {commit} on {datetime.date.today().isoformat()}; {len(rows)} scenes in "
         f"{total:.0f} s (nice -n 10 on the project's shared 2-core machine)",

@@ -3,8 +3,9 @@
 Each zoo scene (:mod:`ssi.lab.zoo`) has a certified bracket of its collapse load factor lambda (lambda scales
 the column load; the soil's weight is held): the associated bracket [LB, UB] and the Davis one [LB_D, UB_D]
 (:meth:`ssi.scene.Scene.limit_analysis`). ``tools/zoo_brackets.py`` computes them once and stores them in
-``reference_data/zoo_brackets.csv`` (:func:`zoo_bracket` computes one row, :func:`read_zoo_brackets`
-reads the table); chapter 06 reads the table and checks every incremental outcome against it
+``reference_data/zoo_brackets_random.csv`` and ``zoo_brackets_ordinary.csv`` (:func:`zoo_bracket`
+computes one row, :func:`read_zoo_brackets` reads the tables); chapter 06 reads them and checks every
+incremental outcome against its bracket
 (:func:`bracket_verdict`, the band [0.97 LB_Davis, 1.03 UB_assoc] of :func:`ssi.limit.check_limit`).
 
 For the round-off check of the zoo's limits (row ``roundoff_limits``) the same scene is re-solved with the
@@ -33,7 +34,7 @@ from .zoo import ordinary_scenes, random_scenes
 
 __all__ = [
     "BAND",
-    "BRACKETS_FILE",
+    "BRACKETS_FILES",
     "bracket_check",
     "bracket_scenes",
     "bracket_verdict",
@@ -46,7 +47,11 @@ __all__ = [
     "zoo_bracket",
 ]
 
-BRACKETS_FILE = paths.REFERENCE_DATA / "zoo_brackets.csv"
+# one file per part of the zoo, each with its own provenance (computed by separate runs of the tool)
+BRACKETS_FILES = {
+    "random": paths.REFERENCE_DATA / "zoo_brackets_random.csv",
+    "ordinary": paths.REFERENCE_DATA / "zoo_brackets_ordinary.csv",
+}
 BAND = (0.03, 0.03)  # check_limit's margins below LB_Davis and above UB_assoc (issue 30, item 6)
 COLUMNS = ("lb", "ub", "lb_davis", "ub_davis", "gap", "gap_davis", "triangles", "seconds")
 
@@ -91,12 +96,17 @@ def zoo_bracket(scene, gap: float, **options) -> dict:
     }
 
 
-def read_zoo_brackets(path=None) -> tuple[dict, dict[str, dict]]:
-    """``(meta, rows)`` of the stored table: ``rows[scene name]`` a dict of :data:`COLUMNS` (floats).
-    Scenes the limit problem refused are not rows; ``meta["refused"]`` lists them with the reason."""
-    meta, cols = read_reference(BRACKETS_FILE if path is None else path)
-    names = [str(s) for s in cols["scene"]]
-    rows = {n: {k: float(cols[k][i]) for k in COLUMNS} for i, n in enumerate(names)}
+def read_zoo_brackets() -> tuple[dict, dict[str, dict]]:
+    """``(meta, rows)`` of the stored tables (:data:`BRACKETS_FILES`; a part not computed yet is absent):
+    ``rows[scene name]`` a dict of :data:`COLUMNS` (floats); ``meta[part]`` the part's provenance. Scenes
+    the limit problem refused are not rows; ``meta[part]["refused"]`` lists them with the reason."""
+    meta, rows = {}, {}
+    for part, path in BRACKETS_FILES.items():
+        if not path.exists():
+            continue
+        meta[part], cols = read_reference(path)
+        for i, name in enumerate(str(s) for s in cols["scene"]):
+            rows[name] = {k: float(cols[k][i]) for k in COLUMNS}
     return meta, rows
 
 
