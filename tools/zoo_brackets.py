@@ -91,8 +91,9 @@ def main(argv=None):
         "held), associated and Davis brackets; gap, gap_davis: achieved (ub - lb)/(ub + lb); triangles: the "
         "final associated mesh; seconds: wall time of both brackets [s] (0 for a scene that is the same "
         "limit problem as the one named in same_as: another nu, E or incremental mesh)",
-        "trust": "A (rigorous bounds, certified after each solve: the collapse load of the associated "
-        "material lies in [lb, ub] whatever the mesh; the Davis bracket likewise for the Davis material)",
+        "trust": "B (numerical, by this code: rigorous bounds certified after each solve -- the collapse "
+        "load of the associated material lies in [lb, ub] whatever the mesh, the Davis bracket likewise for "
+        "the Davis material -- but their certification is this code's own, not an independent reference)",
         "uncertainty": f"the bracket itself: each refined to a relative gap <= {args.gap:g} (the stored gap "
         "column: larger only where the size limit stopped the refinement)",
         "how_obtained": f"python tools/zoo_brackets.py {args.scenes} --gap {args.gap:g} "
