@@ -7,17 +7,32 @@ forms, not by the code under test:
   tan^2(45 + phi/2), N_c = (N_q - 1) cot phi, N_c = 2 + pi for phi = 0;
 - sliding of a rigid footing held against rotation on a Coulomb joint over far stronger soil:
   H = c_i B + N tan phi_i;
-- strength reduction of a Tresca footing: the capacity is proportional to c, so F* = q_u / q_applied.
+- strength reduction of a Tresca footing: the capacity is proportional to c, so F* = q_u / q_applied;
+- a rotating rigid strip on Tresca soil (c = s_u) under a vertical load V at eccentricity e: Meyerhof's
+  effective width, V_M = (2 + pi) s_u (B - 2e), is a rigorous lower bound of the exact load for any
+  interface that can carry zero shear (Prandtl's statically admissible field, which extends into the whole
+  half-space for Tresca, under the width B - 2e centred on the load and zero traction on the rest of the
+  base: the footing is in equilibrium, moment included), so UB >= V_M;
+- its moment capacity under zero vertical load, bonded base: the circular "scoop" mechanism (the footing
+  and a circular block of soil below it rotating about a point on the footing's axis, slip on the arc
+  through the footing's edges at s_u) is a rigorous upper bound M = (B^2 / 2) s_u alpha / sin^2 alpha,
+  least at tan alpha = 2 alpha (alpha = 1.1656): M = 0.6900 s_u B^2, so LB <= 0.6900 s_u B^2;
+- on one mesh, freeing a footing's rotation (one more unknown in the upper bound, one more equation in the
+  lower bound) can only lower both bounds; so can letting it bend (a beam with plastic hinges: more
+  mechanisms, more constraints on the stress field), and a beam too strong to yield is the rigid footing.
 Each bound is rigorous for its mesh, so the assertions LB <= exact <= UB have no tolerance beyond the
 solver's relative accuracy REL (1e-6: Clarabel's tolerances are 1e-9 and the lower bound is certified).
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from ssi.limit import (
+    Beam,
+    Footing,
     Interface,
     Material,
     adaptive,
@@ -262,3 +277,99 @@ def test_flexible_load_with_a_fan_brackets_sg61():
     assert br.lb <= (2 + math.pi) * 100e3 <= br.ub
     with pytest.raises(ValueError, match="fans"):
         triangulate(site, 1.5, fans=((2.5, 0.0, 0.6, 12),))
+
+
+def scoop_moment(B, su):
+    """The least circular-scoop upper bound of a bonded strip's moment capacity [N m/m] (module docstring)."""
+    from scipy.optimize import brentq
+
+    alpha = brentq(lambda a: math.tan(a) - 2 * a, 0.8, 1.5)
+    return 0.5 * B**2 * su * alpha / math.sin(alpha) ** 2
+
+
+def two_edge_size(p):
+    """Element size [m] graded towards both edges (x = -1, 1 m) of a 2 m footing."""
+    return 0.15 + 0.3 * np.minimum(np.hypot(p[:, 0] - 1, p[:, 1]), np.hypot(p[:, 0] + 1, p[:, 1]))
+
+
+def rotating_strip(kind="rough", V=1.0, M=0.0, moves=("x", "z", "r")):
+    """A weightless Tresca strip B = 2 m, s_u = 10 kPa, whole model, the footing free to rotate about the
+    centre of its base; lambda scales (0, -V) and the moment M [N m/m]."""
+    itf = Interface(kind) if kind != "coulomb" else Interface("coulomb", c=0.0, phi_deg=45.0)
+    site = strip_site(2.0, Material(10e3, 0.0), itf, half_width=4.0, depth=3.0, symmetric=False)
+    centre = (0.0, 0.0) if "r" in moves else None
+    ft = Footing(itf, (0.0, -V), (0.0, 0.0), moves, centre=centre, moment_ref=M)
+    site = replace(site, footings=(ft,))
+    return site, triangulate(site, 1.0, size=two_edge_size)
+
+
+@pytest.mark.parametrize("kind", ["rough", "coulomb"])
+def test_eccentric_load_on_a_rotating_footing(kind):
+    """V at e = B/8 (moment -V e about the centre): certified, UB above Meyerhof's rigorous lower bound, the
+    virtual-work identity of the two fields exact (it checks the moment row of the lower bound against the
+    rotation's power in the upper bound), and the footing turning towards the load."""
+    e = 0.25
+    site, mesh = rotating_strip(kind, M=-e)
+    br = bracket(site, mesh)
+    v_m = (2.0 + math.pi) * 10e3 * (2.0 - 2 * e)
+    assert br.lower.certified, br.lower.reason
+    assert br.ub >= v_m * (1 - REL), br.ub / v_m
+    assert br.identity_error < 1e-9
+    assert br.upper.footing_rotation[0] < 0.0  # clockwise: the loaded right side goes down
+    # the bracket says something on this ~260-element mesh (measured [0.948, 1.162] x V_M)
+    assert 0.85 * v_m < br.lb and br.ub < 1.3 * v_m
+
+
+def test_moment_capacity_of_a_bonded_strip_below_the_scoop():
+    site, mesh = rotating_strip("rough", V=0.0, M=1.0)
+    br = bracket(site, mesh)
+    scoop = scoop_moment(2.0, 10e3)
+    assert abs(scoop / (10e3 * 4.0) - 0.6900) < 5e-5  # the classical 0.69 s_u B^2
+    assert br.lower.certified, br.lower.reason
+    assert br.lb <= scoop * (1 + REL) and br.lb > 0.9 * scoop, br.lb / scoop  # measured 0.97
+    assert br.ub >= br.lb and br.identity_error < 1e-9
+
+
+def test_a_free_rotation_lowers_both_bounds_on_one_mesh():
+    """Centred load: the exact load is Prandtl's with the rotation free or held (the mirror image of a
+    tilting mechanism costs the same, and their average does not tilt); on one mesh the freer problem's
+    bounds can only be lower, and both brackets contain Prandtl."""
+    held_site, mesh = rotating_strip("rough", moves=("x", "z"))
+    free_site, _ = rotating_strip("rough")
+    held, free = bracket(held_site, mesh), bracket(free_site, mesh)
+    exact = prandtl_q(10e3, 0.0) * 2.0
+    for br in (held, free):
+        assert br.lower.certified and br.lb <= exact * (1 + REL) and exact <= br.ub * (1 + REL)
+    assert free.lb <= held.lb * (1 + REL) and free.ub <= held.ub * (1 + REL)
+
+
+def beam_strip(mp, kind="rough"):
+    """rotating_strip's footing as a beam with M_p = ``mp`` [N m/m] (sagging and hogging) under two columns
+    of lambda x 0.5 N/m at x = -0.5 and 0.5 m."""
+    itf = Interface(kind) if kind != "coulomb" else Interface("coulomb", c=0.0, phi_deg=45.0)
+    site = strip_site(2.0, Material(10e3, 0.0), itf, half_width=4.0, depth=3.0, symmetric=False,
+                      base_points=(-0.5, 0.5))  # fmt: skip
+    beam = Beam(-1.0, 1.0, mp, mp, loads_ref=((-0.5, 0.0, -0.5, 0.0), (0.5, 0.0, -0.5, 0.0)))
+    site = replace(site, footings=(Footing(itf, moves=("x", "z", "r"), centre=(0.0, 0.0), beam=beam),))
+    return site
+
+
+@pytest.mark.parametrize("kind", ["rough", "coulomb"])
+def test_a_beam_footing_between_rigid_and_weak(kind):
+    """Same mesh: a beam whose M_p (1e9 N m/m) no load on this soil reaches gives the rigid rotating
+    footing's bounds; a weak one (1 kN m/m) gives both bounds lower, certified, its moment within M_p and
+    the virtual-work identity exact with the hinges' term."""
+    rigid_site = beam_strip(1.0, kind)
+    rigid_site = replace(
+        rigid_site, footings=(replace(rigid_site.footings[0], beam=None, load_ref=(0.0, -1.0)),)
+    )
+    mesh = triangulate(rigid_site, 1.0, size=two_edge_size)
+    rigid = bracket(rigid_site, mesh)
+    strong = bracket(beam_strip(1e9, kind), mesh)
+    weak = bracket(beam_strip(1e3, kind), mesh)
+    assert strong.lb == pytest.approx(rigid.lb, rel=REL) and strong.ub == pytest.approx(rigid.ub, rel=REL)
+    assert weak.lower.certified, weak.lower.reason
+    assert weak.lb <= rigid.lb * (1 + REL) and weak.ub <= rigid.ub * (1 + REL)
+    assert weak.ub < 0.8 * rigid.ub  # the beam's mechanism governs (measured 0.52)
+    assert weak.lower.beam[0]["utilisation"] <= 1.0
+    assert weak.identity_error < 1e-9 and strong.identity_error < 1e-9

@@ -169,10 +169,11 @@ def _scene(**kw):
             dict(layers=[SoilLayer(5.0, E=20e6, nu=0.3, c=1e3, phi_deg=30.0, drainage="undrained_A")]),
             r"layers\[0\]\.drainage='undrained_A'",
         ),
-        (dict(loads=[ColumnLoad(0.0, N=100e3, M=10e3)]), r"ColumnLoad.M=10000.0"),
+        (
+            dict(loads=[ColumnLoad(0.5, N=100e3)], phases=[Phase("push", loads=(Settlement(0.01),))]),
+            r"moment -50000 N m/m about the centre of its base x = 0 m, but its rotation is held",
+        ),
         (dict(foundation=RigidFooting(-1.0, 1.0), contact=None), r"a ColumnLoad on a RigidFooting"),
-        (dict(loads=[ColumnLoad(0.5, N=100e3)]), r"moment 50000 N m/m about its centre"),
-        (dict(loads=[StripLoad(1e4, q_end=2e4)]), r"moment .* about its centre"),
         (dict(embedment=1.0, layers=[_layer(1.0), _layer(4.0)]), r"Scene.embedment=1.0"),
         (
             dict(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=1e3)),
@@ -293,3 +294,18 @@ def test_a_site_brackets_prandtl_and_refuses_what_it_cannot_represent():
     )
     with pytest.raises(ValueError, match=r"Site.layers\[0\] is a DepthVarying"):
         limit_problem(varying)
+
+
+def test_eccentric_column_and_strip_loads_become_the_footing_moment():
+    """A plate strip's loads about the centre of its base (x_c = 0, z = 0), counter-clockwise positive: a
+    column N at x = 0.5 m with H and M gives M - N x - H e (e = 0.25 m, the homogeneous 0.5 m section's
+    mid-plane above the base); a trapezoidal strip load q = 10 -> 20 kPa over [-1, 1] m has the resultant
+    30 kN/m at x = 1/9 m (the centroid of the trapezoid), moment -30e3/9; the rotation is free."""
+    col = ColumnLoad(0.5, N=100e3, H=5e3, M=7e3)
+    p = limit_problem(_scene(loads=[col]))
+    (ft,) = p.site.footings
+    assert ft.moves == ("x", "z", "r") and ft.centre == (0.0, 0.0)
+    assert ft.moment_ref == pytest.approx(7e3 - 100e3 * 0.5 - 5e3 * 0.25, rel=1e-12)
+    assert ft.load_ref == pytest.approx((5e3, -100e3), rel=1e-12)
+    p = limit_problem(_scene(loads=[StripLoad(1e4, q_end=2e4)]))
+    assert p.site.footings[0].moment_ref == pytest.approx(-30e3 / 9.0, rel=1e-12)

@@ -15,13 +15,16 @@ phi, effective unit weight; an undrained layer phi = 0), a rigid footing a :clas
 ``footing`` segments (its interface rough / smooth / Coulomb), a surcharge the ``pressure_dead`` of the free
 surface, the loads that scale with lambda ``load_ref`` / ``pressure_ref`` (a ``Settlement`` push: the
 footing's vertical force, so lambda is its mean pressure), a symmetric scene the axis as a "symmetry"
-segment and the footing moving along z only. Not covered yet: pore pressures as loads (only effective unit
-weights), footing rotation, a beam strip with plastic hinges.
+segment and the footing moving along z only; a footing with "r" in its ``moves`` also rotates about its
+``centre`` (its ``moment_ref`` / ``moment_dead`` balanced by the base tractions' moment). Not covered yet:
+pore pressures as loads (only effective unit weights). A footing with a :class:`Beam` bends: a beam along
+its base with plastic hinges (M_p sagging and hogging) at every base node.
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
 from .check import LimitCheck, check_limit, flag_suspect
 from .geometry import (
+    Beam,
     Boundary,
     Footing,
     Interface,
@@ -37,6 +40,7 @@ from .upper import UpperBound, upper_bound
 
 __all__ = [
     "AdaptiveResult",
+    "Beam",
     "Boundary",
     "Bracket",
     "Footing",

@@ -32,7 +32,8 @@ def scales(site: Site) -> Scales:
             ref += abs(b.pressure_ref) * length
     for f in site.footings:
         s += [float(np.hypot(*f.load_ref)) / L, float(np.hypot(*f.load_dead)) / L]
-        ref += float(np.hypot(*f.load_ref))
+        s += [abs(f.moment_ref) / L**2, abs(f.moment_dead) / L**2]
+        ref += float(np.hypot(*f.load_ref)) + abs(f.moment_ref) / L
     S = max(max(s), 1e-12)
     if ref == 0.0:
         raise ValueError("the site has no reference load: give a footing load_ref or a pressure_ref")

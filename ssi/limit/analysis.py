@@ -23,7 +23,7 @@ from ._common import boundary_edges
 from .geometry import Site
 from .lower import LowerBound, lower_bound
 from .mesh import TriMesh, bisect
-from .upper import UpperBound, upper_bound
+from .upper import UpperBound, footing_velocity_at, upper_bound
 
 __all__ = [
     "AdaptiveResult",
@@ -88,7 +88,8 @@ def gap_shares(site: Site, mesh: TriMesh, lower: LowerBound, upper: UpperBound) 
         bnd = site.segments[be.seg[j]][2]
         if bnd.kind != "footing" or site.footings[bnd.footing].interface.kind == "rough":
             continue
-        U = upper.footing_velocity[bnd.footing]
+        ends = np.array([mesh.xy[be.p[j]], 0.5 * (mesh.xy[be.p[j]] + mesh.xy[be.q[j]]), mesh.xy[be.q[j]]])
+        Ua, Um, Ub = footing_velocity_at(site, upper, bnd.footing, ends)
         e = be.el[j]
         nx, nz = be.n[j]
 
@@ -97,9 +98,14 @@ def gap_shares(site: Site, mesh: TriMesh, lower: LowerBound, upper: UpperBound) 
             return np.array([sx * nx + tau * nz, tau * nx + sz * nz])
 
         ta, tb = trac(be.lp[j]), trac(be.lq[j])
-        da, db = U - vel[be.p[j]], U - vel[be.q[j]]
-        dm = U - vel[n_nodes + be.edge[j]]
+        da, db = Ua - vel[be.p[j]], Ub - vel[be.q[j]]
+        dm = Um - vel[n_nodes + be.edge[j]]
         share[e] -= be.length[j] / 6.0 * (ta @ da + 2.0 * (ta + tb) @ dm + tb @ db)
+    # a beam's hinges: mp |rotation| - M rotation, M the lower bound's moment at the hinge
+    for f, b in upper.beam.items():
+        m_lb = lower.beam[f]
+        work_h = m_lb["M_right"][:-1] * b["hinge"][:, 0] + m_lb["M_left"][1:] * b["hinge"][:, 1]
+        np.add.at(share, b["el"], -work_h)
     return share
 
 
@@ -124,7 +130,8 @@ def bracket(site: Site, mesh: TriMesh, label: str = "", previous: Bracket | None
             lo = lo_c
     if previous is not None and mesh.parent is not None and up.lam > previous.ub:
         v, fv = carry_velocity(previous.mesh, mesh, previous.upper.velocity), previous.upper.footing_velocity
-        up_c = upper_bound(site, mesh, velocity=(v, fv))
+        motion = (v, fv, previous.upper.footing_rotation, previous.upper.beam)
+        up_c = upper_bound(site, mesh, velocity=motion)
         if up_c.lam < up.lam:
             up_c.time, up_c.iterations, up_c.status = up.time, up.iterations, f"carried ({up.status})"
             up_c.lam_solver = up.lam_solver

@@ -21,6 +21,7 @@ from ..core.validate import check_choice, check_int, check_real
 from ..materials.soil_laws import davis_beta
 
 __all__ = [
+    "Beam",
     "Boundary",
     "Footing",
     "Interface",
@@ -121,31 +122,134 @@ class Interface:
 
 
 @dataclass(frozen=True)
-class Footing:
-    """A rigid footing (translation only: its rotation is held) on the ``footing`` segments of a site.
+class Beam:
+    """A footing that bends: a rigid-plastic beam along its base, x0..x1 [m] on a straight horizontal base,
+    one element per base edge of the triangle mesh (each element rigid, inextensible), a hinge at each end
+    of every element, i.e. on both sides of every base node (with no couple at a node the two act as one).
+    A hinge rotating in sagging (tension at the bottom, the rotation rising along +x) dissipates ``mp_sag``
+    [N m/m] times its rotation, in hogging ``mp_hog`` [N m/m]; the axial force does not enter M_p (the
+    moment capacity at N = 0) and the beam's axis is the base (a load's horizontal force above the base is
+    given here as the force at the base and its couple).
 
-    ``load_ref`` (Fx, Fz) [N/m] is the reference force on the footing that the load factor lambda scales,
-    ``load_dead`` (Fx, Fz) [N/m] the force held fixed (e.g. a column's vertical load while lambda scales a
-    horizontal push). ``moves``: the translations that are free ("x", "z" or both); a held one is a support
-    whose reaction needs no equilibrium (the symmetry axis of a half model holds "x")."""
+    ``loads_ref`` / ``loads_dead``: point loads ((x [m], Fx [N/m], Fz [N/m], C [N m/m]), ...) at base
+    nodes (the site needs a point at each x), C counter-clockwise; ``pressure_ref`` / ``pressure_dead``
+    [Pa]: a uniform downward pressure on the whole beam (self weight, a uniform strip load)."""
+
+    x0: float
+    x1: float
+    mp_sag: float
+    mp_hog: float
+    loads_ref: tuple = ()
+    loads_dead: tuple = ()
+    pressure_ref: float = 0.0
+    pressure_dead: float = 0.0
+
+    def __post_init__(self):
+        x0 = check_real("x0", self.x0, unit="m")
+        check_real("x1", self.x1, lo=x0, lo_open=True, unit="m")
+        check_real("mp_sag", self.mp_sag, lo=0.0, lo_open=True, unit="N m/m")
+        check_real("mp_hog", self.mp_hog, lo=0.0, lo_open=True, unit="N m/m")
+        for name in ("loads_ref", "loads_dead"):
+            out = []
+            for i, ld in enumerate(getattr(self, name)):
+                if len(ld) != 4:
+                    raise ValueError(f"{name}[{i}] must be (x, Fx, Fz, C), got {ld!r}")
+                v = tuple(float(check_real(f"{name}[{i}][{k}]", a)) for k, a in enumerate(ld))
+                if not (self.x0 - 1e-9 <= v[0] <= self.x1 + 1e-9):
+                    raise ValueError(
+                        f"{name}[{i}]: x={v[0]!r} m lies outside the beam [{self.x0}, {self.x1}] m"
+                    )
+                out.append(v)
+            object.__setattr__(self, name, tuple(out))
+        for name in ("pressure_ref", "pressure_dead"):
+            object.__setattr__(self, name, float(check_real(name, getattr(self, name), unit="Pa")))
+
+    def resultant(self, which: str, xc: float) -> tuple[float, float, float]:
+        """(Fx, Fz [N/m], moment about x = ``xc`` [N m/m]) of the ``which`` ("ref" or "dead") loads."""
+        loads, p = (
+            (self.loads_ref, self.pressure_ref) if which == "ref" else (self.loads_dead, self.pressure_dead)
+        )
+        fx = sum(ld[1] for ld in loads)
+        fz = sum(ld[2] for ld in loads) - p * (self.x1 - self.x0)
+        m = sum(ld[3] + (ld[0] - xc) * ld[2] for ld in loads) - p * (self.x1 - self.x0) * (
+            0.5 * (self.x0 + self.x1) - xc
+        )
+        return fx, fz, m
+
+
+@dataclass(frozen=True)
+class Footing:
+    """A rigid footing on the ``footing`` segments of a site: a rigid body with velocity (U, W) of its
+    reference point ``centre`` (x_c, z_c) [m] and, if "r" is among its ``moves``, the rotation rate theta
+    (counter-clockwise, x right and z up): a point (x, z) of it moves with (U - theta (z - z_c), W + theta
+    (x - x_c)).
+
+    With a :class:`Beam` ``beam`` it bends as well: the beam's loads then replace ``load_*`` and ``moment_*``
+    (set to their resultants here).
+
+    ``load_ref`` (Fx, Fz) [N/m] and ``moment_ref`` [N m/m] (counter-clockwise about ``centre``) are the
+    reference load that the load factor lambda scales, ``load_dead`` and ``moment_dead`` the load held
+    fixed (e.g. a column's vertical load while lambda scales a horizontal push). ``moves``: the free
+    motions, "x", "z" (translations) and "r" (rotation; needs ``centre``); a held one is a support whose
+    reaction needs no equilibrium (the symmetry axis of a half model holds "x" and "r")."""
 
     interface: Interface = field(default_factory=Interface)
     load_ref: tuple[float, float] = (0.0, -1.0)
     load_dead: tuple[float, float] = (0.0, 0.0)
     moves: tuple[str, ...] = ("x", "z")
+    centre: tuple[float, float] | None = None
+    moment_ref: float = 0.0
+    moment_dead: float = 0.0
+    beam: Beam | None = None
 
     def __post_init__(self):
         for m in self.moves:
-            check_choice("moves", m, ("x", "z"))
+            check_choice("moves", m, ("x", "z", "r"))
+        if self.beam is not None:
+            if not isinstance(self.beam, Beam):
+                raise TypeError(f"beam must be an ssi.limit.Beam, got {type(self.beam).__name__}")
+            if self.centre is None or "z" not in self.moves or "r" not in self.moves:
+                raise ValueError(
+                    f"a beam Footing needs 'z' and 'r' in moves and its centre (the beam bends and tilts), "
+                    f"got moves={self.moves!r}, centre={self.centre!r}"
+                )
+            # the loads are the beam's: the footing's resultants are theirs about the centre
+            for which in ("ref", "dead"):
+                fx, fz, m = self.beam.resultant(which, float(self.centre[0]))
+                object.__setattr__(self, f"load_{which}", (fx, fz))
+                object.__setattr__(self, f"moment_{which}", m)
         for name in ("load_ref", "load_dead"):
             given = getattr(self, name)
             v = tuple(float(check_real(f"{name}[{i}]", x, unit="N/m")) for i, x in enumerate(given))
             if len(v) != 2:
                 raise ValueError(f"{name} must be (Fx, Fz), got {getattr(self, name)!r}")
             object.__setattr__(self, name, v)
+        for name in ("moment_ref", "moment_dead"):
+            object.__setattr__(self, name, float(check_real(name, getattr(self, name), unit="N m/m")))
         for i, d in enumerate("xz"):
             if d not in self.moves and (self.load_ref[i] != 0.0 or self.load_dead[i] != 0.0):
                 raise ValueError(f"Footing load along {d} needs '{d}' in moves, got moves={self.moves!r}")
+        if "r" not in self.moves and (self.moment_ref != 0.0 or self.moment_dead != 0.0):
+            raise ValueError(f"a Footing moment needs 'r' in moves (rotation free), got moves={self.moves!r}")
+        if self.centre is not None:
+            c = tuple(float(check_real(f"centre[{i}]", x, unit="m")) for i, x in enumerate(self.centre))
+            if len(c) != 2:
+                raise ValueError(f"centre must be (x_c, z_c) [m], got {self.centre!r}")
+            object.__setattr__(self, "centre", c)
+        elif "r" in self.moves:
+            raise ValueError("a rotating Footing ('r' in moves) needs its reference point centre=(x_c, z_c)")
+
+    @property
+    def rotates(self) -> bool:
+        return "r" in self.moves
+
+    def velocity_at(self, motion: np.ndarray, xy: np.ndarray) -> np.ndarray:
+        """The rigid-body velocity (n, 2) at points ``xy`` (n, 2) [m] of the motion (U, W, theta) (3,)."""
+        xc, zc = self.centre if self.centre is not None else (0.0, 0.0)
+        out = np.empty((len(xy), 2))
+        out[:, 0] = motion[0] - motion[2] * (xy[:, 1] - zc)
+        out[:, 1] = motion[1] + motion[2] * (xy[:, 0] - xc)
+        return out
 
 
 @dataclass(frozen=True)
@@ -237,6 +341,7 @@ def strip_site(
     load_dead: tuple[float, float] = (0.0, 0.0),
     flexible: bool = False,
     side: str = "symmetry",
+    base_points: tuple = (),
 ) -> Site:
     """A strip footing of width ``B`` [m] on the surface z = 0 of a block ``half_width`` [m] either side of
     the axis and ``depth`` [m] deep (base fixed, far sides ``side``: "symmetry" rollers or "fixed").
@@ -245,7 +350,9 @@ def strip_site(
     ``flexible``: a uniform reference pressure of 1 Pa on the footing's width instead of a rigid footing
     (Smith & Griffiths' program 6.1): lambda is then the pressure [Pa]. Rigid: lambda multiplies
     ``load_ref`` [N/m] (default (0, -B_model): lambda is the mean footing pressure [Pa], B_model the modelled
-    width), with ``load_dead`` held. ``surcharge`` [Pa] acts on the free surface beside the footing."""
+    width), with ``load_dead`` held. ``surcharge`` [Pa] acts on the free surface beside the footing.
+    ``base_points``: x [m] of extra points on the footing's base (where a beam's point loads act; whole
+    model only)."""
     B = check_real("B", B, lo=0.0, lo_open=True, unit="m")
     half_width = check_real("half_width", half_width, lo=B / 2, lo_open=True, unit="m")
     depth = check_real("depth", depth, lo=0.0, lo_open=True, unit="m")
@@ -270,9 +377,13 @@ def strip_site(
         segs = [(0, 1, Boundary("fixed")), (1, 2, far), (2, 3, top_rest), (3, 4, under)]
         segs.append((4, 0, Boundary("symmetry")))
     else:
-        pts = [(x0, -depth), (half_width, -depth), (half_width, 0), (B / 2, 0), (xf, 0), (x0, 0)]
-        segs = [(0, 1, Boundary("fixed")), (1, 2, far), (2, 3, top_rest), (3, 4, under), (4, 5, top_rest)]
-        segs.append((5, 0, far))
+        inner = sorted((float(x) for x in base_points if -B / 2 < x < B / 2), reverse=True)
+        top = [(B / 2, 0)] + [(x, 0) for x in inner] + [(xf, 0)]
+        pts = [(x0, -depth), (half_width, -depth), (half_width, 0)] + top + [(x0, 0)]
+        segs = [(0, 1, Boundary("fixed")), (1, 2, far), (2, 3, top_rest)]
+        segs += [(3 + i, 4 + i, under) for i in range(len(top) - 1)]
+        n_top = 3 + len(top) - 1
+        segs += [(n_top, n_top + 1, top_rest), (n_top + 1, 0, far)]
     seed = ((0.5 * (x0 + B / 2), -0.5 * depth, 0),)
     return Site(np.array(pts, float), tuple(segs), seed, (material,), footings)
 

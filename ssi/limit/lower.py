@@ -8,8 +8,11 @@ Constraints (all linear in the nodal stresses, so met at the nodes means met eve
 - on every interior edge, at both its ends, equal tractions (t_x, t_z) from the two triangles;
 - on a free or loaded edge, t = -(p_dead + lambda p_ref) n at both ends; on a symmetry roller t . s = 0;
 - under a rigid footing, the resultant of the soil tractions equals load_dead + lambda load_ref along each
-  free translation, and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
+  free translation (and, if the footing rotates, their moment about its centre moment_dead + lambda
+  moment_ref), and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
   sigma_n tan phi_i (two linear rows), rough nothing (the soil's own strength governs);
+- a bending footing (:class:`~ssi.limit.geometry.Beam`): its moment, from the base tractions and its
+  loads (:mod:`ssi.limit.beam`), within -mp_hog..mp_sag at the Bernstein points of every element;
 - Mohr-Coulomb at every vertex as the 3-D cone ||(sig_x - sig_z, 2 tau)|| <= 2 c cos phi - (sig_x + sig_z)
   sin phi (Tresca: phi = 0), and, with a tension cut-off T, ||(sig_x - sig_z, 2 tau)|| <= 2 T - (sig_x +
   sig_z). A linear field in a convex set at the vertices stays in it inside the triangle. (The upper bound
@@ -33,6 +36,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ._common import boundary_edges, gradients, interior_edges, scales, strength
+from .beam import beam_layout, lower_bound_statics
 from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
@@ -47,7 +51,9 @@ CUT_TOL = 1e-12  # likewise on a tension cut-off (round-off of the projected fie
 class LowerBound:
     """A certified lower bound. ``lam`` the certified load factor (NaN if not certified), ``lam_solver`` the
     solver's, ``lam_projected`` that of the projected field (= lam when certified); ``stress``
-    (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex); ``min_margin`` the smallest
+    (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex); ``beam``: per bending
+    footing, dict of ``M_left`` / ``M_right`` (n_k,) [N m/m] the moment just left / right of each beam node
+    and ``utilisation`` max |M| / M_p over the beam (its Bernstein points); ``min_margin`` the smallest
     distance inside the true yield cone over all vertices [Pa] (negative: outside); ``n_apex`` vertices at
     the apex within APEX_TOL S; ``eq_residual`` the largest equality residual after projection [Pa];
     time [s], iterations, status, n_cones, n_rows of the solve."""
@@ -58,6 +64,7 @@ class LowerBound:
     certified: bool
     reason: str
     stress: np.ndarray
+    beam: dict
     min_margin: float
     n_apex: int
     eq_residual: float
@@ -87,6 +94,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
     eq.add_many(r, cols, vals, 2.0 * A * gam)
     # boundary edges
     be = boundary_edges(mesh, xy)
+    cen = [np.zeros(2) if ft.centre is None else np.asarray(ft.centre) / sc.L for ft in site.footings]
     prescribed = {}  # flat index of a vertex on a free edge: (nx, nz, stress zero, p_dead, p_ref)
     # a cohesionless triangle vertex at a point of a traction-free edge: its traction on some plane is zero
     # (on the free edge, or on an interior edge shared with a vertex that has it), and a Mohr circle through
@@ -103,11 +111,12 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
         zero.add(int(9 * e + 3 * v))
         for cc in range(3):
             eq.add([9 * e + 3 * v + cc], [1.0], 0.0)
-    F = {i: [[], [], []] for i in range(len(site.footings))}  # footing: cols, x-vals, z-vals of resultant
+    # footing: cols, x-vals, z-vals of the resultant, moment-vals about its centre
+    F = {i: [[], [], [], []] for i in range(len(site.footings))}
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
         nx, nz = be.n[j]
-        for loc in (be.lp[j], be.lq[j]):
+        for end, loc in enumerate((be.lp[j], be.lq[j])):
             s0 = 9 * be.el[j] + 3 * loc
             tx = ([s0, s0 + 2], [nx, nz])
             tz = ([s0 + 2, s0 + 1], [nx, nz])
@@ -128,7 +137,17 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
                 h = 0.5 * be.length[j]
                 f[1] += [h * nx, h * nz, 0.0]
                 f[2] += [0.0, h * nx, h * nz]
-                itf = site.footings[bnd.footing].interface
+                ft = site.footings[bnd.footing]
+                if ft.rotates:
+                    # int (r_x t_z - r_z t_x) ds of linear r and t: this end's traction times
+                    # L/6 (2 r_here + r_other), r the lever arm from the centre
+                    here, other = (be.p[j], be.q[j]) if end == 0 else (be.q[j], be.p[j])
+                    lj = be.length[j]
+                    cx, cz = (2.0 * xy[here] + xy[other]) * lj / 6.0 - 0.5 * lj * cen[bnd.footing]
+                    f[3] += [-cz * nx, cx * nx - cz * nz, cx * nz]
+                else:
+                    f[3] += [0.0, 0.0, 0.0]
+                itf = ft.interface
                 # sigma_n = nx t_x + nz t_z ; tau = -nz t_x + nx t_z
                 sn = ([s0, s0 + 2, s0 + 1], [nx * nx, 2 * nx * nz, nz * nz])
                 ta = ([s0, s0 + 2, s0 + 1], [-nz * nx, nx * nx - nz * nz, nx * nz])
@@ -173,13 +192,31 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             eq.add(*tx, 0.0)
             eq.add(*tz, 0.0)
     for i, ft in enumerate(site.footings):
-        cols, vx, vz = F[i]
+        cols, vx, vz, vm = F[i]
         for d_, vals in (("x", vx), ("z", vz)):
             ax = 0 if d_ == "x" else 1
             if d_ in ft.moves:
                 fr = ft.load_ref[ax] / (sc.S * sc.L)
                 fd = ft.load_dead[ax] / (sc.S * sc.L)
                 eq.add(cols + [imu], vals + [-fr / sc.k], fd)
+        if ft.rotates:  # the moment of the base tractions about the centre balances the applied moment
+            mr = ft.moment_ref / (sc.S * sc.L**2)
+            md = ft.moment_dead / (sc.S * sc.L**2)
+            eq.add(cols + [imu], vm + [-mr / sc.k], md)
+    # a bending footing: -mp_hog <= M <= mp_sag at the Bernstein points of every element (shrunk by the
+    # margin in the solve, checked against the true capacity in the certification)
+    n_itf = len(ineq.rhs)
+    beams = {}
+    for f, ft in enumerate(site.footings):
+        if ft.beam is None:
+            continue
+        lay = beam_layout(site, f, be, xy, sc.L)
+        st = lower_bound_statics(site, f, lay, be, n, imu, sc.S, sc.L, sc.k)
+        B = st.B.tocoo()
+        r = B.row
+        ineq.add_many(r, B.col, B.data, (1.0 - margin) * st.mp_sag - st.b0)
+        ineq.add_many(r, B.col, -B.data, (1.0 - margin) * st.mp_hog + st.b0)
+        beams[f] = st
     # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x
     mats = site.materials
     two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in mats)))
@@ -208,7 +245,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             soc.add([3 * v + 2], [-2.0], 0.0)
     q = np.zeros(n)
     q[imu] = -1.0
-    return sc, _independent_local_rows(eq, 9 * n_el), ineq, soc, q, n
+    return sc, _independent_local_rows(eq, 9 * n_el), ineq, soc, q, n, n_itf, beams
 
 
 def _independent_local_rows(eq: Rows, n_sig: int) -> Rows:
@@ -285,7 +322,7 @@ def lower_bound(
     coarser mesh's field carried to a nested finer mesh)."""
     if not 0.0 <= margin < 0.1:
         raise ValueError(f"margin must be in [0, 0.1), got {margin!r}")
-    sc, eq, ineq, soc, q, n = _assemble(site, mesh, margin)
+    sc, eq, ineq, soc, q, n, n_itf, beams = _assemble(site, mesh, margin)
     if stress is None:
         sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
     else:
@@ -314,7 +351,17 @@ def lower_bound(
     bad = ((marg <= 0.0) & ~apex) | ((cut_marg <= 0.0) & ~on_cut)
     marg = np.minimum(marg, np.where(on_cut, np.inf, cut_marg))
     Ai, bi = ineq.matrix(n)
-    ineq_bad = int(np.sum(Ai @ x > bi)) if len(bi) else 0
+    ineq_bad = int(np.sum(Ai[:n_itf] @ x > bi[:n_itf])) if n_itf else 0
+    beam_out, beam_bad = {}, 0
+    for f, st in beams.items():
+        mb = st.B @ x + st.b0
+        beam_bad += int(np.sum(mb > st.mp_sag) + np.sum(mb < -st.mp_hog))
+        unit = sc.S * sc.L**2
+        beam_out[f] = dict(
+            M_left=(st.M_left[0] @ x + st.M_left[1]) * unit,
+            M_right=(st.M_right[0] @ x + st.M_right[1]) * unit,
+            utilisation=float(max(np.max(mb) / st.mp_sag, np.max(-mb) / st.mp_hog)),
+        )
     reasons = []
     if not np.all(np.isfinite(x)):
         reasons.append("the solver returned no finite point")
@@ -325,6 +372,8 @@ def lower_bound(
         reasons.append(f"{nb} vertices outside or on the yield surface (min margin {marg.min():.2e} S)")
     if ineq_bad:
         reasons.append(f"{ineq_bad} interface rows violated")
+    if beam_bad:
+        reasons.append(f"{beam_bad} beam moments beyond M_p")
     certified = not reasons
     lam = x[-1] / sc.k
     return LowerBound(
@@ -336,6 +385,7 @@ def lower_bound(
         if reasons
         else f"certified ({int(apex.sum())} vertices at the apex, {int(on_cut.sum())} on the cut-off)",
         stress=sig * sc.S,
+        beam=beam_out,
         min_margin=float(np.min(np.where(apex, np.inf, marg), initial=np.inf)) * sc.S,
         n_apex=int(apex.sum()),
         eq_residual=res * sc.S,

@@ -17,7 +17,15 @@ control point of the jump.
   hull, so the Coulomb rule n.b_k = tan phi_i s_k, |t.b_k| <= s_k at the control points holds along the edge
   and the dissipation c_i sum_k s_k L/3 bounds c_i times the integral of |d_t| from above. Rough: d = 0.
 - Velocity conditions: fixed u = 0; symmetry u . n = 0 (axis-aligned rollers, eliminated); a footing's held
-  translation is zero.
+  translation or rotation is zero. A footing is a rigid body (U, W, theta about its centre): a point of it
+  moves with (U - theta (z - z_c), W + theta (x - x_c)), linear along a straight edge and so exactly
+  interpolated by the quadratic field; a rough base's nodes are tied to it (eliminated when the footing
+  only translates, by equality rows when it rotates, and set to the rigid motion exactly before the
+  recomputation). A footing with a :class:`~ssi.limit.geometry.Beam` bends instead: each base edge a rigid
+  inextensible element (w linear along it, u = U), the nodes' vertical velocity w_k and rotation phi_k its
+  variables, a hinge at each element end with rotation theta_e - phi_left (phi_right - theta_e), split
+  into s+ - s- (s >= 0) dissipating mp_sag s+ + mp_hog s-; the beam's loads do work on w (forces), U
+  (horizontal forces) and phi (couples).
 - Normalisation: the power of the reference loads is 1; the objective is the dissipation minus the power
   of the dead loads (weight, surcharge, dead footing loads), which is lambda.
 
@@ -34,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._common import boundary_edges, gradients, scales, strength
+from .beam import beam_layout
 from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
@@ -46,8 +55,12 @@ class UpperBound:
     """A recomputed upper bound. ``lam`` from the velocity field, ``lam_solver`` the solver's objective;
     ``velocity`` (n_nodes + n_edges, 2) [m/s] (corner nodes, then one midside node per edge of
     ``mesh.edges()``; scaled so that the reference loads' power is 1 N/m . m/s); ``footing_velocity``
-    (n_footings, 2); ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference
-    power; interface shares added to the element under the edge), ``dead_power`` the dead loads' share
+    (n_footings, 2) of each footing's centre, ``footing_rotation`` (n_footings,) [1/s] counter-clockwise
+    (0 where held); ``beam``: per bending footing, dict of ``x`` [m] of its nodes, ``w`` [m/s] their
+    vertical velocity, ``phi`` [1/s] their rotation, ``hinge`` (n_e, 2) [1/s] the hinge rotations at each
+    element's left and right end (sagging positive), ``el`` the triangle under each element;
+    ``dissipation`` (n_el,) each element's share of lambda (dissipation over the reference power; interface
+    and hinge shares added to the element under the edge), ``dead_power`` the dead loads' share
     (lam = dissipation.sum() - dead_power); ``strain`` (n_el, 3, 3) vertex strain rates (eps_x, eps_z,
     gamma) [1/s];
     ``flow_residual`` the largest relative flow-rule residual; time [s], iterations, status, n_cones."""
@@ -56,6 +69,8 @@ class UpperBound:
     lam_solver: float
     velocity: np.ndarray
     footing_velocity: np.ndarray
+    footing_rotation: np.ndarray
+    beam: dict
     dissipation: np.ndarray
     dead_power: float
     strain: np.ndarray
@@ -90,6 +105,7 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
     n_all = n_nodes + n_mid
     state = np.zeros((n_all, 2), np.int64)  # 0 free, -1 zero, f+1: tied to footing f (rough)
     oblique = []
+    ties: dict = {}  # node: footing, for the rough base of a rotating footing
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
         nodes = (be.p[j], be.q[j], n_nodes + be.edge[j])
@@ -105,15 +121,18 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
                 else:
                     oblique.append((g, nx, nz))
             elif bnd.kind == "footing" and site.footings[bnd.footing].interface.kind == "rough":
+                if site.footings[bnd.footing].rotates:  # (a beam rotates too)
+                    ties.setdefault(int(g), bnd.footing)  # a free node tied by rows (its velocity varies)
+                    continue
                 for d in range(2):
                     if state[g, d] == 0:
                         state[g, d] = bnd.footing + 1
     n_f = len(site.footings)
-    fvar = -np.ones((n_f, 2), np.int64)
+    fvar = -np.ones((n_f, 3), np.int64)
     nxt = 0
     for f, ft in enumerate(site.footings):
-        for d, name in enumerate("xz"):
-            if name in ft.moves:
+        for d, name in enumerate("xzr"):
+            if name in ft.moves and not (ft.beam is not None and d > 0):  # a beam: its nodes' own w, phi
                 fvar[f, d] = nxt
                 nxt += 1
     dof = -np.ones((n_all, 2), np.int64)
@@ -125,20 +144,30 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
                 nxt += 1
             elif s > 0:
                 dof[g, d] = fvar[s - 1, d]
-    return dof, fvar, nxt, oblique
+    return dof, fvar, nxt, oblique, ties
 
 
 def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> UpperBound:
     """The upper bound of the load factor lambda of ``site`` on ``mesh`` (module docstring), recomputed from
     the velocity field. ``tol``: Clarabel's tolerances. ``velocity``: (nodal (n_nodes + n_edges, 2), footing
-    (n_footings, 2)) velocities to evaluate instead of solving (any scale; a held component must be zero)."""
+    (n_footings, 2)[, footing rotation (n_footings,) [1/s]]) velocities to evaluate instead of solving (any
+    scale; a held component must be zero)."""
     sc = scales(site)
     xy = mesh.xy / sc.L
     n_nodes, n_el = len(xy), mesh.n_el
     edges, el_edge = mesh.edges()
     n_mid = len(edges)
     be = boundary_edges(mesh, xy)
-    dof, fvar, n_v, oblique = _dof_map(site, mesh, be, n_nodes, n_mid)
+    dof, fvar, n_v, oblique, ties = _dof_map(site, mesh, be, n_nodes, n_mid)
+    # every node's position (corners, then midsides of the straight edges) and each footing's centre
+    xy_all = np.concatenate([xy, 0.5 * (xy[edges[:, 0]] + xy[edges[:, 1]])])
+    cen = np.array([(0.0, 0.0) if ft.centre is None else ft.centre for ft in site.footings]).reshape(-1, 2)
+    cen = cen / sc.L
+
+    def arm(f: int, g: int) -> tuple[float, float]:
+        """d(u, w)/d theta of footing f's rigid motion at node g: (-(z - z_c), x - x_c) (scaled)."""
+        return -(xy_all[g, 1] - cen[f, 1]), xy_all[g, 0] - cen[f, 0]
+
     ie = n_v  # e variables
     n_e = 3 * n_el
     # interface control points (non-rough footings): keyed per corner node and per midside node
@@ -155,6 +184,33 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 cp_rows.append((key, bnd.footing, j, w))
     i_s = ie + n_e
     n = i_s + len(cp)
+    # a beam's variables: w and phi at each node, a hinge (s+, s-) at each end of each element
+    beams = {}
+    for f, ft in enumerate(site.footings):
+        if ft.beam is not None:
+            lay = beam_layout(site, f, be, xy, sc.L)
+            n_k = len(lay.nodes)
+            cols = n + np.arange(2 * n_k + 4 * (n_k - 1))
+            w_col, phi_col = cols[:n_k], cols[n_k : 2 * n_k]
+            beams[f] = (lay, w_col, phi_col, cols[2 * n_k :].reshape(n_k - 1, 2, 2))
+            n += len(cols)
+    node_w = {}  # (footing, mesh node) -> the beam's w variable there
+    for f, (lay, w_col, _, _) in beams.items():
+        node_w.update({(f, int(g)): int(c) for g, c in zip(lay.nodes, w_col)})
+
+    def terms(f: int, g: int) -> tuple[list, list]:
+        """Footing f's velocity at node g as [(variable, coefficient)] for u and for w."""
+        if f in beams:
+            tu = [(fvar[f, 0], 1.0)] if fvar[f, 0] >= 0 else []
+            if g < n_nodes:
+                return tu, [(node_w[(f, g)], 1.0)]
+            a, b = edges[g - n_nodes]  # a midside node: the element is rigid, w linear along it
+            return tu, [(node_w[(f, int(a))], 0.5), (node_w[(f, int(b))], 0.5)]
+        ax, az = arm(f, g)
+        tu = [(fvar[f, 0], 1.0), (fvar[f, 2], ax)]
+        tw = [(fvar[f, 1], 1.0), (fvar[f, 2], az)]
+        return [t for t in tu if t[0] >= 0], [t for t in tw if t[0] >= 0]
+
     eq, ineq, soc = Rows(), Rows(), Rows()
     q = np.zeros(n)
     # flow rule at the vertices
@@ -229,14 +285,13 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         nx, nz = be.n[j]
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
         weights = {0: {a_: 1.0}, 2: {b_: 1.0}, 1: {m_: 2.0, a_: -0.5, b_: -0.5}}[w]
-        wsum = sum(weights.values())  # the footing's U enters with the same weights (U is constant)
         for comp, (vx, vz) in (("n", (nx, nz)), ("t", (-nz, nx))):
             cols, vals = [], []
             for d, vv in ((0, vx), (1, vz)):
-                if fvar[f, d] >= 0:
-                    cols.append(fvar[f, d])
-                    vals.append(wsum * vv)
                 for g, wt in weights.items():
+                    for col, cf in terms(f, g)[d]:  # the footing's velocity at g
+                        cols.append(col)
+                        vals.append(wt * vv * cf)
                     if dof[g, d] >= 0:
                         cols.append(dof[g, d])
                         vals.append(-wt * vv)
@@ -245,6 +300,28 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
             else:
                 ineq.add(cols + [k], vals + [-1.0], 0.0)
                 ineq.add(cols + [k], [-v for v in vals] + [-1.0], 0.0)
+    # the rough base of a rotating or bending footing: each node moves with the footing
+    for g, f in ties.items():
+        for d in range(2):
+            cols = [dof[g, d]] if dof[g, d] >= 0 else []
+            vals = [1.0] * len(cols)
+            for col, cf in terms(f, g)[d]:
+                cols.append(col)
+                vals.append(-cf)
+            if cols:
+                eq.add(cols, vals, 0.0)
+    # beam hinges: theta_e - phi_left = s+ - s- (left end), phi_right - theta_e = s+ - s- (right end)
+    for f, (lay, w_col, phi_col, hinge) in beams.items():
+        beam = site.footings[f].beam
+        for e, le in enumerate(lay.length):
+            th = ([w_col[e + 1], w_col[e]], [1.0 / le, -1.0 / le])  # the element's rotation
+            for end, (k, sgn) in enumerate(((e, -1.0), (e + 1, 1.0))):
+                sp_, sm_ = hinge[e, end]
+                eq.add(th[0] + [phi_col[k], sp_, sm_], [-sgn * v for v in th[1]] + [sgn, -1.0, 1.0], 0.0)
+                ineq.add([sp_], [-1.0], 0.0)
+                ineq.add([sm_], [-1.0], 0.0)
+                q[sp_] += beam.mp_sag / (sc.S * sc.L**2)
+                q[sm_] += beam.mp_hog / (sc.S * sc.L**2)
     # powers: reference (= 1) and dead (subtracted in the objective)
     p_ref = np.zeros(n)
     p_dead = np.zeros(n)
@@ -264,28 +341,64 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 if dof[g, d] >= 0:
                     p_ref[dof[g, d]] += -bnd.pressure_ref / sc.S * nn * wt / sc.k
                     p_dead[dof[g, d]] += -bnd.pressure_dead / sc.S * nn * wt
+    for f, (lay, w_col, phi_col, _) in beams.items():
+        beam = site.footings[f].beam
+        for pw, loads, p, scale in (
+            (p_ref, lay.loads_ref, beam.pressure_ref, 1 / sc.k),
+            (p_dead, lay.loads_dead, beam.pressure_dead, 1.0),
+        ):
+            if fvar[f, 0] >= 0:
+                pw[fvar[f, 0]] += loads[:, 0].sum() / (sc.S * sc.L) * scale
+            np.add.at(pw, w_col, loads[:, 1] / (sc.S * sc.L) * scale)
+            np.add.at(pw, phi_col, loads[:, 2] / (sc.S * sc.L**2) * scale)
+            # the downward pressure on each element: w linear, its integral L (w_a + w_b) / 2
+            np.add.at(pw, w_col[:-1], -p / sc.S * lay.length / 2 * scale)
+            np.add.at(pw, w_col[1:], -p / sc.S * lay.length / 2 * scale)
     for f, ft in enumerate(site.footings):
+        if f in beams:
+            continue
         for d in range(2):
             if fvar[f, d] >= 0:
                 p_ref[fvar[f, d]] += ft.load_ref[d] / (sc.S * sc.L) / sc.k
                 p_dead[fvar[f, d]] += ft.load_dead[d] / (sc.S * sc.L)
+        if fvar[f, 2] >= 0:
+            p_ref[fvar[f, 2]] += ft.moment_ref / (sc.S * sc.L**2) / sc.k
+            p_dead[fvar[f, 2]] += ft.moment_dead / (sc.S * sc.L**2)
     nz_ = np.flatnonzero(p_ref)
     eq.add(list(nz_), list(p_ref[nz_]), 1.0)
     q -= p_dead
     if velocity is None:
         sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
         x = sol.x
-    else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing translations)
-        vel_in, fv_in = velocity
+    else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing motions)
+        vel_in, fv_in = velocity[0], np.asarray(velocity[1], float)
+        rot_in = np.asarray(velocity[2], float) if len(velocity) > 2 else np.zeros(len(fv_in))
         x = np.zeros(n)
         m_ = dof >= 0
         x[dof[m_]] = vel_in[m_]
+        motion = np.column_stack([fv_in.reshape(-1, 2), rot_in.reshape(-1) * sc.L])  # theta in scaled units
         mf_ = fvar >= 0
-        x[fvar[mf_]] = fv_in[mf_]
+        x[fvar[mf_]] = motion[mf_]
+        given = velocity[3] if len(velocity) > 3 else {}
+        for f, (lay, w_col, phi_col, _) in beams.items():
+            x[w_col], x[phi_col] = carry_beam(given[f], lay.x * sc.L, sc.L)
         sol = ConicSolution(x, "given", 0, 0.0, len(soc.rhs) // 3)
     # ---- recomputation from the velocities alone
     vel = np.where(dof >= 0, x[np.maximum(dof, 0)], 0.0)
-    fv = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)
+    fm = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)  # (n_f, 3): U, W, theta (scaled)
+    fv = fm[:, :2]
+
+    def footing_vel(f: int, g: int) -> np.ndarray:
+        return np.array([sum(cf * x[col] for col, cf in t) for t in terms(f, g)])
+
+    # a tied node takes its footing's motion exactly (the solver meets the tie rows to its tolerance
+    # only): the field evaluated is then kinematically admissible, with no jump at the rough base
+    for g, f in ties.items():
+        fvg = footing_vel(f, g)
+        for d in range(2):
+            if dof[g, d] >= 0:
+                vel[g, d] = fvg[d]
+
     ue, we = vel[nodes6, 0], vel[nodes6, 1]  # (n_el, 6)
     ex = np.einsum("evn,en->ev", G[..., 0], ue)
     ez = np.einsum("evn,en->ev", G[..., 1], we)
@@ -305,16 +418,29 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         itf = site.footings[f].interface
         ci, tphi = itf.strength
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
-        U = fv[f]
-        da, dm, db = U - vel[a_], U - vel[m_], U - vel[b_]
+        da, dm, db = (footing_vel(f, g) - vel[g] for g in (a_, m_, b_))
         bk = {0: da, 1: 2 * dm - 0.5 * (da + db), 2: db}[w]
         nx, nz = be.n[j]
         dn, dt = bk[0] * nx + bk[1] * nz, -bk[0] * nz + bk[1] * nx
         s_need = abs(dt) if tphi == 0 else max(abs(dt), dn / tphi)
         flow_res = max(flow_res, abs(dn - tphi * s_need) / v_scale)
         diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
-    pr = _power(p_ref, dof, fvar, vel, fv, n)
-    pd = _power(p_dead, dof, fvar, vel, fv, n)
+    # beam hinges recomputed from w and phi
+    beam_out = {}
+    for f, (lay, w_col, phi_col, _) in beams.items():
+        beam = site.footings[f].beam
+        w, phi = x[w_col], x[phi_col]
+        theta = np.diff(w) / lay.length
+        rot = np.stack([theta - phi[:-1], phi[1:] - theta], axis=1)  # (n_e, 2): left, right hinge
+        d_h = (beam.mp_sag * np.maximum(rot, 0.0) + beam.mp_hog * np.maximum(-rot, 0.0)) / (sc.S * sc.L**2)
+        np.add.at(diss, be.el[lay.edge], d_h.sum(axis=1))
+        beam_out[f] = (lay, w, phi, rot)
+    x_rec = np.zeros(n)  # the solution vector rebuilt from the recomputed velocities
+    x_rec[dof[dof >= 0]] = vel[dof >= 0]
+    x_rec[fvar[fvar >= 0]] = fm[fvar >= 0]
+    for _lay, w_col, phi_col, _ in beams.values():
+        x_rec[w_col], x_rec[phi_col] = x[w_col], x[phi_col]
+    pr, pd = float(p_ref @ x_rec), float(p_dead @ x_rec)
     lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
     unit = 1.0 / (sc.S * sc.L * sc.k * pr)  # real velocities with a reference power of 1 N/m . m/s
     return UpperBound(
@@ -322,6 +448,13 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         lam_solver=float(q @ x) / sc.k,
         velocity=vel * unit,
         footing_velocity=fv * unit,
+        footing_rotation=fm[:, 2] * unit / sc.L,
+        beam={
+            f: dict(
+                x=lay.x * sc.L, w=w * unit, phi=phi * unit / sc.L, hinge=rot * unit / sc.L, el=be.el[lay.edge]
+            )
+            for f, (lay, w, phi, rot) in beam_out.items()
+        },
         dissipation=diss / (pr * sc.k),
         dead_power=pd / (pr * sc.k),
         strain=np.stack([ex, ez, gm], axis=2) * unit / sc.L,
@@ -335,11 +468,26 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     )
 
 
-def _power(coef: np.ndarray, dof, fvar, vel, fv, n) -> float:
-    """coef . x with x rebuilt from the recomputed nodal and footing velocities (not the solver's vector)."""
-    x = np.zeros(n)
-    m = dof >= 0
-    x[dof[m]] = vel[m]
-    mf = fvar >= 0
-    x[fvar[mf]] = fv[mf]
-    return float(coef @ x)
+def carry_beam(given: dict, x: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
+    """A beam motion ``given`` (dict x [m], w [m/s], phi [1/s] of an :class:`UpperBound`) at the nodes
+    ``x`` [m] of a nested finer beam: w linear between the given nodes (rigid elements), phi the given
+    node's where a node is kept, else the rotation of the element it splits (no hinge there); (w, phi
+    scaled by L) as the solver's variables."""
+    xg, wg, pg = given["x"], given["w"], given["phi"]
+    w = np.interp(x, xg, wg)
+    slope = np.diff(wg) / np.diff(xg)
+    e = np.clip(np.searchsorted(xg, x) - 1, 0, len(slope) - 1)
+    same = np.isclose(x[:, None], xg[None, :], rtol=0.0, atol=1e-9 * max(1.0, np.ptp(xg))).any(axis=1)
+    phi = np.where(same, np.interp(x, xg, pg), slope[e])
+    return w, phi * L
+
+
+def footing_velocity_at(site: Site, upper: UpperBound, f: int, pts: np.ndarray) -> np.ndarray:
+    """Footing ``f``'s velocity (n, 2) [m/s] at base points ``pts`` (n, 2) [m] in the field of ``upper``."""
+    ft = site.footings[f]
+    if ft.beam is not None:
+        b = upper.beam[f]
+        return np.column_stack(
+            [np.full(len(pts), upper.footing_velocity[f, 0]), np.interp(pts[:, 0], b["x"], b["w"])]
+        )
+    return ft.velocity_at(np.append(upper.footing_velocity[f], upper.footing_rotation[f]), pts)

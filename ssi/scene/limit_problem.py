@@ -15,15 +15,18 @@ How the scene maps (anything else raises a ValueError naming the part):
   (:meth:`SoilLayer.undrained`, phi = 0) is Tresca with c = s_u. Refused: an elastic layer (``c=None``,
   no strength), an effective-stress undrained layer (``drainage="undrained_A"``: its strength depends on
   the pore pressure the loading path generates, which limit analysis does not know);
-- the foundation, a :class:`RigidFooting` or a plate :class:`Foundation` alike, is a **rigid body that
-  translates** (its rotation is held: ``ssi.limit`` has no rotating footing), so loads with a moment about
-  its centre are refused; a plate strip's bending capacity is not modelled (a rigid strip is the stronger
-  one: for a slender or lightly reinforced strip the beam's own mechanism may govern, not checked here);
+- the foundation is a **rigid body**: a :class:`RigidFooting` (and any footing pushed by a Settlement,
+  which prescribes a uniform settlement) translates only; a plate :class:`Foundation` of a full
+  (non-symmetric) scene also rotates about the centre of its base, so eccentric loads and a column's
+  moment M are carried (the moment about that point: M - N (x - x_c) - H e, e = -section.z_bottom the
+  plate nodes' height above the base); held loads with a moment before a Settlement push are refused. A
+  plate strip's bending capacity is not modelled (a rigid strip is the stronger one: for a slender or
+  lightly reinforced strip the beam's own mechanism may govern, not checked here);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
   is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket); refused: a tension
   cut-off ``sig_t`` (the Coulomb joint's own apex is its only tension limit), contact segments with
   different laws;
-- loads: :class:`ColumnLoad` N, H (M must be 0), :class:`StripLoad`, :class:`StripWeight` (less its
+- loads: :class:`ColumnLoad` N, H, M, :class:`StripLoad`, :class:`StripWeight` (less its
   buoyancy in free water) and the strip's ``self_weight`` (a load of the first phase, as in the
   incremental scene) on the footing; :class:`SurfacePressure` and the ``surcharge`` on the ground beside
   it (a plate strip carries the surcharge over its own width, as the incremental scene's initial state
@@ -129,21 +132,19 @@ def _interface(scene) -> Interface:
 
 
 def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what: str):
-    """(Fx, Fz [N/m], moment about the centre [N m/m], settlement?) of ``loads`` on the footing."""
+    """(Fx, Fz [N/m], moment [N m/m] counter-clockwise about the centre of the base (x_c, base level),
+    settlement?) of ``loads`` on the footing. A column's H acts at the plate's nodes, the section's
+    ``-z_bottom`` above the base (as in the incremental scene's plate kinematics)."""
     fx = fz = m = 0.0
     settle = False
     xc = 0.5 * (x0 + x1)
     f = scene.foundation
     for i, ld in enumerate(loads):
         if isinstance(ld, ColumnLoad):
-            if ld.M != 0.0:
-                raise ValueError(
-                    f"{what}[{i}]: ColumnLoad.M={ld.M!r} N m/m: ssi.limit holds the footing's rotation, so a "
-                    "moment load is not represented"
-                )
+            lever = -float(f.section.z_bottom) if isinstance(f, Foundation) else 0.0
             fx += ld.H
             fz -= ld.N
-            m += ld.N * (ld.x - xc)
+            m += ld.M - ld.N * (ld.x - xc) - ld.H * lever
         elif isinstance(ld, StripLoad):
             a = f.x0 if ld.x0 is None else ld.x0
             b = f.x1 if ld.x1 is None else ld.x1
@@ -151,7 +152,7 @@ def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what:
             r = 0.5 * (q0 + q1) * (b - a)
             xr = a + (b - a) * (q0 + 2 * q1) / (3 * (q0 + q1)) if q0 + q1 != 0.0 else 0.5 * (a + b)
             fz -= r
-            m += r * (xr - xc)
+            m -= r * (xr - xc)
         elif isinstance(ld, StripWeight):
             t = f.section.thickness
             wt = scene.water_table
@@ -218,6 +219,7 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
     pressures_ref: list = []
     fdead = np.zeros(2)
     fref = np.zeros(2)
+    mdead = mref = 0.0  # moments about the centre of the base [N m/m], counter-clockwise
     settle_ref = False
     for factor, ph, first in dead + [(1.0, ref_phase, k == 0)]:
         is_ref = ph is ref_phase
@@ -243,17 +245,15 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
                 "load needs a plate Foundation)"
             )
         fx, fz, m, settle = _footing_forces(scene, on_footing, first, f.x0, f.x1, what)
-        if abs(m) > _TOL * (abs(fz) * (f.x1 - f.x0) + 1.0):
-            raise ValueError(
-                f"{what}: the loads on the foundation have a moment {m:g} N m/m about its centre x = "
-                f"{0.5 * (f.x0 + f.x1):g} m; ssi.limit holds the footing's rotation, so an eccentric load is "
-                "not represented (give loads symmetric about the centre)"
-            )
+        if abs(m) <= _TOL * (abs(fz) * (f.x1 - f.x0) + abs(fx) * (f.x1 - f.x0) + 1.0):
+            m = 0.0  # round-off of loads symmetric about the centre
         if is_ref:
             fref += (fx, fz)
+            mref += m
             settle_ref = settle
         else:
             fdead += (factor * fx, factor * fz)
+            mdead += factor * m
     if settle_ref and (np.any(fref != 0.0) or pressures_ref):
         raise ValueError(
             f"Phase {ref_phase.name!r} mixes a Settlement with force loads: lambda scales either the loads "
@@ -299,9 +299,21 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
             moves = ("z",)
         else:
             moves = ("x", "z")
+        if isinstance(f, Foundation) and not scene.symmetric and not settle_ref:
+            # a plate strip tilts as freely as the incremental scene's: its rotation is free (a Settlement
+            # push prescribes a uniform settlement and so holds it)
+            moves += ("r",)
+        elif mref or mdead:
+            raise ValueError(
+                f"the loads on the foundation have a moment {mref or mdead:g} N m/m about the centre of its "
+                f"base x = {0.5 * (f.x0 + f.x1):g} m, but its rotation is held (a Settlement push prescribes "
+                "a uniform settlement): not represented by ssi.limit"
+            )
         if itf.kind == "smooth" and (fref[0] or fdead[0]):
             raise ValueError("a smooth contact carries no horizontal load (ColumnLoad.H != 0)")
-        footings = (Footing(itf, tuple(fref.tolist()), tuple(fdead.tolist()), moves),)
+        centre = (0.5 * (f.x0 + f.x1), 0.0)
+        forces = (tuple(fref.tolist()), tuple(fdead.tolist()))
+        footings = (Footing(itf, *forces, moves, centre, float(mref), float(mdead)),)
 
     def boundary(tag, pa, pb):
         if tag in _BLOCK_SUPPORTS:
@@ -338,7 +350,7 @@ def limit_problem(scene, phase: str | None = None) -> LimitProblem:
 def _site_problem(site) -> LimitProblem:
     """The limit problem of an :class:`ssi.scene.site.Site` (any layering and ground, several strips): its
     one geometry (:meth:`Site.geometry`, cells cut at the water table) with the buoyant unit weight below
-    the water table, every :class:`Strip` a rigid translating footing on its contact, the site's loads
+    the water table, every :class:`Strip` a rigid footing on its contact, the site's loads
     (columns on the strips, pressures on level ground) scaled by lambda. A single :class:`RigidStrip` and no
     loads: lambda is its vertical force [N/m]. Refused: DepthVarying layers, embedded strips (``level``),
     a RigidStrip beside other strips or loads, a pressure on sloping ground, eccentric columns."""
@@ -376,16 +388,15 @@ def _site_problem(site) -> LimitProblem:
 
         loads = [ld for ld in site.loads if isinstance(ld, ColumnLoad) and f.x0 - 1e-9 <= ld.x <= f.x1 + 1e-9]
         fx, fz, m, _ = _footing_forces(_Holder, loads, True, f.x0, f.x1, f"Site.strips[{i}] loads")
-        if abs(m) > _TOL * (abs(fz) * (f.x1 - f.x0) + 1.0):
-            raise ValueError(
-                f"Site.strips[{i}]: its columns have a moment {m:g} N m/m about its centre; ssi.limit holds "
-                "the footing's rotation, so an eccentric load is not represented"
-            )
+        if abs(m) <= _TOL * ((abs(fz) + abs(fx)) * (f.x1 - f.x0) + 1.0):
+            m = 0.0
         itf = _interface(_Holder)
-        moves = ("z",) if itf.kind == "smooth" else ("x", "z")
+        moves = (("z",) if itf.kind == "smooth" else ("x", "z")) + ("r",)
         if itf.kind == "smooth" and fx:
             raise ValueError(f"Site.strips[{i}]: a smooth contact carries no horizontal load")
-        footings.append(Footing(itf, (fx, fz), (0.0, 0.0), moves))
+        xc = 0.5 * (f.x0 + f.x1)
+        centre = (xc, float(site.ground_z(np.array([xc]))[0]))
+        footings.append(Footing(itf, (fx, fz), (0.0, 0.0), moves, centre, m))
     pressures = [(ld.x0, ld.x1, ld.q) for ld in site.loads if isinstance(ld, SurfacePressure)]
     # materials: each layer dry and (below the water table) buoyant; each cell by its centroid
     mats, region = [], []
