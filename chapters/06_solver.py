@@ -509,9 +509,14 @@ report.check(
 # steps and tolerances. A limit below the band is a **false collapse** (the solver stopped, the soil was
 # not exhausted); one above it is the incremental **mesh's overestimate**, reported with its size. A run that
 # completed (λ = 1) or stopped claims no capacity, only the load it carried: it is checked against the
-# ceiling alone. Scenes that the limit problem cannot represent (listed in the file with the reason) have
-# no bracket and are listed as such. Row `fela_zoo`: the fraction of the bracketed scenes whose outcome is
-# consistent with the bracket, the lists above and below; PASS only when none is below.
+# ceiling alone. The zoo's strip is elastic (unbreakable): the limit problem models it as a rigid body that
+# slides, settles and rotates on its contact (the column's H and M scale with N). Scenes that the limit
+# problem cannot represent (listed in the file with the reason) have no bracket and are listed as such; a
+# scene whose Davis lower bound did not certify (the cohesionless ones, at this commit: the lower bound's
+# field sits on the cone's apex at the footing's edge and fails the certification by round-off) has a
+# ceiling but no floor: its limit is listed as "no floor". Row `fela_zoo`: the fraction of the bracketed
+# scenes whose outcome is consistent with the bracket, the lists above and below; PASS only when none is
+# below.
 
 # %%
 
@@ -885,6 +890,10 @@ report.save_figure(fig, "ch06_iterations_per_step")
 #   (the paper's reason, non-associated flow) and robustness — it never needs the tangent.
 # - An increment that fails is halved; if it still fails the analysis stops with a report naming the DOF,
 #   the node, the load factors and the reason — no silent result.
+# - Every zoo outcome is checked against its scene's limit-analysis bracket (rows `fela_zoo`,
+#   `zoo_limits_certified`): a limit below 0.97 LB_Davis would be a false collapse, one above 1.03 UB_assoc
+#   is the incremental mesh's overestimate and is flagged on the result; the controlled path's limits are
+#   checked under round-off (E × (1 + 10⁻¹³), renumbered DOFs; row `roundoff_limits`).
 #
 # References: M. A. Crisfield, *Non-linear Finite Element Analysis of Solids and Structures*, vol. 1, ch. 9;
 # R. de Borst et al., *Nonlinear Finite Element Analysis of Solids and Structures*, 2nd ed., §2.2.
