@@ -10,8 +10,10 @@ scenes); for each, ``scene.limit_analysis(gap=GAP)``: the associated bracket [lb
 until its relative gap (ub - lb)/(ub + lb) <= GAP. A scene the limit problem cannot represent (an embedded
 strip, an excavation, ...) is listed in the file's ``refused`` line with the reason; a scene that is the same
 limit problem as one before it (another nu, E or incremental mesh: :func:`ssi.lab.zoo_limits.limit_key`)
-shares its bracket (column ``same_as``). One part of the zoo per run and per file (``random``:
-reference_data/zoo_brackets_random.csv, ``ordinary``: zoo_brackets_ordinary.csv).
+shares its bracket (column ``same_as``). A bracket that contradicts itself (a certified lower bound above
+an upper bound) is not stored: the file's ``inconsistent`` line names it with the numbers. One part of the
+zoo per run and per file (``random``: reference_data/zoo_brackets_random.csv, ``ordinary``:
+zoo_brackets_ordinary.csv).
 
 The gap: the check accepts an incremental limit in [0.97 LB_Davis, 1.03 UB_assoc], so its own slack is 3 %
 either side; a bracket much coarser than that would make the band wider than the bracket's meaning, a finer
@@ -41,6 +43,15 @@ DEFAULT_GAP = 0.05
 # a bracket that has not reached the gap at this many triangles stops there (its achieved gap is stored):
 # it bounds the run time of a scene whose lower bound does not certify
 DEFAULT_MAX_ELEMENTS = 800
+
+
+def _contradiction(row: dict) -> str:
+    """Why a computed bracket contradicts itself ("" if it does not): a certified lower bound above an
+    upper bound of the same material (associated or Davis), or the Davis floor above the associated
+    ceiling (the Davis material is the weaker one), beyond round-off (1e-9 relative)."""
+    pairs = (("lb", "ub"), ("lb_davis", "ub_davis"), ("lb_davis", "ub"))
+    out = [f"{a} = {row[a]:.6g} > {b} = {row[b]:.6g}" for a, b in pairs if row[a] > row[b] * (1.0 + 1e-9)]
+    return "; ".join(out)
 
 
 def _one(item):
@@ -76,7 +87,7 @@ def main(argv=None):
         raise SystemExit(f"{args.out} exists; pass --overwrite to replace it")
     scenes = [(n, sc) for n, sc in bracket_scenes() if n.startswith("random ") == (args.scenes == "random")]
     scenes = scenes[: args.first]
-    rows, refused = [], []
+    rows, refused, inconsistent = [], [], []
     t_start = time.perf_counter()
     first_of = {}  # limit_key -> the first scene with that limit problem (the others share its bracket)
     for name, scene in scenes:
@@ -93,6 +104,11 @@ def main(argv=None):
         result = results[first]
         if isinstance(result, str):
             refused.append(f"{name}: {result}")
+            continue
+        bad = _contradiction(result)
+        if bad:  # rigorous bounds cannot cross: a defect of the limit problem or of ssi.limit, not a bracket
+            inconsistent.append(f"{name}: {bad}")
+            print(f"{name}: NOT STORED, {bad}", flush=True)
             continue
         if first != name:  # the same limit problem (another nu, E or h_fine): the same bracket
             rows.append(result | {"scene": name, "same_as": first, "seconds": 0.0})
@@ -126,6 +142,7 @@ def main(argv=None):
         "gap_requested": f"{args.gap:g}",
         "max_elements": str(args.max_elements),
         "refused": "; ".join(refused) if refused else "none",
+        "inconsistent": "; ".join(inconsistent) if inconsistent else "none",
     }
     # 17 significant digits: the test recomputes rows and compares them with the stored values
     columns = {"scene": [r["scene"] for r in rows]}
@@ -133,7 +150,10 @@ def main(argv=None):
         columns[k] = [r[k] if k in ("triangles",) else f"{r[k]:.17g}" for r in rows]
     columns["same_as"] = [r["same_as"] for r in rows]
     write_reference(args.out, meta, columns)  # atomic
-    print(f"wrote {args.out}: {len(rows)} brackets, {len(refused)} refused, {total:.0f} s")
+    print(
+        f"wrote {args.out}: {len(rows)} brackets, {len(refused)} refused, {len(inconsistent)} inconsistent "
+        f"(not stored), {total:.0f} s"
+    )
 
 
 if __name__ == "__main__":
