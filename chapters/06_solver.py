@@ -394,7 +394,19 @@ print("all checks passed")
 # %%
 from ssi.elements.section import homogeneous  # noqa: E402
 from ssi.lab.bearing_capacity import chapter10_footing, prandtl, push_footing  # noqa: E402
-from ssi.lab.zoo import light_footing_on_deep_block, random_scenes, solve_zoo  # noqa: E402
+from ssi.lab.zoo import (  # noqa: E402
+    light_footing_on_deep_block,
+    ordinary_scenes,
+    random_scenes,
+    solve_zoo,
+)
+from ssi.lab.zoo_limits import (  # noqa: E402
+    bracket_check,
+    bracket_verdict,
+    perturb_soil_modulus,
+    read_zoo_brackets,
+    renumbered_nodes,
+)
 from ssi.scene import ColumnLoad, Contact, Foundation, Scene, SoilLayer  # noqa: E402
 
 over = run(over_model, [1.0])  # (a) default settings
@@ -442,7 +454,10 @@ except NonConvergence as err:
     contact_ok = False
     print("(c) associated c_i = 0 contact STOPPED:", err)
 
-zoo = solve_zoo(random_scenes(3 if FAST else 100, seed=1))
+# the zoo's limit-analysis brackets, computed once by tools/zoo_brackets.py: each limit found below is
+# checked against its scene's bracket, and a failed check recorded on the result (ssi.limit.flag_suspect)
+ZOO_BRACKETS_META, ZOO_BRACKETS = read_zoo_brackets()
+zoo = solve_zoo(random_scenes(3 if FAST else 100, seed=1), check=bracket_check(ZOO_BRACKETS))
 solved = sum(o.solved for o in zoo) / len(zoo)
 print(
     f"(d) random zoo: {sum(o.solved for o in zoo)}/{len(zoo)} solved "
@@ -479,6 +494,87 @@ report.check(
     1.0 if contact_ok else 0.0,
     1.0,
     contact_ok,
+)
+
+# %% [markdown]
+# ### The zoo's outcomes against their limit-analysis brackets
+#
+# Every zoo scene has a certified bracket of its collapse load factor (chapter 17's finite-element limit
+# analysis; λ scales the column load, the soil's weight is held): the associated bracket [LB, UB] and the
+# Davis one [LB_D, UB_D], each refined to a relative gap of 5 % or 800 triangles (the achieved gap is stored:
+# median 4.9 % of the certified random ones, 25 of 59 stopped above 5 %), computed once by
+# `tools/zoo_brackets.py` and stored in `reference_data/zoo_brackets_random.csv` with the commit and the date
+# (a test recomputes one scene so that the table cannot go stale). An incremental limit belongs in [0.97 LB_D,
+# 1.03 UB] (`ssi.limit.check_limit`): UB bounds the collapse load of any ψ ≤ φ from above (Radenković), LB_D
+# is the floor of the conventional value, and 3 % either side is the band's slack for the incremental solver's
+# steps and tolerances. A limit below the band is a **false collapse** (the solver stopped, the soil was not
+# exhausted); one above it is the incremental **mesh's overestimate**, reported with its size. A run that
+# completed (λ = 1) or stopped claims no capacity, only the load it carried: it is checked against the ceiling
+# alone. The zoo's strip is elastic (unbreakable): the limit problem models it as a rigid body that slides,
+# settles and rotates on its contact (the column's H and M scale with N). Scenes that the limit problem cannot
+# represent (listed in the file with the reason) have no bracket and are listed as such; a scene whose Davis
+# lower bound did not certify (the cohesionless ones, at this commit: the lower bound's field sits on the
+# cone's apex at the footing's edge and fails the certification by round-off) has a ceiling but no floor: its
+# limit is listed as "no floor". Row `fela_zoo`: the fraction of the bracketed scenes whose outcome is
+# consistent with the bracket, the lists above and below; PASS only when none is below.
+
+# %%
+
+
+def bracket_table(label, outcomes, rows):
+    """Print each outcome against its bracket row; return {name: (verdict, size)}."""
+    verdicts = {}
+    print(f"{label}: {'scene':10s} {'status':19s} {'lambda':>7s} {'LB_D':>7s} {'UB_a':>7s}  verdict")
+    for o in outcomes:
+        row = rows.get(o.name)
+        verdict, size = bracket_verdict(o.status, o.carried, row)
+        verdicts[o.name] = (verdict, size)
+        lb_d, ub_a = (np.nan, np.nan) if row is None else (row["lb_davis"], row["ub"])
+        extra = f" {100 * size:.1f} %" if size else ""
+        print(f"    {o.name:10s} {o.status:19s} {o.carried:7.3f} {lb_d:7.3f} {ub_a:7.3f}  {verdict}{extra}")
+    return verdicts
+
+
+def bracket_row(row_id, what, verdicts, require_floor=False):
+    """Record the row: fraction consistent among the bracketed scenes; PASS when none is a false collapse
+    (and, with ``require_floor``, when every limit had a certified floor to be checked against)."""
+    bracketed = {n: v for n, v in verdicts.items() if v[0] != "no bracket"}
+    refused = ZOO_BRACKETS_META.get("random", {}).get("refused", "the random scenes' table is not computed")
+    if not bracketed:
+        report.record_empty(
+            row_id,
+            f"{what}: none of the {len(verdicts)} scenes has a stored bracket in "
+            f"reference_data/zoo_brackets_random.csv (refused by the limit problem: {refused[:300]})",
+        )
+        return None
+    above = [f"{n} +{100 * size:.1f} %" for n, (v, size) in bracketed.items() if v == "mesh overestimate"]
+    below = [f"{n} -{100 * size:.1f} %" for n, (v, size) in bracketed.items() if v == "false collapse"]
+    no_floor = [n for n, (v, _) in bracketed.items() if v == "no floor"]
+    fraction = sum(v in ("inside", "carried") for v, _ in bracketed.values()) / len(bracketed)
+    report.record(
+        row_id,
+        f"{what}: fraction of the {len(bracketed)} bracketed scenes consistent with [0.97 LB_Davis, "
+        f"1.03 UB_assoc] (a limit inside it; a completed or stopped run carrying <= 1.03 UB_assoc); above "
+        f"(mesh overestimates): {', '.join(above) or 'none'}; below (false collapses): "
+        f"{', '.join(below) or 'none'}; limits without a certified floor: {', '.join(no_floor) or 'none'}; "
+        f"{len(verdicts) - len(bracketed)} scenes without a bracket; tolerance: the false collapses "
+        + (
+            "allowed, PASS when none and every limit had a floor"
+            if require_floor
+            else "allowed, PASS when none"
+        ),
+        fraction,
+        0.0,
+        not below and not (require_floor and no_floor),
+    )
+    return below
+
+
+zoo_verdicts = bracket_table("(d) zoo against its brackets", zoo, ZOO_BRACKETS)
+zoo_below = bracket_row(
+    "fela_zoo",
+    f"{len(zoo)} random zoo scenes (seed 1), Settings(): limits (or the largest carried load)",
+    zoo_verdicts,
 )
 
 # %% [markdown]
@@ -563,7 +659,13 @@ except NonConvergence as err:
 # the first 20 of the 100 scenes: all 100 took ~300 s, which `make reproduce` (6 min for every chapter) cannot
 # hold; all 100 measured once off-line: 46 completed, 25 limits, 29 NonConvergence
 N_ZOO_CTRL = 20
-zoo_ctrl = [] if FAST else solve_zoo(random_scenes(100, seed=1)[:N_ZOO_CTRL], Settings(control="work"))
+zoo_ctrl = (
+    []
+    if FAST
+    else solve_zoo(
+        random_scenes(100, seed=1)[:N_ZOO_CTRL], Settings(control="work"), check=bracket_check(ZOO_BRACKETS)
+    )
+)
 counts = {s: sum(o.status == s for o in zoo_ctrl) for s in ("completed", LIMIT, "failed")}
 print(
     "(h) skipped in fast mode"
@@ -610,6 +712,117 @@ if not FAST:
         1.0,
         solved_ctrl == 1.0,
     )
+
+# %% [markdown]
+# ### The controlled path's limits against their brackets, and under round-off
+#
+# (i) Every limit of (h) is checked against its scene's bracket as in (d), and the check is recorded on the
+# result itself (`flag_suspect`: the result's `limit_suspect` then names a false collapse or the mesh's
+# overestimate with its size, as a user's result would). Row `zoo_limits_certified`: none below
+# 0.97 LB_Davis, each above 1.03 UB_assoc carries its excess in `limit_suspect`, and every limit had a
+# certified floor to be checked against (a scene whose Davis lower bound did not certify cannot certify its
+# limit: it is listed, and the row fails).
+#
+# (j) A limit that is a property of the scene does not move when nothing but round-off changes. The limit
+# scenes of (h) are solved again with every soil layer's E × (1 + 10⁻¹³) (`perturb_soil_modulus`) and with
+# the soil's nodes, and so the unknowns, renumbered by a seeded permutation (`renumbered_nodes`: ssi.core has
+# no DOF-permutation hook, so the mesh generator's numbering is permuted in the scene's build), on the
+# controlled path with the user's ψ (the zoo's soil is ψ < φ) and in Davis mode (`flow="davis"`: associated
+# flow of the reduced material, a convex problem with a unique limit). Davis-mode limits must move ≤ 0.5 %;
+# the user-ψ limits are path estimates, reported with their spread (≤ 2 % asked, more reported as measured).
+# A subset keeps the cost bounded: three limit scenes of (h) in full mode (each costs 2 user-ψ and 3
+# Davis-mode solves); in fast mode one scene loaded above its capacity, in Davis mode only.
+
+# %%
+limits_ctrl = [o for o in zoo_ctrl if o.status == LIMIT]
+ctrl_verdicts = bracket_table("(i) controlled-path limits against their brackets", limits_ctrl, ZOO_BRACKETS)
+if not FAST:
+    ctrl_below = bracket_row(
+        "zoo_limits_certified",
+        f"the {len(limits_ctrl)} limits of the first {N_ZOO_CTRL} random zoo scenes (seed 1) on the "
+        "controlled path, Settings(control='work')",
+        ctrl_verdicts,
+        require_floor=True,
+    )
+    # each limit above the ceiling carries its excess on the result (flag_suspect through solve_zoo)
+    unflagged = [
+        o.name
+        for o in limits_ctrl
+        if ctrl_verdicts[o.name][0] == "mesh overestimate" and "MESH OVERESTIMATE" not in o.limit_suspect
+    ]
+    assert not unflagged, unflagged
+    for o in limits_ctrl:
+        if o.limit_suspect:
+            print(f"    {o.name}: suspect: {o.limit_suspect[:200]}")
+
+# %%
+# <= 10 limit scenes (the issue's bound): three limits of (h), the cheapest measured (2026-12-04, loaded
+# machine: 6, 10 and 11 s on the controlled path), so that (j)'s 2 + 3 extra solves each stay within ~60 s
+# of the full run; fast mode: one ordinary scene loaded above its capacity
+ROUNDOFF_NAMES = ("random 8", "random 15", "random 18")
+if FAST:
+    roundoff_scenes = [("above capacity, clay", dict(ordinary_scenes())["above capacity, clay"])]
+else:
+    roundoff_scenes = [(n, sc) for n, sc in random_scenes(100, seed=1) if n in ROUNDOFF_NAMES]
+ctrl_by_name = {o.name: o for o in zoo_ctrl}
+
+
+def controlled(name, scene, flow):
+    """The scene's outcome on the controlled path with the user's psi or in Davis mode."""
+    return solve_zoo([(name, scene)], Settings(control="work", flow=flow))[0]
+
+
+# (flow, name) -> (largest relative move of the limit, [outcomes: base, E perturbed, renumbered])
+roundoff = {}
+t_roundoff = time.perf_counter()
+# fast mode: Davis mode only (the row's claim; 3 solves), the user-psi spread in full mode
+for flow in ("davis",) if FAST else ("user", "davis"):
+    for name, scene in roundoff_scenes:
+        base = (
+            ctrl_by_name[name] if flow == "user" and name in ctrl_by_name else controlled(name, scene, flow)
+        )
+        perturbed = controlled(name, perturb_soil_modulus(scene, 1.0 + 1e-13), flow)
+        with renumbered_nodes(seed=1):
+            renumbered = controlled(name, scene, flow)
+        trio = [base, perturbed, renumbered]
+        if all(o.status == LIMIT for o in trio):
+            move = max(abs(o.limit_load / base.limit_load - 1.0) for o in trio[1:])
+        elif all(o.status == trio[0].status for o in trio) and base.status == "completed":
+            move = 0.0  # no limit in any: lambda = 1 carried by all three
+        else:
+            move = np.inf  # the outcome itself changed (a limit in one, not in another)
+        roundoff[(flow, name)] = (move, trio)
+        print(
+            f"(j) {flow:5s} {name:22s} "
+            + ", ".join(f"{o.status} {o.carried:.5f}" for o in trio)
+            + f"  largest move {100 * move:.3g} %"
+        )
+print(f"(j) {sum(len(r) for _, r in roundoff.values())} runs, {time.perf_counter() - t_roundoff:.1f} s")
+
+# %% [markdown]
+# Checks: (i) no controlled-path limit below its bracket's floor, each one above its ceiling flagged on its
+# result (row `zoo_limits_certified`, recorded above); (j) the Davis-mode limits move ≤ 0.5 % under
+# round-off (row `roundoff_limits`), the user-ψ ones reported with their spread.
+
+# %%
+davis_moves = [m for (flow, _), (m, _) in roundoff.items() if flow == "davis"]
+user_moves = {n: m for (flow, n), (m, _) in roundoff.items() if flow == "user"}
+user_spreads = (
+    ", ".join(f"{n} {100 * m:.2g} %" for n, m in user_moves.items())
+    + f" ({sum(m > 0.02 for m in user_moves.values())} above 2 %)"
+    if user_moves
+    else "full mode only"
+)
+report.record(
+    "roundoff_limits",
+    f"largest relative move of {len(davis_moves)} zoo limits in Davis mode (controlled path) under soil "
+    "E x (1 + 1e-13) and a seeded renumbering of the soil's nodes; the user-psi (psi < phi) limits' "
+    f"spreads, path estimates: {user_spreads}; scenes: "
+    + ("an ordinary scene above its capacity (fast mode)" if FAST else ", ".join(ROUNDOFF_NAMES) + " of (h)"),
+    max(davis_moves),
+    0.005,
+    max(davis_moves) <= 0.005,
+)
 
 # %% [markdown]
 # ## Figures
@@ -677,6 +890,10 @@ report.save_figure(fig, "ch06_iterations_per_step")
 #   (the paper's reason, non-associated flow) and robustness — it never needs the tangent.
 # - An increment that fails is halved; if it still fails the analysis stops with a report naming the DOF,
 #   the node, the load factors and the reason — no silent result.
+# - Every zoo outcome is checked against its scene's limit-analysis bracket (rows `fela_zoo`,
+#   `zoo_limits_certified`): a limit below 0.97 LB_Davis would be a false collapse, one above 1.03 UB_assoc
+#   is the incremental mesh's overestimate and is flagged on the result; the controlled path's limits are
+#   checked under round-off (E × (1 + 10⁻¹³), renumbered DOFs; row `roundoff_limits`).
 #
 # References: M. A. Crisfield, *Non-linear Finite Element Analysis of Solids and Structures*, vol. 1, ch. 9;
 # R. de Borst et al., *Nonlinear Finite Element Analysis of Solids and Structures*, 2nd ed., §2.2.

@@ -18,6 +18,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..elements.section import homogeneous, rc_section
+from ..limit import flag_suspect
 from ..materials.layer_laws import CONCRETE, STEEL
 from ..materials.rc import concrete_params, designer_concrete, steel_params
 from ..scene import (
@@ -32,7 +33,7 @@ from ..scene import (
     StripWeight,
     SurfacePressure,
 )
-from ..solver import NonConvergence, Settings
+from ..solver import LIMIT_LOAD, NonConvergence, Settings
 
 
 def rc_strip(depth: float = 0.5, fc: float = 30e6, fy: float = 500e6, area: float = 1.0e-3):
@@ -256,21 +257,51 @@ class ZooOutcome:
     load_factor: float  # last converged lambda
     wall_time: float  # [s]
     message: str = ""
+    limit_load: float | None = None  # the reported limit load factor (a controlled path's peak, which its
+    # last converged lambda, past the peak, is below); None unless status is "limit load reached"
+    limit_uncertainty: float | None = None  # controlled path: the peak's relative numerical uncertainty
+    limit_suspect: str = (
+        ""  # the result's reasons not to read the limit as a capacity, the bracket's included
+    )
 
     @property
     def solved(self) -> bool:
         return self.status != "failed"
 
+    @property
+    def carried(self) -> float:
+        """The load factor the outcome claims: the limit when one was reported, else the last converged
+        lambda (1 when completed)."""
+        return self.load_factor if self.limit_load is None else self.limit_load
 
-def solve_zoo(scenes, settings: Settings | None = None) -> list[ZooOutcome]:
-    """Solve each (name, scene) with ``settings`` (default: ``Settings()``) and classify the outcome."""
+
+def solve_zoo(scenes, settings: Settings | None = None, check=None) -> list[ZooOutcome]:
+    """Solve each (name, scene) with ``settings`` (default: ``Settings()``) and classify the outcome.
+
+    ``check(name, limit)``: the :class:`ssi.limit.LimitCheck` of a scene's limit load factor against its
+    limit-analysis bracket, or None when there is nothing to check (:func:`ssi.lab.zoo_limits.
+    bracket_check`); a failed check is recorded on the result by :func:`ssi.limit.flag_suspect`, so
+    ``limit_suspect`` carries a false collapse or a mesh overestimate with its size, as a user's would."""
     outcomes = []
     for name, scene in scenes:
         t0 = time.perf_counter()
+        limit, uncertainty, suspect = None, None, ""
         try:
             out = scene.build().solve(settings=settings)
             status, lam, message = out.status, out.load_factor[-1], out.solver_result.message
+            res = out.solver_result
+            if status == LIMIT_LOAD:
+                limit = float(lam if res.limit_load_factor is None else res.limit_load_factor)
+                uncertainty = res.limit_uncertainty
+                verdict = None if check is None else check(name, limit)
+                if verdict is not None:
+                    flag_suspect(res, verdict)
+                suspect = res.limit_suspect
         except NonConvergence as err:
             status, lam, message = "failed", err.result.load_factor[-1], str(err)
-        outcomes.append(ZooOutcome(name, status, float(lam), time.perf_counter() - t0, message))
+        outcomes.append(
+            ZooOutcome(
+                name, status, float(lam), time.perf_counter() - t0, message, limit, uncertainty, suspect
+            )
+        )
     return outcomes
