@@ -401,3 +401,26 @@ def test_a_footing_confined_across_the_block_has_no_upper_bound():
     assert "no associated upper bound" in cap.summary() and cap.to_dict()["ub"] is None
     free = _scene().limit_analysis(gap=0.2, max_elements=400, davis=False)
     assert free.associated.final.upper.certified and np.isfinite(free.ub) and free.lb <= free.ub
+
+
+def test_a_sand_footing_lower_bound_certifies_at_the_apex():
+    """Zoo scene random 2 (c = 0 sand beside a rough-ish footing): the projected field has four vertices
+    1e-10 .. 1e-8 S outside the cohesionless cone next to the footing's edge (round-off: the cone has no
+    inside at its apex) and interface rows violated by ~1e-20 S; both were refused before, leaving 41 of the
+    100 zoo scenes without a certified floor. Within the apex slack the bound certifies and says with how
+    much cohesion it is rigorous; a vertex further out than the slack still refuses it."""
+    from ssi.lab.zoo import random_scenes
+    from ssi.limit import lower as lower_module
+    from ssi.limit import lower_bound, triangulate
+
+    scene = dict(random_scenes(3, seed=1))["random 2"]
+    site = limit_problem(scene, strip="rigid").site
+    mesh = triangulate(site, h=1.0)
+    lb = lower_bound(site, mesh)
+    assert lb.certified and "cohesionless vertices within" in lb.reason and lb.lam == lb.lam_projected
+    tight = lower_module.APEX_SLACK
+    try:
+        lower_module.APEX_SLACK = 1e-12
+        assert not lower_bound(site, mesh).certified
+    finally:
+        lower_module.APEX_SLACK = tight
