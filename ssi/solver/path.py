@@ -342,7 +342,7 @@ class _Follower:
         residuals, energies = [], []
         out = {"converged": False, "residuals": residuals, "energies": energies, "iterations": 0, "lam": lam}
         ev = self._evaluate(u, u_n, states_n, lam)
-        energy0 = None
+        energy0 = trial_prev = None  # trial_prev: the last iterate's states, for the failure's diagnosis
         poor = 0
         for it in range(1, st.max_iter + 1):
             if ev is None:
@@ -353,7 +353,8 @@ class _Follower:
             f_ext = lam * self.f_ref + self.f_dead
             rel = _norm(r_f) / _force_scale(st, lam, self.f_ref, f_ext, f_int, self.result)
             residuals.append(rel)
-            out.update(iterations=it, residual=r, u=u, trial=trial, lam=lam)
+            out.update(iterations=it, residual=r, u=u, trial=trial, trial_prev=trial_prev, lam=lam)
+            trial_prev = trial
             if not np.isfinite(rel):
                 out.update(reason="residual is not finite")
                 break
