@@ -85,9 +85,9 @@ POOR_RUN = 2  # ... in this many successive iterations: the tangent is refactori
 # zoo, seed 1, whose tangents are unsymmetric: starting each step on K0 and waiting 8 poor iterations left
 # 29 of 100 scenes stopped, most where the contact slips or opens -- K0's iterations there crawl until the
 # stagnation test ends them; the tangent of the committed state at a step's start, 2 poor iterations and
-# the line search of _line_search: 18, in 218 s against 752 s. On chapter 06's associated footing the
-# tangent start cost 26 steps and 33 factorisations against 13 and 11 from K0: symmetric tangents keep the
-# K0 start)
+# the line search of _line_search: 18, in 120 s against 218 s back to back. On chapter 06's associated
+# footing the tangent start cost 26 steps and 33 factorisations against 13 and 11 from K0: symmetric
+# tangents keep the K0 start)
 GROWTH = (0.5, 2.0)  # bounds of the step factor (N_target / N)^(1/2)
 LINE_SEARCH_MIN = 1.0 / 64.0  # line search on a tangent factor: smallest step fraction tried
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
