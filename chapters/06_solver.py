@@ -657,7 +657,10 @@ except NonConvergence as err:
 
 # full mode only (in fast mode its 3 scenes took 22 s: two stalling steps halved down to the minimum), and on
 # the first 20 of the 100 scenes: all 100 took ~300 s, which `make reproduce` (6 min for every chapter) cannot
-# hold; all 100 measured once off-line: 46 completed, 25 limits, 29 NonConvergence
+# hold. All 100 measured off-line, back to back: 46 completed, 25 limits, 29 NonConvergence in 218 s when
+# every step started on K0; 52 completed, 30 limits, 18 NonConvergence in 120 s since an unsymmetric tangent
+# starts a step from the committed state's tangent and backtracks on the residual norm (ssi/solver/path.py);
+# five of the 18 stop at lambda = 0 where the old rule completed
 N_ZOO_CTRL = 20
 zoo_ctrl = (
     []
