@@ -450,7 +450,14 @@ def test_every_field_has_a_unit():
     }
     for cls in classes:
         assert set(UNITS[cls.__name__]) == {f.name for f in dataclasses.fields(cls)}, cls.__name__
-    assert set(LOAD_TYPES) == {"ColumnLoad", "SurfacePressure", "StripLoad", "StripWeight", "Settlement"}
+    assert set(LOAD_TYPES) == {
+        "ColumnLoad",
+        "SurfacePressure",
+        "StripLoad",
+        "StripWeight",
+        "Settlement",
+        "Push",
+    }
 
 
 # ---- ParaView export -----------------------------------------------------------------------------------

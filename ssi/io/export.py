@@ -164,11 +164,7 @@ def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
     n_plate = 0 if built.plate is None else built.plate.n_el
     blocks = [n_soil] + ([n_plate, built.interface.n_el] if n_plate else [])
     data = {name: [np.full(n, np.nan) for n in blocks] for name in CELL_FIELDS}
-    sig = result.soil_stress(k).mean(axis=1)
-    for i, name in enumerate(STRESS_NAMES):
-        data[name][0] = sig[:, i]
-    data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
-    data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
+    _soil_state(data, result, k)
     data["pore_pressure"][0] = (built.pore_pressure() + built.excess_pore_pressure(result, k)).mean(axis=1)
     active = result.active_elements(k) if result.phases else np.ones(n_soil, bool)
     data["active"][0] = active.astype(np.float64)
@@ -196,6 +192,16 @@ def cell_data(result: SceneResult, k: int = -1) -> dict[str, list[np.ndarray]]:
     return data
 
 
+def _soil_state(data: dict, result, k: int) -> None:
+    """The soil block's element means of stress and plastic share, and its largest plastic strain, at
+    state ``k`` into ``data`` (block 0) -- the same for a scene and a site."""
+    sig = result.soil_stress(k).mean(axis=1)
+    for i, name in enumerate(STRESS_NAMES):
+        data[name][0] = sig[:, i]
+    data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
+    data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
+
+
 def _site_cell_data(result, k: int) -> dict[str, list[np.ndarray]]:
     """:func:`cell_data` of a :class:`ssi.scene.SiteResult`: the soil block, then per plate strip its plate
     (N, M, Q) and its contact (pressure, shear, open share); pore pressure hydrostatic below the water
@@ -206,11 +212,7 @@ def _site_cell_data(result, k: int) -> dict[str, list[np.ndarray]]:
         n for st in strips for n in (st["plate"].n_el, st["interface"].n_el)
     ]
     data = {name: [np.full(n, np.nan) for n in blocks] for name in CELL_FIELDS}
-    sig = result.soil_stress(k).mean(axis=1)
-    for i, name in enumerate(STRESS_NAMES):
-        data[name][0] = sig[:, i]
-    data["plastic_fraction"][0] = result.plastic_points(k).mean(axis=1)
-    data["plastic_strain"][0] = result.plastic_strain(k).max(axis=1)
+    _soil_state(data, result, k)
     data["pore_pressure"][0] = result.pore_pressure().mean(axis=1)
     data["active"][0] = np.ones(blocks[0])
     data["material_id"][0] = np.asarray(built.element_layer, np.float64)

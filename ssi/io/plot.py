@@ -387,11 +387,17 @@ def standard_figures(result: SceneResult) -> dict[str, Figure]:
 def save_standard_figures(result: SceneResult, folder: str | Path, overwrite: bool = False) -> list[Path]:
     """Write :func:`standard_figures` as PNGs into ``folder`` (atomically, never replacing a file unless
     ``overwrite``); return the paths."""
+    return save_figures(standard_figures(result), folder, overwrite)
+
+
+def save_figures(figs: dict[str, Figure], folder: str | Path, overwrite: bool = False) -> list[Path]:
+    """Write each figure of ``figs`` as ``folder/<name>.png`` (atomically, never replacing a file unless
+    ``overwrite``), close it, and return the paths."""
     from .results import atomic_path
 
     folder = Path(folder)
     paths = []
-    for name, fig in standard_figures(result).items():
+    for name, fig in figs.items():
         target = folder / f"{name}.png"
         with atomic_path(target, overwrite) as tmp:
             fig.savefig(tmp, dpi=110, format="png")

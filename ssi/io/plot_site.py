@@ -11,13 +11,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
-from .plot import _OUTLINE, _axes, _step
+from .plot import _OUTLINE, _axes, _step, save_figures
 
 if TYPE_CHECKING:  # annotations only
     from ..scene import SiteResult
@@ -199,14 +198,4 @@ def site_figures(result: SiteResult) -> dict[str, Figure]:
 def save_site_figures(result: SiteResult, folder: str | Path, overwrite: bool = False) -> list[Path]:
     """Write :func:`site_figures` as PNGs into ``folder`` (atomically, never replacing a file unless
     ``overwrite``); return the paths."""
-    from .results import atomic_path
-
-    folder = Path(folder)
-    paths = []
-    for name, fig in site_figures(result).items():
-        target = folder / f"{name}.png"
-        with atomic_path(target, overwrite) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
-        plt.close(fig)
-        paths.append(target)
-    return paths
+    return save_figures(site_figures(result), folder, overwrite)

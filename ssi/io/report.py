@@ -80,6 +80,18 @@ pre { background: #f6f6f6; padding: 0.5em; overflow-x: auto; }
 """
 
 
+def _page_head(title: str) -> list[str]:
+    """The opening lines of a report page (doctype, the bundled style, the title as heading)."""
+    esc = html.escape
+    return [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{esc(title)}</title>",
+        f"<style>{STYLE}</style></head><body>",
+        f"<h1>{esc(title)}</h1>",
+    ]
+
+
 def _fmt(value, scale, fmt) -> str:
     if value is None:
         return "–"
@@ -199,13 +211,7 @@ def report_html(
     paths, linked relative to the folder ``base`` the page is written into), ``title`` (the scene's name),
     ``run_warnings`` (texts)."""
     esc = html.escape
-    parts = [
-        "<!DOCTYPE html>",
-        '<html lang="en"><head><meta charset="utf-8">',
-        f"<title>{esc(title)}</title>",
-        f"<style>{STYLE}</style></head><body>",
-        f"<h1>{esc(title)}</h1>",
-    ]
+    parts = _page_head(title)
     status = {"completed": "completed", "limit load reached": "limit load reached", "stopped": "INCOMPLETE"}
     parts.append(
         f'<p class="status">status: {esc(status.get(s["status"], s["status"]))}'
@@ -289,12 +295,7 @@ def site_report_html(
     stress, one row per foundation (settlement, tilt, pressure), the differential settlements, the
     warnings and the figures."""
     esc = html.escape
-    parts = [
-        "<!DOCTYPE html>",
-        '<html lang="en"><head><meta charset="utf-8">',
-        f"<title>{esc(title)}</title>",
-        f"<style>{STYLE}</style></head><body>",
-        f"<h1>{esc(title)}</h1>",
+    parts = _page_head(title) + [
         f'<p class="status">status: {esc(s["status"])}</p>',
         f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial stress "
         f"{esc(s['initial_stress'])}.</p>",
