@@ -19,7 +19,7 @@ from ..elements.soil_q8_points import SoilQ8Points
 from ..materials.soil_laws import SoilLayer, geostatic_stress, material_table
 from .loads import ColumnLoad, Push
 from .site_parts import DepthVarying, RigidStrip, Strip
-from .site_view import SiteResult
+from .site_view import SiteResult, pushed_nodes
 
 if TYPE_CHECKING:  # for annotations only: the site module imports this one
     from .site import Site
@@ -234,7 +234,7 @@ class BuiltSite:
                         model.add_load([ids[i]], comp, v)
             elif isinstance(ld, Push):  # the strip's nodes' u prescribed (a plate's rotations held)
                 st = self.strips[self.site.pushed_strip(ld)]
-                nodes = _pushed_nodes(st)
+                nodes = pushed_nodes(st)
                 if not st.get("rigid"):
                     if st["slide_support"] is not None:
                         raise GeometryError(
@@ -274,15 +274,6 @@ class BuiltSite:
             return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
         levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)
         return SiteResult(self, _run_phase(self.model, levels, settings))
-
-
-def _pushed_nodes(st: dict) -> np.ndarray:
-    """Model ids of the nodes a Push moves of the built strip ``st``: a plate's nodes; a RigidStrip's base
-    nodes and its side contact's rigid body node (if any)."""
-    if not st.get("rigid"):
-        return st["plate_nodes"]
-    body = [] if st.get("body") is None else [st["body"]]
-    return np.concatenate([st["soil_nodes"], np.array(body, np.int64)])
 
 
 def _gauss_points(coords, n_gauss):

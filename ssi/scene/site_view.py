@@ -29,20 +29,16 @@ class SiteResult:
         """(settlement [m], mean pressure [Pa]) histories of the RigidStrip ``i``: the pressure is the
         vertical support reaction of its base nodes (and of an embedded strip's side contact body, the
         friction on its walls) over its width."""
-        from .site_built import _pushed_nodes
-
         st, res = self.built.strips[i], self.result
         w = res.displacement(st["soil_nodes"][:1], "w")[:, 0]
-        return -w, -res.support_reaction(_pushed_nodes(st), "w") / st["width"]
+        return -w, -res.support_reaction(pushed_nodes(st), "w") / st["width"]
 
     def push_force(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         """(horizontal displacement [m], horizontal force [N/m]) histories of strip ``i`` pushed by a
         :class:`~ssi.scene.loads.Push`, both > 0 in +x: the displacement of its first pushed node and the
         summed support reaction at its pushed u DOFs (a plate's nodes, a RigidStrip's base)."""
-        from .site_built import _pushed_nodes
-
         st, res = self.built.strips[i], self.result
-        nodes = _pushed_nodes(st)
+        nodes = pushed_nodes(st)
         return res.displacement(nodes[:1], "u")[:, 0], res.support_reaction(nodes, "u")
 
     def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
@@ -143,3 +139,12 @@ def gibson_settlement(q: float, m: float) -> float:
     load and zero outside it (Gibson 1967, Geotechnique 17(1), 58-67; the 'Gibson soil' behaves as a Winkler
     foundation of modulus 2m)."""
     return float(q) / (2.0 * float(m))
+
+
+def pushed_nodes(st: dict) -> np.ndarray:
+    """Model ids of the nodes a Push moves of the built strip ``st``: a plate's nodes; a RigidStrip's base
+    nodes and its side contact's rigid body node (if any)."""
+    if not st.get("rigid"):
+        return st["plate_nodes"]
+    body = [] if st.get("body") is None else [st["body"]]
+    return np.concatenate([st["soil_nodes"], np.array(body, np.int64)])
