@@ -331,19 +331,12 @@ def run_scene_file(
     from ..solver.progress import announce_compilation
     from .plot import save_standard_figures
     from .report import write_report
-    from .results import OutputExistsError, atomic_path, write_result
+    from .results import atomic_path, run_output_paths, write_result
 
     scene_path = Path(scene_path)
-    stem = scene_path.with_suffix("")
-    out = Path(out) if out else stem.with_suffix(".h5")
-    paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
-    plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
-    summary_path = stem.parent / (stem.name + "_summary.json")
-    report_path = stem.parent / (stem.name + "_report.html")
     scene, n_steps, settings = read_scene_file(scene_path)
-    for target in (out, paraview, summary_path, report_path):
-        if target.exists() and not overwrite:
-            raise OutputExistsError(target)
+    paths = run_output_paths(scene_path, out, paraview, plots, overwrite)
+    out, paraview, plots, summary_path, report_path = paths
     announce_compilation()
     t0 = time.perf_counter()
     stop = None

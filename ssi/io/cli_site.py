@@ -111,19 +111,12 @@ def run_site_file(site_path, overwrite: bool = False, out=None, plots=None, para
     from .export import export_series
     from .plot_site import save_site_figures
     from .report import write_report
-    from .results import OutputExistsError, atomic_path, write_result
+    from .results import atomic_path, run_output_paths, write_result
 
     site_path = Path(site_path)
-    stem = site_path.with_suffix("")
-    out = Path(out) if out else stem.with_suffix(".h5")
-    paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
-    plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
-    summary_path = stem.parent / (stem.name + "_summary.json")
-    report_path = stem.parent / (stem.name + "_report.html")
     site, n_steps, settings = read_site_file(site_path)
-    for target in (out, paraview, summary_path, report_path):
-        if target.exists() and not overwrite:
-            raise OutputExistsError(target)
+    paths = run_output_paths(site_path, out, paraview, plots, overwrite)
+    out, paraview, plots, summary_path, report_path = paths
     announce_compilation()
     t0 = time.perf_counter()
     stop = None

@@ -697,3 +697,20 @@ def max_difference(a: "SceneResult", b: "SceneResult", skip: tuple = ()) -> tupl
         if d > worst:
             worst, where = d, name
     return worst, where
+
+
+def run_output_paths(input_path, out=None, paraview=None, plots=None, overwrite: bool = False) -> tuple:
+    """The files ``ssi run`` writes for a scene or site file ``input_path``: (result file, ParaView series,
+    plots folder, JSON summary, HTML report), defaults beside the input (``<name>.h5``, ``<name>.pvd``,
+    ``<name>_plots``, ``<name>_summary.json``, ``<name>_report.html``); raises OutputExistsError for one that
+    exists unless ``overwrite`` (checked before anything is solved)."""
+    stem = Path(input_path).with_suffix("")
+    out = Path(out) if out else stem.with_suffix(".h5")
+    paraview = Path(paraview) if paraview else stem.parent / (stem.name + ".pvd")
+    plots = Path(plots) if plots else stem.parent / (stem.name + "_plots")
+    summary_path = stem.parent / (stem.name + "_summary.json")
+    report_path = stem.parent / (stem.name + "_report.html")
+    for target in (out, paraview, summary_path, report_path):
+        if target.exists() and not overwrite:
+            raise OutputExistsError(target)
+    return out, paraview, plots, summary_path, report_path
