@@ -123,7 +123,9 @@ t_all = time.perf_counter()
 for phi, rough in CASES:
     q_exact = prandtl(C, phi)[0]
     for h in MESHES:
-        scene = chapter10_footing(phi_deg=phi, rough=rough, h_fine=h, settle=SETTLE[phi])
+        # psi = phi on purpose: Prandtl's value is exact for associated flow only (a SoilLayer's default
+        # is psi = 0)
+        scene = chapter10_footing(phi_deg=phi, psi_deg=phi, rough=rough, h_fine=h, settle=SETTLE[phi])
         out = push_footing(scene, n_steps=N_STEPS)
         if out["failure"]:
             raise RuntimeError(f"phi={phi} rough={rough} h={h}: {out['failure']}")

@@ -168,7 +168,9 @@ record(
 # plus 1 %, and the error must fall with h.
 
 # %%
-PHI, Q_NQ = 30.0, 20e3
+PHI, Q_NQ = 30.0, 20e3  # the sand's friction angle [deg] and the surcharge [Pa]
+# psi = phi (associated flow) wherever the sand is compared with Prandtl-Reissner: q N_q is the exact collapse
+# pressure of an associated material only (a SoilLayer without psi_deg has psi = 0)
 q_nq = prandtl(0.0, PHI, Q_NQ)[0]
 SAME_MESH_TOL = 0.01
 curves_nq, nq_err, nq_gap, nq_half = {}, {}, {}, {}
@@ -176,7 +178,7 @@ for h in MESHES:
     scene = Scene(
         width=BLOCK["width"],
         depth=5.0,
-        layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)],
+        layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, psi_deg=PHI, K0=1.0)],
         surcharge=Q_NQ,
         mesh=mesh(h),
         foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),
@@ -526,7 +528,7 @@ with warnings.catch_warnings():
             depth=5.0 + D,
             layers=[
                 SoilLayer(D, E=E_b, nu=0.3, unit_weight=GAMMA_B),
-                SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0),
+                SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, psi_deg=PHI, K0=1.0),
             ],
             embedment=D,
             mesh=mesh(h_fin),
@@ -542,7 +544,7 @@ with warnings.catch_warnings():
 equivalent = Scene(
     width=BLOCK["width"],
     depth=5.0,
-    layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, K0=1.0)],
+    layers=[SoilLayer(5.0, E=E, nu=NU, c=0.0, phi_deg=PHI, psi_deg=PHI, K0=1.0)],
     surcharge=GAMMA_B * D,
     mesh=mesh(h_fin),
     foundation=Foundation(x0=-1.0, x1=1.0, section=STRIP),

@@ -41,7 +41,8 @@ CASES = {
         n_gauss=3,
         layers=[
             SoilLayer(2.0, E=10e6, nu=0.3, c=10e3, phi_deg=20.0, psi_deg=5.0),
-            SoilLayer(3.0, E=80e6, nu=0.25, c=15e3, phi_deg=25.0),
+            # psi = phi: FORMER's fingerprint was recorded when a SoilLayer's default was associated flow
+            SoilLayer(3.0, E=80e6, nu=0.25, c=15e3, phi_deg=25.0, psi_deg=25.0),
         ],
     ),
     "explicit": dict(COARSE, scheme="explicit", n_sub=8, drift=True, settle=0.05),

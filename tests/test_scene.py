@@ -13,7 +13,7 @@ from ssi.elements.soil_q8 import SoilQ8
 from ssi.io.results import read_result, write_result
 from ssi.lab.examples import surcharge_heave
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.scene.scene_file import scene_to_dict
+from ssi.scene.scene_file import UNITS, scene_from_dict, scene_to_dict
 from ssi.solver import Settings
 
 COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)
@@ -109,6 +109,22 @@ def test_layers_must_be_valid():
         strip_scene(layers=[SoilLayer(6.0, E=1e7, nu=0.5)]).build()
     with pytest.raises(ValueError, match="tile the depth"):
         strip_scene(layers=[SoilLayer(5.0, E=1e7, nu=0.3)]).build()
+
+
+def test_a_layer_without_psi_does_not_dilate():
+    """Issue 31: a SoilLayer without psi_deg has psi = 0 (PLAXIS's default; psi = phi overstated a user's
+    push-over by 18 %), in Python and in a scene file (the reader builds the same dataclass); psi_deg=None
+    is associated flow. The law's parameter row holds phi and psi in radians at columns 3 and 4 (set from
+    the inputs here, not computed by the code under test)."""
+    layer = SoilLayer(6.0, E=20e6, nu=0.3, c=10e3, phi_deg=30.0)
+    assert layer.psi_deg == 0.0
+    assert layer.law()[1][3:5] == pytest.approx([np.radians(30.0), 0.0], abs=0.0)
+    associated = SoilLayer(6.0, E=20e6, nu=0.3, c=10e3, phi_deg=30.0, psi_deg=None)
+    assert associated.law()[1][3:5] == pytest.approx([np.radians(30.0)] * 2, abs=0.0)
+    data = scene_to_dict(strip_scene(layers=[layer]))
+    del data["layers"][0]["psi_deg"]  # a scene file that leaves it out
+    assert scene_from_dict(data).layers[0].psi_deg == 0.0
+    assert "leave out: 0" in UNITS["SoilLayer"]["psi_deg"]
 
 
 def test_readme_scene_runs_as_written():
