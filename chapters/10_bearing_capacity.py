@@ -27,7 +27,9 @@
 #   pressure with Prandtl's q_u = c·N_c on three meshes (the error must shrink; ≤ 3 % on the named mesh);
 # - reproduce the Smith & Griffiths flexible-footing curve within 3 % up to 500 kPa, and see why the yield
 #   function (von Mises vs Tresca) matters before collapse;
-# - measure how non-associated flow (ψ = 0) lowers the limit load and raises the iteration counts;
+# - follow the associated, the Davis-mode and the user's ψ = 0 footing on the controlled path, and report
+#   the ψ = 0 value as what it is: a path estimate with its spread, between the Davis value and the
+#   associated ceiling;
 # - plot the trade: explicit vs implicit integration, full vs modified Newton, step size — error vs wall time.
 
 # %% [markdown]
@@ -223,171 +225,29 @@ report.record(
 print(f"largest relative settlement error up to 500 kPa: {100 * sg_max:.2f} %")
 
 # %% [markdown]
-# ## Non-associated flow: ψ = 0 versus ψ = φ
+# ## Non-associated flow: no unique limit, so three answers
 #
-# Same rough footing, φ = 20°, c = 10 kPa, on the middle mesh. With ψ = 0 the material flows without volume
-# change; the limit load drops and the unsymmetric tangent makes each step harder to converge. On finer
-# meshes the rate-independent ψ = 0 push stalls before a limit is reached: even the initial-stiffness
-# iterations diverge there (slowly growing residual) — the non-associated material loses stability (its
-# tangent is no longer positive definite) and displacement control alone cannot follow the path. Without a
-# fallback the answer then depended on the step size (a 30-step push stopped, 12 larger steps passed). The
-# solver's viscous fallback (chapter 06) takes over at the stall and relaxes the end of the path to the
-# rate-independent law; only those rate-independent states count for q_u (the viscous stretch carries
-# overstress: 1.62 × Prandtl here before the relaxation, measured). The next section makes the viscous path
-# the method and checks it.
-
-# %%
-H_NA = MESHES[-2] if not FAST else MESHES[-1]
-nonassoc = {}
-for psi in (20.0, 0.0) if FAST else (20.0, 10.0, 0.0):
-    scene = chapter10_footing(psi_deg=psi, h_fine=H_NA, settle=SETTLE[20.0])
-    out = push_footing(scene, n_steps=N_STEPS)
-    nonassoc[psi] = out
-    print(
-        f"psi={psi:4.0f}: q_u={out['q_u'] / 1e3:7.2f} kPa = "
-        f"{out['q_u'] / prandtl(C, 20.0)[0]:.4f} x Prandtl, "
-        f"iterations={out['n_iterations']}, per step max {max(out['iterations'])}, cuts={out['cuts']}, "
-        f"time={out['wall_time']:.1f} s, stop: {out['failure']}"
-    )
-drop = nonassoc[0.0]["q_u"] / nonassoc[20.0]["q_u"] - 1.0
-if nonassoc[0.0]["failure"] is None:
-    print(
-        f"limit-load change psi=0 vs psi=phi on h={H_NA} m: {100 * drop:+.2f} %; iterations "
-        f"{nonassoc[20.0]['n_iterations']} -> {nonassoc[0.0]['n_iterations']}"
-    )
-else:
-    print(
-        f"psi=0 on h={H_NA} m STOPPED at q = {nonassoc[0.0]['q_u'] / 1e3:.2f} kPa "
-        f"(settlement {1e3 * nonassoc[0.0]['settlement'][-1]:.1f} mm): {nonassoc[0.0]['failure']}"
-    )
-# the same psi = 0 push with fewer, larger steps: a different path through the unstable range
-scene = chapter10_footing(psi_deg=0.0, h_fine=H_NA, settle=SETTLE[20.0])
-coarse_steps = push_footing(scene, n_steps=12)
-print(
-    f"psi=0 with 12 steps: q_u={coarse_steps['q_u'] / 1e3:.2f} kPa = "
-    f"{coarse_steps['q_u'] / prandtl(C, 20.0)[0]:.4f}"
-    f" x Prandtl, iterations={coarse_steps['n_iterations']}, cuts={coarse_steps['cuts']}, "
-    f"stop: {coarse_steps['failure']}"
-)
-
-# %% [markdown]
-# ## Non-associated flow solved to collapse: viscoplastic regularisation
+# With ψ < φ the plastic flow is not normal to the yield surface: Drucker's stability postulate fails, the
+# bound theorems of limit analysis no longer hold, and the rate-independent increment can lose uniqueness
+# before any peak (de Borst & Vermeer 1984; Loukidis & Salgado 2009). The ψ = 0 footing shows it: near the
+# footing's edge single points flip between elastic and plastic from one iterate to the next, the residual
+# stagnates for every Newton variant, and what a push reports depends on its steps, its mesh and round-off.
+# Earlier versions of this chapter pushed it viscoplastically (Duvaut–Lions), relaxed the end of the path and
+# asked for a ψ = 0 plateau independent of the step count on every mesh (rows `psi0_limit_h0125` and
+# `psi0_step_independence`). That request was ill-posed (issue 31): a non-associated "limit" belongs to the
+# path, not to the material, and a regularisation tuned until it looks unique measures the regularisation.
+# This chapter therefore computes, side by side on one controlled path (next section):
 #
-# Why the ψ = 0 push stops: near the footing edge single points flip between elastic and plastic from one
-# iterate to the next, and the residual stagnates near 1e-4 of the load for BFGS, modified and full Newton
-# alike, with small increments as with large ones. With non-associated flow the rate-independent increment
-# need not have a solution near the previous state (the flow rule is not normal to the yield surface, so
-# Drucker's stability postulate fails): no iteration scheme can converge to what is not there, and large
-# increments only jump past the trouble by luck (12 steps pass, 30 stop).
-#
-# Smith & Griffiths' programs use viscoplasticity for exactly this reason. Here it is Duvaut–Lions
-# regularisation, one setting (`Settings(viscosity=τ)`, τ = Δt/η per increment): the stress of an
-# increment is (σ_trial + τ σ_return)/(1 + τ), a blend of the elastic trial and the rate-independent return,
-# and so are the forces and the tangent — every increment then has a solution, and one close to the start.
-# The path is viscous (rate dependent), so at the end the settlement is held while τ grows tenfold per stage
-# and, last, τ = 0: the overstress decays by 1/(1 + τ) per increment and the final state is an equilibrium of
-# the rate-independent law, converged to the usual tolerances. Its pressure is the limit load if the
-# mechanism has formed, i.e. if the load no longer rises: checked by relaxing at several settlements on each
-# mesh (3 to 6 cm). It need not stay level: with ψ = 0 the relaxed pressure peaks and then falls slowly (on
-# h = 0.0625 m, full mode: 0.873, 0.943, 0.983, 0.977, 0.973, 0.970, 0.967 × Prandtl at 3, 3.5, …, 6 cm, and
-# 0.960 and 0.955 at 8 and 10 cm in a separate 20-step run; on h = 0.125 m a peak of 0.998 at 4.5 cm) — the
-# non-associated flow rule lets the footing's response soften although the material does not, the loss of
-# uniqueness that also stops the rate-independent iteration. So the check is one-sided: from 5 to 6 cm the
-# pressure rises by less than 0.5 %. The reported limit is the pressure at 6 cm (a fixed point of the path,
-# where the step counts are compared); the peak of the scanned relaxed pressures is printed beside it and lies
-# 0.5 % (h = 0.125 m) to 1.6 % (h = 0.0625 m) above it (full mode, measured).
-#
-# The claims: on each mesh the relaxed limit load changes by less than 1 % between 20, 40 and 80 steps
-# (`psi0_step_independence`); on every mesh the load no longer rises between 5 and 6 cm (a plateau or a
-# peak passed); the h = 0.125 m value is row `psi0_limit_h0125`. The limit load falls with h (first order,
-# the rough corner) towards a value below the associated one.
-
-# %%
-PSI0_MESHES = [0.25, 0.125] if FAST else [0.25, 0.125, 0.0625]
-PSI0_STEPS = [20, 40] if FAST else [20, 40, 80]
-VISCOUS = dict(viscosity=1.0, stepping="fixed", backend="superlu")
-PLATEAU_TOL = 0.005  # largest rise of the relaxed pressure from 5 to 6 cm of settlement
-PSI0_SCAN_CM = [4.0, 5.0] if FAST else [3.0, 3.5, 4.0, 4.5, 5.0, 5.5]  # earlier settlements relaxed [cm]
-STEP_TOL = 0.01  # the issue's bound on the step-count dependence
-
-
-def psi0_push(h, n_steps, settle=SETTLE[20.0]):
-    scene = chapter10_footing(psi_deg=0.0, h_fine=h, settle=settle)
-    out = push_footing(scene, n_steps=n_steps, settings=Settings(**VISCOUS))
-    out["q_end"] = out["q"][-1] / q_p20_na
-    out["n_dof"] = scene.info["n_dof"]
-    return out
-
-
-q_p20_na = prandtl(C, 20.0)[0]
-psi0 = {}
-for h in PSI0_MESHES:
-    for n in PSI0_STEPS:
-        out = psi0_push(h, n)
-        psi0[h, n] = out
-        print(
-            f"psi=0, viscous + relaxed: h={h:6.4f} ({out['n_dof']} DOFs) {n:3d} steps: "
-            f"q_u = {out['q_end']:.4f} "
-            f"x Prandtl, {out['n_iterations']} iterations ({out['result'].relaxed_steps} relaxation steps), "
-            f"{out['factorizations']} factorisation(s), {out['wall_time']:.1f} s, stop: {out['failure']}"
-        )
-    # the relaxed pressure at earlier settlements, each pushed in increments of the 20-step push's size
-    scan = {SETTLE[20.0]: psi0[h, PSI0_STEPS[0]]["q_end"]}
-    for cm in PSI0_SCAN_CM:
-        n_scan = round(PSI0_STEPS[0] * cm / (100 * SETTLE[20.0]))
-        scan[cm / 100] = psi0_push(h, n_scan, settle=cm / 100)["q_end"]
-    psi0[h, "scan"] = dict(sorted(scan.items()))
-    psi0[h, "plateau"] = scan[SETTLE[20.0]] / scan[0.05] - 1.0  # > 0: still rising from 5 to 6 cm
-    psi0[h, "peak"] = max(scan.values())
-    print(
-        "   relaxed q against settlement: "
-        + ", ".join(f"{100 * k:.1f} cm {v:.4f}" for k, v in psi0[h, "scan"].items())
-        + f"; rise from 5 to 6 cm {psi0[h, 'plateau']:+.2e}"
-    )
-step_change = max(
-    max(psi0[h, n]["q_end"] for n in PSI0_STEPS) / min(psi0[h, n]["q_end"] for n in PSI0_STEPS) - 1.0
-    for h in PSI0_MESHES
-)
-trend = [psi0[h, PSI0_STEPS[-1]]["q_end"] for h in PSI0_MESHES]
-print(
-    f"largest change of the psi=0 limit load between {PSI0_STEPS} steps over the meshes: "
-    f"{100 * step_change:.2f} %"
-)
-print("limit load / Prandtl (most steps) against h:", dict(zip(PSI0_MESHES, np.round(trend, 4))))
-fig, ax = plt.subplots(figsize=(6, 3.5))
-for h in PSI0_MESHES:
-    ax.plot(100 * np.array(list(psi0[h, "scan"])), list(psi0[h, "scan"].values()), "o-", label=f"h = {h} m")
-ax.set(
-    xlabel="settlement [cm]",
-    ylabel="relaxed q / Prandtl",
-    title="ψ = 0: relaxed pressure, 20-step increments",
-)
-ax.legend(fontsize=8)
-report.save_figure(fig, "fig10_psi0_relaxed_path")
-
-# %%
-assert all(psi0[h, n]["failure"] is None for h in PSI0_MESHES for n in PSI0_STEPS)
-assert all(psi0[h, "plateau"] < PLATEAU_TOL for h in PSI0_MESHES)  # the load no longer rises, every mesh
-assert step_change < STEP_TOL
-assert all(a > b for a, b in zip(trend, trend[1:]))  # falls with h (first-order corner error)
-assert psi0[H_NA, PSI0_STEPS[-1]]["q_end"] < nonassoc[20.0]["q_u"] / q_p20_na  # below psi = phi, same mesh
-plateau_ok = psi0[0.125, "plateau"] < PLATEAU_TOL and psi0[0.125, PSI0_STEPS[0]]["failure"] is None
-report.record(
-    "psi0_limit_h0125",
-    "q_u/Prandtl, rough footing, psi=0, h=0.125 m, viscous path relaxed to the "
-    "rate-independent state, at 6 cm (PASS: limit reached, the relaxed q rises by less than 0.5 % from 5 to "
-    f"6 cm); largest relaxed q of the settlement scan {psi0[0.125, 'peak']:.4f}",
-    psi0[0.125, PSI0_STEPS[-1]]["q_end"],
-    PLATEAU_TOL,
-    plateau_ok,
-)
-report.record(
-    "psi0_step_independence",
-    f"max relative change of the psi=0 limit load between {PSI0_STEPS} steps over h = {PSI0_MESHES} m",
-    step_change,
-    STEP_TOL,
-    step_change < STEP_TOL,
-)
+# - the **associated** footing (ψ = φ): a unique limit, checked against Prandtl and the limit-analysis
+#   bracket; its upper bound UB_assoc is a rigorous ceiling for every ψ ≤ φ (the flow rule cannot make the
+#   material stronger than its associated twin, Radenković's first theorem);
+# - the **Davis** footing (`Settings(flow="davis")`): associated flow with Davis' reduced strength, the
+#   conventional capacity of the non-associated soil (row `footing_davis_peak`);
+# - the **user's ψ = 0** as a *path estimate*: the largest pressure of its controlled path, reported with its
+#   spread under the perturbations issue 31 names — step budget 20, 40 and 80, E × (1 + 1e-13), and the
+#   mesh — and checked to lie between 0.97 × the Davis value and 1.03 × UB_assoc. The rows
+#   `psi0_limit_h0125` and `psi0_step_independence` keep their ids and now hold this estimate and its spread:
+#   they are the replacement of the viscous rows.
 
 # %% [markdown]
 # ## The controlled path: associated, Davis and ψ = 0 footings
@@ -407,7 +267,16 @@ report.record(
 # Checks: the associated peak on the named mesh within 3 % of Prandtl and inside the limit-analysis bracket
 # (`ssi.limit`, chapter 17) of the same footing, and step-independent (at most 20, 40 or 80 steps to the
 # full settlement agree to 0.5 %); the Davis peaks on three meshes converge towards Prandtl's value of the
-# reduced material; the user's ψ = 0 is run as a path estimate with its spread over the step counts.
+# reduced material. The user's ψ = 0 is run on each mesh with a 20-step budget; on h = 0.25 and 0.125 m
+# (fast mode: 0.5 m) also with 40 and 80 steps and with E × (1 + 1e-13) (the round-off perturbation of the
+# zoo's `roundoff_limits`). A run that ends in a `NonConvergence` gives no estimate: its largest pressure is
+# only where the path stopped. The claims (full mode): on h = 0.125 m every perturbed run gives an estimate,
+# each inside [0.97 × the Davis-mode peak of the same mesh, 1.03 × UB_assoc] (row `psi0_limit_h0125`); the
+# spread of the estimates on each of the two meshes is at most 2 %, issue 31's bound for a ψ < φ limit under
+# round-off (row `psi0_step_independence`). Neither tolerance is fitted to these runs: the band is issue 31's
+# [0.97 LB_Davis, 1.03 UB_assoc] for every incremental limit with the Davis-mode peak of the same mesh in
+# place of LB_Davis (it carries the same discretisation error as the estimate and lies above LB_Davis, so
+# the band is the narrower one), and the 2 % is issue 31's bound for non-associated limits.
 
 # %%
 from ssi.limit import Interface as LimitInterface  # noqa: E402
@@ -419,6 +288,7 @@ CTRL_MESHES = [0.5, 0.25] if FAST else [0.25, 0.125, 0.0625]  # element size und
 CTRL_H = CTRL_MESHES[-1]  # the named mesh of footing_assoc_peak (h = 0.0625 m in full mode)
 CTRL_STEPS = [20, 40] if FAST else [20, 40, 80]  # the step budgets: the largest step is 1/n of the push
 STEP_AGREE = 0.005  # issue 31: the peaks of 20, 40 and 80 steps agree to 0.5 %
+PSI0_SPREAD_TOL = 0.02  # issue 31 (roundoff_limits): a user psi < phi limit moves by at most 2 %
 BRACKET_GAP = 0.03  # requested (UB-LB)/(UB+LB) of the limit-analysis bracket (full mode)
 q_p20 = prandtl(C, 20.0)[0]  # Prandtl's q_u of the phi = 20 deg footing [Pa]
 beta = davis_beta(20.0, 0.0)
@@ -428,11 +298,13 @@ print(f"Davis: beta = {beta:.4f}, c* = {beta * C / 1e3:.3f} kPa, phi* = {phi_sta
       f"Prandtl(c*, phi*) = {q_davis / 1e3:.2f} kPa = {q_davis / q_p20:.4f} x Prandtl(c, phi)")  # fmt: skip
 
 
-def controlled_push(h, n_steps=20, psi_deg=None, flow="user"):
+def controlled_push(h, n_steps=20, psi_deg=None, flow="user", E=CHAPTER10_FOOTING["E"]):
     """Chapter 10's rough phi = 20 deg footing pushed to 6 cm on the controlled path, the largest step 1/n of
-    the push; returns the push's dict (settlement [m], q [Pa], peak q_u [Pa], the solver result, failure)."""
-    kw = {} if psi_deg is None else {"psi_deg": psi_deg}
-    scene = chapter10_footing(phi_deg=20.0, h_fine=h, settle=SETTLE[20.0], **kw)
+    the push; ``psi_deg`` None: associated; ``E`` [Pa] the soil's modulus (perturbed by round-off below).
+    Returns the push's dict (settlement [m], q [Pa], peak q_u [Pa], the solver result, failure)."""
+    scene = chapter10_footing(
+        phi_deg=20.0, psi_deg=20.0 if psi_deg is None else psi_deg, h_fine=h, settle=SETTLE[20.0], E=E
+    )
     symmetric = psi_deg is None or flow == "davis"  # associated (or Davis) soil: symmetric tangent
     settings = Settings(
         control="work", flow=flow, backend="superlu", symmetric_tangent=symmetric,
@@ -456,13 +328,19 @@ for n in CTRL_STEPS:
     ctrl["assoc", CTRL_H, n] = controlled_push(CTRL_H, n)
 for h in CTRL_MESHES:
     ctrl["davis", h, 20] = controlled_push(h, 20, psi_deg=0.0, flow="davis")
-for n in CTRL_STEPS:
-    ctrl["psi0", CTRL_MESHES[0], n] = controlled_push(CTRL_MESHES[0], n, psi_deg=0.0)
+# the user's psi = 0: every mesh with the 20-step budget; the perturbed runs on the meshes of PSI0_SPREAD
+PSI0_SPREAD = CTRL_MESHES[:1] if FAST else CTRL_MESHES[:2]  # h = 0.5 m (fast), 0.25 and 0.125 m (full)
+E_ROUNDOFF = CHAPTER10_FOOTING["E"] * (1.0 + 1e-13)  # issue 31's round-off perturbation of E [Pa]
+for h in CTRL_MESHES:
+    for n in CTRL_STEPS if h in PSI0_SPREAD else CTRL_STEPS[:1]:
+        ctrl["psi0", h, n] = controlled_push(h, n, psi_deg=0.0)
+    if h in PSI0_SPREAD:
+        ctrl["psi0_E", h, CTRL_STEPS[0]] = controlled_push(h, CTRL_STEPS[0], psi_deg=0.0, E=E_ROUNDOFF)
 for (kind, h, n), out in ctrl.items():
     r = out["result"]
     unc = "-" if r.limit_uncertainty is None else f"{r.limit_uncertainty:.1e}"
     print(
-        f"{kind:5s} h={h:6.4f} ({out['n_dof']:4d} DOFs) <= {n:2d}-step budget: {r.n_steps:3d} steps, "
+        f"{kind:6s} h={h:6.4f} ({out['n_dof']:4d} DOFs) <= {n:2d}-step budget: {r.n_steps:3d} steps, "
         f"{r.factorizations:3d} factorisations, {r.cuts:2d} halvings, {out['wall_time']:5.1f} s; "
         f"q_u = {out['q_u'] / q_p20:.4f} x Prandtl; {r.status}"
         + (f" (uncertainty {unc}; suspect: {r.limit_suspect or 'no'})" if r.collapsed else "")
@@ -489,20 +367,47 @@ step_spread = max(peaks) / min(peaks) - 1.0
 lb_davis, ub_assoc = (brackets["davis"].lb, brackets["assoc"].ub) if brackets else (np.nan, np.nan)
 in_bracket = all(0.97 * lb_davis <= p <= 1.03 * ub_assoc for p in peaks)  # False without a bracket
 davis_err = [ctrl["davis", h, 20]["q_u"] / q_davis - 1.0 for h in CTRL_MESHES]
-psi0_runs = [ctrl["psi0", CTRL_MESHES[0], n] for n in CTRL_STEPS]
-psi0_q = [o["q_u"] / q_p20 for o in psi0_runs]
+
+
+def psi0_estimate(out):
+    """q_u / Prandtl(c, phi) of a user's psi = 0 run, or None where it ended in a NonConvergence (a stopped
+    path has no estimate: its largest pressure is only where it stopped)."""
+    return None if out["failure"] else out["q_u"] / q_p20
+
+
+psi0_est = {h: {k: psi0_estimate(o) for k, o in ctrl.items() if k[0].startswith("psi0") and k[1] == h}
+            for h in CTRL_MESHES}  # fmt: skip
+psi0_spread = {}  # max/min - 1 of the estimates of one mesh; inf if a perturbed run gave none
+for h in PSI0_SPREAD:
+    est = list(psi0_est[h].values())
+    psi0_spread[h] = np.inf if None in est else max(est) / min(est) - 1.0
+# the band of issue 31 for the estimate: [0.97 x the Davis-mode peak of the same mesh, 1.03 x UB_assoc]
+psi0_band = {h: (0.97 * ctrl["davis", h, 20]["q_u"] / q_p20, 1.03 * ub_assoc / q_p20) for h in CTRL_MESHES}
 print(f"associated, h = {CTRL_H} m: peak - Prandtl {100 * assoc_err:+.2f} %, spread over {CTRL_STEPS} steps "
       f"{100 * step_spread:.3f} %, inside [0.97 LB_Davis, 1.03 UB_assoc]: "
       f"{'(no bracket in fast mode)' if FAST else in_bracket}")  # fmt: skip
 print("Davis peak / Prandtl(c*, phi*) - 1 on h =", CTRL_MESHES, ":", [f"{100 * e:+.2f} %" for e in davis_err])
-print(f"psi = 0 path estimate, h = {CTRL_MESHES[0]} m: q_u/Prandtl {[round(q, 4) for q in psi0_q]} over "
-      f"{CTRL_STEPS} steps; spread {100 * (max(psi0_q) / min(psi0_q) - 1):.2f} %; failures "
-      f"{[o['failure']['reason'] if o['failure'] else None for o in psi0_runs]}")  # fmt: skip
+
+
+def psi0_text(key, est):
+    """One run's estimate, or where its path stopped."""
+    if est is not None:
+        return f"{key[0]} {key[2]}: {est:.4f}"
+    out = ctrl[key]
+    where = f"{100 * out['settlement'][-1]:.2f} cm, q {out['q_u'] / q_p20:.4f}"
+    return f"{key[0]} {key[2]}: none (stopped at {where})"
+
+
+for h in CTRL_MESHES:
+    runs = ", ".join(psi0_text(k, e) for k, e in psi0_est[h].items())
+    spread = f"; spread {100 * psi0_spread[h]:.2f} %" if h in psi0_spread else ""
+    print(f"psi = 0 path estimate / Prandtl, h = {h} m: {runs}{spread}; band [0.97 Davis, 1.03 UB_assoc] = "
+          f"[{psi0_band[h][0]:.4f}, {psi0_band[h][1]:.4f}]")  # fmt: skip
 
 # %%
 # no run of the associated or Davis footing may end in a NonConvergence; every limit it reports is backed by
 # a peak or a plateau of the pressure (the solver's own rule), never a failure
-assert all(ctrl[k]["failure"] is None for k in ctrl if k[0] != "psi0")
+assert all(ctrl[k]["failure"] is None for k in ctrl if not k[0].startswith("psi0"))
 assert step_spread < STEP_AGREE, step_spread
 assert all(abs(a) > abs(b) for a, b in zip(davis_err, davis_err[1:]))  # converging towards Prandtl(c*, phi*)
 assert all(e > 0.0 for e in davis_err)  # from above, as the displacement method's first-order corner error
@@ -528,11 +433,37 @@ if not FAST:
         TOL_PRANDTL,
         all(abs(a) > abs(b) for a, b in zip(davis_err, davis_err[1:])) and abs(davis_err[-1]) < TOL_PRANDTL,
     )
+    est_h0125 = list(psi0_est[0.125].values())
+    statuses = sorted({ctrl[k]["result"].status for k in psi0_est[0.125]})
+    low, high = psi0_band[0.125]
+    finest = ctrl["psi0", CTRL_MESHES[-1], CTRL_STEPS[0]]
+    finest_txt = psi0_text(("psi0", CTRL_MESHES[-1], CTRL_STEPS[0]), psi0_estimate(finest))
+    report.check(
+        "psi0_limit_h0125",
+        "replacement of the viscous row: psi=0 rough footing phi=20, h=0.125 m, controlled path (20-step "
+        "budget): path estimate q_u/Prandtl; with 40, 80 steps and E x (1+1e-13): "
+        f"{', '.join('none' if e is None else f'{e:.4f}' for e in est_h0125)} (spread "
+        f"{100 * psi0_spread[0.125]:.2f} %; solver status {statuses}: the estimate is the largest pressure "
+        "of the path to 6 cm); PASS: every run an estimate inside [0.97 Davis-mode peak, 1.03 "
+        f"UB_assoc] = [{low:.4f}, {high:.4f}] (Davis-mode peak {low / 0.97:.4f})",
+        psi0_est[0.125]["psi0", 0.125, CTRL_STEPS[0]] or np.nan,
+        0.03,
+        None not in est_h0125 and all(low <= e <= high for e in est_h0125),
+    )
+    report.check(
+        "psi0_step_independence",
+        "replacement of the viscous row: largest spread (max/min - 1) of the psi=0 path estimates under "
+        f"{CTRL_STEPS} steps and E x (1+1e-13) on h = {PSI0_SPREAD} m: "
+        + ", ".join(f"{100 * psi0_spread[h]:.2f} %" for h in PSI0_SPREAD)
+        + f" (PASS: <= 2 %, issue 31's bound for psi < phi); h = {CTRL_MESHES[-1]} m: {finest_txt}",
+        max(psi0_spread.values()),
+        PSI0_SPREAD_TOL,
+    )
 
 # %%
 fig, ax = plt.subplots(figsize=(7, 4.2))
 for (kind, h, n), out in ctrl.items():
-    if n != CTRL_STEPS[0]:
+    if n != CTRL_STEPS[0] or kind == "psi0_E":
         continue
     style = {"assoc": "-", "davis": "--", "psi0": ":"}[kind]
     label = {"assoc": "ψ = φ", "davis": "Davis (ψ = 0)", "psi0": "ψ = 0 (user)"}[kind]
@@ -615,8 +546,13 @@ for key, out in prandtl_runs.items():
     assert abs(out["q"][-1] - out["q"][-2]) <= LEVEL_TOL * out["q"][-1], key
 # Smith & Griffiths: within 3 % up to 500 kPa (the peer's own iteration tolerance is 1e-3)
 assert sg_max <= SG_TOL, sg_max
-# non-associated flow cannot raise the limit load of an associated material (ψ < φ is a weaker material)
-assert nonassoc[0.0]["q_u"] <= nonassoc[20.0]["q_u"] * (1 + LEVEL_TOL)
+# non-associated flow cannot raise the limit load of an associated material (ψ < φ is a weaker material):
+# each ψ = 0 estimate lies below the associated push's limit on the same mesh (the Prandtl runs, φ = 20°
+# rough, the same footing and settlement)
+for h in PSI0_SPREAD:
+    for key, est in psi0_est[h].items():
+        assert est is not None and est <= prandtl_runs[20.0, True, h]["q_u"] / q_p20 * (1 + LEVEL_TOL), key
+assert max(psi0_spread.values()) <= PSI0_SPREAD_TOL, psi0_spread
 print("all checks passed")
 
 # %% [markdown]
@@ -662,20 +598,31 @@ axes[0].set_xlim(0, 80)
 axes[0].set_xlabel("centre settlement [mm]")
 axes[0].set_ylabel("footing pressure [kPa]")
 axes[0].legend()
-for psi, out in nonassoc.items():
-    axes[1].plot(1e3 * out["settlement"], out["q"] / q_p20, label=f"ψ = {psi:.0f}°")
+for h in CTRL_MESHES:
+    out = ctrl["psi0", h, CTRL_STEPS[0]]
+    (line,) = axes[1].plot(
+        1e3 * out["settlement"],
+        out["q"] / q_p20,
+        label=f"ψ = 0, h = {h} m" + (" (stopped)" if out["failure"] else ""),
+    )
+    if (20.0, True, h) in prandtl_runs:  # the associated push on the same mesh, dashed
+        assoc = prandtl_runs[20.0, True, h]
+        axes[1].plot(1e3 * assoc["settlement"], assoc["q"] / q_p20, "--", color=line.get_color(), lw=0.8)
 axes[1].axhline(1.0, color="k", lw=0.8)
+axes[1].axhline(q_davis / q_p20, color="gray", lw=0.8)
 axes[1].set_xlabel("settlement [mm]")
 axes[1].set_ylabel("q / q_u,Prandtl(φ = 20°)")
-axes[1].set_title(f"rough footing, φ = 20°, h = {H_NA} m")
-axes[1].legend()
+axes[1].set_title("rough footing, φ = 20°: ψ = 0 on the controlled path (dashed: ψ = φ)")
+axes[1].legend(fontsize=8)
 report.save_figure(fig, "fig10_2_sg61_nonassociated")
 plt.show()
 
 # %% [markdown]
 # *Figure 10.2 — Left: the flexible footing of Smith & Griffiths' Program 6.1 (8 × 4 Q8, c_u = 100 kPa);
 # von Mises reproduces the peer, Tresca settles less before the common collapse pressure 514 kPa.
-# Right: the rough footing with associated (ψ = φ) and non-associated flow.*
+# Right: the rough φ = 20° footing with ψ = 0 on the controlled path (20-step budget) on each mesh, the
+# associated push of the same mesh dashed; grey: Prandtl's value of Davis' reduced material. "stopped": the
+# path ended in a NonConvergence there (no estimate).*
 
 # %%
 fig, ax = plt.subplots(figsize=(7, 4.5))
@@ -711,12 +658,15 @@ plt.show()
 #   cases are within 3 % (values in the table above and in `figures/report.csv`).
 # - The flexible-footing curve of Smith & Griffiths is reproduced to well within 3 % up to 500 kPa when the
 #   peer's yield function is used; Tresca with the same c_u differs by ≈ 8 % before collapse.
-# - ψ = 0 lowers the limit load of the φ = 20° footing (−5.0 % on the 0.125 m mesh, full mode). The
-#   rate-independent push stalls there (even K₀ iterations diverge: the non-associated material loses
-#   stability); the solver's viscous fallback carries it on and relaxes its end, so 30 and 12 steps now agree
-#   (0.9932 and 0.9942 × Prandtl). Relaxed viscous pushes give 1.039, 0.995 and 0.969 × Prandtl on
-#   h = 0.25, 0.125 and 0.0625 m, within 0.25 % between 20, 40 and 80 steps; the relaxed pressure peaks
-#   near 4–4.5 cm and falls slowly after. No exact value exists.
+# - On the controlled path the associated footing peaks within 3 % of Prandtl on h = 0.0625 m, inside the
+#   limit-analysis bracket, whatever the step budget (`footing_assoc_peak`); Davis mode converges from above
+#   towards Prandtl's value of the reduced material (`footing_davis_peak`).
+# - The user's ψ = 0 has no unique limit. Its path estimate (values in the table above and in
+#   `figures/report.csv`) lies between the Davis value and the associated ceiling, below the associated
+#   push of the same mesh, and moves little under the step budget and round-off on h = 0.25 and 0.125 m
+#   (`psi0_limit_h0125`, `psi0_step_independence`); on the finest mesh the user's ψ = 0 path may end in a
+#   `NonConvergence` (printed above), which is reported as such and never read as a limit. For a capacity
+#   of non-associated soil use Davis mode; keep the user's ψ for deformations under service loads.
 # - The paper's explicit scheme and modified Newton cost more wall time per digit of accuracy than the
 #   implicit return mapping with full Newton; the paper's modified Newton with K₀ in the given increments
 #   (`Settings.paper()`, 400 iterations, one halving) stops before the limit: at 24 mm (1.02 × Prandtl) on
