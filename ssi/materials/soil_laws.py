@@ -201,7 +201,8 @@ def mohr_coulomb_params(E, nu, c, phi_deg, psi_deg=None, scheme="implicit", n_su
     E, nu : Young's modulus [Pa] (> 0) and Poisson's ratio (-1 < nu < 0.5)
     c : cohesion [Pa] (>= 0)
     phi_deg : friction angle [deg], 0 <= phi < 90; c and phi may not both be zero
-    psi_deg : dilation angle [deg], 0 <= psi <= phi (default psi = phi, associated flow)
+    psi_deg : dilation angle [deg], 0 <= psi <= phi (None: psi = phi, associated flow -- this law-level
+        default serves the material-point checks; a :class:`SoilLayer` left without psi_deg has psi = 0)
     scheme : "implicit" (return mapping, default of this code) or "explicit" (the paper's Δσ = D_ep Δε)
     n_sub : sub-steps of the explicit scheme (>= 1; paper: 1)
     drift : drift correction of the explicit scheme (paper: False)
