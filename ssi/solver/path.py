@@ -421,7 +421,9 @@ class _Follower:
         try:
             _, k_list, _ = self.system.evaluate(u, u - u_n, states_n, CONSISTENT)
             kt = self.system.pattern.matrix(self.system.pattern.assemble(k_list))
-            fac = Factorization(kt, symmetric=self.settings.symmetric_tangent, backend=self.settings.backend)
+            fac = Factorization(
+                kt, symmetric=self.settings.symmetric_tangent, backend=self.settings.backend, lagged=True
+            )
             fac.solve(np.ones(kt.shape[0]))  # a singular factor shows here, not in the next direction
         except (FloatingPointError, RuntimeError):
             return False
