@@ -201,6 +201,8 @@ def report(key, solve, n_iterations):
 
 
 def main():
+    # backend="auto" takes PARDISO for K0 and the default path's tangents where installed: say which
+    print(f"nonlinear_pardiso_available: {linsolve.pardiso_available()}   (the fast extra; see linsolve)")
     scene_of = chapter11_scene()
     scene_of(0.5).build().solve(n_steps=2)  # JIT warm-up on the coarse mesh
 
