@@ -15,6 +15,11 @@ Each is the wall time of the solve in this process after a JIT warm-up on a coar
 (material update = ``System.evaluate``, assembly = ``SparsePattern.assemble``, factorisation =
 ``Factorization.__init__``, back-substitution = ``Factorization.solve``, Python = the rest), the number of
 iterations, and the cost of one iteration against one residual evaluation plus one back-substitution.
+Keys with a goal print it with MET or MISSED (``goals.verdict``): the two ch11 times and the footing's
+<= 3 s, and on both ch11 keys <= 100 factorisations and 0 failed steps (issue 31). The controlled path's
+factorisations are split by reason (K0; a tangent at the path's start, after a failed step, or on a poor
+contraction within a step), and the residual evaluations are printed beside the iterations (the rest are
+line-search trials).
 The increments' attempts are counted apart, converged and failed (a failed attempt's iterations -- an
 L-BFGS increment that stagnates before its full-Newton retry, a retry that fails before a cut -- are paid
 but not in the result's iteration count), and the process's CPU time is printed beside the wall time.
@@ -38,7 +43,10 @@ from ssi.solver import control as solver  # the load-path control, which calls _
 
 ROOT = Path(__file__).resolve().parent.parent
 REPEAT = int(os.environ.get("SSI_BENCH_REPEAT", "3"))
-GOALS = {"ch11_h0125_s": 3.0}
+# issue 31: both ch11 keys <= 3 s (the controlled path may become the default), with 0 failed steps and <= 100
+# factorisations; the footing <= 3 s
+GOALS = {"ch11_h0125_s": 3.0, "ch11_h0125_controlled_s": 3.0, "footing_mc_psi0_h0125_s": 3.0}
+COUNT_GOALS = {"factorisations": 100, "failed_steps": 0}  # <= these, on both ch11 keys
 
 
 def chapter11_scene():
@@ -87,12 +95,32 @@ class Split:
             t0 = time.perf_counter()
             out = step(follower, *a, **kw)
             row = self.attempts[out is not None]
+            self.failed_since_refactor |= out is None
             row[0] += 1
             row[1] += (out or follower.last_failure)["iterations"]
             row[2] += time.perf_counter() - t0
             return out
 
         path._Follower._step = counted_step
+        # why the controlled path factorised a tangent: its first step (or the first after a half-size redo
+        # restarted from K0), the step after a failed one, or a poor contraction within a step
+        self.reasons = {"start": 0, "after_failure": 0, "poor_contraction": 0}
+        refactor = self.saved_refactor = path._Follower._refactor
+        self.failed_since_refactor = False
+
+        def counted_refactor(follower, *a, **kw):
+            on_k0 = follower.fac is follower.k0
+            ok = refactor(follower, *a, **kw)
+            if ok:
+                if follower.settings.symmetric_tangent or not on_k0:  # (a symmetric tangent starts on K0)
+                    reason = "poor_contraction"
+                else:
+                    reason = "after_failure" if self.failed_since_refactor else "start"
+                self.reasons[reason] += 1
+                self.failed_since_refactor = False
+            return ok
+
+        path._Follower._refactor = counted_refactor
         for key, (cls, name) in self.TARGETS.items():
             original = getattr(cls, name)
             self.saved[key] = original
@@ -113,6 +141,7 @@ class Split:
             setattr(cls, name, self.saved[key])
         solver._increment = self.saved_increment
         path._Follower._step = self.saved_step
+        path._Follower._refactor = self.saved_refactor
 
 
 def report(key, solve, n_iterations):
@@ -144,7 +173,21 @@ def report(key, solve, n_iterations):
     for converged, label in ((True, "converged"), (False, "failed")):
         n_att, n_it, t_att = split.attempts[converged]
         print(f"{key}_{label}_attempts: {n_att}   ({n_it} iterations, {t_att:.3f} s)")
-    print(f"{key}_factorisations: {split.n['factorisation']}")
+    counts = {"factorisations": split.n["factorisation"], "failed_steps": split.attempts[False][0]}
+    goals = COUNT_GOALS if key.startswith("ch11_") else {}
+    for name, value in counts.items():
+        goal = goals.get(name)
+        print(f"{key}_{name}: {value}" + (verdict(value, "<=", goal) if goal is not None else ""))
+    if any(split.reasons.values()):  # the controlled path: the tangents by reason, and K0 (the rest)
+        k0 = split.n["factorisation"] - sum(split.reasons.values())
+        print(
+            f"{key}_factorisations_split: K0 {k0}, " + ", ".join(f"{k} {v}" for k, v in split.reasons.items())
+        )
+    n_all = split.attempts[True][1] + split.attempts[False][1]
+    print(
+        f"{key}_evaluations: {split.n['material_update']}   ({n_all} iterations of all attempts; the rest: "
+        "line-search trials, tangents)"
+    )
     if iters:
         per_iter = total / iters
         print(
@@ -158,6 +201,8 @@ def report(key, solve, n_iterations):
 
 
 def main():
+    # backend="auto" takes PARDISO for K0 and the default path's tangents where installed: say which
+    print(f"nonlinear_pardiso_available: {linsolve.pardiso_available()}   (the fast extra; see linsolve)")
     scene_of = chapter11_scene()
     scene_of(0.5).build().solve(n_steps=2)  # JIT warm-up on the coarse mesh
 

@@ -12,7 +12,30 @@ thing this module must do well is keep a factorisation. Backends:
   re-hashes the matrix on every call.
 
 ``backend="auto"`` takes PARDISO, when it is installed, for K0 (``spd``) of at least ``AUTO_PARDISO_MIN_DOFS``
-rows and for other matrices of at least ``AUTO_PARDISO_MIN_DOFS_REFACTORISED`` rows, else SuperLU.
+rows and for other matrices of at least ``AUTO_PARDISO_MIN_DOFS_REFACTORISED`` rows, except a ``lagged``
+tangent (the controlled path's, kept for ~10-40 solves), which takes SuperLU; else SuperLU.
+
+Backends on the controlled path (issue 31), measured on chapter 11's scene at h = 0.125 m (6 063 free DOFs,
+1.8e5 entries; SuperLU's fill 6.4e5), matrices taken from the run, same process, best of 7-30, on the shared
+2-core machine (load ~2.3, so PARDISO's threads are measured as a user with other work sees them):
+
+* unsymmetric consistent tangent, refactorised on its pattern: SuperLU (kept ordering) 19.1 ms + 0.82 ms per
+  solve (two right-hand sides at once: 1.28 ms); PARDISO (mtype 11, analysis kept) 24.0 ms + 2.8 ms per solve.
+  A lagged factor takes ~17 solves (two per iteration: the residual and f_ref), so SuperLU costs 33 ms per
+  factor against PARDISO's 72 (ratio 0.46). Whole run (``ch11_h0125_controlled_s``, one process each, 10 load
+  steps): tangents on PARDISO 34.0 s wall, 21.7 s of it in 3 477 solves (6.2 ms each); on SuperLU 11.2 s
+  (1.2 ms per solve). Orderings of SuperLU on this tangent: MMD_AT_PLUS_A (kept) 6.4e5 fill, 19.5 ms;
+  COLAMD 9.1e5 fill (1.42x), 36 ms (1.85x).
+* symmetric tangent (associated or Davis-mode soil; measured on the symmetrised chapter-11 tangent, a proxy):
+  PARDISO's symmetric-indefinite mode (mtype -2) refactorised in 8.5 ms (+ 2.2 ms per solve) but returned a
+  relative residual |A x - b| / |b| of 1.2e3 without an error (perturbed pivots on a nearly singular
+  softening tangent), SuperLU 50 ms with 2e-9: a lagged symmetric tangent stays on SuperLU under "auto".
+  No symmetric (LDL^T / Cholesky) factorisation of a tangent is available otherwise: scipy has none, and
+  scikit-sparse (CHOLMOD) has no wheel for this platform here (``pip install --only-binary :all:
+  scikit-sparse``: no matching distribution), so it was not measured.
+* K0 (SPD, factorised once per run, then many solves): SuperLU MMD_AT_PLUS_A 22-31 ms + 0.73-0.88 ms per
+  solve (COLAMD 35 ms and 1.44x fill, MMD_ATA 80 ms); PARDISO SPD mode 8-52 ms (its threads under load) +
+  0.71-0.73 ms per solve: the rule above (PARDISO from ``AUTO_PARDISO_MIN_DOFS``) stands.
 
 Failures are told apart: a non-finite matrix or right-hand side raises ``FloatingPointError`` saying so; a
 singular matrix (exactly, or so nearly that the solution is not finite or the factorisation breaks down)
@@ -182,14 +205,17 @@ class Factorization:
     symmetric : bool, the matrix is symmetric
     backend : one of BACKENDS
     spd : bool, the matrix is symmetric positive definite (K0 of a supported scene): PARDISO's fastest mode
+    lagged : bool, a tangent kept for many solves (the controlled path's lagged factorisation, ~10-40 solves
+        each): ``"auto"`` takes SuperLU for it (see ``BACKENDS``), and only its first solve is trapped
     """
 
-    def __init__(self, matrix, symmetric=True, backend="auto", spd=False):
+    def __init__(self, matrix, symmetric=True, backend="auto", spd=False, lagged=False):
         if backend not in BACKENDS:
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         if backend == "auto":
             limit = AUTO_PARDISO_MIN_DOFS if spd else AUTO_PARDISO_MIN_DOFS_REFACTORISED
-            backend = "pardiso" if matrix.shape[0] >= limit and pardiso_available() else "superlu"
+            pardiso = matrix.shape[0] >= limit and pardiso_available() and (spd or not lagged)
+            backend = "pardiso" if pardiso else "superlu"
         if backend == "pardiso" and not pardiso_available():
             raise ValueError("backend 'pardiso' needs pypardiso: pip install 'ssi[fast]'")
         self.backend = backend
@@ -199,7 +225,8 @@ class Factorization:
         if self.n == 0:
             self._solve = lambda b: np.zeros(0)
         elif backend == "superlu":
-            self._solve = _superlu_factor(matrix, trap_solves=not spd, keep_ordering=not spd)
+            trap = "first" if lagged else not spd
+            self._solve = _superlu_factor(matrix, trap_solves=trap, keep_ordering=not spd)
         else:
             self._solve = _pardiso_factor(matrix, symmetric, spd and symmetric, self)
 
@@ -230,7 +257,9 @@ def _superlu_factor(matrix, trap_solves=True, keep_ordering=False):
     ``trap_solves=False`` (K0, positive definite once the model's supports hold every rigid-body mode, which
     ``Model.check`` verifies): the factorisation is trapped, the solves are not -- modified Newton makes
     hundreds of K0 solves and the trap costs ~20-100 us each; a broken K0 would still end in a named
-    non-finite-solution error.
+    non-finite-solution error. ``trap_solves="first"`` (a lagged tangent, whose caller solves once right after
+    factorising): BLAS's refusal comes from a factor that broke down, so it shows in the first solve if at
+    all; the later ones are not trapped.
 
     ``keep_ordering=True`` (tangents, refactorised on one pattern every Newton iteration): the ordering of
     the pattern's first factorisation is kept and later ones factorise the permuted matrix (see
@@ -268,8 +297,11 @@ def _superlu_factor(matrix, trap_solves=True, keep_ordering=False):
 
     if not trap_solves:
         return factor_solve
+    trapping = [True]
 
     def solve(b):
+        if not trapping[0]:
+            return factor_solve(b)
         x, text = _trap_c_output(factor_solve, b)
         if "illegal value" in text:
             raise SingularMatrix(
@@ -277,6 +309,7 @@ def _superlu_factor(matrix, trap_solves=True, keep_ordering=False):
                 f"{text.strip().splitlines()[0].strip(' *')})",
                 matrix,
             )
+        trapping[0] = trap_solves != "first"  # a first solve that went through: the factor is sound
         return x
 
     return solve
