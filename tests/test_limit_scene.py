@@ -183,10 +183,6 @@ def _scene(**kw):
         (dict(foundation=RigidFooting(-1.0, 1.0), contact=None), r"a ColumnLoad on a RigidFooting"),
         (dict(embedment=1.0, layers=[_layer(1.0), _layer(4.0)]), r"Scene.embedment=1.0"),
         (
-            dict(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=1e3)),
-            r"Scene.contact.sig_t=1000.0",
-        ),
-        (
             dict(
                 contact=[
                     ContactSegment(-1.0, 0.0, Contact(kn=1e10, kt=1e9, phi_deg=25.0)),
@@ -428,3 +424,11 @@ def test_a_sand_footing_lower_bound_certifies_at_the_apex():
         assert not lower_bound(site, mesh).certified
     finally:
         lower_module.APEX_SLACK = tight
+
+
+def test_a_contacts_tension_cut_off_reaches_the_interface():
+    """The Contact's sig_t is the limit interface's tension cut-off (one above the joint's apex c / tan
+    phi is inactive, clipped to it); without sig_t the joint has none."""
+    itf = limit_problem(_scene(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=200.0)))
+    assert itf.site.footings[0].interface.tension == 200.0
+    assert limit_problem(_scene()).site.footings[0].interface.tension is None

@@ -101,10 +101,11 @@ def gap_shares(site: Site, mesh: TriMesh, lower: LowerBound, upper: UpperBound) 
         da, db = Ua - vel[be.p[j]], Ub - vel[be.q[j]]
         dm = Um - vel[n_nodes + be.edge[j]]
         share[e] -= be.length[j] / 6.0 * (ta @ da + 2.0 * (ta + tb) @ dm + tb @ db)
-    # a beam's hinges: mp |rotation| - M rotation, M the lower bound's moment at the hinge
+    # a beam's hinges: their dissipation - (M rotation + N extension), M and N the lower bound's at the hinge
     for f, b in upper.beam.items():
         m_lb = lower.beam[f]
         work_h = m_lb["M_right"][:-1] * b["hinge"][:, 0] + m_lb["M_left"][1:] * b["hinge"][:, 1]
+        work_h += m_lb["N_right"][:-1] * b["extension"][:, 0] + m_lb["N_left"][1:] * b["extension"][:, 1]
         np.add.at(share, b["el"], -work_h)
     return share
 

@@ -30,9 +30,9 @@ How the scene maps (anything else raises a ValueError naming the part):
   elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
   stronger assumption: for a slender or lightly reinforced strip the beam's own mechanism may govern);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
-  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket); refused: a tension
-  cut-off ``sig_t`` (the Coulomb joint's own apex is its only tension limit), contact segments with
-  different laws;
+  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket) and its tension cut-off
+  ``sig_t`` (None: the Coulomb joint's own apex c / tan phi); refused: contact segments with different
+  laws;
 - loads: :class:`ColumnLoad` N, H, M, :class:`StripLoad`, :class:`StripWeight` (less its
   buoyancy in free water) and the strip's ``self_weight`` (a load of the first phase, as in the
   incremental scene) on the footing; :class:`SurfacePressure` and the ``surcharge`` on the ground beside
@@ -130,14 +130,12 @@ def _interface(scene) -> Interface:
         raise ValueError("Scene.contact: a plate Foundation needs a Contact")
     if contact.phi_deg is None or math.isinf(contact.c):
         return Interface("rough")
-    if contact.sig_t is not None:
-        raise ValueError(
-            f"Scene.contact.sig_t={contact.sig_t!r}: a tension cut-off of the contact is not represented by "
-            "ssi.limit (its Coulomb joint opens only at its own apex c / tan phi); give sig_t=None"
-        )
     if contact.phi_deg > 60.0:
         raise ValueError(f"Scene.contact.phi_deg={contact.phi_deg!r}: ssi.limit takes 0 <= phi_deg <= 60")
-    return Interface("coulomb", c=float(contact.c), phi_deg=float(contact.phi_deg), psi_deg=contact.psi_deg)
+    t = None if contact.sig_t is None else float(contact.sig_t)  # the contact's tension cut-off
+    return Interface(
+        "coulomb", c=float(contact.c), phi_deg=float(contact.phi_deg), psi_deg=contact.psi_deg, tension=t
+    )
 
 
 def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what: str):
