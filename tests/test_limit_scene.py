@@ -363,6 +363,12 @@ def test_an_rc_strip_is_a_beam_with_the_sections_plastic_moment():
     assert limit_problem(push).site.footings[0].beam is None
     with pytest.raises(ValueError, match=r"strip='beam' with a Settlement push"):
         limit_problem(push, strip="beam")
+    # strip='beam_mn': the same beam with the section's M-N polygon, its N = 0 point the beam's M_p
+    mn = limit_problem(_scene(foundation=rc, loads=loads), strip="beam_mn").site.footings[0].beam
+    assert mn.axial and (0.0, ft.beam.mp_sag, ft.beam.mp_hog) in mn.interaction
+    assert mn.loads_ref == ft.beam.loads_ref
+    with pytest.raises(ValueError, match=r"strip must be 'rigid', 'beam', 'beam_mn' or None"):
+        limit_problem(_scene(foundation=rc, loads=loads), strip="mn")
 
 
 def test_a_brittle_strip_forms_no_hinge():

@@ -52,7 +52,7 @@ from ..core.geometry import from_cells
 from ..limit import Beam, Boundary, Footing, Interface, Material, site_from_geometry
 from ..limit.geometry import Site
 from ..materials.soil_laws import SoilLayer
-from .limit_strip import NotOnBeam, beam_loads_of, beam_mode
+from .limit_strip import NotOnBeam, beam_loads_of, beam_mode, strip_beam_interaction
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
 
@@ -194,12 +194,17 @@ def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width)
 def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
-    with plastic hinges, :mod:`ssi.scene.limit_strip`); None: "beam" for an RC section that is not
+    with plastic hinges of M_p at N = 0, :mod:`ssi.scene.limit_strip`) or "beam_mn" (the same beam, its
+    hinges' capacity the section's M-N polygon, :func:`~ssi.scene.limit_strip.strip_beam_interaction`:
+    safe where the beam's axial force lowers M_p; on a rough base its hinges cannot extend and the upper
+    bound is then loose); None: "beam" for an RC section that is not
     brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
     a load). Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
-    if strip is not None and strip not in ("rigid", "beam"):
-        raise ValueError(f"strip must be 'rigid', 'beam' or None, got {strip!r}")
+    if strip is not None and strip not in ("rigid", "beam", "beam_mn"):
+        raise ValueError(f"strip must be 'rigid', 'beam', 'beam_mn' or None, got {strip!r}")
+    with_mn = strip == "beam_mn"  # a beam whose hinges' capacity is the section's M-N polygon
+    strip = "beam" if with_mn else strip
     if hasattr(scene, "geometry") and hasattr(scene, "strips"):
         if phase is not None:
             raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
@@ -374,8 +379,9 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
         forces = (tuple(fref.tolist()), tuple(fdead.tolist()))
         beam = None
         if mp is not None:
+            inter = strip_beam_interaction(f.section) if with_mn else ()
             beam = Beam(f.x0, f.x1, mp[0], mp[1], tuple(beam_loads["ref"]), tuple(beam_loads["dead"]),
-                        beam_loads["p_ref"], beam_loads["p_dead"])  # fmt: skip
+                        beam_loads["p_ref"], beam_loads["p_dead"], inter)  # fmt: skip
             # the footing's resultants are the beam's loads' (checked: the same loads, summed two ways)
             for which, fo, mo in (("ref", fref, mref), ("dead", fdead, mdead)):
                 bx, bz, bm = beam.resultant(which, centre[0])
