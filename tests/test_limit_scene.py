@@ -123,7 +123,7 @@ def test_safety_factor_of_a_footing_loaded_at_half_its_capacity():
         contact=Contact(kn=1e10, kt=1e9),
         loads=[ColumnLoad(0.0, N=0.5 * (2.0 + math.pi) * c * B)],
     )
-    tol = 5e-3
+    tol = 1e-2
     sf = scene.safety_factor(rel_tol=tol)
     assert sf.f_lb <= 2.0 * (1 + REL) and sf.f_ub >= 2.0 * (1 - REL)
     # the capacity is proportional to c, so on this mesh F_LB and F_UB are the bracket of the unreduced
@@ -138,7 +138,7 @@ def test_cli_limit_runs_the_example(tmp_path, capsys):
     """``ssi limit examples/capacity.toml``: one progress line per mesh, the summary, a JSON and a PNG."""
     scene = tmp_path / "capacity.toml"
     shutil.copy(ROOT / "examples" / "capacity.toml", scene)
-    assert main(["limit", str(scene), "--gap", "0.15", "--max-elements", "400"]) == 0
+    assert main(["limit", str(scene), "--gap", "0.25", "--max-elements", "400"]) == 0
     out = capsys.readouterr().out
     data = json.loads((tmp_path / "capacity_limit.json").read_text())
     n_meshes = len(data["history_associated"]) + len(data["history_davis"] or [])

@@ -9,6 +9,7 @@ but never trusted: the bound modules certify their answer from the returned poin
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
 
@@ -17,6 +18,14 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["ConicSolution", "Rows", "solve_conic"]
+
+# Clarabel's iterative refinement of each KKT solve: off unless SSI_LIMIT_REFINE=1. Measured (this machine,
+# loaded, 2026-12-04): chapter 10's Prandtl footing to a 1 % gap (bench_limit.py) 15.4 s -> 11.0 s of CPU
+# with the same iteration counts (LB 21, UB 27-28) and the bracket [0.9909, 1.0100] against [0.9910, 1.0099]
+# x Prandtl; on 1 086 triangles the LB solve 2.32 -> 1.90 s, the UB 1.02 -> 0.78 s, both bounds as good or
+# better (LB 143 900.9 against 143 896.1 Pa, certified). The bounds do not rely on the solver's accuracy:
+# the lower bound is certified after the solve, the upper bound recomputed from its velocities.
+REFINE = os.environ.get("SSI_LIMIT_REFINE", "0") == "1"
 
 
 @dataclass
@@ -89,6 +98,8 @@ def solve_conic(
     # was 2.4x slower for the lower bound (2 956 triangles: 13.3 s against 5.5 s, measured) and no faster
     # for the upper bound, and competes with the other test workers for the machine's cores
     settings.direct_solve_method = "qdldl"
+    if not REFINE:
+        settings.iterative_refinement_enable = False
     P = sp.csc_matrix((n, n))
     t0 = time.perf_counter()
     solver = clarabel.DefaultSolver(P, np.asarray(q, float), A, b, cones, settings)
