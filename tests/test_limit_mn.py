@@ -187,3 +187,21 @@ def test_a_tension_cut_off_bounds_the_overturning_moment():
         assert br.lb <= c * B / 2 * (1 + REL) and br.ub >= c * (B - delta) / 2 * (1 - REL)
         out[t] = br
     assert out[0.0].ub < out[2e3].lb
+
+
+def test_bounds_solved_side_by_side_are_the_serial_ones():
+    """bracket(threads=2) solves the two programs at once: the same numbers, bit for bit, as one after the
+    other (each program is solved alone); bad input is named."""
+    itf = Interface("coulomb", c=5e3, phi_deg=25.0, tension=1e3)
+    site = strip_site(2.0, Material(10e3, 20.0), itf, half_width=4.0, depth=3.0, symmetric=False)
+    mesh = triangulate(site, 1.0, size=lambda p: 0.4 + 0.3 * np.abs(np.abs(p[:, 0]) - 1.0))
+    one, two = bracket(site, mesh, threads=1), bracket(site, mesh, threads=2)
+    assert one.lb == two.lb and one.ub == two.ub
+    with pytest.raises(ValueError, match=r"threads"):
+        bracket(site, mesh, threads=3)
+    with pytest.raises(ValueError, match=r"tension of an Interface needs kind 'coulomb', got kind='rough'"):
+        Interface("rough", tension=0.0)
+    with pytest.raises(ValueError, match=r"tension"):
+        Interface("coulomb", c=1e3, phi_deg=20.0, tension=-1.0)
+    # a cut-off above the joint's apex c / tan phi changes nothing: clipped to the apex
+    assert Interface("coulomb", c=1e3, phi_deg=45.0, tension=5e3).tension == pytest.approx(1e3)
