@@ -19,13 +19,13 @@ import scipy.sparse as sp
 
 __all__ = ["ConicSolution", "Rows", "solve_conic"]
 
-# Clarabel's iterative refinement of each KKT solve: off unless SSI_LIMIT_REFINE=1. Measured (this machine,
-# loaded, 2026-12-04): chapter 10's Prandtl footing to a 1 % gap (bench_limit.py) 15.4 s -> 11.0 s of CPU
-# with the same iteration counts (LB 21, UB 27-28) and the bracket [0.9909, 1.0100] against [0.9910, 1.0099]
-# x Prandtl; on 1 086 triangles the LB solve 2.32 -> 1.90 s, the UB 1.02 -> 0.78 s, both bounds as good or
-# better (LB 143 900.9 against 143 896.1 Pa, certified). The bounds do not rely on the solver's accuracy:
-# the lower bound is certified after the solve, the upper bound recomputed from its velocities.
-REFINE = os.environ.get("SSI_LIMIT_REFINE", "0") == "1"
+# Clarabel's iterative refinement of each KKT solve: on unless SSI_LIMIT_REFINE=0. Off, chapter 10's Prandtl
+# footing to a 1 % gap (bench_limit.py) took 11.0 s of CPU instead of 15.4 s with the same iterations and
+# bracket, and the 28 ordinary zoo brackets moved by at most 0.5 %, all certified; but chapter 17's N_gamma
+# sand (cohesionless: its lower bound's certification needs the solver's accuracy at the apex) then needed
+# 12 meshes and 15 538 triangles for its 3 % gap instead of 10 and 7 159 (474 s against 185 s, measured on
+# the loaded machine, 2026-12-04): kept on.
+REFINE = os.environ.get("SSI_LIMIT_REFINE", "1") == "1"
 
 
 @dataclass
