@@ -103,7 +103,7 @@ def test_the_n0_point_alone_reproduces_the_old_beam():
     for inter in ((), ((0.0, 1e3, 1e3),)):
         beam = Beam(-1.0, 1.0, 1e3, 1e3, loads_ref=loads, interaction=inter)
         s = replace(site, footings=(Footing(itf, moves=("x", "z", "r"), centre=(0.0, 0.0), beam=beam),))
-        mesh = mesh or triangulate(s, 1.0, size=lambda p: 0.3 + 0.3 * np.abs(np.abs(p[:, 0]) - 1.0))
+        mesh = mesh or triangulate(s, 1.0, size=lambda p: 0.5 + 0.3 * np.abs(np.abs(p[:, 0]) - 1.0))
         out.append(bracket(s, mesh))
     assert out[0].lb == out[1].lb and out[0].ub == out[1].ub
 
@@ -180,7 +180,7 @@ def test_a_tension_cut_off_bounds_the_overturning_moment():
         site = strip_site(B, Material(1e6, 0.0), itf, half_width=4.0, depth=3.0, symmetric=False)
         ft = Footing(itf, (0.0, 0.0), (0.0, -N), ("x", "z", "r"), centre=(0.0, 0.0), moment_ref=-1.0)
         site = replace(site, footings=(ft,))
-        br = bracket(site, triangulate(site, 1.0, size=lambda p: 0.2 + 0.3 * np.abs(np.abs(p[:, 0]) - 1.0)))
+        br = bracket(site, triangulate(site, 1.0, size=lambda p: 0.3 + 0.3 * np.abs(np.abs(p[:, 0]) - 1.0)))
         c = N + t * B
         delta = c / ((2.0 + math.pi) * 1e6)
         assert br.lower.certified and br.upper.certified, br.lower.reason
