@@ -116,7 +116,7 @@ from ssi.limit import (
     strip_site,
     triangulate,
 )
-from ssi.scene.limit_strip import strip_beam_capacity
+from ssi.scene.limit_strip import strip_beam_capacity, strip_beam_interaction
 
 FAST = paths.FAST
 # the requested relative gaps (UB-LB)/(UB+LB): the issue's 2 %, 1 % on request and 3 % for N_gamma in full
@@ -512,6 +512,124 @@ plt.show()
 # beyond the edges.*
 
 # %% [markdown]
+# ### The hinges' M–N interaction and a joint's tension cut-off
+#
+# A hinge's capacity depends on the beam's axial force N. `Beam(interaction=...)` takes points (N, M_sag(N),
+# M_hog(N)) of the section's resistance with the moment about the base (the beam's axis here), and
+# `strip_beam_interaction` samples them from ssi's own section analysis (`RCDesign.M_Rd(N)`), from N = 0 out
+# to where M_Rd's search for a strain plane stops (for this section about −1 MN/m: a tenth of the squash
+# load, below the balance point). The capacity is then the polygon P of their convex hull: the lower bound
+# walks N along the beam (from the base shear and the point loads' horizontal forces) beside M and keeps
+# (N, M) inside P at the same four Bernstein points per element (a facet a_N N + a_M M ≤ b is a cubic along
+# the element whose control points are a_N N_k + a_M M_k); in the upper bound each hinge rotates θ and
+# extends δ along an outward normal of P (the associated flow rule: (δ, θ) = Σ λ_i (a_N, a_M)_i, λ ≥ 0),
+# each element of the beam with its own horizontal velocity, and dissipates P's support function Σ λ_i b_i.
+# With only the N = 0 point, P is the strip −M_hog ≤ M ≤ M_sag for every N and the beam above is reproduced
+# bit for bit (`tests/test_limit_mn.py`). P lies inside the section's convex resistance, so the bracket is
+# that of a beam no stronger than the section; as for M_p at N = 0, a brittle section (below minimum
+# reinforcement) forms no hinge and is refused. (On a rough base the hinges cannot extend — the soil's
+# nodes are tied to the beam — and dissipate P's support function at zero extension: rigorous but loose
+# where N matters.)
+#
+# **The check.** The trench beam on a frictionless contact without tension (a Coulomb joint with c_i = 0,
+# φ_i = 0 and the cut-off t_i = 0: no base shear, so N is exactly the end force −P), with P = 500 kN/m of
+# compression and 300 kN/m of tension applied at the strip's ends. The hand load is N_beam = M_p(−P) /
+# (l/2 − a), M_p(−P) from the rectangular stress block of EN 1992-1-1 §3.1.7 (3) (0.8 x at f_ck, both bar
+# layers, moment about the base: M_mid + P h/2): the compression raises M_p (the section is below its
+# balance point, and the end force acts below the section's centre), the tension lowers it.
+#
+# **A tension cut-off.** `Interface("coulomb", c, phi_deg, tension=t_i)` adds σ_n ≤ t_i beside the Coulomb
+# rows in the lower bound and, in the upper bound, the support function of the truncated cone: an opening
+# d_n ≥ tan φ_i |d_t| dissipates t_i d_n + (c_i − t_i tan φ_i)|d_t| (a Contact's `sig_t` reaches it). Check:
+# the pull-out of a rigid footing held down by N over far stronger soil, T = N + t_i B exactly (the joint
+# opens uniformly; without a cut-off the apex c_i / tan φ_i is the limit).
+
+# %%
+MN_POINTS = strip_beam_interaction(chapter11_section())
+mn_n = np.array([p[0] for p in MN_POINTS])
+mn_s = np.array([p[1] for p in MN_POINTS])
+
+
+def block_mp(P):
+    """Hand M_p [N m/m] about the base under compression P [N/m]: rectangular block, both bar layers."""
+    fck, fy, es, a_s, ecu = 30e6, 500e6, 200e9, 1.5e-3, 3.5e-3
+
+    def forces(x):
+        s_top = max(min(es * ecu * (x - 0.05) / x, fy), -fy)
+        s_bot = min(es * ecu * (0.35 - x) / x, fy)
+        return 0.8 * x * fck, s_top, s_bot
+
+    lo, hi = 0.01, 0.4  # bisection on the neutral axis depth x for the axial balance
+    for _ in range(100):
+        x = 0.5 * (lo + hi)
+        c, st, sb = forces(x)
+        lo, hi = (x, hi) if c + 1.5e-3 * (st - sb) < P else (lo, x)
+    c, st, sb = forces(x)
+    return c * (0.2 - 0.4 * x) + a_s * (st + sb) * 0.15 + P * 0.2
+
+
+itf_mn = Interface("coulomb", c=0.0, phi_deg=0.0, tension=0.0)
+MN_GAP = 0.05  # one fixed mesh in both modes (cheap): the direction and the interval are the claims
+mn_rows, mn_ok = [], True
+for P in (0.0, 500e3, -300e3):
+    beam_p = Beam(-X_S, X_S, MP_SAG, MP_HOG, interaction=MN_POINTS,
+                  loads_ref=((-A_COL, 0.0, -N_REF, 0.0), (A_COL, 0.0, -N_REF, 0.0)),
+                  loads_dead=((-X_S, P, 0.0, 0.0), (X_S, -P, 0.0, 0.0)))  # fmt: skip
+    site_p = replace(
+        site_t, footings=(Footing(itf_mn, moves=("x", "z", "r"), centre=(0.0, 0.0), beam=beam_p),)
+    )
+    res_p = bracket(site_p, triangulate(site_p, 1.0, size=near_edges))  # one mesh: 374 triangles
+    mp_p = float(np.interp(-P, mn_n, mn_s))
+    nb_p = mp_p / (HALF_L - A_COL)
+    eps_p = nb_p / (2 * S_U) / (2 * (HALF_L - A_COL))
+    lb_p, ub_p = res_p.lb * N_REF, res_p.ub * N_REF
+    ok_p = lb_p <= nb_p * (1 + 1e-6) and ub_p >= nb_p / (1 + eps_p) * (1 - 1e-6) and res_p.gap <= MN_GAP
+    hand = block_mp(P) if P >= 0 else None  # (the tension side: no hand value claimed)
+    mn_rows.append((P, mp_p, hand, nb_p, lb_p, ub_p))
+    mn_ok &= ok_p
+    blk = "" if hand is None else f" (block {hand / 1e3:.1f})"
+    print(f"  P = {P / 1e3:6.0f} kN/m: M_p(-P) = {mp_p / 1e3:6.1f} kN m/m{blk}, N_beam "
+          f"{nb_p / 1e3:6.2f}, bracket [{lb_p / 1e3:6.2f}, {ub_p / 1e3:6.2f}] kN/m: {ok_p}")  # fmt: skip
+# the direction: compression above, tension below the unloaded beam's bracket
+mn_ok &= mn_rows[1][4] > mn_rows[0][5] and mn_rows[2][5] < mn_rows[0][4]
+mn_ok &= abs(mn_rows[1][1] / mn_rows[1][2] - 1.0) < 0.01  # ssi's M_p(N) against the block (0.3 % measured)
+report.check(
+    "fela_beam_mn",
+    "the trench beam with the hinges' M-N polygon under end compression 500 and tension 300 kN/m: each "
+    "bracket meets [N_beam/(1+eps), N_beam], N_beam = M_p(-P)/(l/2-a), and moves the right way; largest gap "
+    "on one mesh of 374 triangles",
+    max((r[5] - r[4]) / (r[5] + r[4]) for r in mn_rows),
+    MN_GAP,
+    passed=mn_ok,
+)
+
+# %%
+N_HOLD = 10e3
+cut_rows, cut_ok = [], True
+for t_i in (0.0, 2e3, None):
+    itf_c = Interface("coulomb", c=5e3, phi_deg=25.0, tension=t_i)
+    site_c = strip_site(2.0, Material(1e6, 0.0), itf_c, half_width=4.0, depth=3.0, symmetric=False)
+    site_c = replace(site_c, footings=(Footing(itf_c, (0.0, 1.0), (0.0, -N_HOLD), ("x", "z")),))
+    br_c = bracket(site_c, triangulate(site_c, 1.0, size=lambda p: 0.3 + 0.3 * np.abs(np.abs(p[:, 0]) - 1.0)))
+    t_eff = 5e3 / math.tan(math.radians(25.0)) if t_i is None else t_i
+    exact_c = N_HOLD + t_eff * 2.0
+    ok_c = (
+        br_c.lb <= exact_c * (1 + 1e-6) and br_c.ub >= exact_c * (1 - 1e-6) and br_c.ub / br_c.lb - 1 < 1e-3
+    )
+    cut_ok &= ok_c
+    cut_rows.append(br_c.ub / br_c.lb - 1)
+    print(f"  pull-out, t_i = {t_eff / 1e3:5.2f} kPa: bracket / (N + t_i B) = [{br_c.lb / exact_c:.6f}, "
+          f"{br_c.ub / exact_c:.6f}]: {ok_c}")  # fmt: skip
+report.check(
+    "fela_cutoff",
+    "pull-out of a footing held by N on a Coulomb joint with tension cut-off t_i = 0, 2 kPa and none (apex): "
+    "bracket contains N + t_i B with a relative width below 1e-3; largest width",
+    max(cut_rows),
+    1e-3,
+    passed=cut_ok,
+)
+
+# %% [markdown]
 # ## Smith & Griffiths, program 6.1: a flexible footing on undrained clay
 #
 # The scene of chapter 10 (`ssi.bearing_capacity.sg61_scene`): half width 2 m of uniform pressure on a
@@ -662,13 +780,16 @@ plt.show()
 #   pinned between the certified lower bound and the 0.690 s_u B² scoop.
 # - A footing bends (a `Beam`: rigid elements, hinges of M_p at every base node, the moment bounded at the
 #   Bernstein points): chapter 11's RC strip bridging a trench brackets the hand four-point-bending
-#   mechanism load M_p/(l/2 − a) (`fela_beam_mechanism`).
+#   mechanism load M_p/(l/2 − a) (`fela_beam_mechanism`). With the hinges' M–N polygon from the section
+#   analysis, an end compression raises and a tension lowers the bracket, each meeting M_p(−P)/(l/2 − a)
+#   (`fela_beam_mn`); a Coulomb joint's tension cut-off brackets a pull-out N + t_i B (`fela_cutoff`).
 # - For ψ < φ the associated bracket is a ceiling and the Davis bracket the conventional value; chapter 10's
 #   ψ = 0 incremental limit on its coarsest mesh lies above every associated upper bound here: a mesh
 #   overestimate, not a capacity.
 #
 # References: Sloan (2013) Géotechnique 63(7); Makrodimopoulos & Martin (2006) IJNME 66, (2007) IJNAMG 31;
 # Lyamin & Sloan (2002); Krabbenhøft et al. (2012); Davis (1968); Drescher & Detournay (1993); Martin (2005);
-# Radenković (1961); Meyerhof (1953) on the effective width; Bransby & Randolph (1998) on the scoop
-# mechanism (its least value 0.690 s_u B² derived above); Heyman (1971) on beam mechanisms; Rivara (1984) on
-# longest-edge bisection; Goulart & Chen (2024) Clarabel; Shewchuk (1996) Triangle.
+# Radenković (1961); Meyerhof (1953) on the effective width; Bransby & Randolph (1998) on the scoop mechanism
+# (its least value 0.690 s_u B² derived above); Heyman (1971) on beam mechanisms; EN 1992-1-1 §3.1.7 (3) (the
+# rectangular stress block); Rivara (1984) on longest-edge bisection; Goulart & Chen (2024) Clarabel; Shewchuk
+# (1996) Triangle.

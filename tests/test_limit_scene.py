@@ -123,7 +123,7 @@ def test_safety_factor_of_a_footing_loaded_at_half_its_capacity():
         contact=Contact(kn=1e10, kt=1e9),
         loads=[ColumnLoad(0.0, N=0.5 * (2.0 + math.pi) * c * B)],
     )
-    tol = 5e-3
+    tol = 1e-2
     sf = scene.safety_factor(rel_tol=tol)
     assert sf.f_lb <= 2.0 * (1 + REL) and sf.f_ub >= 2.0 * (1 - REL)
     # the capacity is proportional to c, so on this mesh F_LB and F_UB are the bracket of the unreduced
@@ -138,7 +138,7 @@ def test_cli_limit_runs_the_example(tmp_path, capsys):
     """``ssi limit examples/capacity.toml``: one progress line per mesh, the summary, a JSON and a PNG."""
     scene = tmp_path / "capacity.toml"
     shutil.copy(ROOT / "examples" / "capacity.toml", scene)
-    assert main(["limit", str(scene), "--gap", "0.15", "--max-elements", "400"]) == 0
+    assert main(["limit", str(scene), "--gap", "0.25", "--max-elements", "400"]) == 0
     out = capsys.readouterr().out
     data = json.loads((tmp_path / "capacity_limit.json").read_text())
     n_meshes = len(data["history_associated"]) + len(data["history_davis"] or [])
@@ -182,10 +182,6 @@ def _scene(**kw):
         ),
         (dict(foundation=RigidFooting(-1.0, 1.0), contact=None), r"a ColumnLoad on a RigidFooting"),
         (dict(embedment=1.0, layers=[_layer(1.0), _layer(4.0)]), r"Scene.embedment=1.0"),
-        (
-            dict(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=1e3)),
-            r"Scene.contact.sig_t=1000.0",
-        ),
         (
             dict(
                 contact=[
@@ -367,6 +363,12 @@ def test_an_rc_strip_is_a_beam_with_the_sections_plastic_moment():
     assert limit_problem(push).site.footings[0].beam is None
     with pytest.raises(ValueError, match=r"strip='beam' with a Settlement push"):
         limit_problem(push, strip="beam")
+    # strip='beam_mn': the same beam with the section's M-N polygon, its N = 0 point the beam's M_p
+    mn = limit_problem(_scene(foundation=rc, loads=loads), strip="beam_mn").site.footings[0].beam
+    assert mn.axial and (0.0, ft.beam.mp_sag, ft.beam.mp_hog) in mn.interaction
+    assert mn.loads_ref == ft.beam.loads_ref
+    with pytest.raises(ValueError, match=r"strip must be 'rigid', 'beam', 'beam_mn' or None"):
+        limit_problem(_scene(foundation=rc, loads=loads), strip="mn")
 
 
 def test_a_brittle_strip_forms_no_hinge():
@@ -428,3 +430,11 @@ def test_a_sand_footing_lower_bound_certifies_at_the_apex():
         assert not lower_bound(site, mesh).certified
     finally:
         lower_module.APEX_SLACK = tight
+
+
+def test_a_contacts_tension_cut_off_reaches_the_interface():
+    """The Contact's sig_t is the limit interface's tension cut-off (one above the joint's apex c / tan
+    phi is inactive, clipped to it); without sig_t the joint has none."""
+    itf = limit_problem(_scene(contact=Contact(kn=1e10, kt=1e9, phi_deg=25.0, c=1e3, sig_t=200.0)))
+    assert itf.site.footings[0].interface.tension == 200.0
+    assert limit_problem(_scene()).site.footings[0].interface.tension is None

@@ -18,7 +18,10 @@ footing's vertical force, so lambda is its mean pressure), a symmetric scene the
 segment and the footing moving along z only; a footing with "r" in its ``moves`` also rotates about its
 ``centre`` (its ``moment_ref`` / ``moment_dead`` balanced by the base tractions' moment). Not covered yet:
 pore pressures as loads (only effective unit weights). A footing with a :class:`Beam` bends: a beam along
-its base with plastic hinges (M_p sagging and hogging) at every base node.
+its base with plastic hinges (M_p sagging and hogging) at every base node, or with an M-N interaction
+polygon (``Beam.interaction``: the lower bound bounds (N, M) along the beam, the upper bound's hinges
+rotate and extend normal to it). A Coulomb :class:`Interface` takes a tension cut-off ``tension`` (0: no
+tension) in both bounds. Both bounds of a bracket are solved on two threads (``SSI_LIMIT_THREADS=1``: one).
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor

@@ -13,7 +13,9 @@ programs (``Bracket.identity_error``).
 
 from __future__ import annotations
 
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -24,6 +26,11 @@ from .geometry import Site
 from .lower import LowerBound, lower_bound
 from .mesh import TriMesh, bisect
 from .upper import UpperBound, footing_velocity_at, upper_bound
+
+# Both bounds of a bracket are solved side by side on two threads unless SSI_LIMIT_THREADS=1 (measured on
+# chapter 10's Prandtl footing, 1 086 triangles: the lower bound's Clarabel solve 1.8 s let a Python thread
+# tick 1 126 times, i.e. the GIL is released while it solves)
+THREADS = 1 if os.environ.get("SSI_LIMIT_THREADS", "2") == "1" else 2
 
 __all__ = [
     "AdaptiveResult",
@@ -101,21 +108,35 @@ def gap_shares(site: Site, mesh: TriMesh, lower: LowerBound, upper: UpperBound) 
         da, db = Ua - vel[be.p[j]], Ub - vel[be.q[j]]
         dm = Um - vel[n_nodes + be.edge[j]]
         share[e] -= be.length[j] / 6.0 * (ta @ da + 2.0 * (ta + tb) @ dm + tb @ db)
-    # a beam's hinges: mp |rotation| - M rotation, M the lower bound's moment at the hinge
+    # a beam's hinges: their dissipation - (M rotation + N extension), M and N the lower bound's at the hinge
     for f, b in upper.beam.items():
         m_lb = lower.beam[f]
         work_h = m_lb["M_right"][:-1] * b["hinge"][:, 0] + m_lb["M_left"][1:] * b["hinge"][:, 1]
+        work_h += m_lb["N_right"][:-1] * b["extension"][:, 0] + m_lb["N_left"][1:] * b["extension"][:, 1]
         np.add.at(share, b["el"], -work_h)
     return share
 
 
-def bracket(site: Site, mesh: TriMesh, label: str = "", previous: Bracket | None = None) -> Bracket:
+def bracket(
+    site: Site, mesh: TriMesh, label: str = "", previous: Bracket | None = None, threads: int | None = None
+) -> Bracket:
     """Both bounds on one mesh and the gap shares. With ``previous``, a bracket on a mesh that ``mesh``
     refines (``mesh.parent`` set by :func:`ssi.limit.mesh.bisect`), its stress and velocity fields are
     carried to ``mesh`` (still admissible there) and each bound is the better of the solved and the carried
-    field: nested refinement then never loses ground even when the solver stops short of the optimum."""
-    lo = lower_bound(site, mesh)
-    up = upper_bound(site, mesh)
+    field: nested refinement then never loses ground even when the solver stops short of the optimum.
+
+    ``threads``: 2 solves the two bounds side by side (Clarabel releases the GIL while it solves, so on two
+    cores the bracket takes the longer bound's time instead of the sum), 1 one after the other; None: the
+    module's ``THREADS``. Either way the bounds are the same numbers (each program is solved alone)."""
+    threads = THREADS if threads is None else check_int("threads", threads, lo=1, hi=2)
+    if threads == 2:
+        with ThreadPoolExecutor(max_workers=2) as pool:
+            lo_f = pool.submit(lower_bound, site, mesh)
+            up = upper_bound(site, mesh)
+            lo = lo_f.result()
+    else:
+        lo = lower_bound(site, mesh)
+        up = upper_bound(site, mesh)
     # a carried field is the previous mesh's own field, so its bound is the previous bound: it is evaluated
     # (a projection, or an assembly) only where the solved bound fell short of that
     if previous is not None and mesh.parent is not None and not (lo.certified and lo.lam >= previous.lb):

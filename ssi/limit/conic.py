@@ -9,6 +9,7 @@ but never trusted: the bound modules certify their answer from the returned poin
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
 
@@ -17,6 +18,14 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["ConicSolution", "Rows", "solve_conic"]
+
+# Clarabel's iterative refinement of each KKT solve: on unless SSI_LIMIT_REFINE=0. Off, chapter 10's Prandtl
+# footing to a 1 % gap (bench_limit.py) took 11.0 s of CPU instead of 15.4 s with the same iterations and
+# bracket, and the 28 ordinary zoo brackets moved by at most 0.5 %, all certified; but chapter 17's N_gamma
+# sand (cohesionless: its lower bound's certification needs the solver's accuracy at the apex) then needed
+# 12 meshes and 15 538 triangles for its 3 % gap instead of 10 and 7 159 (474 s against 185 s, measured on
+# the loaded machine, 2026-12-04): kept on.
+REFINE = os.environ.get("SSI_LIMIT_REFINE", "1") == "1"
 
 
 @dataclass
@@ -89,6 +98,8 @@ def solve_conic(
     # was 2.4x slower for the lower bound (2 956 triangles: 13.3 s against 5.5 s, measured) and no faster
     # for the upper bound, and competes with the other test workers for the machine's cores
     settings.direct_solve_method = "qdldl"
+    if not REFINE:
+        settings.iterative_refinement_enable = False
     P = sp.csc_matrix((n, n))
     t0 = time.perf_counter()
     solver = clarabel.DefaultSolver(P, np.asarray(q, float), A, b, cones, settings)

@@ -85,12 +85,17 @@ class Interface:
     """The contact between a rigid footing and the soil. ``kind``: "rough" (bonded: no velocity jump, the
     soil's own strength governs), "smooth" (no shear, no separation) or "coulomb" (|tau| <= c - sigma_n tan
     phi with cohesion ``c`` [Pa] and friction angle ``phi_deg`` [deg], associated: a slip opens the joint by
-    |slip| tan phi). ``psi_deg`` [deg] (coulomb only, None = associated) enters only :meth:`davis`."""
+    |slip| tan phi). ``psi_deg`` [deg] (coulomb only, None = associated) enters only :meth:`davis`.
+    ``tension`` [Pa] (coulomb only): the tension cut-off t_i, sigma_n <= t_i beside the Coulomb cone (0: no
+    tension, the paper's contact; None: none, the joint takes tension up to its apex c / tan phi); a
+    cut-off above the apex changes nothing. Its flow rule (the support function of the truncated cone):
+    an opening d_n >= tan phi |d_t| dissipates t_i d_n + (c - t_i tan phi) |d_t|."""
 
     kind: str = "rough"
     c: float = 0.0
     phi_deg: float = 0.0
     psi_deg: float | None = None
+    tension: float | None = None
 
     def __post_init__(self):
         check_choice("kind", self.kind, ("rough", "smooth", "coulomb"))
@@ -101,6 +106,13 @@ class Interface:
             object.__setattr__(self, "psi_deg", psi)
         if self.kind != "coulomb" and (self.c != 0.0 or self.phi_deg != 0.0):
             raise ValueError(f"c and phi_deg of an Interface need kind 'coulomb', got kind={self.kind!r}")
+        if self.tension is not None:
+            if self.kind != "coulomb":
+                raise ValueError(f"tension of an Interface needs kind 'coulomb', got kind={self.kind!r}")
+            t = float(check_real("tension", self.tension, lo=0.0, unit="Pa"))
+            if self.phi_deg > 0.0:
+                t = min(t, self.c / math.tan(math.radians(self.phi_deg)))  # above the apex: inactive
+            object.__setattr__(self, "tension", t)
 
     @property
     def strength(self) -> tuple[float, float]:
@@ -115,10 +127,12 @@ class Interface:
         return replace(self, c=b * self.c, phi_deg=phi, psi_deg=None)
 
     def reduced(self, factor: float) -> Interface:
+        """c / F, tan phi / F and the tension cut-off / F (all the joint's strengths reduced alike)."""
         if self.kind != "coulomb":
             return self
         phi = math.degrees(math.atan(math.tan(math.radians(self.phi_deg)) / factor))
-        return replace(self, c=self.c / factor, phi_deg=phi)
+        t = None if self.tension is None else self.tension / factor
+        return replace(self, c=self.c / factor, phi_deg=phi, tension=t)
 
 
 @dataclass(frozen=True)
@@ -127,9 +141,19 @@ class Beam:
     one element per base edge of the triangle mesh (each element rigid, inextensible), a hinge at each end
     of every element, i.e. on both sides of every base node (with no couple at a node the two act as one).
     A hinge rotating in sagging (tension at the bottom, the rotation rising along +x) dissipates ``mp_sag``
-    [N m/m] times its rotation, in hogging ``mp_hog`` [N m/m]; the axial force does not enter M_p (the
-    moment capacity at N = 0) and the beam's axis is the base (a load's horizontal force above the base is
-    given here as the force at the base and its couple).
+    [N m/m] times its rotation, in hogging ``mp_hog`` [N m/m]; the beam's axis is the base (a load's
+    horizontal force above the base is given here as the force at the base and its couple).
+
+    ``interaction``: the hinges' M-N interaction, points ((N [N/m] tension positive, M_sag(N), M_hog(N)
+    [N m/m], both >= 0), ...) of the section's resistance with the moment about the base, one of them at
+    N = 0 (that one's moments are mp_sag and mp_hog). The capacity is then the polygon P (:meth:`facets`):
+    N within the points' range, M below the upper concave hull of the (N, M_sag) points and above the lower
+    convex hull of the (N, -M_hog) points; a hinge's rotation theta and axial extension delta obey the
+    associated flow rule (normal to P) and dissipate P's support function max over P of (N delta + M
+    theta). Empty (default): M_p independent of N (the strip -mp_hog <= M <= mp_sag for every N, no axial
+    extension). P is the convex hull of points on the true resistance's boundary, so it lies inside a
+    convex resistance: the bracket is that of a beam no stronger than the section (safe), for a ductile
+    section only (a brittle one, below minimum reinforcement, forms no hinge).
 
     ``loads_ref`` / ``loads_dead``: point loads ((x [m], Fx [N/m], Fz [N/m], C [N m/m]), ...) at base
     nodes (the site needs a point at each x), C counter-clockwise; ``pressure_ref`` / ``pressure_dead``
@@ -143,6 +167,7 @@ class Beam:
     loads_dead: tuple = ()
     pressure_ref: float = 0.0
     pressure_dead: float = 0.0
+    interaction: tuple = ()
 
     def __post_init__(self):
         x0 = check_real("x0", self.x0, unit="m")
@@ -163,6 +188,58 @@ class Beam:
             object.__setattr__(self, name, tuple(out))
         for name in ("pressure_ref", "pressure_dead"):
             object.__setattr__(self, name, float(check_real(name, getattr(self, name), unit="Pa")))
+        pts = []
+        for i, p in enumerate(self.interaction):
+            if len(p) != 3:
+                raise ValueError(f"interaction[{i}] must be (N, M_sag, M_hog), got {p!r}")
+            n_ = float(check_real(f"interaction[{i}][0]", p[0], unit="N/m"))
+            ms = float(check_real(f"interaction[{i}][1]", p[1], lo=0.0, unit="N m/m"))
+            mh = float(check_real(f"interaction[{i}][2]", p[2], lo=0.0, unit="N m/m"))
+            pts.append((n_, ms, mh))
+        if pts:
+            zero = [p for p in pts if p[0] == 0.0]
+            if (
+                len(zero) != 1
+                or abs(zero[0][1] - self.mp_sag) > 1e-9 * self.mp_sag
+                or abs(zero[0][2] - self.mp_hog) > 1e-9 * self.mp_hog
+            ):
+                raise ValueError(
+                    f"interaction needs exactly one point at N = 0 with M_sag = mp_sag = {self.mp_sag!r} and "
+                    f"M_hog = mp_hog = {self.mp_hog!r} N m/m, got {[p for p in pts if p[0] == 0.0]!r}"
+                )
+            if len({p[0] for p in pts}) != len(pts):
+                raise ValueError("interaction: two points at the same N")
+        object.__setattr__(self, "interaction", tuple(sorted(pts)))
+
+    @property
+    def axial(self) -> bool:
+        """Whether the capacity depends on N (an interaction polygon with more than its N = 0 point)."""
+        return len(self.interaction) > 1
+
+    def facets(self) -> np.ndarray:
+        """The capacity polygon P as rows (a_N [1/m], a_M, b [N m/m]): a_N N + a_M M <= b for every row
+        (class docstring); without an interaction, the two rows M <= mp_sag, -M <= mp_hog."""
+        if not self.axial:
+            return np.array([[0.0, 1.0, self.mp_sag], [0.0, -1.0, self.mp_hog]])
+        pts = np.array(self.interaction)
+        rows = []
+        # sagging: M <= m1 + s (N - n1) on each segment of the upper hull of (N, M_sag); hogging: -M <= h1 +
+        # s (N - n1) on each segment of the upper hull of (N, M_hog)
+        for col, a_m in ((1, 1.0), (2, -1.0)):
+            hull = _upper_hull(pts[:, 0], pts[:, col])
+            for (n1, m1), (n2, m2) in zip(hull[:-1], hull[1:]):
+                s = (m2 - m1) / (n2 - n1)
+                rows.append((-s, a_m, m1 - s * n1))
+        rows.append((1.0, 0.0, float(pts[-1, 0])))
+        rows.append((-1.0, 0.0, float(-pts[0, 0])))
+        return np.array(rows, float)
+
+    def vertices(self) -> np.ndarray:
+        """The corners (N [N/m], M [N m/m]) of the bounded polygon P (``axial`` only)."""
+        pts = np.array(self.interaction)
+        sag = _upper_hull(pts[:, 0], pts[:, 1])
+        hog = [(n_, -m) for n_, m in _upper_hull(pts[:, 0], pts[:, 2])]
+        return np.array(sag + hog, float)
 
     def resultant(self, which: str, xc: float) -> tuple[float, float, float]:
         """(Fx, Fz [N/m], moment about x = ``xc`` [N m/m]) of the ``which`` ("ref" or "dead") loads."""
@@ -175,6 +252,20 @@ class Beam:
             0.5 * (self.x0 + self.x1) - xc
         )
         return fx, fz, m
+
+
+def _upper_hull(x: np.ndarray, y: np.ndarray) -> list:
+    """The upper concave hull of points (x, y) sorted by x: [(x, y), ...] left to right (monotone chain)."""
+    hull: list = []
+    for p in zip(x.tolist(), y.tolist()):
+        while len(hull) >= 2:
+            (x1, y1), (x2, y2) = hull[-2], hull[-1]
+            if (x2 - x1) * (p[1] - y1) - (y2 - y1) * (p[0] - x1) >= 0.0:  # hull[-1] not above the chord
+                hull.pop()
+            else:
+                break
+        hull.append(p)
+    return hull
 
 
 @dataclass(frozen=True)

@@ -10,9 +10,11 @@ Constraints (all linear in the nodal stresses, so met at the nodes means met eve
 - under a rigid footing, the resultant of the soil tractions equals load_dead + lambda load_ref along each
   free translation (and, if the footing rotates, their moment about its centre moment_dead + lambda
   moment_ref), and at both ends of each edge the interface: smooth tau = 0, Coulomb |tau| <= c_i -
-  sigma_n tan phi_i (two linear rows), rough nothing (the soil's own strength governs);
-- a bending footing (:class:`~ssi.limit.geometry.Beam`): its moment, from the base tractions and its
-  loads (:mod:`ssi.limit.beam`), within -mp_hog..mp_sag at the Bernstein points of every element;
+  sigma_n tan phi_i (two linear rows) and with a tension cut-off sigma_n <= t_i (one more), rough nothing
+  (the soil's own strength governs);
+- a bending footing (:class:`~ssi.limit.geometry.Beam`): its moment and axial force, from the base
+  tractions and its loads (:mod:`ssi.limit.beam`), within its M-N polygon (without an interaction:
+  -mp_hog <= M <= mp_sag) at the Bernstein points of every element;
 - Mohr-Coulomb at every vertex as the 3-D cone ||(sig_x - sig_z, 2 tau)|| <= 2 c cos phi - (sig_x + sig_z)
   sin phi (Tresca: phi = 0), and, with a tension cut-off T, ||(sig_x - sig_z, 2 tau)|| <= 2 T - (sig_x +
   sig_z). A linear field in a convex set at the vertices stays in it inside the triangle. (The upper bound
@@ -62,11 +64,12 @@ class LowerBound:
     """A certified lower bound. ``lam`` the certified load factor (NaN if not certified), ``lam_solver`` the
     solver's, ``lam_projected`` that of the projected field (= lam when certified); ``stress``
     (n_el, 3, 3) [Pa] the projected field (sig_x, sig_z, tau at each vertex); ``beam``: per bending
-    footing, dict of ``M_left`` / ``M_right`` (n_k,) [N m/m] the moment just left / right of each beam node
-    and ``utilisation`` max |M| / M_p over the beam (its Bernstein points); ``min_margin`` the smallest
-    distance inside the true yield cone over all vertices [Pa] (negative: outside); ``n_apex`` vertices at
-    the apex within APEX_TOL S; ``eq_residual`` the largest equality residual after projection [Pa];
-    time [s], iterations, status, n_cones, n_rows of the solve."""
+    footing, dict of ``M_left`` / ``M_right`` (n_k,) [N m/m] the moment just left / right of each beam
+    node, ``N_left`` / ``N_right`` [N/m] the axial force, and ``utilisation`` the largest (a_N N + a_M M) /
+    b over the polygon's facets and the beam's Bernstein points (|M| / M_p without an interaction);
+    ``min_margin`` the smallest distance inside the true yield cone over all vertices [Pa] (negative:
+    outside); ``n_apex`` vertices at the apex within APEX_TOL S; ``eq_residual`` the largest equality
+    residual after projection [Pa]; time [s], iterations, status, n_cones, n_rows of the solve."""
 
     lam: float
     lam_solver: float
@@ -168,6 +171,8 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
                     for sgn in (1.0, -1.0):
                         vals = [tphi * v for v in sn[1]] + [sgn * v for v in ta[1]]
                         ineq.add(sn[0] + ta[0], vals, ci / sc.S)
+                    if itf.tension is not None:  # the cut-off sigma_n <= t_i
+                        ineq.add(sn[0], sn[1], itf.tension / sc.S)
     # traction continuity on interior edges, at both ends. Where both triangles have their traction
     # prescribed on the same free boundary line at that end, the component along the boundary normal is
     # implied (n_b . (sig1 - sig2) n = n . (sig1 - sig2) n_b = 0): only the tangential row is kept, and no
@@ -213,7 +218,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             mr = ft.moment_ref / (sc.S * sc.L**2)
             md = ft.moment_dead / (sc.S * sc.L**2)
             eq.add(cols + [imu], vm + [-mr / sc.k], md)
-    # a bending footing: -mp_hog <= M <= mp_sag at the Bernstein points of every element (shrunk by the
+    # a bending footing: (N, M) within its polygon at the Bernstein points of every element (shrunk by the
     # margin in the solve, checked against the true capacity in the certification)
     n_itf = len(ineq.rhs)
     beams = {}
@@ -222,10 +227,9 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             continue
         lay = beam_layout(site, f, be, xy, sc.L)
         st = lower_bound_statics(site, f, lay, be, n, imu, sc.S, sc.L, sc.k)
-        B = st.B.tocoo()
-        r = B.row
-        ineq.add_many(r, B.col, B.data, (1.0 - margin) * st.mp_sag - st.b0)
-        ineq.add_many(r, B.col, -B.data, (1.0 - margin) * st.mp_hog + st.b0)
+        for a_n, a_m, b_ in st.facets:  # a_N N + a_M M <= b (1 - margin) at every control point
+            G = (a_n * st.BN + a_m * st.B).tocoo() if a_n != 0.0 else (a_m * st.B).tocoo()
+            ineq.add_many(G.row, G.col, G.data, (1.0 - margin) * b_ - a_n * st.bN0 - a_m * st.b0)
         beams[f] = st
     # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x
     mats = site.materials
@@ -369,13 +373,15 @@ def lower_bound(
     ineq_bad = int(np.sum((itf_viol > ITF_TOL) & ~itf_slack))
     beam_out, beam_bad = {}, 0
     for f, st in beams.items():
-        mb = st.B @ x + st.b0
-        beam_bad += int(np.sum(mb > st.mp_sag) + np.sum(mb < -st.mp_hog))
+        over = st.facet_values(x)  # a_N N + a_M M - b at the control points, <= 0 inside the polygon
+        beam_bad += int(np.sum(over > 0.0))
         unit = sc.S * sc.L**2
         beam_out[f] = dict(
             M_left=(st.M_left[0] @ x + st.M_left[1]) * unit,
             M_right=(st.M_right[0] @ x + st.M_right[1]) * unit,
-            utilisation=float(max(np.max(mb) / st.mp_sag, np.max(-mb) / st.mp_hog)),
+            N_left=(st.N_left[0] @ x + st.N_left[1]) * sc.S * sc.L,
+            N_right=(st.N_right[0] @ x + st.N_right[1]) * sc.S * sc.L,
+            utilisation=float(np.max(1.0 + over / st.facets[:, 2:3])),
         )
     reasons = []
     if not np.all(np.isfinite(x)):

@@ -15,7 +15,10 @@ under a footing with a Coulomb or smooth interface, a slip bound s at each contr
 - Footing interface: the jump d = U - u (footing relative to soil) is quadratic along an edge; its Bernstein
   control points b_0 = d_a, b_1 = 2 d_m - (d_a + d_b)/2, b_2 = d_b contain the whole curve in their convex
   hull, so the Coulomb rule n.b_k = tan phi_i s_k, |t.b_k| <= s_k at the control points holds along the edge
-  and the dissipation c_i sum_k s_k L/3 bounds c_i times the integral of |d_t| from above. Rough: d = 0.
+  and the dissipation c_i sum_k s_k L/3 bounds c_i times the integral of |d_t| from above. With a tension
+  cut-off t_i: n.b_k = tan phi_i s_k + o_k, o_k >= 0 (an opening beyond the dilation), dissipating
+  (c_i s_k + t_i o_k) L/3 (t_i d_n exactly: the integral of a quadratic is L/3 times the sum of its
+  Bernstein points). Rough: d = 0.
 - Velocity conditions: fixed u = 0; symmetry u . n = 0 (axis-aligned rollers, eliminated); a footing's held
   translation or rotation is zero. A footing is a rigid body (U, W, theta about its centre): a point of it
   moves with (U - theta (z - z_c), W + theta (x - x_c)), linear along a straight edge and so exactly
@@ -23,9 +26,11 @@ under a footing with a Coulomb or smooth interface, a slip bound s at each contr
   only translates, by equality rows when it rotates, and set to the rigid motion exactly before the
   recomputation). A footing with a :class:`~ssi.limit.geometry.Beam` bends instead: each base edge a rigid
   inextensible element (w linear along it, u = U), the nodes' vertical velocity w_k and rotation phi_k its
-  variables, a hinge at each element end with rotation theta_e - phi_left (phi_right - theta_e), split
-  into s+ - s- (s >= 0) dissipating mp_sag s+ + mp_hog s-; the beam's loads do work on w (forces), U
-  (horizontal forces) and phi (couples).
+  variables, a hinge at each element end with rotation theta_e - phi_left (phi_right - theta_e) and,
+  with an M-N polygon on a joint that is not rough, extension u_e - u_left (u_right - u_e), both equal to
+  sum_i lam_i (a_M, a_N)_i over the polygon's facets (lam >= 0: normal to the polygon), dissipating sum_i
+  lam_i b_i (without an interaction: mp_sag theta+ + mp_hog theta-); the beam's loads do work on w
+  (forces), u (horizontal forces) and phi (couples).
 - Normalisation: the power of the reference loads is 1; the objective is the dissipation minus the power
   of the dead loads (weight, surcharge, dead footing loads), which is lambda.
 
@@ -42,7 +47,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._common import boundary_edges, gradients, scales, strength
-from .beam import beam_elements, beam_layout, beam_powers, carry_beam, hinge_dissipation, hinge_rows
+from .beam import (
+    beam_elements,
+    beam_kinematics,
+    beam_layout,
+    beam_powers,
+    carry_beam,
+    hinge_dissipation,
+    hinge_rows,
+)
 from .conic import ConicSolution, Rows, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
@@ -148,7 +161,8 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
     nxt = 0
     for f, ft in enumerate(site.footings):
         for d, name in enumerate("xzr"):
-            if name in ft.moves and not (ft.beam is not None and d > 0):  # a beam: its nodes' own w, phi
+            # a beam: its nodes' own w, phi (and u where its hinges extend)
+            if name in ft.moves and not (ft.beam is not None and (d > 0 or _free_axial(ft))):
                 fvar[f, d] = nxt
                 nxt += 1
     dof = -np.ones((n_all, 2), np.int64)
@@ -161,6 +175,11 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
             elif s > 0:
                 dof[g, d] = fvar[s - 1, d]
     return dof, fvar, nxt, oblique, ties
+
+
+def _free_axial(ft) -> bool:
+    """Whether footing ``ft``'s beam hinges extend (:func:`ssi.limit.beam.beam_kinematics`)."""
+    return ft.beam is not None and ft.beam.axial and ft.interface.kind != "rough" and "x" in ft.moves
 
 
 def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> UpperBound:
@@ -193,6 +212,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         bnd = site.segments[be.seg[j]][2]
         if bnd.kind == "footing" and site.footings[bnd.footing].interface.kind != "rough":
             nrm = (round(float(be.n[j, 0]), 9), round(float(be.n[j, 1]), 9))
+            if _free_axial(site.footings[bnd.footing]):  # each element its own u: a corner per edge
+                nrm = (*nrm, j)
             keys = (("n", int(be.p[j]), nrm), ("m", int(be.edge[j])), ("n", int(be.q[j]), nrm))
             for w, key in enumerate(keys):
                 if key not in cp:
@@ -200,24 +221,39 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 cp_rows.append((key, bnd.footing, j, w))
     i_s = ie + n_e
     n = i_s + len(cp)
-    # a beam's variables: w and phi at each node, a hinge (s+, s-) at each end of each element
+    # an opening o >= 0 beyond the Coulomb dilation at each control point of a joint with a tension cut-off
+    cp_open = {}
+    for key, f, _j, _w in cp_rows:
+        if site.footings[f].interface.tension is not None and key not in cp_open:
+            cp_open[key] = n
+            n += 1
+    # a beam's variables: w and phi at each node (u at each node and element where its hinges extend),
+    # the flow-rule multipliers of the hinge at each end of each element
     beams = {}
+    el_of_edge = {}  # (footing, boundary edge j or mesh edge of a midside node) -> the beam element on it
     for f, ft in enumerate(site.footings):
         if ft.beam is not None:
             lay = beam_layout(site, f, be, xy, sc.L)
-            n_k = len(lay.nodes)
-            cols = n + np.arange(2 * n_k + 4 * (n_k - 1))
-            w_col, phi_col = cols[:n_k], cols[n_k : 2 * n_k]
-            beams[f] = (lay, w_col, phi_col, cols[2 * n_k :].reshape(n_k - 1, 2, 2))
-            n += len(cols)
+            beams[f], taken = beam_kinematics(ft.beam, lay, n, _free_axial(ft), sc.S, sc.L)
+            n += taken
+            for e, j in enumerate(lay.edge):
+                if j >= 0:
+                    el_of_edge[(f, "b", int(j))] = e
+                    el_of_edge[(f, "m", int(be.edge[j]))] = e
     node_w = {}  # (footing, mesh node) -> the beam's w variable there
-    for f, (lay, w_col, _, _) in beams.items():
-        node_w.update({(f, int(g)): int(c) for g, c in zip(lay.nodes, w_col) if g >= 0})
+    for f, bk in beams.items():
+        node_w.update({(f, int(g)): int(c) for g, c in zip(bk.lay.nodes, bk.w) if g >= 0})
 
-    def terms(f: int, g: int) -> tuple[list, list]:
-        """Footing f's velocity at node g as [(variable, coefficient)] for u and for w."""
+    def terms(f: int, g: int, j: int = -1) -> tuple[list, list]:
+        """Footing f's velocity at node g (a corner of boundary edge ``j``) as [(variable, coefficient)]
+        for u and for w."""
         if f in beams:
-            tu = [(fvar[f, 0], 1.0)] if fvar[f, 0] >= 0 else []
+            bk = beams[f]
+            if bk.u_el is not None:  # the element's own u (a corner: that of the edge j's element)
+                key = (f, "m", g - n_nodes) if g >= n_nodes else (f, "b", j)
+                tu = [(int(bk.u_el[el_of_edge[key]]), 1.0)]
+            else:
+                tu = [(fvar[f, 0], 1.0)] if fvar[f, 0] >= 0 else []
             if g < n_nodes:
                 return tu, [(node_w[(f, g)], 1.0)]
             a, b = edges[g - n_nodes]  # a midside node: the element is rigid, w linear along it
@@ -295,6 +331,9 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         ci, tphi = itf.strength
         k = i_s + cp[key]
         q[k] += ci / sc.S * L / 3.0
+        o = cp_open.get(key, -1)
+        if o >= 0:
+            q[o] += itf.tension / sc.S * L / 3.0
         if key in cp_done:
             continue
         cp_done.add(key)
@@ -305,14 +344,18 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
             cols, vals = [], []
             for d, vv in ((0, vx), (1, vz)):
                 for g, wt in weights.items():
-                    for col, cf in terms(f, g)[d]:  # the footing's velocity at g
+                    for col, cf in terms(f, g, j)[d]:  # the footing's velocity at g
                         cols.append(col)
                         vals.append(wt * vv * cf)
                     if dof[g, d] >= 0:
                         cols.append(dof[g, d])
                         vals.append(-wt * vv)
-            if comp == "n":
-                eq.add(cols + [k], vals + [-tphi], 0.0)
+            if comp == "n":  # n . b = tan phi s (+ o, o >= 0, with a cut-off)
+                if o >= 0:
+                    eq.add(cols + [k, o], vals + [-tphi, -1.0], 0.0)
+                    ineq.add([o], [-1.0], 0.0)
+                else:
+                    eq.add(cols + [k], vals + [-tphi], 0.0)
             else:
                 ineq.add(cols + [k], vals + [-1.0], 0.0)
                 ineq.add(cols + [k], [-v for v in vals] + [-1.0], 0.0)
@@ -326,8 +369,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 vals.append(-cf)
             if cols:
                 eq.add(cols, vals, 0.0)
-    for f, vars_ in beams.items():  # hinge rows, their dissipation in the objective
-        hinge_rows(site.footings[f].beam, *vars_, eq, ineq, q, sc.S * sc.L**2)
+    for bk in beams.values():  # hinge rows, their dissipation in the objective
+        hinge_rows(bk, eq, ineq, q)
     # powers: reference (= 1) and dead (subtracted in the objective)
     p_ref = np.zeros(n)
     p_dead = np.zeros(n)
@@ -347,8 +390,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
                 if dof[g, d] >= 0:
                     p_ref[dof[g, d]] += -bnd.pressure_ref / sc.S * nn * wt / sc.k
                     p_dead[dof[g, d]] += -bnd.pressure_dead / sc.S * nn * wt
-    for f, vars_ in beams.items():  # the beam's loads do work on w, U and phi
-        beam_powers(site.footings[f].beam, *vars_, fvar[f, 0], p_ref, p_dead, sc.S, sc.L, sc.k)
+    for f, bk in beams.items():  # the beam's loads do work on w, u and phi
+        beam_powers(site.footings[f].beam, bk, fvar[f, 0], p_ref, p_dead, sc.S, sc.L, sc.k)
     for f, ft in enumerate(site.footings):
         if f in beams:
             continue
@@ -375,16 +418,18 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         mf_ = fvar >= 0
         x[fvar[mf_]] = motion[mf_]
         given = velocity[3] if len(velocity) > 3 else {}
-        for f, (lay, w_col, phi_col, _) in beams.items():
-            x[w_col], x[phi_col] = carry_beam(given[f], lay.x * sc.L, sc.L)
+        for f, bk in beams.items():
+            x[bk.w], x[bk.phi], u_n, u_e = carry_beam(given[f], bk.lay.x * sc.L, sc.L)
+            if bk.u_el is not None:
+                x[bk.u_node], x[bk.u_el] = u_n, u_e
         sol = ConicSolution(x, "given", 0, 0.0, len(soc.rhs) // 3)
     # ---- recomputation from the velocities alone
     vel = np.where(dof >= 0, x[np.maximum(dof, 0)], 0.0)
     fm = np.where(fvar >= 0, x[np.maximum(fvar, 0)], 0.0)  # (n_f, 3): U, W, theta (scaled)
     fv = fm[:, :2]
 
-    def footing_vel(f: int, g: int) -> np.ndarray:
-        return np.array([sum(cf * x[col] for col, cf in t) for t in terms(f, g)])
+    def footing_vel(f: int, g: int, j: int = -1) -> np.ndarray:
+        return np.array([sum(cf * x[col] for col, cf in t) for t in terms(f, g, j)])
 
     # a tied node takes its footing's motion exactly (the solver meets the tie rows to its tolerance
     # only): the field evaluated is then kinematically admissible, with no jump at the rough base
@@ -403,7 +448,10 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     s_e = sinm[:, None]
     e_min = np.where(s_e > 0, np.maximum(dev, vol / np.where(s_e > 0, s_e, 1.0)), dev)
     # the flow-rule residual relative to the velocity scale: |eps_v - sin phi e| h / max |v|
-    v_scale = max(np.abs(vel).max(), np.abs(fv).max(initial=0.0), 1e-300)
+    # (the mechanism's scale: a beam's own velocities count, which on a near-rigid soil are most of it)
+    v_beam = [np.abs(x[np.concatenate([bk.w] + ([bk.u_el] if bk.u_el is not None else []))]).max()
+              for bk in beams.values()]  # fmt: skip
+    v_scale = max(np.abs(vel).max(), np.abs(fv).max(initial=0.0), *v_beam, 1e-300)
     h_el = np.sqrt(2.0 * A)[:, None]
     flow_res = float(np.max(np.abs(vol - s_e * e_min) * h_el) / v_scale)
     d_el = (c_cos * A / 3.0)[:, None] * e_min
@@ -413,23 +461,30 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         itf = site.footings[f].interface
         ci, tphi = itf.strength
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
-        da, dm, db = (footing_vel(f, g) - vel[g] for g in (a_, m_, b_))
+        da, dm, db = (footing_vel(f, g, j) - vel[g] for g in (a_, m_, b_))
         bk = {0: da, 1: 2 * dm - 0.5 * (da + db), 2: db}[w]
         nx, nz = be.n[j]
         dn, dt = bk[0] * nx + bk[1] * nz, -bk[0] * nz + bk[1] * nx
+        if itf.tension is not None:  # opening beyond dilation allowed: t_i d_n + (c - t_i tan phi) |d_t|
+            flow_res = max(flow_res, max(tphi * abs(dt) - dn, 0.0) / v_scale)
+            d_j = itf.tension * dn + (ci - itf.tension * tphi) * abs(dt)
+            diss[be.el[j]] += d_j / sc.S * be.length[j] / 3.0
+            continue
         s_need = abs(dt) if tphi == 0 else max(abs(dt), dn / tphi)
         flow_res = max(flow_res, abs(dn - tphi * s_need) / v_scale)
         diss[be.el[j]] += ci / sc.S * be.length[j] / 3.0 * s_need
-    # beam hinges recomputed from w and phi
+    # beam hinges recomputed from w, phi and u
     beam_out = {}
-    for f, vars_ in beams.items():
-        el = beam_elements(be, vars_[0])
-        beam_out[f] = hinge_dissipation(site.footings[f].beam, *vars_, x, el, diss, sc.S * sc.L**2)
+    for f, bk in beams.items():
+        el = beam_elements(be, bk.lay)
+        beam_out[f] = hinge_dissipation(site.footings[f].beam, bk, x, el, diss, sc.S, sc.L)
     x_rec = np.zeros(n)  # the solution vector rebuilt from the recomputed velocities
     x_rec[dof[dof >= 0]] = vel[dof >= 0]
     x_rec[fvar[fvar >= 0]] = fm[fvar >= 0]
-    for _lay, w_col, phi_col, _ in beams.values():
-        x_rec[w_col], x_rec[phi_col] = x[w_col], x[phi_col]
+    for bk in beams.values():
+        x_rec[bk.w], x_rec[bk.phi] = x[bk.w], x[bk.phi]
+        if bk.u_el is not None:
+            x_rec[bk.u_node], x_rec[bk.u_el] = x[bk.u_node], x[bk.u_el]
     pr, pd = float(p_ref @ x_rec), float(p_dead @ x_rec)
     lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
     certified = bool(
@@ -444,13 +499,16 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         footing_rotation=fm[:, 2] * unit / sc.L,
         beam={
             f: dict(
-                x=lay.x * sc.L,
+                x=beams[f].lay.x * sc.L,
                 w=w * unit,
                 phi=phi * unit / sc.L,
                 hinge=rot * unit / sc.L,
-                el=beam_elements(be, lay),
+                extension=ext * unit,
+                u=None if un is None else un * unit,
+                u_el=None if ue is None else ue * unit,
+                el=beam_elements(be, beams[f].lay),
             )
-            for f, (lay, w, phi, rot) in beam_out.items()
+            for f, (w, phi, rot, ext, un, ue) in beam_out.items()
         },
         dissipation=diss / (pr * sc.k),
         dead_power=pd / (pr * sc.k),
@@ -468,11 +526,15 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
 
 
 def footing_velocity_at(site: Site, upper: UpperBound, f: int, pts: np.ndarray) -> np.ndarray:
-    """Footing ``f``'s velocity (n, 2) [m/s] at base points ``pts`` (n, 2) [m] in the field of ``upper``."""
+    """Footing ``f``'s velocity (n, 2) [m/s] at base points ``pts`` (n, 2) [m] in the field of ``upper``
+    (a beam whose hinges extend: ``pts`` on one base edge, which moves with its element's u)."""
     ft = site.footings[f]
     if ft.beam is not None:
         b = upper.beam[f]
-        return np.column_stack(
-            [np.full(len(pts), upper.footing_velocity[f, 0]), np.interp(pts[:, 0], b["x"], b["w"])]
-        )
+        if b["u_el"] is not None:  # hinges that extend: u of the element under the points' middle
+            e = np.clip(np.searchsorted(b["x"], np.mean(pts[:, 0])) - 1, 0, len(b["u_el"]) - 1)
+            u = np.full(len(pts), b["u_el"][e])
+        else:
+            u = np.full(len(pts), upper.footing_velocity[f, 0])
+        return np.column_stack([u, np.interp(pts[:, 0], b["x"], b["w"])])
     return ft.velocity_at(np.append(upper.footing_velocity[f], upper.footing_rotation[f]), pts)

@@ -207,9 +207,11 @@ class CapacityResult:
         ]
         if self.strip_mp is not None:
             ms, mh = (m / 1e3 for m in self.strip_mp)
+            mn = any(ft.beam is not None and ft.beam.axial for ft in p.site.footings)
             lines.append(
                 f"  strip: a beam with plastic hinges, M_p {ms:.4g} kN m/m sagging, {mh:.4g} hogging (its RC "
-                "section at N = 0; strip='rigid' ignores its bending)"
+                + ("section at N = 0, and its M-N polygon" if mn else "section at N = 0")
+                + "; strip='rigid' ignores its bending)"
             )
         if p.lam_unit == "N/m" and p.footing_width:
             b = p.footing_width * (2.0 if p.symmetric else 1.0)
@@ -260,8 +262,8 @@ def limit_analysis(
     the largest initial triangle (default: the block's size / 6), ``h_min`` [m] at the footing's and loads'
     ends (default: max(footing width, size / 10) / 8). ``progress(label, row)`` is called once per mesh
     (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`). ``strip``: a plate
-    strip "rigid" or a "beam" with plastic hinges (None: a beam for a ductile RC section;
-    :func:`ssi.scene.limit_problem.limit_problem`)."""
+    strip "rigid", a "beam" with plastic hinges of M_p at N = 0 or "beam_mn" with its section's M-N
+    polygon (None: a beam for a ductile RC section; :func:`ssi.scene.limit_problem.limit_problem`)."""
     gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
     check_optional_real("h", h, lo=0.0, lo_open=True, unit="m")
     check_optional_real("h_min", h_min, lo=0.0, lo_open=True, unit="m")

@@ -30,9 +30,9 @@ How the scene maps (anything else raises a ValueError naming the part):
   elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
   stronger assumption: for a slender or lightly reinforced strip the beam's own mechanism may govern);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
-  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket); refused: a tension
-  cut-off ``sig_t`` (the Coulomb joint's own apex is its only tension limit), contact segments with
-  different laws;
+  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket) and its tension cut-off
+  ``sig_t`` (None: the Coulomb joint's own apex c / tan phi); refused: contact segments with different
+  laws;
 - loads: :class:`ColumnLoad` N, H, M, :class:`StripLoad`, :class:`StripWeight` (less its
   buoyancy in free water) and the strip's ``self_weight`` (a load of the first phase, as in the
   incremental scene) on the footing; :class:`SurfacePressure` and the ``surcharge`` on the ground beside
@@ -52,7 +52,7 @@ from ..core.geometry import from_cells
 from ..limit import Beam, Boundary, Footing, Interface, Material, site_from_geometry
 from ..limit.geometry import Site
 from ..materials.soil_laws import SoilLayer
-from .limit_strip import NotOnBeam, beam_loads_of, beam_mode
+from .limit_strip import NotOnBeam, beam_loads_of, beam_mode, strip_beam_interaction
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
 
@@ -130,14 +130,12 @@ def _interface(scene) -> Interface:
         raise ValueError("Scene.contact: a plate Foundation needs a Contact")
     if contact.phi_deg is None or math.isinf(contact.c):
         return Interface("rough")
-    if contact.sig_t is not None:
-        raise ValueError(
-            f"Scene.contact.sig_t={contact.sig_t!r}: a tension cut-off of the contact is not represented by "
-            "ssi.limit (its Coulomb joint opens only at its own apex c / tan phi); give sig_t=None"
-        )
     if contact.phi_deg > 60.0:
         raise ValueError(f"Scene.contact.phi_deg={contact.phi_deg!r}: ssi.limit takes 0 <= phi_deg <= 60")
-    return Interface("coulomb", c=float(contact.c), phi_deg=float(contact.phi_deg), psi_deg=contact.psi_deg)
+    t = None if contact.sig_t is None else float(contact.sig_t)  # the contact's tension cut-off
+    return Interface(
+        "coulomb", c=float(contact.c), phi_deg=float(contact.phi_deg), psi_deg=contact.psi_deg, tension=t
+    )
 
 
 def _footing_forces(scene, loads, first_phase: bool, x0: float, x1: float, what: str):
@@ -196,12 +194,17 @@ def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width)
 def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
-    with plastic hinges, :mod:`ssi.scene.limit_strip`); None: "beam" for an RC section that is not
+    with plastic hinges of M_p at N = 0, :mod:`ssi.scene.limit_strip`) or "beam_mn" (the same beam, its
+    hinges' capacity the section's M-N polygon, :func:`~ssi.scene.limit_strip.strip_beam_interaction`:
+    safe where the beam's axial force lowers M_p; on a rough base its hinges cannot extend and the upper
+    bound is then loose); None: "beam" for an RC section that is not
     brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
     a load). Raises ValueError naming whatever the scene holds that
     :mod:`ssi.limit` cannot represent."""
-    if strip is not None and strip not in ("rigid", "beam"):
-        raise ValueError(f"strip must be 'rigid', 'beam' or None, got {strip!r}")
+    if strip is not None and strip not in ("rigid", "beam", "beam_mn"):
+        raise ValueError(f"strip must be 'rigid', 'beam', 'beam_mn' or None, got {strip!r}")
+    with_mn = strip == "beam_mn"  # a beam whose hinges' capacity is the section's M-N polygon
+    strip = "beam" if with_mn else strip
     if hasattr(scene, "geometry") and hasattr(scene, "strips"):
         if phase is not None:
             raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
@@ -376,8 +379,9 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
         forces = (tuple(fref.tolist()), tuple(fdead.tolist()))
         beam = None
         if mp is not None:
+            inter = strip_beam_interaction(f.section) if with_mn else ()
             beam = Beam(f.x0, f.x1, mp[0], mp[1], tuple(beam_loads["ref"]), tuple(beam_loads["dead"]),
-                        beam_loads["p_ref"], beam_loads["p_dead"])  # fmt: skip
+                        beam_loads["p_ref"], beam_loads["p_dead"], inter)  # fmt: skip
             # the footing's resultants are the beam's loads' (checked: the same loads, summed two ways)
             for which, fo, mo in (("ref", fref, mref), ("dead", fdead, mdead)):
                 bx, bz, bm = beam.resultant(which, centre[0])

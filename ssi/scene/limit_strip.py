@@ -12,7 +12,14 @@ import numpy as np
 from .loads import ColumnLoad, StripLoad, StripWeight
 from .parts import RigidFooting
 
-__all__ = ["NotOnBeam", "beam_loads_of", "beam_mode", "is_rc", "strip_beam_capacity"]
+__all__ = [
+    "NotOnBeam",
+    "beam_loads_of",
+    "beam_mode",
+    "is_rc",
+    "strip_beam_capacity",
+    "strip_beam_interaction",
+]
 
 
 def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, float]:
@@ -21,9 +28,9 @@ def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, fl
     characteristic strengths, the extreme fibre at eps_cu), per metre width. Unsafe where the section is
     brittle: a face whose cracking moment exceeds its yield moment (below minimum reinforcement, or no
     bars) cracks and loses its moment at once, no plastic hinge forms, and the limit theorems (which need
-    a ductile hinge that keeps M_p) do not hold: refused (ValueError). Also not represented: the axial
-    force's effect on M_p (a strip's axial force comes from the base shear only) and the rotation
-    capacity (a hinge here rotates without limit)."""
+    a ductile hinge that keeps M_p) do not hold: refused (ValueError). The axial force's effect on M_p:
+    :func:`strip_beam_interaction`. Not represented: the rotation capacity (a hinge here rotates without
+    limit)."""
     from ..elements.rc_design import RCDesign
 
     design = RCDesign(section, bar_diameter=bar_diameter)
@@ -37,6 +44,39 @@ def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, fl
                 "strip='rigid' (which ignores the strip's bending: unsafe too)"
             )
     return float(design.M_Rd(0.0, 1)), float(-design.M_Rd(0.0, -1))
+
+
+def strip_beam_interaction(section, bar_diameter: float = 0.016, steps: tuple = (40, 10)) -> tuple:
+    """The M-N interaction of a plate strip's RC ``section`` as a :class:`ssi.limit.Beam`'s ``interaction``:
+    points (N [N/m] tension positive, M_sag, M_hog [N m/m] >= 0) with the moment about the section's base (the
+    beam's axis in the limit problem: M_base = M_ref - N (z_ref - z_bottom), M_ref about the section's z = 0),
+    each from ssi's own section analysis (``RCDesign.M_Rd(N)``: the extreme fibre at eps_cu, characteristic
+    strengths). N steps by 1 / ``steps[0]`` of the squash load f_ck h + f_y A_s (compression) and by 1 /
+    ``steps[1]`` of the bars' tension capacity f_y A_s, from N = 0 outwards, up to the first N where M_Rd
+    finds no strain plane (its search starts at a small curvature whose planes carry only a moderate N: for
+    chapter 11's strip about -1 MN/m, a tenth of the squash load) or the moment about the base changes sign:
+    the polygon then stops there (the beam yields axially at that N: inside the true resistance, safe, and
+    pessimistic for larger compressions). Unsafe, as M_p at N = 0, for a brittle section (refused:
+    :func:`strip_beam_capacity`), and the rotation capacity is unlimited."""
+    from ..elements.rc_design import RCDesign
+
+    mp_sag, mp_hog = strip_beam_capacity(section, bar_diameter)
+    design = RCDesign(section, bar_diameter=bar_diameter)
+    e = -float(section.z_bottom)  # the base below the reference z = 0
+    a_s = design.faces["bottom"].As + design.faces["top"].As
+    points = [(0.0, mp_sag, mp_hog)]
+    for unit, n_steps in zip((-(design.fck * design.h + design.fyk * a_s), design.fyk * a_s), steps):
+        for k in range(1, n_steps):
+            n = k * unit / n_steps
+            try:
+                ms = design.M_Rd(n, 1) - n * e
+                mh = -design.M_Rd(n, -1) + n * e
+            except ValueError:
+                break
+            if ms < 0.0 or mh < 0.0:
+                break
+            points.append((float(n), float(ms), float(mh)))
+    return tuple(sorted(points))
 
 
 def is_rc(section) -> bool:
