@@ -471,8 +471,9 @@ def limit_scene_file(
     ``out``), ``<name>_limit.h5`` (the result file: bounds, meshes, mechanism, dissipation, stress field;
     :mod:`ssi.io.results_limit`), ``<name>_limit.vtu`` (ParaView: the mechanism's triangles with velocity,
     dissipation and stress) and ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``). ``echo``
-    gets one line of progress per mesh of the adaptive runs. ``strip``: a plate strip "rigid" or a "beam"
-    with plastic hinges (None: the scene's default, :func:`ssi.scene.limit_problem.limit_problem`)."""
+    gets one line of progress per mesh of the adaptive runs. ``strip``: a plate strip "rigid", a "beam"
+    with plastic hinges of M_p at N = 0 or "beam_mn" (hinges on the section's M-N polygon; None: the scene's
+    default, :func:`ssi.scene.limit_problem.limit_problem`)."""
     from ..scene.scene_file import read_scene_file
     from .results import atomic_path
     from .results_limit import export_limit_vtu, write_limit_result
@@ -595,9 +596,10 @@ def main(argv=None) -> int:
     lim_p.add_argument("--max-elements", type=int, default=20000, help="stop refining at this many")
     lim_p.add_argument(
         "--strip",
-        choices=("rigid", "beam"),
-        help="a plate strip as a rigid body or a beam with plastic hinges (default: a beam for a ductile RC "
-        "section, rigid otherwise)",
+        choices=("rigid", "beam", "beam_mn"),
+        help="a plate strip as a rigid body, a beam with plastic hinges of M_p at N = 0, or 'beam_mn' whose "
+        "hinges follow the section's M-N interaction (default: a beam for a ductile RC section, rigid "
+        "otherwise)",
     )
     lim_p.add_argument("-o", "--out", type=Path, help="numbers as JSON (default: <scene>_limit.json)")
     lim_p.add_argument("--plot", type=Path, help="mechanism figure (default: <scene>_limit.png)")
