@@ -164,3 +164,16 @@ def test_limit_uncertainty_and_suspect_are_written_to_the_result_file(tmp_path):
         attrs = dict(h5["solver"].attrs)
     assert attrs["limit_uncertainty"] == res.limit_uncertainty
     assert "FALSE COLLAPSE" in str(attrs["limit_suspect"])
+
+
+def test_strip_on_a_stress_free_slipping_contact_leaves_lambda_zero():
+    """Random zoo scene 48 (seed 1): a weightless strip on a psi_i = 0, c_i = 0 contact under N, H and M.
+    From the stress-free contact the first iterates put every contact point in slip or open, the tangent is
+    singular along the strip's horizontal translation, and a factor that does not solve its own matrix must
+    not be used: before that check the path stopped at lambda = 0 (the same at every halving)."""
+    from ssi.lab.zoo import random_scenes
+
+    name, scene = random_scenes(49, seed=1)[48]
+    assert scene.contact.psi_deg == 0.0 and scene.contact.c == 0.0  # the case this test is about
+    result = scene.build().solve(settings=Settings(control="work")).solver_result
+    assert result.status == COMPLETED and result.load_factor[-1] == pytest.approx(1.0, abs=1e-12)
