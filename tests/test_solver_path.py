@@ -177,3 +177,18 @@ def test_strip_on_a_stress_free_slipping_contact_leaves_lambda_zero():
     assert scene.contact.psi_deg == 0.0 and scene.contact.c == 0.0  # the case this test is about
     result = scene.build().solve(settings=Settings(control="work")).solver_result
     assert result.status == COMPLETED and result.load_factor[-1] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_phased_scene_on_the_controlled_path_balances_its_geostatic_phase_in_one_step():
+    """A phased scene's geostatic phase has no reference load and no prescribed displacement (dead load
+    only): on the controlled path it is one balancing step (control='work' raised a ValueError there), and
+    every phase after it is followed as usual."""
+    from ssi.lab.zoo import phased_scenes
+
+    name, scene = phased_scenes()[0]
+    out = scene.build().solve(settings=Settings(control="work"))
+    geostatic = out.phases[0]
+    assert (
+        geostatic["name"] == "geostatic" and geostatic["result"].n_steps == 1
+    )  # the balancing step after step 0
+    assert out.status == COMPLETED and out.load_factor[-1] == pytest.approx(len(out.phases) - 1, abs=1e-12)

@@ -24,6 +24,9 @@ State table (one row per transition; a "step" is one control increment ds)::
 
     state  | event                                    | action                              | next
     -------+------------------------------------------+-------------------------------------+-------
+    START  | no reference load, no prescribed         | one load-controlled step to the     | end
+           |   displacement (dead load only)          |   last target (NonConvergence if it |
+           |                                          |   fails: lambda scales nothing)     |
     START  | residual above the tolerance             | load-controlled step at lambda_0    | FIRST
     START  | balanced                                 | --                                  | FIRST
     FIRST  | --                                       | load-controlled step to             | WATCH
@@ -108,10 +111,13 @@ def run_path(
     path = _Follower(model, settings, start, loads, scale=float(targets[-1]))
     try:
         with solver_progress(settings.progress, total=path.scale) as path.bar:
-            path.equilibrate()
-            for target in targets:
-                if path.follow(float(target)):
-                    break
+            if path.dead_only:
+                path.balance(float(targets[-1]))
+            else:
+                path.equilibrate()
+                for target in targets:
+                    if path.follow(float(target)):
+                        break
     finally:
         path.result.wall_time = time.perf_counter() - t0
     return path.result
@@ -131,8 +137,9 @@ class _Follower:
         self.work = bool(np.any(self.f))  # work control; else displacement control on lambda
         ref = np.zeros(model.n_dof)
         ref[self.system.cons_dofs] = self.system.cons_ref
-        if not self.work and not np.any(ref):
-            raise ValueError("control='work' needs a reference load or prescribed displacements")
+        # no reference load and no prescribed displacement (a phase of dead load only, e.g. a phased scene's
+        # geostatic phase): lambda scales nothing, and the path is one balancing step (see balance)
+        self.dead_only = not self.work and not np.any(ref)
         self.ref = ref
         self.lam = 0.0
         self.s = float(self.f @ (self.u[free] - self.result.u_origin[free])) if self.work else 0.0
@@ -166,6 +173,16 @@ class _Follower:
         if out["iterations"] > 1:
             self._commit(out)
         self.prev = None  # the balancing move is no predictor for the controlled steps
+
+    def balance(self, target):
+        """Nothing scales with lambda (``dead_only``): one load-controlled step to ``target`` balances the
+        dead load, recorded as step 1 (a phased scene's geostatic phase has exactly that row); raises
+        NonConvergence if it fails -- a smaller lambda would not change the load, so there is nothing to
+        halve."""
+        out = self._step(self.u, self.states, self.lam, None, target)
+        if out is None:
+            self._fail()
+        self._commit(out, adapt=False)
 
     def follow(self, target) -> bool:
         """Advance to ``target``; True if the path ended at a limit."""
