@@ -660,7 +660,12 @@ except NonConvergence as err:
 # hold. All 100 measured off-line, back to back: 46 completed, 25 limits, 29 NonConvergence in 218 s when
 # every step started on K0; 52 completed, 30 limits, 18 NonConvergence in 120 s since an unsymmetric tangent
 # starts a step from the committed state's tangent and backtracks on the residual norm (ssi/solver/path.py);
-# five of the 18 stop at lambda = 0 where the old rule completed
+# five of the 18 stop at lambda = 0 where the old rule completed. 57 completed, 30 limits, 13 NonConvergence
+# (none at lambda = 0, none among these first 20) since a refactorised tangent that does not solve its own
+# matrix is not used: the seven lambda = 0 stops were a weightless strip on a psi_i = 0 contact whose points
+# all slip, a tangent singular along the strip's sliding (tools/zoo_controlled.py; the 13 left stop mid-path
+# with soil points flipping between elastic and plastic: 22, 30, 31, 61 within 8 % of their bracket, the
+# others at 0.2-0.9 of their Davis floor)
 N_ZOO_CTRL = 20
 zoo_ctrl = (
     []

@@ -164,3 +164,31 @@ def test_limit_uncertainty_and_suspect_are_written_to_the_result_file(tmp_path):
         attrs = dict(h5["solver"].attrs)
     assert attrs["limit_uncertainty"] == res.limit_uncertainty
     assert "FALSE COLLAPSE" in str(attrs["limit_suspect"])
+
+
+def test_strip_on_a_stress_free_slipping_contact_leaves_lambda_zero():
+    """Random zoo scene 48 (seed 1): a weightless strip on a psi_i = 0, c_i = 0 contact under N, H and M.
+    From the stress-free contact the first iterates put every contact point in slip or open, the tangent is
+    singular along the strip's horizontal translation, and a factor that does not solve its own matrix must
+    not be used: before that check the path stopped at lambda = 0 (the same at every halving)."""
+    from ssi.lab.zoo import random_scenes
+
+    name, scene = random_scenes(49, seed=1)[48]
+    assert scene.contact.psi_deg == 0.0 and scene.contact.c == 0.0  # the case this test is about
+    result = scene.build().solve(settings=Settings(control="work")).solver_result
+    assert result.status == COMPLETED and result.load_factor[-1] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_phased_scene_on_the_controlled_path_balances_its_geostatic_phase_in_one_step():
+    """A phased scene's geostatic phase has no reference load and no prescribed displacement (dead load
+    only): on the controlled path it is one balancing step (control='work' raised a ValueError there), and
+    every phase after it is followed as usual."""
+    from ssi.lab.zoo import phased_scenes
+
+    name, scene = phased_scenes()[0]
+    out = scene.build().solve(settings=Settings(control="work"))
+    geostatic = out.phases[0]
+    assert (
+        geostatic["name"] == "geostatic" and geostatic["result"].n_steps == 1
+    )  # the balancing step after step 0
+    assert out.status == COMPLETED and out.load_factor[-1] == pytest.approx(len(out.phases) - 1, abs=1e-12)

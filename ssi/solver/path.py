@@ -9,8 +9,9 @@ factor lambda is an unknown of the step:
   the reaction along the prescribed displacements.
 
 One corrector: Newton on a lagged factorisation of the consistent tangent, refactorised only when the
-observed contraction |r_k| / |r_k-1| stays above ``POOR_CONTRACTION`` for ``POOR_RUN`` iterations, L-BFGS
-updates on that factor, and a line search; no retry ladder. A symmetric tangent (associated or Davis-mode
+observed contraction |r_k| / |r_k-1| stays above ``POOR_CONTRACTION`` for ``POOR_RUN`` iterations (a new
+factor that does not solve its own matrix to ``TANGENT_SOLVE_TOL`` is not used), L-BFGS updates on that
+factor, and a line search; no retry ladder. A symmetric tangent (associated or Davis-mode
 soil, ``Settings.symmetric_tangent``) starts the path, and each step after a failed one, on K0 and searches
 along Matthies & Strang's G, the slope of the increment's potential; an unsymmetric one (slipping contact,
 non-associated soil) factorises the tangent of the committed state there instead and backtracks on the
@@ -23,6 +24,9 @@ State table (one row per transition; a "step" is one control increment ds)::
 
     state  | event                                    | action                              | next
     -------+------------------------------------------+-------------------------------------+-------
+    START  | no reference load, no prescribed         | one load-controlled step to the     | end
+           |   displacement (dead load only)          |   last target (NonConvergence if it |
+           |                                          |   fails: lambda scales nothing)     |
     START  | residual above the tolerance             | load-controlled step at lambda_0    | FIRST
     START  | balanced                                 | --                                  | FIRST
     FIRST  | --                                       | load-controlled step to             | WATCH
@@ -69,7 +73,7 @@ from ..core.model import Model
 from ..core.protocol import CONSISTENT
 from ..core.solution import LIMIT_LOAD, STOPPED, Result
 from .diagnostics import _failure_report
-from .increment import _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
+from .increment import TANGENT_SOLVE_TOL, _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
 from .progress import SolverProgress, solver_progress
 from .record import _record, _start
 from .settings import NonConvergence, Settings
@@ -114,10 +118,13 @@ def run_path(
     path = _Follower(model, settings, start, loads, scale=float(targets[-1]))
     try:
         with solver_progress(settings.progress, total=path.scale) as path.bar:
-            path.equilibrate()
-            for target in targets:
-                if path.follow(float(target)):
-                    break
+            if path.dead_only:
+                path.balance(float(targets[-1]))
+            else:
+                path.equilibrate()
+                for target in targets:
+                    if path.follow(float(target)):
+                        break
     finally:
         path.result.wall_time = time.perf_counter() - t0
     return path.result
@@ -137,8 +144,9 @@ class _Follower:
         self.work = bool(np.any(self.f))  # work control; else displacement control on lambda
         ref = np.zeros(model.n_dof)
         ref[self.system.cons_dofs] = self.system.cons_ref
-        if not self.work and not np.any(ref):
-            raise ValueError("control='work' needs a reference load or prescribed displacements")
+        # no reference load and no prescribed displacement (a phase of dead load only, e.g. a phased scene's
+        # geostatic phase): lambda scales nothing, and the path is one balancing step (see balance)
+        self.dead_only = not self.work and not np.any(ref)
         self.ref = ref
         self.lam = 0.0
         self.s = float(self.f @ (self.u[free] - self.result.u_origin[free])) if self.work else 0.0
@@ -172,6 +180,16 @@ class _Follower:
         if out["iterations"] > 1:
             self._commit(out)
         self.prev = None  # the balancing move is no predictor for the controlled steps
+
+    def balance(self, target):
+        """Nothing scales with lambda (``dead_only``): one load-controlled step to ``target`` balances the
+        dead load, recorded as step 1 (a phased scene's geostatic phase has exactly that row); raises
+        NonConvergence if it fails -- a smaller lambda would not change the load, so there is nothing to
+        halve."""
+        out = self._step(self.u, self.states, self.lam, None, target)
+        if out is None:
+            self._fail()
+        self._commit(out, adapt=False)
 
     def follow(self, target) -> bool:
         """Advance to ``target``; True if the path ended at a limit."""
@@ -431,11 +449,18 @@ class _Follower:
             fac = Factorization(
                 kt, symmetric=self.settings.symmetric_tangent, backend=self.settings.backend, lagged=True
             )
-            fac.solve(np.ones(kt.shape[0]))  # a singular factor shows here, not in the next direction
+            probe = np.ones(kt.shape[0])  # a singular factor shows here, not in the next direction
+            error = _norm(kt @ fac.solve(probe) - probe)
         except (FloatingPointError, RuntimeError):
             return False
-        self.fac = fac
         self.result.factorizations += 1
+        # a factor that does not solve its own matrix is not used (the old one is kept): e.g. a strip whose
+        # contact points all slip (psi_i = 0: no tangential stiffness) or open has a singular tangent along
+        # its horizontal translation, and SuperLU returns finite garbage (zoo scenes 1, 12, 24, 48, 58, 97
+        # stopped at lambda = 0 on such directions; all complete with the check)
+        if not error <= TANGENT_SOLVE_TOL * _norm(probe):
+            return False
+        self.fac = fac
         return True
 
     def _line_search(self, u, u_n, states_n, lam, du, dlam, r_f):
