@@ -2,15 +2,28 @@
 wall time: the measurement behind issue 31's switch (row zoo_solved_controlled). Off-line only.
 
     python tools/zoo_controlled.py [--scenes 0,24,66] [--n 100] [--control work] [--csv out.csv]
+    python tools/zoo_controlled.py --store [--overwrite]
+
+``--store`` runs all 100 scenes and writes their outcomes with the commit and date to
+``reference_data/zoo_controlled_random.csv`` (atomically; an existing file only with ``--overwrite``), which
+chapter 06's row ``zoo_solved_controlled`` reads: all 100 take minutes (too long for every ``make
+reproduce``), so the chapter solves the first 20 and checks them against the stored outcomes (a stale table
+fails the row). Run it once per solver change.
 """
 
 import argparse
 import csv
+import subprocess
 import sys
 import time
+from pathlib import Path
 
+from ssi.lab.digitize import write_reference
 from ssi.lab.zoo import random_scenes, solve_zoo
 from ssi.solver import Settings
+
+ROOT = Path(__file__).resolve().parent.parent
+STORED = ROOT / "reference_data" / "zoo_controlled_random.csv"
 
 
 def main(argv=None):
@@ -19,7 +32,17 @@ def main(argv=None):
     ap.add_argument("--scenes", default="", help="comma-separated indices to run (default: all n)")
     ap.add_argument("--control", default="work", choices=("load", "work"))
     ap.add_argument("--csv", default="", help="write one row per scene here")
+    ap.add_argument(
+        "--store", action="store_true", help=f"all 100 on the controlled path, stored in {STORED}"
+    )
+    ap.add_argument("--overwrite", action="store_true", help="with --store: replace an existing table")
     args = ap.parse_args(argv)
+    if args.store and (args.scenes or args.n != 100 or args.control != "work"):
+        raise SystemExit(
+            "--store runs the 100 scenes on the controlled path: leave out --scenes/--n/--control"
+        )
+    if args.store and STORED.exists() and not args.overwrite:
+        raise SystemExit(f"{STORED} exists; pass --overwrite to replace it")
     scenes = random_scenes(args.n, seed=1)
     if args.scenes:
         keep = {int(i) for i in args.scenes.split(",")}
@@ -43,7 +66,41 @@ def main(argv=None):
             w.writerow(["name", "status", "lam", "limit", "wall_s", "message"])
             for o in rows:
                 w.writerow([o.name, o.status, o.load_factor, o.limit_load, f"{o.wall_time:.3f}", o.message])
+    if args.store:
+        store(rows, time.perf_counter() - t0)
     return 0
+
+
+def store(rows, wall: float) -> None:
+    """The 100 outcomes with their provenance (commit, date, wall time), written atomically."""
+    commit = subprocess.run(
+        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+    ).stdout.strip()
+    dirty = subprocess.run(
+        ["git", "-C", str(ROOT), "status", "--porcelain", "ssi"], capture_output=True, text=True
+    )
+    dirty_note = " + uncommitted ssi/ changes" if dirty.stdout.strip() else ""
+    meta = {
+        "source": "this project (ssi): the outcomes of the 100 random zoo scenes (seed 1) on the controlled "
+        "path",
+        "figure": "chapter 06, row zoo_solved_controlled",
+        "units": "load_factor and limit [-] of each scene's reference load; wall_s [s]",
+        "trust": "B (numerical: the solver's own outcome, as it ended)",
+        "uncertainty": "none stated: outcomes, not measured values",
+        "how_obtained": f"python tools/zoo_controlled.py --store: solve_zoo(random_scenes(100, seed=1), "
+        f"Settings(control='work')), commit {commit}{dirty_note}, "
+        f"{time.strftime('%Y-%m-%d')}, {wall:.0f} s",
+    }
+    columns = {
+        "name": [o.name for o in rows],
+        "status": [o.status for o in rows],
+        "load_factor": [float(o.load_factor) for o in rows],
+        "limit": [float("nan") if o.limit_load is None else float(o.limit_load) for o in rows],
+        "wall_s": [round(float(o.wall_time), 2) for o in rows],
+        "message": [o.message.replace(",", ";").replace("\n", " ")[:200] for o in rows],
+    }
+    write_reference(STORED, meta, columns)
+    print(f"wrote {STORED}")
 
 
 if __name__ == "__main__":
