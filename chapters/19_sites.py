@@ -431,7 +431,7 @@ long_change = abs(diff_long[-1] - diff_long[-2]) / abs(diff_long[-1])
 # row checks. A *rough* base forbids the triangle's sliding, so for it π + 2 − 2β is only a lower bound (the
 # rough base is printed below in full mode on the coarser mesh, h = B/8: 4.75 c_u, 16 % above π + 2 − 2β
 # (14 % at h = B/16, and 4.58 c_u, 12 % above, at h = B/32 while this section was written, still falling
-# slowly; the B/16 push took 37 of the 89 s of these pushes on the loaded machine, for a remark); the
+# slowly; the rough B/16 push cost 8.5 s CPU against 2.7 s at B/8, in every full run, for a remark); the
 # smooth base is the case with an exact value.
 #
 # The slope is 2B high: the mechanism's passive triangle has its hypotenuse, of length B, on the face, so it
