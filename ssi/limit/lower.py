@@ -116,7 +116,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
     free_nodes = set()
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
-        if bnd.kind == "free" and bnd.pressure_dead == 0.0 and bnd.pressure_ref == 0.0:
+        if bnd.traction_free:
             free_nodes.update((int(be.p[j]), int(be.q[j])))
     cohesionless = np.array([m.c == 0.0 for m in site.materials])[mesh.material]
     zero = set()
@@ -134,7 +134,8 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             tx = ([s0, s0 + 2], [nx, nz])
             tz = ([s0 + 2, s0 + 1], [nx, nz])
             if bnd.kind == "free":
-                pd, pr = bnd.pressure_dead / sc.S, bnd.pressure_ref / sc.S
+                g = be.p[j] if end == 0 else be.q[j]  # this end's node: a linear dead pressure's value here
+                pd, pr = bnd.dead_at(*mesh.xy[g]) / sc.S, bnd.pressure_ref / sc.S
                 if s0 in prescribed:
                     continue
                 prescribed[s0] = (nx, nz, s0 in zero, pd, pr)
