@@ -545,3 +545,39 @@ def test_embedded_options_refused_by_name():
     with pytest.raises(ValueError, match=r"Scene.side_contact with side_soil='soil'"):
         limit_problem(scene, side_soil="soil")
     assert limit_problem(scene, strip="rigid").site.footings  # the surcharge model ignores it (a floor)
+
+
+def test_a_walls_linear_pressure_enters_both_bounds_exactly():
+    """A metamorphic identity that holds mesh by mesh: on Tresca soil (pressure-independent strength) the
+    hydrostatic field sigma = gamma z I (K0 = 1) is admissible and balances the weight gamma, the trench
+    walls' linear pressure gamma |z| and gamma D on the footing's base; subtracting it maps the
+    heavy scene's fields one to one onto the weightless scene's (the field is linear: exact on linear
+    stress triangles; an associated Tresca flow is isochoric, so its power against the field is zero).
+    So on one mesh both bounds of the heavy trench scene are the weightless one's plus gamma D B, the force
+    of the base level's overburden on the footing; a wrong wall pressure (sign, gradient, quadrature)
+    breaks it. Tolerance 1e-6 relative: the solvers' 1e-9 tolerances on differently scaled problems."""
+    from ssi.limit import lower_bound, triangulate, upper_bound
+
+    def trench(gamma):
+        tresca = dict(E=20e6, nu=0.3, c=20e3, phi_deg=0.0, unit_weight=gamma, K0=1.0)
+        lay = [SoilLayer(t, **tresca) for t in (1.0, 4.0)]
+        scene = Scene(
+            width=8.0,
+            depth=5.0,
+            symmetric=True,
+            layers=lay,
+            embedment=1.0,
+            foundation=RigidFooting(-1.0, 1.0),
+            loads=[Settlement(0.05)],
+        )
+        return limit_problem(scene, side_soil="soil").site
+
+    heavy, light = trench(18e3), trench(0.0)
+    assert any(any(b.pressure_dead_grad) for _, _, b in heavy.segments if b is not None)
+    mesh = triangulate(heavy, 0.6)
+    assert np.array_equal(mesh.xy, triangulate(light, 0.6).xy)  # the same geometry, the same mesh
+    shift = 18e3 * 1.0 * 2.0  # gamma D B [N/m]
+    lb_h, lb_l = lower_bound(heavy, mesh), lower_bound(light, mesh)
+    ub_h, ub_l = upper_bound(heavy, mesh), upper_bound(light, mesh)
+    assert lb_h.lam_solver == pytest.approx(lb_l.lam_solver + shift, rel=1e-6)
+    assert ub_h.lam == pytest.approx(ub_l.lam + shift, rel=1e-6)
