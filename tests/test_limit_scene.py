@@ -479,6 +479,7 @@ def test_an_embedded_strip_with_its_overburden_brackets_prandtl_reissner():
     p = limit_problem(scene)
     assert len(p.site.materials) == 1 and p.site.materials[0].phi_deg == 30.0  # only the sand below
     assert p.site.footings[0].centre == (0.0, -D_EMB)
+    assert "side soil as its overburden 18 kPa at the base level" in p.reference
     ground = [b for _, _, b in p.site.segments if b is not None and b.kind == "free"]
     assert ground and all(b.pressure_dead == pytest.approx(GAMMA_BACKFILL * D_EMB) for b in ground)
     assert p.site.points[:, 1].max() == pytest.approx(-D_EMB)  # nothing above the base level

@@ -481,6 +481,12 @@ def limit_problem(
         unit, ref = "N/m", "the footing's vertical force V [N/m] (Settlement push)"
     else:
         unit, ref = "", _describe(ref_phase, scene)
+    if d_base:  # say which embedded model the bracket is of
+        ref += (
+            f"; embedded {d_base:g} m, side soil as its overburden {p_base / 1e3:g} kPa at the base level"
+            if surcharge_model
+            else f"; embedded {d_base:g} m, side soil modelled (trench walls under their geostatic stress)"
+        )
     return LimitProblem(
         site,
         ref_phase.name,
