@@ -524,7 +524,8 @@ def test_the_modelled_side_soil_carries_at_least_its_overburden():
     walls = [b for _, _, b in p.site.segments if b is not None and any(b.pressure_dead_grad)]
     assert len(walls) == 1  # the half model's one wall, at x = B/2, under K0 gamma |z|
     assert walls[0].dead_at(1.0, -0.4) == pytest.approx(0.4 * GAMMA_BACKFILL)
-    surcharge_only = scene.limit_analysis(gap=0.08)
+    with pytest.warns(UserWarning, match=r"side_soil='surcharge' ignores"):
+        surcharge_only = scene.limit_analysis(gap=0.08)
     modelled = scene.limit_analysis(gap=0.08, side_soil="soil")
     assert modelled.ub >= surcharge_only.lb
     assert modelled.lb >= surcharge_only.lb
@@ -545,7 +546,9 @@ def test_embedded_options_refused_by_name():
     )
     with pytest.raises(ValueError, match=r"Scene.side_contact with side_soil='soil'"):
         limit_problem(scene, side_soil="soil")
-    assert limit_problem(scene, strip="rigid").site.footings  # the surcharge model ignores it (a floor)
+    # the surcharge model ignores the side contact and, with a warning, the backfill's strength (a floor)
+    with pytest.warns(UserWarning, match=r"Scene.layers\[0\] above the embedded base have strength"):
+        assert limit_problem(scene, strip="rigid").site.footings
 
 
 def test_a_walls_linear_pressure_enters_both_bounds_exactly():

@@ -51,7 +51,9 @@ layers above depth D), by ``side_soil``:
   K0 sigma_v, which also carries the walls' geostatic stress; admissible where K0 lies between the active
   and passive values, K0 = 1 always), so the side soil's strength can only add. Its upper bound is that of
   a strengthless backfill (Terzaghi's q = gamma D), the scene chapter 12 compares with gamma D N_q
-  (its soft elastic backfill, whose strength is not used here and is therefore accepted). A side contact
+  (its soft elastic backfill, whose strength is not used here and is therefore accepted; an incremental
+  limit may exceed the upper bound by what the backfill's shear carries, chapter 12's trend with E_b;
+  a backfill with c and phi gets a warning saying that the upper bound is not its ceiling). A side contact
   is ignored (the walls' geostatic traction, normal, is admissible for any Coulomb contact: the lower
   bound stays rigorous). The strip carries p_0 B as a dead load (the incremental scene's initial state);
   the footing's centre is the centre of its base (x_c, -D). Refused: a water table above the base (pore
@@ -399,6 +401,15 @@ def limit_problem(
             )
         n_above = int(hit[0])
     first = n_above if surcharge_model else 0  # the surcharge model keeps only the soil below the base
+    strong = [owner[r] for r in range(n_above) if sub[r][1].c is not None]
+    if surcharge_model and strong:
+        warnings.warn(
+            f"Scene.layers{sorted(set(strong))} above the embedded base have strength, which "
+            "side_soil='surcharge' ignores: the bracket's lower bound is a floor of the scene, its upper "
+            "bound the capacity with a strengthless backfill (not a ceiling of this scene); "
+            "side_soil='soil' models the side soil",
+            stacklevel=2,
+        )
     materials = tuple(_layer_material(i, lay, g) for i, (_, lay, g) in zip(owner[first:], sub[first:]))
     z_ground = float(z_tops[first])  # the model's ground: the base level of the surcharge model
     polys, regions = [], []
