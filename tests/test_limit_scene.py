@@ -18,6 +18,7 @@ import math
 import pathlib
 import re
 import shutil
+import warnings
 
 import numpy as np
 import pytest
@@ -448,6 +449,14 @@ def test_a_contacts_tension_cut_off_reaches_the_interface():
     assert limit_problem(_scene()).site.footings[0].interface.tension is None
 
 
+def test_a_bonded_contact_without_shear_stiffness_is_smooth():
+    """Contact(kn, kt=0) bonded (chapter 12's): no shear traction ever, no opening: the smooth interface."""
+    push = [Settlement(0.01)]
+    p = limit_problem(_scene(contact=Contact(kn=1e11, kt=0.0), loads=push), strip="rigid")
+    assert p.site.footings[0].interface.kind == "smooth" and p.site.footings[0].moves == ("z",)
+    assert limit_problem(_scene(contact=Contact(kn=1e11, kt=1e9))).site.footings[0].interface.kind == "rough"
+
+
 # ---- an embedded strip (issue 30 item 2): the side soil as its overburden, or modelled
 
 D_EMB, GAMMA_BACKFILL = 1.0, 18e3  # chapter 12's trench: base 1 m deep, backfill 18 kN/m^3
@@ -585,3 +594,29 @@ def test_a_walls_linear_pressure_enters_both_bounds_exactly():
     ub_h, ub_l = upper_bound(heavy, mesh), upper_bound(light, mesh)
     assert lb_h.lam_solver == pytest.approx(lb_l.lam_solver + shift, rel=1e-6)
     assert ub_h.lam == pytest.approx(ub_l.lam + shift, rel=1e-6)
+
+
+def test_chapter_12s_embedded_scene_brackets_gamma_d_nq():
+    """Chapter 12's embedded scene as it is written there (a stiff plate strip on a frictionless bonded
+    contact, whole model, a soft elastic backfill, associated weightless sand below, a Settlement push):
+    the strip starts carrying p_0 = gamma D (a dead load), lambda is the force added to it, and
+    lambda / B + p_0 is bracketed around gamma D N_q (exact for a strengthless backfill, smooth or rough).
+    Measured at an 8 % gap: [0.906, 1.046] gamma D N_q on 583 triangles, 1 s."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the soft backfill's small E, as in chapter 12
+        back = SoilLayer(D_EMB, E=1e3, nu=0.3, unit_weight=GAMMA_BACKFILL)
+        sand = SoilLayer(5.0, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, psi_deg=30.0, K0=1.0)
+        scene = Scene(
+            width=12.0,
+            depth=5.0 + D_EMB,
+            layers=[back, sand],
+            embedment=D_EMB,
+            foundation=Foundation(x0=-1.0, x1=1.0, section=homogeneous(0.5, 30e9, 0.2)),
+            contact=Contact(kn=1e11, kt=0.0),
+            phases=[Phase("push", loads=(Settlement(w=0.15),))],
+        )
+    p0 = GAMMA_BACKFILL * D_EMB
+    nq = math.exp(math.pi * math.tan(math.radians(30.0))) * math.tan(math.radians(60.0)) ** 2
+    cap = scene.limit_analysis(gap=0.08)
+    assert cap.problem.site.footings[0].interface.kind == "smooth"
+    assert (cap.lb / 2.0 + p0) <= p0 * nq * (1 + REL) and p0 * nq <= (cap.ub / 2.0 + p0) * (1 + REL)

@@ -30,9 +30,9 @@ How the scene maps (anything else raises a ValueError naming the part):
   elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
   stronger assumption: for a slender or lightly reinforced strip the beam's own mechanism may govern);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
-  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket) and its tension cut-off
-  ``sig_t`` (None: the Coulomb joint's own apex c / tan phi); refused: contact segments with different
-  laws;
+  is rough (smooth if its ``kt`` is 0: no shear, no opening), else Coulomb with c_i, phi_i (its psi_deg
+  enters the Davis bracket) and its tension cut-off ``sig_t`` (None: the Coulomb joint's own apex
+  c / tan phi); refused: contact segments with different laws;
 - loads: :class:`ColumnLoad` N, H, M, :class:`StripLoad`, :class:`StripWeight` (less its
   buoyancy in free water) and the strip's ``self_weight`` (a load of the first phase, as in the
   incremental scene) on the footing; :class:`SurfacePressure` and the ``surcharge`` on the ground beside
@@ -157,6 +157,10 @@ def _interface(scene) -> Interface:
         contact = laws.pop()
     if not isinstance(contact, Contact):
         raise ValueError("Scene.contact: a plate Foundation needs a Contact")
+    if contact.phi_deg is None and contact.kt == 0.0:
+        # bonded without shear stiffness: it carries no shear and never opens, the smooth interface
+        # (chapter 12's contact; the incremental scene refuses a horizontal load on it, as this does)
+        return Interface("smooth")
     if contact.phi_deg is None or math.isinf(contact.c):
         return Interface("rough")
     if contact.phi_deg > 60.0:
