@@ -620,3 +620,27 @@ def test_chapter_12s_embedded_scene_brackets_gamma_d_nq():
     cap = scene.limit_analysis(gap=0.08)
     assert cap.problem.site.footings[0].interface.kind == "smooth"
     assert (cap.lb / 2.0 + p0) <= p0 * nq * (1 + REL) and p0 * nq <= (cap.ub / 2.0 + p0) * (1 + REL)
+
+
+def test_the_lower_bound_meets_both_tractions_at_a_trench_corner():
+    """The trench wall's top corner (ground under the surcharge q, wall under K0 q + K0 gamma |z|) lies in
+    one triangle of the mesh with both edges: its certified stress there must carry both tractions,
+    sigma_z = -q on the ground and sigma_x = -K0 q on the wall, tau = 0 (K0 = 1: sigma = -q I; the wall's
+    row was skipped before, and this test failed). Tolerance 1e-6 q: the projection's equality residual."""
+    from ssi.limit import lower_bound
+    from ssi.scene.capacity import initial_mesh
+
+    q = 10e3
+    back = SoilLayer(D_EMB, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, unit_weight=GAMMA_BACKFILL, K0=1.0)
+    problem = limit_problem(_embedded(back, surcharge=q), side_soil="soil")
+    mesh = initial_mesh(problem, None, None)
+    corner = int(np.argmin(np.hypot(mesh.xy[:, 0] - 1.0, mesh.xy[:, 1])))  # (B/2, 0)
+    assert np.hypot(*(mesh.xy[corner] - (1.0, 0.0))) < 1e-12
+    lb = lower_bound(problem.site, mesh)
+    assert lb.certified
+    els, verts = np.nonzero(mesh.tri == corner)
+    assert len(els) >= 1
+    for e, v in zip(els, verts):
+        sx, sz, tau = lb.stress[e, v]
+        assert sx == pytest.approx(-q, abs=1e-6 * q) and sz == pytest.approx(-q, abs=1e-6 * q)
+        assert tau == pytest.approx(0.0, abs=1e-6 * q)
