@@ -304,6 +304,79 @@ report.check(
 )
 
 # %% [markdown]
+# ## Embedment: the side soil as its overburden, or modelled
+#
+# Chapter 12's trench: the strip's base D = 1 m below the ground, 1 m of backfill (γ = 18 kN/m³) beside it,
+# weightless c = 0, φ = 30° sand below (here a rigid rough strip, B = 2 m, half model; λ = its force V).
+# `scene.limit_analysis()` replaces the side soil by its **overburden**: the geostatic vertical stress of
+# the base level, q = γD, as a dead pressure on the ground beside the strip at the base level, the model
+# being the block below the base. That is Terzaghi's assumption (the backfill has weight but no strength),
+# and for it the collapse pressure on weightless sand is exactly q N_q (Prandtl–Reissner, rough or smooth).
+# Chapter 12's soft elastic backfill is such a backfill; its strength is not used, so the scene is taken as
+# it is. The bracket is also a rigorous floor for a backfill with strength: a statically admissible field of
+# the surcharge model extends above the base by the geostatic state (σ_zz = σ_v, σ_xx = K0 σ_v, admissible
+# for K0 between the active and passive values; K0 = 1 here), so the side soil's strength can only add.
+#
+# `side_soil="soil"` models the backfill (here sand, c = 0, φ = 30°, K0 = 1): the trench is cut out of the
+# cells, its walls touch nothing and keep their geostatic horizontal stress K0 γ |z| as a dead pressure
+# that is linear along the wall (exact in both bounds: linear stresses meet it at every vertex, Simpson's
+# rule integrates it against quadratic velocities). By the argument above its capacity is at least the
+# surcharge model's: its upper bound must lie above the surcharge model's lower bound. (Both backfills
+# weigh 18 kN/m³, so their surcharge models are one problem; for the sand backfill `side_soil="surcharge"`
+# warns that its upper bound is not a ceiling of that scene.)
+
+# %%
+from ssi.scene import RigidFooting, Scene, Settlement, SoilLayer  # noqa: E402
+
+D_EMB, GAMMA_BACK = 1.0, 18e3
+GAP_EMB = 0.10 if FAST else 0.07
+
+
+def embedded(backfill):
+    sand = SoilLayer(5.0, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, K0=1.0)
+    return Scene(
+        width=12.0,
+        depth=5.0 + D_EMB,
+        symmetric=True,
+        layers=[backfill, sand],
+        embedment=D_EMB,
+        foundation=RigidFooting(-1.0, 1.0),
+        loads=[Settlement(0.05)],
+    )
+
+
+soft_backfill = SoilLayer(D_EMB, E=1e3, nu=0.3, unit_weight=GAMMA_BACK)  # chapter 12's: weight, no strength
+sand_backfill = SoilLayer(D_EMB, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, unit_weight=GAMMA_BACK, K0=1.0)
+q_nq_emb = prandtl(0.0, 30.0, GAMMA_BACK * D_EMB)
+emb_q = embedded(soft_backfill).limit_analysis(gap=GAP_EMB)
+emb_s = embedded(sand_backfill).limit_analysis(gap=GAP_EMB, side_soil="soil")
+for name, r in (("overburden (surcharge)", emb_q), ("side soil modelled", emb_s)):
+    print(
+        f"{name:24s} V/B in [{r.lb / B / 1e3:7.1f}, {r.ub / B / 1e3:7.1f}] kPa = [{r.lb / B / q_nq_emb:.4f}, "
+        f"{r.ub / B / q_nq_emb:.4f}] gamma D Nq, gap {100 * r.gap:4.1f} %, {r.n_triangles} triangles, "
+        f"{r.time:4.1f} s"
+    )
+emb_out = outside(emb_q.lb / B, emb_q.ub / B, q_nq_emb)
+report.check(
+    "fela_embedded",
+    "how far gamma D Nq (D = 1 m, c=0, phi=30, weightless below the base) lies outside the bracket of the "
+    "embedded strip with its side soil as overburden (<= 0: inside)",
+    emb_out,
+    0.0,
+    passed=emb_out <= 0.0,
+)
+emb_side = emb_s.ub / emb_q.lb - 1.0
+report.check(
+    "fela_embedded_side_soil",
+    "UB with the side soil modelled / LB with it as overburden - 1 (>= 0: the stronger scene's ceiling is "
+    "above the weaker one's floor)",
+    emb_side,
+    0.0,
+    passed=emb_side >= 0.0,
+)
+print(f"modelled side soil: LB {emb_s.lb / emb_q.lb - 1:+.2%} against the overburden-only LB")
+
+# %% [markdown]
 # ## Sliding: a rigid footing on a Coulomb joint over much stronger soil
 #
 # Whole model (no symmetry), N = 100 kN/m held, the horizontal force λ × 1 N/m scaled; joint φ_i = 25°,
@@ -783,6 +856,10 @@ plt.show()
 #   mechanism load M_p/(l/2 − a) (`fela_beam_mechanism`). With the hinges' M–N polygon from the section
 #   analysis, an end compression raises and a tension lowers the bracket, each meeting M_p(−P)/(l/2 − a)
 #   (`fela_beam_mn`); a Coulomb joint's tension cut-off brackets a pull-out N + t_i B (`fela_cutoff`).
+# - An embedded strip: its side soil as the overburden γD at the base level (Terzaghi's strengthless
+#   backfill, chapter 12's) brackets γD N_q (`fela_embedded`), a rigorous floor for any backfill; modelled
+#   with its strength, the trench walls under their geostatic stress, it carries at least that
+#   (`fela_embedded_side_soil`).
 # - For ψ < φ the associated bracket is a ceiling and the Davis bracket the conventional value; chapter 10's
 #   ψ = 0 incremental limit on its coarsest mesh lies above every associated upper bound here: a mesh
 #   overestimate, not a capacity.

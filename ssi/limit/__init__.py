@@ -13,7 +13,8 @@ Imports numpy, scipy, clarabel, triangle and :mod:`ssi.core.validate` only, so a
 a scene's block is the :class:`Site` polygon, each soil layer a region below an interior polyline (its c,
 phi, effective unit weight; an undrained layer phi = 0), a rigid footing a :class:`Footing` on the
 ``footing`` segments (its interface rough / smooth / Coulomb), a surcharge the ``pressure_dead`` of the free
-surface, the loads that scale with lambda ``load_ref`` / ``pressure_ref`` (a ``Settlement`` push: the
+surface (linear along a segment with ``pressure_dead_grad``: a trench wall's geostatic stress), the loads
+that scale with lambda ``load_ref`` / ``pressure_ref`` (a ``Settlement`` push: the
 footing's vertical force, so lambda is its mean pressure), a symmetric scene the axis as a "symmetry"
 segment and the footing moving along z only; a footing with "r" in its ``moves`` also rotates about its
 ``centre`` (its ``moment_ref`` / ``moment_dead`` balanced by the base tractions' moment). Not covered yet:

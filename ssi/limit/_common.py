@@ -28,7 +28,7 @@ def scales(site: Site) -> Scales:
     for i, j, b in site.segments:
         if b is not None and b.kind == "free":
             length = float(np.hypot(*(site.points[j] - site.points[i])))
-            s += [abs(b.pressure_dead), abs(b.pressure_ref)]
+            s += [abs(b.dead_at(*site.points[i])), abs(b.dead_at(*site.points[j])), abs(b.pressure_ref)]
             ref += abs(b.pressure_ref) * length
     for f in site.footings:
         s += [float(np.hypot(*f.load_ref)) / L, float(np.hypot(*f.load_dead)) / L]

@@ -346,22 +346,49 @@ class Footing:
 @dataclass(frozen=True)
 class Boundary:
     """The condition on one boundary segment. ``kind``: "fixed" (velocity zero), "symmetry" (roller: normal
-    velocity and shear traction zero), "free" (traction = -(pressure_dead + lambda pressure_ref) n, n the
+    velocity and shear traction zero), "free" (traction = -(p_dead(x, z) + lambda pressure_ref) n, n the
     outward normal: a surcharge or a flexible load; both zero: a free surface) or "footing" (in contact with
-    ``footing``, an index into :attr:`Site.footings`). Pressures in Pa, compression positive."""
+    ``footing``, an index into :attr:`Site.footings`). Pressures in Pa, compression positive. The dead
+    pressure may vary linearly along the segment (a wall's geostatic horizontal stress):
+    p_dead(x, z) = ``pressure_dead`` + ``pressure_dead_grad`` . (x, z), the gradient in Pa/m (default zero:
+    uniform). Linear is what both bounds take exactly: the lower bound's linear stresses meet it at every
+    vertex, the upper bound's Simpson rule integrates it times a quadratic velocity exactly."""
 
     kind: str
     pressure_dead: float = 0.0
     pressure_ref: float = 0.0
     footing: int = 0
+    pressure_dead_grad: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self):
         check_choice("kind", self.kind, BOUNDARY_KINDS)
         object.__setattr__(self, "pressure_dead", check_real("pressure_dead", self.pressure_dead, unit="Pa"))
         object.__setattr__(self, "pressure_ref", check_real("pressure_ref", self.pressure_ref, unit="Pa"))
         object.__setattr__(self, "footing", check_int("footing", self.footing, lo=0))
-        if self.kind != "free" and (self.pressure_dead != 0.0 or self.pressure_ref != 0.0):
+        grad = tuple(self.pressure_dead_grad)
+        if len(grad) != 2:
+            raise ValueError(f"pressure_dead_grad must be (d/dx, d/dz) [Pa/m], got {grad!r}")
+        grad = tuple(
+            float(check_real(f"pressure_dead_grad[{i}]", v, unit="Pa/m")) for i, v in enumerate(grad)
+        )
+        object.__setattr__(self, "pressure_dead_grad", grad)
+        if self.kind != "free" and (self.pressure_dead != 0.0 or self.pressure_ref != 0.0 or any(grad)):
             raise ValueError(f"pressures apply to kind 'free' only, got kind={self.kind!r}")
+
+    @property
+    def traction_free(self) -> bool:
+        """A free surface: kind "free" with no pressure at all."""
+        return (
+            self.kind == "free"
+            and self.pressure_dead == 0.0
+            and self.pressure_ref == 0.0
+            and not any(self.pressure_dead_grad)
+        )
+
+    def dead_at(self, x: float, z: float) -> float:
+        """The dead pressure p_dead [Pa] at the point (x, z) [m] of the segment."""
+        gx, gz = self.pressure_dead_grad
+        return self.pressure_dead + gx * x + gz * z
 
 
 @dataclass(frozen=True)

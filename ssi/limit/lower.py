@@ -116,7 +116,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
     free_nodes = set()
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
-        if bnd.kind == "free" and bnd.pressure_dead == 0.0 and bnd.pressure_ref == 0.0:
+        if bnd.traction_free:
             free_nodes.update((int(be.p[j]), int(be.q[j])))
     cohesionless = np.array([m.c == 0.0 for m in site.materials])[mesh.material]
     zero = set()
@@ -134,8 +134,17 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             tx = ([s0, s0 + 2], [nx, nz])
             tz = ([s0 + 2, s0 + 1], [nx, nz])
             if bnd.kind == "free":
-                pd, pr = bnd.pressure_dead / sc.S, bnd.pressure_ref / sc.S
-                if s0 in prescribed:
+                g = be.p[j] if end == 0 else be.q[j]  # this end's node: a linear dead pressure's value here
+                pd, pr = bnd.dead_at(*mesh.xy[g]) / sc.S, bnd.pressure_ref / sc.S
+                first = prescribed.get(s0)
+                if first is not None:
+                    # a corner of the boundary inside one triangle (a trench wall's top, a kink of the
+                    # ground): the first edge's rows fix sigma n1; of this edge's two rows only the one
+                    # along its own normal is new (the other is their consistency, implied when the two
+                    # tractions agree and dependent rows are kept out)
+                    if s0 not in zero and abs(first[0] - nx) + abs(first[1] - nz) > 1e-9:
+                        sn_cols = [s0, s0 + 2, s0 + 1, imu]
+                        eq.add(sn_cols, [nx * nx, 2.0 * nx * nz, nz * nz, pr / sc.k], -pd)
                     continue
                 prescribed[s0] = (nx, nz, s0 in zero, pd, pr)
                 if s0 in zero:

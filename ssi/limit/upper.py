@@ -385,11 +385,15 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
             continue
         L = be.length[j]
         nx, nz = be.n[j]
-        for g, wt in ((be.p[j], L / 6), (be.q[j], L / 6), (n_nodes + be.edge[j], 2 * L / 3)):
+        # Simpson's rule: exact for the quadratic velocity times a linear dead pressure
+        ends = mesh.xy[be.p[j]], mesh.xy[be.q[j]]
+        at = (ends[0], ends[1], 0.5 * (ends[0] + ends[1]))
+        for g, wt, pt in zip((be.p[j], be.q[j], n_nodes + be.edge[j]), (L / 6, L / 6, 2 * L / 3), at):
+            pd = bnd.dead_at(*pt)
             for d, nn in ((0, nx), (1, nz)):
                 if dof[g, d] >= 0:
                     p_ref[dof[g, d]] += -bnd.pressure_ref / sc.S * nn * wt / sc.k
-                    p_dead[dof[g, d]] += -bnd.pressure_dead / sc.S * nn * wt
+                    p_dead[dof[g, d]] += -pd / sc.S * nn * wt
     for f, bk in beams.items():  # the beam's loads do work on w, u and phi
         beam_powers(site.footings[f].beam, bk, fvar[f, 0], p_ref, p_dead, sc.S, sc.L, sc.k)
     for f, ft in enumerate(site.footings):

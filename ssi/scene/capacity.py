@@ -255,6 +255,7 @@ def limit_analysis(
     davis: bool = True,
     progress=None,
     strip: str | None = None,
+    side_soil: str = "surcharge",
 ) -> CapacityResult:
     """The scene's capacity as a certified bracket (module docstring): the associated bracket refined until
     its relative gap (ub - lb)/(ub + lb) <= ``gap`` (or ``max_elements`` triangles / ``max_steps``
@@ -263,13 +264,16 @@ def limit_analysis(
     ends (default: max(footing width, size / 10) / 8). ``progress(label, row)`` is called once per mesh
     (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`). ``strip``: a plate
     strip "rigid", a "beam" with plastic hinges of M_p at N = 0 or "beam_mn" with its section's M-N
-    polygon (None: a beam for a ductile RC section; :func:`ssi.scene.limit_problem.limit_problem`)."""
+    polygon (None: a beam for a ductile RC section; :func:`ssi.scene.limit_problem.limit_problem`).
+    ``side_soil``: an embedded strip's side soil as its overburden on the base level ("surcharge": the
+    bracket of a strengthless backfill, Terzaghi's assumption, whose lower bound is a lower bound of the
+    scene) or modelled with its strength ("soil"; :mod:`ssi.scene.limit_problem`, *Embedment*)."""
     gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
     check_optional_real("h", h, lo=0.0, lo_open=True, unit="m")
     check_optional_real("h_min", h_min, lo=0.0, lo_open=True, unit="m")
     max_elements = check_int("max_elements", max_elements, lo=1)
     max_steps = check_int("max_steps", max_steps, lo=0)
-    problem = limit_problem(scene, phase, strip)
+    problem = limit_problem(scene, phase, strip, side_soil)
     t0 = time.perf_counter()
     mesh = initial_mesh(problem, h, h_min)
 
@@ -351,16 +355,17 @@ def safety_factor(
     rel_tol: float = 3e-3,
     davis: bool = True,
     strip: str | None = None,
+    side_soil: str = "surcharge",
 ) -> SafetyFactorResult:
     """The factor of safety of the scene by strength reduction, bracketed by both bounds on one mesh (the
     initial mesh of :func:`limit_analysis`, bisected uniformly ``refine`` times): the loads are the
     scene's dead loads plus the scaled phase's loads at factor 1 (of a Settlement push there is no load
     to carry: refused). ``davis``: reduce the Davis materials (the conventional value for psi < phi);
     else the associated ones. ``rel_tol``: the relative width of each bisection in F. ``strip``: as in
-    :func:`limit_analysis` (the beam's M_p is not reduced)."""
+    :func:`limit_analysis` (the beam's M_p is not reduced); ``side_soil`` as in :func:`limit_analysis`."""
     from ..limit import bisect
 
-    problem = limit_problem(scene, phase, strip)
+    problem = limit_problem(scene, phase, strip, side_soil)
     if problem.lam_unit:
         raise ValueError(
             f"phase {problem.phase!r} is a Settlement push: it has no load to carry at factor 1, so no "

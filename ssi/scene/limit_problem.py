@@ -30,14 +30,41 @@ How the scene maps (anything else raises a ValueError naming the part):
   elastic section has no strength and stays rigid. ``strip="rigid"`` ignores the strip's bending (the
   stronger assumption: for a slender or lightly reinforced strip the beam's own mechanism may govern);
 - the base: a RigidFooting ``rough`` / smooth; a plate strip's :class:`Contact` bonded (``phi_deg=None``)
-  is rough, else Coulomb with c_i, phi_i (its psi_deg enters the Davis bracket) and its tension cut-off
-  ``sig_t`` (None: the Coulomb joint's own apex c / tan phi); refused: contact segments with different
-  laws;
+  is rough (smooth if its ``kt`` is 0: no shear, no opening), else Coulomb with c_i, phi_i (its psi_deg
+  enters the Davis bracket) and its tension cut-off ``sig_t`` (None: the Coulomb joint's own apex
+  c / tan phi); refused: contact segments with different laws;
 - loads: :class:`ColumnLoad` N, H, M, :class:`StripLoad`, :class:`StripWeight` (less its
   buoyancy in free water) and the strip's ``self_weight`` (a load of the first phase, as in the
   incremental scene) on the footing; :class:`SurfacePressure` and the ``surcharge`` on the ground beside
   it (a plate strip carries the surcharge over its own width, as the incremental scene's initial state
-  does). Refused: ``embedment``, excavations, drainage switches, a Settlement among the dead loads.
+  does). Refused: excavations, drainage switches, a Settlement among the dead loads.
+
+**Embedment** (``Scene.embedment`` D: the strip's base D below the ground in a trench, the side soil the
+layers above depth D), by ``side_soil``:
+
+- "surcharge" (default): the side soil is replaced by its overburden, the geostatic vertical stress of the
+  base level p_0 = surcharge + sum gamma_i t_i, as a dead pressure on the ground beside the strip at the
+  base level; the model is the block below the base, whose ground is then level, and the strip's sides
+  touch nothing. Why this one: it is the smallest model that is rigorous for every embedded scene and exact
+  for chapter 12's. Its lower bound is a lower bound of the scene with the side soil: a statically
+  admissible field of it extends above the base by the geostatic state (sigma_zz = sigma_v, sigma_xx =
+  K0 sigma_v, which also carries the walls' geostatic stress; admissible where K0 lies between the active
+  and passive values, K0 = 1 always), so the side soil's strength can only add. Its upper bound is that of
+  a strengthless backfill (Terzaghi's q = gamma D), the scene chapter 12 compares with gamma D N_q
+  (its soft elastic backfill, whose strength is not used here and is therefore accepted; an incremental
+  limit may exceed the upper bound by what the backfill's shear carries, chapter 12's trend with E_b;
+  a backfill with c and phi gets a warning saying that the upper bound is not its ceiling). A side contact
+  is ignored (the walls' geostatic traction, normal, is admissible for any Coulomb contact: the lower
+  bound stays rigorous). The strip carries p_0 B as a dead load (the incremental scene's initial state);
+  the footing's centre is the centre of its base (x_c, -D). Refused: a water table above the base (pore
+  pressure on the base and the walls), a SurfacePressure on the ground (its spread through a strengthless
+  layer to the base level is unknown);
+- "soil": the side soil modelled (its layers with their strength and weight), the trench cut out of the
+  cells; the trench walls touch nothing and carry the geostatic horizontal stress -sigma_xx0(z) as a dead
+  pressure linear in z within each layer (:class:`ssi.limit.Boundary` ``pressure_dead_grad``), as the
+  incremental scene's walls do. Its capacity is at least the surcharge model's (the argument above).
+  Refused: a ``side_contact`` (the wall's contact with the strip is not represented) and an elastic side
+  layer (no strength).
 """
 
 from __future__ import annotations
@@ -56,7 +83,9 @@ from .limit_strip import NotOnBeam, beam_loads_of, beam_mode, strip_beam_interac
 from .loads import ColumnLoad, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation, Phase, RigidFooting
 
-__all__ = ["LimitProblem", "limit_problem"]
+__all__ = ["SIDE_SOIL", "LimitProblem", "limit_problem"]
+
+SIDE_SOIL = ("surcharge", "soil")  # how an embedded strip's side soil enters (module docstring, Embedment)
 
 _TOL = 1e-9  # relative: coordinates and moments this small (of the scene's size, of F B) count as zero
 
@@ -128,6 +157,10 @@ def _interface(scene) -> Interface:
         contact = laws.pop()
     if not isinstance(contact, Contact):
         raise ValueError("Scene.contact: a plate Foundation needs a Contact")
+    if contact.phi_deg is None and contact.kt == 0.0:
+        # bonded without shear stiffness: it carries no shear and never opens, the smooth interface
+        # (chapter 12's contact; the incremental scene refuses a horizontal load on it, as this does)
+        return Interface("smooth")
     if contact.phi_deg is None or math.isinf(contact.c):
         return Interface("rough")
     if contact.phi_deg > 60.0:
@@ -191,7 +224,9 @@ def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width)
     return True
 
 
-def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> LimitProblem:
+def limit_problem(
+    scene, phase: str | None = None, strip: str | None = None, side_soil: str = "surcharge"
+) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
     with plastic hinges of M_p at N = 0, :mod:`ssi.scene.limit_strip`) or "beam_mn" (the same beam, its
@@ -199,10 +234,13 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
     safe where the beam's axial force lowers M_p; on a rough base its hinges cannot extend and the upper
     bound is then loose); None: "beam" for an RC section that is not
     brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
-    a load). Raises ValueError naming whatever the scene holds that
-    :mod:`ssi.limit` cannot represent."""
+    a load). ``side_soil``: how an embedded strip's side soil enters, "surcharge" (its overburden on the
+    ground at the base level) or "soil" (modelled; module docstring, *Embedment*). Raises ValueError naming
+    whatever the scene holds that :mod:`ssi.limit` cannot represent."""
     if strip is not None and strip not in ("rigid", "beam", "beam_mn"):
         raise ValueError(f"strip must be 'rigid', 'beam', 'beam_mn' or None, got {strip!r}")
+    if side_soil not in SIDE_SOIL:
+        raise ValueError(f"side_soil must be one of {SIDE_SOIL}, got {side_soil!r}")
     with_mn = strip == "beam_mn"  # a beam whose hinges' capacity is the section's M-N polygon
     strip = "beam" if with_mn else strip
     if hasattr(scene, "geometry") and hasattr(scene, "strips"):
@@ -225,9 +263,20 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
         k = names.index(phase)
     else:
         raise ValueError(f"phase={phase!r} is not a phase of the scene; its phases are {names}")
-    if scene.embedment:
+    d_base = float(scene.embedment)  # the strip's base below the ground [m]
+    if d_base and scene.water_table is not None and float(scene.water_table) < d_base - _TOL * scene.depth:
         raise ValueError(
-            f"Scene.embedment={scene.embedment!r}: an embedded strip is not represented by ssi.limit yet"
+            f"Scene.water_table={scene.water_table!r} m lies above the embedded strip's base "
+            f"(embedment={d_base!r} m): the pore pressure on the base and the trench walls is not "
+            "represented by ssi.limit; give a water table at or below the base level"
+        )
+    surcharge_model = bool(d_base) and side_soil == "surcharge"
+    if d_base and side_soil == "soil" and scene.side_contact is not None:
+        raise ValueError(
+            "Scene.side_contact with side_soil='soil': the trench walls' contact with the strip is not "
+            "represented by ssi.limit (the walls keep their geostatic stress and touch nothing); "
+            "side_soil='surcharge' ignores the side contact and the side soil's strength (a lower bound of "
+            "the scene)"
         )
     for ph in phases[: k + 1]:
         if ph.excavate:
@@ -261,6 +310,13 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
         what = f"Phase({ph.name!r}).loads" if ph.name != "loads" or scene.phases else "Scene.loads"
         for i, ld in enumerate(ph.loads):
             if isinstance(ld, SurfacePressure):
+                if surcharge_model:
+                    raise ValueError(
+                        f"{what}[{i}]: a SurfacePressure on the ground of an embedded scene with "
+                        "side_soil='surcharge' (the side soil is replaced by its overburden at the base "
+                        "level, where the spread of a local load through it is unknown); give "
+                        "side_soil='soil' or the uniform Scene.surcharge"
+                    )
                 a, b = max(ld.x0, xl), min(ld.x1, xr)
                 if b - a > _TOL * width:
                     (pressures_ref if is_ref else pressures_dead).append((a, b, factor * ld.q))
@@ -306,9 +362,12 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
             f"Phase {ref_phase.name!r} mixes a Settlement with force loads: lambda scales either the loads "
             "or the pushed footing's force, not both"
         )
+    # the geostatic vertical stress of the base level [Pa]: the surcharge, plus the overburden of an
+    # embedded base
+    p_base = -float(scene._geostatic(np.array([-d_base]))[0, 1]) if d_base else float(scene.surcharge)
     if isinstance(f, Foundation) and scene._has_geostatic_stress():
-        fdead[1] -= scene.surcharge * (f.x1 - f.x0)  # the strip carries the surcharge over its width
-        beam_loads["p_dead"] += scene.surcharge
+        fdead[1] -= p_base * (f.x1 - f.x0)  # the strip carries it over its width, as in the incremental scene
+        beam_loads["p_dead"] += p_base
     if mp is not None and settle_ref:
         if strip == "beam":
             raise ValueError(
@@ -335,14 +394,37 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
     xs = sorted(x for x in xs if xl - _TOL * width <= x <= xr + _TOL * width)
     sub = scene._mesh_layers()  # (thickness, layer, unit weight of its body force), split at the water table
     owner = [next(i for i, lay in enumerate(scene.layers) if lay is own) for _, own, _ in sub]
-    materials = tuple(_layer_material(i, lay, g) for i, (_, lay, g) in zip(owner, sub))
     z_tops = -np.concatenate([[0.0], np.cumsum([t for t, _, _ in sub])])
+    n_above = 0  # sub-layers above an embedded base
+    if d_base:
+        hit = np.flatnonzero(np.abs(z_tops + d_base) <= _TOL * scene.depth)
+        if not len(hit):
+            raise ValueError(
+                f"Scene.embedment={d_base!r} m is not a layer boundary (layer tops at depths "
+                f"{[-float(z) for z in z_tops]} m)"
+            )
+        n_above = int(hit[0])
+    first = n_above if surcharge_model else 0  # the surcharge model keeps only the soil below the base
+    strong = [owner[r] for r in range(n_above) if sub[r][1].c is not None]
+    if surcharge_model and strong:
+        warnings.warn(
+            f"Scene.layers{sorted(set(strong))} above the embedded base have strength, which "
+            "side_soil='surcharge' ignores: the bracket's lower bound is a floor of the scene, its upper "
+            "bound the capacity with a strengthless backfill (not a ceiling of this scene); "
+            "side_soil='soil' models the side soil",
+            stacklevel=2,
+        )
+    materials = tuple(_layer_material(i, lay, g) for i, (_, lay, g) in zip(owner[first:], sub[first:]))
+    z_ground = float(z_tops[first])  # the model's ground: the base level of the surcharge model
     polys, regions = [], []
     for a, b in zip(xs[:-1], xs[1:]):
-        for r in range(len(sub)):
+        in_trench = f is not None and d_base and fx0 - _TOL * width < 0.5 * (a + b) < fx1 + _TOL * width
+        for r in range(first, len(sub)):
             zt, zb = z_tops[r], z_tops[r + 1]
+            if in_trench and r < n_above:
+                continue  # the trench the strip sits in
             polys.append([(a, zb), (b, zb), (b, zt), (a, zt)])
-            regions.append(r)
+            regions.append(r - first)
     geo = from_cells(polys, regions)
 
     footings = ()
@@ -375,7 +457,7 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
             )
         if itf.kind == "smooth" and (fref[0] or fdead[0]):
             raise ValueError("a smooth contact carries no horizontal load (ColumnLoad.H != 0)")
-        centre = (0.5 * (f.x0 + f.x1), 0.0)
+        centre = (0.5 * (f.x0 + f.x1), -d_base)
         forces = (tuple(fref.tolist()), tuple(fdead.tolist()))
         beam = None
         if mp is not None:
@@ -393,22 +475,33 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
     def boundary(tag, pa, pb):
         if tag in _BLOCK_SUPPORTS:
             return _BLOCK_SUPPORTS[tag]
-        xm = 0.5 * (pa[0] + pb[0])
+        xm, zm = 0.5 * (pa + pb)
+        if abs(pa[0] - pb[0]) <= _TOL * width:  # a trench wall: its geostatic horizontal stress, held
+            return _wall_pressure(scene, pa, pb)
         if f is not None and fx0 < xm < fx1:
             return Boundary("footing", footing=0)
-        q_dead = _ground_pressure(pressures_dead, xm) + scene.surcharge
+        q_dead = _ground_pressure(pressures_dead, xm) + (p_base if surcharge_model else scene.surcharge)
         return Boundary("free", pressure_dead=q_dead, pressure_ref=_ground_pressure(pressures_ref, xm))
 
     site = site_from_geometry(geo, materials, boundary, footings)
     singular = []
     if f is not None:
-        singular += [(x, 0.0) for x in (fx0, fx1) if not (scene.symmetric and abs(x) < _TOL * width)]
+        ends = [x for x in (fx0, fx1) if not (scene.symmetric and abs(x) < _TOL * width)]
+        singular += [(x, -d_base) for x in ends]
+        if d_base and not surcharge_model:
+            singular += [(x, 0.0) for x in ends]  # the trench's top corners
     for a, b, _ in pressures_ref + pressures_dead:
-        singular += [(x, 0.0) for x in (a, b) if xl < x < xr]
+        singular += [(x, z_ground) for x in (a, b) if xl < x < xr]
     if settle_ref:
         unit, ref = "N/m", "the footing's vertical force V [N/m] (Settlement push)"
     else:
         unit, ref = "", _describe(ref_phase, scene)
+    if d_base:  # say which embedded model the bracket is of
+        ref += (
+            f"; embedded {d_base:g} m, side soil as its overburden {p_base / 1e3:g} kPa at the base level"
+            if surcharge_model
+            else f"; embedded {d_base:g} m, side soil modelled (trench walls under their geostatic stress)"
+        )
     return LimitProblem(
         site,
         ref_phase.name,
@@ -420,6 +513,18 @@ def limit_problem(scene, phase: str | None = None, strip: str | None = None) -> 
         scene,
         0.0 if settle_ref else -float(fref[1]) / half,
     )
+
+
+def _wall_pressure(scene, pa, pb) -> Boundary:
+    """A trench wall from ``pa`` to ``pb`` (within one layer): free, under the wall's geostatic horizontal
+    stress -sigma_xx0(z) [Pa] as a dead pressure, linear in z within a layer (the incremental scene's wall
+    load, or the state its side contact starts from)."""
+    za, zb = float(pa[1]), float(pb[1])
+    inside = 0.25 * (zb - za)  # points inside the segment: an end on a layer boundary reads the layer above
+    za, zb = za + inside, zb - inside
+    sa, sb = (-float(scene._geostatic(np.array([z]))[0, 0]) for z in (za, zb))
+    slope = (sb - sa) / (zb - za)
+    return Boundary("free", pressure_dead=sa - slope * za, pressure_dead_grad=(0.0, slope))
 
 
 def _site_problem(site) -> LimitProblem:
