@@ -192,3 +192,20 @@ def test_phased_scene_on_the_controlled_path_balances_its_geostatic_phase_in_one
         geostatic["name"] == "geostatic" and geostatic["result"].n_steps == 1
     )  # the balancing step after step 0
     assert out.status == COMPLETED and out.load_factor[-1] == pytest.approx(len(out.phases) - 1, abs=1e-12)
+
+
+def test_davis_mode_runs_on_a_symmetric_tangent_whatever_the_setting():
+    """Random zoo scene 24 (seed 1): in Davis mode every law is associated, so its tangent is symmetric and
+    the run takes the symmetric rules (start on K0, Matthies & Strang's search) even when the caller leaves
+    ``symmetric_tangent`` False; with the unsymmetric rules the controlled path stopped this scene at
+    lambda = 0 (measured before the rule), with the symmetric ones it completes -- and the two settings give
+    the same path, bit for bit."""
+    from ssi.lab.zoo import random_scenes
+
+    name, scene = random_scenes(25, seed=1)[24]
+    outs = [
+        scene.build().solve(settings=Settings(control="work", flow="davis", symmetric_tangent=sym))
+        for sym in (False, True)
+    ]
+    assert outs[0].solver_result.status == COMPLETED
+    assert np.array_equal(outs[0].u, outs[1].u)

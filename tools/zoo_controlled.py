@@ -16,6 +16,7 @@ import csv
 import subprocess
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from ssi.lab.digitize import write_reference
@@ -31,6 +32,8 @@ def main(argv=None):
     ap.add_argument("--n", type=int, default=100, help="random scenes drawn (seed 1)")
     ap.add_argument("--scenes", default="", help="comma-separated indices to run (default: all n)")
     ap.add_argument("--control", default="work", choices=("load", "work"))
+    ap.add_argument("--flow", default="user", choices=("user", "davis"))
+    ap.add_argument("--symmetric", default=None, choices=("yes", "no"), help="Settings.symmetric_tangent")
     ap.add_argument("--csv", default="", help="write one row per scene here")
     ap.add_argument(
         "--store", action="store_true", help=f"all 100 on the controlled path, stored in {STORED}"
@@ -47,10 +50,13 @@ def main(argv=None):
     if args.scenes:
         keep = {int(i) for i in args.scenes.split(",")}
         scenes = [s for i, s in enumerate(scenes) if i in keep]
+    settings = Settings(control=args.control, flow=args.flow)
+    if args.symmetric is not None:
+        settings = replace(settings, symmetric_tangent=args.symmetric == "yes")
     t0 = time.perf_counter()
     rows = []
     for name, scene in scenes:
-        (o,) = solve_zoo([(name, scene)], Settings(control=args.control))
+        (o,) = solve_zoo([(name, scene)], settings)
         rows.append(o)
         lim = "" if o.limit_load is None else f" limit={o.limit_load:.4f}"
         print(

@@ -6,7 +6,7 @@ Moved here as it was: the path-following issue rewrites these rules.
 
 import time
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,6 +49,8 @@ def run(
     detected. Raises :class:`NonConvergence` if an increment fails before either.
     """
     settings = settings or Settings()
+    if settings.flow == "davis" and not settings.symmetric_tangent:
+        settings = replace(settings, symmetric_tangent=True)  # associated laws: a symmetric tangent
     targets = np.atleast_1d(np.asarray(load_factors, np.float64))
     if targets.size == 0 or not np.all(np.isfinite(targets)):
         raise ValueError("load_factors must be a non-empty sequence of finite numbers")
