@@ -15,11 +15,10 @@ the commit is stored with it. The file is written atomically; an existing one is
 """
 
 import argparse
-import subprocess
 import time
 from pathlib import Path
 
-from ssi.lab.digitize import write_reference
+from ssi.lab.digitize import source_commit, write_reference
 from ssi.lab.examples import chapter11_foundation
 from ssi.solver import NonConvergence, Settings
 
@@ -63,9 +62,7 @@ def main(argv=None):
     if args.out.exists() and not args.overwrite:
         raise SystemExit(f"{args.out} exists; pass --overwrite to replace it")
     row = solve_h16()
-    commit = subprocess.run(
-        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-    ).stdout.strip()
+    commit = source_commit(ROOT)
     meta = {
         "source": "this project (ssi): the outcome of one solve of the h/16 graded copy of chapter 11's "
         "foundation on the controlled path",

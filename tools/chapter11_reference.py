@@ -12,12 +12,11 @@ The file is written atomically; an existing one is replaced only with ``--overwr
 """
 
 import argparse
-import subprocess
 import time
 from pathlib import Path
 
 from ssi.core.linsolve import pardiso_available
-from ssi.lab.digitize import write_reference
+from ssi.lab.digitize import source_commit, write_reference
 from ssi.lab.examples import chapter11_foundation
 from ssi.scene.estimate import headline
 from ssi.solver import NonConvergence
@@ -67,9 +66,7 @@ def main(argv=None):
     rows = [r for r in (solve_copy(h, args.end_grading) for h in args.h_fine) if r is not None]
     if not rows:
         raise SystemExit("no copy completed: nothing written")
-    commit = subprocess.run(
-        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-    ).stdout.strip()
+    commit = source_commit(ROOT)
     meta = {
         "source": "this project (ssi), a mesh-convergence reference, not an independent one: fine copies of "
         "chapter 11's foundation solved by the same code",

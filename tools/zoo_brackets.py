@@ -31,11 +31,10 @@ commit and the date; an existing one is replaced only with ``--overwrite``.
 import argparse
 import datetime
 import multiprocessing
-import subprocess
 import time
 from pathlib import Path
 
-from ssi.lab.digitize import write_reference
+from ssi.lab.digitize import source_commit, write_reference
 from ssi.lab.zoo_limits import BRACKETS_FILES, COLUMNS, bracket_scenes, limit_key, zoo_bracket
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -117,9 +116,7 @@ def main(argv=None):
     total = time.perf_counter() - t_start
     if not rows:
         raise SystemExit("no scene has a bracket: nothing written")
-    commit = subprocess.run(
-        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-    ).stdout.strip()
+    commit = source_commit(ROOT)
     meta = {
         "source": "this project (ssi): finite-element limit analysis (ssi.limit, certified lower and upper "
         "bounds) of the zoo's scenes, computed by the same code as the scenes' incremental analyses",

@@ -13,13 +13,12 @@ fails the row). Run it once per solver change.
 
 import argparse
 import csv
-import subprocess
 import sys
 import time
 from dataclasses import replace
 from pathlib import Path
 
-from ssi.lab.digitize import write_reference
+from ssi.lab.digitize import source_commit, write_reference
 from ssi.lab.zoo import random_scenes, solve_zoo
 from ssi.solver import Settings
 
@@ -79,13 +78,6 @@ def main(argv=None):
 
 def store(rows, wall: float) -> None:
     """The 100 outcomes with their provenance (commit, date, wall time), written atomically."""
-    commit = subprocess.run(
-        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-    ).stdout.strip()
-    dirty = subprocess.run(
-        ["git", "-C", str(ROOT), "status", "--porcelain", "ssi"], capture_output=True, text=True
-    )
-    dirty_note = " + uncommitted ssi/ changes" if dirty.stdout.strip() else ""
     meta = {
         "source": "this project (ssi): the outcomes of the 100 random zoo scenes (seed 1) on the controlled "
         "path",
@@ -94,7 +86,7 @@ def store(rows, wall: float) -> None:
         "trust": "B (numerical: the solver's own outcome, as it ended)",
         "uncertainty": "none stated: outcomes, not measured values",
         "how_obtained": f"python tools/zoo_controlled.py --store: solve_zoo(random_scenes(100, seed=1), "
-        f"Settings(control='work')), commit {commit}{dirty_note}, "
+        f"Settings(control='work')), commit {source_commit(ROOT, uncommitted_in='ssi')}, "
         f"{time.strftime('%Y-%m-%d')}, {wall:.0f} s",
     }
     columns = {

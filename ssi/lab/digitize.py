@@ -36,6 +36,7 @@ import argparse
 import csv
 import io
 import math
+import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -151,6 +152,20 @@ def read_digitizer_csv(src, name: str = "curve") -> dict[str, np.ndarray]:
             raise ValueError(f"curve {nm!r} has no points")
         curves[nm] = np.array(pts)
     return curves
+
+
+def source_commit(root, uncommitted_in: str | None = None) -> str:
+    """The short hash of the git commit checked out at ``root``, for a reference file's ``how_obtained``;
+    with ``uncommitted_in`` (a path inside ``root``, e.g. "ssi"), " + uncommitted <path>/ changes" is added
+    when that path has changes the commit does not hold."""
+
+    def git(*args):
+        return subprocess.run(["git", "-C", str(root), *args], capture_output=True, text=True).stdout.strip()
+
+    commit = git("rev-parse", "--short", "HEAD")
+    if uncommitted_in is not None and git("status", "--porcelain", uncommitted_in):
+        commit += f" + uncommitted {uncommitted_in}/ changes"
+    return commit
 
 
 def write_reference(path, meta: dict, columns: dict) -> None:
