@@ -32,9 +32,11 @@ import pytest
 
 from ssi.limit import (
     Beam,
+    Boundary,
     Footing,
     Interface,
     Material,
+    Site,
     adaptive,
     bisect,
     bracket,
@@ -373,3 +375,60 @@ def test_a_beam_footing_between_rigid_and_weak(kind):
     assert weak.ub < 0.8 * rigid.ub  # the beam's mechanism governs (measured 0.52)
     assert weak.lower.beam[0]["utilisation"] <= 1.0
     assert weak.identity_error < 1e-9 and strong.identity_error < 1e-9
+
+
+def _trench_site(wall: Interface, c: float, depth_d: float = 1.0) -> Site:
+    """A rigid block standing in a trench (base 1 m wide, ``depth_d`` deep) in a 6 m x 2 m block of weightless
+    Tresca soil c, pushed along x alone by lambda [N/m] on a smooth base: only the walls, on the contact
+    ``wall``, resist it."""
+    b, w, h = 0.5, 3.0, 2.0
+    pts = [(-w, -h), (w, -h), (w, 0), (b, 0), (b, -depth_d), (-b, -depth_d), (-b, 0), (-w, 0)]
+    walls = Boundary("footing", footing=0, interface=wall)
+    segs = (
+        (0, 1, Boundary("fixed")),
+        (1, 2, Boundary("symmetry")),
+        (2, 3, Boundary("free")),
+        (3, 4, walls),
+        (4, 5, Boundary("footing", footing=0)),
+        (5, 6, walls),
+        (6, 7, Boundary("free")),
+        (7, 0, Boundary("symmetry")),
+    )
+    push = Footing(Interface("smooth"), (1.0, 0.0), (0.0, 0.0), ("x",))
+    return Site(np.array(pts, float), segs, ((0.0, -1.5, 0),), (Material(c, 0.0),), (push,))
+
+
+def test_a_walls_contact_sets_the_passive_resistance_of_a_pushed_trench_block():
+    """A segment's own interface (``Boundary.interface``: a trench wall's side contact, unlike the base's):
+    a block in a trench pushed horizontally on a smooth base, weightless Tresca soil c, walls D deep with no
+    tension (cut-off 0: the back wall opens). Hand values (slip-line theory): a smooth wall (c_i = 0,
+    phi_i = 0) meets Rankine's passive pressure 2c on its whole height, H = 2 c D exactly; a wall with full
+    adhesion c_i = c turns the stress through a fan of pi/4 at its top (Hencky: p rises by 2 c pi/4), so
+    sigma_n = (1 + pi/2) c and H = (1 + pi/2) c D. Both inside their brackets (to the solvers' REL), and the
+    rough wall's certified floor above the smooth wall's exact value: the contact carries what it should.
+    Measured on 247 triangles: smooth [0.9999, 1.25] x 2cD (the Rankine field is linear: exact but for the
+    solve's 1e-4 cone margin), rough [0.974, 1.18] x (1 + pi/2) cD, its floor 1.25 x 2cD."""
+    c, d = 10e3, 1.0
+    sing = np.array([(0.5, 0.0), (0.5, -d)])  # the front wall's ends
+
+    def size(p):
+        return 0.1 + 0.3 * np.min(np.hypot(p[:, None, 0] - sing[:, 0], p[:, None, 1] - sing[:, 1]), axis=1)
+
+    smooth = _trench_site(Interface("coulomb", 0.0, 0.0, tension=0.0), c)
+    rough = _trench_site(Interface("coulomb", c, 0.0, tension=0.0), c)
+    mesh = triangulate(smooth, 1.0, size=size)
+    assert np.array_equal(mesh.xy, triangulate(rough, 1.0, size=size).xy)
+    b_s, b_r = bracket(smooth, mesh), bracket(rough, mesh)
+    assert b_s.lower.certified and b_r.lower.certified and b_s.upper.certified and b_r.upper.certified
+    h_smooth, h_rough = 2.0 * c * d, (1.0 + math.pi / 2.0) * c * d
+    assert b_s.lb * (1 - REL) <= h_smooth <= b_s.ub * (1 + REL)
+    assert b_r.lb * (1 - REL) <= h_rough <= b_r.ub * (1 + REL)
+    assert b_s.lb >= 0.999 * h_smooth  # the exact Rankine field, less the solve's margin 1e-4
+    assert b_r.lb > 1.2 * h_smooth
+    # the segment's interface follows strength reduction and Davis, the footing's own as before
+    red = rough.reduced(2.0)
+    walls = [b.interface for _, _, b in red.segments if b.interface is not None]
+    assert len(walls) == 2 and all(w.c == c / 2.0 for w in walls)
+    assert red.interfaces == (Interface("smooth"), walls[0], walls[1])
+    with pytest.raises(ValueError, match="interface applies to kind 'footing' only, got kind='free'"):
+        Boundary("free", interface=Interface())

@@ -19,13 +19,14 @@ import pathlib
 import re
 import shutil
 import warnings
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from ssi.elements.section import homogeneous
 from ssi.io.cli import main
-from ssi.limit import bracket, check_limit
+from ssi.limit import Interface, bracket, check_limit
 from ssi.limit.upper import FLOW_TOL
 from ssi.scene import (
     ColumnLoad,
@@ -541,8 +542,12 @@ def test_the_modelled_side_soil_carries_at_least_its_overburden():
 
 
 def test_embedded_options_refused_by_name():
+    from ssi.lab.examples import chapter11_section
+
     back = SoilLayer(D_EMB, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, unit_weight=GAMMA_BACKFILL)
-    with pytest.raises(ValueError, match=r"side_soil must be one of \('surcharge', 'soil'\), got 'air'"):
+    with pytest.raises(
+        ValueError, match=r"side_soil must be one of \('surcharge', 'soil'\) or None, got 'air'"
+    ):
         limit_problem(_embedded(back), side_soil="air")
     soft = SoilLayer(D_EMB, E=1e3, nu=0.3, unit_weight=GAMMA_BACKFILL)
     with pytest.raises(ValueError, match=r"Scene.layers\[0\] is elastic \(c=None\)"):
@@ -552,9 +557,15 @@ def test_embedded_options_refused_by_name():
         depth=5.0 + D_EMB,
         embedment=D_EMB,
         side_contact=Contact(kn=1e10, kt=1e9, phi_deg=20.0),
+        foundation=Foundation(-1.0, 1.0, chapter11_section()),
     )
-    with pytest.raises(ValueError, match=r"Scene.side_contact with side_soil='soil'"):
-        limit_problem(scene, side_soil="soil")
+    # a beam strip's walls would move with its end sections, which the hinged beam does not represent
+    with pytest.raises(ValueError, match=r"Scene.side_contact with side_soil='soil' on a beam strip"):
+        limit_problem(scene, side_soil="soil", strip="beam")
+    with pytest.warns(UserWarning, match=r"on a beam strip.*the strip is taken rigid"):
+        assert limit_problem(scene, side_soil="soil").site.footings[0].beam is None
+    with pytest.raises(ValueError, match=r"Scene.side_contact.phi_deg=70.0: ssi.limit takes 0 <= phi_deg"):
+        limit_problem(replace(scene, side_contact=Contact(kn=1e10, kt=1e9, phi_deg=70.0)), side_soil="soil")
     # the surcharge model ignores the side contact and, with a warning, the backfill's strength (a floor)
     with pytest.warns(UserWarning, match=r"Scene.layers\[0\] above the embedded base have strength"):
         assert limit_problem(scene, strip="rigid").site.footings
@@ -644,3 +655,105 @@ def test_the_lower_bound_meets_both_tractions_at_a_trench_corner():
         sx, sz, tau = lb.stress[e, v]
         assert sx == pytest.approx(-q, abs=1e-6 * q) and sz == pytest.approx(-q, abs=1e-6 * q)
         assert tau == pytest.approx(0.0, abs=1e-6 * q)
+
+
+def _side_contact_scene(side):
+    """Chapter 12's embedded strip (B = 2 m, D = 1 m, whole model) as a stiff elastic plate (rigid in the
+    limit problem) bonded on its base, c = 0, phi = 30 deg sand beside it (K0 = 1) and weightless below,
+    pushed by a Settlement (lambda = V); ``side`` the trench walls' contact."""
+    back = SoilLayer(D_EMB, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, unit_weight=GAMMA_BACKFILL, K0=1.0)
+    sand = SoilLayer(5.0, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, K0=1.0)
+    return Scene(
+        width=12.0,
+        depth=5.0 + D_EMB,
+        layers=[back, sand],
+        embedment=D_EMB,
+        foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)),
+        contact=Contact(kn=1e10, kt=1e9),
+        loads=[Settlement(0.05)],
+        side_contact=side,
+    )
+
+
+def test_a_side_contact_puts_the_trench_walls_on_the_strip():
+    """side_soil='soil' with a side_contact: the trench walls become segments of the strip's footing on
+    that contact (Coulomb c_i, phi_i and its tension cut-off; bonded: rough), instead of free faces under
+    their geostatic stress. Theorems that hold mesh by mesh, so on one mesh: the free walls' geostatic
+    traction (normal, compressive, equal and opposite on the two walls: no net force or moment on the
+    strip) is admissible for any no-tension contact, and a contact only removes mechanisms; a stronger
+    contact (a wider Coulomb cone, bonded the strongest) does both again. So both bounds rise along free <=
+    smooth (c_i = 0, phi_i = 0, no tension) <= phi_i = 20 deg <= bonded (to the solvers' REL). Measured on
+    this coarse mesh (182 triangles): LB 0.478, 0.487, 0.525, 0.527 MN/m, UB 0.961, 0.980, 1.027, 1.088
+    (on the default initial mesh, 302 triangles: LB 0.537, 0.539, 0.586, 0.595, UB 0.771 .. 0.845)."""
+    from ssi.scene.capacity import initial_mesh
+
+    sides = (
+        None,
+        Contact(kn=1e10, kt=1e9, phi_deg=0.0, sig_t=0.0),
+        Contact(kn=1e10, kt=1e9, phi_deg=20.0, sig_t=0.0),
+        Contact(kn=1e10, kt=1e9),
+    )
+    problems = [limit_problem(_side_contact_scene(side), side_soil="soil") for side in sides]
+    free_walls = [b for _, _, b in problems[0].site.segments if b is not None and any(b.pressure_dead_grad)]
+    assert len(free_walls) == 2 and all(b.kind == "free" for b in free_walls)
+    for p, kind in zip(problems[1:], ("coulomb", "coulomb", "rough")):
+        walls = [b for _, _, b in p.site.segments if b is not None and b.interface is not None]
+        assert len(walls) == 2 and all(b.kind == "footing" and b.interface.kind == kind for b in walls)
+    assert problems[2].site.interfaces[1] == Interface("coulomb", phi_deg=20.0, psi_deg=0.0, tension=0.0)
+    mesh = initial_mesh(problems[0], 3.0, 0.4)
+    brackets = [bracket(p.site, mesh) for p in problems]
+    assert all(b.lower.certified and b.upper.certified for b in brackets)
+    for weak, strong in zip(brackets[:-1], brackets[1:]):
+        assert strong.lb >= weak.lb * (1 - REL) and strong.ub >= weak.ub * (1 - REL)
+
+
+def test_a_sites_embedded_strip_stands_in_its_trench():
+    """A Site's embedded Strip (``level`` -1 m, B = 2 m, a central column N, weightless Tresca clay c): the
+    site's own geometry with its trench, the walls free faces (the incremental site's trench is open while
+    gravity loads it) or, with ``side_contact``, footing segments on that contact; the strip rotates about
+    the centre of its base. Prandtl's field below the base level with zero stress above it is admissible,
+    so the true capacity is at least (2 + pi) c B (the surface strip's, exact): the upper bound is above it
+    (a theorem), and so, measured, is the certified lower bound (the side soil carries: 5.54 c B on the
+    default mesh, 5.61 .. 6.11 c B at a 5 % gap); bonded walls raise both bounds on one mesh (theorem).
+    A RigidStrip in a trench (Settlement push) is taken too; side_soil='surcharge' has no meaning here."""
+    from ssi.scene.capacity import initial_mesh
+    from ssi.scene.site import RigidStrip, Site, Strip
+
+    c, n_col = 20e3, 100e3
+    clay = [SoilLayer.undrained(6.0, E_u=30e6, s_u=c)]
+
+    def site(side):
+        strip = Strip(
+            Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), Contact(kn=1e10, kt=1e9), -1.0, side
+        )
+        return Site(width=12.0, depth=6.0, layers=clay, strips=[strip], loads=[ColumnLoad(0.0, N=n_col)])
+
+    free, bonded = limit_problem(site(None)), limit_problem(site(Contact(kn=1e10, kt=1e9)))
+    (ft,) = free.site.footings
+    assert ft.centre == (0.0, -1.0) and ft.moves == ("x", "z", "r")
+    walls = [b for i, j, b in free.site.segments if b is not None and _vertical_at_strip_end(free.site, i, j)]
+    assert len(walls) == 2 and all(b.traction_free for b in walls)
+    walls = [
+        b for i, j, b in bonded.site.segments if b is not None and _vertical_at_strip_end(bonded.site, i, j)
+    ]
+    assert len(walls) == 2 and all(b.kind == "footing" and b.interface.kind == "rough" for b in walls)
+    assert {(1.0, 0.0), (-1.0, 0.0), (1.0, -1.0), (-1.0, -1.0)} <= set(free.singular)
+    mesh = initial_mesh(free, 3.0, 0.4)
+    b_free, b_bonded = bracket(free.site, mesh), bracket(bonded.site, mesh)
+    prandtl = (2.0 + math.pi) * c * 2.0 / n_col
+    assert b_free.lower.certified and b_free.ub * (1 + REL) >= prandtl
+    assert b_free.lb > prandtl
+    assert b_bonded.lb >= b_free.lb * (1 - REL) and b_bonded.ub >= b_free.ub * (1 - REL)
+    rigid = Site(width=12.0, depth=6.0, layers=clay, strips=[RigidStrip(-1.0, 1.0, 0.05, level=-1.0)])
+    p = limit_problem(rigid)
+    assert p.lam_unit == "N/m" and p.site.footings[0].moves == ("z",)
+    with pytest.raises(
+        ValueError, match=r"side_soil='surcharge': a Site's embedded strip stands in its trench"
+    ):
+        limit_problem(rigid, side_soil="surcharge")
+
+
+def _vertical_at_strip_end(site, i, j) -> bool:
+    """Whether segment i-j of a limit site is vertical at x = +-1 m (a trench wall of the strip above)."""
+    (xa, za), (xb, zb) = site.points[i], site.points[j]
+    return abs(xa - xb) < 1e-12 and abs(abs(xa) - 1.0) < 1e-12 and min(za, zb) >= -1.0 - 1e-12

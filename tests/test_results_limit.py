@@ -128,3 +128,19 @@ def test_ssi_limit_brackets_a_site_file_and_writes_its_result(tmp_path, capsys):
     capsys.readouterr()
     assert main(["limit", str(path), "--phase", "loads", "--overwrite"]) == 2
     assert "--phase='loads': a site file has no phases" in capsys.readouterr().err
+
+
+def test_ssi_limit_side_soil_reaches_the_limit_problem_and_refuses_a_bad_value(tmp_path, capsys):
+    """``--side-soil`` reaches the limit problem: the site file's strip stands in a trench (level -1 m),
+    where 'surcharge' has no meaning, refused by name before any solve; a value outside the two is
+    argparse's error naming the flag, the value and the choices."""
+    path = tmp_path / "trench.toml"
+    path.write_text(SITE + "level = -1.0\n")
+    assert main(["limit", str(path), "--side-soil", "surcharge"]) == 2
+    assert "side_soil='surcharge': a Site's embedded strip stands in its trench" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as stop:
+        main(["limit", str(path), "--side-soil", "air"])
+    assert stop.value.code == 2
+    assert "argument --side-soil: invalid choice: 'air' (choose from 'surcharge', 'soil')" in (
+        capsys.readouterr().err
+    )

@@ -464,7 +464,7 @@ def _show_limit_file(path: Path, plots, overwrite: bool, figures: bool):
 
 def limit_scene_file(
     scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, plot=None,
-    overwrite=False, figures=True, echo=print, strip=None,
+    overwrite=False, figures=True, echo=print, strip=None, side_soil=None,
 ):  # fmt: skip
     """What ``ssi limit`` does with a scene or a site file (:meth:`ssi.scene.Site.limit_analysis`: its loads
     scaled, no ``phase``); returns (CapacityResult, written paths): ``<name>_limit.json`` (the numbers,
@@ -473,7 +473,9 @@ def limit_scene_file(
     dissipation and stress) and ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``). ``echo``
     gets one line of progress per mesh of the adaptive runs. ``strip``: a plate strip "rigid", a "beam"
     with plastic hinges of M_p at N = 0 or "beam_mn" (hinges on the section's M-N polygon; None: the scene's
-    default, :func:`ssi.scene.limit_problem.limit_problem`)."""
+    default, :func:`ssi.scene.limit_problem.limit_problem`). ``side_soil``: an embedded strip's side soil
+    "surcharge" (its overburden at the base level) or "soil" (modelled with its strength; None: the scene's
+    default, "surcharge" for a scene, "soil" for a site: :mod:`ssi.scene.limit_problem`, *Embedment*)."""
     from ..scene.scene_file import read_scene_file
     from .results import atomic_path
     from .results_limit import export_limit_vtu, write_limit_result
@@ -500,6 +502,8 @@ def limit_scene_file(
     options = {} if phase is None else {"phase": phase}
     if strip is not None:
         options["strip"] = strip
+    if side_soil is not None:
+        options["side_soil"] = side_soil
 
     def progress(label, r):
         echo(
@@ -601,6 +605,15 @@ def main(argv=None) -> int:
         "hinges follow the section's M-N interaction (default: a beam for a ductile RC section, rigid "
         "otherwise)",
     )
+    lim_p.add_argument(
+        "--side-soil",
+        choices=("surcharge", "soil"),
+        help="an embedded strip's side soil: 'surcharge' replaces it by its overburden on the ground at "
+        "the base level (the bracket of a strengthless backfill: its lower bound is a floor of the scene), "
+        "'soil' models it with its strength and weight, the trench walls under their geostatic stress or "
+        "in contact with the strip through side_contact (default: 'surcharge' for a scene, 'soil' for a "
+        "site)",
+    )
     lim_p.add_argument("-o", "--out", type=Path, help="numbers as JSON (default: <scene>_limit.json)")
     lim_p.add_argument("--plot", type=Path, help="mechanism figure (default: <scene>_limit.png)")
     lim_p.add_argument("--no-plots", action="store_true", help="skip the figure")
@@ -615,7 +628,7 @@ def main(argv=None) -> int:
             cap, written = limit_scene_file(
                 args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
                 args.plot, args.overwrite, not args.no_plots, echo=lambda s: print(s, flush=True),
-                strip=args.strip,
+                strip=args.strip, side_soil=args.side_soil,
             )  # fmt: skip
         except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
             print(f"ssi: error: {err}", file=sys.stderr)

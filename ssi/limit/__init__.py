@@ -22,7 +22,9 @@ pore pressures as loads (only effective unit weights). A footing with a :class:`
 its base with plastic hinges (M_p sagging and hogging) at every base node, or with an M-N interaction
 polygon (``Beam.interaction``: the lower bound bounds (N, M) along the beam, the upper bound's hinges
 rotate and extend normal to it). A Coulomb :class:`Interface` takes a tension cut-off ``tension`` (0: no
-tension) in both bounds. Both bounds of a bracket are solved on two threads (``SSI_LIMIT_THREADS=1``: one).
+tension) in both bounds. A footing segment may carry its own interface (:class:`Boundary` ``interface``:
+an embedded footing's trench walls on a side contact unlike its base). Both bounds of a bracket are solved
+on two threads (``SSI_LIMIT_THREADS=1``: one).
 """
 
 from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor

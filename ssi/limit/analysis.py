@@ -93,7 +93,7 @@ def gap_shares(site: Site, mesh: TriMesh, lower: LowerBound, upper: UpperBound) 
     vel = upper.velocity
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
-        if bnd.kind != "footing" or site.footings[bnd.footing].interface.kind == "rough":
+        if bnd.kind != "footing" or site.interface_of(bnd).kind == "rough":
             continue
         ends = np.array([mesh.xy[be.p[j]], 0.5 * (mesh.xy[be.p[j]] + mesh.xy[be.q[j]]), mesh.xy[be.q[j]]])
         Ua, Um, Ub = footing_velocity_at(site, upper, bnd.footing, ends)

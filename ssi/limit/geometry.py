@@ -348,7 +348,9 @@ class Boundary:
     """The condition on one boundary segment. ``kind``: "fixed" (velocity zero), "symmetry" (roller: normal
     velocity and shear traction zero), "free" (traction = -(p_dead(x, z) + lambda pressure_ref) n, n the
     outward normal: a surcharge or a flexible load; both zero: a free surface) or "footing" (in contact with
-    ``footing``, an index into :attr:`Site.footings`). Pressures in Pa, compression positive. The dead
+    ``footing``, an index into :attr:`Site.footings`; ``interface`` the contact on this segment, None: the
+    footing's own, e.g. the trench walls of an embedded footing with a side contact unlike its base's).
+    Pressures in Pa, compression positive. The dead
     pressure may vary linearly along the segment (a wall's geostatic horizontal stress):
     p_dead(x, z) = ``pressure_dead`` + ``pressure_dead_grad`` . (x, z), the gradient in Pa/m (default zero:
     uniform). Linear is what both bounds take exactly: the lower bound's linear stresses meet it at every
@@ -359,9 +361,17 @@ class Boundary:
     pressure_ref: float = 0.0
     footing: int = 0
     pressure_dead_grad: tuple[float, float] = (0.0, 0.0)
+    interface: Interface | None = None
 
     def __post_init__(self):
         check_choice("kind", self.kind, BOUNDARY_KINDS)
+        if self.interface is not None:
+            if not isinstance(self.interface, Interface):
+                raise TypeError(
+                    f"interface must be an ssi.limit.Interface, got {type(self.interface).__name__}"
+                )
+            if self.kind != "footing":
+                raise ValueError(f"interface applies to kind 'footing' only, got kind={self.kind!r}")
         object.__setattr__(self, "pressure_dead", check_real("pressure_dead", self.pressure_dead, unit="Pa"))
         object.__setattr__(self, "pressure_ref", check_real("pressure_ref", self.pressure_ref, unit="Pa"))
         object.__setattr__(self, "footing", check_int("footing", self.footing, lo=0))
@@ -429,7 +439,25 @@ class Site:
         return replace(self, materials=tuple(fn(m) for m in self.materials))
 
     def map_interfaces(self, fn) -> Site:
-        return replace(self, footings=tuple(replace(f, interface=fn(f.interface)) for f in self.footings))
+        """A copy with every interface replaced by ``fn(interface)``: the footings' and the segments' own."""
+        segs = tuple(
+            (i, j, replace(b, interface=fn(b.interface)) if b is not None and b.interface is not None else b)
+            for i, j, b in self.segments
+        )
+        footings = tuple(replace(f, interface=fn(f.interface)) for f in self.footings)
+        return replace(self, segments=segs, footings=footings)
+
+    def interface_of(self, boundary: Boundary) -> Interface:
+        """The contact on a "footing" segment's ``boundary``: its own, else its footing's."""
+        if boundary.interface is not None:
+            return boundary.interface
+        return self.footings[boundary.footing].interface
+
+    @property
+    def interfaces(self) -> tuple:
+        """Every interface of the site: each footing's, then each segment's own."""
+        own = tuple(b.interface for _, _, b in self.segments if b is not None and b.interface is not None)
+        return tuple(f.interface for f in self.footings) + own
 
     def davis(self, interface: bool = True) -> Site:
         """The Davis-reduced site (soil and, if ``interface``, the footing interfaces)."""

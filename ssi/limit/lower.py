@@ -169,7 +169,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
                     f[3] += [-cz * nx, cx * nx - cz * nz, cx * nz]
                 else:
                     f[3] += [0.0, 0.0, 0.0]
-                itf = ft.interface
+                itf = site.interface_of(bnd)
                 # sigma_n = nx t_x + nz t_z ; tau = -nz t_x + nx t_z
                 sn = ([s0, s0 + 2, s0 + 1], [nx * nx, 2 * nx * nz, nz * nz])
                 ta = ([s0, s0 + 2, s0 + 1], [-nz * nx, nx * nx - nz * nz, nx * nz])

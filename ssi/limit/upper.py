@@ -149,7 +149,7 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
                     state[g, 1] = -1
                 else:
                     oblique.append((g, nx, nz))
-            elif bnd.kind == "footing" and site.footings[bnd.footing].interface.kind == "rough":
+            elif bnd.kind == "footing" and site.interface_of(bnd).kind == "rough":
                 if site.footings[bnd.footing].rotates:  # (a beam rotates too)
                     ties.setdefault(int(g), bnd.footing)  # a free node tied by rows (its velocity varies)
                     continue
@@ -207,24 +207,27 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     n_e = 3 * n_el
     # interface control points (non-rough footings): keyed per corner node and per midside node
     cp = {}
-    cp_rows = []  # (key, footing, edge j, which: 0/1/2)
+    cp_rows = []  # (key, footing, edge j, which: 0/1/2, the edge's interface)
     for j in range(len(be.p)):
         bnd = site.segments[be.seg[j]][2]
-        if bnd.kind == "footing" and site.footings[bnd.footing].interface.kind != "rough":
-            nrm = (round(float(be.n[j, 0]), 9), round(float(be.n[j, 1]), 9))
+        itf = site.interface_of(bnd) if bnd.kind == "footing" else None
+        if itf is not None and itf.kind != "rough":
+            # a corner's control point is shared by the edges of one line and one joint: one per normal and
+            # interface (a trench wall's contact meets the base's at the corner with its own)
+            nrm = (round(float(be.n[j, 0]), 9), round(float(be.n[j, 1]), 9), itf)
             if _free_axial(site.footings[bnd.footing]):  # each element its own u: a corner per edge
                 nrm = (*nrm, j)
             keys = (("n", int(be.p[j]), nrm), ("m", int(be.edge[j])), ("n", int(be.q[j]), nrm))
             for w, key in enumerate(keys):
                 if key not in cp:
                     cp[key] = len(cp)
-                cp_rows.append((key, bnd.footing, j, w))
+                cp_rows.append((key, bnd.footing, j, w, itf))
     i_s = ie + n_e
     n = i_s + len(cp)
     # an opening o >= 0 beyond the Coulomb dilation at each control point of a joint with a tension cut-off
     cp_open = {}
-    for key, f, _j, _w in cp_rows:
-        if site.footings[f].interface.tension is not None and key not in cp_open:
+    for key, _f, _j, _w, itf in cp_rows:
+        if itf.tension is not None and key not in cp_open:
             cp_open[key] = n
             n += 1
     # a beam's variables: w and phi at each node (u at each node and element where its hinges extend),
@@ -325,9 +328,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
             eq.add([cols[i] for i in keep], [vals[i] for i in keep], 0.0)
     # interface control points: b_k in terms of (U - u) at a, m, b
     cp_done = set()
-    for key, f, j, w in cp_rows:
+    for key, f, j, w, itf in cp_rows:
         L = be.length[j]
-        itf = site.footings[f].interface
         ci, tphi = itf.strength
         k = i_s + cp[key]
         q[k] += ci / sc.S * L / 3.0
@@ -461,8 +463,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     d_el = (c_cos * A / 3.0)[:, None] * e_min
     diss = d_el.sum(axis=1)
     # interface control points recomputed
-    for _key, f, j, w in cp_rows:
-        itf = site.footings[f].interface
+    for _key, f, j, w, itf in cp_rows:
         ci, tphi = itf.strength
         a_, m_, b_ = be.p[j], n_nodes + be.edge[j], be.q[j]
         da, dm, db = (footing_vel(f, g, j) - vel[g] for g in (a_, m_, b_))

@@ -255,7 +255,7 @@ def limit_analysis(
     davis: bool = True,
     progress=None,
     strip: str | None = None,
-    side_soil: str = "surcharge",
+    side_soil: str | None = None,
 ) -> CapacityResult:
     """The scene's capacity as a certified bracket (module docstring): the associated bracket refined until
     its relative gap (ub - lb)/(ub + lb) <= ``gap`` (or ``max_elements`` triangles / ``max_steps``
@@ -267,7 +267,8 @@ def limit_analysis(
     polygon (None: a beam for a ductile RC section; :func:`ssi.scene.limit_problem.limit_problem`).
     ``side_soil``: an embedded strip's side soil as its overburden on the base level ("surcharge": the
     bracket of a strengthless backfill, Terzaghi's assumption, whose lower bound is a lower bound of the
-    scene) or modelled with its strength ("soil"; :mod:`ssi.scene.limit_problem`, *Embedment*)."""
+    scene) or modelled with its strength ("soil"; :mod:`ssi.scene.limit_problem`, *Embedment*); None:
+    "surcharge" for a Scene, "soil" for a Site."""
     gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
     check_optional_real("h", h, lo=0.0, lo_open=True, unit="m")
     check_optional_real("h_min", h_min, lo=0.0, lo_open=True, unit="m")
@@ -286,8 +287,7 @@ def limit_analysis(
     res = adaptive(assoc_site, mesh, progress=report("associated"), **kw)
     dav = None
     non_assoc = any(not m.associated for m in problem.site.materials) or any(
-        ft.interface.kind == "coulomb" and ft.interface.psi_deg not in (None, ft.interface.phi_deg)
-        for ft in problem.site.footings
+        itf.kind == "coulomb" and itf.psi_deg not in (None, itf.phi_deg) for itf in problem.site.interfaces
     )
     if davis and non_assoc:
         dav = adaptive(problem.site.davis(), mesh, progress=report("Davis"), **kw)
@@ -355,7 +355,7 @@ def safety_factor(
     rel_tol: float = 3e-3,
     davis: bool = True,
     strip: str | None = None,
-    side_soil: str = "surcharge",
+    side_soil: str | None = None,
 ) -> SafetyFactorResult:
     """The factor of safety of the scene by strength reduction, bracketed by both bounds on one mesh (the
     initial mesh of :func:`limit_analysis`, bisected uniformly ``refine`` times): the loads are the

@@ -60,11 +60,22 @@ layers above depth D), by ``side_soil``:
   pressure on the base and the walls), a SurfacePressure on the ground (its spread through a strengthless
   layer to the base level is unknown);
 - "soil": the side soil modelled (its layers with their strength and weight), the trench cut out of the
-  cells; the trench walls touch nothing and carry the geostatic horizontal stress -sigma_xx0(z) as a dead
-  pressure linear in z within each layer (:class:`ssi.limit.Boundary` ``pressure_dead_grad``), as the
-  incremental scene's walls do. Its capacity is at least the surcharge model's (the argument above).
-  Refused: a ``side_contact`` (the wall's contact with the strip is not represented) and an elastic side
-  layer (no strength).
+  cells; without a ``side_contact`` the trench walls touch nothing and carry the geostatic horizontal
+  stress -sigma_xx0(z) as a dead pressure linear in z within each layer (:class:`ssi.limit.Boundary`
+  ``pressure_dead_grad``), as the incremental scene's walls do. With a ``side_contact`` the walls are
+  segments of the strip's footing on that contact (:class:`ssi.limit.Boundary` ``interface``: Coulomb
+  c_i, phi_i, its psi_i in the Davis bracket, tension cut-off ``sig_t``; bonded: rough; bonded without
+  shear stiffness: smooth), moving with the rigid strip, as the incremental scene's side interfaces move
+  with its end sections; the walls' earth pressure on the strip is then part of the footing's equilibrium
+  (at rest it is equal and opposite on the two walls, which is why no dead load replaces it). Its
+  capacity is at least the surcharge model's (the argument above), and at least the free walls' (their
+  geostatic traction is admissible for any contact that takes compression). Refused: an elastic side
+  layer (no strength); a beam strip with a side contact (its end sections would carry the walls; taken
+  rigid by default, with a warning).
+
+A :class:`~ssi.scene.site.Site`'s embedded strip is always modelled with its side soil (the site's own
+geometry; ``side_soil`` None or "soil"): its walls are free faces without a dead pressure (the incremental
+site's trench is open while gravity loads it) or on the strip's ``side_contact`` as above.
 """
 
 from __future__ import annotations
@@ -157,6 +168,12 @@ def _interface(scene) -> Interface:
         contact = laws.pop()
     if not isinstance(contact, Contact):
         raise ValueError("Scene.contact: a plate Foundation needs a Contact")
+    return _contact_interface(contact, "Scene.contact")
+
+
+def _contact_interface(contact: Contact, what: str) -> Interface:
+    """The :class:`ssi.limit.Interface` of a :class:`Contact` (``what`` names it in errors): bonded rough
+    (smooth without shear stiffness), else Coulomb with its c, phi, psi and tension cut-off."""
     if contact.phi_deg is None and contact.kt == 0.0:
         # bonded without shear stiffness: it carries no shear and never opens, the smooth interface
         # (chapter 12's contact; the incremental scene refuses a horizontal load on it, as this does)
@@ -164,7 +181,7 @@ def _interface(scene) -> Interface:
     if contact.phi_deg is None or math.isinf(contact.c):
         return Interface("rough")
     if contact.phi_deg > 60.0:
-        raise ValueError(f"Scene.contact.phi_deg={contact.phi_deg!r}: ssi.limit takes 0 <= phi_deg <= 60")
+        raise ValueError(f"{what}.phi_deg={contact.phi_deg!r}: ssi.limit takes 0 <= phi_deg <= 60")
     t = None if contact.sig_t is None else float(contact.sig_t)  # the contact's tension cut-off
     return Interface(
         "coulomb", c=float(contact.c), phi_deg=float(contact.phi_deg), psi_deg=contact.psi_deg, tension=t
@@ -225,7 +242,7 @@ def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width)
 
 
 def limit_problem(
-    scene, phase: str | None = None, strip: str | None = None, side_soil: str = "surcharge"
+    scene, phase: str | None = None, strip: str | None = None, side_soil: str | None = None
 ) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
@@ -235,12 +252,13 @@ def limit_problem(
     bound is then loose); None: "beam" for an RC section that is not
     brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
     a load). ``side_soil``: how an embedded strip's side soil enters, "surcharge" (its overburden on the
-    ground at the base level) or "soil" (modelled; module docstring, *Embedment*). Raises ValueError naming
+    ground at the base level) or "soil" (modelled; module docstring, *Embedment*); None: "surcharge" for a
+    Scene, "soil" for a Site (the only model of a site's trench). Raises ValueError naming
     whatever the scene holds that :mod:`ssi.limit` cannot represent."""
     if strip is not None and strip not in ("rigid", "beam", "beam_mn"):
         raise ValueError(f"strip must be 'rigid', 'beam', 'beam_mn' or None, got {strip!r}")
-    if side_soil not in SIDE_SOIL:
-        raise ValueError(f"side_soil must be one of {SIDE_SOIL}, got {side_soil!r}")
+    if side_soil is not None and side_soil not in SIDE_SOIL:
+        raise ValueError(f"side_soil must be one of {SIDE_SOIL} or None, got {side_soil!r}")
     with_mn = strip == "beam_mn"  # a beam whose hinges' capacity is the section's M-N polygon
     strip = "beam" if with_mn else strip
     if hasattr(scene, "geometry") and hasattr(scene, "strips"):
@@ -248,7 +266,14 @@ def limit_problem(
             raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
         if strip == "beam":
             raise ValueError("strip='beam': a Site's strips are rigid in ssi.limit (a beam strip: a Scene)")
+        if side_soil == "surcharge" and scene.embedded():
+            raise ValueError(
+                "side_soil='surcharge': a Site's embedded strip stands in its trench with the side soil "
+                "modelled (the site's geometry, the walls free faces or on its side_contact); give "
+                "side_soil='soil' or None"
+            )
         return _site_problem(scene)
+    side_soil = "surcharge" if side_soil is None else side_soil
     if not all(hasattr(scene, a) for a in ("layers", "_block", "_mesh_layers", "_footprint")):
         raise TypeError(
             f"scene must be an ssi.scene.Scene or ssi.scene.site.Site, got {type(scene).__name__}"
@@ -271,13 +296,9 @@ def limit_problem(
             "represented by ssi.limit; give a water table at or below the base level"
         )
     surcharge_model = bool(d_base) and side_soil == "surcharge"
+    side_itf = None  # the trench walls' contact with the strip (side_soil="soil" and a side_contact)
     if d_base and side_soil == "soil" and scene.side_contact is not None:
-        raise ValueError(
-            "Scene.side_contact with side_soil='soil': the trench walls' contact with the strip is not "
-            "represented by ssi.limit (the walls keep their geostatic stress and touch nothing); "
-            "side_soil='surcharge' ignores the side contact and the side soil's strength (a lower bound of "
-            "the scene)"
-        )
+        side_itf = _contact_interface(scene.side_contact, "Scene.side_contact")
     for ph in phases[: k + 1]:
         if ph.excavate:
             raise ValueError(f"Phase({ph.name!r}).excavate: excavations are not represented by ssi.limit")
@@ -304,6 +325,15 @@ def limit_problem(
     mdead = mref = 0.0  # moments about the centre of the base [N m/m], counter-clockwise
     settle_ref = False
     mp = beam_mode(scene, strip)  # (mp_sag, mp_hog) [N m/m] of a beam strip, None: rigid
+    if mp is not None and side_itf is not None:
+        msg = (
+            "Scene.side_contact with side_soil='soil' on a beam strip: the walls' contact moves with the "
+            "strip's end sections, which ssi.limit's beam (hinged along its base) does not represent"
+        )
+        if strip == "beam":
+            raise ValueError(msg + "; give strip='rigid'")
+        warnings.warn(msg + ": the strip is taken rigid", stacklevel=2)
+        mp = None
     beam_loads = {"ref": [], "dead": [], "p_ref": 0.0, "p_dead": 0.0}  # point loads (x, Fx, Fz, C), pressures
     for factor, ph, first in dead + [(1.0, ref_phase, k == 0)]:
         is_ref = ph is ref_phase
@@ -476,8 +506,10 @@ def limit_problem(
         if tag in _BLOCK_SUPPORTS:
             return _BLOCK_SUPPORTS[tag]
         xm, zm = 0.5 * (pa + pb)
-        if abs(pa[0] - pb[0]) <= _TOL * width:  # a trench wall: its geostatic horizontal stress, held
-            return _wall_pressure(scene, pa, pb)
+        if abs(pa[0] - pb[0]) <= _TOL * width:  # a trench wall
+            if side_itf is not None:  # in contact with the strip: a footing segment with the side contact
+                return Boundary("footing", footing=0, interface=side_itf)
+            return _wall_pressure(scene, pa, pb)  # free, under its geostatic horizontal stress
         if f is not None and fx0 < xm < fx1:
             return Boundary("footing", footing=0)
         q_dead = _ground_pressure(pressures_dead, xm) + (p_base if surcharge_model else scene.surcharge)
@@ -532,8 +564,13 @@ def _site_problem(site) -> LimitProblem:
     one geometry (:meth:`Site.geometry`, cells cut at the water table) with the buoyant unit weight below
     the water table, every :class:`Strip` a rigid footing on its contact, the site's loads
     (columns on the strips, pressures on level ground) scaled by lambda. A single :class:`RigidStrip` and no
-    loads: lambda is its vertical force [N/m]. Refused: DepthVarying layers, embedded strips (``level``),
-    a RigidStrip beside other strips or loads, a pressure on sloping ground, eccentric columns."""
+    loads: lambda is its vertical force [N/m]. An embedded strip (``level`` below the ground) stands in its
+    trench, the side soil modelled by the site's geometry (its strength and weight); the trench walls are
+    free faces (the incremental site's trench is open while gravity loads it, so its walls start without
+    traction and the strip carries no overburden) or, with the strip's ``side_contact``, footing segments
+    on that contact (Coulomb c_i, phi_i, tension cut-off; bonded: rough), the wall moving with the strip as
+    one rigid body. Refused: DepthVarying layers, a RigidStrip beside other strips or loads, a pressure on
+    sloping ground."""
     for i, lay in enumerate(site.layers):
         if not isinstance(lay, SoilLayer):
             raise ValueError(
@@ -552,14 +589,21 @@ def _site_problem(site) -> LimitProblem:
         )
     ends = []
     footings = []
+    walls = {}  # (x of a trench wall, strip index) -> (base level [m], the wall's interface or None: free)
+    for i, _x0, _x1, lv in site.embedded():
+        st = strips[i]
+        side = (
+            None
+            if st.side_contact is None
+            else _contact_interface(st.side_contact, f"Site.strips[{i}].side_contact")
+        )
+        walls[i] = (lv, side)
     for i, st in enumerate(strips):
         if hasattr(st, "settle"):
             ends.append((st.x0, st.x1))
             itf = Interface("rough" if st.rough else "smooth")
             footings.append(Footing(itf, (0.0, -1.0), (0.0, 0.0), ("z",)))
             continue
-        if st.level is not None:
-            raise ValueError(f"Site.strips[{i}].level={st.level!r}: an embedded strip is not represented")
         f = st.foundation
         ends.append((f.x0, f.x1))
 
@@ -575,7 +619,7 @@ def _site_problem(site) -> LimitProblem:
         if itf.kind == "smooth" and fx:
             raise ValueError(f"Site.strips[{i}]: a smooth contact carries no horizontal load")
         xc = 0.5 * (f.x0 + f.x1)
-        centre = (xc, float(site.ground_z(np.array([xc]))[0]))
+        centre = (xc, site.base_z(i))  # the centre of its base: the ground under it, or its trench's bottom
         footings.append(Footing(itf, (fx, fz), (0.0, 0.0), moves, centre, m))
     pressures = [(ld.x0, ld.x1, ld.q) for ld in site.loads if isinstance(ld, SurfacePressure)]
     # materials: each layer dry and (below the water table) buoyant; each cell by its centroid
@@ -597,6 +641,13 @@ def _site_problem(site) -> LimitProblem:
         for j, (a, b) in enumerate(ends):
             if a < xm < b:
                 return Boundary("footing", footing=j)
+        if abs(pb[0] - pa[0]) <= _TOL * width:  # a vertical ground segment: a trench wall, or a step
+            for j, (lv, side) in walls.items():
+                on_wall = any(abs(xm - x) <= _TOL * width for x in ends[j])
+                if on_wall and min(pa[1], pb[1]) >= lv - _TOL * width:
+                    return (
+                        Boundary("free") if side is None else Boundary("footing", footing=j, interface=side)
+                    )
         q = _ground_pressure(pressures, xm)
         if q and abs(pb[1] - pa[1]) > _TOL * width:
             raise ValueError(
@@ -606,7 +657,8 @@ def _site_problem(site) -> LimitProblem:
         return Boundary("free", pressure_ref=q)
 
     lsite = site_from_geometry(geo, tuple(mats), boundary, tuple(footings))
-    singular = [(x, float(site.ground_z(np.array([x]))[0])) for a, b in ends for x in (a, b)]
+    singular = [(x, site.base_z(i)) for i, (a, b) in enumerate(ends) for x in (a, b)]
+    singular += [(x, float(site.ground_z(np.array([x]))[0])) for i in walls for x in ends[i]]  # wall tops
     singular += [(x, float(site.ground_z(np.array([x]))[0])) for a, b, _ in pressures for x in (a, b)]
     if rigid:
         unit, ref, ref_force = "N/m", "the RigidStrip's vertical force V [N/m]", 0.0

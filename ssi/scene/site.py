@@ -397,14 +397,10 @@ class Site:
         site's loads (a lone RigidStrip: lambda is its vertical force [N/m]), the soil's weight held; every
         strip a rigid body on its contact, a RigidStrip translating, a Strip also rotating (see
         :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`). A
-        :class:`Push` is refused: a horizontal push is not built in the limit analysis."""
+        :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
+        stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
+        (:mod:`ssi.scene.limit_problem`)."""
         pushes = [ld for ld in self.loads if isinstance(ld, Push)]
-        for i, _, _, lv in self.embedded():
-            if isinstance(self.strips[i], RigidStrip):
-                raise ValueError(
-                    f"Site.strips[{i}].level={lv:g} m: an embedded RigidStrip is not represented by the "
-                    "limit analysis; read the push-over's SiteResult.rigid_pressure"
-                )
         if pushes:
             raise ValueError(
                 f"Site.limit_analysis: {pushes[0]!r} in Site.loads: a horizontal push is not built in the "
