@@ -29,7 +29,8 @@ def limit_run(tmp_path_factory):
     folder = tmp_path_factory.mktemp("limit")
     scene = folder / "push.toml"
     shutil.copy(ROOT / "examples" / "pushover_footing.toml", scene)
-    assert main(["limit", str(scene), "--gap", "0.1", "--max-elements", "600"]) == 0
+    # a coarse bracket: every assertion on it holds on any mesh (bounds, identities, files)
+    assert main(["limit", str(scene), "--gap", "0.3", "--max-elements", "600"]) == 0
     return folder
 
 
@@ -120,7 +121,7 @@ def test_ssi_limit_brackets_a_site_file_and_writes_its_result(tmp_path, capsys):
     as for a scene; a phase is refused by name (a site has none)."""
     path = tmp_path / "site.toml"
     path.write_text(SITE)
-    assert main(["limit", str(path), "--gap", "0.1", "--max-elements", "600"]) == 0
+    assert main(["limit", str(path), "--gap", "0.3", "--max-elements", "600"]) == 0  # coarse: any mesh
     stored = read_limit_result(tmp_path / "site_limit.h5")
     assert stored.lb <= PRANDTL <= stored.ub
     assert stored.dissipation.sum() == pytest.approx(stored.ub, rel=1e-9)
