@@ -704,6 +704,9 @@ def test_a_side_contact_puts_the_trench_walls_on_the_strip():
         walls = [b for _, _, b in p.site.segments if b is not None and b.interface is not None]
         assert len(walls) == 2 and all(b.kind == "footing" and b.interface.kind == kind for b in walls)
     assert problems[2].site.interfaces[1] == Interface("coulomb", phi_deg=20.0, psi_deg=0.0, tension=0.0)
+    # the walls' psi_i = 0 enters the Davis bracket: tan phi* = beta tan phi_i (beta = cos 20 deg)
+    tan_star = math.tan(math.radians(problems[2].site.davis().interfaces[1].phi_deg))
+    assert tan_star == pytest.approx(math.cos(math.radians(20.0)) * math.tan(math.radians(20.0)), rel=1e-12)
     mesh = initial_mesh(problems[0], 3.0, 0.4)
     brackets = [bracket(p.site, mesh) for p in problems]
     assert all(b.lower.certified and b.upper.certified for b in brackets)

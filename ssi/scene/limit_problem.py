@@ -665,7 +665,11 @@ def _site_problem(site) -> LimitProblem:
     else:
         n_total = sum(ld.N for ld in site.loads if isinstance(ld, ColumnLoad))
         parts = [
-            f"column N={ld.N / 1e3:g} kN/m at x={ld.x:g} m" for ld in site.loads if isinstance(ld, ColumnLoad)
+            f"column N={ld.N / 1e3:g} kN/m"
+            + (f" H={ld.H / 1e3:g} kN/m" if ld.H else "")
+            + f" at x={ld.x:g} m"
+            for ld in site.loads
+            if isinstance(ld, ColumnLoad)
         ]
         parts += [f"pressure q={q / 1e3:g} kPa on x=[{a:g}, {b:g}] m" for a, b, q in pressures]
         unit, ref, ref_force = "", "the site's loads: " + ", ".join(parts), float(n_total)
