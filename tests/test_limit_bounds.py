@@ -24,6 +24,7 @@ Each bound is rigorous for its mesh, so the assertions LB <= exact <= UB have no
 solver's relative accuracy REL (1e-6: Clarabel's tolerances are 1e-9 and the lower bound is certified).
 """
 
+import functools
 import math
 from dataclasses import replace
 
@@ -68,11 +69,18 @@ def footing(phi, kind, c=10e3, surcharge=0.0, **kw):
     return site, triangulate(site, 1.0, size=graded(1.0, 0.2, 0.3))
 
 
+@functools.cache
+def solved(phi, kind):
+    """(site, mesh, bracket) of ``footing(phi, kind)``, solved once and shared by the tests that read it
+    (read-only: a test that needs a fresh solve makes its own)."""
+    site, mesh = footing(phi, kind)
+    return site, mesh, bracket(site, mesh)
+
+
 @pytest.mark.parametrize("phi", [0.0, 20.0])
 @pytest.mark.parametrize("kind", ["rough", "smooth"])
 def test_prandtl_inside_bracket(phi, kind):
-    site, mesh = footing(phi, kind)
-    br = bracket(site, mesh)
+    _, _, br = solved(phi, kind)
     exact = prandtl_q(10e3, phi)
     assert br.lower.certified, br.lower.reason
     assert br.lb <= exact * (1 + REL) and exact <= br.ub * (1 + REL), (br.lb / exact, br.ub / exact)
@@ -127,8 +135,7 @@ def test_certification_rejects_a_field_outside_the_cones(monkeypatch):
 
 
 def test_bisection_is_nested_and_bounds_monotone():
-    site, mesh = footing(20.0, "rough")
-    br0 = bracket(site, mesh)
+    site, mesh, br0 = solved(20.0, "rough")
     marked = np.argsort(-br0.shares)[: mesh.n_el // 4]
     fine = bisect(mesh, marked)
     assert fine.n_el > mesh.n_el
@@ -150,8 +157,7 @@ def test_bisection_is_nested_and_bounds_monotone():
 
 
 def test_numbering_independent_and_rerun_identical():
-    site, mesh = footing(20.0, "smooth")
-    a = bracket(site, mesh)
+    site, mesh, a = solved(20.0, "smooth")
     b = bracket(site, mesh)
     assert (a.lb, a.ub) == (b.lb, b.ub)  # bit-identical rerun
     c = bracket(site, mesh.permuted(seed=3))
@@ -211,8 +217,7 @@ def test_fields_carried_to_a_nested_mesh_keep_their_bounds():
     back (to round-off), which is what makes nested refinement monotone."""
     from ssi.limit.analysis import carry_stress, carry_velocity
 
-    site, mesh = footing(20.0, "smooth")
-    br0 = bracket(site, mesh)
+    site, mesh, br0 = solved(20.0, "smooth")
     fine = bisect(mesh, np.argsort(-br0.shares)[: mesh.n_el // 3])
     sig = carry_stress(mesh, fine, br0.lower.stress)
     lb = lower_bound(site, fine, stress=(sig, br0.lower.lam_projected))

@@ -23,7 +23,9 @@ result file (a scene's or a site's) and redraws its plots and report into a new 
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
 ``<name>_limit.json`` (the numbers), ``<name>_limit.h5`` (the result file: bounds, Davis bounds, gaps, the
 mesh, the mechanism's velocity, the dissipation and the stress field; ``ssi show`` reads it back),
-``<name>_limit.vtu`` (ParaView) and ``<name>_limit.png`` (the mechanism and the dissipation).
+``<name>_limit.vtu`` (ParaView) and ``<name>_limit.png`` (the mechanism and the dissipation). ``--strip``
+chooses how a plate strip enters (rigid, a beam with plastic hinges), ``--side-soil`` how an embedded
+strip's side soil does (its overburden, or modelled with its trench walls: ``ssi limit --help``).
 """
 
 import argparse
