@@ -7,8 +7,9 @@
 The scenes are :func:`ssi.lab.zoo_limits.bracket_scenes` (the 100 random scenes of seed 1, then the ordinary
 scenes); for each, ``scene.limit_analysis(gap=GAP)``: the associated bracket [lb, ub] and the Davis bracket
 [lb_davis, ub_davis] of lambda, the factor of the scene's column load (the soil's weight held), each refined
-until its relative gap (ub - lb)/(ub + lb) <= GAP. A scene the limit problem cannot represent (an embedded
-strip, an excavation, ...) is listed in the file's ``refused`` line with the reason; a scene that is the same
+until its relative gap (ub - lb)/(ub + lb) <= GAP. A scene the limit problem cannot represent (an elastic
+layer, an excavation, a SurfacePressure beside an embedded strip whose side soil is its overburden, the
+default ``side_soil``, ...) is listed in the file's ``refused`` line with the reason; a scene that is the same
 limit problem as one before it (another nu, E or incremental mesh: :func:`ssi.lab.zoo_limits.limit_key`)
 shares its bracket (column ``same_as``). A bracket that contradicts itself (a certified lower bound above
 an upper bound) is not stored: the file's ``inconsistent`` line names it with the numbers. One part of the
