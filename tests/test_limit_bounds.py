@@ -412,7 +412,8 @@ def test_a_walls_contact_sets_the_passive_resistance_of_a_pushed_trench_block():
     sigma_n = (1 + pi/2) c and H = (1 + pi/2) c D. Both inside their brackets (to the solvers' REL), and the
     rough wall's certified floor above the smooth wall's exact value: the contact carries what it should.
     Measured on 247 triangles: smooth [0.9999, 1.25] x 2cD (the Rankine field is linear: exact but for the
-    solve's 1e-4 cone margin), rough [0.974, 1.18] x (1 + pi/2) cD, its floor 1.25 x 2cD."""
+    solve's 1e-4 cone margin), rough [0.974, 1.18] x (1 + pi/2) cD, its floor 1.25 x 2cD; refined to a 2 %
+    gap, [0.9999, 1.038] x 2cD on 442 triangles and [0.992, 1.027] x (1 + pi/2) cD on 638."""
     c, d = 10e3, 1.0
     sing = np.array([(0.5, 0.0), (0.5, -d)])  # the front wall's ends
 
@@ -430,6 +431,11 @@ def test_a_walls_contact_sets_the_passive_resistance_of_a_pushed_trench_block():
     assert b_r.lb * (1 - REL) <= h_rough <= b_r.ub * (1 + REL)
     assert b_s.lb >= 0.999 * h_smooth  # the exact Rankine field, less the solve's margin 1e-4
     assert b_r.lb > 1.2 * h_smooth
+    # without the cut-off the back wall pulls: weightless Tresca's active state mirrors the passive one
+    # (sigma_h = -2c), so smooth walls carry 4 c D (measured [0.9999, 1.45] x 4cD here: the back wall's
+    # ends are not refined)
+    b_t = bracket(_trench_site(Interface("coulomb", 0.0, 0.0), c), mesh)
+    assert b_t.lb * (1 - REL) <= 2.0 * h_smooth <= b_t.ub * (1 + REL) and b_t.lb >= 0.999 * 2.0 * h_smooth
     # the segment's interface follows strength reduction and Davis, the footing's own as before
     red = rough.reduced(2.0)
     walls = [b.interface for _, _, b in red.segments if b.interface is not None]
