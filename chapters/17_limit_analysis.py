@@ -323,7 +323,11 @@ report.check(
 # rule integrates it against quadratic velocities). By the argument above its capacity is at least the
 # surcharge model's: its upper bound must lie above the surcharge model's lower bound. (Both backfills
 # weigh 18 kN/m³, so their surcharge models are one problem; for the sand backfill `side_soil="surcharge"`
-# warns that its upper bound is not a ceiling of that scene.)
+# warns that its upper bound is not a ceiling of that scene.) With a `side_contact` the walls do touch: they
+# are segments of the strip's footing on that contact (c_i, φ_i and the tension cut-off, in both bounds),
+# so a smooth, a frictional and a bonded wall order the bounds as the theorems require
+# (`tests/test_limit_scene.py`).
+# A `Site`'s embedded strip always stands in its modelled trench, its walls free or on its side contact.
 
 # %%
 from ssi.scene import RigidFooting, Scene, Settlement, SoilLayer  # noqa: E402
