@@ -74,20 +74,20 @@ test: $(STAMP) notebooks
 	--nbmake --nbmake-timeout=900 $(TEST_ORDER); \
 	status=$$?; echo "make_test_s: $(ELAPSED)"; exit $$status
 
-# `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first (full
-# mode, measured on this machine 2026-12-04: 06 ~454 s, 17 ~148 s, 10 ~106 s, 13 ~85 s, 16 ~74 s, 11, 14 ~55 s,
-# 12, 08, 19 36-47 s; make_reproduce_s 616, over its 360 s goal); report
-# rows are one file per id, written atomically, so the workers cannot mix them. CPU seconds (user + sys,
-# full mode, one chapter as a script, 2026-12-04 evening): 13 69, 16 55, 19 50, 14 45, 11 35, 12 34, 15 ~26,
-# 08 23, 05 ~14, the other eleven 2-8 each.
+# `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first; report
+# rows are one file per id, written atomically, so the workers cannot mix them. CPU seconds (user + sys, full
+# mode, one chapter as a script, 2026-12-04, on the old default load path): 17 ~151, 10 ~116, 13 ~84, 16 ~76,
+# 06 ~62 (~410 until it read the 100 random zoo scenes' controlled outcomes from their stored table,
+# re-solving 20 as a staleness check, instead of solving all 100 on the old load path), 19 ~55, 14 ~50,
+# 12 ~47, 11 ~43, 15 ~40, 08 ~23, 05 ~14, the other eleven 2-8 each: ~810 s, so >= ~405 s on two workers
+# whatever the order (make_reproduce_s 595-616 with 06 at ~410; its goal is 360 s).
 # pytest-xdist 3.8 (--dist load, --maxschedchunk 1) first sends each worker TWO consecutive items of this list
 # and then keeps one item queued behind the running one (checked with sleeping dummy tests: of the order
-# a b c d ..., worker 1 runs a and b, worker 2 c and d). A plain slowest-first list therefore put 06 and 17,
-# the two slowest, on the same worker (06 + 17 = 530 s of the 598 s make_reproduce_s of 2026-12-04) while the
-# other worker ran the rest. Hence the order: the slowest, then the 4th, then the 2nd and 3rd (worker 1 starts
-# with 06 + 13, worker 2 with 17 + 10), then the others slowest first, each to whichever worker frees first
-FULL_SLOW_FIRST := 06_solver 13_accuracy 17_limit_analysis 10_bearing_capacity 16_bad_input 19_sites \
-	14_uncertainty 11_foundation_scene 12_engineering_scenes 15_results_and_files 08_rc_beam 05_soil_element
+# a b c d ..., worker 1 runs a and b, worker 2 c and d). A plain slowest-first list therefore puts the two
+# slowest on the same worker. Hence the order: worker 1 starts with 17 + 06 (~213 s), worker 2 with 10 + 13
+# (~200 s), then the others slowest first, each to whichever worker frees first
+FULL_SLOW_FIRST := 17_limit_analysis 06_solver 10_bearing_capacity 13_accuracy 16_bad_input 19_sites \
+	14_uncertainty 12_engineering_scenes 11_foundation_scene 15_results_and_files 08_rc_beam 05_soil_element
 REPRODUCE_ORDER := $(call notebooks_slow_first,$(FULL_SLOW_FIRST))
 
 reproduce: $(STAMP) notebooks

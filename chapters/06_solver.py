@@ -468,12 +468,13 @@ def attempt(solve):
     return res, failure, time.process_time() - c0
 
 
-def outcome(res, failure):
-    """What a run ended as: completed, a limit (controlled path or load control's classification), stopped."""
+def outcome(res, failure, control):
+    """What a run ended as: completed, a limit (where the controlled path peaked, or load control's
+    classification of a failure to advance), or NonConvergence."""
     if failure is not None:
         return "NonConvergence"
     if res.status == LIMIT:
-        return "limit" if res.limit_uncertainty is not None else "limit (load control)"
+        return "limit" if control == "work" else "limit (load control)"
     return res.status
 
 
@@ -489,6 +490,7 @@ for strategy, st in strategies(True).items():
         res=res,
         failure=failure,
         cpu=cpu,
+        control=st.control,
         x=1e3 * settle,
         y=q / q_p20,
         answer=f"q_max/Prandtl {q_max / q_p20:.4f}",
@@ -505,6 +507,7 @@ for strategy, st in strategies(False).items():
         res=res,
         failure=failure,
         cpu=cpu,
+        control=st.control,
         x=np.array([1e3 * f @ (u - u0) for u in res.u]),
         y=np.array(res.load_factor),
         carried=carried,
@@ -520,6 +523,7 @@ for strategy, st in strategies(False).items():
         res=res,
         failure=failure,
         cpu=cpu,
+        control=st.control,
         x=1e3 * w,
         y=np.array(res.load_factor),
         settle=w[-1],
@@ -533,7 +537,7 @@ print(
 for (scene_name, strategy), c in compare.items():
     r = c["res"]
     print(
-        f"    {scene_name:8s} {strategy:27s} {outcome(r, c['failure']):21s} {r.n_steps:5d} "
+        f"    {scene_name:8s} {strategy:27s} {outcome(r, c['failure'], c['control']):21s} {r.n_steps:5d} "
         f"{sum(r.iterations):6d} {r.factorizations:6d} {c['cpu']:6.2f}  {c['answer']}"
     )
     if c["failure"] is not None:
@@ -1012,7 +1016,7 @@ for ax, (key, xlabel, ylabel, title) in zip(axes, panels, strict=True):
     for strategy, (color, mk, ms) in styles.items():
         c = compare[key, strategy]
         r = c["res"]
-        ends = outcome(r, c["failure"])
+        ends = outcome(r, c["failure"], c["control"])
         ax.plot(
             c["x"],
             c["y"],
