@@ -423,15 +423,16 @@ print(f"(a) {over_ctrl.message}; F / F_u at the limit = {1.2 * over_ctrl.limit_l
 # 1. chapter 10's rigid rough footing (B = 2 m, associated Mohr–Coulomb, c = 10 kPa, φ = ψ = 20°, elements
 #    of h = 0.125 m under it; 0.25 m in fast mode) pushed 6 cm down — its capacity is Prandtl's
 #    148.35 kPa plus the mesh's excess;
-# 2. a scene of the random zoo (`random 13`: a 2.6 m strip with an eccentric, inclined column load on
-#    c–φ soil with ψ = 0, a Coulomb contact) whose load passes a peak below its full value;
+# 2. a scene of the random zoo (`random 13`: a 1.56 m strip under an inclined, eccentric column load, on
+#    1.5 m of cohesionless sand, φ = 25°, ψ = 0, over a layer 30 times softer, with an associated Coulomb
+#    contact, elements of 0.5 m) whose load passes a peak below its full value;
 # 3. chapter 11's foundation (the 6 m RC beam on clay over sand, two columns of 400 kN/m) at h = 0.5 m, whose
 #    strip cracks.
 #
 # The paper's methods run 20 equal load increments (10 for chapter 11, its own count) with
 # `Settings.paper(control="load", ...)`: modified Newton on K0 with 400 iterations per increment and one
-# halving (section 3 shows it completing a coarse footing with 16 cuts and thousands of iterations: enough
-# here to show where it stalls without spending a minute on it), full Newton with the consistent tangent
+# halving (section 3 shows it completing a coarse footing with many cuts and thousands of iterations; this
+# is enough to show where it stalls without spending a minute on it), full Newton with the consistent tangent
 # refactorised every iteration and a backtracking line search (without it, Newton steps at the footing's
 # corner overshoot and diverge), neither with the fallback retry. Under load control a run past the
 # capacity can only fail; the retired load path then classifies the failure by its stiffness test, and
