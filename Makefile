@@ -76,17 +76,20 @@ test: $(STAMP) notebooks
 
 # `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first; report
 # rows are one file per id, written atomically, so the workers cannot mix them. CPU seconds (user + sys, full
-# mode, one chapter as a script, 2026-12-04, on the old default load path): 17 ~151, 10 ~116, 13 ~84, 16 ~76,
-# 06 ~62 (~410 until it read the 100 random zoo scenes' controlled outcomes from their stored table,
-# re-solving 20 as a staleness check, instead of solving all 100 on the old load path), 19 ~55, 14 ~50,
-# 12 ~47, 11 ~43, 15 ~40, 08 ~23, 05 ~14, the other eleven 2-8 each: ~810 s, so >= ~405 s on two workers
-# whatever the order (make_reproduce_s 595-616 with 06 at ~410; its goal is 360 s).
+# mode, one chapter as a script, nice'd on the shared machine), measured 2026-12-04 evening: 17 ~97 (~153
+# before the N_gamma bracket started with a fan at the footing's edge), 13 ~80, 10 ~63 (~93-116 before its
+# Prandtl pushes followed the controlled path), 06 ~62 (~410 until it read the 100 random zoo scenes'
+# controlled outcomes from their stored table, re-solving 20 as a staleness check, instead of solving all
+# 100 on the old load path); measured earlier that day: 16 ~76, 19 ~55, 14 ~50, 12 ~47, 11 ~43, 15 ~40,
+# 08 ~23, 05 ~14, the other eleven 2-8 each. ~705 s in all, so >= ~350 s on two workers whatever the order,
+# against the 360 s goal (make_reproduce_s was 595-616 with 06 at ~410; chapter 17's limit analysis solves
+# both bounds on two threads, so its wall time is below its CPU time on a quiet machine).
 # pytest-xdist 3.8 (--dist load, --maxschedchunk 1) first sends each worker TWO consecutive items of this list
 # and then keeps one item queued behind the running one (checked with sleeping dummy tests: of the order
 # a b c d ..., worker 1 runs a and b, worker 2 c and d). A plain slowest-first list therefore puts the two
-# slowest on the same worker. Hence the order: worker 1 starts with 17 + 06 (~213 s), worker 2 with 10 + 13
-# (~200 s), then the others slowest first, each to whichever worker frees first
-FULL_SLOW_FIRST := 17_limit_analysis 06_solver 10_bearing_capacity 13_accuracy 16_bad_input 19_sites \
+# slowest on the same worker. Hence the order: worker 1 starts with 17 + 10 (~160 s), worker 2 with 13 + 16
+# (~156 s), then the others slowest first, each to whichever worker frees first
+FULL_SLOW_FIRST := 17_limit_analysis 10_bearing_capacity 13_accuracy 16_bad_input 06_solver 19_sites \
 	14_uncertainty 12_engineering_scenes 11_foundation_scene 15_results_and_files 08_rc_beam 05_soil_element
 REPRODUCE_ORDER := $(call notebooks_slow_first,$(FULL_SLOW_FIRST))
 
