@@ -74,20 +74,23 @@ test: $(STAMP) notebooks
 	--nbmake --nbmake-timeout=900 $(TEST_ORDER); \
 	status=$$?; echo "make_test_s: $(ELAPSED)"; exit $$status
 
-# `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first (full
-# mode, measured on this machine 2026-12-04: 06 ~454 s, 17 ~148 s, 10 ~106 s, 13 ~85 s, 16 ~74 s, 11, 14 ~55 s,
-# 12, 08, 19 36-47 s; make_reproduce_s 616, over its 360 s goal); report
-# rows are one file per id, written atomically, so the workers cannot mix them. CPU seconds (user + sys,
-# full mode, one chapter as a script, 2026-12-04 evening): 13 69, 16 55, 19 50, 14 45, 11 35, 12 34, 15 ~26,
-# 08 23, 05 ~14, the other eleven 2-8 each.
+# `make reproduce` runs the chapters in full mode on two worker processes as well, the slowest first; report
+# rows are one file per id, written atomically, so the workers cannot mix them. CPU seconds (user + sys, full
+# mode, one chapter as a script, nice'd on the shared machine), measured 2026-12-04 evening: 17 ~97 (~153
+# before the N_gamma bracket started with a fan at the footing's edge), 13 ~80, 10 ~63 (~93-116 before its
+# Prandtl pushes followed the controlled path), 06 ~62 (~410 until it read the 100 random zoo scenes'
+# controlled outcomes from their stored table, re-solving 20 as a staleness check, instead of solving all
+# 100 on the old load path); measured earlier that day: 16 ~76, 19 ~55, 14 ~50, 12 ~47, 11 ~43, 15 ~40,
+# 08 ~23, 05 ~14, the other eleven 2-8 each. ~705 s in all, so >= ~350 s on two workers whatever the order,
+# against the 360 s goal (make_reproduce_s was 595-616 with 06 at ~410; chapter 17's limit analysis solves
+# both bounds on two threads, so its wall time is below its CPU time on a quiet machine).
 # pytest-xdist 3.8 (--dist load, --maxschedchunk 1) first sends each worker TWO consecutive items of this list
 # and then keeps one item queued behind the running one (checked with sleeping dummy tests: of the order
-# a b c d ..., worker 1 runs a and b, worker 2 c and d). A plain slowest-first list therefore put 06 and 17,
-# the two slowest, on the same worker (06 + 17 = 530 s of the 598 s make_reproduce_s of 2026-12-04) while the
-# other worker ran the rest. Hence the order: the slowest, then the 4th, then the 2nd and 3rd (worker 1 starts
-# with 06 + 13, worker 2 with 17 + 10), then the others slowest first, each to whichever worker frees first
-FULL_SLOW_FIRST := 06_solver 13_accuracy 17_limit_analysis 10_bearing_capacity 16_bad_input 19_sites \
-	14_uncertainty 11_foundation_scene 12_engineering_scenes 15_results_and_files 08_rc_beam 05_soil_element
+# a b c d ..., worker 1 runs a and b, worker 2 c and d). A plain slowest-first list therefore puts the two
+# slowest on the same worker. Hence the order: worker 1 starts with 17 + 10 (~160 s), worker 2 with 13 + 16
+# (~156 s), then the others slowest first, each to whichever worker frees first
+FULL_SLOW_FIRST := 17_limit_analysis 10_bearing_capacity 13_accuracy 16_bad_input 06_solver 19_sites \
+	14_uncertainty 12_engineering_scenes 11_foundation_scene 15_results_and_files 08_rc_beam 05_soil_element
 REPRODUCE_ORDER := $(call notebooks_slow_first,$(FULL_SLOW_FIRST))
 
 reproduce: $(STAMP) notebooks

@@ -6,7 +6,10 @@ the column load; the soil's weight is held): the associated bracket [LB, UB] and
 ``reference_data/zoo_brackets_random.csv`` and ``zoo_brackets_ordinary.csv`` (:func:`zoo_bracket`
 computes one row, :func:`read_zoo_brackets` reads the tables); chapter 06 reads them and checks every
 incremental outcome against its bracket
-(:func:`bracket_verdict`, the band [0.97 LB_Davis, 1.03 UB_assoc] of :func:`ssi.limit.check_limit`).
+(:func:`bracket_verdict`, the band [0.97 LB_Davis, 1.03 UB_assoc] of :func:`ssi.limit.check_limit`): the
+100 random scenes' stored outcomes on the controlled path (``reference_data/zoo_controlled_random.csv``,
+rows ``fela_zoo`` and ``zoo_limits_certified``), where a run stopped in NonConvergence below the floor is
+listed as a stop, not a limit.
 
 For the round-off check of the zoo's limits (row ``roundoff_limits``) the same scene is re-solved with the
 soil's Young's moduli scaled by 1 + 1e-13 (:func:`perturb_soil_modulus`) and with the soil's nodes -- and
@@ -57,7 +60,7 @@ COLUMNS = ("lb", "ub", "lb_davis", "ub_davis", "gap", "gap_davis", "triangles", 
 
 
 def bracket_scenes() -> list[tuple[str, object]]:
-    """The scenes the table covers, in its order: the 100 random scenes of seed 1 (chapter 06 (d), (h))
+    """The scenes the table covers, in its order: the 100 random scenes of seed 1 (chapter 06, section 6)
     then the fixed ordinary scenes (tests/test_zoo.py)."""
     return random_scenes(100, seed=1) + ordinary_scenes()
 
