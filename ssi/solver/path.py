@@ -487,7 +487,10 @@ class _Follower:
         the other modes, carries both to their peak (limits 0.3142 and 0.5078). Only for symmetric tangents:
         with the user's non-associated laws the singular direction is a strip sliding on slipping contact
         (psi_i = 0), a real mechanism, and the shifted operator sent scene 24 sideways at lambda = 0 (kept
-        factor: completed)."""
+        factor: completed). The 100 random zoo scenes (seed 1) in Davis mode: completed / limit /
+        NonConvergence 61 / 36 / 3 -> 61 / 38 / 1, none lost; of the 36 limits 33 moved by <= 0.31 %, three
+        by more, all upward where the path no longer stalls on its slowly rising plateau (scenes 42 +0.53 %,
+        3 +0.68 %, 78 +0.77 %; a shift of 1e-9 moved them further, +1.2 % on 42 and 78)."""
         pattern = self.system.pattern
         if self._k0_diag is None:  # K0's diagonal as values of the tangent's pattern (its ordering is kept)
             k0 = pattern.matrix(pattern.assemble_elastic(self.model.groups))
