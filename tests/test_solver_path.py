@@ -209,3 +209,22 @@ def test_davis_mode_runs_on_a_symmetric_tangent_whatever_the_setting():
     ]
     assert outs[0].solver_result.status == COMPLETED
     assert np.array_equal(outs[0].u, outs[1].u)
+
+
+def test_davis_mode_passes_a_soil_node_without_stiffness_to_the_peak():
+    """Random zoo scene 62 (seed 1) in Davis mode: on its plateau the consistent tangent is singular along
+    one soil-surface node beside the footing (cohesionless top layer at its apex, contact open there:
+    eigenvalue 2e-13 of the largest, tools/path_spectrum.py); with the old factor kept the path stopped in
+    NonConvergence at lambda = 0.3133 (measured on the parent commit, 248c471). Iterating on the shifted
+    tangent (``_regularised``) it reaches a limit, which must lie in the band of the scene's certified
+    limit-analysis bracket (reference_data/zoo_brackets_random.csv, computed by tools/zoo_brackets.py, not by
+    this solver): [0.97 LB_Davis, 1.03 UB_assoc], the band of issue 31's check."""
+    from ssi.lab.zoo import random_scenes
+    from ssi.lab.zoo_limits import read_zoo_brackets
+
+    name, scene = random_scenes(63, seed=1)[62]
+    out = scene.build().solve(settings=Settings(control="work", flow="davis"))
+    res = out.solver_result
+    assert res.status == LIMIT_LOAD
+    row = read_zoo_brackets()[1][name]
+    assert 0.97 * float(row["lb_davis"]) <= res.limit_load_factor <= 1.03 * float(row["ub"])
