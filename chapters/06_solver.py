@@ -755,6 +755,25 @@ if ordinary:
             print(f"    {o.name}: {o.message[:160]}")
 
 
+# %% [markdown]
+# **What the 12 NonConvergence runs are** (measured on the stored scenes with `tools/path_spectrum.py`, at
+# the last committed state, this stop): on random 22, 31, 66 and 80 the determinant of the tangent changes
+# sign there while f_ref · K⁻¹ f_ref stays finite and positive — neither the work nor the load factor turns.
+# The tangent has one or two negative eigenvalues whose mode is nearly orthogonal to the load
+# (|f_ref · ψ| / |f_ref| between 4e-4 and 3e-3), localised in one or two soil elements of a cohesionless top
+# layer (a shear band under the footing's edge, a layer boundary): a **bifurcation** of the non-associated
+# discrete system, not a fold of the control. Load-controlled steps upward from the same state converge, so
+# an equilibrium on the rising side exists; what fails is the work-controlled Newton iteration, which cycles.
+# Three remedies were measured and rejected: switching the control by the path's own state (work, load
+# factor or a cylindrical arc length, whichever grows fastest) gains only random 50, whose new peak lies
+# below its Davis floor (a false collapse by the bracket); a predictor along the negative mode (branch
+# switching) reached 0.21 on random 22 at one amplitude and a false limit at 0.115 at another; load steps
+# where the path is still stiff completed random 46 but stopped 23, 31 and 50 earlier. In Davis mode (all
+# laws associated) there are no such bifurcations: 99 of the 100 end completed or at a limit, the last
+# (random 25) stops just after its first step at λ = 0.1, below its certified floor of 0.448, unresolved.
+# These are the solver's failures, reported as such: none is read as a collapse.
+
+
 # %%
 def bracket_table(label, outcomes):
     """Print each (name, status, carried) against its bracket; return {name: (verdict, size)}. A run
