@@ -479,6 +479,11 @@ def outcome(res, failure, control):
     return res.status
 
 
+def entry(res, failure, cpu, st, x, y, answer, **extra):
+    """One comparison entry: the run, its failure report (or None), CPU [s], control, curve x, y, answer."""
+    return dict(res=res, failure=failure, cpu=cpu, control=st.control, x=x, y=y, answer=answer, **extra)
+
+
 compare = {}  # (scene, strategy) -> dict
 zoo_scene = dict(random_scenes(100, seed=1))[ZOO_SCENE]
 for strategy, st in strategies(True).items():
@@ -487,16 +492,9 @@ for strategy, st in strategies(True).items():
     res, failure, cpu = attempt(lambda fs=fs, st=st, n=n: run(fs.model, np.arange(1, n + 1) / n, st))
     settle, q = footing_pressure(fs, res)
     q_max = q[res.rate_independent_steps()].max()
-    compare["footing", strategy] = dict(
-        res=res,
-        failure=failure,
-        cpu=cpu,
-        control=st.control,
-        x=1e3 * settle,
-        y=q / q_p20,
-        answer=f"q_max/Prandtl {q_max / q_p20:.4f}",
+    compare["footing", strategy] = entry(
+        res, failure, cpu, st, 1e3 * settle, q / q_p20, f"q_max/Prandtl {q_max / q_p20:.4f}", q_max=q_max
     )
-    compare["footing", strategy]["q_max"] = q_max
 for strategy, st in strategies(False).items():
     built = zoo_scene.build()
     n = None if st.control == "work" else 20
@@ -504,15 +502,10 @@ for strategy, st in strategies(False).items():
     f = res.f_ref / np.linalg.norm(res.f_ref)
     u0 = res.u[0] if res.u_origin is None else res.u_origin
     carried = res.limit_load_factor if res.status == LIMIT and failure is None else res.load_factor[-1]
-    compare["zoo", strategy] = dict(
-        res=res,
-        failure=failure,
-        cpu=cpu,
-        control=st.control,
-        x=np.array([1e3 * f @ (u - u0) for u in res.u]),
-        y=np.array(res.load_factor),
-        carried=carried,
-        answer=("limit" if failure is None and res.status == LIMIT else "last lambda") + f" {carried:.4f}",
+    answer = ("limit" if failure is None and res.status == LIMIT else "last lambda") + f" {carried:.4f}"
+    x = np.array([1e3 * f @ (u - u0) for u in res.u])
+    compare["zoo", strategy] = entry(
+        res, failure, cpu, st, x, np.array(res.load_factor), answer, carried=carried
     )
 for strategy, st in strategies(False).items():
     built = chapter11_foundation(H_CH11).build()
@@ -520,15 +513,9 @@ for strategy, st in strategies(False).items():
     res, failure, cpu = attempt(lambda built=built, st=st, n=n: built.solve(n, st).solver_result)
     view = SceneResult(built, res)
     w = np.array([view.max_settlement(k)[1] for k in range(res.n_steps + 1)])
-    compare["ch11", strategy] = dict(
-        res=res,
-        failure=failure,
-        cpu=cpu,
-        control=st.control,
-        x=1e3 * w,
-        y=np.array(res.load_factor),
-        settle=w[-1],
-        answer=f"lambda {res.load_factor[-1]:.4f}, settlement {1e3 * w[-1]:.2f} mm",
+    answer = f"lambda {res.load_factor[-1]:.4f}, settlement {1e3 * w[-1]:.2f} mm"
+    compare["ch11", strategy] = entry(
+        res, failure, cpu, st, 1e3 * w, np.array(res.load_factor), answer, settle=w[-1]
     )
 
 print(
