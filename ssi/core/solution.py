@@ -56,6 +56,12 @@ class Result:
     # of the peak load when the last steps before it are redone at half size (its numerical uncertainty)
     limit_suspect: str = ""  # controlled path: why the limit is not to be read as a capacity ("" if no check
     # failed: beyond small strain, below/above a limit-analysis bracket, uncertainty not measured)
+    limit_mechanism: float | None = None  # controlled path: the mechanism certificate, lambda_k / lambda_peak
+    # of the last increment under associated dissipation (ssi.solver.mechanism; -> 1 at a collapse); None
+    # where it is no certificate (non-associated flow, a cracking strip's unsplit work, not measured)
+    limit_stored_share: float | None = None  # controlled path: the share of the load's work on the last
+    # increment that the laws stored elastically (0 for a mechanism; also reported for non-associated flow,
+    # where it certifies nothing); None where not split (a cracking strip)
     relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
     # when the path was cut back to a bracketed limit load)
     viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
@@ -174,7 +180,13 @@ class Result:
         if self.collapsed and self.limit_evidence.startswith("controlled path"):
             unc = "not measured" if self.limit_uncertainty is None else f"{self.limit_uncertainty:.2e}"
             text = f"limit load reached at lambda = {self.limit_load_factor:.6g} ({self.limit_evidence}; "
-            text += f"relative uncertainty {unc})"
+            text += f"relative uncertainty {unc}"
+            if self.limit_mechanism is not None:
+                text += f"; mechanism certificate lambda_k / lambda_peak = {self.limit_mechanism:.4f}"
+            elif self.limit_stored_share is not None:
+                share = self.limit_stored_share
+                text += f"; {share:.1%} of the last increment's load work stored (no certificate)"
+            text += ")"
             return text + (f"; suspect: {self.limit_suspect}" if self.limit_suspect else "")
         if self.collapsed:
             return (

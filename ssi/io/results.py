@@ -27,7 +27,8 @@ Layout::
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
             step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
             with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_load_upper,
-            limit_evidence, relaxed_steps, viscous_from, limit_uncertainty, limit_suspect
+            limit_evidence, relaxed_steps, viscous_from, limit_uncertainty, limit_suspect, limit_mechanism,
+            limit_stored_share
                                     (the result's; of a SceneResult its solver_result, except of a phased one)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
@@ -305,6 +306,9 @@ def _write_solver(grp, res, u, states, names):
     # the controlled path's limit: its numerical uncertainty (nan: not measured) and why it is suspect
     grp.attrs["limit_uncertainty"] = np.nan if res.limit_uncertainty is None else res.limit_uncertainty
     grp.attrs["limit_suspect"] = res.limit_suspect
+    # its mechanism certificate (ssi.solver.mechanism; nan: none given)
+    for key in ("limit_mechanism", "limit_stored_share"):
+        grp.attrs[key] = np.nan if getattr(res, key) is None else getattr(res, key)
     for key in ("relaxed_steps", "viscous_from"):
         grp.attrs[key] = -1 if getattr(res, key) is None else getattr(res, key)
     for key in ("u_origin", "f_int_origin", "f_ref", "f_dead"):
@@ -565,6 +569,8 @@ def _solver_result(model, rec, lam, u, states):
         limit_evidence=str(rec.get("limit_evidence", "")),
         limit_uncertainty=_optional_float(rec.get("limit_uncertainty")),
         limit_suspect=str(rec.get("limit_suspect", "")),
+        limit_mechanism=_optional_float(rec.get("limit_mechanism")),
+        limit_stored_share=_optional_float(rec.get("limit_stored_share")),
         relaxed_steps=_optional_count(rec.get("relaxed_steps")),
         viscous_from=_optional_count(rec.get("viscous_from")),
         u_origin=rec.get("u_origin"),

@@ -92,6 +92,8 @@ def join_phases(model: Model, records: list[dict]) -> Result:
         limit_evidence=last.limit_evidence,
         limit_uncertainty=last.limit_uncertainty,
         limit_suspect=last.limit_suspect,
+        limit_mechanism=last.limit_mechanism,
+        limit_stored_share=last.limit_stored_share,
         relaxed_steps=last.relaxed_steps,
         viscous_from=None if last.viscous_from is None else records[-1]["first"] + last.viscous_from - 1,
         u_origin=geo.u_origin,

@@ -76,6 +76,7 @@ from ..core.protocol import CONSISTENT
 from ..core.solution import LIMIT_LOAD, STOPPED, Result
 from .diagnostics import _failure_report
 from .increment import TANGENT_SOLVE_TOL, _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
+from .mechanism import check_mechanism, flow_is_associated, increment_energy
 from .progress import SolverProgress, solver_progress
 from .record import _record, _start
 from .settings import NonConvergence, Settings
@@ -290,6 +291,7 @@ class _Follower:
         res.limit_uncertainty = None if redo is None else max(redo, vertex)
         if res.limit_uncertainty is None:
             reasons.append("the half-size redo of the steps around the peak did not converge")
+        reasons.extend(self._certify(k_max))
         strain = self._loaded_strain(k_max)
         if strain is not None and strain[0] > SMALL_STRAIN * strain[1]:
             reasons.append(
@@ -299,6 +301,16 @@ class _Follower:
         res.limit_suspect = "; ".join(reasons)
         self.bar.note(res.message)
         return True
+
+    def _certify(self, k_max) -> list[str]:
+        """The mechanism certificate of the limit from the path's last increment (ssi.solver.mechanism):
+        recorded on the result; its failure as a reason (a list of at most one)."""
+        (_, u_a, states_a, *_), (_, u_b, states_b, _, _, load_b) = self.kept[-2], self.kept[-1]
+        energy = increment_energy(self.model, u_a, u_b, states_a, states_b, self.f_dead)
+        davis = self.settings.flow == "davis"
+        check = check_mechanism(energy, load_b, self.loads[k_max], flow_is_associated(self.model, davis))
+        self.result.limit_mechanism, self.result.limit_stored_share = check.ratio, check.stored
+        return [check.reason] if check.reason else []
 
     def _redo(self, k_max):
         """Relative change of the peak load when the kept steps from REDO_STEPS before the peak to
