@@ -138,3 +138,23 @@ def test_a_stall_read_as_a_limit_is_flagged(monkeypatch):
     assert res.status == LIMIT_LOAD
     assert res.limit_mechanism < 1.0 - MECHANISM_TOL
     assert "no collapse mechanism" in res.limit_suspect
+
+
+def test_certificate_is_written_to_the_result_file_and_read_back(tmp_path):
+    """The certificate (lambda_k / lambda_peak, stored share) of a scene's limit is written with the solver's
+    attrs and read back (random zoo scene 8, seed 1, in Davis mode: a limit at lambda = 0.268 in 0.3 s); a
+    limit without a certificate writes nan, read back as None."""
+    from ssi.io.results import read_result, write_result
+    from ssi.lab.zoo import random_scenes
+
+    _, scene = random_scenes(9, seed=1)[8]
+    out = scene.build().solve(settings=Settings(control="work", flow="davis"))
+    res = out.solver_result
+    assert res.status == LIMIT_LOAD and res.limit_mechanism is not None
+    write_result(tmp_path / "r.h5", out)
+    back = read_result(tmp_path / "r.h5").solver_result
+    assert back.limit_mechanism == res.limit_mechanism
+    assert back.limit_stored_share == res.limit_stored_share
+    res.limit_mechanism = None
+    write_result(tmp_path / "none.h5", out)
+    assert read_result(tmp_path / "none.h5").solver_result.limit_mechanism is None
