@@ -183,9 +183,6 @@ class Result:
             text += f"relative uncertainty {unc}"
             if self.limit_mechanism is not None:
                 text += f"; mechanism certificate lambda_k / lambda_peak = {self.limit_mechanism:.4f}"
-            elif self.limit_stored_share is not None:
-                share = self.limit_stored_share
-                text += f"; {share:.1%} of the last increment's load work stored (no certificate)"
             text += ")"
             return text + (f"; suspect: {self.limit_suspect}" if self.limit_suspect else "")
         if self.collapsed:

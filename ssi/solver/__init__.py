@@ -7,6 +7,7 @@ only place that commits state.
 * ``increment`` -- one increment: the iterations of each method, line search, tangent solve, convergence;
 * ``viscous`` -- viscous recovery of a stalled path and the bracketing of a limit load;
 * ``path`` -- controlled path following (``Settings(control="work")``): a limit only where the path peaks;
+* ``mechanism`` -- the mechanism certificate of a controlled path's limit (its last increment's energy);
 * ``davis`` -- Davis mode (``Settings(flow="davis")``); ``record`` -- the start of a path, its step record;
 * ``arc_length`` -- ``run_arc_length``;
 * ``diagnostics`` -- what a failed increment reports;

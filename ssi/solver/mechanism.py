@@ -238,7 +238,7 @@ def check_mechanism(energy: IncrementEnergy, load_end: float, load_peak: float, 
     unsplit = energy.unsplit / abs(load_work)
     if abs(unsplit) > UNSPLIT_TOL:
         note = f"{unsplit:.1%} of the last increment's work goes to groups whose stored and dissipated parts "
-        return MechanismCheck(None, None, note=note + "are not split (a cracking strip)")
+        return MechanismCheck(None, None, note=note + "are not split (an RC strip, a law of its own)")
     stored = energy.stored_share
     if not associated:
         note = f"non-associated flow: {stored:.1%} of the load's work on the last increment stored"

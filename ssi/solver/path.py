@@ -57,9 +57,10 @@ ds_max is ``max_step`` of the elastic work at the largest target, or of the work
 contact that carries no load yet lets a work step follow a mechanism at lambda = 0 (a weightless strip
 lifting off).
 
-A failure to converge is never read as a limit. A limit is reported with ``limit_uncertainty`` and, when
-a check fails, ``limit_suspect`` with the reason (:func:`ssi.limit.flag_suspect` adds the limit-analysis
-bracket's verdict).
+A failure to converge is never read as a limit. A limit is reported with ``limit_uncertainty``, the
+mechanism certificate of its last increment (``limit_mechanism``, ``limit_stored_share``:
+:mod:`ssi.solver.mechanism`) and, when a check fails, ``limit_suspect`` with the reason
+(:func:`ssi.limit.flag_suspect` adds the limit-analysis bracket's verdict).
 """
 
 from __future__ import annotations
@@ -310,6 +311,8 @@ class _Follower:
         davis = self.settings.flow == "davis"
         check = check_mechanism(energy, load_b, self.loads[k_max], flow_is_associated(self.model, davis))
         self.result.limit_mechanism, self.result.limit_stored_share = check.ratio, check.stored
+        if check.note:  # why no certificate was given (non-associated flow, a cracking strip's work)
+            self.result.limit_evidence += f"; no mechanism certificate: {check.note}"
         return [check.reason] if check.reason else []
 
     def _redo(self, k_max):
