@@ -57,11 +57,12 @@ class Result:
     limit_suspect: str = ""  # controlled path: why the limit is not to be read as a capacity ("" if no check
     # failed: beyond small strain, below/above a limit-analysis bracket, uncertainty not measured)
     limit_mechanism: float | None = None  # controlled path: the mechanism certificate, lambda_k / lambda_peak
-    # of the last increment under associated dissipation (ssi.solver.mechanism; -> 1 at a collapse); None
-    # where it is no certificate (non-associated flow, a cracking strip's unsplit work, not measured)
-    limit_stored_share: float | None = None  # controlled path: the share of the load's work on the last
+    # of the limit's increment (the last on a plateau, the one reaching a passed peak) under associated
+    # dissipation (ssi.solver.mechanism; -> 1 at a collapse); None where it is no certificate
+    # (non-associated flow, an RC strip's unsplit work, not measured)
+    limit_stored_share: float | None = None  # controlled path: the share of the load's work on the limit's
     # increment that the laws stored elastically (0 for a mechanism; also reported for non-associated flow,
-    # where it certifies nothing); None where not split (a cracking strip)
+    # where it certifies nothing); None where not split (an RC strip)
     relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
     # when the path was cut back to a bracketed limit load)
     viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are

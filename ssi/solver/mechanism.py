@@ -36,7 +36,10 @@ crawls along a path still rising) stores a finite share elastically and lambda_k
 prescribed displacements and no force load the same ratio is taken of the prescribed motion's work, W -
 f_dead . du (the reactions' work).
 
-What it certifies, and what not: that the path's last increment is (or is not) a plastic mechanism whose
+The limit's increment (``ssi.solver.path``): the last one on a plateau, the one that reached the peak
+where the path fell past it.
+
+What it certifies, and what not: that the limit's increment is (or is not) a plastic mechanism whose
 dissipation balances the load at the peak -- an energy-balance certificate of the mechanism. It is not a
 rigorous upper bound: d_eps_p of a displacement-based increment is kinematically admissible only as the
 plastic part of a compatible strain, and the associated flow rule holds at the Gauss points only (an
@@ -68,7 +71,7 @@ from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
 __all__ = ["IncrementEnergy", "MechanismCheck", "check_mechanism", "flow_is_associated", "increment_energy"]
 
 ASSOCIATED_TOL = 1e-9  # |psi - phi| [rad] (soil), |tan psi - tan phi| (contact): below it, associated flow
-MECHANISM_TOL = 0.03  # |lambda_k / lambda_peak - 1| above this: the limit's last increment is no mechanism.
+MECHANISM_TOL = 0.03  # |lambda_k / lambda_peak - 1| above this: the limit's increment is no mechanism.
 # Measured (issue 31): the 38 limits of the random zoo (seed 1) in Davis mode 0.9817 (scene 61) to 1.00003,
 # chapter 10's associated footing on h = 0.0625 m 0.9946 -- collapses store <= 1.8 % of the load's work;
 # the same footing (h = 0.25 m) stopped early on its rising path by a looser plateau rule (rise 5 %, 2 %,
@@ -212,7 +215,7 @@ def flow_is_associated(model, davis: bool) -> bool:
 
 @dataclass(frozen=True)
 class MechanismCheck:
-    """The certificate of a limit: ``ratio`` lambda_k / lambda_peak of the path's last increment (None where
+    """The certificate of a limit: ``ratio`` lambda_k / lambda_peak of the limit's increment (None where
     it is no certificate: non-associated flow, unsplit work above ``UNSPLIT_TOL``, no load work),
     ``stored`` the share of the load's work on it stored elastically (also for non-associated flow; None
     where not split), ``reason`` why the limit fails the check ("" if it passes or no certificate applies),
@@ -226,7 +229,7 @@ class MechanismCheck:
 
 def check_mechanism(energy: IncrementEnergy, load_end: float, load_peak: float, associated: bool,
                     tol: float | None = None) -> MechanismCheck:  # fmt: skip
-    """The certificate of a limit at ``load_peak`` from the ``energy`` of the path's last increment, which
+    """The certificate of a limit at ``load_peak`` from the ``energy`` of the limit's increment, which
     ends at the load measure ``load_end`` (lambda, or the prescribed motion's reaction): lambda_k =
     ``load_end`` (D - f_dead . du) / (W - f_dead . du); the limit fails the check where |lambda_k /
     lambda_peak - 1| > ``tol`` (default ``MECHANISM_TOL``). Flow that is not ``associated``: only the
@@ -234,26 +237,27 @@ def check_mechanism(energy: IncrementEnergy, load_end: float, load_peak: float, 
     tol = MECHANISM_TOL if tol is None else tol
     load_work = energy.load_work
     if not abs(load_work) > 0.0 or not load_peak > 0.0:
-        return MechanismCheck(None, None, note="the load does no work on the last increment")
+        return MechanismCheck(None, None, note="the load does no work on the limit's increment")
     unsplit = energy.unsplit / abs(load_work)
     if abs(unsplit) > UNSPLIT_TOL:
-        note = f"{unsplit:.1%} of the last increment's work goes to groups whose stored and dissipated parts "
-        return MechanismCheck(None, None, note=note + "are not split (an RC strip, a law of its own)")
+        note = f"{unsplit:.1%} of the work on the limit's increment goes to groups whose stored and"
+        note += " dissipated parts are not split (an RC strip, a law of its own)"
+        return MechanismCheck(None, None, note=note)
     stored = energy.stored_share
     if not associated:
-        note = f"non-associated flow: {stored:.1%} of the load's work on the last increment stored"
+        note = f"non-associated flow: {stored:.1%} of the load's work on the limit's increment stored"
         return MechanismCheck(None, stored, note=note + " elastically (an energy share, no certificate)")
     ratio = energy.multiplier_ratio * load_end / load_peak
     reason = ""
     if ratio < 1.0 - tol:
         reason = (
-            f"the last increment is no collapse mechanism: its kinematic multiplier is {ratio:.4f} x the "
+            f"the limit's increment is no collapse mechanism: its kinematic multiplier is {ratio:.4f} x the "
             f"peak, {stored:.1%} of the load's work on it stored elastically (a stall, or a path still "
             "rising)"
         )
     elif ratio > 1.0 + tol:
         reason = (
-            f"the last increment is no collapse mechanism: its kinematic multiplier is {ratio:.4f} x the "
+            f"the limit's increment is no collapse mechanism: its kinematic multiplier is {ratio:.4f} x the "
             "peak (it dissipates stored elastic energy: an unloading or softening increment)"
         )
     return MechanismCheck(ratio, stored, reason)
