@@ -158,3 +158,17 @@ def test_certificate_is_written_to_the_result_file_and_read_back(tmp_path):
     res.limit_mechanism = None
     write_result(tmp_path / "none.h5", out)
     assert read_result(tmp_path / "none.h5").solver_result.limit_mechanism is None
+
+
+def test_a_group_whose_energy_is_not_split_gets_no_certificate():
+    """tests/test_solver_path.py's softening spring (a subclass of Spring with a total law of its own) passes
+    a peak: its work cannot be split into stored and dissipated parts here, so the limit gets no
+    certificate (None), says why in its evidence, and is not flagged by the check."""
+    from test_solver_path import _softening_model  # pytest puts tests/ on the path (no package)
+
+    model, _ = _softening_model()
+    res = run(model, [2.0], Settings(control="work", force_tol=1e-10, energy_tol=1e-14))
+    assert res.status == LIMIT_LOAD
+    assert res.limit_mechanism is None and res.limit_stored_share is None
+    assert "no mechanism certificate" in res.limit_evidence and "not split" in res.limit_evidence
+    assert res.limit_suspect == ""
