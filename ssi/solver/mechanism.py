@@ -84,8 +84,9 @@ UNSPLIT_TOL = 0.01  # unsplit work (a cracking strip) above this share of the lo
 @dataclass(frozen=True)
 class IncrementEnergy:
     """The energy balance of one increment [J/m]: ``work`` the internal work of all groups (sum f_int . du),
-    ``stored`` its elastic part over the soil and contact groups, ``dissipated`` = their work less their
-    stored part, ``unsplit`` the work of the groups whose split is not computed (plate strip, springs),
+    ``stored`` its elastic part over the groups whose split is computed (soil, contact, springs, elastic
+    strips), ``dissipated`` = their work less their stored part, ``unsplit`` the work of the other groups
+    (an RC strip, a group with a law of its own),
     ``dead_work`` f_dead . du, ``load_work`` work - dead_work (lambda f_ref . du, or the reactions' work on
     prescribed displacements)."""
 
@@ -182,7 +183,9 @@ def _contact_stored(g: Interface6, s_old, s_new) -> float:
     t_new = g.tractions(s_new)
     dt = t_new - g.tractions(s_old)
     kt, kn = g.params[:, 0][:, None], g.params[:, 1][:, None]
-    density = t_new[..., 0] * dt[..., 0] / kt + t_new[..., 1] * dt[..., 1] / kn
+    # kt = 0 (allowed: a contact without tangential stiffness) carries no shear traction: no shear term
+    shear = np.divide(t_new[..., 0] * dt[..., 0], kt, out=np.zeros_like(dt[..., 0]), where=kt > 0.0)
+    density = shear + t_new[..., 1] * dt[..., 1] / kn
     return float(np.sum(density * g.ip_weights()))
 
 
@@ -190,9 +193,10 @@ def _spring_stored(g: Spring, s_old, s_new, du_el) -> float:
     """F_n+1 dF / k0 per spring (linear, elastoplastic); the tanh law's whole work F_n+1 dd [J/m]."""
     f_new, f_old = g.history(s_new, "force")[:, 0], g.history(s_old, "force")[:, 0]
     k0 = g.params[:, 0]
-    elastic_total = g.kinds == TANH
     dd = du_el[:, 1] - du_el[:, 0]
-    return float(np.sum(np.where(elastic_total, f_new * dd, f_new * (f_new - f_old) / k0)))
+    # k0 = 0: a spring that carries no force stores nothing
+    linear = np.divide(f_new * (f_new - f_old), k0, out=np.zeros_like(k0), where=k0 != 0.0)
+    return float(np.sum(np.where(g.kinds == TANH, f_new * dd, linear)))
 
 
 def flow_is_associated(model, davis: bool) -> bool:
