@@ -122,9 +122,9 @@ def test_non_associated_flow_reports_the_stored_share_and_no_certificate():
 
 def test_a_stall_read_as_a_limit_is_flagged(monkeypatch):
     """A plateau rule loosened on purpose (rise < 5 % over 3 steps and a tenth of the control) stops
-    chapter 10's associated footing (h = 0.25 m) on its rising path, 0.7 % below where it levels off: its
-    last increment stores 6 % of the load's work elastically (measured), beyond MECHANISM_TOL, and the
-    limit is reported suspect with that reason."""
+    chapter 10's associated footing (h = 0.25 m) on its rising path, 0.7 % below its load at the end of the
+    6 cm push: its last increment stores 6 % of the load's work elastically (measured), beyond
+    MECHANISM_TOL, and the limit is reported suspect with that reason."""
     import ssi.solver.path as path
     from ssi.lab.bearing_capacity import chapter10_footing
 

@@ -75,7 +75,8 @@ MECHANISM_TOL = 0.03  # |lambda_k / lambda_peak - 1| above this: the limit's inc
 # Measured (issue 31): the 38 limits of the random zoo (seed 1) in Davis mode 0.9817 (scene 61) to 1.00003,
 # chapter 10's associated footing on h = 0.0625 m 0.9946 -- collapses store <= 1.8 % of the load's work;
 # the same footing (h = 0.25 m) stopped early on its rising path by a looser plateau rule (rise 5 %, 2 %,
-# 1 % over 3 steps: a stall read as a limit 0.7, 0.5, 0.4 % below the path's plateau) 0.937, 0.961, 0.974.
+# 1 % over 3 steps: a stall read as a limit 0.7, 0.5, 0.4 % below the load at the end of its 6 cm push)
+# 0.937, 0.961, 0.974.
 # 3 %, the issue's bracket band, flags the first and passes every collapse with 1.2 points to spare.
 UNSPLIT_TOL = 0.01  # unsplit work (a cracking strip) above this share of the load's work: no certificate
 # (counted as stored it would move lambda_k by up to this share, a third of MECHANISM_TOL)
