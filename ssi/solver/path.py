@@ -73,6 +73,7 @@ from collections import deque
 from dataclasses import replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..core.linsolve import Factorization
 from ..core.model import Model
@@ -111,6 +112,8 @@ POOR_RUN = 3  # ... in this many successive iterations: the tangent is refactori
 # neighbours are not smooth: 0.9 / 3 61 factorisations and 5 failed steps on chapter 11, 0.85 / 3 49 and
 # 1, 0.7 / 3 250 and 20, 0.8 / 2 and 0.8 / 4 NonConvergence -- the outcome of a hard step is sensitive to
 # when its tangent is refreshed, so these numbers order the rules, they do not make one robust)
+SOFT_MODE = 1e-3  # _soft_mode: K_t's Rayleigh quotient below this fraction of K0's: a mode without stiffness
+# (chapter 19's floating strip: 2.7e-5 after three inverse iterations)
 SINGULAR_SHIFT = 1e-6  # a singular consistent tangent is factorised as K_t + this x diag(K0) (_regularised)
 GROWTH = (0.5, 2.0)  # bounds of the step factor (N_target / N)^(1/2)
 LINE_SEARCH_MIN = 1.0 / 64.0  # line search on a tangent factor: smallest step fraction tried
@@ -275,8 +278,63 @@ class _Follower:
         out = self.last_failure
         report = _failure_report(self.model, self.system.free, out, self.lam, out.get("lam", self.lam))
         report.update(control_value=self.s, control_step=self.ds, control="work" if self.work else "lambda")
+        soft = self._soft_mode(out)
+        if soft:
+            report.update(soft_mode=soft)
         self.result.status = STOPPED
         raise NonConvergence(report, self.result)
+
+    def _soft_mode(self, out) -> str:
+        """The failed step's last iterate: if its consistent tangent has a mode without stiffness (Rayleigh
+        quotient below ``SOFT_MODE`` of K0's along it, three inverse iterations on K_t + SINGULAR_SHIFT
+        diag(K0)), which group carries it and whether the load does work on it, for the NonConvergence report
+        (key ``soft_mode``) -- e.g. chapter 19's unloaded
+        weightless strip whose cohesionless contact opened: a mechanism at lambda = 0 that no load drives,
+        whose position the corrector cannot fix (residual stagnating at 7.5e-4; the mode: Rayleigh quotient
+        2.7e-5, on the strip's u DOFs, |f.x| / |f| |x| = 8e-4). '' otherwise."""
+        u = out.get("u")
+        if u is None:
+            return ""
+        try:
+            _, k_list, _ = self.system.evaluate(u, u - self.u, self.states, CONSISTENT)
+            pattern = self.system.pattern
+            kt = pattern.matrix(pattern.assemble(k_list))
+            k0 = pattern.matrix(pattern.assemble_elastic(self.model.groups))
+            d = k0.diagonal()
+            shifted = kt + SINGULAR_SHIFT * _diag(d)
+            fac = Factorization(shifted, symmetric=False, backend=self.settings.backend)
+            x = np.ones(kt.shape[0])
+            for _ in range(3):
+                x = fac.solve(d * x)
+                x /= np.abs(x).max()
+        except (FloatingPointError, RuntimeError, ValueError):
+            return ""
+        quotient = abs(float(x @ (kt @ x))) / float(x @ (k0 @ x))
+        if not quotient < SOFT_MODE:
+            return ""
+        full = np.zeros(self.model.n_dof)
+        full[self.system.free_dofs] = x
+        total = float(x @ x)
+        share = {}
+        for g in self.model.groups:
+            on = full[np.unique(g.edofs)]
+            share[g.name] = float(on @ on) / total
+        ranked = sorted(share.items(), key=lambda item: -item[1])
+        carriers = ", ".join(f"{name} {100 * v:.0f} %" for name, v in ranked if v >= 0.5)
+        top = np.argsort(-np.abs(x))[:4]
+        where = self.system.describe_dofs(top, 4).replace("unsupported DOFs: ", "")
+        work = abs(float(self.f @ x)) / (_norm(self.f) * _norm(x)) if self.work else 0.0
+        driven = (
+            f"the reference load does almost no work on it (|f.x| / |f| |x| = {work:.1e})"
+            if work < 1e-2
+            else f"|f.x| / |f| |x| = {work:.2g}"
+        )
+        return (
+            f"the tangent has a mode without stiffness (x.K_t.x / x.K0.x = {quotient:.1e}), "
+            f"on the DOFs of {carriers} ({where}); {driven}: a body or region that "
+            f"nothing holds at lambda = {self.lam:.4g} (e.g. an unloaded weightless strip whose contact "
+            "opened)"
+        )
 
     def _commit(self, out, adapt=True):
         du = out["u"][self.system.free] - self.u[self.system.free]
@@ -651,3 +709,7 @@ def _overshoot(trial, norm, r0, g0, t_lo, g_lo, t, best):
         else:
             t_hi, hi = t_new, cand
     return kept[1], kept[2]
+
+
+def _diag(d):
+    return sp.diags(d, format="csc")
