@@ -678,9 +678,12 @@ def _overshoot(trial, norm, r0, g0, t_lo, g_lo, t, best):
     an opening wall having no stiffness left -- and t = 0.05 of it drives the wall nodes centimetres into
     their contact: the residual grew 1e2-1e5 times in a step and the path stopped at lambda = 0. Regula falsi
     on G over the bracket [t_lo (G > 0), t (G < 0 or failed)], bisection where the update failed, for up to
-    ``OVERSHOOT_TRIALS`` trials down to ``OVERSHOOT_MIN``, until |G| <= G(0) / 2 or the residual falls below
-    the current one; else the trial of the smallest residual (the corrector's divergence and stagnation
-    tests then judge the step).
+    ``OVERSHOOT_TRIALS`` trials down to ``OVERSHOOT_MIN``, until |G| <= G(0) / 2; else the largest trial
+    with G > 0 (the potential, convex along the line, falls all the way to it), or, without one, the trial
+    of the smallest residual (the corrector's divergence and stagnation tests then judge the step).
+    Stopping at the first trial whose residual fell below the current one instead crept by t ~ 0.003 where
+    the potential has a kink (a contact changing state along the line) and stopped Davis-mode zoo scene 74
+    at lambda = 0.
 
     Only for symmetric tangents (``Settings.symmetric_tangent``, Davis mode, ``associated`` models): there G
     is the slope of the increment's convex potential and its root brackets the potential's minimum. Without
@@ -688,7 +691,8 @@ def _overshoot(trial, norm, r0, g0, t_lo, g_lo, t, best):
     overshot: of its first 31 scenes, 30's limit 0.9477 became a NonConvergence at lambda = 0.943 and the
     limits of 3, 8, 11, 13, 17 moved by up to 0.12 %."""
     t_hi, hi = t, best
-    kept = (norm(best), t, best)
+    smallest = (norm(best), t, best)
+    below = None  # the largest trial with G > 0
     for _ in range(OVERSHOOT_TRIALS):
         g_hi = hi[3]
         if hi[2] is None or not np.isfinite(g_hi):
@@ -700,15 +704,15 @@ def _overshoot(trial, norm, r0, g0, t_lo, g_lo, t, best):
         if not t_lo < t_new < t_hi:
             break
         cand = trial(t_new)
-        if norm(cand) < kept[0]:
-            kept = (norm(cand), t_new, cand)
-        if cand[2] is not None and (abs(cand[3]) <= 0.5 * g0 or norm(cand) < r0):
+        if norm(cand) < smallest[0]:
+            smallest = (norm(cand), t_new, cand)
+        if cand[2] is not None and abs(cand[3]) <= 0.5 * g0:
             return t_new, cand
         if cand[2] is not None and cand[3] > 0.0:
-            t_lo, g_lo = t_new, cand[3]
+            t_lo, g_lo, below = t_new, cand[3], (t_new, cand)
         else:
             t_hi, hi = t_new, cand
-    return kept[1], kept[2]
+    return below if below is not None else smallest[1:]
 
 
 def _diag(d):
