@@ -160,8 +160,10 @@ def associated(model: Model) -> bool:
     Measured (issue 31): chapter 19's embedded strip pushed sideways (Tresca clay, Tresca base, smooth side
     walls: all associated) stopped at lambda = 0 when run as unsymmetric: the step started on the tangent of
     the pushed predictor (base slipping, back wall open), whose directions of 0.8 m for a push of 2.5 mm the
-    residual-norm backtracking accepted; on K0 with G and ``_overshoot`` it completes (21 steps, H as on the
-    load-controlled path to 5 digits)."""
+    residual-norm backtracking accepted; on K0 with G and ``_overshoot`` it completes (h = 0.25 m: 22 steps,
+    10 factorisations, H = 85.957 kN/m as on the load-controlled path to 5 digits). Not seen by this test:
+    an interface point that re-closes within a step has an unsymmetric chained tangent (interface_law,
+    step 1), which the symmetric factorisation then treats as symmetric -- as Davis mode does."""
     for g in model.groups:
         if isinstance(g, SoilQ8):
             mc = np.isin(g.kinds, (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT))
@@ -288,10 +290,10 @@ class _Follower:
         """The failed step's last iterate: if its consistent tangent has a mode without stiffness (Rayleigh
         quotient below ``SOFT_MODE`` of K0's along it, three inverse iterations on K_t + SINGULAR_SHIFT
         diag(K0)), which group carries it and whether the load does work on it, for the NonConvergence report
-        (key ``soft_mode``) -- e.g. chapter 19's unloaded
-        weightless strip whose cohesionless contact opened: a mechanism at lambda = 0 that no load drives,
-        whose position the corrector cannot fix (residual stagnating at 7.5e-4; the mode: Rayleigh quotient
-        2.7e-5, on the strip's u DOFs, |f.x| / |f| |x| = 8e-4). '' otherwise."""
+        (key ``soft_mode``) -- e.g. chapter 19's unloaded weightless strip whose cohesionless contact opened:
+        a mechanism at lambda = 0 that no load drives, whose position the corrector cannot fix (residual
+        stagnating at 7.5e-4; the mode: Rayleigh quotient 2.7e-5, on the strip's u DOFs, |f.x| / |f| |x| =
+        8e-4). '' otherwise."""
         u = out.get("u")
         if u is None:
             return ""
