@@ -36,8 +36,11 @@ State table (one row per transition; a "step" is one control increment ds)::
            |                                          |   1/2, 2) within [ds_min, ds_max]   |
     STEP   | converged, lambda passes the target      | redo as one load-controlled step    | FINAL
            |                                          |   to the target                     |
+    START  | every law associated (``associated``)   | run as with symmetric_tangent=True  | (same)
     any    | a symmetric tangent's factor does not    | iterate on K_t + SINGULAR_SHIFT     | (same)
            |   solve its own matrix (singular K_t)    |   diag(K0) (_regularised)           |
+    any    | symmetric: the line search overshoots    | regula falsi on G below t = 0.05    | (same)
+           |   (G(t) < 0, |r| grew)                   |   (_overshoot)                      |
     any    | not converged                            | ds <- ds / 2; next step from K0     | STEP
     any    | not converged, ds < ds_min               | NonConvergence (diagnosis: groups,  | end
            |                                          |   points changing state, lambda, s) |
@@ -68,13 +71,21 @@ from __future__ import annotations
 import math
 import time
 from collections import deque
+from dataclasses import replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..core.linsolve import Factorization
 from ..core.model import Model
 from ..core.protocol import CONSISTENT
 from ..core.solution import LIMIT_LOAD, STOPPED, Result
+from ..elements.interface import Interface6
+from ..elements.plate import PlateStrip
+from ..elements.soil_q8 import SoilQ8
+from ..elements.spring import Spring
+from ..materials.layer_laws import ELASTIC
+from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
 from .diagnostics import _failure_report
 from .increment import TANGENT_SOLVE_TOL, _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
 from .mechanism import check_mechanism, flow_is_associated, increment_energy
@@ -103,10 +114,14 @@ POOR_RUN = 3  # ... in this many successive iterations: the tangent is refactori
 # neighbours are not smooth: 0.9 / 3 61 factorisations and 5 failed steps on chapter 11, 0.85 / 3 49 and
 # 1, 0.7 / 3 250 and 20, 0.8 / 2 and 0.8 / 4 NonConvergence -- the outcome of a hard step is sensitive to
 # when its tangent is refreshed, so these numbers order the rules, they do not make one robust)
+SOFT_MODE = 1e-3  # _soft_mode: K_t's Rayleigh quotient below this fraction of K0's: a mode without stiffness
+# (chapter 19's floating strip: 2.7e-5 after three inverse iterations)
 SINGULAR_SHIFT = 1e-6  # a singular consistent tangent is factorised as K_t + this x diag(K0) (_regularised)
 GROWTH = (0.5, 2.0)  # bounds of the step factor (N_target / N)^(1/2)
 LINE_SEARCH_MIN = 1.0 / 64.0  # line search on a tangent factor: smallest step fraction tried
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
+OVERSHOOT_TRIALS = 8  # _overshoot: trials below the Matthies & Strang search's smallest step ...
+OVERSHOOT_MIN = 1e-3  # ... and the smallest step fraction it tries
 KEPT_STEPS = 24  # committed steps kept for the half-size redo of the steps around a peak
 REDO_STEPS = 3  # steps before (and after) the peak that the redo covers; the uncertainty is the larger
 # of the redo's change of the peak and the excess of the parabola through the peak and its neighbours
@@ -120,6 +135,8 @@ def run_path(
     if np.any(np.diff(np.concatenate([[0.0], targets])) <= 0.0):
         raise ValueError(f"control='work' needs rising positive load_factors, got {targets.tolist()}")
     t0 = time.perf_counter()
+    if not settings.symmetric_tangent and associated(model):
+        settings = replace(settings, symmetric_tangent=True)
     path = _Follower(model, settings, start, loads, scale=float(targets[-1]))
     try:
         with solver_progress(settings.progress, total=path.scale) as path.bar:
@@ -133,6 +150,36 @@ def run_path(
     finally:
         path.result.wall_time = time.perf_counter() - t0
     return path.result
+
+
+def associated(model: Model) -> bool:
+    """True if every law of the model has a symmetric consistent tangent: Mohr-Coulomb soil with psi = phi
+    (elastic and von Mises soil as well), Coulomb interfaces with psi = phi, plates of elastic layers only,
+    springs; any other group makes it False. The path then runs as with ``Settings.symmetric_tangent``
+    (each step starts on K0, the line search follows the potential's slope G, a singular tangent is
+    factorised shifted, see ``_regularised``), as in Davis mode: the increment is a convex problem.
+
+    Measured (issue 31): chapter 19's embedded strip pushed sideways (Tresca clay, Tresca base, smooth side
+    walls: all associated) stopped at lambda = 0 when run as unsymmetric: the step started on the tangent of
+    the pushed predictor (base slipping, back wall open), whose directions of 0.8 m for a push of 2.5 mm the
+    residual-norm backtracking accepted; on K0 with G and ``_overshoot`` it completes (h = 0.25 m: 22 steps,
+    10 factorisations, H = 85.957 kN/m as on the load-controlled path to 5 digits). Not seen by this test:
+    an interface point that re-closes within a step has an unsymmetric chained tangent (interface_law,
+    step 1), which the symmetric factorisation then treats as symmetric -- as Davis mode does."""
+    for g in model.groups:
+        if isinstance(g, SoilQ8):
+            mc = np.isin(g.kinds, (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT))
+            if any(m and p[3] != p[4] for p, m in zip(g.params, mc)):
+                return False
+        elif isinstance(g, Interface6):
+            if np.any(np.asarray(g.params)[:, 3] != np.asarray(g.params)[:, 4]):
+                return False
+        elif isinstance(g, PlateStrip):
+            if np.any(g.section.kind != ELASTIC):
+                return False
+        elif not isinstance(g, Spring):
+            return False
+    return True
 
 
 class _Follower:
@@ -235,8 +282,63 @@ class _Follower:
         out = self.last_failure
         report = _failure_report(self.model, self.system.free, out, self.lam, out.get("lam", self.lam))
         report.update(control_value=self.s, control_step=self.ds, control="work" if self.work else "lambda")
+        soft = self._soft_mode(out)
+        if soft:
+            report.update(soft_mode=soft)
         self.result.status = STOPPED
         raise NonConvergence(report, self.result)
+
+    def _soft_mode(self, out) -> str:
+        """The failed step's last iterate: if its consistent tangent has a mode without stiffness (Rayleigh
+        quotient below ``SOFT_MODE`` of K0's along it, three inverse iterations on K_t + SINGULAR_SHIFT
+        diag(K0)), which group carries it and whether the load does work on it, for the NonConvergence report
+        (key ``soft_mode``) -- e.g. chapter 19's unloaded weightless strip whose cohesionless contact opened:
+        a mechanism at lambda = 0 that no load drives, whose position the corrector cannot fix (residual
+        stagnating at 7.5e-4; the mode: Rayleigh quotient 2.7e-5, on the strip's u DOFs, |f.x| / |f| |x| =
+        8e-4). '' otherwise."""
+        u = out.get("u")
+        if u is None:
+            return ""
+        try:
+            _, k_list, _ = self.system.evaluate(u, u - self.u, self.states, CONSISTENT)
+            pattern = self.system.pattern
+            kt = pattern.matrix(pattern.assemble(k_list))
+            k0 = pattern.matrix(pattern.assemble_elastic(self.model.groups))
+            d = k0.diagonal()
+            shifted = kt + SINGULAR_SHIFT * _diag(d)
+            fac = Factorization(shifted, symmetric=False, backend=self.settings.backend)
+            x = np.ones(kt.shape[0])
+            for _ in range(3):
+                x = fac.solve(d * x)
+                x /= np.abs(x).max()
+        except (FloatingPointError, RuntimeError, ValueError):
+            return ""
+        quotient = abs(float(x @ (kt @ x))) / float(x @ (k0 @ x))
+        if not quotient < SOFT_MODE:
+            return ""
+        full = np.zeros(self.model.n_dof)
+        full[self.system.free_dofs] = x
+        total = float(x @ x)
+        share = {}
+        for g in self.model.groups:
+            on = full[np.unique(g.edofs)]
+            share[g.name] = float(on @ on) / total
+        ranked = sorted(share.items(), key=lambda item: -item[1])
+        carriers = ", ".join(f"{name} {100 * v:.0f} %" for name, v in ranked if v >= 0.5)
+        top = np.argsort(-np.abs(x))[:4]
+        where = self.system.describe_dofs(top, 4).replace("unsupported DOFs: ", "")
+        work = abs(float(self.f @ x)) / (_norm(self.f) * _norm(x)) if self.work else 0.0
+        driven = (
+            f"the reference load does almost no work on it (|f.x| / |f| |x| = {work:.1e})"
+            if work < 1e-2
+            else f"|f.x| / |f| |x| = {work:.2g}"
+        )
+        return (
+            f"the tangent has a mode without stiffness (x.K_t.x / x.K0.x = {quotient:.1e}), "
+            f"on the DOFs of {carriers} ({where}); {driven}: a body or region that "
+            f"nothing holds at lambda = {self.lam:.4g} (e.g. an unloaded weightless strip whose contact "
+            "opened)"
+        )
 
     def _commit(self, out, adapt=True):
         du = out["u"][self.system.free] - self.u[self.system.free]
@@ -584,4 +686,56 @@ class _Follower:
             if t_new == t:
                 break
             t, best = t_new, trial(t_new)
+        if self.settings.symmetric_tangent and norm(best) > r0 and (best[2] is None or best[3] < 0.0):
+            t, best = _overshoot(trial, norm, r0, g0, t_lo, g_lo, t, best)
         return best[0], best[1], best[2], t
+
+
+def _overshoot(trial, norm, r0, g0, t_lo, g_lo, t, best):
+    """(t, trial) below Matthies & Strang's smallest step 0.05 where their search overshot: G(t) < 0 (the
+    potential's minimum along the direction lies below t) or the update failed, and the residual grew.
+
+    Why: a direction through a nearly singular tangent is long -- on chapter 19's pushed strip (Tresca soil,
+    smooth side walls whose kn is 1e3 times the soil's stiffness) 0.7 m for a push of 2.5 mm, the soil beside
+    an opening wall having no stiffness left -- and t = 0.05 of it drives the wall nodes centimetres into
+    their contact: the residual grew 1e2-1e5 times in a step and the path stopped at lambda = 0. Regula falsi
+    on G over the bracket [t_lo (G > 0), t (G < 0 or failed)], bisection where the update failed, for up to
+    ``OVERSHOOT_TRIALS`` trials down to ``OVERSHOOT_MIN``, until |G| <= G(0) / 2; else the largest trial
+    with G > 0 (the potential, convex along the line, falls all the way to it), or, without one, the trial
+    of the smallest residual (the corrector's divergence and stagnation tests then judge the step).
+    Stopping at the first trial whose residual fell below the current one instead crept by t ~ 0.003 where
+    the potential has a kink (a contact changing state along the line) and stopped Davis-mode zoo scene 74
+    at lambda = 0.
+
+    Only for symmetric tangents (``Settings.symmetric_tangent``, Davis mode, ``associated`` models): there G
+    is the slope of the increment's convex potential and its root brackets the potential's minimum. Without
+    that gate the user-flow random zoo (seed 1; no scene associated) changed where the K0 steps' search
+    overshot: of its first 31 scenes, 30's limit 0.9477 became a NonConvergence at lambda = 0.943 and the
+    limits of 3, 8, 11, 13, 17 moved by up to 0.12 %."""
+    t_hi, hi = t, best
+    smallest = (norm(best), t, best)
+    below = None  # the largest trial with G > 0
+    for _ in range(OVERSHOOT_TRIALS):
+        g_hi = hi[3]
+        if hi[2] is None or not np.isfinite(g_hi):
+            t_new = 0.5 * (t_lo + t_hi)
+        else:
+            t_new = t_hi - g_hi * (t_hi - t_lo) / (g_hi - g_lo)
+        # strictly inside the bracket, away from its ends (regula falsi stalls at one end otherwise)
+        t_new = min(max(t_new, t_lo + 0.05 * (t_hi - t_lo), OVERSHOOT_MIN), t_lo + 0.95 * (t_hi - t_lo))
+        if not t_lo < t_new < t_hi:
+            break
+        cand = trial(t_new)
+        if norm(cand) < smallest[0]:
+            smallest = (norm(cand), t_new, cand)
+        if cand[2] is not None and abs(cand[3]) <= 0.5 * g0:
+            return t_new, cand
+        if cand[2] is not None and cand[3] > 0.0:
+            t_lo, g_lo, below = t_new, cand[3], (t_new, cand)
+        else:
+            t_hi, hi = t_new, cand
+    return below if below is not None else smallest[1:]
+
+
+def _diag(d):
+    return sp.diags(d, format="csc")
