@@ -88,12 +88,9 @@ def join_phases(model: Model, records: list[dict]) -> Result:
         factorizations=sum(r["result"].factorizations for r in records),
         status=last.status,
         limit_load_factor=phase_time(last.limit_load_factor),
-        limit_load_upper=phase_time(last.limit_load_upper),
         limit_evidence=last.limit_evidence,
         limit_uncertainty=last.limit_uncertainty,
         limit_suspect=last.limit_suspect,
-        relaxed_steps=last.relaxed_steps,
-        viscous_from=None if last.viscous_from is None else records[-1]["first"] + last.viscous_from - 1,
         u_origin=geo.u_origin,
         f_int_origin=geo.f_int_origin,
     )
