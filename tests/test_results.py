@@ -167,8 +167,9 @@ def test_result_file_round_trip_is_exact(which, request, tmp_path):
             rows = joined.f_int[record["first"] : record["last"] + 1]
             assert len(rows) == record["result"].n_steps
             assert all(a is b for a, b in zip(rows, record["result"].f_int[1:]))
-        # the geostatic phase's intermediate steps are not SceneResult rows: they came back from the file
-        assert back.phases[0]["result"].n_steps == result.phases[0]["result"].n_steps > 1
+        # the geostatic phase's own rows came back from the file (on the controlled path, the default, a
+        # dead-load-only phase is one balancing step: they are not SceneResult rows)
+        assert back.phases[0]["result"].n_steps == result.phases[0]["result"].n_steps >= 1
 
 
 def test_phased_file_keeps_the_phase_loads(phased, tmp_path):
@@ -188,7 +189,7 @@ def test_phased_file_keeps_the_phase_loads(phased, tmp_path):
         for record in result.phases:
             assert force[record["last"]] == pytest.approx(expected[record["name"]], rel=1e-4), record["name"]
     res = back.phases[0]["result"]
-    res.u[2] = res.u[2] + 1e-10
+    res.u[-1] = res.u[-1] + 1e-10
     assert max_difference(phased, back)[1] == "phases[0].solver.u"
 
 
@@ -716,7 +717,7 @@ def test_rc_section_table_equals_the_python_section():
     )
     scene, _, settings = read_scene_file(os.path.join(EXAMPLES, "rc_strip.toml"))
     assert scene_to_dict(scene)["foundation"]["section"] == scene_to_dict(Foundation(0, 1, python))["section"]
-    assert settings.method == "full" and len(scene.loads) == 2
+    assert settings.control == "work" and len(scene.loads) == 2  # the default: the controlled path
 
 
 def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):

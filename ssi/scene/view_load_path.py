@@ -140,7 +140,7 @@ class LoadPathView:
             }
         if not self.is_push_over:
             if self.status == "limit load reached":  # only the controlled path finds one
-                how = "limit load of the controlled path: " + self.solver_result.limit_evidence
+                how = f"limit load detected by the solver ({self.solver_result.limit_evidence})"
                 return out | {"is_limit": True, "how": how}
             return out | {"is_limit": False, "how": "largest carried load: the full load, no limit found"}
         after = load[rows[rows > i]]
