@@ -63,9 +63,10 @@ class Settings:
     ``stepping`` (load control): ``"auto"`` (default) -- each target load factor is approached in increments
     that start at ``first_step``, grow or shrink with the iteration count (aiming at ``desired_iterations``)
     and are halved on failure down to ``min_step``; ``"fixed"`` -- each target is one increment, halved at
-    most ``max_cuts`` times on failure (the paper's equal increments). The controlled path's steps start at
-    ``first_step`` and stay within [``min_step``, ``max_step``] as fractions of its control (see path.py).
-    Step sizes are fractions of the largest target load factor; tolerances are relative (dimensionless).
+    most ``max_cuts`` times on failure (the paper's equal increments). Load steps are fractions of the largest
+    target load factor; the controlled path's control steps start at ``first_step`` and stay within
+    [``min_step``, ``max_step``] as fractions of the control at the largest target on the elastic path
+    (see path.py). Tolerances are relative (dimensionless).
 
     ``max_iter`` and ``desired_iterations`` default to 100 and 20 on the controlled path, and per method on
     load control (bfgs 100 and 20, modified 300 and 60, full 30 and 8).
