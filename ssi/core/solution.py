@@ -59,7 +59,7 @@ class Result:
     f_ref: np.ndarray | None = None  # (n_dof,) reference load [N/m], scaled by the load factor
     f_dead: np.ndarray | None = None  # (n_dof,) dead load [N/m], constant
 
-    # the per-step lists (one entry per row); the solver's snapshots and a phased scene's join copy these
+    # the per-step lists (one entry per row); a phased scene's join copies these
     ROWS = (
         "load_factor",
         "u",
