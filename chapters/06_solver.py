@@ -384,10 +384,11 @@ print("all checks passed")
 #   steps around it redone at half size) and with `limit_suspect` when a check fails.
 #
 # The module's docstring draws the whole control as one state table; it is printed here from the source, so
-# that this page and the code cannot disagree. The load-controlled path with its fallbacks (crawl window,
-# viscous relaxation, bracketing, stiffness tests) stays available as `Settings(control="load")` while it
-# is retired; it is no longer this chapter's subject. Every `Settings` below names its control, so the
-# chapter reads the same whatever the default is.
+# that this page and the code cannot disagree. It is the default (`Settings()`). Load control stays
+# available as `Settings(control="load")` -- the paper's algorithm, unloading, comparisons -- without the
+# fallbacks it once had (crawl window, viscous relaxation, bracketing, stiffness tests): a step it cannot
+# solve is `NonConvergence`, never a limit. Every `Settings` below names its control, so the chapter reads
+# the same whatever the default is.
 
 # %%
 from ssi.elements.section import homogeneous  # noqa: E402
@@ -453,7 +454,7 @@ def strategies(symmetric):
         "controlled path": Settings(control="work", symmetric_tangent=symmetric, **SUPERLU),
         "modified Newton (paper)": Settings.paper(control="load", max_iter=400, max_cuts=1, **SUPERLU),
         "full Newton (paper's, K_T)": Settings.paper(
-            method="full", control="load", line_search=True, fallback=None, **SUPERLU
+            method="full", control="load", line_search=True, **SUPERLU
         ),
     }
 

@@ -111,7 +111,9 @@ SELF = "chord"  # the strip's default self-bending (chapter 02, Fig. 2.6)
 N_EL = 2 if FAST else 4  # elements per region (shear span, half middle third)
 N_STEPS = 40 if FAST else 100
 W_LOAD = 0.036  # load-point travel [m]: mid-span deflection passes 42 mm
-SETTINGS = Settings(max_iter=3000)  # modified Newton (paper): slow but sure past yield
+# displacement control in the given steps, past the peak of the load: load control (prescribed
+# displacement; the default controlled path ends where the reaction peaks), BFGS on K0, a large iteration cap
+SETTINGS = Settings(control="load", max_iter=3000)
 
 # %% [markdown]
 # ## The model actually run (Fig. 11)

@@ -517,8 +517,8 @@ for name, kw, method in variants:
             continue
         scene = chapter10_footing(h_fine=H_TRADE, settle=SETTLE[20.0], **kw)
         if method == "modified":
-            # the paper's algorithm: modified Newton on K0 in the given increments, one halving, no viscous
-            # fallback (with automatic steps instead it crawled to the limit in ~3000 increments, 110 s)
+            # the paper's algorithm: modified Newton on K0 in the given increments, one halving (with
+            # automatic steps and the former viscous fallback: ~3000 increments to the limit, 110 s)
             out = push_footing(
                 scene, n_steps=n, settings=Settings.paper(backend="superlu", max_iter=400, max_cuts=1)
             )

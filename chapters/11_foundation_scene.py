@@ -20,7 +20,8 @@
 # In this chapter you will
 # - describe a scene with `ssi.scene` (soil layers, a foundation section, a contact law, column loads) and see
 #   that only the element groups the scene needs are built;
-# - solve it with the paper's modified Newton–Raphson and with full Newton, and measure the trade;
+# - solve it with the paper's modified Newton–Raphson and with the default controlled path, and measure the
+#   trade;
 # - read the results and store them in HDF5;
 # - check them where a check can fail: the steel stress against an independent, layer-free section calculation
 #   at the same curvature and axial force, and the settlement and the moment against mesh refinement, with the
@@ -105,32 +106,30 @@ print(
 )
 
 # %% [markdown]
-# ## Solving: the paper's modified Newton–Raphson and full Newton
+# ## Solving: the paper's modified Newton–Raphson and the controlled path
 #
-# Modified Newton–Raphson factorises K0 once and pays with many cheap iterations; full Newton refactorises
-# the consistent tangent every iteration and needs few. Both stop at the same tolerance, so their answers
-# may differ only by that tolerance; which is faster depends on how nonlinear the step is.
+# Modified Newton–Raphson factorises K0 once and pays with many cheap iterations in load steps; the default
+# controlled path (`Settings()`, chapter 06) follows the work of the load with a lagged consistent tangent,
+# L-BFGS updates and a line search, and needs fewer. Both stop at the same tolerance, so their answers
+# may differ only by that tolerance; which is faster depends on how nonlinear the step is. (Full Newton in
+# load steps, without the L-BFGS retry it once had, stops here at lambda = 0.66 in a `NonConvergence`: an
+# increment on the cracking strip that does not converge in 30 tangent iterations, while the path is
+# still as stiff as at its start -- not a limit.)
 
 # %%
 runs = {}
-for method in ("modified", "full"):
+for method, settings in (("modified", Settings(method="modified", max_iter=500)), ("controlled", Settings())):
     scene_built = foundation_scene(H_FINE).build()
     t0 = time.perf_counter()
-    # full Newton keeps its default cap of 30 tangent iterations: an increment that needs more (a step in
-    # which cracks spread along the strip) is retried with K0, which is cheaper than hundreds of tangent
-    # factorisations (measured: h = 0.5 m 1.1 s instead of 5.6 s with a cap of 500; h = 0.125 m 32 s
-    # instead of 124 s)
-    out = scene_built.solve(
-        n_steps=10, settings=Settings(method=method, max_iter=500 if method == "modified" else None)
-    )
+    out = scene_built.solve(n_steps=10, settings=settings)
     runs[method] = (out, time.perf_counter() - t0)
     res = out.solver_result
     print(
-        f"{method:9s}: {sum(res.iterations):5d} iterations, {res.factorizations:4d} factorisations, "
+        f"{method:10s}: {sum(res.iterations):5d} iterations, {res.factorizations:4d} factorisations, "
         f"{res.cuts} step cuts, {runs[method][1]:6.2f} s, max settlement "
         f"{1e3 * out.settlement()[1].max():.2f} mm"
     )
-out = runs["full"][0]
+out = runs["controlled"][0]
 
 # %% [markdown]
 # ## What the engineer reads off
@@ -173,7 +172,8 @@ save_figure(fig, "ch11_foundation_scene")
 
 # %% [markdown]
 # ## Checks
-# - **Modified vs full Newton** agree to the solver tolerance (two different iterations, one answer).
+# - **Modified Newton vs the controlled path** agree to the solver tolerance (two different iterations, one
+#   answer).
 # - **Steel against an independent section calculation.** At the point where the bars are most stressed, the
 #   strip's curvature κ and axial force N are read off; the layer-free section analysis of chapter 02
 #   (`ssi.elements.section_analysis.layer_free_state`: adaptive quadrature of the continuous stress profile,
@@ -190,9 +190,9 @@ save_figure(fig, "ch11_foundation_scene")
 #   residual such an iterate leaves is the stress correction of the yielding soil and the cracked strip,
 #   a self-equilibrated set of nodal forces (zero resultant) wherever the nonlinearity is away from the
 #   supports, so every *global* resultant holds for any iterate. The row `scene_equilibrium` is therefore a
-#   consistency figure only. What does see the stopped iterate is the settlement: against the converged full
-#   Newton answer it differs by far more than the 1e-3 within which the two converged methods must agree —
-#   the method check above fails on it.
+#   consistency figure only. What does see the stopped iterate is the settlement: against the converged
+#   answer of the controlled path it differs by far more than the 1e-3 within which the two converged
+#   methods must agree — the method check above fails on it.
 
 # %%
 applied = 2 * N_COLUMN + 25e3 * 0.4 * 6.0
@@ -231,14 +231,15 @@ print(
     f"stopped-early iterate (force_tol {LOOSE_TOL}, {sum(loose.solver_result.iterations)} iterations against "
     f"{sum(runs['modified'][0].solver_result.iterations)} converged): contact resultant error "
     f"{loose_resultant_error:.1e}, base load error {loose_base_error:.1e} (converged: "
-    f"{equilibrium_error:.1e}, {abs(base_load(out) - applied) / applied:.1e}); settlement vs full Newton "
+    f"{equilibrium_error:.1e}, {abs(base_load(out) - applied) / applied:.1e}); settlement vs the "
+    "controlled path "
     f"{loose_gap:.2e} (converged modified Newton: {method_gap:.2e})"
 )
 mid = np.argmin(np.abs(layers["x"].ravel()))
 top_concrete = int(np.flatnonzero(~layers["steel"])[-1])
 print(
     f"contact resultant {contact_resultant(out) / 1e3:.2f} kN/m vs applied {applied / 1e3:.2f} kN/m "
-    f"(relative error {equilibrium_error:.2e}); modified vs full Newton {method_gap:.2e}"
+    f"(relative error {equilibrium_error:.2e}); modified Newton vs controlled path {method_gap:.2e}"
 )
 
 # the strip's section state at the most stressed bar point
@@ -294,7 +295,7 @@ record(
 
 # %%
 path = paths.RESULTS / "ch11_foundation_scene.h5"
-write_result(path, out.solver_result, Settings(method="full"), overwrite=True)
+write_result(path, out.solver_result, Settings(), overwrite=True)
 back = read_result(path)
 assert back["model"]["scene"]["foundation"]["x1"] == 3.0
 assert np.array_equal(back["u"][-1], out.u[-1])
@@ -314,9 +315,9 @@ print("stored:", path.name, "| groups:", list(back["state"]), "| steps:", len(ba
 # The wall time is measured beside it.
 
 # %%
-# the default solver (BFGS on K0, its viscous fallback when the path crawls): 0.5 / 0.9 / 4.9 / 41 s on
-# h = 1 / 0.5 / 0.25 / 0.125 m (measured, loaded machine), full Newton in 10 steps 2.7 / 30 / 233 s on the
-# first three; fast mode stops at three meshes, the least a fitted order needs
+# the default solver (the controlled path; until issue 31 load control with BFGS on K0 and a viscous
+# fallback, 0.5 / 0.9 / 4.9 / 41 s on h = 1 / 0.5 / 0.25 / 0.125 m, measured on a loaded machine); fast mode
+# stops at three meshes, the least a fitted order needs
 sizes = [1.0, 0.5, 0.25] if FAST else [1.0, 0.5, 0.25, 0.125]
 
 
@@ -494,8 +495,8 @@ if not FAST:
 # convergence further; that is not isolated here. A design moment to a few per cent needs h = 0.125 m or a
 # Richardson extrapolation (chapter 13). An iterate stopped at 5 % residual still balances the loads in its
 # contact resultant and its base reaction to round-off (its residual is self-equilibrated), so that row is
-# consistency only; its settlement misses the converged one by 9·10⁻³, which the method check (10⁻³) catches.
-# Full Newton and the paper's modified Newton–Raphson give the same answer; the measured iteration counts and
-# wall times above are the trade between them. Beyond steel yield this particular beam forms a plastic hinge
-# at mid-span; load control then stops with a `NonConvergence` report naming the node — use `run_arc_length`
-# or displacement control (chapter 06) to follow the path further.
+# consistency only; its settlement misses the converged one by 4.6·10⁻³, caught by the method check (10⁻³).
+# The controlled path and the paper's modified Newton–Raphson give the same answer; the measured iteration
+# counts and wall times above are the trade between them. Beyond steel yield this particular beam forms a
+# plastic hinge at mid-span; load control then stops with a `NonConvergence` report naming the node — the
+# controlled path (the default) or `run_arc_length` (chapter 06) follows the path further.

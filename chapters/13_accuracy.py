@@ -380,7 +380,8 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # surface layer still sized from the mean element, γ = 2 stopped in the default solver at λ = 0.99 and
 # γ = 1.5 gave order 0.80 — not enough for three halvings. With γ = 1.75 the driver predicts 1.24 % at
 # h/4 — a copy it has already solved — and returns it (40 s on the loaded machine, most of it that h/4
-# solve: its path goes viscous and relaxes at λ = 1). Full mode runs it below; fast mode leaves it out (that
+# solve, measured on the load-controlled default before issue 31, whose path went viscous and relaxed at
+# λ = 1). Full mode runs it below; fast mode leaves it out (that
 # one solve costs more than the rest of the section).
 #
 # **The reference.** A claim "2 %" needs a reference much finer than what was delivered: the next copies of
@@ -399,18 +400,13 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # 47.61 mm is 0.82 % from that limit (0.60 % from the h/8 copy), against the driver's predicted 1.24 %
 # (efficiency index 1.5) — the target is met. Two things the reference runs showed, left open: an earlier run
 # of the h/8 copy, before the linear solver was made reproducible (`MKL_CBWR`), stopped at λ = 0.974 as a
-# "limit load"; and the h/16 copy (70 989 DOFs, 34 min) cannot relax its viscous path above λ = 0.606. It
-# used to end there as "limit load reached", which is not believable (the h/4 copy carries 1.5 times the
-# service load). Its evidence was the held load at λ = 0.615, which "kept flowing" with a current stiffness
-# of 0.044 of the initial: below `collapse_stiffness = 0.05`, but it relaxed by half per increment (a slow
-# relaxation, not a mechanism), and the relaxed path's secant stiffness there was 0.95. The zoo's held loads
-# above a detected limit flow at 4·10⁻⁹ to 1.6·10⁻³, the one nearest each limit at most 7·10⁻⁴, so a held
-# load now counts as flowing
-# only below a tenth of `collapse_stiffness`, and only the nearest one counts
-# (`tests/test_solver.py::test_collapse_evidence_is_the_nearest_held_load`). Re-run with that rule, the h/16
-# copy took the same path (37 min) and stopped with `NonConvergence`: the largest relaxed load factor
-# 0.6057, the held load at 0.6151 not flowing, the worst residual under the strip at x = −1.4 m (plate and
-# contact) -- an honest stop where it used to report a false collapse.
+# "limit load"; and the h/16 copy (70 989 DOFs, 34 min) could not relax the viscous path of the former
+# load-controlled default above λ = 0.606, which that solver first reported as "limit load reached" -- not
+# believable: the h/4 copy carries 1.5 times the service load -- and, once its collapse evidence was
+# tightened, as `NonConvergence`. Issue 31 removed that machinery (viscous fallback, relaxation, bracketing,
+# stiffness tests): on the controlled path, now the default, the h/16 copy stops in `NonConvergence` at
+# λ = 0.327, its worst residual in the soil under the strip (chapter 11's row `ch11_h16`,
+# `reference_data/chapter11_h16_controlled.csv`) -- an honest stop, never a limit.
 
 # %%
 # the even mesh as given: an honest refusal, consistent with its order (asymptotic, more than 3 halvings)

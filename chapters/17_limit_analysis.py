@@ -224,9 +224,9 @@ for r in hist:
 #
 # No rigorous lower bound exists for ψ < φ. The associated bracket (above) is a ceiling (Radenković); the
 # Davis material c* = βc, tan φ* = β tan φ (β = cos φ for ψ = 0) is associated, so its bracket is rigorous
-# for it and must contain its own Prandtl value. Chapter 10's incremental ψ = 0 limits (viscously relaxed
-# pushes, measured there: 1.039, 0.995 and 0.969 × Prandtl(φ = 20°) on h = 0.25, 0.125 and 0.0625 m) are
-# set beside both brackets.
+# for it and must contain its own Prandtl value. Chapter 10's former incremental ψ = 0 limits (viscously
+# relaxed pushes of the load-controlled solver before issue 31, measured there: 1.039, 0.995 and 0.969 ×
+# Prandtl(φ = 20°) on h = 0.25, 0.125 and 0.0625 m) are set beside both brackets.
 
 # %%
 soil_na = Material(C, 20.0, psi_deg=0.0)

@@ -259,18 +259,24 @@ print(f"strip A: mean {1e3 * sa['mean']:.2f} mm, tilt {1e3 * sa['tilt']:.3f} mm/
 # On a Mohr–Coulomb soil (c = 10 kPa, φ = 30°, ψ = 0) superposition no longer holds. Strip A (x ∈ [−2, 0])
 # carries 250 kN/m alone and then with strip B, equally loaded, at a clear distance s to its right; the extra
 # mean settlement of A caused by B is the interaction. It must fall monotonically with s (the plastic zones
-# and the elastic stress bulbs separate) towards zero.
+# and the elastic stress bulbs separate) towards zero. Each strip carries its own weight (0.5 m of concrete,
+# 25 kN/m³ × 0.5 m × 2 m = 25 kN/m, as a column load at its middle): an unloaded, weightless strip on a
+# cohesionless contact floats -- its contact may open anywhere at no cost, so its position is not
+# determined, and the controlled path stops in `NonConvergence` at λ = 0 on that strip's contact rather than
+# pick one of those positions.
 
 # %%
 MC = [SoilLayer(1.0, E=20e6, nu=0.3, unit_weight=18e3, c=10e3, phi_deg=30.0, psi_deg=0.0)]
 FRICTION = Contact(kn=1e10, kt=1e9, phi_deg=25.0)
+WEIGHT = 25e3 * 0.5 * 2.0  # [N/m] each strip's own weight
 
 
 def strip_a_settlement(gap, n_b):
     site = Site(40.0, 15.0, MC, mesher="gmsh", mesh=MeshSize(h_fine=0.25, h_coarse=3.0),
                 strips=[Strip(Foundation(-2.0, 0.0, SECTION), FRICTION),
                         Strip(Foundation(gap, gap + 2.0, SECTION), FRICTION)],
-                loads=[ColumnLoad(-1.0, N=250e3), ColumnLoad(gap + 1.0, N=n_b)])  # fmt: skip
+                loads=[ColumnLoad(-1.0, N=250e3 + WEIGHT),
+                       ColumnLoad(gap + 1.0, N=n_b + WEIGHT)])  # fmt: skip
     out = site.build().solve()
     assert out.result.status == "completed"
     return out.strip_summary(0)["mean"]

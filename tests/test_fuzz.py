@@ -227,9 +227,7 @@ def test_blas_illegal_value_message_does_not_reach_the_terminal(capfd, monkeypat
     with pytest.raises(NonConvergence):
         _readme_scene().build().solve(
             n_steps=10,
-            settings=Settings(
-                method="full", stepping="fixed", viscous_fallback=False, fallback=None, backend="superlu"
-            ),
+            settings=Settings(method="full", stepping="fixed", backend="superlu"),
         )
     ctypes.CDLL(None).fflush(None)  # C's stdout is block-buffered: anything printed must reach capfd now
     out, err = capfd.readouterr()

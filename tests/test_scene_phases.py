@@ -310,7 +310,6 @@ N = 3e6
 n_steps = 2
 method = "modified"
 stepping = "fixed"
-viscous_fallback = false
 max_iter = 40
 max_cuts = 1
 """

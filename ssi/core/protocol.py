@@ -37,7 +37,7 @@ overrides what it has; nobody asks ``hasattr(group, ...)``:
 =============================  ======================================================================
 ``forces_only``                accepts the FORCES_ONLY flag (else it gets K0_MATRIX and k_el is ignored)
 ``viscous``, ``viscosity``     takes a Duvaut--Lions viscosity tau = dt / eta per increment [-], which
-                               the solver's viscous recovery sets (only on groups with ``viscous``)
+                               a group with ``viscous`` is built with (the solver sets none)
 ``history_fields``             name -> index on the last axis of ``state`` (read with :meth:`history`)
 ``point_codes(state)``         a state code per integration point (e.g. stick/slip/open), named by
                                ``point_code_names``, or None
@@ -77,7 +77,7 @@ class ElementGroup:
 
     #: accepts ``FORCES_ONLY`` (internal forces without matrices)
     forces_only: bool = False
-    #: takes a Duvaut--Lions viscosity (the solver's viscous recovery sets ``viscosity`` on these groups only)
+    #: takes a Duvaut--Lions viscosity (set when the group is built; the solver sets none)
     viscous: bool = False
     #: the viscosity in force, tau = dt / eta per increment [-]; 0: rate independent
     viscosity: float = 0.0

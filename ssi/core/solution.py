@@ -49,9 +49,7 @@ class Result:
     factorizations: int = 0
     status: str = COMPLETED
     limit_load_factor: float | None = None
-    limit_load_upper: float | None = None  # limit found by relaxing a viscous path: the smallest load
-    # factor at which no rate-independent equilibrium was found (the limit lies in [factor, upper])
-    limit_evidence: str = ""  # why the stop was taken for a collapse (viscous path)
+    limit_evidence: str = ""  # controlled path: why the path is taken to have peaked (peak or plateau)
     limit_uncertainty: float | None = None  # controlled path (Settings(control="work")): relative change
     # of the peak load when the last steps before it are redone at half size (its numerical uncertainty)
     limit_suspect: str = ""  # controlled path: why the limit is not to be read as a capacity ("" if no check
@@ -63,16 +61,12 @@ class Result:
     limit_stored_share: float | None = None  # controlled path: the share of the load's work on the limit's
     # increment that the laws stored elastically (0 for a mechanism; also reported for non-associated flow,
     # where it certifies nothing); None where not split (an RC strip)
-    relaxed_steps: int | None = None  # viscous path: relaxation increments after the last target (None
-    # when the path was cut back to a bracketed limit load)
-    viscous_from: int | None = None  # viscous fallback: the steps from here to the relaxation are
-    # viscous (rate-dependent) states; the last step is relaxed
     u_origin: np.ndarray | None = None  # displacement and internal force of the state the structural
     f_int_origin: np.ndarray | None = None  # loads are measured from (the geostatic state)
     f_ref: np.ndarray | None = None  # (n_dof,) reference load [N/m], scaled by the load factor
     f_dead: np.ndarray | None = None  # (n_dof,) dead load [N/m], constant
 
-    # the per-step lists (one entry per row); the solver's snapshots and a phased scene's join copy these
+    # the per-step lists (one entry per row); a phased scene's join copies these
     ROWS = (
         "load_factor",
         "u",
@@ -127,10 +121,10 @@ class Result:
 
     def rate_independent_steps(self) -> np.ndarray:
         """Indices of the steps that are equilibrium states of the rate-independent law: all of them, except
-        the viscous states of a viscous path (its fallback stretch and its relaxation stages before the last).
-        Read extreme values of a path (the largest load reached) over these only: a viscous state's
-        overstress carries load the material cannot (measured: chapter 10's psi = 0 push, 1.62 x Prandtl on
-        its viscous stretch against 0.993 relaxed)."""
+        the steps solved with a Duvaut-Lions viscosity in force (``step_viscosity > 0``: groups built with
+        ``viscosity > 0``; the solver sets none). Read extreme values of a path (the largest load reached)
+        over these only: a viscous state's overstress carries load the material cannot (measured: chapter
+        10's psi = 0 push, 1.62 x Prandtl on a viscous stretch against 0.993 relaxed)."""
         return np.flatnonzero(np.asarray(self.step_viscosity) == 0.0)
 
     def displacement(self, ids: ArrayLike, comp: str | int) -> np.ndarray:
@@ -173,12 +167,7 @@ class Result:
     def message(self) -> str:
         if self.status == STOPPED:
             return f"stopped: no convergence beyond lambda = {self.load_factor[-1]:.6g} (see NonConvergence)"
-        if self.collapsed and self.limit_load_upper is not None:
-            return (
-                f"limit load reached at lambda = {self.limit_load_factor:.6g} (no rate-independent "
-                f"equilibrium found at {self.limit_load_upper:.6g}: {self.limit_evidence})"
-            )
-        if self.collapsed and self.limit_evidence.startswith("controlled path"):
+        if self.collapsed:  # only the controlled path finds a limit (ssi/solver/path.py)
             unc = "not measured" if self.limit_uncertainty is None else f"{self.limit_uncertainty:.2e}"
             text = f"limit load reached at lambda = {self.limit_load_factor:.6g} ({self.limit_evidence}; "
             text += f"relative uncertainty {unc}"
@@ -186,15 +175,4 @@ class Result:
                 text += f"; mechanism certificate lambda_k / lambda_peak = {self.limit_mechanism:.4f}"
             text += ")"
             return text + (f"; suspect: {self.limit_suspect}" if self.limit_suspect else "")
-        if self.collapsed:
-            return (
-                f"limit load reached at lambda = {self.limit_load_factor:.6g} (the path stopped rising; "
-                f"current stiffness {self.stiffness[-1]:.3g} of the initial)"
-            )
-        text = f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
-        if self.viscous_from is not None:
-            text += (
-                f" (viscous fallback from step {self.viscous_from}, relaxed to the rate-independent state "
-                f"in the last {self.relaxed_steps} steps)"
-            )
-        return text
+        return f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"

@@ -11,8 +11,8 @@ overwritten without ``--overwrite``. ``ssi run scene.toml --estimate`` also solv
 (:func:`ssi.scene.estimate.estimate_solved`) and prints, stores and reports the estimated discretisation
 error of its answer: of a push-over the capacity (a capacity whose estimated error exceeds 5 % says so),
 else the settlement.
-A run that ends at a detected limit load is a complete answer (status "limit load reached", with the load
-factor the scene carries; exit status 0). A run the solver stops before the end of its load path (a
+A run whose controlled path peaks is a complete answer (status "limit load reached", with the load factor
+the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
 status 3. A site file (:mod:`ssi.scene.site_file`) is solved by :mod:`ssi.io.cli_site`: a per-foundation
 summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``, and the result
@@ -48,7 +48,7 @@ def _column_loads_exist(scene) -> bool:
 def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     """The numbers ``ssi run`` prints, from a SceneResult: SI units (m, Pa, N/m, N m/m, s).
 
-    ``status``: "completed" (the whole load path), "limit load reached" (the solver detected a collapse: the
+    ``status``: "completed" (the whole load path), "limit load reached" (the controlled path peaked: the
     path up to the limit is the answer, ``limit_load_factor`` the fraction of the loads -- of a phased scene,
     of the last phase's loads -- that the scene carries) or "stopped" (the solver failed before either;
     ``stop_reason``). ``phase``: of a phased scene, the name of the last phase reached; ``phase_load_factor``

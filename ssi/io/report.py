@@ -118,8 +118,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
     cap = s.get("capacity") or {}
     if cap.get("viscous_rows"):
         out.append(
-            f"{cap['viscous_rows']} rows are viscous states of the solver's fallback (overstress, not "
-            "equilibria): left out of the capacity and of the maxima."
+            f"{cap['viscous_rows']} rows are viscous states (groups with their own Duvaut-Lions viscosity: "
+            "overstress, not equilibria): left out of the capacity and of the maxima."
         )
     if s.get("push_over") and cap and not cap.get("is_limit"):
         out.append(
@@ -231,12 +231,6 @@ def report_html(
             f"<tr><td>{'footing load (soil reaction)' if s.get('push_over') else 'load'}</td>"
             f'<td class="num">{cap["load"] / 1e3:.2f}</td><td>kN/m</td></tr>'
             f'<tr><td>at settlement</td><td class="num">{1e3 * cap["settlement"]:.2f}</td><td>mm</td></tr>'
-            + (
-                f'<tr><td>upper end of the bracket</td><td class="num">{cap["upper"] / 1e3:.2f}</td>'
-                "<td>kN/m</td></tr>"
-                if cap.get("upper") is not None
-                else ""
-            )
             + _capacity_estimate_rows(cap.get("estimate"))
             + f"</table><p>How it was found: {esc(cap['how'])}.</p>"
         )

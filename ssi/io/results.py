@@ -26,9 +26,10 @@ Layout::
     /steps/state_step               (n_kept,) the step each kept state belongs to
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
             step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
-            with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_load_upper,
-            limit_evidence, relaxed_steps, viscous_from, limit_uncertainty, limit_suspect, limit_mechanism,
-            limit_stored_share
+            with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_evidence,
+            limit_uncertainty, limit_suspect, limit_mechanism, limit_stored_share (files written before
+            issue 31 also hold limit_load_upper, relaxed_steps and viscous_from of the removed viscous
+            fallback: not read)
                                     (the result's; of a SceneResult its solver_result, except of a phased one)
     /solver/u_rows, state_rows      the solver result's rows of u / states: the index of the /steps row (of
                                     /steps/state) they are, or -1 for a row of its own in u_own / state_own
@@ -299,9 +300,6 @@ def _write_solver(grp, res, u, states, names):
     grp["step_viscosity"] = np.asarray(res.step_viscosity, np.float64)
     grp.attrs["status"] = res.status
     grp.attrs["limit_load_factor"] = np.nan if res.limit_load_factor is None else res.limit_load_factor
-    # a viscous path's record (None written as nan / -1): without it a stored bracketed limit lost its upper
-    # bound and its evidence, and a relaxed path its viscous stretch
-    grp.attrs["limit_load_upper"] = np.nan if res.limit_load_upper is None else res.limit_load_upper
     grp.attrs["limit_evidence"] = res.limit_evidence
     # the controlled path's limit: its numerical uncertainty (nan: not measured) and why it is suspect
     grp.attrs["limit_uncertainty"] = np.nan if res.limit_uncertainty is None else res.limit_uncertainty
@@ -309,8 +307,6 @@ def _write_solver(grp, res, u, states, names):
     # its mechanism certificate (ssi.solver.mechanism; nan: none given)
     for key in ("limit_mechanism", "limit_stored_share"):
         grp.attrs[key] = np.nan if getattr(res, key) is None else getattr(res, key)
-    for key in ("relaxed_steps", "viscous_from"):
-        grp.attrs[key] = -1 if getattr(res, key) is None else getattr(res, key)
     for key in ("u_origin", "f_int_origin", "f_ref", "f_dead"):
         if getattr(res, key, None) is not None:
             grp[key] = np.asarray(getattr(res, key), np.float64)
@@ -478,10 +474,6 @@ def _optional_float(value):
     return None if value is None or not np.isfinite(value) else float(value)
 
 
-def _optional_count(value):
-    return None if value is None or value < 0 else int(value)
-
-
 def _scene_result(info, lam, u, states, solver, phases, coords):
     from ..scene import SceneResult, join_phases
     from ..scene.scene_file import scene_from_dict
@@ -565,14 +557,11 @@ def _solver_result(model, rec, lam, u, states):
         factorizations=int(rec["factorizations"]),
         status=str(rec.get("status", "completed")),
         limit_load_factor=_optional_float(rec.get("limit_load_factor")),
-        limit_load_upper=_optional_float(rec.get("limit_load_upper")),
         limit_evidence=str(rec.get("limit_evidence", "")),
         limit_uncertainty=_optional_float(rec.get("limit_uncertainty")),
         limit_suspect=str(rec.get("limit_suspect", "")),
         limit_mechanism=_optional_float(rec.get("limit_mechanism")),
         limit_stored_share=_optional_float(rec.get("limit_stored_share")),
-        relaxed_steps=_optional_count(rec.get("relaxed_steps")),
-        viscous_from=_optional_count(rec.get("viscous_from")),
         u_origin=rec.get("u_origin"),
         f_int_origin=rec.get("f_int_origin"),
         f_ref=rec.get("f_ref"),  # files written before the loads were kept: None

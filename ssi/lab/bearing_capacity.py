@@ -196,15 +196,16 @@ def footing_pressure(scene: FootingScene, result):
 
 def footing_settings(**overrides: object) -> Settings:
     """The solver settings :func:`push_footing` uses unless given others: full Newton with the consistent
-    tangent and a backtracking line search, the L-BFGS (on K0) retry of a failed increment (``Settings``'
-    fallback for full Newton), and each of the ``n_steps`` settlement increments taken as one increment (the
+    tangent and a backtracking line search on load control (here displacement control: the prescribed
+    settlement is the load), and each of the ``n_steps`` settlement increments taken as one increment (the
     increments are the study's variable), halved up to 8 times on failure. Plain Newton steps near the
     footing corner overshoot into a far plastic state and diverge; the line search stops that.
 
     SuperLU is the backend: at a few thousand DOFs PARDISO's set-up costs 0.3-0.5 s per factorisation
     against SuperLU's 0.01-0.03 s. ``overrides`` are further :class:`ssi.solver.Settings` fields."""
     return Settings(
-        **{"method": "full", "line_search": True, "stepping": "fixed", "max_cuts": 8, "backend": "superlu"}
+        **{"method": "full", "line_search": True, "stepping": "fixed", "control": "load", "max_cuts": 8}
+        | {"backend": "superlu"}
         | overrides
     )
 

@@ -60,6 +60,7 @@ class Integer:
 @dataclass(frozen=True)
 class Choice:
     choices: tuple
+    optional: bool = False  # None is valid too (it means a default rule, e.g. Settings.method)
 
 
 @dataclass(frozen=True)
@@ -163,7 +164,7 @@ SCENE_SPEC = dict(
 )
 SOLVE_SPEC = dict(n_steps=Integer(lo=1, optional=True), settings=Instance(optional=True))
 SETTINGS_SPEC = dict(
-    method=Choice(("bfgs", "modified", "full")),
+    method=Choice(("bfgs", "modified", "full"), optional=True),
     stepping=Choice(("auto", "fixed")),
     convergence_reference=Choice(("structural", "total")),
     force_tol=Real(0.0, 1.0, True, True),
@@ -176,11 +177,8 @@ SETTINGS_SPEC = dict(
     verbose=Flag(),
     keep_states=Flag(),
     line_search_min=Real(0.0, 1.0, lo_open=True),
-    fallback_iter=Integer(lo=0),
     desired_iterations=Integer(lo=1, optional=True),
     bfgs_memory=Integer(lo=0),
-    collapse_stiffness=Real(0.0, 1.0, hi_open=True),
-    viscosity=Real(lo=0.0),
 )
 HOMOGENEOUS_SPEC = dict(thickness=POSITIVE, E=POSITIVE, nu=POISSON, n_layers=Integer(lo=1))
 RIGID_SPEC = dict(
@@ -364,7 +362,7 @@ def _invalid_values(spec):
             parts.append(st.integers(min_value=spec.hi + 1))
         return st.one_of(parts)
     if isinstance(spec, Choice):
-        return st.sampled_from(["no_such_option", 7, None, 2.5])
+        return st.sampled_from(["no_such_option", 7, 2.5] + ([] if spec.optional else [None]))
     if isinstance(spec, Flag):
         return st.sampled_from(["no", None, 0.5])
     return st.sampled_from(["abc", 1.0, [1.0]] + ([] if spec.optional else [None]))
@@ -553,7 +551,6 @@ def valid_scenes(draw):
         line_search=method == "full",
         max_iter=60 if method == "modified" else 20,
         max_cuts=2,
-        fallback_iter=60,
         backend="superlu",
     )
     return scene, draw(st.integers(1, 3)), solver

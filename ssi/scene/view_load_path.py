@@ -94,7 +94,8 @@ class LoadPathView:
 
     def equilibrium_rows(self) -> np.ndarray:
         """(n_steps + 1,) bool: rows that are equilibrium states of the rate-independent laws (False: a
-        viscous state of the solver's fallback, which carries overstress the material cannot; see
+        viscous state, solved with a group's own Duvaut-Lions viscosity, which carries overstress the material
+        cannot; see
         :meth:`ssi.core.solution.Result.rate_independent_steps`)."""
         mask = np.zeros(len(self.load_factor), bool)
         visc = np.asarray(self.solver_result.step_viscosity, np.float64)
@@ -108,15 +109,16 @@ class LoadPathView:
         """The largest load the foundation carried and how it was found (only rate-independent equilibrium
         rows count). Keys: ``load`` [N/m] (:meth:`foundation_load` at ``step``), ``settlement`` [m] there,
         ``step``, ``is_limit`` (True when the path shows a limit: a peak, a plateau or a limit the solver
-        detected; False: the largest load carried, no limit found), ``how`` (a sentence), ``upper`` [N/m]
-        (a bracketed limit's upper end, else None), ``viscous_rows`` (rows left out), ``estimate`` (the
-        capacity's estimated discretisation error, :attr:`capacity_error`, or None when not estimated) and
+        found; False: the largest load carried, no limit found), ``how`` (a sentence), ``viscous_rows``
+        (rows left out), ``estimate`` (the capacity's estimated discretisation error,
+        :attr:`capacity_error`, or None when not estimated) and
         ``warning`` (a sentence when that estimated error exceeds ``CAPACITY_ERROR_LIMIT`` of the load or
         could not be extrapolated, else None).
 
         How: a run the solver stopped (a NonConvergence's partial result): the largest load it carried, no
-        limit. A load-controlled scene whose solver detected a limit load: that load (lambda * sum N, with the
-        solver's bracket); one that completed: its full load, no limit found. A push-over: the peak of the
+        limit. A scene under column loads whose controlled path peaked (the solver's limit load,
+        ``status == "limit load reached"``): that load (lambda * sum N); one that completed: its full load,
+        no limit found. A push-over: the peak of the
         path if the load falls after it by more than 1 %; a plateau if the last increment's stiffness dP/ds is
         below ``PLATEAU_STIFFNESS_SHARE`` of the first's; else the largest carried load, no limit found."""
         path = self.load_settlement()
@@ -127,7 +129,6 @@ class LoadPathView:
             "load": float(load[i]),
             "settlement": float(settle[i]),
             "step": i,
-            "upper": None,
             "viscous_rows": int((~ok).sum()),
             "estimate": self.capacity_error,
             "warning": capacity_error_warning(self.capacity_error),
@@ -138,14 +139,9 @@ class LoadPathView:
                 "how": "largest load carried before the solver stopped (a solver failure, not a limit)",
             }
         if not self.is_push_over:
-            scale = load[i] / path["load_factor"][i] if path["load_factor"][i] and not self.phases else None
-            if self.status == "limit load reached":
-                upper = self.solver_result.limit_load_upper
-                out["upper"] = None if upper is None or scale is None else float(upper * scale)
-                bracket = (
-                    "" if out["upper"] is None else f"; the limit lies below {out['upper'] / 1e3:.1f} kN/m"
-                )
-                return out | {"is_limit": True, "how": "limit load detected by the solver" + bracket}
+            if self.status == "limit load reached":  # only the controlled path finds one
+                how = f"limit load detected by the solver ({self.solver_result.limit_evidence})"
+                return out | {"is_limit": True, "how": how}
             return out | {"is_limit": False, "how": "largest carried load: the full load, no limit found"}
         after = load[rows[rows > i]]
         if after.size and after.min() < 0.99 * load[i]:

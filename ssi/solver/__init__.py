@@ -1,12 +1,13 @@
 """The solution of a model along a load path: ``Settings`` (the method, the stepping, the tolerances) and
-``run`` (load-controlled, Newton-type iterations), ``run_arc_length`` (arc-length control). The solver is the
-only place that commits state.
+``run`` (by default the controlled path, :mod:`.path`; or load control, :mod:`.control`),
+``run_arc_length`` (arc-length control). The solver is the only place that commits state.
 
 * ``settings`` -- ``Settings`` and ``NonConvergence``;
-* ``control`` -- the load-path control: ``run``, stepping, step cuts, fallbacks, limit-load detection;
-* ``increment`` -- one increment: the iterations of each method, line search, tangent solve, convergence;
-* ``viscous`` -- viscous recovery of a stalled path and the bracketing of a limit load;
-* ``path`` -- controlled path following (``Settings(control="work")``): a limit only where the path peaks;
+* ``path`` -- controlled path following (``Settings(control="work")``, the default): a limit only where
+  the path peaks;
+* ``control`` -- ``run``, and load control (``Settings(control="load")``): stepping and step cuts, no limit;
+* ``increment`` -- one load-controlled increment: the iterations of each method, line search, tangent
+  solve, convergence;
 * ``mechanism`` -- the mechanism certificate of a controlled path's limit (its last increment's energy);
 * ``davis`` -- Davis mode (``Settings(flow="davis")``); ``record`` -- the start of a path, its step record;
 * ``arc_length`` -- ``run_arc_length``;

@@ -10,9 +10,8 @@ from ..core.model import Model
 from ..core.solution import Result
 from .diagnostics import _failure_report
 from .increment import _converged, _energy_scale, _force_scale, _norm
-from .record import _record, _start
+from .record import _record, _start, _viscosity_in_force
 from .settings import NonConvergence, Settings
-from .viscous import _viscosity_in_force
 
 
 def run_arc_length(

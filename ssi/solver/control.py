@@ -1,26 +1,27 @@
-"""The load-path control: ``run`` follows the load factors from a start state, one increment after another
-(``_Path``: snapshots, automatic and fixed stepping, step cuts, the crawl and stuck rules, the fallback
-method and the viscous fallback), records each converged step, and detects a limit load (``_LoadMeasure``).
-Moved here as it was: the path-following issue rewrites these rules.
+"""Load control (``Settings(control="load")``): ``run`` follows the load factors from a start state, one
+increment after another with the settings' method (``_Path``: automatic or fixed stepping, a failing
+increment halved down to ``min_step`` or ``max_cuts`` times), and records each converged step with the
+path's current stiffness (``_LoadMeasure``). An increment that cannot converge after its cuts is
+:class:`NonConvergence`, never a limit load: a prescribed load factor cannot pass a peak of the path, so
+where load control stops says nothing about the capacity. ``run`` hands ``control="work"`` to the
+controlled path (:mod:`ssi.solver.path`).
 """
 
 import time
-from collections import deque
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..core.model import Model
-from ..core.solution import LIMIT_LOAD, STOPPED, Result
+from ..core.solution import STOPPED, Result
 from .davis import davis_mode
 from .diagnostics import _failure_report
 from .increment import _increment
 from .path import run_path
 from .progress import SolverProgress, announce_compilation, log, solver_progress
-from .record import _record, _start
+from .record import _record, _start, _viscosity_in_force
 from .settings import NonConvergence, Settings
-from .viscous import _has_viscosity, _set_viscosity, _viscosity_in_force, relax
 
 
 def run(
@@ -42,11 +43,14 @@ def run(
     loads of the previous phase as dead load and the phase's change as reference load. Prescribed
     displacements are absolute: fixed value + lambda * prescribed value.
 
-    ``settings.control == "work"``: the controlled path of :mod:`ssi.solver.path` (rising targets only).
+    ``settings.control == "work"`` (the default): the controlled path of :mod:`ssi.solver.path` (rising
+    targets only).
     ``settings.flow == "davis"``: the run in Davis mode (:mod:`ssi.solver.davis`).
 
-    Returns a :class:`Result` whose ``status`` says whether the targets were reached or a limit load was
-    detected. Raises :class:`NonConvergence` if an increment fails before either.
+    ``settings.control == "load"``: load control (this module); the targets may rise and fall.
+
+    Returns a :class:`Result` whose ``status`` says whether the targets were reached or (controlled path
+    only) a limit load was found. Raises :class:`NonConvergence` if a step fails before either.
     """
     settings = settings or Settings()
     if settings.flow == "davis" and not settings.symmetric_tangent:
@@ -64,42 +68,18 @@ def run(
 
 def _run_load_control(model, targets, settings, start, loads):
     t_start = time.perf_counter()
-    _set_viscosity(model, settings.viscosity)
     path = _Path(model, settings, start, loads, scale=float(np.abs(targets).max()) or 1.0)
     try:
         with solver_progress(settings.progress, total=path.scale) as path.bar:
             for target in targets:
                 path.follow(float(target))
-                if path.result.collapsed:
-                    path.bar.note(path.result.message)
-                    break
-        if path.tau > 0.0 and not path.result.collapsed:
-            relax(path)
     finally:
-        _set_viscosity(model, 0.0)
         path.result.wall_time = time.perf_counter() - t_start
     return path.result
 
 
-@dataclass
-class _Snapshot:
-    """A committed path (see :meth:`_Path.save`): copies of the result's per-step lists and the state."""
-
-    lists: dict
-    u: np.ndarray
-    states: list
-    lam: float
-    step: float
-
-
-CRAWL_WINDOW = 12  # attempts over which a crawling rate-independent path is judged (see _Path._crawling)
-
-
-FALLBACK_LEADS = 8  # increments the fallback leads after it converged where the settings' method failed
-
-
 class _Path:
-    """The incremental-iterative state of one run: committed (u, states, lambda) and the machinery."""
+    """The incremental-iterative state of one load-controlled run: committed (u, states, lambda), the step."""
 
     def __init__(self, model, settings, start, loads, scale=1.0):
         """``scale``: the largest target |lambda|; step sizes are fractions of it."""
@@ -108,42 +88,13 @@ class _Path:
             model, settings, start, loads
         )
         self.lam = 0.0
-        self.tau = settings.viscosity  # the viscosity in force (the viscous fallback may switch it on)
         self.scale = scale
         self.bar = SolverProgress(None, 1.0)  # silent until run() opens the real one
         self.step = settings.first_step * scale
         self.measure = _LoadMeasure(self.system, self.f_ref, self.result)
-        self.flow = np.nan  # flow stiffness of the last relaxation stage that ended unsettled
-        self.fallback_leads = 0  # increments for which the fallback method is tried first
-        self.advances = deque(maxlen=CRAWL_WINDOW)  # auto stepping: |delta lambda| of the last attempts (0
-        # for a failed one)
-        self.crawl_may_go_viscous = True  # a crawling path may try the viscous fallback (see _stuck)
-        self.crawl_start = None  # the committed path where a crawl went viscous, to come back to
-
-    def save(self) -> "_Snapshot":
-        """The committed path (result lists and current state), to return to with :meth:`restore`."""
-        r = self.result
-        return _Snapshot(
-            {name: list(getattr(r, name)) for name in Result.ROWS},
-            self.u,
-            self.states,
-            self.lam,
-            self.step,
-        )
-
-    def restore(self, snap: "_Snapshot", step: int | None = None):
-        """Return to ``snap``, or to its committed step ``step`` (the later steps are dropped)."""
-        k = len(snap.lists["load_factor"]) if step is None else step + 1
-        for name, values in snap.lists.items():
-            setattr(self.result, name, list(values[:k]))
-        if step is None:
-            self.u, self.states, self.lam, self.step = snap.u, snap.states, snap.lam, snap.step
-        else:
-            self.u, self.lam = self.result.u[-1].copy(), self.result.load_factor[-1]
-            self.states = self.result.states[-1]
 
     def follow(self, target):
-        """Advance the committed state to ``target``, or stop at a detected limit load."""
+        """Advance the committed state to ``target``; raises :class:`NonConvergence` if it cannot."""
         if self.settings.stepping == "auto":
             self._follow_auto(target)
         else:
@@ -160,19 +111,12 @@ class _Path:
                 last = abs(lam_next - self.lam)
                 self._commit(lam_next, outcome)
                 self._adapt(last, outcome["iterations"])
-                self.advances.append(last)
                 continue
             self.result.cuts += 1
-            self.advances.append(0.0)
             self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
             self.step = 0.5 * abs(lam_next - self.lam)
-            # a crawl on a flattened path goes on to min_step (see _at_limit)
-            crawling = self.crawl_may_go_viscous and self._crawling()
-            crawling = crawling and self._can_go_viscous() and not self._at_limit()
-            if crawling or self.step < s.min_step * self.scale * (1.0 - 1e-9):
-                if not self._stuck(outcome, lam_next, crawling):
-                    return
-                self.step = s.first_step * self.scale
+            if self.step < s.min_step * self.scale * (1.0 - 1e-9):
+                self._stuck(outcome, lam_next)
 
     def _follow_fixed(self, target):
         """The target in one increment; a failing increment is halved, at most ``max_cuts`` times."""
@@ -186,36 +130,13 @@ class _Path:
                 pending.pop()
                 continue
             if cuts_here >= self.settings.max_cuts:
-                if not self._stuck(outcome, lam_next):
-                    return
-                cuts_here = 0
-                continue
+                self._stuck(outcome, lam_next)
             cuts_here += 1
             self.result.cuts += 1
             self.bar.note(f"step cut at lambda={lam_next:.6g}: {outcome.get('reason', '')}")
             pending.append(0.5 * (self.lam + lam_next))
 
     def _increment(self, lam_next):
-        """One increment with the leading method, retried with the other one (the settings' method and its
-        fallback) before a step cut. When the fallback converges where the settings' method failed, it leads
-        the next ``FALLBACK_LEADS`` increments: on a stretch where the K0-based update stalls (cracking
-        strip, flipping plastic points) every increment would otherwise pay a stalled BFGS run first
-        (measured on chapter 11's h = 0.125 m mesh: 139 such failures, 61 % of its time)."""
-        s = self.settings
-        first = s.method if self.fallback_leads == 0 or not s.fallback else s.fallback
-        outcome = self._attempt(lam_next, first)
-        other = s.fallback if first == s.method else s.method
-        if not outcome["converged"] and s.fallback and s.fallback != s.method:
-            retry = self._attempt(lam_next, other)
-            retry["iterations"] += outcome["iterations"]
-            if retry["converged"]:
-                self.fallback_leads = FALLBACK_LEADS if other == s.fallback else 0
-                return retry
-            return outcome
-        self.fallback_leads = max(0, self.fallback_leads - 1) if first != s.method else 0
-        return outcome
-
-    def _attempt(self, lam_next, method):
         return _increment(
             self.system,
             self.settings,
@@ -226,7 +147,6 @@ class _Path:
             self.f_ref,
             self.f_dead,
             self.result,
-            method,
         )
 
     def _commit(self, lam, outcome):
@@ -275,75 +195,21 @@ class _Path:
             s.max_step, max(s.min_step, factor * max(last_step, self.step) / self.scale)
         )
 
-    def _crawling(self) -> bool:
-        """The rate-independent path advances, but too slowly to be worth following: of the last
-        ``CRAWL_WINDOW`` attempts at least a third failed and together they gained less than one first step.
-        Measured on chapter 11's foundation at h = 0.125 m: from lambda = 0.75 to 0.96 the path took 75
-        increments and 50 cuts (each a stalled full-Newton run, 5 s) before it reached ``min_step``; the
-        viscous path then went to lambda = 1 and relaxed in 16 increments."""
-        recent = self.advances
-        return (
-            len(recent) == CRAWL_WINDOW
-            and recent.count(0.0) >= CRAWL_WINDOW // 3
-            and sum(recent) < self.settings.first_step * self.scale
-        )
-
-    def _current_stiffness(self) -> float:
-        """The path's current stiffness parameter (nan before two committed steps)."""
-        return self.result.stiffness[-1] if self.result.n_steps >= 2 else np.nan
-
-    def _at_limit(self) -> bool:
-        """The path has flattened: its current stiffness is below ``collapse_stiffness``. A crawl there goes
-        on down to ``min_step`` before the limit is declared, as without the crawl test: the limit is then
-        the highest load the path reached (measured on the random zoo: declared at the crawl instead, three
-        limits came out 0.4-1.4 % lower)."""
-        stiff = self._current_stiffness()
-        return bool(np.isfinite(stiff) and stiff < self.settings.collapse_stiffness)
-
-    def _can_go_viscous(self) -> bool:
-        return self.settings.viscous_fallback and self.tau == 0.0 and _has_viscosity(self.model)
-
-    def _stuck(self, outcome, lam_next, crawling=False) -> bool:
-        """The path cannot advance (or, ``crawling``, hardly). A limit load if it had stopped rising (returns
-        False: the path ends); else, once, the viscous fallback (returns True: go on viscous); else
-        NonConvergence. A viscous path that a crawl started and that is stuck in its turn goes back to where
-        it started and follows the rate-independent law down to ``min_step``, as without the crawl test: the
-        viscosity regularises the soil and the contact, not a cracking strip (measured: chapter 11's
-        foundation at h = 0.25 m with full Newton crawled to lambda = 1 that way, its viscous path stopped at
-        0.86 on the strip)."""
+    def _stuck(self, outcome, lam_next):
+        """The increment to ``lam_next`` failed at the smallest step: :class:`NonConvergence`, with the
+        path's current stiffness (load increment per loaded displacement relative to the first step's; nan
+        before two steps). A small one means the path is flattening -- perhaps towards a limit load, which
+        load control cannot pass -- and only the controlled path can tell."""
         res = self.result
-        stiff = self._current_stiffness()
-        if self._at_limit():
-            if self.tau > 0.0:
-                relax(self)  # a viscous state must first relax to a rate-independent one (raises if not)
-            res.status, res.limit_load_factor = LIMIT_LOAD, float(self.lam)
-            return False
-        if self._can_go_viscous():
-            # the rate-independent increment may have no solution near the state (non-associated flow):
-            # a viscous path has one; the end of the path is relaxed back to the rate-independent law
-            self.crawl_start = self.save() if crawling else None
-            self.tau = VISCOUS_FALLBACK_TAU
-            _set_viscosity(self.model, self.tau)
-            res.viscous_from = res.n_steps
-            self.bar.note(f"viscous fallback from lambda={self.lam:.6g}")
-            return True
-        if self.crawl_start is not None:
-            self.bar.note(f"viscous path stuck at lambda={self.lam:.6g}: back to the crawl's start")
-            self.restore(self.crawl_start)
-            self.crawl_start, self.crawl_may_go_viscous = None, False
-            self.tau = 0.0
-            _set_viscosity(self.model, self.tau)
-            res.viscous_from = None
-            return True
         report = _failure_report(self.model, self.system.free, outcome, self.lam, lam_next)
+        stiff = res.stiffness[-1] if res.n_steps >= 2 else np.nan
         report["current_stiffness"] = float(stiff)
-        if res.viscous_from is not None:
-            report["viscous_from_step"] = res.viscous_from
+        report["hint"] = (
+            "load control cannot pass a limit point and never reports one: follow the path with "
+            "Settings(control='work') (the default) to find out whether the load is above the capacity"
+        )
         res.status = STOPPED
         raise NonConvergence(report, res)
-
-
-VISCOUS_FALLBACK_TAU = 1.0  # tau of the viscous fallback: the value chapter 10's psi = 0 study uses
 
 
 class _LoadMeasure:

@@ -13,7 +13,6 @@ import numpy as np
 from ..core.linsolve import Factorization
 from ..core.protocol import CONSISTENT
 from .lbfgs import lbfgs_first_loop, lbfgs_second_loop
-from .settings import _MAX_ITER
 
 
 def _norm(x) -> float:
@@ -68,14 +67,12 @@ def _direction_bfgs(it, k_list, r_f):
 DIRECTIONS = {"bfgs": _direction_bfgs, "modified": _direction_modified, "full": _direction_full}
 
 
-def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, result, method):
-    """Iterate one increment from the committed (u_conv, states) to load factor ``lam`` with ``method``
-    (the settings' own, or its fallback: then ``settings.fallback_iter`` iterations at most)."""
+def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, result):
+    """Iterate one increment of load control from the committed (u_conv, states) to load factor ``lam``
+    with the settings' method."""
     free = system.free
     f_ext = lam * f_ref + f_dead
-    fallback = method != settings.method
-    max_iter = min(settings.fallback_iter, _MAX_ITER[method]) if fallback else settings.max_iter
-    line_search = settings.line_search or (fallback and method == "full")
+    method, max_iter, line_search = settings.method, settings.max_iter, settings.line_search
     residuals, energies = [], []
     energy0 = r_first = None
     bfgs = _Lbfgs(fac_k0, settings.bfgs_memory) if method == "bfgs" else None
@@ -122,9 +119,7 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
                 system, settings, u, du, u_conv, states, it_state.use_k0, f_ext, _norm(r_f), line_search
             )
         u = u_new
-    outcome.update(
-        reason=f"no convergence in {max_iter} iterations" + (f" (fallback: {method})" if fallback else "")
-    )
+    outcome.update(reason=f"no convergence in {max_iter} iterations")
     return outcome
 
 

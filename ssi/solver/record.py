@@ -34,6 +34,12 @@ def _start(model, settings, start=None, loads=None):
     return system, f_ref, f_dead, states, u, result, fac_k0
 
 
+def _viscosity_in_force(model) -> float:
+    """The largest Duvaut-Lions tau = dt/eta per increment set on the model's viscous groups (0: none; the
+    solver sets none, a group built with ``viscosity > 0`` keeps its own), recorded per step."""
+    return max((g.viscosity for g in model.groups if g.viscous), default=0.0)
+
+
 def _record(result, lam, u, f_int, states, iterations, residuals, energies, settings, viscosity=0.0):
     result.load_factor.append(lam)
     result.step_viscosity.append(float(viscosity))

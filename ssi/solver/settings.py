@@ -21,7 +21,8 @@ CONTROLS = ("load", "work")  # see Settings.control and ssi/solver/path.py
 FLOWS = ("user", "davis")  # see Settings.flow
 
 
-# per method: default iteration cap of an increment and the iteration count automatic stepping aims at
+# load control, per method: default iteration cap of an increment and the iteration count automatic stepping
+# aims at
 _MAX_ITER = {"bfgs": 100, "modified": 300, "full": 30}
 
 
@@ -35,30 +36,40 @@ _MAX_ITER_PATH, _DESIRED_ITER_PATH = 100, 20
 
 @dataclass
 class Settings:
-    """Solver options. The defaults solve ordinary nonlinear scenes; :meth:`paper` gives the paper's
-    algorithm.
+    """Solver options. The defaults follow the controlled path (``control="work"``), which solves ordinary
+    nonlinear scenes and finds a limit load where the path peaks; :meth:`paper` gives the paper's algorithm.
 
-    ``method``: ``"bfgs"`` (default) -- quasi-Newton (L-BFGS) updates of the one K0 factorisation with a line
-    search; ``"modified"`` -- the paper's modified Newton-Raphson (K0 for every iteration); ``"full"`` --
-    Newton with the consistent tangent, refactorised every iteration.
+    ``control``: ``"work"`` -- controlled path following (:mod:`ssi.solver.path`): each step prescribes the
+    work of the reference load f_ref . (u - u_0) (with prescribed displacements and no force load, the load
+    factor itself, i.e. displacement control), so the path passes limit points; one corrector (a lagged
+    consistent tangent with L-BFGS updates and a line search), a continuous step-size rule, a limit only
+    where the path peaks or stays on a plateau, and a failure to converge is :class:`NonConvergence`, never
+    a limit. Its targets must rise. ``"load"`` -- load control: the load factor is prescribed increment by
+    increment and solved with ``method`` in ``stepping``; an increment that cannot converge after its step
+    cuts is :class:`NonConvergence` (with the path's current stiffness in its report), never a limit load:
+    load control cannot pass a peak, so where it stops says nothing about the capacity. Use it for the
+    paper's algorithm, for unloading (falling targets) and to compare methods.
 
-    ``stepping``: ``"auto"`` (default) -- each target load factor is approached in increments that start at
-    ``first_step``, grow or shrink with the iteration count (aiming at ``desired_iterations``) and are halved
-    on failure down to ``min_step``; ``"fixed"`` -- each target is one increment, halved at most ``max_cuts``
-    times on failure (the paper's equal increments).
+    The rule when ``control`` is left at None: naming a load-control algorithm -- a ``method``, or
+    ``stepping="fixed"`` -- asks for load control (``Settings(method="modified")`` is the modified
+    Newton-Raphson method on load steps, as written); otherwise the controlled path. ``method`` and
+    ``stepping="fixed"`` with ``control="work"`` are an error: the controlled path has one corrector and its
+    own step-size rule.
 
-    When an increment cannot advance, the path's current stiffness (load increment per loaded displacement,
-    relative to the first step's) tells a collapse from a numerical failure: below ``collapse_stiffness``
-    the result ends with ``status == "limit load reached"``; otherwise :class:`NonConvergence` is raised.
-    Step sizes are fractions of the largest target load factor; tolerances are relative (dimensionless).
+    ``method`` (load control; None: ``"bfgs"``): ``"bfgs"`` -- quasi-Newton (L-BFGS) updates of the one K0
+    factorisation with a line search; ``"modified"`` -- the paper's modified Newton-Raphson (K0 for every
+    iteration); ``"full"`` -- Newton with the consistent tangent, refactorised every iteration.
 
-    ``control``: ``"load"`` (default) -- the load factor is prescribed increment by increment, with the
-    fallbacks above; ``"work"`` -- controlled path following (:mod:`ssi.solver.path`): each step prescribes
-    the work of the reference load f_ref . (u - u_0) (with prescribed displacements and no force load, the
-    load factor itself, i.e. displacement control), so the path passes limit points; one corrector, a
-    continuous step-size rule, and a limit only where the path peaks or stays on a plateau. ``method``,
-    ``fallback``, ``viscous_fallback`` and ``collapse_stiffness`` are not used there; ``max_iter`` and
-    ``desired_iterations`` default to 100 and 20.
+    ``stepping`` (load control): ``"auto"`` (default) -- each target load factor is approached in increments
+    that start at ``first_step``, grow or shrink with the iteration count (aiming at ``desired_iterations``)
+    and are halved on failure down to ``min_step``; ``"fixed"`` -- each target is one increment, halved at
+    most ``max_cuts`` times on failure (the paper's equal increments). Load steps are fractions of the largest
+    target load factor; the controlled path's control steps start at ``first_step`` and stay within
+    [``min_step``, ``max_step``] as fractions of the control at the largest target on the elastic path
+    (see path.py). Tolerances are relative (dimensionless).
+
+    ``max_iter`` and ``desired_iterations`` default to 100 and 20 on the controlled path, and per method on
+    load control (bfgs 100 and 20, modified 300 and 60, full 30 and 8).
 
     ``flow``: ``"user"`` (default) -- each law's own dilation angle; ``"davis"`` -- Davis mode for capacity:
     every Mohr-Coulomb soil and Coulomb interface is solved associated with beta-reduced strength
@@ -69,20 +80,18 @@ class Settings:
     reached moved by at most 0.22 %).
     """
 
-    method: str = "bfgs"
+    method: str | None = None  # load control's method; None: "bfgs" (see above)
     stepping: str = "auto"
     force_tol: float = 1e-5  # |r| <= force_tol * (structural load; see convergence_reference)
     energy_tol: float = 1e-8  # |du . r| <= energy_tol * max(|du_0 . r_0|, work of the structural load)
     convergence_reference: str = "structural"  # "total": the old measure, force relative to
     # max(|F_ext|, |F_int|) and energy relative to |u . F_int|, geostatic forces included
-    max_iter: int | None = None  # per increment; None: 100 (bfgs), 300 (modified), 30 (full Newton: more
-    # tangent factorisations than that cost more than the BFGS retry below)
-    first_step: float = 0.1  # auto stepping: first increment of the load factor
-    max_step: float = 0.25  # auto stepping: largest increment
-    min_step: float = 1e-4  # auto stepping: smallest increment tried before the path is judged stuck
-    desired_iterations: int | None = None  # auto stepping: None: 20 (bfgs), 60 (modified), 8 (full)
+    max_iter: int | None = None  # per increment; None: see above
+    first_step: float = 0.1  # first increment (of the load factor, or of the controlled path's control)
+    max_step: float = 0.25  # largest increment
+    min_step: float = 1e-4  # smallest increment tried before the step is NonConvergence
+    desired_iterations: int | None = None  # the iteration count the step size aims at; None: see above
     max_cuts: int = 6  # fixed stepping: halvings of a failing increment
-    collapse_stiffness: float = 0.05  # current stiffness / initial below which a stuck path is a collapse
     divergence_ratio: float = 1e6  # residual growth over the first iteration taken as divergence
     backend: str = "auto"
     symmetric_tangent: bool = False  # set True when every law's tangent is symmetric (associated flow);
@@ -90,60 +99,49 @@ class Settings:
     verbose: bool = False  # log every converged step at INFO level (logger "ssi.solver")
     progress: bool | None = None  # progress bar: None = only when stderr is a terminal and no test runs
     keep_states: bool = True  # keep the committed state of every step (False: only the last)
-    line_search: bool | None = None  # None: on for bfgs, off for full Newton (on, it stopped chapter 11's
-    # finest mesh at 95 % of its load); never for modified Newton
+    line_search: bool | None = None  # None: on for bfgs and the controlled path, off for full Newton (on, it
+    # stopped chapter 11's finest mesh at 95 % of its load); never for modified Newton
     line_search_min: float = 1.0 / 64.0  # full Newton: smallest step fraction the line search tries
     bfgs_memory: int = 30  # L-BFGS pairs kept within an increment
-    viscous_fallback: bool = True  # a stuck path that has not stopped rising goes on viscous (tau = 1) and is
-    # relaxed to the rate-independent state at its end (see ``viscosity``)
-    viscosity: float = 0.0  # Duvaut-Lions regularisation tau = dt/eta per increment of the groups that
-    # have it (soil); > 0: the path is viscous and, after the last target, the
-    # load is held while tau grows (relaxation) until the state is the
-    # rate-independent one -- see :func:`relax`
-    fallback: str | None = "auto"  # method that retries a failed increment before it is cut; "auto": full
-    # Newton with line search for bfgs (points that flip between elastic and
-    # plastic stall the K0-based update), L-BFGS on K0 for full Newton (an
-    # indefinite tangent can send Newton astray; K0 cannot, and the BFGS
-    # updates and line search make the retry converge where plain K0
-    # iterations crawl: chapter 10's psi = 0 footing at h = 0.125 m took
-    # 59 s with the plain K0 retry, 1 of 64 retries converging in 300
-    # iterations, and 11 s with BFGS); None: no retry
-    fallback_iter: int = 300  # iterations of the fallback retry
-    control: str = "load"  # "load" or "work" (controlled path following, see above)
+    control: str | None = None  # "work" (controlled path following) or "load"; None: see the rule above
     flow: str = "user"  # "user" or "davis" (see above)
 
     def __post_init__(self):
-        check_choice("Settings.method", self.method, METHODS)
+        if self.method is not None:
+            check_choice("Settings.method", self.method, METHODS)
         check_choice("Settings.stepping", self.stepping, STEPPINGS)
         check_choice("Settings.convergence_reference", self.convergence_reference, REFERENCES)
+        if self.control is None:  # naming a load-control algorithm asks for load control
+            self.control = "load" if self.method is not None or self.stepping == "fixed" else "work"
         check_choice("Settings.control", self.control, CONTROLS)
         check_choice("Settings.flow", self.flow, FLOWS)
         path = self.control == "work"
+        if path and (self.method is not None or self.stepping != "auto"):
+            name, value = ("method", self.method) if self.method is not None else ("stepping", self.stepping)
+            raise ValueError(
+                f"Settings.{name}={value!r} is a load-control option: the controlled path (control='work') "
+                "has one corrector and its own step-size rule; use control='load' for it"
+            )
+        if not path and self.method is None:
+            self.method = "bfgs"
         if self.max_iter is None:
             self.max_iter = _MAX_ITER_PATH if path else _MAX_ITER[self.method]
         if self.desired_iterations is None:
             self.desired_iterations = _DESIRED_ITER_PATH if path else _DESIRED_ITER[self.method]
         if self.line_search is None:
-            self.line_search = self.method == "bfgs"
-        if self.fallback == "auto":
-            self.fallback = {"bfgs": "full", "full": "bfgs", "modified": None}[self.method]
-        if self.fallback is not None:
-            check_choice("Settings.fallback", self.fallback, METHODS)
+            self.line_search = path or self.method == "bfgs"
         check_real("Settings.force_tol", self.force_tol, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
         check_real("Settings.energy_tol", self.energy_tol, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
         check_int("Settings.max_iter", self.max_iter, lo=1)
         check_int("Settings.max_cuts", self.max_cuts, lo=0)
         check_int("Settings.desired_iterations", self.desired_iterations, lo=1)
-        check_int("Settings.fallback_iter", self.fallback_iter, lo=0)
         check_int("Settings.bfgs_memory", self.bfgs_memory, lo=0)
         check_real("Settings.max_step", self.max_step, lo=0.0, hi=1.0, lo_open=True)
         check_real("Settings.first_step", self.first_step, lo=0.0, hi=self.max_step, lo_open=True)
         check_real("Settings.min_step", self.min_step, lo=0.0, hi=self.first_step, lo_open=True)
-        check_real("Settings.collapse_stiffness", self.collapse_stiffness, lo=0.0, hi=1.0, hi_open=True)
-        check_real("Settings.viscosity", self.viscosity, lo=0.0, unit="(tau = dt/eta per increment)")
         check_real("Settings.divergence_ratio", self.divergence_ratio, lo=1.0, lo_open=True)
         check_choice("Settings.backend", self.backend, BACKENDS)
-        for name in ("symmetric_tangent", "verbose", "keep_states", "line_search", "viscous_fallback"):
+        for name in ("symmetric_tangent", "verbose", "keep_states", "line_search"):
             check_bool(f"Settings.{name}", getattr(self, name))
         if self.progress is not None:
             check_bool("Settings.progress", self.progress)
@@ -151,12 +149,12 @@ class Settings:
 
     @classmethod
     def paper(cls, **overrides: object) -> "Settings":
-        """The paper's algorithm (§8): modified Newton--Raphson on K0 in the given, equal increments, without
-        the viscous fallback.
+        """The paper's algorithm (§8): modified Newton--Raphson on K0 in the given, equal load increments
+        (load control).
 
         (The paper's explicit D_ep stress integration is a property of the soil law: ``scheme="explicit"``
         on a ``SoilLayer`` or in ``mohr_coulomb_params``.)"""
-        return cls(**{"method": "modified", "stepping": "fixed", "viscous_fallback": False, **overrides})
+        return cls(**{"method": "modified", "stepping": "fixed", "control": "load", **overrides})
 
 
 class NonConvergence(RuntimeError):
