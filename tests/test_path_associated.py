@@ -3,9 +3,11 @@
 base contact and smooth side walls (chapter 19's section 8 on a coarse mesh). On the parent commit the
 controlled path stopped at lambda = 0 on it, as unsymmetric and with ``symmetric_tangent=True`` alike.
 
-The expected push resistance is the load-controlled path's (a different algorithm: prescribed load factors,
-full-Newton fallback): with associated laws each increment is a convex problem with one solution, so two
-algorithms converged to ``force_tol`` must agree to a few times that tolerance.
+The expected push resistance is the one the former load-controlled path reached (a different algorithm:
+prescribed load factors with its full-Newton retry, removed by issue 31; measured at 3a5ff09 on this scene, 20
+steps): with associated laws each increment is a convex problem with one solution, so two algorithms converged
+to ``force_tol`` must agree to a few times that tolerance. (Load control without that retry no longer reaches
+the push on this scene: bfgs stagnates at lambda = 0.17, full Newton at 0.002.)
 
 And the failure report's mode without stiffness (``_Follower._soft_mode``) on a spring chain.
 """
@@ -22,6 +24,7 @@ from ssi.solver import COMPLETED, Settings
 from ssi.solver.path import _Follower, associated
 
 C_I, B = 10e3, 2.0  # base adhesion [Pa] and strip width [m]: the base alone slides at C_I * B
+LOAD_PATH_PUSH = 95884.96426488522  # [N/m] H at the full push, the former load path's (module docstring)
 
 
 def _pushed_strip(soil_psi_deg=0.0, soil_phi_deg=0.0, side=None):
@@ -48,13 +51,12 @@ def test_associated_laws_are_recognised():
 @pytest.mark.parametrize("symmetric", [False, True])
 def test_pushed_strip_with_smooth_side_walls_completes_on_the_controlled_path(symmetric):
     built = _pushed_strip()
-    reference = built.solve(n_steps=20, settings=Settings(control="load")).foundation_load()[-1]
     settings = Settings(control="work", symmetric_tangent=symmetric)
     out = built.solve(n_steps=20, settings=settings)
     assert out.solver_result.status == COMPLETED and out.load_factor[-1] == pytest.approx(1.0)
     push = out.foundation_load()[-1]
     assert push > 2.0 * C_I * B  # the passive side carries more than the sliding base
-    assert push == pytest.approx(reference, rel=10 * settings.force_tol)
+    assert push == pytest.approx(LOAD_PATH_PUSH, rel=10 * settings.force_tol)
 
 
 class _GapChain(Spring):
