@@ -522,20 +522,23 @@ class _Follower:
         to 1/64 lowering it, no soil or contact point changing state); the strip's direction is taken
         along G there.
 
-        Measured where the controlled run still fails (chapter 11 at h = 0.125 m, 10 targets; the run and
-        four copies with the column load x (1 + eps), eps = +-1e-13, +-1e-12: 3 of the 5 complete, with
-        2-6 failed steps, and the others stop in NonConvergence at lambda = 0.9407 and 0.8678 -- bench key
-        ch11_h0125_controlled_roundoff): the failed steps are corrector failures at kinks of the residual,
-        not steps too long. (a) Where the strip first cracks (lambda ~ 0.39, 78 layer points at mid-strip)
-        no t >= 1/64 lowers |r| along a fresh tangent's direction, and only this root's extrapolation (t up
-        to 4) passes: with t <= 1 all 5 runs stop there. (b) At lambda = 0.9407 the iterations settle into
-        an exact cycle of 8 in which 10 cracked layer points switch between loading on the softening
-        envelope and secant unloading, |r| between 7e1 and 1.6e3 N (relative ~1e-4), a t = 4 step part of
-        the cycle. (c) After such a step |r| grew 10-300 times, up to 400 soil points changing state, the
-        step ending at the load-factor correction cap. Measured and rejected (crack8): t <= 1 here (0 of
-        5 complete), refactorising after each step taken along G (2 of 5, with 9 and 12 failed steps),
-        the tangent of the rejected full step (0 of 5: lambda = 0.414), the plate's K0 in the tangent (the
-        unperturbed run: NonConvergence at 0.437)."""
+        Measured where the controlled run still fails (chapter 11 at h = 0.125 m, 10 targets; the run and four
+        copies with the column load x (1 + eps), eps = +-1e-13, +-1e-12: 3 of the 5 complete, with 2-6 failed
+        steps, and the others stop in NonConvergence at lambda = 0.9407 and 0.8678 -- bench key
+        ch11_h0125_controlled_roundoff): the failed steps are corrector failures at kinks of the residual, not
+        steps too long. (a) Where the strip first cracks (lambda ~ 0.39, 78 layer points at mid-strip) the
+        iterations pass only by this root's extrapolation (t up to 4): with t <= 1 all 5 runs stop there, and
+        so does the unperturbed run taking the trial of least |r| in place of this root. (b) At lambda =
+        0.9407 the iterations settle into an exact cycle of 8 in which 10 cracked layer points switch between
+        loading on the softening envelope and secant unloading, |r| between 7e1 and 1.6e3 N (relative ~1e-4),
+        a t = 4 step part of the cycle. (c) After such a step |r| grew 10-300 times, up to 400 soil points
+        changing state, the step ending at the load-factor correction cap. Measured and rejected (crack8): t
+        <= 1 here (0 of 5 complete), refactorising after each step taken along G (2 of 5, with 9 and 12 failed
+        steps), the tangent of the rejected full step (0 of 5: lambda = 0.414), the plate's K0 in the tangent
+        (the unperturbed run: NonConvergence at 0.437). A secant modulus in place of the concrete's negative
+        tangent on its softening envelope (tried in the law, not kept: the law is not this module's) passes
+        (a) and (b): 5 of 5 complete, with 0-6 failed steps, those left where soil points switch between
+        elastic and plastic."""
         free = self.system.free
         g0 = float(du @ r_f)
         r0 = _norm(r_f)
