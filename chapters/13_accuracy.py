@@ -407,16 +407,48 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # stiffness tests): on the controlled path, now the default, the h/16 copy stops in `NonConvergence` at
 # λ = 0.327, its worst residual in the soil under the strip (chapter 11's row `ch11_h16`,
 # `reference_data/chapter11_h16_controlled.csv`) -- an honest stop, never a limit.
+#
+# Since the controlled path became the default (issue 31), the graded h/4 copy this driver picks stops too:
+# `NonConvergence` at λ ≈ 0.90 (0.735 before the line search's growth rule `G_GROWTH`), where cracked layer
+# points of the strip flip between loading on the softening branch and unloading and the soil beside them
+# between elastic and plastic. The load-controlled algorithms stop earlier without the former fallbacks
+# (measured on this copy: modified Newton at λ = 0.728 after 281 s, L-BFGS at 0.471, full Newton at 0.390).
+# The numbers above are those of the former default, which passed this softening on a viscous detour. Until
+# the path passes the strip's snap-backs (dissipation control, measured and not yet working), the row
+# `target_error_met` is reported FAIL with the stop, not asserted: the driver delivers no settlement here.
 
 # %%
 # the even mesh as given: an honest refusal, consistent with its order (asymptotic, more than 3 halvings)
 assert target.status == "limit of refinements", target.status
 assert halvings_needed > 3
 assert finest_error > TARGET
+graded, graded_failure = None, None
 if not FAST:
     scene11g = chapter11_foundation(1.0, h_coarse=4.0, end_grading=END_GRADING)
     t0 = time.perf_counter()
-    graded = solve_to_target(scene11g, target_error=TARGET, quantities=("max_settlement",))
+    try:
+        graded = solve_to_target(scene11g, target_error=TARGET, quantities=("max_settlement",))
+    except NonConvergence as exc:  # the controlled path stops on the cracking strip: reported, not hidden
+        graded_failure = exc
+        print(f"graded: NonConvergence after {time.perf_counter() - t0:.1f} s: {exc}")
+if graded_failure is not None:
+    stop = graded_failure.report
+    lam_stop, reason, groups = (
+        stop.get("load_factor_from", np.nan),
+        stop.get("reason", ""),
+        stop.get("worst_groups"),
+    )
+    record(
+        "target_error_met",
+        f"chapter-11 scene (h = 1 m, 4 m far) with end_grading={END_GRADING}, solve_to_target("
+        f"target_error={TARGET}): one of its solves stops in NonConvergence on the controlled path at "
+        f"lambda = {lam_stop:.4g} ({reason}; worst groups {groups}): the cracking strip's softening is not "
+        "passed (issue 31); value: nan, no settlement delivered",
+        float("nan"),
+        TARGET,
+        False,
+    )
+elif not FAST:
     print(graded.estimate)
     print(f"graded: {graded.status} | {graded.message} | {time.perf_counter() - t0:.1f} s")
     graded_s = graded.estimate.parts["mesh"]["max_settlement"]

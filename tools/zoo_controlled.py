@@ -58,6 +58,7 @@ def main(argv=None):
         (o,) = solve_zoo([(name, scene)], settings)
         rows.append(o)
         lim = "" if o.limit_load is None else f" limit={o.limit_load:.4f}"
+        lim += "" if o.limit_mechanism is None else f" mechanism={o.limit_mechanism:.4f}"
         print(
             f"{o.name:10s} {o.status:19s} lam={o.load_factor:.4f}{lim} {o.wall_time:6.2f}s "
             f"{o.message[:300] if o.status == 'failed' else ''}",

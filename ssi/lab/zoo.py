@@ -265,6 +265,8 @@ class ZooOutcome:
     limit_suspect: str = (
         ""  # the result's reasons not to read the limit as a capacity, the bracket's included
     )
+    limit_mechanism: float | None = None  # the limit's mechanism certificate lambda_k / lambda_peak
+    # (ssi.solver.mechanism; None where it certifies nothing: non-associated flow)
 
     @property
     def solved(self) -> bool:
@@ -287,7 +289,7 @@ def solve_zoo(scenes, settings: Settings | None = None, check=None) -> list[ZooO
     outcomes = []
     for name, scene in scenes:
         t0 = time.perf_counter()
-        limit, uncertainty, suspect = None, None, ""
+        limit, uncertainty, suspect, mechanism = None, None, "", None
         try:
             out = scene.build().solve(settings=settings)
             status, lam, message = out.status, out.load_factor[-1], out.solver_result.message
@@ -298,12 +300,20 @@ def solve_zoo(scenes, settings: Settings | None = None, check=None) -> list[ZooO
                 verdict = None if check is None else check(name, limit)
                 if verdict is not None:
                     flag_suspect(res, verdict)
-                suspect = res.limit_suspect
+                suspect, mechanism = res.limit_suspect, res.limit_mechanism
         except NonConvergence as err:
             status, lam, message = "failed", err.result.load_factor[-1], str(err)
         outcomes.append(
             ZooOutcome(
-                name, status, float(lam), time.perf_counter() - t0, message, limit, uncertainty, suspect
+                name,
+                status,
+                float(lam),
+                time.perf_counter() - t0,
+                message,
+                limit,
+                uncertainty,
+                suspect,
+                mechanism,
             )
         )
     return outcomes
