@@ -222,9 +222,10 @@ def footing_path_settings(**overrides: object) -> Settings:
 
     Why the path's own first and largest step (0.1 and 0.25 of the push) and not the increments as the step
     budget (first_step = max_step = 1/n_steps): measured on the bench footing (``bench_nonlinear.py``: psi =
-    0, h = 0.125 m, 12 targets), the defaults completed with q_u / Prandtl 0.99516 in 6.7 s (full Newton in 12
-    fixed increments: 0.99539 in 16.1 s, same run), the 1/12 budget ended in NonConvergence at 76.1 of 80 mm
-    (q_u / Prandtl 0.9785), and the chapters' pushes need no budget: the targets already are one.
+    0, h = 0.125 m, 12 targets), at main f6cc289 the defaults completed with q_u / Prandtl 0.99516 in 6.7 s
+    (full Newton in 12 fixed increments: 0.99539 in 16.1 s, same run) and the 1/12 budget ended in
+    NonConvergence at 76.1 of 80 mm (q_u / Prandtl 0.9785); on the path of main cd8ff2a the defaults 0.99427
+    in 4.8 s CPU, the budget 0.98924 in 6.6 s. The chapters' pushes need no budget: the targets are one.
     ``overrides`` are further :class:`ssi.solver.Settings` fields."""
     return Settings(**({"control": "work", "backend": "superlu"} | overrides))
 
