@@ -14,8 +14,9 @@
   3 failed steps while two of four copies stopped in NonConvergence (lambda = 0.9407 and 0.8678, 18
   and 11 failed steps), so "0 failed steps" holds for the solver only if it holds for every copy.
 * ``footing_mc_psi0_h0125_s``: chapter 10's rigid rough strip footing on Mohr–Coulomb soil (c = 10 kPa,
-  phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement steps, ``push_footing``'s default settings
-  (``footing_settings``).
+  phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement targets, ``push_footing``'s default settings
+  (``footing_path_settings``: the controlled path, issue 31; until then ``footing_settings``, full Newton
+  in 12 fixed increments).
 
 Each is the wall time of the solve in this process after a JIT warm-up on a coarse mesh, best of 3
 (``SSI_BENCH_REPEAT``), with the split of that best run, measured by timers around the solver's calls

@@ -74,10 +74,10 @@
 # grow by 1.25 up to 1 m. The Prandtl pushes follow the controlled path (`Settings(control="work")`,
 # chapter 06; with a prescribed settlement and no force load its control is the settlement itself) in steps
 # of at most 1/30 of the push, ending where the pressure stays on a plateau or at the full settlement. The
-# trade study below also uses full Newton with the consistent tangent and a backtracking line search
-# (`Settings(method="full", line_search=True)`: the default settings of
-# `ssi.lab.bearing_capacity.push_footing`, `footing_settings()`): plain Newton steps near the footing corner
-# overshoot into a far plastic state and diverge.
+# trade study below also uses full Newton with the consistent tangent and a backtracking line search on
+# fixed settlement increments (`Settings(method="full", line_search=True)`:
+# `ssi.lab.bearing_capacity.footing_settings()`; `push_footing`'s default is the controlled path): plain
+# Newton steps near the footing corner overshoot into a far plastic state and diverge.
 #
 # | paper / text | code | meaning |
 # |---|---|---|
@@ -99,6 +99,7 @@ from ssi.lab.bearing_capacity import (
     CHAPTER10_FOOTING,
     chapter10_footing,
     footing_pressure,
+    footing_settings,
     prandtl,
     push_footing,
     sg61_scene,
@@ -523,10 +524,10 @@ for name, kw, method in variants:
                 scene, n_steps=n, settings=Settings.paper(backend="superlu", max_iter=400, max_cuts=1)
             )
         else:
-            out = push_footing(scene, n_steps=n)  # footing_settings(): full Newton with line search
+            out = push_footing(scene, n_steps=n, settings=footing_settings())  # full Newton, line search
         trade[name, n] = out
 ref_scene = chapter10_footing(h_fine=H_TRADE, settle=SETTLE[20.0])
-q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1])["q_u"]
+q_ref_trade = push_footing(ref_scene, n_steps=4 * step_counts[-1], settings=footing_settings())["q_u"]
 for (name, n), out in trade.items():
     out["trade_err"] = abs(out["q_u"] - q_ref_trade) / q_p20
     stop = (

@@ -195,11 +195,14 @@ def footing_pressure(scene: FootingScene, result):
 
 
 def footing_settings(**overrides: object) -> Settings:
-    """The solver settings :func:`push_footing` uses unless given others: full Newton with the consistent
-    tangent and a backtracking line search on load control (here displacement control: the prescribed
-    settlement is the load), and each of the ``n_steps`` settlement increments taken as one increment (the
-    increments are the study's variable), halved up to 8 times on failure. Plain Newton steps near the
-    footing corner overshoot into a far plastic state and diverge; the line search stops that.
+    """Full Newton on load control, the footing setting the studies of the Newton variant and the step size
+    name (chapter 10's trade study, chapter 13's solver comparison, chapter 19's slope; not
+    :func:`push_footing`'s default, which is :func:`footing_path_settings`): the consistent tangent with a
+    backtracking line search, each prescribed settlement increment taken as one increment (the increments
+    are the study's variable), halved up to 8 times on failure. Plain Newton steps near the footing corner
+    overshoot into a far plastic state and diverge; the line search stops that. Without load control's
+    former L-BFGS retry (issue 31) a failed increment is only halved: on the bench footing with psi = 0
+    (``benchmarks/bench_nonlinear.py``) it then took 16.7 s CPU against 4.0 s, 61 failed attempts.
 
     SuperLU is the backend: at a few thousand DOFs PARDISO's set-up costs 0.3-0.5 s per factorisation
     against SuperLU's 0.01-0.03 s. ``overrides`` are further :class:`ssi.solver.Settings` fields."""
@@ -210,21 +213,40 @@ def footing_settings(**overrides: object) -> Settings:
     )
 
 
+def footing_path_settings(**overrides: object) -> Settings:
+    """:func:`push_footing`'s default: the controlled path (``control="work"``, :mod:`ssi.solver.path`; with
+    the prescribed settlement and no force load its control is the settlement itself) with its own step
+    rule, on SuperLU (see :func:`footing_settings` for why). The push's settlement targets bound the steps
+    (the path lands on each target and never steps past one), so no step is longer than one increment; where
+    the pressure peaks or stays on a plateau the path ends there as a limit, before the full settlement.
+
+    Why the path's own first and largest step (0.1 and 0.25 of the push) and not the increments as the step
+    budget (first_step = max_step = 1/n_steps): measured on the bench footing (``bench_nonlinear.py``: psi =
+    0, h = 0.125 m, 12 targets), at main f6cc289 the defaults completed with q_u / Prandtl 0.99516 in 6.7 s
+    (full Newton in 12 fixed increments: 0.99539 in 16.1 s, same run) and the 1/12 budget ended in
+    NonConvergence at 76.1 of 80 mm (q_u / Prandtl 0.9785); on the path of main cd8ff2a the defaults 0.99427
+    in 4.8 s CPU, the budget 0.98924 in 6.6 s. The chapters' pushes need no budget: the targets are one.
+    ``overrides`` are further :class:`ssi.solver.Settings` fields."""
+    return Settings(**({"control": "work", "backend": "superlu"} | overrides))
+
+
 def push_footing(
     scene: FootingScene, n_steps: int = 20, grading: float = 1.0, settings: Settings | None = None
 ) -> dict:
-    """Push the footing to the settlement ``settle`` in ``n_steps`` increments (``grading`` > 1 makes the
+    """Push the footing to the settlement ``settle`` through ``n_steps`` targets (``grading`` > 1 makes the
     first steps smaller: lambda_i = (i/n)^grading) with ``ssi.solver.run`` and ``settings`` (default
-    :func:`footing_settings`). Returns a dict with settlement [m], q [Pa], q_u [Pa] (the largest pressure
-    reached by a state of the rate-independent law, see ``Result.rate_independent_steps``), iterations per
-    step, wall time [s], and the failure report if the solver stopped.
+    :func:`footing_path_settings`: the controlled path, which may end at a limit before the last target;
+    :func:`footing_settings` is full Newton on the same targets as fixed increments). Returns a dict with
+    settlement [m], q [Pa], q_u [Pa] (the largest pressure reached by a state of the rate-independent law,
+    see ``Result.rate_independent_steps``), iterations per step, wall time [s], and the failure report if
+    the solver stopped.
     """
     check_instance("scene", scene, FootingScene)
     n_steps = check_int("n_steps", n_steps, lo=1)
     grading = check_real("grading", grading, lo=0.0, lo_open=True)
     check_instance("settings", settings, Settings, optional=True)
     if settings is None:
-        settings = footing_settings()
+        settings = footing_path_settings()
     lam = (np.arange(1, n_steps + 1) / n_steps) ** grading
     t0 = time.perf_counter()
     failure = None
