@@ -16,7 +16,7 @@ from scipy.sparse.csgraph import connected_components
 
 from .assembly import SparsePattern, gather_vector, scatter_vector
 from .linsolve import Factorization, SingularMatrix
-from .protocol import FORCES_ONLY, K0_MATRIX, ElementGroup
+from .protocol import CONSISTENT, FORCES_ONLY, K0_MATRIX, SECANT_SOFTENING, ElementGroup
 from .solution import Result
 from .validate import check_array, check_real
 
@@ -426,6 +426,8 @@ class System:
             gather_vector(g.edofs, du, du_el)
             if tangent is None:
                 flag = FORCES_ONLY if g.forces_only else K0_MATRIX
+            elif tangent == SECANT_SOFTENING and not g.secant_softening:
+                flag = CONSISTENT
             else:
                 flag = tangent
             f_el, k_el, state_new = g.evaluate(u_el, du_el, state, flag)

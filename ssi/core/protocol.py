@@ -36,6 +36,7 @@ overrides what it has; nobody asks ``hasattr(group, ...)``:
 
 =============================  ======================================================================
 ``forces_only``                accepts the FORCES_ONLY flag (else it gets K0_MATRIX and k_el is ignored)
+``secant_softening``           accepts the SECANT_SOFTENING flag (else it gets CONSISTENT)
 ``viscous``, ``viscosity``     takes a Duvaut--Lions viscosity tau = dt / eta per increment [-], which
                                a group with ``viscous`` is built with (the solver sets none)
 ``history_fields``             name -> index on the last axis of ``state`` (read with :meth:`history`)
@@ -60,7 +61,12 @@ K0_MATRIX = 0  # return the initial elastic stiffness K0 (modified Newton-Raphso
 CONSISTENT = 1  # return the algorithmic (consistent) tangent (full Newton)
 FORCES_ONLY = -1  # internal forces only; k_el may be None. Only groups whose attribute ``forces_only`` is
 # True receive it (the others get K0_MATRIX and their k_el is ignored)
-TANGENT_FLAGS = (K0_MATRIX, CONSISTENT, FORCES_ONLY)
+SECANT_SOFTENING = 2  # the consistent tangent, except at points loading on a softening envelope (the
+# concrete's cracked tension branch), which return their secant modulus sig / e: a positive modulus where the
+# exact one is negative, so that a corrector iterating on it does not cycle between softening and secant
+# unloading (issue 31). Only groups whose attribute ``secant_softening`` is True receive it (the others get
+# CONSISTENT); the internal forces are those of every other flag
+TANGENT_FLAGS = (K0_MATRIX, CONSISTENT, FORCES_ONLY, SECANT_SOFTENING)
 
 
 class ElementGroup:
@@ -77,6 +83,8 @@ class ElementGroup:
 
     #: accepts ``FORCES_ONLY`` (internal forces without matrices)
     forces_only: bool = False
+    #: accepts ``SECANT_SOFTENING`` (the secant modulus at softening points; else it gets ``CONSISTENT``)
+    secant_softening: bool = False
     #: takes a Duvaut--Lions viscosity (set when the group is built; the solver sets none)
     viscous: bool = False
     #: the viscosity in force, tau = dt / eta per increment [-]; 0: rate independent

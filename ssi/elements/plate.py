@@ -63,7 +63,7 @@ formulation: strains come from ``u_el``; ``du_el`` is not used).
 import numpy as np
 from numba import njit
 
-from ..core.protocol import CONSISTENT, K0_MATRIX, ElementGroup
+from ..core.protocol import CONSISTENT, K0_MATRIX, SECANT_SOFTENING, ElementGroup
 from ..core.quadrature import gauss_legendre
 from ..core.shapes import lagrange3, lagrange3_into
 from ..materials.layer_laws import (
@@ -179,8 +179,9 @@ def _section(
     """Section response at one point: strains from the element vector ``u`` (9,), law per layer.
 
     Writes ``res`` (8,) = [N, M, Q, A, B, D, S, 0] with A = dN/deps0, B = dN/dkap = dM/deps0,
-    D = dM/dkap, S = dQ/dgam (tangent CONSISTENT: the laws' tangent moduli; K0_MATRIX: the initial moduli e0,
-    g0, i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
+    D = dM/dkap, S = dQ/dgam (tangent CONSISTENT: the laws' tangent moduli; SECANT_SOFTENING: the same with
+    the secant at points loading on a softening envelope, unless self_mode=1; K0_MATRIX: the initial moduli
+    e0, g0, i.e. K0); hist_old/hist_new (n_layer, N_LAYER_HIST). The self-bending term of each layer uses e0
     (self_mode=0), the layer's tangent modulus (1) or the chord through the stresses at the layer's faces (2,
     evaluated with the layer's committed history; scratch (N_LAYER_HIST,) takes their unused new history).
     res[7] = dM/deps0 (differs from B only with the chord term)."""
@@ -191,6 +192,11 @@ def _section(
         eps0 += bx[a] * u[3 * a]
         gam += bx[a] * u[3 * a + 1] - nn[a] * u[3 * a + 2]
         kap += bx[a] * u[3 * a + 2]
+    # the flag the laws get: their tangent, or with SECANT_SOFTENING their secant at softening points; the
+    # matrix below takes it unless K0 is asked for. Not with the "tangent" self-bending term, whose force uses
+    # the modulus: the internal force never depends on the flag
+    law_flag = tangent if tangent == SECANT_SOFTENING and self_mode != 1 else _ALWAYS_TANGENT
+    moduli = tangent != K0_MATRIX
     N = 0.0
     M = 0.0
     Q = 0.0
@@ -205,11 +211,11 @@ def _section(
         # the law always returns its tangent; K0 (K0_MATRIX) uses the initial moduli instead, so that the
         # internal force never depends on which matrix the solver asks for
         sig, tau, e_t, g_t = layer_update_with(
-            kind[n], params[n], const[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], _ALWAYS_TANGENT
+            kind[n], params[n], const[n], eps0 - z * kap, gam, hist_old[n], hist_new[n], law_flag
         )
         if do_ax:
             i_n = hn * hn * hn / 12.0  # exact within-layer bending, eq. (4.7b) h_n^2/12
-            e_k = e_t if tangent == CONSISTENT else e0[n]
+            e_k = e_t if moduli else e0[n]
             N += hn * sig
             M += -hn * z * sig
             A += hn * e_k
@@ -221,14 +227,14 @@ def _section(
                 z_b = z - 0.5 * hn
                 z_t = z + 0.5 * hn
                 s_b, _, e_b, _ = layer_update_with(
-                    kind[n], params[n], const[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
+                    kind[n], params[n], const[n], eps0 - z_b * kap, 0.0, hist_old[n], scratch, law_flag
                 )
                 s_t, _, e_tp, _ = layer_update_with(
-                    kind[n], params[n], const[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, _ALWAYS_TANGENT
+                    kind[n], params[n], const[n], eps0 - z_t * kap, 0.0, hist_old[n], scratch, law_flag
                 )
                 c = hn * hn / 12.0
                 M += c * (s_b - s_t)
-                if tangent == CONSISTENT:
+                if moduli:
                     B2 += c * (e_b - e_tp)
                     D += c * (z_t * e_tp - z_b * e_b)
                 else:
@@ -236,10 +242,10 @@ def _section(
             else:
                 e_self = e_t if self_mode == 1 else e0[n]
                 M += e_self * i_n * kap
-                D += (e_self if tangent == CONSISTENT else e0[n]) * i_n
+                D += (e_self if moduli else e0[n]) * i_n
         if do_sh and cshear[n]:
             Q += kappa * hn * tau
-            S += kappa * hn * (g_t if tangent == CONSISTENT else g0[n])
+            S += kappa * hn * (g_t if moduli else g0[n])
     res[0] = N
     res[1] = M
     res[2] = Q
@@ -508,6 +514,7 @@ class PlateStrip(ElementGroup):
     """
 
     history_fields = LAYER_HIST_FIELDS
+    secant_softening = True  # SECANT_SOFTENING: the concrete's secant at its softening points (_section)
 
     def __init__(
         self,

@@ -52,7 +52,11 @@ Algorithm of :func:`concrete_update` (one call, total formulation)
    e = eps + eps_p. e <= 0: unloading/reloading along E0 (sig = E0 e).
 4. e > 0: tension. Uncracked (max(e, e_max) <= eps_r = fr/E0): sig = E0 e. Loading on the cracked
    envelope (e >= e_max > eps_r): sig = max(softening eq. 5.4, tension stiffening). Unloading
-   (e < e_max): secant towards the origin (open choice of paper-notes §3.3).
+   (e < e_max): secant towards the origin (open choice of paper-notes §3.3). With the tangent flag
+   ``SECANT_SOFTENING`` (:mod:`ssi.core.protocol`) a point loading on the cracked envelope returns the
+   modulus of that secant, sig / e >= 0, in place of its negative tangent: a corrector iterating on it
+   does not cycle between softening and unloading (issue 31; the converged state is the same, only the
+   iteration matrix differs). The compression branch keeps its exact tangent.
 5. Shear: tau = beta G gam with beta = 1 uncracked, max(beta0 (1 - e_max/eps_y), beta_floor) cracked
    (Fig. 6; vanishes at steel yield), beta_floor once crushed. beta is evaluated from the *committed*
    history (``hist_old``: the crack state at the start of the increment). Reasons: (i) beta jumps from
@@ -67,7 +71,7 @@ import math
 
 from numba import njit
 
-from ..core.protocol import K0_MATRIX
+from ..core.protocol import K0_MATRIX, SECANT_SOFTENING
 
 (
     P_E0,
@@ -261,7 +265,9 @@ def concrete_constants(params):
 def concrete_update(params, eps, gam, hist_old, hist_new, tangent):
     """One concrete layer point: return ``(sig, tau, e_t, g_t)`` and write ``hist_new``.
 
-    ``tangent`` = 0 returns the initial moduli (E0, G) for K0, else d sig/d eps and d tau/d gam.
+    ``tangent`` = 0 returns the initial moduli (E0, G) for K0, ``SECANT_SOFTENING`` the secant sig / e in
+    place of the negative d sig/d eps on the cracked tension envelope (d sig/d eps elsewhere), any other flag
+    d sig/d eps and d tau/d gam. The stresses and the history do not depend on the flag.
     Shapes: params (>= N_CONCRETE_PARAMS,), hist_old/hist_new (>= N_CONCRETE_HIST,).
     """
     return concrete_update_with(concrete_constants(params), params, eps, gam, hist_old, hist_new, tangent)
@@ -316,6 +322,8 @@ def concrete_update_with(const, params, eps, gam, hist_old, hist_new, tangent):
         elif e >= e_max:
             # 4. loading on the cracked envelope
             sig, e_t = _tension(e, fr, eps_r, const[C_EPS_U], const[C_E_SOFT], params[P_ALPHA_TS], eps_y)
+            if tangent == SECANT_SOFTENING and e_t < 0.0:
+                e_t = sig / e  # the secant of the unloading branch this point would follow (docstring)
             e_max = e
         else:
             # 4. unloading of a cracked point: secant towards the origin

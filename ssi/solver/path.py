@@ -78,7 +78,7 @@ import scipy.sparse as sp
 
 from ..core.linsolve import Factorization
 from ..core.model import Model
-from ..core.protocol import CONSISTENT
+from ..core.protocol import CONSISTENT, SECANT_SOFTENING
 from ..core.solution import LIMIT_LOAD, STOPPED, Result
 from ..elements.interface import Interface6
 from ..elements.plate import PlateStrip
@@ -122,6 +122,9 @@ LINE_SEARCH_MIN = 1.0 / 64.0  # line search on a tangent factor: smallest step f
 G_GROWTH = 10.0  # on an unsymmetric tangent's factor, a step to G's root that raises |r| this many times is
 # not taken, the backtracking trial of least |r| instead (see _line_search; measured there: 3 stops chapter
 # 11's strip where it first cracks, 30 leaves chapter 11 as it was, 100 stops zoo scenes 30, 46, 82)
+CORRECTOR_TANGENT = SECANT_SOFTENING  # the matrix the corrector factorises (_refactor): the consistent
+# tangent, with the secant sig / e at the plate's concrete points loading on their cracked tension envelope
+# (ssi.core.protocol; measured in _line_search's docstring and bench_nonlinear's ch11 keys)
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
 OVERSHOOT_TRIALS = 8  # _overshoot: trials below the Matthies & Strang search's smallest step ...
 OVERSHOOT_MIN = 1e-3  # ... and the smallest step fraction it tries
@@ -573,7 +576,7 @@ class _Follower:
     def _refactor(self, u, u_n, states_n) -> bool:
         """Factorise the consistent tangent at ``u`` (False, the old factor kept, if it cannot be)."""
         try:
-            _, k_list, _ = self.system.evaluate(u, u - u_n, states_n, CONSISTENT)
+            _, k_list, _ = self.system.evaluate(u, u - u_n, states_n, CORRECTOR_TANGENT)
         except FloatingPointError:
             return False
         probe = None
