@@ -122,9 +122,20 @@ LINE_SEARCH_MIN = 1.0 / 64.0  # line search on a tangent factor: smallest step f
 G_GROWTH = 10.0  # on an unsymmetric tangent's factor, a step to G's root that raises |r| this many times is
 # not taken, the backtracking trial of least |r| instead (see _line_search; measured there: 3 stops chapter
 # 11's strip where it first cracks, 30 leaves chapter 11 as it was, 100 stops zoo scenes 30, 46, 82)
-CORRECTOR_TANGENT = SECANT_SOFTENING  # the matrix the corrector factorises (_refactor): the consistent
-# tangent, with the secant sig / e at the plate's concrete points loading on their cracked tension envelope
-# (ssi.core.protocol; measured in _line_search's docstring and bench_nonlinear's ch11 keys)
+SECANT_RULE = "never"  # when the corrector factorises SECANT_SOFTENING (ssi.core.protocol: the consistent
+# tangent with the secant sig / e at the plate's concrete points loading on their cracked tension envelope) in
+# place of CONSISTENT (_tangent_flag): "never", "poor" (a refactorisation asked for by a poor contraction; the
+# factor is then kept, lagged, like any other) or "always". Measured (issue 31, secant8; CPU s; chapter 11, 10
+# targets, the run and its four copies with the column load x (1 +- 1e-13), (1 +- 1e-12)):
+#   rule    h = 0.125 m: complete, failed steps, CPU  | h = 0.25 m: failed, steps, CPU | ch13 graded h/4
+#   never   4 of 5; 2, 7, 4, 2, 11 (NC 0.870); 5.5-7.4  | 0 each; 11; 0.49-0.58          | NC at 0.903
+#   poor    5 of 5; 0, 4, 1, 0, 0; 1.8-5.9             | 1 each; 32-34; 1.43-1.58       | NC at 0.737
+#   always  5 of 5; 0, 6, 3, 0, 0; 2.0-7.7             | 1 each; 51-53; 2.09-2.30       | NC at 0.849
+# "poor" is the best rule on the fine strip and worse than "never" on the chapter's own mesh and the graded
+# copy, so the default stays "never". Also measured and rejected at h = 0.125 m: a consistent refactorisation
+# at the next step's start after a secant one (1-5 failed steps each), the secant only from the second poor
+# refactorisation of a step (1-12 failed, one NonConvergence), and the secant everywhere after the path's
+# first failed step (3 copies: 103-125 steps, 11-16 s)
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
 OVERSHOOT_TRIALS = 8  # _overshoot: trials below the Matthies & Strang search's smallest step ...
 OVERSHOOT_MIN = 1e-3  # ... and the smallest step fraction it tries
@@ -532,7 +543,7 @@ class _Follower:
             # with an unsymmetric tangent a step that starts on K0 (the first, or the one after a failure)
             # factorises the consistent tangent of the committed state first (see POOR_RUN)
             stale = poor >= POOR_RUN or (it == 1 and self.fac is self.k0 and not st.symmetric_tangent)
-            if stale and self._refactor(u, u_n, states_n):
+            if stale and self._refactor(u, u_n, states_n, self._tangent_flag(poor >= POOR_RUN)):
                 bfgs, poor = _Lbfgs(self.fac, st.bfgs_memory), 0
             a = bfgs.direction(r_f)
             dlam = 0.0
@@ -573,10 +584,17 @@ class _Follower:
             return None
         return f_int, trial, lam * self.f_ref + self.f_dead - f_int
 
-    def _refactor(self, u, u_n, states_n) -> bool:
-        """Factorise the consistent tangent at ``u`` (False, the old factor kept, if it cannot be)."""
+    def _tangent_flag(self, poor: bool) -> int:
+        """The tangent flag of a factorisation (``SECANT_RULE``); ``poor``: asked for by a poor contraction
+        (POOR_RUN)."""
+        if SECANT_RULE == "always" or SECANT_RULE == "poor" and poor:
+            return SECANT_SOFTENING
+        return CONSISTENT
+
+    def _refactor(self, u, u_n, states_n, tangent=CONSISTENT) -> bool:
+        """Factorise the tangent ``tangent`` at ``u`` (False, the old factor kept, if it cannot be)."""
         try:
-            _, k_list, _ = self.system.evaluate(u, u - u_n, states_n, CORRECTOR_TANGENT)
+            _, k_list, _ = self.system.evaluate(u, u - u_n, states_n, tangent)
         except FloatingPointError:
             return False
         probe = None
@@ -677,7 +695,8 @@ class _Follower:
         secant modulus in place of the concrete's negative tangent on its softening envelope (tried in the
         law, not kept: the law is not this module's) with growths 3 and 10 here: 5 of 5 complete at h = 0.125
         m, 4 and 3 of them without a failed step in ~2 s; the failed steps left are soil points switching
-        between elastic and plastic."""
+        between elastic and plastic. That secant is now the tangent flag SECANT_SOFTENING, which the
+        corrector asks for by ``SECANT_RULE`` (measured there, with G_GROWTH = 10: not the default)."""
         free = self.system.free
         g0 = float(du @ r_f)
         r0 = _norm(r_f)
