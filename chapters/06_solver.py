@@ -761,11 +761,12 @@ if ordinary:
 # switching) reached 0.21 on random 22 at one amplitude and a false limit at 0.115 at another; load steps
 # where the path is still stiff completed random 46 but stopped 23, 31 and 50 earlier. In Davis mode (all
 # laws associated) there are no such bifurcations: all 100 end completed (61) or at a limit (39), each limit
-# with its mechanism certificate λ_k / λ_peak (`ssi.solver.mechanism`) between 0.9798 and 1.0000, inside its
-# 3 % tolerance (`tools/zoo_controlled.py --flow davis`, 63 s); random 25, which stopped at λ = 0.1 before, reaches 0.5431 since the
-# symmetric line search narrows an overshoot (`path._overshoot`). Where a tangent has a mode without
-# stiffness, the `NonConvergence` report names it (`soft_mode`: its groups and DOFs, and whether the load does
-# work on it): random 50 and 61 stopped on soil-surface nodes that nothing holds.
+# with its mechanism certificate λ_k / λ_peak (`ssi.solver.mechanism`) between 0.9798 and 1.0000, inside
+# its 3 % tolerance (`tools/zoo_controlled.py --flow davis`, 63 s); random 25, which stopped at λ = 0.1
+# before, reaches 0.5431 since the symmetric line search narrows an overshoot (`path._overshoot`). Where a
+# tangent has a mode without stiffness, the `NonConvergence` report names it (`soft_mode`: its groups and
+# DOFs, and whether the load does work on it): random 61 stops on soil-surface nodes that nothing holds (so
+# did 50 before `G_GROWTH`).
 # These are the solver's failures, reported as such: none is read as a collapse.
 
 
