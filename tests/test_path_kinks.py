@@ -22,7 +22,7 @@ def test_a_root_that_multiplies_the_residual_is_not_taken():
 
 
 def test_without_the_rule_the_scene_stops(monkeypatch):
-    """The same scene with the root always taken (the parent's behaviour) stops: the rule is what passes it."""
+    """The same scene with the root always taken (the parent's behaviour) stops: the rule passes it."""
     monkeypatch.setattr(path, "G_GROWTH", float("inf"))
     name, scene = random_scenes(100, seed=1)[82]
     with pytest.raises(NonConvergence):
