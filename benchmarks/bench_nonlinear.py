@@ -13,6 +13,10 @@
   solver on this scene: measured on the parent of crack8 (3a5ff09), the unperturbed run completed with
   3 failed steps while two of four copies stopped in NonConvergence (lambda = 0.9407 and 0.8678, 18
   and 11 failed steps), so "0 failed steps" holds for the solver only if it holds for every copy.
+* ``ch11_h0125_secant_s`` and ``ch11_h0125_secant_roundoff``: the first and the round-off keys with
+  ``path.SECANT_RULE = "poor"`` (a refactorisation asked for by a poor contraction factorises the
+  SECANT_SOFTENING tangent: the concrete's secant at its softening points; issue 31, secant8), in the same
+  run: the rule is not the default (see ``path.SECANT_RULE``), these keys measure it beside it.
 * ``footing_mc_psi0_h0125_s``: chapter 10's rigid rough strip footing on Mohr–Coulomb soil (c = 10 kPa,
   phi = 20 deg, psi = 0) at h = 0.125 m, 12 settlement targets, ``push_footing``'s default settings
   (``footing_path_settings``: the controlled path, issue 31; until then ``footing_settings``, full Newton
@@ -212,9 +216,22 @@ def report(key, solve, n_iterations):
     return wall
 
 
-def roundoff(scene_of):
-    """``ch11_h0125_controlled_roundoff``: the controlled ch11 run on copies whose column load is scaled by
-    1 + eps for eps in ROUNDOFF, once each (see the module docstring)."""
+class SecantRule:
+    """``path.SECANT_RULE`` set to ``rule`` within the block (restored on exit)."""
+
+    def __init__(self, rule):
+        self.rule = rule
+
+    def __enter__(self):
+        self.saved, path.SECANT_RULE = path.SECANT_RULE, self.rule
+
+    def __exit__(self, *exc):
+        path.SECANT_RULE = self.saved
+
+
+def roundoff(scene_of, key="ch11_h0125_controlled_roundoff"):
+    """``key``: the controlled ch11 run on copies whose column load is scaled by 1 + eps for eps in
+    ROUNDOFF, once each (see the module docstring)."""
     settle, complete = [], 0
     for eps in ROUNDOFF:
         t0 = time.perf_counter()
@@ -231,13 +248,13 @@ def roundoff(scene_of):
             except NonConvergence as err:
                 res, text = err.result, f"NonConvergence at lambda = {err.result.load_factor[-1]:.4f}"
         print(
-            f"ch11_h0125_controlled_roundoff_{eps:+.0e}: {text}; {split.attempts[False][0]} failed steps, "
+            f"{key}_{eps:+.0e}: {text}; {split.attempts[False][0]} failed steps, "
             f"{split.n['factorisation']} factorisations, {sum(res.iterations)} iterations, "
             f"{time.perf_counter() - t0:.2f} s"
         )
     spread = (max(settle) - min(settle)) / min(settle) if settle else float("nan")
     print(
-        f"ch11_h0125_controlled_roundoff: {complete} of {len(ROUNDOFF)} copies completed"
+        f"{key}: {complete} of {len(ROUNDOFF)} copies completed"
         + verdict(complete, ">=", len(ROUNDOFF))
         + f"; max settlement spread over the completed copies {spread:.2%}"
     )
@@ -262,6 +279,10 @@ def main():
     )
     print(f"ch11_h0125_controlled_ratio: {t_ctrl / t_default:.3f}   (controlled path / default, same run)")
     roundoff(scene_of)
+    with SecantRule("poor"):
+        t_sec = report("ch11_h0125_secant_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
+        roundoff(scene_of, "ch11_h0125_secant_roundoff")
+    print(f"ch11_h0125_secant_ratio: {t_sec / t_default:.3f}   (SECANT_RULE 'poor' / default, same run)")
 
     def footing(h):
         return push_footing(footing_scene(0.0, h), n_steps=12)

@@ -744,9 +744,12 @@ if ordinary:
 
 
 # %% [markdown]
-# **What the 12 NonConvergence runs are** (measured on the stored scenes with `tools/path_spectrum.py`, at
-# the last committed state, this stop): on random 22, 31, 66 and 80 the determinant of the tangent changes
-# sign there while f_ref · K⁻¹ f_ref stays finite and positive — neither the work nor the load factor turns.
+# **What the NonConvergence runs are.** The stored table now has 10 (59 completed, 31 limits): the line
+# search's growth rule (`path.G_GROWTH`) completed random 50 and 82, took 46 to a limit (0.9850) and stopped
+# random 25 at λ = 0, whose limit was 0.5425 before. The 12 of the earlier table were measured with
+# `tools/path_spectrum.py` at the last committed state: on random 22, 31, 66 and 80 the determinant of the
+# tangent changes sign there while f_ref · K⁻¹ f_ref stays finite and positive — neither the work nor the
+# load factor turns.
 # The tangent has one or two negative eigenvalues whose mode is nearly orthogonal to the load
 # (|f_ref · ψ| / |f_ref| between 4e-4 and 3e-3), localised in one or two soil elements of a cohesionless top
 # layer (a shear band under the footing's edge, a layer boundary): a **bifurcation** of the non-associated
@@ -757,8 +760,13 @@ if ordinary:
 # below its Davis floor (a false collapse by the bracket); a predictor along the negative mode (branch
 # switching) reached 0.21 on random 22 at one amplitude and a false limit at 0.115 at another; load steps
 # where the path is still stiff completed random 46 but stopped 23, 31 and 50 earlier. In Davis mode (all
-# laws associated) there are no such bifurcations: 99 of the 100 end completed or at a limit, the last
-# (random 25) stops just after its first step at λ = 0.1, below its certified floor of 0.448, unresolved.
+# laws associated) there are no such bifurcations: all 100 end completed (61) or at a limit (39), each limit
+# with its mechanism certificate λ_k / λ_peak (`ssi.solver.mechanism`) between 0.9798 and 1.0000, inside
+# its 3 % tolerance (`tools/zoo_controlled.py --flow davis`, 63 s); random 25, which stopped at λ = 0.1
+# before, reaches 0.5431 since the symmetric line search narrows an overshoot (`path._overshoot`). Where a
+# tangent has a mode without stiffness, the `NonConvergence` report names it (`soft_mode`: its groups and
+# DOFs, and whether the load does work on it): random 61 stops on soil-surface nodes that nothing holds (so
+# did 50 before `G_GROWTH`).
 # These are the solver's failures, reported as such: none is read as a collapse.
 
 
