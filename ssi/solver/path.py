@@ -130,17 +130,20 @@ G_GROWTH = 30.0  # on an unsymmetric tangent's factor, a step to G's root that r
 SECANT_RULE = "never"  # when the corrector factorises SECANT_SOFTENING (ssi.core.protocol: the consistent
 # tangent with the secant sig / e at the plate's concrete points loading on their cracked tension envelope) in
 # place of CONSISTENT (_tangent_flag): "never", "poor" (a refactorisation asked for by a poor contraction; the
-# factor is then kept, lagged, like any other) or "always". Measured (issue 31, secant8; CPU s; chapter 11, 10
-# targets, the run and its four copies with the column load x (1 +- 1e-13), (1 +- 1e-12)):
-#   rule    h = 0.125 m: complete, failed steps, CPU  | h = 0.25 m: failed, steps, CPU | ch13 graded h/4
-#   never   4 of 5; 2, 7, 4, 2, 11 (NC 0.870); 5.5-7.4  | 0 each; 11; 0.49-0.58          | NC at 0.903
-#   poor    5 of 5; 0, 4, 1, 0, 0; 1.8-5.9             | 1 each; 32-34; 1.43-1.58       | NC at 0.737
-#   always  5 of 5; 0, 6, 3, 0, 0; 2.0-7.7             | 1 each; 51-53; 2.09-2.30       | NC at 0.849
-# "poor" is the best rule on the fine strip and worse than "never" on the chapter's own mesh and the graded
-# copy, so the default stays "never". Also measured and rejected at h = 0.125 m: a consistent refactorisation
-# at the next step's start after a secant one (1-5 failed steps each), the secant only from the second poor
-# refactorisation of a step (1-12 failed, one NonConvergence), and the secant everywhere after the path's
-# first failed step (3 copies: 103-125 steps, 11-16 s)
+# factor is then kept, lagged, like any other) or "always". Measured (issue 31, secant8, with G_GROWTH = 30;
+# CPU s, same process; chapter 11, 10 targets, the run and its four copies with the column load x (1 +-
+# 1e-13), (1 +- 1e-12); chapter 13's graded h/4 copy, default Settings):
+#   rule    h = 0.125 m: complete; failed steps; CPU        | h = 0.25 m: failed; steps; CPU | ch13 graded
+#   never   3 of 5; 6, 6, 13, 12, 6 (NC 0.871, 0.870); 6-7 | 1 each; 18-22; 0.74-1.01      | NC 0.9013, 26 s
+#   poor    5 of 5; 0, 7, 4, 0, 4; 1.9-7.6                  | 1 each; 32-34; 1.48-1.61      | NC 0.9010, 55 s
+#   always  5 of 5; 0, 6, 3, 0, 6; 1.9-10.2                 | 1 each; 51-52; 2.16-2.38      | NC 0.9021, 47 s
+# "poor" completes every copy of the fine strip (2 of 5 without a failed step, in ~2 s) but costs 1.8x the
+# CPU at h = 0.25 m (same failed step) and 2.1x on the graded copy (same stop): the default stays "never"
+# (main's corrector) until the chapters and the zoo's RC scenes are measured with it. Also measured and
+# rejected at h = 0.125 m (with G_GROWTH = 10): a consistent refactorisation at the next step's start after a
+# secant one (1-5 failed steps each copy), the secant only from the second poor refactorisation of a step
+# (1-12 failed, one NonConvergence), and the secant everywhere after the path's first failed step (3 copies:
+# 103-125 steps, 11-16 s)
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
 OVERSHOOT_TRIALS = 8  # _overshoot: trials below the Matthies & Strang search's smallest step ...
 OVERSHOOT_MIN = 1e-3  # ... and the smallest step fraction it tries
@@ -702,7 +705,7 @@ class _Follower:
         law, not kept: the law is not this module's) with growths 3 and 10 here: 5 of 5 complete at h = 0.125
         m, 4 and 3 of them without a failed step in ~2 s; the failed steps left are soil points switching
         between elastic and plastic. That secant is now the tangent flag SECANT_SOFTENING, which the
-        corrector asks for by ``SECANT_RULE`` (measured there, with G_GROWTH = 10: not the default)."""
+        corrector asks for by ``SECANT_RULE`` (measured there; not the default)."""
         free = self.system.free
         g0 = float(du @ r_f)
         r0 = _norm(r_f)
