@@ -143,8 +143,8 @@ def test_model_gives_the_flag_only_to_groups_that_declare_it():
 
 def test_secant_on_poor_contraction_passes_the_fine_strip_without_a_failed_step(monkeypatch):
     """Chapter 11's scene at h = 0.125 m, 10 targets, with ``path.SECANT_RULE = "poor"``: the run completes
-    without a failed step. Measured on the same commit with the default rule "never" (the consistent
-    tangent, as on main c58d17b): 6 failed steps, 56 steps, 98 factorisations; with "poor": 0, 11, 56."""
+    without a failed step. Measured on the same commit with the rule "never" (the consistent tangent, as on
+    main c58d17b): 6 failed steps, 56 steps, 98 factorisations; with "poor": 0, 11, 56."""
     monkeypatch.setattr(path, "SECANT_RULE", "poor")
     out = chapter11_foundation(0.125).build().solve(n_steps=10, settings=Settings(control="work"))
     res = out.solver_result
