@@ -3,9 +3,8 @@ no backtracking step on an unsymmetric tangent's factor lowers |r|, Matthies & S
 only if it raises |r| less than G_GROWTH times.
 
 Random zoo scene 82 (seed 1) stopped in NonConvergence at lambda = 0.729 at 3a5ff09, where the root was
-always taken; with the rule it completes. (The rule's first value, 10, also took the one failed step out
-of chapter 11's scene at h = 0.25 m, but stopped chapter 10's psi = 0 footing at h = 0.125 m: see the
-constant.)"""
+always taken; with the rule (10) it completes, and so it does with 30 (which is not the value: see the
+constant)."""
 
 import pytest
 
