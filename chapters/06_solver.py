@@ -744,12 +744,13 @@ if ordinary:
 
 
 # %% [markdown]
-# **What the NonConvergence runs are.** The stored table now has 10 (59 completed, 31 limits): the line
-# search's growth rule (`path.G_GROWTH`) completed random 50 and 82, took 46 to a limit (0.9850) and stopped
-# random 25 at λ = 0, whose limit was 0.5425 before. The 12 of the earlier table were measured with
-# `tools/path_spectrum.py` at the last committed state: on random 22, 31, 66 and 80 the determinant of the
-# tangent changes sign there while f_ref · K⁻¹ f_ref stays finite and positive — neither the work nor the
-# load factor turns.
+# **What the NonConvergence runs are.** The stored table now has 10 (60 completed, 30 limits): the line
+# search's growth rule (`path.G_GROWTH` = 10) completed random 46, 50 and 82 and stopped random 30 at
+# λ = 0.9425, just below the peak 0.9449 it reached before. (A growth of 30 took 46 to a "limit" 0.69 % below
+# 0.97 × its certified Davis floor — a false collapse by this chapter's own check — and was not kept.) The
+# 12 of the earlier table were measured with `tools/path_spectrum.py` at the last committed state: on random
+# 22, 31, 66 and 80 the determinant of the tangent changes sign there while f_ref · K⁻¹ f_ref stays finite
+# and positive — neither the work nor the load factor turns.
 # The tangent has one or two negative eigenvalues whose mode is nearly orthogonal to the load
 # (|f_ref · ψ| / |f_ref| between 4e-4 and 3e-3), localised in one or two soil elements of a cohesionless top
 # layer (a shear band under the footing's edge, a layer boundary): a **bifurcation** of the non-associated
