@@ -744,11 +744,11 @@ if ordinary:
 
 
 # %% [markdown]
-# **What the NonConvergence runs are.** The stored table now has 10 (60 completed, 30 limits): the line
-# search's growth rule (`path.G_GROWTH` = 10) completed random 46, 50 and 82 and stopped random 30 at
-# λ = 0.9425, just below the peak 0.9449 it reached before. (A growth of 30 took 46 to a "limit" 0.69 % below
-# 0.97 × its certified Davis floor — a false collapse by this chapter's own check — and was not kept.) The
-# 12 of the earlier table were measured with `tools/path_spectrum.py` at the last committed state: on random
+# **What the 12 NonConvergence runs are.** (A growth limit on the line search's root, `path.G_GROWTH`, passes
+# random 46, 50 and 82 when applied to every model, but at 10 it lost random 30's limit and stopped chapter
+# 10's ψ = 0 footing, and at 30 it took 46 to a "limit" 0.69 % below 0.97 × its certified Davis floor — a
+# false collapse by this chapter's own check; it now applies only to a cracking strip, where it was measured.)
+# They were measured with `tools/path_spectrum.py` at the last committed state: on random
 # 22, 31, 66 and 80 the determinant of the tangent changes sign there while f_ref · K⁻¹ f_ref stays finite
 # and positive — neither the work nor the load factor turns.
 # The tangent has one or two negative eigenvalues whose mode is nearly orthogonal to the load
