@@ -412,8 +412,9 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # `NonConvergence` at λ = 0.737 in this stop's final run (the corrector variants measured this stop, with and
 # without the line search's growth rule `G_GROWTH` and the secant rule `SECANT_RULE`, stopped between 0.735
 # and 0.903), where cracked layer points of the strip flip between loading on the softening branch and
-# unloading and the soil beside them between elastic and plastic. The load-controlled algorithms stop earlier without the former fallbacks
-# (measured on this copy: modified Newton at λ = 0.728 after 281 s, L-BFGS at 0.471, full Newton at 0.390).
+# unloading and the soil beside them between elastic and plastic. The load-controlled algorithms stop
+# earlier without the former fallbacks (measured on this copy: modified Newton at λ = 0.728 after 281 s,
+# L-BFGS at 0.471, full Newton at 0.390).
 # The numbers above are those of the former default, which passed this softening on a viscous detour. Until
 # the path passes the strip's snap-backs (dissipation control, measured and not yet working), the row
 # `target_error_met` is reported FAIL with the stop, not asserted: the driver delivers no settlement here.
