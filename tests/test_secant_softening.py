@@ -41,21 +41,8 @@ def one_element(section, x, **kw):
     return PlateStrip(xy[None], np.arange(9)[None], section, **kw)
 
 
-# (name, strain, committed history) in every branch of the law (as tests/test_concrete_steel.py)
-CONCRETE_BRANCHES = [
-    ("elastic tension", 5e-5, hist()),
-    ("elastic compression", -1e-4, hist()),
-    ("ascending envelope", -1e-3, hist()),
-    ("descending envelope", -0.003, hist(0.0025, 0.0)),
-    ("unloading in compression", -0.002, hist(0.0028, 0.0)),
-    ("reloading tension after compression", 2e-5, hist(0.0012, 0.0)),
-    ("softening", 3e-4, hist(0.0, 2e-4)),
-    ("tension stiffening", 1.5e-3, hist(0.0, 1.2e-3)),
-    ("secant unloading", 1e-4, hist(0.0, 4e-4)),
-    ("fully cracked", 4e-3, hist(0.0, 3e-3)),
-    ("unloading from crushing", -0.001, hist(0.004, 0.0)),
-    ("crushing branch", -0.005, hist(0.0045, 0.0)),
-]
+# (name, strain, committed history) in every branch of the law: test_concrete_steel's table
+from test_concrete_steel import CONCRETE_BRANCHES  # noqa: E402  (pytest's rootdir import: tests/ on sys.path)
 
 # the branches loading on the cracked tension envelope (the third after a compression: from its irreversible
 # strain)
