@@ -9,6 +9,10 @@ division the law does, so it is compared to 1e-14 (relative: a few ulps of the d
 import numpy as np
 import pytest
 
+# (name, strain, committed history) in every branch of the law: test_concrete_steel's table (pytest puts
+# tests/ on sys.path)
+from test_concrete_steel import CONCRETE_BRANCHES
+
 from ssi.core.model import System
 from ssi.core.protocol import CONSISTENT, SECANT_SOFTENING
 from ssi.elements.plate import PlateStrip
@@ -40,9 +44,6 @@ def one_element(section, x, **kw):
     xy = np.column_stack([np.asarray(x, float), np.zeros(3)])
     return PlateStrip(xy[None], np.arange(9)[None], section, **kw)
 
-
-# (name, strain, committed history) in every branch of the law: test_concrete_steel's table
-from test_concrete_steel import CONCRETE_BRANCHES  # noqa: E402  (pytest's rootdir import: tests/ on sys.path)
 
 # the branches loading on the cracked tension envelope (the third after a compression: from its irreversible
 # strain)
