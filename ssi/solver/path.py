@@ -18,7 +18,9 @@ non-associated soil) factorises the tangent of the committed state there instead
 residual norm, along G only where no step lowers it (see ``_line_search``). With work control each
 iteration solves the bordered system by two solves with that operator H ~ K^-1: a = H r, b = H f_ref,
 d lambda = -(f_ref . a) / (f_ref . b), du = a + d lambda b, which keeps f_ref . du = 0 after a predictor
-that meets the constraint exactly (the previous step scaled, or the tangent b at the first step).
+that meets the constraint exactly (the previous step scaled, or the tangent b at the first step). A step to
+a prescribed lambda without a previous step starts from the committed tangent's linear response to it,
+prescribed displacements included (``_prescribed_predictor``).
 
 State table (one row per transition; a "step" is one control increment ds)::
 
