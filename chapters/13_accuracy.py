@@ -405,18 +405,25 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # believable: the h/4 copy carries 1.5 times the service load -- and, once its collapse evidence was
 # tightened, as `NonConvergence`. Issue 31 removed that machinery (viscous fallback, relaxation, bracketing,
 # stiffness tests): on the controlled path, now the default, the h/16 copy stops in `NonConvergence` at
-# λ = 0.327, its worst residual in the soil under the strip (chapter 11's row `ch11_h16`,
+# λ = 0.376, its worst residual in the soil at the strip's end (chapter 11's row `ch11_h16`,
 # `reference_data/chapter11_h16_controlled.csv`) -- an honest stop, never a limit.
 #
 # Since the controlled path became the default (issue 31), the graded h/4 copy this driver picks stops too:
-# `NonConvergence` at λ = 0.737 in this stop's final run (the corrector variants measured this stop, with and
-# without the line search's growth rule `G_GROWTH` and the secant rule `SECANT_RULE`, stopped between 0.735
-# and 0.903), where cracked layer points of the strip flip between loading on the softening branch and
-# unloading and the soil beside them between elastic and plastic. The load-controlled algorithms stop
-# earlier without the former fallbacks (measured on this copy: modified Newton at λ = 0.728 after 281 s,
-# L-BFGS at 0.471, full Newton at 0.390).
-# The numbers above are those of the former default, which passed this softening on a viscous detour. Until
-# the path passes the strip's snap-backs (dissipation control, measured and not yet working), the row
+# `NonConvergence` at λ = 0.737. What that stop is (measured on it, issue 31): not a snap-back of the
+# load–work curve, which work control could not pass by construction — over the last three steps the loading
+# tangent gives f·K_t⁻¹f ≈ 1.9 times its elastic value, as the steps' own secants do, far from a turn or a
+# peak. A step back converges in 2 iterations, every forward load or work step fails, yet a control on the
+# strip's end zone (its relative rotation) finds equilibrium states ahead at larger load and work: the
+# corrector fails, not the control, which is why dissipation control was not built for it. Round-off decides
+# where: the same copy with the column load × (1 ± 1e-12) passes 0.737 and stops at λ ≈ 0.902, as every
+# variant measured does (end-zone control, the bordered solve on the tangent's factor, the symmetric
+# corrector): 9–163 soil points at the clay/sand boundary under a strip end flip between elastic and plastic
+# and the residual stagnates at 5–13 times the tolerance — the non-associated soil's stagnation the random
+# zoo's 12 stopped scenes show. In Davis mode (associated flow with reduced c, φ) the same copy completes
+# (113 steps, 44.31 mm, a different material). The load-controlled algorithms stop earlier without the former
+# fallbacks (modified Newton at λ = 0.728 after 281 s, L-BFGS at 0.471, full Newton at 0.390).
+# The numbers above are those of the former default, which passed these states on a viscous detour. Until
+# the corrector passes the non-associated soil's plastic front, the row
 # `target_error_met` is reported FAIL with the stop, not asserted: the driver delivers no settlement here.
 
 # %%
