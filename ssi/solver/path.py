@@ -66,6 +66,22 @@ A failure to converge is never read as a limit. A limit is reported with ``limit
 mechanism certificate of its increment (``limit_mechanism``, ``limit_stored_share``:
 :mod:`ssi.solver.mechanism`) and, when a check fails, ``limit_suspect`` with the reason
 (:func:`ssi.limit.flag_suspect` adds the limit-analysis bracket's verdict).
+
+Where the path still stops: non-associated soil at the edge of its plastic zone. In 10 of the random zoo's
+12 stopped scenes (seed 1), at the bench footing's failed steps and at chapter 13's graded copy (whose
+round-off copies stop at lambda ~ 0.902), the residual hovers at 1-13 times ``force_tol`` while soil points
+flip between elastic and plastic: the tangent there is nearly singular (x.K_t.x / x.K0.x from -2.5e-3 to
+3e-3) and along an exact Newton direction |r| falls only up to t ~ 1e-3 - 1e-2, where plastic points unload
+elastically. Measured and not kept (issue 31; zoo outcomes completed / limit / NonConvergence from 57 / 31
+/ 12): full Newton over the whole path (6 of the 12 solved, two others stopped earlier); a rewind of 23
+steps with full Newton after a failure at the smallest step (60 / 33 / 7, the zoo 1.35-1.6x slower, chapter
+10's finest psi = 0 push 3.7x: a retry after a failure, which this module does not do); a Levenberg-
+Marquardt shift of 6e-3 x the soil's K0 in its tangent (6 solved; scene 86 lost, five limits down by 0.46-8
+%); 1e-3 of the elastic matrix at apex points (one solved, one lost, limits -3.3 % and -8.1 %); the shift of
+``_regularised`` on the soil's DOFs (none solved); the elastic tangent at near-neutral plastic points (the
+footing's copies 5 of 6 at threshold 0.1, stopped at 0.3); ``force_tol`` 1e-4 (4 of the 12 solved, the
+others stopping elsewhere); on chapter 13's copy a control on the strip's end zone and the bordered solve on
+the tangent's factor (both stop at ~0.902). In Davis mode the same scenes complete or peak.
 """
 
 from __future__ import annotations
