@@ -101,6 +101,7 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["phases"] = result.phase_table()
     out["status"] = result.status if complete else "stopped"
     out["limit_load_factor"] = result.limit_load_factor if complete else None
+    out.update(_limit_checks(result) if complete and result.status == "limit load reached" else {})
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
@@ -115,6 +116,21 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["error_estimate"] = result.error_estimate
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
+
+
+def _limit_checks(result) -> dict:
+    """How the controlled path found its limit and the limit's checks (ssi/solver/path.py):
+    ``limit_evidence`` (peak or plateau, where), ``limit_uncertainty`` (relative change of the peak when the
+    steps around it are redone at half size), ``limit_mechanism`` (the mechanism certificate lambda_k /
+    lambda_peak, associated and Davis-mode laws only, else None) and ``limit_suspect`` (why the limit is not
+    to be read as a capacity, "" when every check passed). Of a phased solve, the last phase's."""
+    last = result.phases[-1]["result"] if result.phases else result.solver_result
+    return {
+        "limit_evidence": last.limit_evidence,
+        "limit_uncertainty": last.limit_uncertainty,
+        "limit_mechanism": last.limit_mechanism,
+        "limit_suspect": last.limit_suspect,
+    }
 
 
 ENVELOPE_KEYS = (
@@ -235,6 +251,7 @@ def summary_text(s: dict) -> str:
             f"limit load       reached at load factor {s['limit_load_factor']:.4g}{where}{load}: "
             "the scene cannot carry its full loads (the path up to the limit is the answer)"
         )
+        lines += _limit_check_lines(s)
     elif s["status"] == "stopped":
         where = "" if s.get("phase") is None else f" in phase {s['phase']!r}"
         lines.append(
@@ -254,6 +271,23 @@ def summary_text(s: dict) -> str:
             f"                 {s['estimate_wall_time_s']:.2f} s (the error estimate's refined solves)"
         )
     return "\n".join(lines)
+
+
+def _limit_check_lines(s: dict) -> list[str]:
+    """The limit's checks under the ``limit load`` line; a failed check as its own SUSPECT line, so that an
+    engineer does not read such a limit as a capacity."""
+    if "limit_evidence" not in s:  # a summary written before the checks were part of it
+        return []
+    unc = s.get("limit_uncertainty")  # (the evidence itself is on the capacity line)
+    text = "                 relative uncertainty " + (
+        "not measured" if unc is None else f"{unc:.1e} (the steps around the peak redone at half size)"
+    )
+    if s.get("limit_mechanism") is not None:
+        text += f"; mechanism certificate {s['limit_mechanism']:.4f} (1 at a collapse)"
+    lines = [text]
+    if s.get("limit_suspect"):
+        lines.append(f"SUSPECT          {s['limit_suspect']}")
+    return lines
 
 
 def _estimate_lines(s: dict) -> list[str]:

@@ -102,8 +102,8 @@ def _fmt(value, scale, fmt) -> str:
 
 def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]:
     """What the reader must not miss: the run's own warnings (``run_warnings``: bad-looking input, solver
-    notes), an incomplete run, a limit load, viscous rows left out, no limit found on a push-over, the
-    corner singularity of the contact pressure."""
+    notes), an incomplete run, a limit load and a failed check of it, viscous rows left out, no limit found
+    on a push-over, the corner singularity of the contact pressure."""
     out = list(run_warnings or [])
     if s["status"] == "stopped":
         out.append(
@@ -115,6 +115,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             f"Limit load reached at load factor {s['limit_load_factor']:.4g}: the scene cannot carry its "
             "full loads; the path up to the limit is the answer."
         )
+        if s.get("limit_suspect"):  # a failed check of the limit (ssi/solver/path.py): not a capacity as read
+            out.append(f"The limit is suspect: {s['limit_suspect']}.")
     cap = s.get("capacity") or {}
     if cap.get("viscous_rows"):
         out.append(

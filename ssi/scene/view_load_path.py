@@ -116,9 +116,9 @@ class LoadPathView:
         could not be extrapolated, else None).
 
         How: a run the solver stopped (a NonConvergence's partial result): the largest load it carried, no
-        limit. A scene under column loads whose controlled path peaked (the solver's limit load,
-        ``status == "limit load reached"``): that load (lambda * sum N); one that completed: its full load,
-        no limit found. A push-over: the peak of the
+        limit. A run whose controlled path peaked (the solver's limit load, ``status == "limit load
+        reached"``): that load, how the solver found it. A scene under column loads that completed: its full
+        load, no limit found. A push-over that completed: the peak of the
         path if the load falls after it by more than 1 %; a plateau if the last increment's stiffness dP/ds is
         below ``PLATEAU_STIFFNESS_SHARE`` of the first's; else the largest carried load, no limit found."""
         path = self.load_settlement()
@@ -138,10 +138,11 @@ class LoadPathView:
                 "is_limit": False,
                 "how": "largest load carried before the solver stopped (a solver failure, not a limit)",
             }
+        if self.status == "limit load reached":  # only the controlled path finds one: its definition is the
+            # one used (a push-over's own rules below are for paths that completed or were load-controlled)
+            how = f"limit load detected by the solver ({self.solver_result.limit_evidence})"
+            return out | {"is_limit": True, "how": how}
         if not self.is_push_over:
-            if self.status == "limit load reached":  # only the controlled path finds one
-                how = f"limit load detected by the solver ({self.solver_result.limit_evidence})"
-                return out | {"is_limit": True, "how": how}
             return out | {"is_limit": False, "how": "largest carried load: the full load, no limit found"}
         after = load[rows[rows > i]]
         if after.size and after.min() < 0.99 * load[i]:

@@ -442,7 +442,8 @@ class _Follower:
         res = self.result
         res.status, res.limit_load_factor = LIMIT_LOAD, float(res.load_factor[k_max])
         what = "peak passed" if fell else f"plateau over {n - on} steps"
-        res.limit_evidence = f"controlled path: {what}, load measure {p[k_max]:.6g} at step {k_max}"
+        measure = f"load factor {p[k_max]:.6g}" if self.work else "of the reaction on the prescribed motion,"
+        res.limit_evidence = f"controlled path: {what}, {measure} at step {k_max}"
         reasons = []
         redo = self._redo(k_max)
         vertex = self._vertex_excess(k_max) if fell else 0.0  # a plateau's corner is no smooth peak
