@@ -41,8 +41,9 @@ def test_a_limit_past_small_strain_is_printed_suspect_with_its_checks(tmp_path, 
     assert abs(summary["limit_mechanism"] - 1.0) < 0.03
     assert f"mechanism certificate {summary['limit_mechanism']:.4f}" in out
     assert summary["limit_uncertainty"] is not None and summary["limit_uncertainty"] < 1e-3
-    # the plateau lies beyond 0.1 x the loaded width: the check fails, and the reader is told on its own line
-    assert "beyond small strain" in summary["limit_suspect"]
+    # the plateau lies beyond 0.1 x the loaded width -- the whole footing's 2 m, though the model is its half
+    # -- so the check fails, and the reader is told on its own line
+    assert "the loaded width 2 m: beyond small strain" in summary["limit_suspect"]
     assert re.search(r"^SUSPECT +loaded displacement .* beyond small strain$", out, flags=re.M)
     # and the HTML report, among what the reader must not miss
     assert "The limit is suspect: loaded displacement" in (tmp_path / "push_report.html").read_text()

@@ -242,6 +242,8 @@ class Scene:
         )
         model = Model()
         model.info["scene"] = self  # the scene itself; a result file stores its plain form (ssi.io.results)
+        if self.symmetric:  # the half x >= 0 of a scene mirrored about x = 0: what the solver's small-strain
+            model.info["mirror_x"] = 0.0  # check of a limit needs to measure the whole loaded width
         soil_ids = model.add_nodes(mesh.xy, ndof=2)
         kinds, params = material_table([lay.law() for _, lay, _ in mesh_layers])
         weights = np.array([gamma for _, _, gamma in mesh_layers])

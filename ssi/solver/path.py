@@ -517,11 +517,19 @@ class _Follower:
         return float((c - b * b / (4.0 * a) - y[1]) / abs(y[1]))
 
     def _loaded_strain(self, k):
-        """(largest loaded displacement [m], x-extent of the loaded nodes [m]) at step k, or None."""
+        """(largest loaded displacement [m], x-extent of the loaded nodes [m]) at step k, or None. Of a half
+        model (``Model.info["mirror_x"]``, the x of its mirror axis) whose loaded nodes reach the axis, the
+        extent of the whole loaded region, both halves."""
         dofs = np.flatnonzero(self.f_ref if self.work else self.ref)
         start = np.concatenate([[0], np.cumsum(self.model.node_ndof)])
         nodes = np.unique(np.searchsorted(start, dofs, side="right") - 1)
-        width = float(np.ptp(self.model.coords[nodes, 0])) if nodes.size else 0.0
+        if not nodes.size:
+            return None
+        x = self.model.coords[nodes, 0]
+        width = float(np.ptp(x))
+        mirror = self.model.info.get("mirror_x")
+        if mirror is not None and abs(x.min() - mirror) <= 1e-9 * (1.0 + np.abs(x).max()):
+            width = 2.0 * float(np.abs(x - mirror).max())
         if width <= 0.0:
             return None
         return float(np.abs(self.result.u[k][dofs] - self.result.u_origin[dofs]).max()), width
