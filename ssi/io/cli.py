@@ -247,9 +247,14 @@ def summary_text(s: dict) -> str:
     load = "" if s.get("column_load") is None else f", {s['column_load'] / 1e3:.2f} kN/m of column load"
     if s["status"] == "limit load reached":
         where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
+        meaning = (
+            "the push reached the footing's limit (its load peaked or levelled off)"
+            if s.get("push_over")
+            else "the scene cannot carry its full loads"
+        )
         lines.append(
             f"limit load       reached at load factor {s['limit_load_factor']:.4g}{where}{load}: "
-            "the scene cannot carry its full loads (the path up to the limit is the answer)"
+            f"{meaning} (the path up to the limit is the answer)"
         )
         lines += _limit_check_lines(s)
     elif s["status"] == "stopped":
