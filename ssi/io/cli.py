@@ -248,7 +248,7 @@ def summary_text(s: dict) -> str:
     if s["status"] == "limit load reached":
         where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
         meaning = (
-            "the push reached the footing's limit (its load peaked or levelled off)"
+            "the push reached the footing's limit, where its load peaked or levelled off"
             if s.get("push_over")
             else "the scene cannot carry its full loads"
         )
