@@ -94,6 +94,7 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse as sp
 
+from ..core.assembly import scatter_vector
 from ..core.linsolve import Factorization
 from ..core.model import Model
 from ..core.protocol import CONSISTENT, SECANT_SOFTENING
@@ -653,7 +654,7 @@ class _Follower:
             return u
         f_lin = f_int.copy()
         for g, k_el in zip(self.model.groups, k_list):
-            np.add.at(f_lin, g.edofs, np.einsum("eij,ej->ei", k_el, delta[g.edofs]))
+            scatter_vector(g.edofs, np.einsum("eij,ej->ei", k_el, delta[g.edofs]), f_lin)
         du = self.fac.solve((lam * self.f_ref + self.f_dead - f_lin)[free])
         if np.all(np.isfinite(du)):
             u[free] += du
