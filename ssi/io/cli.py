@@ -246,15 +246,12 @@ def summary_text(s: dict) -> str:
         lines += ["  " + _phase_line(row, s["phases"]) for row in s["phases"]]
     load = "" if s.get("column_load") is None else f", {s['column_load'] / 1e3:.2f} kN/m of column load"
     if s["status"] == "limit load reached":
+        from .report import limit_meaning
+
         where = "" if s.get("phase") is None else f" of phase {s['phase']!r}"
-        meaning = (
-            "the push reached the footing's limit, where its load peaked or levelled off"
-            if s.get("push_over")
-            else "the scene cannot carry its full loads"
-        )
         lines.append(
             f"limit load       reached at load factor {s['limit_load_factor']:.4g}{where}{load}: "
-            f"{meaning} (the path up to the limit is the answer)"
+            f"{limit_meaning(s)} (the path up to the limit is the answer)"
         )
         lines += _limit_check_lines(s)
     elif s["status"] == "stopped":

@@ -100,6 +100,13 @@ def _fmt(value, scale, fmt) -> str:
     return fmt.format(value * scale)
 
 
+def limit_meaning(s: dict) -> str:
+    """What a limit of the summary ``s`` means to the reader: a push-over has no loads to carry."""
+    if s.get("push_over"):
+        return "the push reached the footing's limit, where its load peaked or levelled off"
+    return "the scene cannot carry its full loads"
+
+
 def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]:
     """What the reader must not miss: the run's own warnings (``run_warnings``: bad-looking input, solver
     notes), an incomplete run, a limit load and a failed check of it, viscous rows left out, no limit found
@@ -112,8 +119,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
         )
     elif s["status"] == "limit load reached":
         out.append(
-            f"Limit load reached at load factor {s['limit_load_factor']:.4g}: the scene cannot carry its "
-            "full loads; the path up to the limit is the answer."
+            f"Limit load reached at load factor {s['limit_load_factor']:.4g}: {limit_meaning(s)}; the path "
+            "up to the limit is the answer."
         )
         if s.get("limit_suspect"):  # a failed check of the limit (ssi/solver/path.py): not a capacity as read
             out.append(f"The limit is suspect: {s['limit_suspect']}.")
