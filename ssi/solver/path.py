@@ -80,8 +80,10 @@ Marquardt shift of 6e-3 x the soil's K0 in its tangent (6 solved; scene 86 lost,
 %); 1e-3 of the elastic matrix at apex points (one solved, one lost, limits -3.3 % and -8.1 %); the shift of
 ``_regularised`` on the soil's DOFs (none solved); the elastic tangent at near-neutral plastic points (the
 footing's copies 5 of 6 at threshold 0.1, stopped at 0.3); ``force_tol`` 1e-4 (4 of the 12 solved, the
-others stopping elsewhere); on chapter 13's copy a control on the strip's end zone and the bordered solve on
-the tangent's factor (both stop at ~0.902). In Davis mode the same scenes complete or peak.
+others stopping elsewhere), 1e-3 (7 of 12 end, scene 21 at a false early peak 0.344 where full Newton's
+plateau is 0.499) and 1e-6 (2 of 12, the others earlier); on chapter 13's copy a control on the strip's
+end zone and the bordered solve on the tangent's factor (both stop at ~0.902). In Davis mode the same scenes
+complete or peak.
 """
 
 from __future__ import annotations
