@@ -84,8 +84,8 @@ def test_tiny_step_is_elastic_and_linear():
     """A 1e-9 m settlement stays elastic: no step needs a Newton correction (the solver counts residual
     evaluations; the first one confirms convergence): the first step's predictor is the committed tangent's
     linear response to the prescribed settlement and each later one the previous step scaled, both the
-    solution of the linear problem, and q/δ equals
-    the elastic stiffness of a second, 10× larger elastic push (linearity to round-off)."""
+    solution of the linear problem, and q/δ equals the elastic stiffness of a second, 10× larger elastic push
+    (linearity to round-off)."""
     a = q_u(c=C, phi_deg=0.0, settle=1e-9, n_steps=1)
     b = q_u(c=C, phi_deg=0.0, settle=1e-8, n_steps=1)
     assert a["failure"] is None and set(a["iterations"]) == {1}

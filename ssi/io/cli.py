@@ -101,7 +101,8 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["phases"] = result.phase_table()
     out["status"] = result.status if complete else "stopped"
     out["limit_load_factor"] = result.limit_load_factor if complete else None
-    out.update(_limit_checks(result) if complete and result.status == "limit load reached" else {})
+    if complete and result.status == "limit load reached":
+        out.update(_limit_checks(result))
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
