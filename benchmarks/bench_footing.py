@@ -28,11 +28,12 @@ Q_PRANDTL = prandtl(10e3, 20.0)[0]
 PSI0 = Settings(backend="superlu")
 
 
-def footing_scene(psi_deg, h_fine=0.25):
-    """The benchmark footing (module docstring); ``bench_nonlinear`` pushes the same one."""
+def footing_scene(psi_deg, h_fine=0.25, settle=0.08):
+    """The benchmark footing (module docstring); ``bench_nonlinear`` pushes the same one (and copies with
+    ``settle`` [m] perturbed by round-off)."""
     # chapter 10's footing and soil on a larger block (10 m x 10 m, up to 2 m elements), pushed 8 cm
     return chapter10_footing(
-        psi_deg=psi_deg, h_fine=h_fine, half_width=10.0, depth=10.0, h_coarse=2.0, settle=0.08
+        psi_deg=psi_deg, h_fine=h_fine, half_width=10.0, depth=10.0, h_coarse=2.0, settle=settle
     )
 
 

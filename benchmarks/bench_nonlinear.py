@@ -23,6 +23,13 @@
   (``footing_path_settings``: the controlled path, issue 31; until then ``footing_settings``, full Newton
   in 12 fixed increments).
 
+* ``footing_mc_psi0_h0125_roundoff``: the footing push repeated with the settlement scaled by 1 +- 1e-13 and
+  1 +- 1e-12 (ROUNDOFF, once each): how many copies complete, their q_u, failed steps and CPU times, and the
+  spread of q_u. Measured at main e0722f3 (issue 31, speed10; ten copies, eps = 0, +-1e-14, +-1e-13,
+  +-3e-13, +-1e-12, 2e-12): 6 of 10 completed (q_u 147 170 - 147 727 Pa, a spread of 0.38 %, 5.3 - 6.4 s
+  CPU each), 4 stopped in NonConvergence at lambda = 0.655 - 0.752 -- so one run of the key is one sample,
+  and a change of its time or of q_u by less than that spread says nothing without the copies.
+
 Each is the wall time of the solve in this process after a JIT warm-up on a coarse mesh, best of 3
 (``SSI_BENCH_REPEAT``), with the split of that best run, measured by timers around the solver's calls
 (material update = ``System.evaluate``, assembly = ``SparsePattern.assemble``, factorisation =
@@ -294,7 +301,35 @@ def main():
 
     footing(0.5)
     report("footing_mc_psi0_h0125_s", lambda: footing(0.125), lambda out: int(out["n_iterations"]))
+    footing_roundoff()
     return 0
+
+
+def footing_roundoff(key="footing_mc_psi0_h0125_roundoff"):
+    """``key``: the footing push repeated with the settlement scaled by 1 + eps for eps in ROUNDOFF, once
+    each (see the module docstring)."""
+    q_u, complete = [], 0
+    for eps in ROUNDOFF:
+        with Split() as split:
+            c0 = time.process_time()
+            out = push_footing(footing_scene(0.0, 0.125, settle=0.08 * (1.0 + eps)), n_steps=12)
+            cpu = time.process_time() - c0
+        res = out["result"]
+        stop = "" if out["failure"] is None else f" (NonConvergence at lambda = {res.load_factor[-1]:.4f})"
+        print(
+            f"{key}_{eps:+.0e}: {res.status}{stop}, q_u {out['q_u']:.1f} Pa; {split.attempts[False][0]} "
+            f"failed steps, {split.n['factorisation']} factorisations, {out['n_iterations']} iterations, "
+            f"{cpu:.2f} s CPU"
+        )
+        if out["failure"] is None:
+            complete += 1
+            q_u.append(out["q_u"])
+    spread = (max(q_u) - min(q_u)) / min(q_u) if q_u else float("nan")
+    print(
+        f"{key}: {complete} of {len(ROUNDOFF)} copies completed"
+        + verdict(complete, ">=", len(ROUNDOFF))
+        + f"; q_u spread over the completed copies {spread:.2%}"
+    )
 
 
 if __name__ == "__main__":
