@@ -26,7 +26,7 @@
 * ``footing_mc_psi0_h0125_roundoff``: the footing push repeated with the settlement scaled by 1 +- 1e-13 and
   1 +- 1e-12 (ROUNDOFF, once each): how many copies complete, their q_u, failed steps and CPU times, and the
   spread of q_u. Measured at main e0722f3 (issue 31, speed10; ten copies, eps = 0, +-1e-14, +-1e-13,
-  +-3e-13, +-1e-12, 2e-12): 6 of 10 completed (q_u 147 170 - 147 727 Pa, a spread of 0.38 %, 5.3 - 6.4 s
+  +-3e-13, +-1e-12, 2e-12): 6 of 10 completed (q_u 147 170 - 147 719 Pa, a spread of 0.37 %, 5.3 - 6.4 s
   CPU each), 4 stopped in NonConvergence at lambda = 0.655 - 0.752 -- so one run of the key is one sample,
   and a change of its time or of q_u by less than that spread says nothing without the copies.
 

@@ -85,11 +85,12 @@ plateau is 0.499) and 1e-6 (2 of 12, the others earlier); on chapter 13's copy a
 end zone and the bordered solve on the tangent's factor (both stop at ~0.902). In Davis mode the same scenes
 complete or peak. Also measured and not kept (speed10): ``min_step`` 1e-5 and 1e-6 on the path in place of
 1e-4. The bench footing's ten round-off copies (settlement x (1 + eps), |eps| <= 2e-12) then complete 9 and
-10 of 10 (with 1e-4: 6, the others stopping at lambda = 0.655-0.752, 2-4 soil points flipping and the
-smallest step's residual at 1.4-1.8 x ``force_tol``), with the key's own time unchanged; the random zoo
-57 / 31 / 12 -> 57 / 35 / 8 and 57 / 36 / 7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now at a limit, 82's
-suspect; the 31 limits unchanged, no scene lost), but the zoo took 1.33x the time with 1e-5 (back to back:
-scene 22 crawls along its plateau for 403 steps, 4 s -> 76 s; scene 0 takes steps below 1e-4, 16 s -> 68 s).
+10 of 10 (with 1e-4: 6, the others stopping at lambda = 0.655-0.752; in the copy traced, 4 soil points
+flipping and the smallest steps' residuals at 1.4-1.8 x ``force_tol``), with the key's own time unchanged;
+the random zoo 57 / 31 / 12 -> 57 / 35 / 8 and 57 / 36 / 7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now
+at a limit, 82's suspect; the 31 limits unchanged, no scene lost), but the zoo took 1.33x the time with
+1e-5 (run beside main's, same load: scene 22 crawls along its plateau for 403 steps, 4 s -> 76 s; scene 0
+takes steps below 1e-4, 16 s -> 68 s).
 """
 
 from __future__ import annotations

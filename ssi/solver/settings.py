@@ -33,9 +33,9 @@ _DESIRED_ITER = {"bfgs": 20, "modified": 60, "full": 8}
 # L-BFGS), those of the L-BFGS method: the zoo's contact scenes take 70-90 K0-based iterations per step.
 # The target 20 measured against 6-30 (issue 31, speed10; bench footing footing_mc_psi0_h0125_s: psi = 0,
 # h = 0.125 m, 12 targets; one process, CPU; copies with the settlement x (1 + eps), eps = 0, +-1e-13,
-# +-1e-12): 20 completes 4 of 5 copies in 5.3-6.3 s; 12 2 of 5 (7.8-8.0 s: ~13 iterations a step, but 1.8x
-# the steps), 16 0 of 5, 24 1 of 5; 6, 8, 10, 25, 30 (eps = 0) stopped in NonConvergence with q_u 80-93 %
-# of the completed runs'. With min_step 1e-6, where every copy completes, 12 took 1.3-1.4x the CPU of 20:
+# +-1e-12): 20 completes 4 of 5 copies in 5.3-6.3 s; 12 2 of 5 (7.8-8.0 s: ~13 iterations a step, but 2.4x
+# the steps), 16 0 of 5, 24 1 of 5; 6, 8, 10, 25, 30 (eps = 0) ended before the last target with q_u 80-93 %
+# of the completed runs'. With min_step 1e-6, where every copy completes, 12 took 1.2-1.5x the CPU of 20:
 # fewer iterations per step buy no time where the failed steps are soil points flipping at the plastic
 # front (see path.py's docstring)
 _MAX_ITER_PATH, _DESIRED_ITER_PATH = 100, 20
