@@ -88,7 +88,10 @@ complete or peak. Also measured and not kept (speed10): ``min_step`` 1e-5 and 1e
 10 of 10 (with 1e-4: 6, the others stopping at lambda = 0.655-0.752; in the copy traced, 4 soil points
 flipping and the smallest steps' residuals at 1.4-1.8 x ``force_tol``), with the key's own time unchanged;
 the random zoo 57 / 31 / 12 -> 57 / 35 / 8 and 57 / 36 / 7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now
-at a limit, 82's suspect; the 31 limits unchanged, no scene lost), but the zoo took 1.33x the time with
+at a limit; the 31 limits unchanged, no scene lost), but three of the new limits are false collapses by
+the limit-analysis bracket -- 21 at 0.291, 50 at 0.812 and 82 at 0.730 lie below 0.97 x their Davis lower
+bounds (0.314, 0.907, 1.510; ``reference_data/zoo_brackets_random.csv``), only 22 (0.225, 2.8 % above 1.03 x
+its associated upper bound) and 54 (0.839, in its bracket) pass -- and the zoo took 1.33x the time with
 1e-5 (run beside main's, same load: scene 22 crawls along its plateau for 403 steps, 4 s -> 76 s; scene 0
 takes steps below 1e-4, 16 s -> 68 s).
 """
