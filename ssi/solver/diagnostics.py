@@ -1,8 +1,15 @@
 """What a failed increment reports: where the soil, the interface and the plate stand (point codes and
-activity per group), for ``NonConvergence``.
+activity per group), and whether a yielding soil's rate problem is still well posed, for ``NonConvergence``.
 """
 
+import math
+
 import numpy as np
+
+from ..elements.soil_q8 import SoilQ8
+from ..materials.mc_localisation import mc_ellipticity
+from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
+from .mechanism import ASSOCIATED_TOL
 
 
 def _point_codes(group, state):
@@ -35,6 +42,46 @@ def _activity(model, outcome, worst_dof):
     return "; ".join(lines)
 
 
+def ill_posed_soil(model, trial) -> str:
+    """Why a step at a non-associated soil's plastic front may have no solution, for the report (key
+    ``ill_posed``): the Mohr–Coulomb materials with psi < phi that have plastic points in the failed
+    iterate ``trial`` (one state per group), with the smallest det Q_ep / det Q_e of each
+    (:func:`ssi.materials.mc_localisation.mc_ellipticity`); '' if there are none (associated or Davis-mode
+    soil, or no plastic point).
+
+    Measured (issue 31): all 12 of the random zoo's stopped scenes (seed 1) stop with plastic points of
+    such soils (100-401 of the top layer's, psi = 0 under phi = 20.4-34.2 deg, and up to 137 of the lower
+    layer's, psi = 5 under phi = 35 deg; ratios -0.018 to -0.054), and their Davis-mode copies (associated:
+    ratio 0) all end completed or at a limit."""
+    if trial is None:
+        return ""
+    parts = []
+    for g, state in zip(model.groups, trial):
+        if not isinstance(g, SoilQ8):
+            continue
+        plastic = np.asarray(g.point_codes(state)).reshape(g.n_el, -1) > 0
+        rows, counts = np.unique(np.repeat(g.el_mat, plastic.shape[1])[plastic.ravel()], return_counts=True)
+        for row, count in zip(rows, counts):
+            nu, phi, psi = g.params[row, 1], g.params[row, 3], g.params[row, 4]
+            is_mc = g.kinds[row] in (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT)
+            if not (is_mc and phi - psi > ASSOCIATED_TOL):
+                continue
+            ratio, theta = mc_ellipticity(phi, psi, nu)
+            parts.append(
+                f"{count} plastic points of {g.name} material {row} (phi = {math.degrees(phi):.4g} deg, "
+                f"psi = {math.degrees(psi):.4g} deg: min det Q_ep / det Q_e = {ratio:.3f}, band normal "
+                f"{math.degrees(min(theta, math.pi - theta)):.1f} deg from sigma_1)"
+            )
+    if not parts:
+        return ""
+    return (
+        "; ".join(parts)
+        + ": perfectly plastic flow with psi < phi has lost ellipticity wherever it yields (Rudnicki & Rice "
+        "1975; Vermeer & de Borst 1984), so the continued path need not be unique or exist on this mesh. "
+        "A capacity is a well-posed problem in Davis mode (Settings(flow='davis'))"
+    )
+
+
 def _failure_report(model, free, outcome, lam_from, lam_to):
     report = {
         "reason": outcome.get("reason", "unknown"),
@@ -56,4 +103,7 @@ def _failure_report(model, free, outcome, lam_from, lam_to):
             worst_groups=_activity(model, outcome, worst),
             last_residual=float(outcome["residuals"][-1]) if outcome["residuals"] else float("nan"),
         )
+    ill_posed = ill_posed_soil(model, outcome.get("trial"))
+    if ill_posed:
+        report.update(ill_posed=ill_posed)
     return report

@@ -67,33 +67,64 @@ mechanism certificate of its increment (``limit_mechanism``, ``limit_stored_shar
 :mod:`ssi.solver.mechanism`) and, when a check fails, ``limit_suspect`` with the reason
 (:func:`ssi.limit.flag_suspect` adds the limit-analysis bracket's verdict).
 
-Where the path still stops: non-associated soil at the edge of its plastic zone. In 10 of the random zoo's
-12 stopped scenes (seed 1), at the bench footing's failed steps and at chapter 13's graded copy (whose
-round-off copies stop at lambda ~ 0.902), the residual hovers at 1-13 times ``force_tol`` while soil points
-flip between elastic and plastic: the tangent there is nearly singular (x.K_t.x / x.K0.x from -2.5e-3 to
-3e-3) and along an exact Newton direction |r| falls only up to t ~ 1e-3 - 1e-2, where plastic points unload
-elastically. Measured and not kept (issue 31; zoo outcomes completed / limit / NonConvergence from 57 / 31
-/ 12): full Newton over the whole path (6 of the 12 solved, two others stopped earlier); a rewind of 23
-steps with full Newton after a failure at the smallest step (60 / 33 / 7, the zoo 1.35-1.6x slower, chapter
-10's finest psi = 0 push 3.7x: a retry after a failure, which this module does not do); a Levenberg-
-Marquardt shift of 6e-3 x the soil's K0 in its tangent (6 solved; scene 86 lost, five limits down by 0.46-8
-%); 1e-3 of the elastic matrix at apex points (one solved, one lost, limits -3.3 % and -8.1 %); the shift of
-``_regularised`` on the soil's DOFs (none solved); the elastic tangent at near-neutral plastic points (the
-footing's copies 5 of 6 at threshold 0.1, stopped at 0.3); ``force_tol`` 1e-4 (4 of the 12 solved, the
-others stopping elsewhere), 1e-3 (7 of 12 end, scene 21 at a false early peak 0.344 where full Newton's
-plateau is 0.499) and 1e-6 (2 of 12, the others earlier); on chapter 13's copy a control on the strip's
-end zone and the bordered solve on the tangent's factor (both stop at ~0.902). In Davis mode the same scenes
-complete or peak. Also measured and not kept (speed10): ``min_step`` 1e-5 and 1e-6 on the path in place of
-1e-4. The bench footing's ten round-off copies (settlement x (1 + eps), |eps| <= 2e-12) then complete 9 and
-10 of 10 (with 1e-4: 6, the others stopping at lambda = 0.655-0.752; in the copy traced, 4 soil points
-flipping and the smallest steps' residuals at 1.4-1.8 x ``force_tol``), with the key's own time unchanged;
-the random zoo 57 / 31 / 12 -> 57 / 35 / 8 and 57 / 36 / 7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now
-at a limit; the 31 limits unchanged, no scene lost), but three of the new limits are false collapses by
-the limit-analysis bracket -- 21 at 0.291, 50 at 0.812 and 82 at 0.730 lie below 0.97 x their Davis lower
-bounds (0.314, 0.907, 1.510; ``reference_data/zoo_brackets_random.csv``), only 22 (0.225, 2.8 % above 1.03 x
-its associated upper bound) and 54 (0.839, in its bracket) pass -- and the zoo took 1.33x the time with
-1e-5 (run beside main's, same load: scene 22 crawls along its plateau for 403 steps, 4 s -> 76 s; scene 0
-takes steps below 1e-4, 16 s -> 68 s).
+Where the path still stops: non-associated soil at the edge of its plastic zone. In 10 of the random zoo's 12
+stopped scenes (seed 1), at the bench footing's failed steps and at chapter 13's graded copy (whose round-off
+copies stop at lambda ~ 0.902), the residual hovers at 1-13 times ``force_tol`` while soil points flip between
+elastic and plastic: the tangent there is nearly singular (x.K_t.x / x.K0.x from -2.5e-3 to 3e-3) and along an
+exact Newton direction |r| falls only up to t ~ 1e-3 - 1e-2, where plastic points unload elastically. Measured
+and not kept (issue 31; zoo outcomes completed / limit / NonConvergence from 57 / 31 / 12): full Newton over
+the whole path (6 of the 12 solved, two others stopped earlier); a rewind of 23 steps with full Newton after a
+failure at the smallest step (60 / 33 / 7, the zoo 1.35-1.6x slower, chapter 10's finest psi = 0 push 3.7x: a
+retry after a failure, which this module does not do); a Levenberg- Marquardt shift of 6e-3 x the soil's K0 in
+its tangent (6 solved; scene 86 lost, five limits down by 0.46-8 %); 1e-3 of the elastic matrix at apex points
+(one solved, one lost, limits -3.3 % and -8.1 %); the shift of ``_regularised`` on the soil's DOFs (none
+solved); the elastic tangent at near-neutral plastic points (the footing's copies 5 of 6 at threshold 0.1,
+stopped at 0.3); ``force_tol`` 1e-4 (4 of the 12 solved, the others stopping elsewhere), 1e-3 (7 of 12 end,
+scene 21 at a false early peak 0.344 where full Newton's plateau is 0.499) and 1e-6 (2 of 12, the others
+earlier); on chapter 13's copy a control on the strip's end zone and the bordered solve on the tangent's
+factor (both stop at ~0.902). In Davis mode the same scenes complete or peak. Also measured and not kept
+(speed10): ``min_step`` 1e-5 and 1e-6 on the path in place of 1e-4. The bench footing's ten round-off copies
+(settlement x (1 + eps), |eps| <= 2e-12) then complete 9 and 10 of 10 (with 1e-4: 6, the others stopping at
+lambda = 0.655-0.752; in the copy traced, 4 soil points flipping and the smallest steps' residuals at 1.4-1.8
+x ``force_tol``), with the key's own time unchanged; the random zoo 57 / 31 / 12 -> 57 / 35 / 8 and 57 / 36 /
+7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now at a limit; the 31 limits unchanged, no scene lost), but three
+of the new limits are false collapses by the limit-analysis bracket -- 21 at 0.291, 50 at 0.812 and 82 at
+0.730 lie below 0.97 x their Davis lower bounds (0.314, 0.907, 1.510;
+``reference_data/zoo_brackets_random.csv``), only 22 (0.225, 2.8 % above 1.03 x its associated upper bound)
+and 54 (0.839, in its bracket) pass -- and the zoo took 1.33x the time with 1e-5 (run beside main's, same
+load: scene 22 crawls along its plateau for 403 steps, 4 s -> 76 s; scene 0 takes steps below 1e-4, 16 s -> 68
+s). Also not kept, a status hysteresis of the soil points (branch active10, commit 983c2b1, not merged: no
+product code carries it): a point keeps its status of the previous iterate (elastic, or its return branch; at
+a step's first iterate, of the committed state) while that moves its nodal forces by at most band = force_tol
+x F, F the residual's force scale (the stress error so bounded per point). The zoo 57 / 31 / 12 again: scenes
+22 (limit 0.2247, 382 steps), 50, 82 solved, 0 and 37 (completed) and 30 (limit) lost, 83's limit -8.0 %; the
+bench footing stopped at lambda 0.393; the converged steps' plain residual (no hysteresis) up to 1.9 x
+force_tol (scenes 0, 50, 82, 83). Keeping only elastic statuses, only plastic ones, or bands of 0.1 and 10 x:
+1, 2, 3, 3 of the 12 solved (with the 4 scenes lost above: 16 tried), each a different few, all but the band
+of 10 x losing scene 30 or 0. The band of 10 x on the whole zoo: 60 / 31 / 9, none lost, limits moved <= 0.30
+%, the footing completes (q_u -0.36 %), the Davis-mode zoo 61 / 39 / 0 as before (limits <= 0.34 %) -- but it
+is a looser tolerance in disguise, found by a sweep, not an argument: its converged steps' plain residual is
+4-18 x force_tol (median 4.3-11 on scenes 0, 30, 46, 50, 82), as with force_tol 1e-4 above. With the band
+tightened within a step instead (10 x, then / 10 at each convergence whose plain residual misses force_tol,
+down to 0; commit 897c702) and a step accepted only where the plain law meets force_tol: 2 of the 12 (46, 82),
+scene 30 lost, 83's limit -8.0 %. Freezing every status from iteration 10 and releasing the inconsistent
+points each time the frozen system converged (primal-dual active set, up to 8 releases): 1 of the 12, 13 of
+the 16 scenes tried ended earlier; the same from iteration 20 with the hysteresis: 57 / 30 / 13 (82 solved, 25
+and 73 lost). Why (active10's status-flip tool on main's last steps of the 12): only 13-68 % of their status
+changes would be kept by a band of force_tol x F (the median band needed 0.4-28 x it); the others are points
+unloading by f ~ 1e-3 - 1e-2 of their stress scale along a long Newton step on the nearly singular tangent
+(|r| growing 10-1 000 times), which a constitutive tolerance tied to the force tolerance cannot hold.
+
+Why no corrector can be counted on there: every soil of the random zoo flows with psi < phi (the top layer psi
+= 0 under phi = 0-38 deg, the lower psi = 5 under 35), and perfectly plastic Mohr-Coulomb flow with psi < phi
+has lost ellipticity at every yielding point (the acoustic tensor's determinant is negative for a fan of band
+normals: min det Q_ep / det Q_e = -0.018 to -0.054 in the 12 stopped scenes; zero for associated flow;
+Rudnicki & Rice 1975, Vermeer & de Borst 1984; :mod:`ssi.materials.mc_localisation`). The rate problem at the
+plastic front then has no unique solution, and a discrete one near the last state need not exist: the nearly
+singular, indefinite tangents and the points unloading along every Newton step above are its symptoms. All 12
+stopped scenes are such fronts (100-401 of the top layer's points plastic in the failed iterate), and their
+Davis-mode copies (associated, on the boundary of ellipticity) all end. A ``NonConvergence`` there names the
+materials and their ratios (report key ``ill_posed``, :func:`.diagnostics.ill_posed_soil`).
 """
 
 from __future__ import annotations
