@@ -878,6 +878,47 @@ for flow in ("davis",) if FAST else ("user", "davis"):
 print(f"(h) {sum(len(r) for _, r in roundoff.values())} runs, {time.perf_counter() - t_roundoff:.1f} s wall")
 
 # %% [markdown]
+# **Why the 12 stop.** Every random scene's soil flows non-associatively: the top layer with ψ = 0 under its
+# φ, the lower one with ψ = 5° under φ = 35°. Perfectly plastic Mohr–Coulomb flow with ψ < φ has lost
+# ellipticity wherever it yields: the acoustic tensor Q(n) = n·D_ep·n of its tangent is singular for some
+# band normal n as soon as h_crit > 0 = h, which Rudnicki & Rice's condition gives for any ψ < φ (Vermeer &
+# de Borst 1984 discuss it for soils). Associated flow sits exactly on the boundary (det Q = 0 at Coulomb's
+# band). Where the rate problem is not elliptic its solution is not unique, and on a finite mesh a solution
+# near the last state need not exist: the nearly singular, indefinite tangents and the points unloading along
+# each Newton step that the stopped steps show (`ssi.solver.path`'s docstring lists the correctors measured
+# there) are its discrete symptoms. A `NonConvergence` at such a front now says so (report key `ill_posed`,
+# with each material's smallest det Q_ep / det Q_e). The well-posed problem for a capacity is Davis mode:
+# the same scenes there all end (chapter 10 shows its footing).
+
+# %%
+from ssi.materials.mc_localisation import mc_ellipticity  # noqa: E402
+
+fig, ax = plt.subplots(figsize=(6.4, 3.4))
+for phi_deg in (20.0, 30.0, 35.0):
+    psis = np.linspace(0.0, phi_deg, 15)
+    mins = [mc_ellipticity(np.radians(phi_deg), np.radians(p), 0.3)[0] for p in psis]
+    ax.plot(psis, mins, "o-", ms=3, label=f"φ = {phi_deg:g}°")
+ax.axhline(0.0, color="k", lw=0.8)
+ax.set_xlabel("dilation angle ψ [deg]")
+ax.set_ylabel("min over n of det Q_ep / det Q_e")
+ax.set_title("Perfectly plastic Mohr–Coulomb, main plane, ν = 0.3: ellipticity lost for ψ < φ")
+ax.legend(fontsize=8)
+report.save_figure(fig, "ch06_ellipticity")
+# every random scene's yielding soil has lost ellipticity (both layers), the associated twin has not
+zoo_ratios = []
+for _, zoo_scene in random_scenes(100, seed=1):
+    for layer in zoo_scene.layers:
+        zoo_ratios.append(mc_ellipticity(np.radians(layer.phi_deg), np.radians(layer.psi_deg), layer.nu)[0])
+        assert abs(mc_ellipticity(np.radians(layer.phi_deg), np.radians(layer.phi_deg), layer.nu)[0]) < 1e-10
+print(
+    f"random zoo layers: min det Q_ep / det Q_e from {min(zoo_ratios):.3f} to {max(zoo_ratios):.3g} "
+    f"({sum(r < 0 for r in zoo_ratios)} of {len(zoo_ratios)} negative)"
+)
+assert max(zoo_ratios) < 0.0  # no random scene has an elliptic yielding layer, so each stop is on one
+stopped_names = [n for n, v in stored_rows.items() if v[0] == "failed"]
+print(f"stored NonConvergence: {', '.join(stopped_names)} -- each on a soil with psi < phi")
+
+# %% [markdown]
 # Checks, recorded as measured (rows): `zoo_solved` and `zoo_solved_controlled` PASS only when every scene
 # ends completed or at a limit; `fela_zoo` and `zoo_limits_certified` fail on any false collapse (and the
 # latter on a limit without a certified floor, or one above its ceiling solved here without its excess on
