@@ -733,17 +733,22 @@ def test_cli_writes_a_stopped_run_marked_incomplete(tmp_path, capsys):
     scene_path = tmp_path / "overload.toml"
     scene_path.write_text(text)
     assert main(["run", str(scene_path), "--no-plots"]) == 3
-    assert "INCOMPLETE" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "INCOMPLETE" in printed
     info = read_info(tmp_path / "overload.h5")
     assert info["complete"] is False and info["stop"]["reason"]
     s = json.loads((tmp_path / "overload_summary.json").read_text())
     assert s["stopped_at_column_load"] < 3e6 and s["stop_reason"] == info["stop"]["reason"]
+    # the soil (psi = 0 < phi) yields where it stopped: the summary and the printout say its rate problem is
+    # ill-posed there, with the material's ratio (diagnostics.ill_posed_soil)
+    assert s["stop_ill_posed"] == info["stop"]["ill_posed"] and "lost ellipticity" in s["stop_ill_posed"]
+    assert "ill-posed soil" in printed and "Davis mode" in printed
     # what it carried is not offered as a capacity, and the report says the run stopped
     assert not s["capacity"]["is_limit"] and "solver stopped" in s["capacity"]["how"]
     assert s["capacity"]["load"] == pytest.approx(s["stopped_at_column_load"], rel=1e-14)
-    assert (
-        "The run stopped before the end of its load path" in (tmp_path / "overload_report.html").read_text()
-    )
+    html = (tmp_path / "overload_report.html").read_text()
+    assert "The run stopped before the end of its load path" in html
+    assert "rate problem is ill-posed: " in html
 
 
 # ---- files of the earlier layout -----------------------------------------------------------------------

@@ -51,8 +51,9 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     ``status``: "completed" (the whole load path), "limit load reached" (the controlled path peaked: the
     path up to the limit is the answer, ``limit_load_factor`` the fraction of the loads -- of a phased scene,
     of the last phase's loads -- that the scene carries) or "stopped" (the solver failed before either;
-    ``stop_reason``). ``phase``: of a phased scene, the name of the last phase reached; ``phase_load_factor``
-    the load factor reached in it.
+    ``stop_reason``; ``stop_ill_posed``: the yielding soils with psi < phi whose rate problem has lost
+    ellipticity there, or None). ``phase``: of a phased scene, the name of the last phase reached;
+    ``phase_load_factor`` the load factor reached in it.
 
     Loads: ``column_load`` [N/m] the column forces applied at the end (None: the scene has no column);
     ``foundation_load`` [N/m] the load the foundation carries at the end (of a push-over the soil's
@@ -105,6 +106,8 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
         out.update(_limit_checks(result))
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
+    # a soil whose rate problem is ill-posed at the stop (psi < phi yielding): why, and what is well posed
+    out["stop_ill_posed"] = None if stop is None else stop.get("ill_posed")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
         out["design"] = result.design_summary()
         by_phase = (out["design"] or {}).get("phases", {})
@@ -261,6 +264,8 @@ def summary_text(s: dict) -> str:
             f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
             f"(solver failure, not a detected limit load: {s['stop_reason']})"
         )
+        if s.get("stop_ill_posed"):
+            lines.append(f"ill-posed soil   {s['stop_ill_posed']}")
     if s.get("design"):
         from ..scene.design import summary_text as design_text
 

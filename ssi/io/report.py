@@ -117,6 +117,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             f"The run stopped before the end of its load path (solver failure, not a detected limit load): "
             f"{s.get('stop_reason')}. The values are those of the last converged step."
         )
+        if s.get("stop_ill_posed"):
+            out.append(f"Where it stopped, the soil's rate problem is ill-posed: {s['stop_ill_posed']}.")
     elif s["status"] == "limit load reached":
         out.append(
             f"Limit load reached at load factor {s['limit_load_factor']:.4g}: {limit_meaning(s)}; the path "
