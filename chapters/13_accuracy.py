@@ -419,7 +419,10 @@ assert np.all(np.abs(punch_orders[END_GRADING] - END_GRADING) < 0.25), punch_ord
 # variant measured does (end-zone control, the bordered solve on the tangent's factor, the symmetric
 # corrector): 9–163 soil points at the clay/sand boundary under a strip end flip between elastic and plastic
 # and the residual stagnates at 5–13 times the tolerance — the non-associated soil's stagnation the random
-# zoo's 12 stopped scenes show. In Davis mode (associated flow with reduced c, φ) the same copy completes
+# zoo's 12 stopped scenes show. Its stop names 215 plastic points of the clay (φ = 20°, ψ = 0) and 98 of the
+# sand (φ = 35°, ψ = 5°), both past the loss of ellipticity (chapter 06: perfectly plastic flow with ψ < φ
+# has lost it wherever it yields), so the continued path need not be unique, nor a step's equilibrium exist
+# near the last state. In Davis mode (associated flow with reduced c, φ) the same copy completes
 # (113 steps, 44.31 mm, a different material). The load-controlled algorithms stop earlier without the former
 # fallbacks (modified Newton at λ = 0.728 after 281 s, L-BFGS at 0.471, full Newton at 0.390).
 # The numbers above are those of the former default, which passed these states on a viscous detour. Until
@@ -451,8 +454,14 @@ if graded_failure is not None:
         "target_error_met",
         f"chapter-11 scene (h = 1 m, 4 m far) with end_grading={END_GRADING}, solve_to_target("
         f"target_error={TARGET}): one of its solves stops in NonConvergence on the controlled path at "
-        f"lambda = {lam_stop:.4g} ({reason}; worst groups {groups}): the cracking strip's softening is not "
-        "passed (issue 31); value: nan, no settlement delivered",
+        f"lambda = {lam_stop:.4g} ({reason}; worst groups {groups}; "
+        + (
+            "its yielding soil has psi < phi, whose rate problem has lost ellipticity"
+            if "ill_posed" in stop
+            else "no ill-posed soil named"
+        )
+        + "): the corrector does not pass the strip's end zone (issue 31); value: nan, no settlement "
+        "delivered",
         float("nan"),
         TARGET,
         False,
