@@ -80,3 +80,33 @@ def test_failure_report_names_the_ill_posed_soil():
     assert f"min det Q_ep / det Q_e = {ratio:.3f}" in texts[0.0] and "phi = 20 deg, psi = 0 deg" in texts[0.0]
     assert "Davis mode" in texts[0.0]
     assert texts[20.0] == ""
+
+
+def test_ill_posed_soil_reads_each_points_material():
+    """A group with a material per integration point (SoilQ8Points, the site's dipping layers): the plastic
+    points are counted under their own rows -- here one element whose upper points are psi < phi sand and
+    whose lower points are associated clay, every point plastic."""
+    from types import SimpleNamespace
+
+    from ssi.core.model import Model
+    from ssi.elements.soil_q8_points import SoilQ8Points
+    from ssi.materials.soil_laws import SoilLayer, material_table
+    from ssi.solver.diagnostics import ill_posed_soil
+
+    model = Model()
+    xy = np.array([[0, 0], [2, 0], [2, 1], [0, 1], [1, 0], [2, 0.5], [1, 1], [0, 0.5]], float)
+    conn = np.array([model.add_nodes(xy, ndof=2)])
+    kinds, params = material_table(
+        [
+            SoilLayer(1.0, E=2e7, nu=0.3, c=5e3, phi_deg=30.0, psi_deg=0.0).law(),
+            SoilLayer(1.0, E=2e7, nu=0.3, c=5e3, phi_deg=20.0, psi_deg=20.0).law(),
+        ]
+    )
+    point_mat = np.array([[1, 1, 0, 0]])  # rows per Gauss point
+    group = SoilQ8Points(model.coords[conn], model.element_dofs(conn), point_mat, kinds, params)
+    state = group.initial_state()
+    group.history(state, "branch")[...] = 1.0  # every point returned to the main plane
+    assert group.point_codes(state).sum() == 4
+    text = ill_posed_soil(SimpleNamespace(groups=[group]), [state])
+    assert text.startswith(f"2 plastic points of {group.name} material 0 (phi = 30 deg, psi = 0 deg")
+    assert "material 1" not in text  # the associated points are not named

@@ -555,6 +555,10 @@ class SoilQ8(ElementGroup):
         """Stress [sxx, szz, txz, syy] at the integration points, (n_el, n_ip, 4)."""
         return state[:, :, :N_STRESS]
 
+    def point_materials(self) -> np.ndarray:
+        """(n_el, n_ip) the row of ``kinds``/``params`` of each integration point (here its element's)."""
+        return np.repeat(self.el_mat[:, None], len(self.gw), axis=1)
+
     def point_codes(self, state):
         """(n_el, n_ip) 1 where the last stress update returned to the yield surface (plastic), else 0."""
         return (self.history(state, "branch") > 0).astype(int)

@@ -52,6 +52,10 @@ class SoilQ8Points(SoilQ8):
         self._rules = [(np.ascontiguousarray(self.gp[q : q + 1]), np.ascontiguousarray(self.gw[q : q + 1]))
                        for q in range(n_ip)]  # fmt: skip
 
+    def point_materials(self) -> np.ndarray:
+        """(n_el, n_ip) the material row of each integration point (``point_mat``)."""
+        return np.stack(self.point_mat, axis=1)
+
     def configure(self, active=None, k_water_el=None, water_reference=None):
         if active is None and k_water_el is None and water_reference is None:
             return

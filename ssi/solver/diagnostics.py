@@ -59,8 +59,8 @@ def ill_posed_soil(model, trial) -> str:
     for g, state in zip(model.groups, trial):
         if not isinstance(g, SoilQ8):
             continue
-        plastic = np.asarray(g.point_codes(state)).reshape(g.n_el, -1) > 0
-        rows, counts = np.unique(np.repeat(g.el_mat, plastic.shape[1])[plastic.ravel()], return_counts=True)
+        plastic = np.asarray(g.point_codes(state)) > 0
+        rows, counts = np.unique(g.point_materials()[plastic], return_counts=True)
         for row, count in zip(rows, counts):
             nu, phi, psi = g.params[row, 1], g.params[row, 3], g.params[row, 4]
             is_mc = g.kinds[row] in (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT)
