@@ -34,18 +34,16 @@ _N_SCAN = 721  # normals scanned over half a turn (0.25 deg apart) before the mi
 def _acoustic_ratio(theta, k, m, lam, mu):
     """det Q_ep(n) / det Q_e(n) for the in-plane normal n = (cos θ, sin θ) in the (e1, e3) frame."""
     n1, n3 = math.cos(theta), math.sin(theta)
-    # D:A for a diagonal A = diag(a1, 0, a3) in principal axes: lam tr(A) I + 2 mu A; its (n.)-contraction
-    # is the in-plane vector (D:A) n
-    f1, f3 = k, -1.0
-    g1, g3 = m, -1.0
-    df = (lam * (f1 + f3) + 2.0 * mu * f1, lam * (f1 + f3) + 2.0 * mu * f3)
-    dg = (lam * (g1 + g3) + 2.0 * mu * g1, lam * (g1 + g3) + 2.0 * mu * g3)
-    fdg = f1 * dg[0] + f3 * dg[1]  # f:D:g (the out-of-plane entries of f and g are zero)
-    u = np.array([dg[0] * n1, dg[1] * n3])  # n.(D:g)
-    v = np.array([df[0] * n1, df[1] * n3])  # (f:D).n
-    # isotropic elastic acoustic tensor: mu I + (lam + mu) n n
-    q_e = mu * np.eye(2) + (lam + mu) * np.outer([n1, n3], [n1, n3])
-    return 1.0 - float(v @ np.linalg.solve(q_e, u)) / fdg
+    # D:A for A = diag(a1, 0, a3) in principal axes is lam tr(A) I + 2 mu A; here f = diag(k, 0, -1) and
+    # g = diag(m, 0, -1)
+    df1, df3 = lam * (k - 1.0) + 2.0 * mu * k, lam * (k - 1.0) - 2.0 * mu
+    dg1, dg3 = lam * (m - 1.0) + 2.0 * mu * m, lam * (m - 1.0) - 2.0 * mu
+    fdg = k * dg1 - dg3  # f:D:g (the out-of-plane entries of f and g are zero)
+    u1, u3 = dg1 * n1, dg3 * n3  # n.(D:g)
+    v1, v3 = df1 * n1, df3 * n3  # (f:D).n
+    # Q_e = mu I + (lam + mu) n n, so Q_e^-1 = (I - (lam + mu) / (lam + 2 mu) n n) / mu
+    v_qinv_u = (v1 * u1 + v3 * u3 - (lam + mu) / (lam + 2.0 * mu) * (v1 * n1 + v3 * n3) * (u1 * n1 + u3 * n3)) / mu
+    return 1.0 - v_qinv_u / fdg
 
 
 def mc_ellipticity(phi: float, psi: float, nu: float) -> tuple[float, float]:
