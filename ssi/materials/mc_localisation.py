@@ -42,7 +42,8 @@ def _acoustic_ratio(theta, k, m, lam, mu):
     u1, u3 = dg1 * n1, dg3 * n3  # n.(D:g)
     v1, v3 = df1 * n1, df3 * n3  # (f:D).n
     # Q_e = mu I + (lam + mu) n n, so Q_e^-1 = (I - (lam + mu) / (lam + 2 mu) n n) / mu
-    v_qinv_u = (v1 * u1 + v3 * u3 - (lam + mu) / (lam + 2.0 * mu) * (v1 * n1 + v3 * n3) * (u1 * n1 + u3 * n3)) / mu
+    along_n = (v1 * n1 + v3 * n3) * (u1 * n1 + u3 * n3)
+    v_qinv_u = (v1 * u1 + v3 * u3 - (lam + mu) / (lam + 2.0 * mu) * along_n) / mu
     return 1.0 - v_qinv_u / fdg
 
 
