@@ -16,7 +16,7 @@ normals around Arthur's 45° - (φ + ψ)/4 (between Coulomb's and Roscoe's 45° 
 
 This is why a controlled path can stop at the plastic front of a non-associated soil (issue 31: the random
 zoo's 12 stopped scenes, all with ψ < φ; their Davis-mode copies, associated, all end): the module's numbers
-go into the ``NonConvergence`` diagnosis (:func:`ssi.solver.diagnostics.ill_posed_soil`). Plain numpy: it is
+go into the ``NonConvergence`` diagnosis (:func:`ssi.solver.diagnostics.ill_posed_soil`). Plain Python: it is
 evaluated once per material, not per point.
 """
 
