@@ -2,7 +2,9 @@
 
 The checks themselves (EN 1992-1-1 §7.3.4 crack width, M_Rd(N), V_Rd,c, the brittle flag) live in
 ``ssi.elements.rc_design``; this module feeds them the coupled analysis's action effects at every sampling
-point of the strip and every row (load step) of a :class:`~ssi.scene.scene.SceneResult`:
+point of the strip and every row (load step) of a solved strip (``out``: a
+:class:`~ssi.scene.foundation_result.FoundationResult`, a site's strip or a scene's, or a
+:class:`~ssi.scene.view.SceneResult`, whose accessors are its strip's):
 
 * :func:`crack_width` -- w_k at the axial points of row ``k`` (0 where the tension face has not cracked in the
   analysis), with the bar stress at the crack;
@@ -28,7 +30,7 @@ def design_of(out, **options) -> RCDesign | None:
     """The :class:`RCDesign` of the scene's foundation section (the user's section, before the crack band's
     regularisation), with the Foundation's ``bar_diameter``; None if the strip has no concrete layer (an
     elastic or rigid foundation). ``options`` go to :class:`RCDesign` (gamma_c, gamma_s, kt, fck...)."""
-    found = out.built.scene.foundation
+    found = out.foundation
     sec = getattr(found, "section", None)
     if sec is None or not np.any(sec.kind == CONCRETE):
         return None
@@ -39,7 +41,7 @@ def design_of(out, **options) -> RCDesign | None:
 def _tension_face_cracked(out, k, M):
     """(n_el, n_ax) bool: the concrete layer nearest the face that M puts in tension has cracked at row k."""
     layers = out.plate_layers(k)
-    sec = out.built.plate.section
+    sec = out.plate.section
     conc = np.flatnonzero(sec.kind == CONCRETE)
     low, high = conc[np.argmin(sec.z_mid[conc])], conc[np.argmax(sec.z_mid[conc])]
     cracked = layers["cracked"]

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .foundation_result import FoundationResult, NotInThisScene
+
 if TYPE_CHECKING:  # for annotations only: the built site imports this module
     from .site_built import BuiltSite
 
@@ -20,6 +22,11 @@ class SiteResult:
 
     built: BuiltSite
     result: object
+
+    @property
+    def solver_result(self):
+        """The solver's :class:`~ssi.core.solution.Result` (as a SceneResult names it)."""
+        return self.result
 
     @property
     def u(self) -> list:
@@ -43,17 +50,12 @@ class SiteResult:
 
     def strip_settlement(self, i: int, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x [m], settlement [m], positive down) of the plate nodes of strip ``i`` at step ``k``."""
-        ids = self.built.strips[i]["plate_nodes"]
-        model = self.built.model
-        return model.coords[ids, 0], -self.u[k][model.dof(ids, "w")]
+        return self.foundation_result(i).settlement(k)
 
     def strip_summary(self, i: int, k: int = -1) -> dict:
         """Strip ``i``: ``mean`` settlement [m] (average over its width), ``max`` [m], ``tilt`` [rad] (the
         slope of the least-squares line through its settlements; > 0: the right end settles more)."""
-        x, w = self.strip_settlement(i, k)
-        slope = np.polyfit(x, w, 1)[0] if len(x) > 1 else 0.0
-        mean = float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(x)) / (x[-1] - x[0]))
-        return {"mean": mean, "max": float(w.max()), "tilt": float(slope)}
+        return self.foundation_result(i).settlement_summary(k)
 
     def differential_settlement(self, i: int, j: int, k: int = -1) -> float:
         """Mean settlement of strip ``i`` minus that of strip ``j`` [m]."""
@@ -107,30 +109,43 @@ class SiteResult:
         head = self.built.site.water_z(xy[..., 0]) - xy[..., 1]
         return self.built.site.gamma_w * np.where(np.isfinite(head), np.maximum(head, 0.0), 0.0)
 
+    @property
+    def phases(self) -> None:
+        """A site is solved in one loading phase (the rows of its phases: None)."""
+        return None
+
+    def foundation_result(self, i: int) -> FoundationResult:
+        """The view of plate strip ``i`` (the one a scene's strip has): settlement, contact, strip forces, RC
+        design. A RigidStrip has none: :class:`NotInThisScene` naming it."""
+        st = self.built.strips[i]
+        if st.get("rigid"):
+            raise NotInThisScene(
+                f"strip {i} is a RigidStrip: it has no plate or interface (read rigid_pressure({i}))"
+            )
+        part = self.built.site.strips[i]
+        return FoundationResult(
+            self, self.built.model, part.foundation, st["plate"], st["interface"], st["plate_nodes"]
+        )
+
     def strip_forces(self, i: int, k: int = -1) -> dict[str, np.ndarray]:
-        """Stress resultants of the plate strip ``i`` at step ``k`` (``PlateStrip.resultants``): ``x_ax``
-        (n_el, n_ax) [m], ``N`` [N/m], ``M`` [N m/m] (sagging positive), ``x_sh``, ``Q`` [N/m]. A rigid
-        strip has none: ValueError naming it."""
-        plate = self._plate(i)["plate"]
-        return plate.resultants(self.u[k][plate.edofs], self._state(plate, k))
+        """Stress resultants of the plate strip ``i`` at step ``k`` (:meth:`FoundationResult.strip_forces`):
+        ``x_ax`` (n_el, n_ax) [m], ``N`` [N/m], ``M`` [N m/m] (sagging positive), ``x_sh``, ``Q`` [N/m]."""
+        return self.foundation_result(i).strip_forces(k)
 
     def contact(self, i: int, k: int = -1) -> dict[str, np.ndarray]:
         """The interface under plate strip ``i`` at step ``k``: ``x`` [m], ``sig_n`` [Pa] (< 0 compression),
         ``tau`` [Pa] and ``zone`` ("stick", "slip", "open") at each integration point."""
-        from ..elements.interface import V_SIG, V_TAU, Interface6
+        return self.foundation_result(i).contact(k)
 
-        iface = self._plate(i)["interface"]
-        st = self._state(iface, k)
-        zone = np.array(["stick", "slip", "open"])[Interface6.status(st)]
-        return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": zone}
+    def contact_resultant(self, i: int, k: int = -1) -> dict[str, float]:
+        """Resultant of the contact tractions under plate strip ``i`` at step ``k``: ``N``, ``H`` [N/m], ``M``
+        [N m/m] about x = 0, ``eccentricity`` [m] (:meth:`FoundationResult.contact_resultant`)."""
+        return self.foundation_result(i).contact_resultant(k)
 
-    def _plate(self, i: int) -> dict:
-        st = self.built.strips[i]
-        if st.get("rigid"):
-            raise ValueError(
-                f"strip {i} is a RigidStrip: it has no plate or interface (read rigid_pressure({i}))"
-            )
-        return st
+    def design_summary(self, i: int, **options) -> dict | None:
+        """EN 1992 design of plate strip ``i`` (crack width, M_Ed/M_Rd, V_Ed/V_Rd,c; None without concrete):
+        :func:`ssi.scene.design.design_summary`."""
+        return self.foundation_result(i).design_summary(**options)
 
 
 def gibson_settlement(q: float, m: float) -> float:

@@ -8,19 +8,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.solution import Result
-from ..elements.interface import V_SIG, V_TAU, Interface6
-from ..materials.concrete import P_E0, P_FR
-from ..materials.layer_laws import CONCRETE, STEEL
+from .foundation_result import FoundationResult, NotInThisScene
 from .view_load_path import LoadPathView
 
 if TYPE_CHECKING:  # for annotations only: these modules import this one
     from .built import BuiltScene
-
-
-class NotInThisScene(ValueError):
-    """A result asked of a scene that has no such part (the contact stresses, strip forces, steel or cracks of
-    a :class:`~ssi.scene.RigidFooting`, which has no plate and no interface): the message says what the scene
-    has instead."""
 
 
 @dataclass
@@ -95,6 +87,24 @@ class SceneResult(LoadPathView):
             "held and pushed): its load is foundation_load() and capacity(), its settlement settlement()"
         )
 
+    @property
+    def foundation(self):
+        """The scene's foundation part (a Foundation, a RigidFooting, or None)."""
+        return self.built.scene.foundation
+
+    @property
+    def plate(self):
+        """The foundation's PlateStrip group (None: the scene has no plate strip)."""
+        return self.built.plate
+
+    def foundation_result(self, what: str = "foundation_result()") -> FoundationResult:
+        """The view of the scene's plate strip (the same one a site's strips have); :class:`NotInThisScene`
+        naming ``what`` when the scene has no plate strip on an interface."""
+        self._needs_plate(what)
+        b = self.built
+        f = b.scene.foundation
+        return FoundationResult(self, b.model, f, b.plate, b.interface, b.plate_nodes, self.phases)
+
     def settlement(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x, settlement) along the foundation's nodes (a RigidFooting's: its base), settlement positive
         downwards."""
@@ -103,12 +113,8 @@ class SceneResult(LoadPathView):
 
     def contact(self, k: int = -1) -> dict[str, np.ndarray]:
         """Interface points: dict of x, normal stress sig_n (< 0 compression), shear tau and the zone name
-        ('stick', 'slip', 'open') at each integration point."""
-        self._needs_plate("contact()")
-        iface = self.built.interface
-        st = self._group_state(iface, k)
-        names = np.array(["stick", "slip", "open"])[Interface6.status(st)]
-        return {"x": iface.ip_coords()[..., 0], "sig_n": st[..., V_SIG], "tau": st[..., V_TAU], "zone": names}
+        ('stick', 'slip', 'open') at each integration point (:meth:`FoundationResult.contact`)."""
+        return self.foundation_result("contact()").contact(k)
 
     def surface(self, k: int = -1) -> tuple[np.ndarray, np.ndarray]:
         """(x, settlement) of the soil surface, positive downwards; after an excavation the ground as it is at
@@ -122,33 +128,9 @@ class SceneResult(LoadPathView):
         return self.built.model.coords[ids, 0], -self.u[k][self.built.model.dof(ids, "w")]
 
     def plate_layers(self, k: int = -1) -> dict[str, np.ndarray]:
-        """Layer strains and stresses of the foundation at its axial sampling points.
-
-        Returns a dict: ``x`` (n_el, n_ip), ``z`` (n_layer,) layer mid-depths above the reference surface,
-        ``eps``/``sig`` (n_el, n_ip, n_layer), ``cracked`` (n_el, n_ip, n_layer) bool for concrete layers
-        whose largest tensile strain passed the cracking strain fr/E0, and ``steel`` (n_layer,) bool.
-        """
-        self._needs_plate("plate_layers()")
-        plate = self.built.plate
-        sec = plate.section
-        u_el = self.u[k][plate.edofs]
-        state = self._group_state(plate, k)
-        eps, _ = plate.layer_strains(u_el)
-        sig, _ = plate.layer_stresses(u_el, state)
-        cracked = np.zeros(eps.shape, bool)
-        e_max = plate.history(state, "e_max")  # concrete's largest tensile strain
-        for n in np.flatnonzero(sec.kind == CONCRETE):
-            cracked[..., n] = e_max[..., n] > sec.params[n, P_FR] / sec.params[n, P_E0]
-        x_pts = plate.point_x()
-        axial = plate.ax.astype(bool)
-        return {
-            "x": x_pts[:, axial],
-            "z": sec.z_mid,
-            "eps": eps[:, axial],
-            "sig": sig[:, axial],
-            "cracked": cracked[:, axial],
-            "steel": sec.kind == STEEL,
-        }
+        """Layer strains and stresses of the foundation at its axial sampling points
+        (:meth:`FoundationResult.plate_layers`)."""
+        return self.foundation_result("plate_layers()").plate_layers(k)
 
     # ---- what the engineer asks (issue 13); units in each docstring -------------------------------------
     @property
@@ -165,76 +147,40 @@ class SceneResult(LoadPathView):
         return float(x[i]), float(s[i])
 
     def contact_weights(self) -> np.ndarray:
-        """(n_el, n_ip) integration weight of every contact point times the line Jacobian [m]: the contact
-        length each point represents (their sum is the foundation width)."""
-        self._needs_plate("contact_weights()")
-        return self.built.interface.ip_weights()
+        """(n_el, n_ip) contact length [m] each contact point represents (their sum is the foundation
+        width)."""
+        return self.foundation_result("contact_weights()").contact_weights()
 
     def contact_resultant(self, k: int = -1) -> dict[str, float]:
-        """Resultant of the contact tractions at step ``k`` per unit length of the strip: ``N`` [N/m]
-        (compression positive, = the vertical load the soil carries), ``H`` [N/m] (shear, +x), ``M``
-        [N m/m] (moment of the tractions about x = 0, counter-clockwise positive) and the foundation's
-        ``eccentricity`` M_p/N [m] of the pressure about x = 0."""
-        self._needs_plate("contact_resultant()")
-        c = self.contact(k)
-        w = self.contact_weights()
-        pressure = -c["sig_n"]
-        N = float(np.sum(pressure * w))
-        H = float(np.sum(c["tau"] * w))
-        M = float(np.sum(pressure * w * c["x"]))
-        return {"N": N, "H": H, "M": M, "eccentricity": M / N if N else float("nan")}
+        """Resultant of the contact tractions at step ``k``: ``N``, ``H`` [N/m], ``M`` [N m/m] about x = 0 and
+        the ``eccentricity`` [m] (:meth:`FoundationResult.contact_resultant`)."""
+        return self.foundation_result("contact_resultant()").contact_resultant(k)
 
     def strip_forces(self, k: int = -1) -> dict[str, np.ndarray]:
-        """Stress resultants of the foundation strip per unit width at step ``k``, from
-        ``PlateStrip.resultants``: ``x_ax`` (n_el, n_ax) [m] with normal force ``N`` [N/m] and bending moment
-        ``M`` [N m/m] (positive sagging: tension at the bottom), ``x_sh`` (n_el, n_sh) [m] with shear force
-        ``Q`` [N/m]."""
-        self._needs_plate("strip_forces()")
-        plate = self.built.plate
-        return plate.resultants(self.u[k][plate.edofs], self._group_state(plate, k))
+        """Stress resultants of the foundation strip per unit width at step ``k``: ``x_ax``, ``N`` [N/m],
+        ``M`` [N m/m] (sagging positive), ``x_sh``, ``Q`` [N/m] (:meth:`FoundationResult.strip_forces`)."""
+        return self.foundation_result("strip_forces()").strip_forces(k)
 
     def steel_stress(self, k: int = -1) -> dict[str, np.ndarray]:
-        """Stress [Pa] in every steel layer at the strip's axial points at step ``k``: ``x`` (n_el, n_ax) [m],
-        ``z`` (n_steel,) [m] layer heights above the reference surface, ``sig`` (n_el, n_ax, n_steel) [Pa],
-        ``yielded`` (n_el, n_ax, n_steel) bool where |sig| reached the layer's fy."""
-        self._needs_plate("steel_stress()")
-        from ..materials.steel import S_FY
-
-        layers = self.plate_layers(k)
-        steel = layers["steel"]
-        sig = layers["sig"][..., steel]
-        params = self.built.plate.section.params
-        fy = params[steel, S_FY] if steel.any() else np.zeros(0)
-        return {
-            "x": layers["x"],
-            "z": layers["z"][steel],
-            "sig": sig,
-            "yielded": np.abs(sig) >= fy * (1.0 - 1e-9),
-        }
+        """Stress [Pa] in every steel layer at the strip's axial points
+        (:meth:`FoundationResult.steel_stress`)."""
+        return self.foundation_result("steel_stress()").steel_stress(k)
 
     def crack_map(self, k: int = -1) -> dict[str, np.ndarray]:
-        """Cracked concrete layer points at step ``k``: ``x`` (n_el, n_ax) [m], ``z`` (n_layer,) [m],
-        ``cracked`` (n_el, n_ax, n_layer) bool (largest tensile strain beyond fr/E0; see ``plate_layers``)."""
-        self._needs_plate("crack_map()")
-        layers = self.plate_layers(k)
-        return {"x": layers["x"], "z": layers["z"], "cracked": layers["cracked"]}
+        """Cracked concrete layer points at step ``k`` (:meth:`FoundationResult.crack_map`)."""
+        return self.foundation_result("crack_map()").crack_map(k)
 
     def crack_width(self, k: int = -1) -> dict[str, np.ndarray]:
         """Crack width w_k [m] (EN 1992-1-1 7.3.4) at the strip's axial points at step ``k``: see
         :func:`ssi.scene.design.crack_width`."""
-        self._needs_plate("crack_width()")
-        from .design import crack_width
-
-        return crack_width(self, k)
+        return self.foundation_result("crack_width()").crack_width(k)
 
     def design_summary(self, **options) -> dict | None:
         """Crack widths, utilisations and envelopes of an RC strip per phase: see
         :func:`ssi.scene.design.design_summary` (``options``: gamma_c, gamma_s, kt, fck)."""
         if self.built.plate is None:  # a scene without a strip has nothing to design
             return None
-        from .design import design_summary
-
-        return design_summary(self, **options)
+        return self.foundation_result("design_summary()").design_summary(**options)
 
     def soil_points(self) -> np.ndarray:
         """(n_el, n_ip, 2) coordinates (x, z) [m] of the soil integration points."""
