@@ -15,7 +15,9 @@ import tomllib
 import warnings
 from pathlib import Path
 
-__all__ = ["SITE_ONLY_KEYS", "is_site_file", "run_site_file", "site_summary", "site_summary_text"]
+__all__ = [
+    "SITE_ONLY_KEYS", "is_site_file", "run_site_file", "site_summary", "site_summary_text",
+]  # fmt: skip
 
 # top-level keys a site file may have and a scene file may not (a scene file has a ``foundation``)
 SITE_ONLY_KEYS = frozenset({"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress"})
@@ -35,9 +37,20 @@ def is_site_file(path) -> bool:
 def site_summary(result, wall_time: float | None = None, complete: bool = True, stop=None) -> dict:
     """The per-foundation summary of a solved site (:class:`ssi.scene.site_view.SiteResult`), SI units in
     the key names: settlement [m] positive down, tilt [rad] (> 0: the right end settles more), pressure
-    [Pa]."""
+    [Pa], forces [N/m], moments [N m/m].
+
+    ``status`` is the solver's, as for a scene (:func:`ssi.io.cli.summary`): "completed" (load factor 1
+    reached), "limit load reached" (the controlled path peaked at ``limit_load_factor`` of the site's loads,
+    with the limit's checks ``limit_evidence``, ``limit_uncertainty``, ``limit_mechanism`` and
+    ``limit_suspect``) or "stopped" (the solver failed before either, ``stop``). ``complete`` as for a
+    scene: False only when the solver stopped (a limit load is an answer). A plate strip's row also holds
+    its contact resultant (``contact_N_N_per_m``, ``contact_H_N_per_m``, ``contact_M_Nm_per_m`` about
+    x = 0), the column load applied on it at the end (``applied_N_N_per_m``), its largest bending moment and
+    its EN 1992 design (``design``: :func:`ssi.scene.design.design_summary`, None without concrete)."""
     built = result.built
     foundations, plates = [], []
+    lam = float(result.load_factor[-1])
+    status = result.status if complete else "stopped"
     for i, (part, st) in enumerate(zip(built.site.strips, built.strips)):
         if st.get("rigid"):
             s, q = result.rigid_pressure(i)
@@ -46,10 +59,18 @@ def site_summary(result, wall_time: float | None = None, complete: bool = True, 
                 "settlement_m": float(s[-1]), "pressure_Pa": float(q[-1]), "max_pressure_Pa": float(q.max()),
             })  # fmt: skip
             continue
-        d = result.strip_summary(i)
+        view = result.foundation_result(i)
+        d = view.settlement_summary()
+        c = view.contact_resultant()
+        x_m, m_max = view.max_abs_moment()
         foundations.append({
             "index": i, "type": "strip", "x0_m": part.foundation.x0, "x1_m": part.foundation.x1,
             "mean_settlement_m": d["mean"], "max_settlement_m": d["max"], "tilt_rad": d["tilt"],
+            "applied_N_N_per_m": lam * sum(ld.column_force_on(part.foundation.x0, part.foundation.x1)
+                                           for ld in built.site.loads),
+            "contact_N_N_per_m": c["N"], "contact_H_N_per_m": c["H"], "contact_M_Nm_per_m": c["M"],
+            "max_abs_moment_Nm_per_m": m_max, "x_max_abs_moment_m": x_m,
+            "design": view.design_summary(),
         })  # fmt: skip
         plates.append(i)
     differential = [
@@ -57,10 +78,14 @@ def site_summary(result, wall_time: float | None = None, complete: bool = True, 
         for k, i in enumerate(plates)
         for j in plates[k + 1 :]
     ]
-    return {
+    out = {
         "kind": "site",
         "complete": bool(complete),
-        "status": "completed" if complete else "stopped before the end of the load path",
+        "status": status,
+        "load_factor": lam,
+        "limit_load_factor": (
+            result.solver_result.limit_load_factor if status == "limit load reached" else None
+        ),
         "stop": None if stop is None else str(stop),
         "mesher": built.mesher,
         "initial_stress": built.initial_stress_method,
@@ -70,13 +95,20 @@ def site_summary(result, wall_time: float | None = None, complete: bool = True, 
         "foundations": foundations,
         "differential_settlement": differential,
     }
+    if status == "limit load reached":  # how the controlled path found its limit, as a scene's summary has it
+        res = result.solver_result
+        out |= {"limit_evidence": res.limit_evidence, "limit_uncertainty": res.limit_uncertainty,
+                "limit_mechanism": res.limit_mechanism, "limit_suspect": res.limit_suspect}  # fmt: skip
+    return out
 
 
 def site_summary_text(s: dict) -> str:
     """The printed form of :func:`site_summary` (mm, mm/m, kPa)."""
+    from .report import site_status_line
+
     lines = [
         f"site: {s['n_elements']} elements ({s['mesher']} mesh), {s['n_dof']} DOFs, initial stress "
-        f"{s['initial_stress']}; status: {s['status']}"
+        f"{s['initial_stress']}; status: {site_status_line(s)}"
     ]
     if s["stop"]:
         lines.append(f"  stopped: {s['stop']}")
@@ -90,6 +122,15 @@ def site_summary_text(s: dict) -> str:
             lines.append(f"  {where}: settlement mean {1e3 * f['mean_settlement_m']:.2f} mm, max "
                          f"{1e3 * f['max_settlement_m']:.2f} mm, "
                          f"tilt {1e3 * f['tilt_rad']:.3f} mm/m")  # fmt: skip
+            if "contact_N_N_per_m" in f:  # a summary written before the strips' forces were part of it
+                lines.append(f"    contact resultant {f['contact_N_N_per_m'] / 1e3:.2f} kN/m (column load "
+                             f"{f['applied_N_N_per_m'] / 1e3:.2f} kN/m), max |moment| "
+                             f"{f['max_abs_moment_Nm_per_m'] / 1e3:.2f} kN m/m at x = "
+                             f"{f['x_max_abs_moment_m']:.3f} m")  # fmt: skip
+            if f.get("design"):
+                from ..scene.design import summary_text as design_text
+
+                lines += ["    " + line for line in design_text(f["design"]).splitlines()]
     for d in s["differential_settlement"]:
         lines.append(f"  differential settlement #{d['i']} - #{d['j']}: "
                      f"{1e3 * d['mean_settlement_i_minus_j_m']:.2f} mm (mean settlements)")  # fmt: skip

@@ -292,6 +292,24 @@ def report_html(
     return "\n".join(parts) + "\n"
 
 
+def site_status_line(s: dict) -> str:
+    """The status as a sentence: the solver's, with the load factor reached and a SUSPECT limit named."""
+    if s["status"] == "limit load reached":
+        text = (
+            f"limit load reached at load factor {s['limit_load_factor']:.4g} of the site's loads (the path "
+            "up to the limit is the answer)"
+        )
+        if s.get("limit_suspect"):
+            text += f"; SUSPECT: {s['limit_suspect']}"
+        return text
+    if s["status"] == "stopped":
+        return (
+            f"INCOMPLETE: stopped at load factor {s.get('load_factor', float('nan')):.4g} (solver failure, "
+            "not a detected limit load)"
+        )
+    return s["status"]
+
+
 def site_report_html(
     s: dict, figures: list[Path] | None = None, base: Path | None = None, title: str = "ssi run",
     run_warnings: list[str] | None = None,
@@ -301,7 +319,7 @@ def site_report_html(
     warnings and the figures."""
     esc = html.escape
     parts = _page_head(title) + [
-        f'<p class="status">status: {esc(s["status"])}</p>',
+        f'<p class="status">status: {esc(site_status_line(s))}</p>',
         f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial stress "
         f"{esc(s['initial_stress'])}.</p>",
     ]
@@ -313,7 +331,8 @@ def site_report_html(
     parts.append(
         '<div class="scroll"><table><tr><th>#</th><th>type</th><th>x0 [m]</th><th>x1 [m]</th>'
         "<th>mean settlement [mm]</th><th>max settlement [mm]</th><th>tilt [mm/m]</th>"
-        "<th>mean pressure [kPa]</th></tr>"
+        "<th>mean pressure [kPa]</th><th>contact resultant [kN/m]</th><th>column load [kN/m]</th>"
+        "<th>max |M| [kN m/m]</th></tr>"
     )
     for f in s["foundations"]:
         rigid = f["type"] == "rigid strip"
@@ -322,6 +341,9 @@ def site_report_html(
             _fmt(None if rigid else f["max_settlement_m"], 1e3, "{:.3f}"),
             _fmt(None if rigid else f["tilt_rad"], 1e3, "{:.3f}"),
             _fmt(f.get("pressure_Pa"), 1e-3, "{:.2f}"),
+            _fmt(f.get("contact_N_N_per_m"), 1e-3, "{:.2f}"),
+            _fmt(f.get("applied_N_N_per_m"), 1e-3, "{:.2f}"),
+            _fmt(f.get("max_abs_moment_Nm_per_m"), 1e-3, "{:.2f}"),
         ]
         parts.append(
             f"<tr><td>{f['index']}</td><td>{esc(f['type'])}</td>"
@@ -339,6 +361,12 @@ def site_report_html(
                 f'<td class="num">{1e3 * d["mean_settlement_i_minus_j_m"]:.3f}</td></tr>'
             )
         parts.append("</table>")
+    designed = [f for f in s["foundations"] if f.get("design")]
+    if designed:
+        from ..scene.design import summary_text as design_text
+
+        parts.append("<h2>RC design</h2>")
+        parts += [f"<h3>strip #{f['index']}</h3><pre>{esc(design_text(f['design']))}</pre>" for f in designed]
     parts += _figures(figures, base)
     parts.append(
         "<p><small>SI units in the result file and the JSON summary; this page shows kN, kPa, mm. "

@@ -39,6 +39,10 @@ class ColumnLoad:
         check_real("ColumnLoad.H", self.H, unit="N/m")
         check_real("ColumnLoad.M", self.M, unit="N m/m")
 
+    def column_force_on(self, x0: float, x1: float) -> float:
+        """The vertical column force [N/m] (> 0 down) this load puts on a strip from ``x0`` to ``x1`` [m]."""
+        return self.N if x0 - 1e-9 <= self.x <= x1 + 1e-9 else 0.0
+
     def mesh_lines(self) -> list[float]:
         """The column's x [m]: a plate (and surface) node."""
         return [self.x]
@@ -65,6 +69,10 @@ class SurfacePressure:
     x0: float
     x1: float
     q: float
+
+    def column_force_on(self, x0: float, x1: float) -> float:
+        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
+        return 0.0
 
     def mesh_lines(self) -> list[float]:
         """Both ends [m]."""
@@ -93,6 +101,10 @@ class StripLoad:
     q_end: float | None = None
     x0: float | None = None
     x1: float | None = None
+
+    def column_force_on(self, x0: float, x1: float) -> float:
+        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
+        return 0.0
 
     def mesh_lines(self) -> list[float]:
         """The ends [m] that are given."""
@@ -134,6 +146,10 @@ class StripWeight:
 
     unit_weight: float = 25e3
 
+    def column_force_on(self, x0: float, x1: float) -> float:
+        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
+        return 0.0
+
     def mesh_lines(self) -> list[float]:
         """None: the weight acts on the whole strip."""
         return []
@@ -155,6 +171,10 @@ class Settlement:
 
     w: float
     x: tuple | None = None
+
+    def column_force_on(self, x0: float, x1: float) -> float:
+        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
+        return 0.0
 
     def mesh_lines(self) -> list[float]:
         """The settled columns' x [m] (none for the whole strip)."""
@@ -191,6 +211,10 @@ class Push:
         check_real("Push.u", self.u, unit="m")
         if self.x is not None:
             check_real("Push.x", self.x, unit="m")
+
+    def column_force_on(self, x0: float, x1: float) -> float:
+        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
+        return 0.0
 
     def mesh_lines(self) -> list[float]:
         """None: the push moves the whole strip."""
