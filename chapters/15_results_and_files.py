@@ -283,9 +283,9 @@ save_figure(fig3, "ch15_phased_figures")
 # (2 + π) s_u B = 514.2 kN/m, lies in the stored bracket.
 
 # %%
-from ssi.io.plot_site import site_deformed_mesh, site_settlement  # noqa: E402
+from ssi.io.plot import site_deformed_mesh, site_settlement  # noqa: E402
 from ssi.io.results_limit import read_limit_result  # noqa: E402
-from ssi.scene.site_file import read_site_file  # noqa: E402
+from ssi.scene.scene_file import read_scene_file  # noqa: E402
 
 site_work = OUT / "boreholes.toml"
 site_work.write_text((EXAMPLES / "sites" / "boreholes.toml").read_text())
@@ -295,7 +295,7 @@ proc = subprocess.run(
 )  # fmt: skip
 print(proc.stdout.split("wrote")[0])
 site_back = read_result(site_work.with_suffix(".h5"))
-site, site_steps, site_settings = read_site_file(site_work)
+site, site_steps, site_settings = read_scene_file(site_work)
 site_direct = site.build().solve(n_steps=site_steps, settings=site_settings)
 site_du = np.abs(np.asarray(site_back.u[-1]) - np.asarray(site_direct.u[-1])).max()
 site_ok = proc.returncode == 0 and site_du <= 1e-12 * np.abs(np.asarray(site_direct.u[-1])).max()

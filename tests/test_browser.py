@@ -168,11 +168,11 @@ def test_site_run_report_renders_offline(tmp_path, chromium):
     """``ssi run`` on the example borehole site: its report (one row per foundation, the differential
     settlement, the figures with the site's geometry) in the browser with no network: every figure decodes,
     no console error, no request leaving the machine."""
-    from ssi.io.cli_site import run_site_file
+    from ssi.io.cli import run_scene_file
 
     site = tmp_path / "boreholes.toml"
     shutil.copy2(ROOT / "examples" / "sites" / "boreholes.toml", site)
-    _, s, written = run_site_file(site)
+    _, s, written = run_scene_file(site)
     page = tmp_path / "boreholes_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / "report-site-boreholes.png", width=1280, height=900)
     assert report.problems() == []

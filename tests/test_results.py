@@ -32,7 +32,8 @@ from ssi.scene import (
     StripWeight,
     SurfacePressure,
 )
-from ssi.scene.scene_file import LOAD_TYPES, UNITS, read_scene_file, scene_from_dict, scene_to_dict
+from ssi.scene.file_schema import UNITS
+from ssi.scene.scene_file import LOAD_TYPES, read_scene_file, scene_from_dict, scene_to_dict
 from ssi.solver import NonConvergence, Settings
 from ssi.solver.progress import progress_enabled, solver_progress
 
@@ -432,27 +433,22 @@ def test_unknown_keys_are_refused_by_name(tmp_path, text, key):
 
 
 def test_every_field_has_a_unit():
-    """Every field of every dataclass a scene is made of -- found in ssi.scene, so a new one is caught -- has
-    an entry in UNITS, and UNITS names no field that does not exist."""
+    """Every field of every dataclass a scene or a site is made of -- found in ssi.scene, so a new one is
+    caught -- has an entry in UNITS (what `ssi schema` prints), and UNITS names no field that does not
+    exist."""
     import dataclasses
     import inspect
 
     import ssi.scene as scene_module  # the face: every class a scene is made of
 
-    runtime = {"BuiltScene", "SceneResult"}  # built from a scene, not written in a scene file
-    # a site (Site, Borehole, ...; ssi.scene.site*) is written in a site file (site_file.py), not a scene file
-    site_modules = ("ssi.scene.site", "ssi.scene.site_parts", "ssi.scene.site_built", "ssi.scene.site_view")
+    runtime = {"BuiltScene", "SceneResult", "BuiltSite", "SiteResult"}  # built, not written in a file
     classes = [
         c
         for _, c in inspect.getmembers(scene_module, inspect.isclass)
-        if dataclasses.is_dataclass(c)
-        and c.__module__.startswith("ssi.scene.")
-        and c.__module__ not in site_modules
-        and c.__name__ not in runtime
+        if dataclasses.is_dataclass(c) and c.__module__.startswith("ssi.scene.") and c.__name__ not in runtime
     ]
-    assert {"Scene", "Phase", "ContactSegment", "Settlement", "SurfacePressure"} <= {
-        c.__name__ for c in classes
-    }
+    assert {"Scene", "Phase", "ContactSegment", "Settlement", "SurfacePressure", "Site", "Borehole", "Strip",
+            "RigidStrip", "DepthVarying"} <= {c.__name__ for c in classes}  # fmt: skip
     for cls in classes:
         assert set(UNITS[cls.__name__]) == {f.name for f in dataclasses.fields(cls)}, cls.__name__
     assert set(LOAD_TYPES) == {

@@ -128,7 +128,7 @@ def test_ssi_limit_brackets_a_site_file_and_writes_its_result(tmp_path, capsys):
     assert read_vtu(tmp_path / "site_limit.vtu").cells[0].type == "triangle6"
     capsys.readouterr()
     assert main(["limit", str(path), "--phase", "loads", "--overwrite"]) == 2
-    assert "--phase='loads': a site file has no phases" in capsys.readouterr().err
+    assert "phase='loads': a site has no phases" in capsys.readouterr().err
 
 
 def test_ssi_limit_side_soil_reaches_the_limit_problem_and_refuses_a_bad_value(tmp_path, capsys):

@@ -13,7 +13,8 @@ from ssi.elements.soil_q8 import SoilQ8
 from ssi.io.results import read_result, write_result
 from ssi.lab.examples import surcharge_heave
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
-from ssi.scene.scene_file import UNITS, scene_from_dict, scene_to_dict
+from ssi.scene.file_schema import UNITS
+from ssi.scene.scene_file import scene_from_dict, scene_to_dict
 from ssi.solver import Settings
 
 COARSE = MeshSize(h_fine=0.5, h_coarse=2.0, growth=1.5)

@@ -219,14 +219,14 @@ def test_two_strips_superpose_on_one_mesh():
 def test_example_site_files_build_and_solve():
     from pathlib import Path
 
-    from ssi.scene.site_file import read_site_file
+    from ssi.scene.scene_file import read_scene_file
 
     root = Path(__file__).resolve().parents[1] / "examples"
-    site, n_steps, settings = read_site_file(root / "sites" / "boreholes.toml")
+    site, n_steps, settings = read_scene_file(root / "sites" / "boreholes.toml")
     assert len(site.strips) == 2 and len(site.boreholes) == 3
     out = site.build().solve(n_steps, settings)
     assert out.strip_summary(0)["mean"] > out.strip_summary(1)["mean"] > 0.0
-    slope, n_steps, settings = read_site_file(root / "sites" / "slope.toml")
+    slope, n_steps, settings = read_scene_file(root / "sites" / "slope.toml")
     built = slope.build()
     assert built.mesher == "gmsh" and built.initial_stress_method == "gravity"
     assert isinstance(slope.layers[1], DepthVarying)
@@ -235,7 +235,7 @@ def test_example_site_files_build_and_solve():
 
 
 def test_site_file_refuses_unknown_keys():
-    from ssi.scene.site_file import site_from_dict
+    from ssi.scene.scene_file import site_from_dict
 
     with pytest.raises(ValueError, match="unknown|allowed"):
         site_from_dict({"width": 10.0, "depth": 5.0, "layers": [{"E": 1e7, "nu": 0.3}], "slope": 30.0})
@@ -352,8 +352,7 @@ def test_ssi_run_on_a_site_file_prints_the_per_foundation_summary(tmp_path, caps
     import json
 
     from ssi.io.cli import main
-    from ssi.io.cli_site import is_site_file
-    from ssi.scene.site_file import read_site_file
+    from ssi.scene.scene_file import is_site_file, read_scene_file
 
     text = """
 width = 30.0
@@ -393,7 +392,7 @@ h_coarse = 3.0
     out = capsys.readouterr().out
     assert "#0 strip [-6, -4] m: settlement mean" in out and "differential settlement #0 - #1" in out
     s = json.loads((tmp_path / "two_summary.json").read_text())
-    site, _, _ = read_site_file(path)
+    site, _, _ = read_scene_file(path)
     ref = site.build().solve()  # independent of the command line: the same site solved directly
     # 1e-12: the same deterministic mesh and linear solve, so only the JSON round trip (exact) separates them
     for i, f in enumerate(s["foundations"]):
@@ -407,7 +406,7 @@ h_coarse = 3.0
 
 
 def test_a_scene_file_is_not_taken_for_a_site_file(tmp_path):
-    from ssi.io.cli_site import is_site_file
+    from ssi.scene.scene_file import is_site_file
 
     scene = tmp_path / "scene.toml"
     scene.write_text("width = 10.0\ndepth = 5.0\n[foundation]\nx0 = -1.0\nx1 = 1.0\n")
@@ -417,7 +416,8 @@ def test_a_scene_file_is_not_taken_for_a_site_file(tmp_path):
 
 
 def test_site_summary_of_a_rigid_strip_reports_its_push_and_pressure():
-    from ssi.io.cli_site import site_summary, site_summary_text
+    from ssi.io.cli import summary as site_summary
+    from ssi.io.cli import summary_text as site_summary_text
     from ssi.scene.site import RigidStrip
 
     site = Site(12.0, 5.0, [SoilLayer(1.0, E=20e6, nu=0.3)], strips=[RigidStrip(-1.0, 1.0, settle=0.01)],

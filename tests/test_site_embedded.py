@@ -129,16 +129,16 @@ def test_embedded_strip_named_errors():
 
 
 def test_embedded_site_file_round_trip_and_ssi_run(tmp_path, capsys):
-    """A site file with an embedded strip and side contact: site_to_dict / site_from_dict restore it, and
+    """A site file with an embedded strip and side contact: scene_to_dict / site_from_dict restore it, and
     `ssi run` solves it to the same mean settlement as the site solved in Python (1e-12: the same
     deterministic mesh and linear solve; only the JSON round trip separates them)."""
     import json
 
     from ssi.io.cli import main
-    from ssi.scene.site_file import read_site_file, site_from_dict, site_to_dict
+    from ssi.scene.scene_file import read_scene_file, scene_to_dict, site_from_dict
 
     site = _site()
-    back = site_from_dict(site_to_dict(site))
+    back = site_from_dict(scene_to_dict(site))
     (strip,) = back.strips
     assert (strip.level, strip.side_contact, strip.contact) == (-1.0, SIDE, BASE)
     text = """
@@ -173,7 +173,7 @@ h_coarse = 2.0
     assert main(["run", str(path)]) == 0
     capsys.readouterr()
     summary = json.loads((tmp_path / "embedded_summary.json").read_text())
-    parsed, _, _ = read_site_file(path)
+    parsed, _, _ = read_scene_file(path)
     assert parsed.strips[0].level == -1.0 and parsed.strips[0].side_contact == SIDE
     ref = parsed.build().solve()
     mean = summary["foundations"][0]["mean_settlement_m"]
@@ -224,7 +224,7 @@ def test_embedded_example_site_file_runs(tmp_path, capsys):
     from pathlib import Path
 
     from ssi.io.cli import main
-    from ssi.scene.site_file import read_site_file
+    from ssi.scene.scene_file import read_scene_file
 
     example = Path(__file__).resolve().parents[1] / "examples" / "sites" / "embedded.toml"
     path = tmp_path / "embedded.toml"
@@ -233,7 +233,7 @@ def test_embedded_example_site_file_runs(tmp_path, capsys):
     capsys.readouterr()
     summary = json.loads((tmp_path / "embedded_summary.json").read_text())
     assert summary["status"] == "completed" and summary["initial_stress"] == "gravity"
-    site, n_steps, settings = read_site_file(path)
+    site, n_steps, settings = read_scene_file(path)
     (strip,) = site.strips
     assert strip.level == -1.5 and strip.side_contact.phi_deg == 20.0 and len(site.layers) == 2
     built = site.build()

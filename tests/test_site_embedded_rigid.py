@@ -8,8 +8,8 @@ import pytest
 from ssi.core.geometry import GeometryError
 from ssi.elements.section import homogeneous
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Push, SoilLayer
+from ssi.scene.scene_file import scene_to_dict, site_from_dict
 from ssi.scene.site import Borehole, RigidStrip, Site, Strip
-from ssi.scene.site_file import site_from_dict, site_to_dict
 
 TOP = SoilLayer(1.0, E=10e6, nu=0.3, unit_weight=18e3)
 LOW = SoilLayer(7.0, E=30e6, nu=0.3, unit_weight=19e3)
@@ -100,5 +100,5 @@ def test_embedded_rigid_strip_named_errors_and_file():
     # refused for what the limit problem cannot take, its elastic layer, by name
     with pytest.raises(ValueError, match=r"layers\[0\] is elastic"):
         _site(_rigid()).limit_analysis()
-    back = site_from_dict(site_to_dict(_site(_rigid())))
+    back = site_from_dict(scene_to_dict(_site(_rigid())))
     assert back.strips == [_rigid()]

@@ -13,8 +13,8 @@ from ssi.io.cli import main
 from ssi.io.export import export_vtu, read_series, read_vtu
 from ssi.io.results import read_result, write_result
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Scene, SoilLayer
+from ssi.scene.scene_file import read_scene_file, scene_to_dict, site_from_dict
 from ssi.scene.site import Borehole, DepthVarying, RigidStrip, Site, Strip
-from ssi.scene.site_file import read_site_file, site_from_dict, site_to_dict
 
 SITE_TOML = """
 width = 30.0
@@ -92,7 +92,7 @@ def test_site_result_file_reads_back_as_the_solved_site(site_run, capsys):
     solve; 1e-12 of the largest). ``ssi show`` reprints the run's per-foundation lines from it."""
     folder, path = site_run
     stored = read_result(folder / "two.h5")
-    site, n_steps, settings = read_site_file(path)
+    site, n_steps, settings = read_scene_file(path)
     direct = site.build().solve(n_steps=n_steps, settings=settings)
     assert type(stored).__name__ == "SiteResult"
     np.testing.assert_array_equal(stored.built.model.coords, direct.built.model.coords)
@@ -114,7 +114,7 @@ def test_site_paraview_has_a_material_id_per_element_and_units(site_run):
     series = read_series(folder / "two.pvd")
     assert [t for t, _ in series] == [0.0, 1.0]  # a linear site: the unloaded and the solved state
     mesh = series[-1][1]
-    site, _, _ = read_site_file(path)
+    site, _, _ = read_scene_file(path)
     built = site.build()
     quads = mesh.cells[0].data
     np.testing.assert_array_equal(quads, built.mesh.conn)
@@ -165,9 +165,9 @@ def test_site_to_dict_round_trips_rigid_strips_depth_variation_and_water():
         strips=[RigidStrip(-4.0, -2.0, settle=0.01), strip],
         loads=[ColumnLoad(2.0, N=100e3)], mesh=MeshSize(h_fine=0.5, h_coarse=2.0),
     )  # fmt: skip
-    plain = site_to_dict(site)
+    plain = scene_to_dict(site)
     again = site_from_dict(json.loads(json.dumps(plain)))
-    assert site_to_dict(again) == plain
+    assert scene_to_dict(again) == plain
     assert isinstance(again.strips[0], RigidStrip) and isinstance(again.layers[0], DepthVarying)
     assert again.layers[0].E_inc == 1e6 and again.water_table == -1.0
 

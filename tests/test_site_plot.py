@@ -1,4 +1,4 @@
-"""The site figures (ssi.io.plot_site) draw the geometry under every plot, an embedded strip's trench with
+"""The site figures (ssi.io.plot) draw the geometry under every plot, an embedded strip's trench with
 it: the ground goes down the trench walls and along the base level, the strip lies at its level, and the
 walls with side contact are drawn; on a small mesh."""
 
@@ -12,7 +12,8 @@ import pytest  # noqa: E402
 from matplotlib.colors import to_rgba  # noqa: E402
 
 from ssi.elements.section import homogeneous  # noqa: E402
-from ssi.io.plot_site import ground_line, site_figures  # noqa: E402
+from ssi.io.plot import ground_line  # noqa: E402
+from ssi.io.plot import standard_figures as site_figures  # noqa: E402
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, SoilLayer  # noqa: E402
 from ssi.scene.site import Borehole, RigidStrip, Site, Strip  # noqa: E402
 

@@ -7,8 +7,8 @@ import pytest
 from ssi.core.geometry import GeometryError
 from ssi.elements.section import homogeneous
 from ssi.scene import Contact, Foundation, MeshSize, Push, RigidFooting, Scene, SoilLayer
+from ssi.scene.scene_file import scene_to_dict, site_from_dict
 from ssi.scene.site import RigidStrip, Site, Strip
-from ssi.scene.site_file import site_from_dict, site_to_dict
 
 SEC = homogeneous(0.5, 30e9, 0.2)
 C_I = 10e3  # base adhesion [Pa], phi_i = 0: the base slides at C_I * B whatever the normal force
@@ -111,7 +111,7 @@ def test_site_push_picks_its_strip_and_names_errors():
 
 def test_push_in_a_site_file_dict():
     site = _site([Push(0.02)])
-    data = site_to_dict(site)
+    data = scene_to_dict(site)
     assert site_from_dict(data).loads == [Push(0.02)]
 
 

@@ -125,3 +125,36 @@ def test_two_strip_site_summary_has_contact_resultants_moments_and_rc_design(tmp
     assert "M_Ed/M_Rd" in printed and "V_Ed/V_Rd,c" in printed and "w_k max" in printed
     report = (tmp_path / "two_report.html").read_text()
     assert "RC design" in report and "contact resultant [kN/m]" in report
+
+
+def test_schema_lists_the_site_keys(capsys):
+    """`ssi schema` prints the keys of both inputs: the site's tables and every field of each."""
+    import dataclasses
+
+    from ssi.scene.site import Borehole, RigidStrip, Site, Strip
+
+    assert main(["schema"]) == 0
+    text = capsys.readouterr().out
+    for cls in (Site, Borehole, Strip, RigidStrip):
+        assert f"[{cls.__name__}]" in text
+        block = text.split(f"[{cls.__name__}]", 1)[1].split("\n[", 1)[0]
+        keys = {line.split()[0] for line in block.splitlines()[1:] if line.strip()}
+        assert keys == {f.name for f in dataclasses.fields(cls)}, cls.__name__
+    assert "ELEVATION" in text.split("[Site]", 1)[1].split("\n[", 1)[0]  # a site's water table
+
+
+def test_ssi_show_reads_a_site_result_back_with_the_solvers_status(tmp_path, capsys):
+    """The result file of an overloaded site read back by `ssi show`: the same status and limit load factor
+    as the run's JSON (one result-file path for a scene and a site)."""
+    c, b = 10e3, 2.0
+    path = tmp_path / "over.toml"
+    path.write_text(SOFT_CLAY.replace("{N}", repr(3.0 * (2.0 + math.pi) * c * b)))
+    main(["run", str(path), "--no-plots"])
+    ran = json.loads((tmp_path / "over_summary.json").read_text())
+    capsys.readouterr()
+    main(["show", str(tmp_path / "over.h5"), "--no-plots", "--json"])
+    shown = json.loads(capsys.readouterr().out.split("\nwrote", 1)[0])
+    assert shown["kind"] == "site" and shown["status"] == ran["status"] != "completed"
+    assert (
+        shown["load_factor"] == ran["load_factor"] and shown["limit_load_factor"] == ran["limit_load_factor"]
+    )

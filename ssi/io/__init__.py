@@ -1,7 +1,7 @@
 """What leaves the computation: result files (``results``: HDF5, written atomically, of a scene, a site or a
 bare model; ``results_limit``: of a limit analysis), ParaView export (``export``), the standard figures
-(``plot``; a site's ``plot_site``), the HTML run report (``report``) and the command line (``cli``:
-``ssi run | show | limit``; ``cli_site`` for site files)."""
+(``plot``, a scene's or a site's), the HTML run report (``report``) and the command line (``cli``:
+``ssi run | show | limit`` of a scene or a site file)."""
 
 from .results import read_result, write_result
 

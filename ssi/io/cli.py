@@ -14,11 +14,11 @@ else the settlement.
 A run whose controlled path peaks is a complete answer (status "limit load reached", with the load factor
 the scene carries; exit status 0). A run the solver stops before the end of its load path (a
 :class:`ssi.solver.NonConvergence`) still writes everything, marked incomplete, and the command exits with
-status 3. A site file (:mod:`ssi.scene.site_file`) is solved by :mod:`ssi.io.cli_site`: a per-foundation
-summary (settlement, tilt, differential settlement) printed and in ``<name>_summary.json``, and the result
-file, ParaView series, figures and report as for a scene. ``ssi show result.h5`` prints the summary of a
-result file (a scene's or a site's) and redraws its plots and report into a new folder (``<result>_plots_2``,
-... when the run's exists; ``--overwrite``: into the run's).
+status 3. A site file (:mod:`ssi.scene.scene_file` reads both) goes the same way: its summary is per
+foundation (settlement, tilt, differential settlement; of a plate strip its contact resultant, bending moment
+and RC design), its status the solver's, and the same files are written. ``ssi show result.h5`` prints the
+summary of a result file (a scene's or a site's) and redraws its plots and report into a new folder
+(``<result>_plots_2``, ... when the run's exists; ``--overwrite``: into the run's).
 ``ssi limit scene.toml`` brackets the scene's capacity by finite-element limit analysis
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
 ``<name>_limit.json`` (the numbers), ``<name>_limit.h5`` (the result file: bounds, Davis bounds, gaps, the
@@ -39,14 +39,13 @@ EXIT_INCOMPLETE = 3
 
 
 def _column_loads_exist(scene) -> bool:
-    from ..scene import ColumnLoad
-
     loads = list(scene.loads) + [ld for ph in scene.phases for ld in ph.loads]
-    return any(isinstance(ld, ColumnLoad) for ld in loads)
+    return any(ld.columns() for ld in loads)
 
 
 def summary(result, wall_time=None, complete=True, stop=None) -> dict:
-    """The numbers ``ssi run`` prints, from a SceneResult: SI units (m, Pa, N/m, N m/m, s).
+    """The numbers ``ssi run`` prints, from a SceneResult or a SiteResult (``kind`` "scene" or "site"; a
+    site's per foundation: :func:`_site_summary`): SI units (m, Pa, N/m, N m/m, s).
 
     ``status``: "completed" (the whole load path), "limit load reached" (the controlled path peaked: the
     path up to the limit is the answer, ``limit_load_factor`` the fraction of the loads -- of a phased scene,
@@ -70,8 +69,11 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     ``error_estimate``: :meth:`ssi.scene.estimate.ErrorEstimate.to_dict` of the result (``ssi run
     --estimate``; the capacity's part is also ``capacity["estimate"]``), ``{"failed": reason}`` when a
     refined copy could not be solved, None when not asked."""
+    if result.kind == "site":
+        return _site_summary(result, wall_time, complete, stop)
     x_s, s_max = result.max_settlement()
     out = {
+        "kind": "scene",
         "complete": bool(complete),
         "steps": result.n_steps,
         "load_factor": float(result.load_factor[-1]),
@@ -120,6 +122,113 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["error_estimate"] = result.error_estimate
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
+
+
+def _column_force_on(loads, x0: float, x1: float) -> float:
+    """The column forces N [N/m] of ``loads`` standing on a strip from ``x0`` to ``x1`` [m], summed."""
+    return sum(n for ld in loads for x, n in ld.columns() if x0 - 1e-9 <= x <= x1 + 1e-9)
+
+
+def _site_summary(result, wall_time: float | None = None, complete: bool = True, stop=None) -> dict:
+    """The per-foundation summary of a solved site (:class:`ssi.scene.site_view.SiteResult`), SI units in
+    the key names: settlement [m] positive down, tilt [rad] (> 0: the right end settles more), pressure
+    [Pa], forces [N/m], moments [N m/m].
+
+    ``status`` is the solver's, as for a scene (:func:`summary`): "completed" (load factor 1
+    reached), "limit load reached" (the controlled path peaked at ``limit_load_factor`` of the site's loads,
+    with the limit's checks ``limit_evidence``, ``limit_uncertainty``, ``limit_mechanism`` and
+    ``limit_suspect``) or "stopped" (the solver failed before either, ``stop``). ``complete`` as for a
+    scene: False only when the solver stopped (a limit load is an answer). A plate strip's row also holds
+    its contact resultant (``contact_N_N_per_m``, ``contact_H_N_per_m``, ``contact_M_Nm_per_m`` about
+    x = 0), the column load applied on it at the end (``applied_N_N_per_m``), its largest bending moment and
+    its EN 1992 design (``design``: :func:`ssi.scene.design.design_summary`, None without concrete)."""
+    built = result.built
+    foundations, plates = [], []
+    lam = float(result.load_factor[-1])
+    status = result.status if complete else "stopped"
+    for i, (part, st) in enumerate(zip(built.site.strips, built.strips)):
+        if st.get("rigid"):
+            s, q = result.rigid_pressure(i)
+            foundations.append({
+                "index": i, "type": "rigid strip", "x0_m": part.x0, "x1_m": part.x1,
+                "settlement_m": float(s[-1]), "pressure_Pa": float(q[-1]), "max_pressure_Pa": float(q.max()),
+            })  # fmt: skip
+            continue
+        view = result.foundation_result(i)
+        d = view.settlement_summary()
+        c = view.contact_resultant()
+        x_m, m_max = view.max_abs_moment()
+        foundations.append({
+            "index": i, "type": "strip", "x0_m": part.foundation.x0, "x1_m": part.foundation.x1,
+            "mean_settlement_m": d["mean"], "max_settlement_m": d["max"], "tilt_rad": d["tilt"],
+            "applied_N_N_per_m": lam * _column_force_on(built.site.loads, *part.ends),
+            "contact_N_N_per_m": c["N"], "contact_H_N_per_m": c["H"], "contact_M_Nm_per_m": c["M"],
+            "max_abs_moment_Nm_per_m": m_max, "x_max_abs_moment_m": x_m,
+            "design": view.design_summary(),
+        })  # fmt: skip
+        plates.append(i)
+    differential = [
+        {"i": i, "j": j, "mean_settlement_i_minus_j_m": float(result.differential_settlement(i, j))}
+        for k, i in enumerate(plates)
+        for j in plates[k + 1 :]
+    ]
+    out = {
+        "kind": "site",
+        "complete": bool(complete),
+        "status": status,
+        "load_factor": lam,
+        "limit_load_factor": (
+            result.solver_result.limit_load_factor if status == "limit load reached" else None
+        ),
+        "stop": None if stop is None else str(stop),
+        "mesher": built.mesher,
+        "initial_stress": built.initial_stress_method,
+        "n_elements": int(len(built.mesh.conn)),
+        "n_dof": int(built.model.n_dof),
+        "wall_time_s": None if wall_time is None else float(wall_time),
+        "foundations": foundations,
+        "differential_settlement": differential,
+    }
+    if status == "limit load reached":  # how the controlled path found its limit, as a scene's summary has it
+        out.update(_limit_checks(result))
+    return out
+
+
+def _site_summary_text(s: dict) -> str:
+    """The printed form of :func:`_site_summary` (mm, mm/m, kPa)."""
+    from .report import site_status_line
+
+    lines = [
+        f"site: {s['n_elements']} elements ({s['mesher']} mesh), {s['n_dof']} DOFs, initial stress "
+        f"{s['initial_stress']}; status: {site_status_line(s)}"
+    ]
+    if s["stop"]:
+        lines.append(f"  stopped: {s['stop']}")
+    for f in s["foundations"]:
+        where = f"#{f['index']} {f['type']} [{f['x0_m']:g}, {f['x1_m']:g}] m"
+        if f["type"] == "rigid strip":
+            lines.append(f"  {where}: settlement {1e3 * f['settlement_m']:.2f} mm, pressure "
+                         f"{f['pressure_Pa'] / 1e3:.1f} kPa (largest "
+                         f"{f['max_pressure_Pa'] / 1e3:.1f} kPa)")  # fmt: skip
+        else:
+            lines.append(f"  {where}: settlement mean {1e3 * f['mean_settlement_m']:.2f} mm, max "
+                         f"{1e3 * f['max_settlement_m']:.2f} mm, "
+                         f"tilt {1e3 * f['tilt_rad']:.3f} mm/m")  # fmt: skip
+            if "contact_N_N_per_m" in f:  # a summary written before the strips' forces were part of it
+                lines.append(f"    contact resultant {f['contact_N_N_per_m'] / 1e3:.2f} kN/m (column load "
+                             f"{f['applied_N_N_per_m'] / 1e3:.2f} kN/m), max |moment| "
+                             f"{f['max_abs_moment_Nm_per_m'] / 1e3:.2f} kN m/m at x = "
+                             f"{f['x_max_abs_moment_m']:.3f} m")  # fmt: skip
+            if f.get("design"):
+                from ..scene.design import summary_text as design_text
+
+                lines += ["    " + line for line in design_text(f["design"]).splitlines()]
+    for d in s["differential_settlement"]:
+        lines.append(f"  differential settlement #{d['i']} - #{d['j']}: "
+                     f"{1e3 * d['mean_settlement_i_minus_j_m']:.2f} mm (mean settlements)")  # fmt: skip
+    if s["wall_time_s"] is not None:
+        lines.append(f"  wall time {s['wall_time_s']:.2f} s")
+    return "\n".join(lines)
 
 
 def _limit_checks(result) -> dict:
@@ -203,7 +312,10 @@ def _capacity_line(s: dict) -> str | None:
 
 
 def summary_text(s: dict) -> str:
-    """The summary as the lines ``ssi run`` and ``ssi show`` print (kN, kPa, mm)."""
+    """The summary as the lines ``ssi run`` and ``ssi show`` print (kN, kPa, mm); a site's per foundation
+    (:func:`_site_summary_text`)."""
+    if s.get("kind") == "site":
+        return _site_summary_text(s)
     state = {
         "completed": ")",
         "limit load reached": ", the limit load)",
@@ -369,7 +481,6 @@ def run_scene_file(
     the mesh) and the estimate goes to the summary, the result file and the report. A refined copy that
     the solver cannot finish leaves the estimate ``{"failed": why}``. ``echo``: gets a line before the
     refined solves start (the command line prints it)."""
-    from ..scene import SceneResult
     from ..scene.scene_file import read_scene_file
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
@@ -378,7 +489,7 @@ def run_scene_file(
     from .results import atomic_path, run_output_paths, write_result
 
     scene_path = Path(scene_path)
-    scene, n_steps, settings = read_scene_file(scene_path)
+    scene, n_steps, settings = read_scene_file(scene_path)  # a scene or a site: the same path from here
     paths = run_output_paths(scene_path, out, paraview, plots, overwrite)
     out, paraview, plots, summary_path, report_path = paths
     announce_compilation()
@@ -392,7 +503,7 @@ def run_scene_file(
         except NonConvergence as err:
             # the converged steps before the failure; of a phased scene every completed phase and the
             # failing phase's steps (PhaseNonConvergence.scene_result)
-            result = getattr(err, "scene_result", None) or SceneResult(built, err.result)
+            result = getattr(err, "scene_result", None) or built.result_view(err.result)
             stop = err.report
         wall = time.perf_counter() - t0
         if estimate and stop is None:
@@ -469,22 +580,15 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
     if info.get("kind") == "limit":
         return _show_limit_file(path, plots, overwrite, figures)
     result = read_result(path)
-    if info.get("kind") == "site":
-        from .cli_site import site_summary
-        from .plot_site import save_site_figures as save_figures
-
-        s = site_summary(result, result.result.wall_time, info["complete"], info["stop"])
-    else:
-        wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
-        s = summary(result, wall, info["complete"], info["stop"])
-        s["wall_time_of"] = "the solver, as stored in the file"
-        save_figures = save_standard_figures
+    wall = result.solver_result.wall_time  # of a phased solve: its phases' summed
+    s = summary(result, wall, info["complete"], info["stop"])
+    s["wall_time_of"] = "the solver, as stored in the file"
     written = []
     if figures:
         folder = Path(plots) if plots else path.parent / (path.stem + "_plots")
         if plots is None and not overwrite:
             folder = _free_folder(folder)
-        written = save_figures(result, folder, overwrite=overwrite)
+        written = save_standard_figures(result, folder, overwrite=overwrite)
         written.append(write_report(s, folder / "report.html", written, path.name, overwrite=overwrite))
     return result, s, written
 
@@ -533,16 +637,7 @@ def limit_scene_file(
     for target in (out, h5_path, vtu_path, plot) if figures else (out, h5_path, vtu_path):
         if target.exists() and not overwrite:
             raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
-    from .cli_site import is_site_file
-
-    if is_site_file(scene_path):  # a site: its loads scale with lambda (Site.limit_analysis); no phases
-        from ..scene.site_file import read_site_file
-
-        if phase is not None:
-            raise ValueError(f"--phase={phase!r}: a site file has no phases (its loads are the ones scaled)")
-        scene, _, _ = read_site_file(scene_path)
-    else:
-        scene, _, _ = read_scene_file(scene_path)
+    scene, _, _ = read_scene_file(scene_path)  # a scene or a site (which refuses a phase by name)
     options = {} if phase is None else {"phase": phase}
     if strip is not None:
         options["strip"] = strip
@@ -664,7 +759,6 @@ def main(argv=None) -> int:
     lim_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     lim_p.add_argument("--json", action="store_true", help="print the numbers as JSON")
     args = parser.parse_args(argv)
-    from .cli_site import is_site_file, run_site_file, site_summary_text
     from .results import OutputExistsError
 
     if args.command == "limit":
@@ -682,7 +776,7 @@ def main(argv=None) -> int:
             print(f"wrote {p}")
         return 0
     if args.command == "schema":
-        from ..scene.scene_file import schema_text
+        from ..scene.file_schema import schema_text
 
         print(schema_text())
         return 0
@@ -690,16 +784,7 @@ def main(argv=None) -> int:
         estimate = None  # the refinements of --estimate / --estimate-over
         if args.command == "run" and (args.estimate or args.estimate_over is not None):
             estimate = "mesh" if args.estimate_over is None else args.estimate_over
-        if args.command == "run" and is_site_file(args.scene):
-            if estimate is not None:
-                raise ValueError(
-                    f"--estimate: not available for a site file ({args.scene.name}); the estimate refines "
-                    "a scene's mesh (ssi.scene.estimate)"
-                )
-            _, s, written = run_site_file(
-                args.scene, args.overwrite, args.out, args.plots, args.paraview, not args.no_plots
-            )
-        elif args.command == "run":
+        if args.command == "run":
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,
                 _refinements(estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
@@ -712,7 +797,7 @@ def main(argv=None) -> int:
     except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
         print(f"ssi: error: {err}", file=sys.stderr)
         return 2
-    text = {"site": site_summary_text, "limit": lambda d: d["summary_text"]}.get(s.get("kind"), summary_text)
+    text = {"limit": lambda d: d["summary_text"]}.get(s.get("kind"), summary_text)
     print(json.dumps(s, indent=1) if args.json else text(s))
     for p in written:
         print(f"wrote {p}")

@@ -6,7 +6,7 @@ The page holds the summary as a table with units, the capacity and how it was fo
 and the envelope over the phases, the RC design lines, the warnings of the run, and every figure, linked
 by a path relative to the page (the figures stay beside it; nothing is fetched from the network: the style
 is inline, there is no script). Values come from :func:`ssi.io.cli.summary` (SI units), shown in kN, kPa,
-mm, MPa. A site's page (:func:`site_report_html`, from :func:`ssi.io.cli_site.site_summary`) holds one row
+mm, MPa. A site's page (:func:`site_report_html`, from :func:`ssi.io.cli.summary`) holds one row
 per foundation and the differential settlements.
 """
 
@@ -314,7 +314,7 @@ def site_report_html(
     s: dict, figures: list[Path] | None = None, base: Path | None = None, title: str = "ssi run",
     run_warnings: list[str] | None = None,
 ) -> str:  # fmt: skip
-    """The report page of a site (``s`` from :func:`ssi.io.cli_site.site_summary`): the mesh and the initial
+    """The report page of a site (``s`` from :func:`ssi.io.cli.summary`): the mesh and the initial
     stress, one row per foundation (settlement, tilt, pressure), the differential settlements, the
     warnings and the figures."""
     esc = html.escape

@@ -11,7 +11,7 @@ Layout::
 
     /attrs  format, ssi_version, kind ('scene' | 'site' | 'model'), complete (bool), stop (JSON: why a run
             stopped), scene (JSON, ssi.scene.scene_file.scene_to_dict: every layer, load, section layer) or
-            site (JSON, ssi.scene.site_file.site_to_dict), model (JSON,
+            site (JSON, ssi.scene.scene_file.scene_to_dict), model (JSON,
             Model.describe), settings (JSON), extra (JSON: further scalar fields of the result object)
     /mesh/coords                    (n_nodes, 2) node coordinates [m]
     /mesh/node_ndof                 (n_nodes,)
@@ -234,11 +234,11 @@ def _is_site_result(result) -> bool:
 def _write_site_result(h5, result):
     """A :class:`ssi.scene.SiteResult`: the site's description (rebuilt on reading, its mesh compared with
     the stored one), the mesh with each soil element's layer index, the steps and the solver's record."""
-    from ..scene.site_file import site_to_dict
+    from ..scene.scene_file import scene_to_dict
 
     built, res = result.built, result.result
     h5.attrs["kind"] = "site"
-    h5.attrs["site"] = json.dumps(site_to_dict(built.site), default=_jsonable)
+    h5.attrs["site"] = json.dumps(scene_to_dict(built.site), default=_jsonable)
     h5.attrs["extra"] = json.dumps(
         {"mesher": built.mesher, "initial_stress_method": built.initial_stress_method}
     )
@@ -507,7 +507,7 @@ def _scene_result(info, lam, u, states, solver, phases, coords):
 def _site_result(info, lam, u, states, solver, coords):
     """A :class:`ssi.scene.SiteResult` from a file: the site rebuilt from its description (its mesh must
     be the stored one), its solver result from the stored record."""
-    from ..scene.site_file import site_from_dict
+    from ..scene.scene_file import site_from_dict
     from ..scene.site_view import SiteResult
 
     built = site_from_dict(info["site"], "the result file's site").build()

@@ -162,6 +162,10 @@ class BuiltScene:
         return -whole * out.solver_result.support_reaction(self.footing_nodes, "w")
 
     # ---- solution --------------------------------------------------------------------------------------
+    def result_view(self, solver_result) -> SceneResult:
+        """The view of a solver result of this scene (a NonConvergence's converged steps, a stored result)."""
+        return SceneResult(self, solver_result)
+
     def solve(
         self,
         n_steps: int | None = None,

@@ -11,7 +11,7 @@ in ``LOAD_TYPES``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -39,9 +39,11 @@ class ColumnLoad:
         check_real("ColumnLoad.H", self.H, unit="N/m")
         check_real("ColumnLoad.M", self.M, unit="N m/m")
 
-    def column_force_on(self, x0: float, x1: float) -> float:
-        """The vertical column force [N/m] (> 0 down) this load puts on a strip from ``x0`` to ``x1`` [m]."""
-        return self.N if x0 - 1e-9 <= self.x <= x1 + 1e-9 else 0.0
+    on_site: ClassVar[bool] = True  # a site applies it
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m] > 0 down) of each column force this load applies: this column."""
+        return [(self.x, self.N)]
 
     def mesh_lines(self) -> list[float]:
         """The column's x [m]: a plate (and surface) node."""
@@ -70,9 +72,11 @@ class SurfacePressure:
     x1: float
     q: float
 
-    def column_force_on(self, x0: float, x1: float) -> float:
-        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
-        return 0.0
+    on_site: ClassVar[bool] = True  # a site applies it
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
+        return []
 
     def mesh_lines(self) -> list[float]:
         """Both ends [m]."""
@@ -102,9 +106,11 @@ class StripLoad:
     x0: float | None = None
     x1: float | None = None
 
-    def column_force_on(self, x0: float, x1: float) -> float:
-        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
-        return 0.0
+    on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
+        return []
 
     def mesh_lines(self) -> list[float]:
         """The ends [m] that are given."""
@@ -146,9 +152,11 @@ class StripWeight:
 
     unit_weight: float = 25e3
 
-    def column_force_on(self, x0: float, x1: float) -> float:
-        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
-        return 0.0
+    on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
+        return []
 
     def mesh_lines(self) -> list[float]:
         """None: the weight acts on the whole strip."""
@@ -172,9 +180,11 @@ class Settlement:
     w: float
     x: tuple | None = None
 
-    def column_force_on(self, x0: float, x1: float) -> float:
-        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
-        return 0.0
+    on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
+        return []
 
     def mesh_lines(self) -> list[float]:
         """The settled columns' x [m] (none for the whole strip)."""
@@ -212,9 +222,11 @@ class Push:
         if self.x is not None:
             check_real("Push.x", self.x, unit="m")
 
-    def column_force_on(self, x0: float, x1: float) -> float:
-        """No column force on any strip [N/m] (see :meth:`ColumnLoad.column_force_on`)."""
-        return 0.0
+    on_site: ClassVar[bool] = True  # a site applies it
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
+        return []
 
     def mesh_lines(self) -> list[float]:
         """None: the push moves the whole strip."""

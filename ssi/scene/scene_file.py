@@ -1,7 +1,13 @@
-"""Scene files: a TOML description that maps one-to-one onto the :mod:`ssi.scene` dataclasses.
+"""Scene and site files: a TOML description that maps one-to-one onto the :mod:`ssi.scene` dataclasses.
+
+One reader for both (:func:`read_scene_file`, :func:`model_from_dict`): a file with a ``[foundation]`` table
+or none of a site's keys (:data:`SITE_ONLY_KEYS`) is a :class:`Scene`, else a :class:`~ssi.scene.site.Site`;
+their loads come from the one registry :data:`~ssi.scene.loads.LOAD_TYPES`. ``ssi schema`` lists every key
+(:mod:`ssi.scene.file_schema`).
 
 Every table is one dataclass and every key one of its fields, with the same name; a key the dataclass does
-not have is refused with its name and where it was found. SI units throughout (see :data:`UNITS`)::
+not have is refused with its name and where it was found. SI units throughout
+(:data:`ssi.scene.file_schema.UNITS`). A scene::
 
     width = 12.0                       # [m]  Scene.width
     depth = 6.0                        # [m]  Scene.depth
@@ -59,6 +65,36 @@ one table (:class:`ssi.scene.Contact`) or a list ``[[contact]]`` of :class:`ssi.
 An embedded strip's side contact is a ``[side_contact]`` table (:class:`ssi.scene.Contact`, with
 ``embedment`` > 0): ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` is a smooth side.
 
+A site (:class:`~ssi.scene.site.Site`: boreholes or boundary polylines, a ground polyline, several strips;
+``water_table`` there is an ELEVATION [m] or a polyline, a scene's a depth below the ground)::
+
+    width = 30.0                          # [m]  Site.width
+    depth = 12.0                          # [m]  Site.depth
+    ground = [[-15.0, 1.0], [-4.0, 1.0], [4.0, 0.0], [15.0, 0.0]]   # [m] (x, z) polyline
+    water_table = -3.0                    # [m] elevation, or a polyline; leave out: dry
+    initial_stress = "auto"               # "auto" | "K0" | "gravity" | "gravity_plastic"
+    mesher = "auto"                       # "auto" | "structured" | "gmsh"
+
+    [[layers]]                            # SoilLayer fields (thickness: not needed, the boundaries decide)
+    E = 10e6                              # [Pa]
+    nu = 0.3
+    E_inc = 1e6                           # [Pa/m] optional: a DepthVarying layer (also c_inc, z_ref)
+
+    [[boreholes]]                         # Borehole: x [m], boundaries: elevations [m] from the top down
+    x = -10.0
+    boundaries = [-2.0]
+
+    [[strips]]                            # Strip: a foundation and its contact (level [m], side_contact)
+    foundation = { x0 = -6.0, x1 = -4.0, section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } } }
+    contact = { kn = 1e10, kt = 1e9 }
+
+    [[loads]]                             # ColumnLoad (default); type = "SurfacePressure", "Push"
+    x = -5.0
+    N = 300e3
+
+``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes; a strip table
+with ``type = "RigidStrip"`` holds a :class:`~ssi.scene.site.RigidStrip`'s fields.
+
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.elements.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.elements.section.rc_section` with
 ``bars = [[z, As], ...]`` and ``concrete``/``steel`` given as ``{fc = ..., ...}``/``{fy = ..., Es = ...}``,
@@ -80,105 +116,12 @@ from ..solver import Settings
 from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure  # noqa: F401
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
+from .site import Site
+from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
 
-UNITS = {
-    "Scene": {
-        "width": "m",
-        "depth": "m",
-        "layers": "list of SoilLayer tables, from the surface down",
-        "foundation": "Foundation table, or a RigidFooting table (type = 'RigidFooting'); leave out: none",
-        "contact": "Contact table, or a list of ContactSegment tables tiling the strip",
-        "loads": "list of load tables (type = ...) of the first phase",
-        "mesh": "MeshSize table",
-        "surcharge": "Pa",
-        "phases": "list of Phase tables",
-        "embedment": "m (depth of the strip's base)",
-        "water_table": "m (depth below the ground; < 0: free water above it, ponding; leave out: dry)",
-        "gamma_w": "N/m^3",
-        "symmetric": "bool (true: model the half x >= 0 of a scene symmetric about x = 0)",
-        "side_contact": "Contact table on the sides of an embedded strip (leave out: none)",
-    },
-    "SoilLayer": {
-        "thickness": "m",
-        "E": "Pa",
-        "nu": "-",
-        "unit_weight": "N/m^3",
-        "c": "Pa",
-        "phi_deg": "deg",
-        "psi_deg": "deg, 0 <= psi <= phi (leave out: 0, no dilation, as PLAXIS; psi = phi_deg: associated)",
-        "K0": "-",
-        "scheme": "'implicit' | 'explicit'",
-        "unit_weight_sat": "N/m^3",
-        "drainage": "'drained' | 'undrained_A'",
-        "nu_u": "-",
-        "n_sub": "- (sub-steps of the explicit scheme)",
-        "drift": "bool (drift correction of the explicit scheme)",
-    },
-    "Foundation": {
-        "x0": "m",
-        "x1": "m",
-        "section": "{homogeneous | rc | layers} table",
-        "kappa": "-",
-        "integration": "'selective' | 'full' | 'reduced'",
-        "self_weight": "N/m^2",
-        "self_bending": "'chord' | 'tangent' | 'initial' | 'none'",
-        "crack_band": "'spacing' | 'point' | none",
-        "bar_diameter": "m",
-        "plane_strain": "bool",
-        "tension_stiffening": "'all' | 'effective_area'",
-    },
-    "RigidFooting": {"x0": "m", "x1": "m", "rough": "bool (true: u = 0 under the base; false: smooth)"},
-    "Contact": {
-        "kn": "Pa/m",
-        "kt": "Pa/m",
-        "phi_deg": "deg",
-        "c": "Pa",
-        "psi_deg": "deg (leave out: 0, no dilation)",
-        "sig_t": "Pa",
-        "rule": "'newton_cotes' | 'gauss'",
-    },
-    "ContactSegment": {"x0": "m", "x1": "m", "contact": "Contact table"},
-    "ColumnLoad": {"x": "m", "N": "N/m (down positive)", "H": "N/m (+x)", "M": "N m/m (counter-clockwise)"},
-    "SurfacePressure": {"x0": "m", "x1": "m", "q": "Pa (down positive)"},
-    "StripLoad": {
-        "q": "Pa (down positive) at x0",
-        "q_end": "Pa at x1 (leave out: uniform)",
-        "x0": "m (leave out: the strip's x0)",
-        "x1": "m (leave out: the strip's x1)",
-    },
-    "StripWeight": {"unit_weight": "N/m^3"},
-    "Settlement": {"w": "m (down positive)", "x": "[m, ...] settled columns (leave out: the rigid strip)"},
-    "Push": {"u": "m (+x positive)", "x": "m, a point on the pushed strip (leave out: the only strip)"},
-    "Phase": {
-        "name": "text",
-        "loads": "list of load tables (type = ...)",
-        "factors": "{earlier phase name = factor -}",
-        "n_steps": "- (leave out: [solve] n_steps)",
-        "excavate": "list of Excavation tables removed in this phase",
-        "drainage": "{layer index = 'drained' | 'undrained_A'} from this phase on",
-    },
-    "Excavation": {
-        "x0": "m",
-        "x1": "m",
-        "bottom": "m (depth below the ground)",
-        "top": "m (depth below the ground; leave out: 0)",
-    },
-    "MeshSize": {
-        "h_fine": "m",
-        "h_coarse": "m",
-        "growth": "-",
-        "n_gauss": "2 | 3",
-        "end_grading": "- (1: even; ends graded up to 4)",
-    },
-    "homogeneous": {"thickness": "m", "E": "Pa", "nu": "-", "n_layers": "-"},
-    "rc": {
-        "depth": "m",
-        "bars": "[[z_bar m, As m^2/m], ...]",
-        "n_concrete": "-",
-        "concrete": "{fc Pa, E0 Pa, eps_c, fr Pa, Gf N/m, ls m}",
-        "steel": "{fy Pa, Es Pa, EH Pa}",
-    },
-}
+# top-level keys a site file may have and a scene file may not (a scene file has a ``foundation``)
+SITE_ONLY_KEYS = frozenset({"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress"})
+DEPTH_KEYS = ("E_inc", "c_inc", "z_ref")  # a site's layer with these is a DepthVarying layer
 
 _LOAD = "load"  # marks a field holding load tables
 # fields holding other dataclasses: (class, field) -> (element class, container: "one" | "list" | "tuple")
@@ -192,26 +135,38 @@ _NESTED = {
     (Phase, "excavate"): (Excavation, "tuple"),
     (ContactSegment, "contact"): (Contact, "one"),
     (Scene, "side_contact"): (Contact, "one"),
+    (Site, "loads"): (_LOAD, "list"),
+    (Site, "mesh"): (MeshSize, "one"),
+    (Site, "boreholes"): (Borehole, "list"),
+    (Strip, "foundation"): (Foundation, "one"),
+    (Strip, "contact"): (Contact, "one"),
+    (Strip, "side_contact"): (Contact, "one"),
+    (RigidStrip, "side_contact"): (Contact, "one"),
 }
 # plain lists that the dataclass holds as tuples
 _TUPLES = {(Settlement, "x")}
 _SECTION_FIELDS = [f.name for f in dataclasses.fields(Section)]
 
 
-# ---- Scene -> plain dict (what result files store) --------------------------------------------------------
-def scene_to_dict(scene: Scene) -> dict:
-    """Every field of the scene as plain Python values (lists, floats, None); the section in its exact
-    ``{"layers": {...}}`` form, so :func:`scene_from_dict` rebuilds an identical scene."""
+# ---- Scene or Site -> plain dict (what result files store) -----------------------------------------------
+def scene_to_dict(scene: Scene | Site) -> dict:
+    """Every field of the scene (or site) as plain Python values (lists, floats, None); the section in its
+    exact ``{"layers": {...}}`` form, so :func:`model_from_dict` rebuilds an identical scene."""
     return _to_plain(scene)
+
+
+# classes whose table names its class with ``type``: a load, a RigidFooting, a RigidStrip
+_TAGGED = frozenset(LOAD_TYPES.values()) | {RigidFooting, RigidStrip}
 
 
 def _to_plain(obj):
     if isinstance(obj, Section):
         return {"layers": {name: _to_plain(getattr(obj, name)) for name in _SECTION_FIELDS}}
+    if isinstance(obj, DepthVarying):  # a site's layer table: the SoilLayer's keys and the growth rates
+        return {**_to_plain(obj.layer), **{k: getattr(obj, k) for k in DEPTH_KEYS}}
     if dataclasses.is_dataclass(obj):
         plain = {f.name: _to_plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
-        tagged = type(obj) in LOAD_TYPES.values() or type(obj) is RigidFooting
-        return {"type": type(obj).__name__, **plain} if tagged else plain
+        return {"type": type(obj).__name__, **plain} if type(obj) in _TAGGED else plain
     if isinstance(obj, dict):
         return {str(k): _to_plain(v) for k, v in obj.items()}
     if isinstance(obj, np.ndarray):
@@ -223,10 +178,27 @@ def _to_plain(obj):
     return obj
 
 
-# ---- plain dict -> Scene -------------------------------------------------------------------------------
+# ---- plain dict -> Scene or Site ------------------------------------------------------------------------
+def is_site_data(data: dict) -> bool:
+    """True if the plain dict describes a site: it has a key only a site has and no ``foundation``."""
+    return "foundation" not in data and bool(SITE_ONLY_KEYS & data.keys())
+
+
+def model_from_dict(data: dict, where: str = "scene") -> Scene | Site:
+    """The :class:`Scene` or :class:`~ssi.scene.site.Site` a dict (from TOML or a result file) describes
+    (:func:`is_site_data`); unknown keys raise ValueError naming them."""
+    _check_table(data, where)
+    return _build(Site if is_site_data(data) else Scene, data, where)
+
+
 def scene_from_dict(data: dict) -> Scene:
     """The :class:`Scene` a dict (from TOML or a result file) describes; unknown keys raise ValueError."""
     return _build(Scene, data, "scene")
+
+
+def site_from_dict(data: dict, where: str = "site") -> Site:
+    """The :class:`~ssi.scene.site.Site` a dict describes (the same reader as a scene's, :func:`_build`)."""
+    return _build(Site, data, where)
 
 
 def _build(cls, data, where):
@@ -241,6 +213,8 @@ def _build(cls, data, where):
         nested = _NESTED.get((cls, key))
         if cls is Scene and key == "foundation" and isinstance(value, dict) and "type" in value:
             kwargs[key] = _foundation(value, f"{where}.foundation")
+        elif cls is Site and key in ("layers", "strips"):
+            kwargs[key] = _site_items(key, value, f"{where}.{key}")
         elif cls is Foundation and key == "section":
             kwargs[key] = section_from_dict(value, f"{where}.section")
         elif cls is Scene and key == "contact" and value is not None:
@@ -283,6 +257,30 @@ def _load(data, where):
     if kind not in LOAD_TYPES:
         raise ValueError(f"{where}: unknown load type {kind!r}; allowed: {sorted(LOAD_TYPES)}")
     return _build(LOAD_TYPES[kind], fields, where)
+
+
+def _site_items(key, value, where):
+    """A site's ``layers`` (SoilLayer tables, thickness optional; with E_inc, c_inc or z_ref a DepthVarying
+    layer) or ``strips`` (Strip tables; ``type = "RigidStrip"``: a RigidStrip's)."""
+    if not isinstance(value, list | tuple):
+        raise TypeError(f"{where}: expected a list of tables, got {type(value).__name__}")
+    out = []
+    for i, item in enumerate(value):
+        here = f"{where}[{i}]"
+        _check_table(item, here)
+        if key == "layers":
+            fields = {"thickness": 1.0, **{k: v for k, v in item.items() if k not in DEPTH_KEYS}}
+            layer = _build(SoilLayer, fields, here)
+            extra = {k: item[k] for k in DEPTH_KEYS if k in item}
+            out.append(DepthVarying(layer, **extra) if extra else layer)
+            continue
+        fields = dict(item)
+        kinds = {"Strip": Strip, "RigidStrip": RigidStrip}
+        kind = fields.pop("type", "Strip")
+        if kind not in kinds:
+            raise ValueError(f"{here}: unknown strip type {kind!r}; allowed: {sorted(kinds)}")
+        out.append(_build(kinds[kind], fields, here))
+    return out
 
 
 def _foundation(data, where):
@@ -408,20 +406,19 @@ def read_toml_and_solve(path) -> tuple[dict, int | None, dict]:
     return data, n_steps, solve
 
 
-def read_scene_file(path) -> tuple[Scene, int | None, Settings]:
-    """``(scene, n_steps, settings)`` from a TOML scene file; the optional ``[solve]`` table holds
-    ``n_steps`` and any :class:`ssi.solver.Settings` field (:func:`read_toml_and_solve`)."""
+def read_scene_file(path) -> tuple[Scene | Site, int | None, Settings]:
+    """``(scene or site, n_steps, settings)`` from a TOML scene or site file (:func:`model_from_dict`); the
+    optional ``[solve]`` table holds ``n_steps`` and any :class:`ssi.solver.Settings` field
+    (:func:`read_toml_and_solve`)."""
     data, n_steps, solve = read_toml_and_solve(path)
-    return _build(Scene, data, Path(path).name), n_steps, Settings(**solve)
+    return model_from_dict(data, Path(path).name), n_steps, Settings(**solve)
 
 
-def schema_text() -> str:
-    """The scene file's tables, their keys and units, as text (``ssi schema``)."""
-    lines = []
-    for table, units in UNITS.items():
-        lines.append(
-            f"[{table}]" + ('  (a load table: type = "' + table + '")' if table in LOAD_TYPES else "")
-        )
-        lines += [f"  {key:16s} {unit}" for key, unit in units.items()]
-    lines.append("[solve]  n_steps (leave out: automatic stepping) and any ssi.solver.Settings field")
-    return "\n".join(lines)
+def is_site_file(path) -> bool:
+    """True if the TOML file at ``path`` describes a site (:func:`is_site_data`); a file that is not valid
+    TOML is left to the reader's error."""
+    try:
+        with open(path, "rb") as fh:
+            return is_site_data(tomllib.load(fh))
+    except tomllib.TOMLDecodeError:
+        return False

@@ -78,7 +78,7 @@ from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
 from .capacity import CapacityResult, limit_analysis
-from .loads import ColumnLoad, Push, SurfacePressure
+from .loads import LOAD_TYPES, ColumnLoad, Push, SurfacePressure
 from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
@@ -148,7 +148,13 @@ class Site:
         for i, s in enumerate(self.strips):
             check_instance(f"Site.strips[{i}]", s, (Strip, RigidStrip))
         for i, ld in enumerate(self.loads):
-            check_instance(f"Site.loads[{i}]", ld, (ColumnLoad, SurfacePressure, Push))
+            if type(ld) not in LOAD_TYPES.values():
+                raise TypeError(f"Site.loads[{i}] must be a load of {sorted(LOAD_TYPES)}, got {ld!r}")
+            if not ld.on_site:
+                site_loads = sorted(n for n, c in LOAD_TYPES.items() if c.on_site)
+                raise ValueError(
+                    f"Site.loads[{i}]: {type(ld).__name__} is not one a site takes: {site_loads}"
+                )
         n_b = len(self.layers) - 1
         if self.boreholes is not None and self.boundaries is not None:
             raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
@@ -191,6 +197,12 @@ class Site:
             self._raw = [_polyline(f"Site.boundaries[{k}]", p) for k, p in enumerate(self.boundaries)]
         self._check_geometry()
 
+    @property
+    def phases(self) -> tuple:
+        """A site is loaded in one phase (its ``loads``, scaled by the load factor): no construction phases
+        (yet)."""
+        return ()
+
     # ---- geometry -----------------------------------------------------------------------------------------
     def ground_z(self, x) -> np.ndarray:
         """Elevation [m] of the ground at ``x``."""
@@ -209,7 +221,7 @@ class Site:
         return np.interp(x, *_polyline("Site.water_table", self.water_table))
 
     def _strip_ends(self):
-        return sorted((_ends(s)) for s in self.strips)
+        return sorted(s.ends for s in self.strips)
 
     def embedded(self) -> list[tuple[int, float, float, float]]:
         """(index, x0 [m], x1 [m], base level [m]) of every embedded strip (a Strip whose ``level`` lies below
@@ -218,7 +230,7 @@ class Site:
         out = []
         for i, s in enumerate(self.strips):
             if s.level is not None:
-                x0, x1 = _ends(s)
+                x0, x1 = s.ends
                 if s.level < float(self.ground_z(x0)) - TOL * self.width:
                     out.append((i, x0, x1, float(s.level)))
         return out
@@ -226,7 +238,7 @@ class Site:
     def base_z(self, i: int) -> float:
         """Elevation [m] of the base of strip ``i``: its level if embedded, else the ground under it."""
         s = self.strips[i]
-        x0, _ = _ends(s)
+        x0, _ = s.ends
         return float(self.ground_z(x0)) if s.level is None else float(s.level)
 
     def _cut_lines(self, xs) -> list[np.ndarray]:
@@ -289,17 +301,17 @@ class Site:
             if b0 < a1 - TOL * self.width:
                 raise GeometryError(f"strips ({a0:g}, {a1:g}) and ({b0:g}, {b1:g}) m overlap")
         for i, s in enumerate(self.strips):
-            f = s.foundation if isinstance(s, Strip) else s
-            if not (self.x_left <= f.x0 < f.x1 <= self.x_right):
+            x0, x1 = s.ends
+            if not (self.x_left <= x0 < x1 <= self.x_right):
                 raise GeometryError(
-                    f"strips[{i}] ({f.x0:g}, {f.x1:g}) m must lie within the block "
+                    f"strips[{i}] ({x0:g}, {x1:g}) m must lie within the block "
                     f"[{self.x_left:g}, {self.x_right:g}]"
                 )
-            inside = xs[(xs >= f.x0) & (xs <= f.x1)]
+            inside = xs[(xs >= x0) & (xs <= x1)]
             gz = self.ground_z(inside)
             if np.ptp(gz) > TOL * self.width:
                 raise GeometryError(
-                    f"strips[{i}] ({f.x0:g}, {f.x1:g}) m: the ground under it is not level "
+                    f"strips[{i}] ({x0:g}, {x1:g}) m: the ground under it is not level "
                     f"(z from {gz.min():g} "
                     f"to {gz.max():g} m); level the ground under the strip (a berm)"
                 )
@@ -313,7 +325,7 @@ class Site:
         for i, ld in enumerate(self.loads):
             if isinstance(ld, Push):
                 s = self.strips[self.pushed_strip(ld)]
-                if isinstance(s, RigidStrip) and not s.rough:
+                if s.rigid and not s.rough:
                     raise GeometryError(
                         f"loads[{i}]: {ld!r} pushes a smooth RigidStrip (rough=False), whose base nodes "
                         "slide freely: nothing carries the push; give rough=True"
@@ -345,7 +357,7 @@ class Site:
                 "its trench needs backfill on both sides; widen the block"
             )
         for j, other in enumerate(self.strips):
-            a, b = _ends(other)
+            a, b = other.ends
             if j != i and b >= x0 - TOL * self.width and a <= x1 + TOL * self.width:
                 raise GeometryError(
                     f"strips[{j}] ({a:g}, {b:g}) m touches or overlaps the trench of the embedded "
@@ -361,8 +373,8 @@ class Site:
 
     def _strip_at(self, x):
         for i, s in enumerate(self.strips):
-            x0, x1 = _ends(s)
-            if isinstance(s, Strip) and x0 - 1e-9 <= x <= x1 + 1e-9:
+            x0, x1 = s.ends
+            if not s.rigid and x0 - 1e-9 <= x <= x1 + 1e-9:
                 return i
         return None
 
@@ -399,7 +411,12 @@ class Site:
         :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`). A
         :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
         stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
-        (:mod:`ssi.scene.limit_problem`)."""
+        (:mod:`ssi.scene.limit_problem`). A site has no phases: ``phase`` is refused by name."""
+        if options.get("phase") is not None:
+            raise ValueError(
+                f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
+            )
+        options.pop("phase", None)
         pushes = [ld for ld in self.loads if isinstance(ld, Push)]
         if pushes:
             raise ValueError(
@@ -480,7 +497,7 @@ class Site:
                 )
             return 0
         for i, s in enumerate(self.strips):
-            x0, x1 = _ends(s)
+            x0, x1 = s.ends
             if x0 - TOL * self.width <= push.x <= x1 + TOL * self.width:
                 return i
         raise GeometryError(f"{push!r}: Push.x={push.x:g} m lies on no strip {self._strip_ends()}")
@@ -488,7 +505,7 @@ class Site:
     def _structured_mesh(self):
         m = self.mesh
         if self.strips:
-            foot = _ends(self.strips[0])
+            foot = self.strips[0].ends
         else:
             pressures = [ld for ld in self.loads if isinstance(ld, SurfacePressure)]
             foot = (
@@ -520,7 +537,7 @@ class Site:
         m = self.mesh
         ref = []
         for i, s in enumerate(self.strips):
-            x0, x1 = _ends(s)
+            x0, x1 = s.ends
             n = max(1, round((x1 - x0) / m.h_fine))
             xs = np.linspace(x0, x1, n + 1)
             ref += [(x, self.base_z(i)) for x in xs]
@@ -533,12 +550,6 @@ class Site:
                 n = max(1, round((ld.x1 - ld.x0) / m.h_fine))
                 ref += [(x, float(self.ground_z(x))) for x in np.linspace(ld.x0, ld.x1, n + 1)]
         return mesh_geometry(self.geometry(), m.h_fine, m.h_coarse, m.growth, np.array(ref) if ref else None)
-
-
-def _ends(strip) -> tuple[float, float]:
-    """(x0, x1) [m] of a Strip or a RigidStrip."""
-    f = strip.foundation if isinstance(strip, Strip) else strip
-    return f.x0, f.x1
 
 
 def _unique(xs, scale):

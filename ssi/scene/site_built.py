@@ -263,6 +263,10 @@ class BuiltSite:
             for s, st in zip(self.site.strips, self.strips)
         )
 
+    def result_view(self, solver_result) -> SiteResult:
+        """The view of a solver result of this site (a NonConvergence's converged steps, a stored result)."""
+        return SiteResult(self, solver_result)
+
     def solve(self, n_steps: int | None = None, settings=None, load_factors=None) -> SiteResult:
         """Apply the loads to load factor 1 from the initial stress: one linear solve for a linear site, else
         the solver's automatic increments (``n_steps``, ``settings`` as for a scene; ``load_factors``: the

@@ -5,6 +5,7 @@ in :mod:`.site`; the built model in :mod:`.site_built`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import ClassVar
 
 from ..core.geometry import GeometryError
 from ..core.validate import check_instance, check_optional_real, check_real
@@ -72,10 +73,17 @@ class Strip:
     its own Coulomb parameters; None: none) puts interfaces between the trench walls and the strip's
     vertical sides, which move rigidly with the strip's end nodes (:mod:`ssi.elements.side_interface`)."""
 
+    rigid: ClassVar[bool] = False  # a plate strip on an interface (RigidStrip: True)
+
     foundation: Foundation
     contact: Contact
     level: float | None = None
     side_contact: Contact | None = None
+
+    @property
+    def ends(self) -> tuple[float, float]:
+        """(x0, x1) [m] of the strip."""
+        return self.foundation.x0, self.foundation.x1
 
     def __post_init__(self):
         check_instance("Strip.foundation", self.foundation, Foundation)
@@ -99,12 +107,19 @@ class RigidStrip:
     side is one rigid body moving with the base: settling by ``settle`` times the load factor, not
     rotating, its horizontal motion held (or prescribed by a :class:`~ssi.scene.loads.Push`)."""
 
+    rigid: ClassVar[bool] = True  # no plate, no interface: its base nodes are pushed down
+
     x0: float
     x1: float
     settle: float
     rough: bool = True
     level: float | None = None
     side_contact: Contact | None = None
+
+    @property
+    def ends(self) -> tuple[float, float]:
+        """(x0, x1) [m] of the strip."""
+        return self.x0, self.x1
 
     def __post_init__(self):
         check_real("RigidStrip.x0", self.x0, unit="m")

@@ -4,7 +4,7 @@ ground's settlement, the soil stress, a rigid strip's pressure; and Gibson's set
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -19,6 +19,8 @@ __all__ = ["SiteResult", "gibson_settlement"]
 @dataclass
 class SiteResult:
     """The solution of a :class:`BuiltSite`: ``result`` the solver's :class:`~ssi.core.solution.Result`."""
+
+    kind: ClassVar[str] = "site"  # what the outputs (summary, figures, result file) read it as
 
     built: BuiltSite
     result: object

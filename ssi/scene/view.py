@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -24,6 +24,8 @@ class SceneResult(LoadPathView):
     Of a linear scene that result is :meth:`Model.solve_linear`'s (rows [unloaded, solved]); of a phased
     solve it is its phases' rows joined on the phase time (:func:`join_phases`), and ``phases`` lists each
     phase's name, first and last row and its own result."""
+
+    kind: ClassVar[str] = "scene"  # what the outputs (summary, figures, result file) read it as
 
     built: BuiltScene
     solver_result: Result
