@@ -158,3 +158,24 @@ def test_ssi_show_reads_a_site_result_back_with_the_solvers_status(tmp_path, cap
     assert (
         shown["load_factor"] == ran["load_factor"] and shown["limit_load_factor"] == ran["limit_load_factor"]
     )
+
+
+def test_ssi_run_estimate_on_a_site_file(tmp_path, capsys):
+    """`ssi run --estimate` on a site of two plate strips: the estimate of the largest settlement is of the
+    value the summary reports (the largest over the strips), from meshes that really are finer, and
+    `ssi show` reads it back from the result file."""
+    path = tmp_path / "two.toml"
+    path.write_text(TWO_STRIPS)
+    assert main(["run", str(path), "--no-plots", "--estimate"]) == 0
+    printed = capsys.readouterr().out
+    s = json.loads((tmp_path / "two_summary.json").read_text())
+    est = s["error_estimate"]["quantities"]
+    assert s["error_estimate"]["asked"] == "max_settlement" and "error estimate" in printed
+    largest = max(f["max_settlement_m"] for f in s["foundations"])
+    assert est["max_settlement"]["value"] == largest
+    h, h2, h4 = est["max_settlement"]["values"]["mesh"]
+    assert h == largest and h2 != h and h4 != h2  # three different meshes
+    assert est["max_settlement"]["relative"] < 0.05  # a 0.5 m mesh of 2-4 m strips: settlements converge
+    main(["show", str(tmp_path / "two.h5"), "--no-plots", "--json"])
+    shown = json.loads(capsys.readouterr().out.split("\nwrote", 1)[0])
+    assert shown["error_estimate"] == s["error_estimate"]

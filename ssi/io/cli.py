@@ -188,6 +188,8 @@ def _site_summary(result, wall_time: float | None = None, complete: bool = True,
         "wall_time_s": None if wall_time is None else float(wall_time),
         "foundations": foundations,
         "differential_settlement": differential,
+        # the discretisation error of the headline quantities (ssi run --estimate), as a scene's summary
+        "error_estimate": result.error_estimate,
     }
     if status == "limit load reached":  # how the controlled path found its limit, as a scene's summary has it
         out.update(_limit_checks(result))
@@ -226,8 +228,11 @@ def _site_summary_text(s: dict) -> str:
     for d in s["differential_settlement"]:
         lines.append(f"  differential settlement #{d['i']} - #{d['j']}: "
                      f"{1e3 * d['mean_settlement_i_minus_j_m']:.2f} mm (mean settlements)")  # fmt: skip
+    lines += _estimate_lines(s)
     if s["wall_time_s"] is not None:
         lines.append(f"  wall time {s['wall_time_s']:.2f} s")
+    if s.get("estimate_wall_time_s") is not None:
+        lines.append(f"  {s['estimate_wall_time_s']:.2f} s (the error estimate's refined solves)")
     return "\n".join(lines)
 
 

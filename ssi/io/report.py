@@ -327,6 +327,7 @@ def site_report_html(
     if warn:
         parts.append("<h2>Warnings</h2>")
         parts += [f'<div class="warn">{esc(w)}</div>' for w in warn]
+    parts += _estimate_section(s)
     parts.append("<h2>Foundations</h2>")
     parts.append(
         '<div class="scroll"><table><tr><th>#</th><th>type</th><th>x0 [m]</th><th>x1 [m]</th>'

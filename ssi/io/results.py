@@ -191,12 +191,14 @@ def write_result(
         h5.attrs["stop"] = json.dumps(stop, default=_jsonable)
         if settings is not None:
             h5.attrs["settings"] = json.dumps(asdict(settings) if is_dataclass(settings) else settings)
-        if _is_site_result(result):
-            _write_site_result(h5, result)
-        elif hasattr(result, "built"):
-            _write_scene_result(h5, result)
-        else:
+        from ..core.solution import Result
+
+        if isinstance(result, Result):  # a model's bare solver result, not a scene's or a site's view
             _write_model_result(h5, result)
+        elif result.kind == "site":
+            _write_site_result(h5, result)
+        else:
+            _write_scene_result(h5, result)
     return path
 
 
@@ -225,12 +227,6 @@ def _write_scene_result(h5, result):
         _write_solver(h5.create_group("solver"), result.solver_result, result.u, result.states, names)
 
 
-def _is_site_result(result) -> bool:
-    from ..scene.site_view import SiteResult
-
-    return isinstance(result, SiteResult)
-
-
 def _write_site_result(h5, result):
     """A :class:`ssi.scene.SiteResult`: the site's description (rebuilt on reading, its mesh compared with
     the stored one), the mesh with each soil element's layer index, the steps and the solver's record."""
@@ -240,7 +236,12 @@ def _write_site_result(h5, result):
     h5.attrs["kind"] = "site"
     h5.attrs["site"] = json.dumps(scene_to_dict(built.site), default=_jsonable)
     h5.attrs["extra"] = json.dumps(
-        {"mesher": built.mesher, "initial_stress_method": built.initial_stress_method}
+        {
+            "mesher": built.mesher,
+            "initial_stress_method": built.initial_stress_method,
+            "error_estimate": result.error_estimate,
+        },
+        default=_jsonable,
     )
     _write_mesh(h5, built.model)
     h5["mesh"].create_dataset("element_layer", data=np.asarray(built.element_layer, np.int64))
@@ -516,7 +517,10 @@ def _site_result(info, lam, u, states, solver, coords):
             "the rebuilt site's mesh differs from the stored one (file written by another ssi or gmsh "
             f"version? this is ssi {__version__}, the file {info.get('ssi_version')})"
         )
-    return SiteResult(built, _solver_result(built.model, solver, lam, list(u), states))
+    estimate = info.get("extra", {}).get("error_estimate")
+    return SiteResult(
+        built, _solver_result(built.model, solver, lam, list(u), states), error_estimate=estimate
+    )
 
 
 def _linear_result(model, u, states):

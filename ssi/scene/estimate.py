@@ -43,7 +43,6 @@ import numpy as np
 
 from ..elements.section import Section, layered
 from ..solver import Settings
-from .parts import Foundation
 from .view_load_path import capacity_error_warning
 
 REFINEMENTS = ("mesh", "steps", "layers")
@@ -151,11 +150,8 @@ def refined_scene(scene, mesh: int = 0, layers: int = 0):
         scene,
         mesh=replace(scene.mesh, h_fine=scene.mesh.h_fine / 2**mesh, h_coarse=scene.mesh.h_coarse / 2**mesh),
     )
-    if layers and isinstance(scene.foundation, Foundation):  # a plate strip: split its layers
-        out = replace(
-            out,
-            foundation=replace(scene.foundation, section=split_section(scene.foundation.section, 2**layers)),
-        )
+    if layers:  # every plate strip's layers split (a scene or site without one: unchanged)
+        out = out.with_sections(lambda section: split_section(section, 2**layers))
     return out
 
 
@@ -182,7 +178,11 @@ def headline(result) -> dict:
     (largest minus smallest settlement along the strip), ``max_contact_pressure`` [Pa], ``max_moment``
     [N m/m] (largest |M| in the strip) and
     ``limit_load_factor`` [-] (only when a limit load was reached). A scene without foundation has only
-    the surface's ``max_settlement``."""
+    the surface's ``max_settlement``. Of a site (:class:`~ssi.scene.SiteResult`) the same quantities over
+    its plate strips: the largest settlement, differential settlement (between strips, and along each),
+    contact pressure and |moment|."""
+    if result.kind == "site":
+        return _site_headline(result)
     if result.is_push_over:
         out = {"capacity": result.capacity()["load"]}
     else:
@@ -192,6 +192,28 @@ def headline(result) -> dict:
         out["differential_settlement"] = float(s.max() - s.min())
         out["max_contact_pressure"] = float(np.nanmax(-result.contact()["sig_n"]))
         out["max_moment"] = float(np.max(np.abs(result.strip_forces()["M"])))
+    if result.limit_load_factor is not None:
+        out["limit_load_factor"] = float(result.limit_load_factor)
+    return out
+
+
+def _site_headline(result) -> dict:
+    """:func:`headline` of a site of plate strips, loaded (a RigidStrip's settlement or a Push is an input,
+    not an answer: refused by name)."""
+    if result.is_push_over:
+        raise ValueError(
+            "the error estimate of a site driven by a RigidStrip's settlement or a Push is not available "
+            "(its settlement is an input); estimate a site of loaded plate strips"
+        )
+    views = [result.foundation_result(i) for i in range(len(result.built.strips))]
+    means = [v.settlement_summary()["mean"] for v in views]
+    along = [float(np.ptp(v.settlement()[1])) for v in views]
+    out = {
+        "max_settlement": max(v.settlement_summary()["max"] for v in views),
+        "differential_settlement": max(along + [max(means) - min(means)]),
+        "max_contact_pressure": max(float(np.nanmax(-v.contact()["sig_n"])) for v in views),
+        "max_moment": max(v.max_abs_moment()[1] for v in views),
+    }
     if result.limit_load_factor is not None:
         out["limit_load_factor"] = float(result.limit_load_factor)
     return out
@@ -384,7 +406,7 @@ def _check_refine(refine, scene):
     bad = [r for r in refine if r not in REFINEMENTS]
     if bad or not refine:
         raise ValueError(f"refine must be a non-empty subset of {REFINEMENTS}, got {refine}")
-    if not isinstance(scene.foundation, Foundation):  # no plate strip: no layers to split
+    if not scene.sections():  # no plate strip: no layers to split
         refine = tuple(r for r in refine if r != "layers")
     return refine
 
@@ -435,7 +457,7 @@ def estimate_solved(
     error that dominates a capacity). Of a push-over the capacity's estimate is attached to ``result``
     (``result.capacity_error``). ``wall_time`` [s]: what the given solve cost (for the estimate's cost
     table; nan if unknown). What ``ssi run --estimate`` calls."""
-    scene = result.built.scene
+    scene = result.built.scene  # a scene or a site
     solver = RefinedSolver(scene, n_steps, settings)
     solver.linear = bool(result.built.is_linear and not scene.phases)
     base = (0, 0, 0)

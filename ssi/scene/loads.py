@@ -39,6 +39,7 @@ class ColumnLoad:
         check_real("ColumnLoad.H", self.H, unit="N/m")
         check_real("ColumnLoad.M", self.M, unit="N m/m")
 
+    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
     on_site: ClassVar[bool] = True  # a site applies it
 
     def columns(self) -> list[tuple[float, float]]:
@@ -72,6 +73,7 @@ class SurfacePressure:
     x1: float
     q: float
 
+    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
     on_site: ClassVar[bool] = True  # a site applies it
 
     def columns(self) -> list[tuple[float, float]]:
@@ -106,6 +108,7 @@ class StripLoad:
     x0: float | None = None
     x1: float | None = None
 
+    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
     on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
 
     def columns(self) -> list[tuple[float, float]]:
@@ -152,6 +155,7 @@ class StripWeight:
 
     unit_weight: float = 25e3
 
+    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
     on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
 
     def columns(self) -> list[tuple[float, float]]:
@@ -180,6 +184,7 @@ class Settlement:
     w: float
     x: tuple | None = None
 
+    drives: ClassVar[str | None] = "vertical"  # a prescribed settlement: the load is the soil's reaction
     on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
 
     def columns(self) -> list[tuple[float, float]]:
@@ -222,6 +227,7 @@ class Push:
         if self.x is not None:
             check_real("Push.x", self.x, unit="m")
 
+    drives: ClassVar[str | None] = "horizontal"  # a prescribed displacement: the load is the reaction
     on_site: ClassVar[bool] = True  # a site applies it
 
     def columns(self) -> list[tuple[float, float]]:

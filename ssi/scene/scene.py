@@ -57,7 +57,7 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 """
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from itertools import pairwise
 
 import numpy as np
@@ -293,6 +293,16 @@ class Scene:
         (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
         self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
+
+    def sections(self) -> list:
+        """The sections of the plate strips (the one strip's; none without a plate strip)."""
+        return [self.foundation.section] if isinstance(self.foundation, Foundation) else []
+
+    def with_sections(self, fn) -> "Scene":
+        """A copy whose plate strip's section is ``fn(section)`` (a scene without a plate strip: itself)."""
+        if not self.sections():
+            return self
+        return replace(self, foundation=replace(self.foundation, section=fn(self.foundation.section)))
 
     def _refuse_push(self, what: str) -> None:
         """A horizontal Push is not represented by the limit analysis (ssi.limit pushes vertically)."""

@@ -67,7 +67,7 @@ Supports: the bottom fixed, the sides on vertical rollers (the separated block o
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -202,6 +202,18 @@ class Site:
         """A site is loaded in one phase (its ``loads``, scaled by the load factor): no construction phases
         (yet)."""
         return ()
+
+    def sections(self) -> list:
+        """The sections of the plate strips, in the order of ``strips`` (a RigidStrip has none)."""
+        return [s.foundation.section for s in self.strips if not s.rigid]
+
+    def with_sections(self, fn) -> Site:
+        """A copy whose every plate strip's section is ``fn(section)``."""
+        strips = [
+            s if s.rigid else replace(s, foundation=replace(s.foundation, section=fn(s.foundation.section)))
+            for s in self.strips
+        ]
+        return replace(self, strips=strips)
 
     # ---- geometry -----------------------------------------------------------------------------------------
     def ground_z(self, x) -> np.ndarray:

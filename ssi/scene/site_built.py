@@ -263,6 +263,11 @@ class BuiltSite:
             for s, st in zip(self.site.strips, self.strips)
         )
 
+    @property
+    def scene(self) -> Site:
+        """The site (the name a BuiltScene gives its input: the error estimate refines either)."""
+        return self.site
+
     def result_view(self, solver_result) -> SiteResult:
         """The view of a solver result of this site (a NonConvergence's converged steps, a stored result)."""
         return SiteResult(self, solver_result)

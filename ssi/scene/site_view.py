@@ -24,6 +24,10 @@ class SiteResult:
 
     built: BuiltSite
     result: object
+    # the estimated discretisation error of the headline quantities (ssi.scene.estimate.estimate_solved, `ssi
+    # run --estimate`): ErrorEstimate.to_dict(), or {"failed": why}; None: not estimated
+    error_estimate: dict | None = None
+    capacity_error: dict | None = None  # a site answers no capacity (kept for the estimate's interface)
 
     @property
     def solver_result(self):
@@ -110,6 +114,18 @@ class SiteResult:
         xy = self.built.soil.integration_points()
         head = self.built.site.water_z(xy[..., 0]) - xy[..., 1]
         return self.built.site.gamma_w * np.where(np.isfinite(head), np.maximum(head, 0.0), 0.0)
+
+    @property
+    def is_push_over(self) -> bool:
+        """True if a strip is driven by a prescribed displacement (a RigidStrip's settlement, a Push)."""
+        return any(st.get("rigid") for st in self.built.strips) or any(
+            ld.drives for ld in self.built.site.loads
+        )
+
+    @property
+    def limit_load_factor(self) -> float | None:
+        """Load factor of the detected collapse (fraction of the site's loads), None if completed."""
+        return self.result.limit_load_factor
 
     @property
     def phases(self) -> None:

@@ -7,8 +7,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from .loads import ColumnLoad, Push, Settlement
-
 # a push-over's path counts as on its plateau when its last increment's stiffness dP/ds is below this share
 # of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
 # constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
@@ -27,17 +25,17 @@ class LoadPathView:
     def is_push_over(self) -> bool:
         """The scene is driven by a prescribed :class:`Settlement` or :class:`Push` (in ``scene.loads`` or a
         phase): its load is the reaction the soil gives, not a given force."""
-        return any(isinstance(ld, (Settlement, Push)) for ld in self._all_loads())
+        return any(ld.drives for ld in self._all_loads())
 
     @property
     def is_horizontal_push(self) -> bool:
         """The scene is driven by a :class:`Push`: its load is the horizontal reaction, its displacement the
         foundation's horizontal one."""
-        return any(isinstance(ld, Push) for ld in self._all_loads())
+        return any(ld.drives == "horizontal" for ld in self._all_loads())
 
     def _push_direction(self) -> float:
         """+1 or -1: the sign of the first Push's u (the direction a horizontal push-over reports in)."""
-        return 1.0 if next(ld for ld in self._all_loads() if isinstance(ld, Push)).u >= 0.0 else -1.0
+        return 1.0 if next(ld for ld in self._all_loads() if ld.drives == "horizontal").u >= 0.0 else -1.0
 
     def _all_loads(self) -> list:
         return list(self.built.scene.loads) + [ld for ph in self.built.scene.phases for ld in ph.loads]
@@ -49,7 +47,7 @@ class LoadPathView:
         lam = np.asarray(self.load_factor, np.float64)
 
         def total(loads):
-            return float(sum(ld.N for ld in loads if isinstance(ld, ColumnLoad)))
+            return float(sum(n for ld in loads for _, n in ld.columns()))
 
         if not self.phases:
             return lam * total(self.built.scene.loads)
