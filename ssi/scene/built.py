@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.assembly import scatter_vector
+from ..core.mesh import surface_pressure_forces
 from ..core.model import Model, System
 from ..core.validate import (
     check_instance,
@@ -58,6 +59,47 @@ class BuiltScene:
                 f"x={x}: column loads must act on the strip; nearest plate node is x={xs[i]:.6g}"
             )
         return self.plate_nodes[i]
+
+    def push_held(self, push: Push) -> dict[int, float]:
+        """{dof: prescribed increment [m]} of a :class:`~ssi.scene.loads.Push` (its ``effect``): a rigid
+        footing's base u; the plate nodes' u with their rotations held."""
+        model, held, u = self.model, {}, push.u
+        if self.footing_nodes is not None:  # a RigidFooting's base
+            if not self.scene.foundation.rough:
+                raise ValueError(
+                    f"Push(u={u:g}) on a smooth RigidFooting (rough=False): its base nodes slide "
+                    "freely, nothing carries the push; give RigidFooting(rough=True) or a plate Foundation"
+                )
+            held.update({int(d): float(u) for d in model.dof(self.footing_nodes, "u")})
+            return held
+        if self.plate_nodes is None:
+            raise ValueError(f"Push(u={u:g}): the scene has no foundation to push")
+        f = self.scene.foundation
+        if push.x is not None and not (f.x0 - 1e-9 <= push.x <= f.x1 + 1e-9):
+            raise ValueError(f"Push.x={push.x:g} m lies off the strip ({f.x0:g}, {f.x1:g}) m")
+        if self.slide_support is not None:
+            raise ValueError(
+                f"Push(u={u:g}) on a frictionless contact (every Contact.kt = 0): the strip's middle "
+                "node is held against sliding; give Contact.kt > 0"
+            )
+        held.update({int(d): float(u) for d in model.dof(self.plate_nodes, "u")})
+        held.update({int(d): 0.0 for d in model.dof(self.plate_nodes, "alpha")})
+        return held
+
+    def slides_freely_at(self, x: float) -> bool:
+        """True if the strip under ``x`` [m] has no shear stiffness (every Contact.kt = 0: its middle node's
+        u held)."""
+        return self.slide_support is not None
+
+    def foundation_spans(self) -> list[tuple[float, float]]:
+        """(x0, x1) [m] of the foundation (none without one): a ground pressure must stay clear of it."""
+        f = self.scene.foundation
+        return [] if f is None else [(f.x0, f.x1)]
+
+    def ground_weights(self, x0: float, x1: float) -> tuple[np.ndarray, np.ndarray]:
+        """(surface node ids, their share [m] of the length from ``x0`` to ``x1``): a unit ground pressure's
+        consistent nodal forces."""
+        return surface_pressure_forces(self.mesh, x0, x1)
 
     @property
     def is_linear(self) -> bool:

@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from ..core.assembly import scatter_vector
-from ..core.mesh import surface_pressure_forces
 from ..core.validate import check_real
 
-if TYPE_CHECKING:  # for annotations only: the built scene imports this module
+if TYPE_CHECKING:  # for annotations only: the built scene and site import this module
     from .built import BuiltScene
+    from .site_built import BuiltSite
 
 
 @dataclass(frozen=True)
@@ -50,10 +50,10 @@ class ColumnLoad:
         """The column's x [m]: a plate (and surface) node."""
         return [self.x]
 
-    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
-        """N, H, M at the plate node at x."""
+    def effect(self, built: BuiltScene | BuiltSite) -> tuple[np.ndarray, dict[int, float]]:
+        """N, H, M at the plate node at x (of a site: of the strip under x)."""
         model, f_vec = built.model, np.zeros(built.model.n_dof)
-        if self.H != 0.0 and built.slide_support is not None:
+        if self.H != 0.0 and built.slides_freely_at(self.x):
             raise ValueError(
                 f"ColumnLoad.H = {self.H:g} N/m at x = {self.x:g} m on a frictionless contact (every "
                 "Contact.kt = 0): nothing resists a horizontal load on the strip; give Contact.kt > 0"
@@ -84,16 +84,17 @@ class SurfacePressure:
         """Both ends [m]."""
         return [self.x0, self.x1]
 
-    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
-        """The consistent nodal forces of the pressure on the ground surface."""
+    def effect(self, built: BuiltScene | BuiltSite) -> tuple[np.ndarray, dict[int, float]]:
+        """The consistent nodal forces of the pressure on the ground surface (``built.ground_weights``: the
+        ground nodes from x0 to x1 and their share of the loaded length [m])."""
         model, f_vec = built.model, np.zeros(built.model.n_dof)
-        f = built.scene.foundation
-        if f is not None and min(self.x1, f.x1) - max(self.x0, f.x0) > 1e-9:
-            raise ValueError(
-                f"SurfacePressure ({self.x0}, {self.x1}) overlaps the strip ({f.x0}, {f.x1}): "
-                "a load on the strip is a StripLoad"
-            )
-        nodes, w = surface_pressure_forces(built.mesh, self.x0, self.x1)
+        for a, b in built.foundation_spans():
+            if min(self.x1, b) - max(self.x0, a) > 1e-9:
+                raise ValueError(
+                    f"SurfacePressure ({self.x0}, {self.x1}) overlaps the strip ({a}, {b}): "
+                    "a load on the strip is a StripLoad"
+                )
+        nodes, w = built.ground_weights(self.x0, self.x1)
         np.add.at(f_vec, model.dof(nodes, "w"), -self.q * w)
         return f_vec, {}
 
@@ -238,31 +239,10 @@ class Push:
         """None: the push moves the whole strip."""
         return []
 
-    def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
-        """No force: the pushed DOFs prescribed (a rigid footing's base u; the plate nodes' u with their
-        rotations held)."""
-        model, held = built.model, {}
-        if built.footing_nodes is not None:  # a RigidFooting's base
-            if not built.scene.foundation.rough:
-                raise ValueError(
-                    f"Push(u={self.u:g}) on a smooth RigidFooting (rough=False): its base nodes slide "
-                    "freely, nothing carries the push; give RigidFooting(rough=True) or a plate Foundation"
-                )
-            held.update({int(d): float(self.u) for d in model.dof(built.footing_nodes, "u")})
-            return np.zeros(model.n_dof), held
-        if built.plate_nodes is None:
-            raise ValueError(f"Push(u={self.u:g}): the scene has no foundation to push")
-        f = built.scene.foundation
-        if self.x is not None and not (f.x0 - 1e-9 <= self.x <= f.x1 + 1e-9):
-            raise ValueError(f"Push.x={self.x:g} m lies off the strip ({f.x0:g}, {f.x1:g}) m")
-        if built.slide_support is not None:
-            raise ValueError(
-                f"Push(u={self.u:g}) on a frictionless contact (every Contact.kt = 0): the strip's middle "
-                "node is held against sliding; give Contact.kt > 0"
-            )
-        held.update({int(d): float(self.u) for d in model.dof(built.plate_nodes, "u")})
-        held.update({int(d): 0.0 for d in model.dof(built.plate_nodes, "alpha")})
-        return np.zeros(model.n_dof), held
+    def effect(self, built: BuiltScene | BuiltSite) -> tuple[np.ndarray, dict[int, float]]:
+        """No force: the pushed DOFs prescribed (``built.push_held``: a rigid footing's base u; the plate
+        nodes' u with their rotations held)."""
+        return np.zeros(built.model.n_dof), built.push_held(self)
 
 
 # the one registry of load types (class name -> class): what Scene.loads and a Phase's loads may hold, and

@@ -17,7 +17,6 @@ from ..elements.side_interface import add_side_interface
 from ..elements.soil_q8 import SoilQ8, q8_points
 from ..elements.soil_q8_points import SoilQ8Points
 from ..materials.soil_laws import SoilLayer, geostatic_stress, material_table
-from .loads import ColumnLoad, Push
 from .site_parts import DepthVarying, RigidStrip, Strip
 from .site_view import SiteResult, pushed_nodes
 
@@ -222,34 +221,58 @@ class BuiltSite:
         st["side_interfaces"] = groups
 
     def _add_loads(self):
-        model = self.model
+        """Every load through its own ``effect(self)`` (:mod:`ssi.scene.loads`), as a scene's: its reference
+        force vector and the DOFs it prescribes."""
         for ld in self.site.loads:
-            if isinstance(ld, ColumnLoad):
-                ids = self.strips[self.site._strip_at(ld.x)]["plate_nodes"]
-                i = int(np.argmin(np.abs(model.coords[ids, 0] - ld.x)))
-                if abs(model.coords[ids[i], 0] - ld.x) > 1e-6:
-                    raise GeometryError(f"ColumnLoad at x={ld.x:g} m is not a node of its strip")
-                for comp, v in (("w", -ld.N), ("u", ld.H), ("alpha", ld.M)):
-                    if v:
-                        model.add_load([ids[i]], comp, v)
-            elif isinstance(ld, Push):  # the strip's nodes' u prescribed (a plate's rotations held)
-                st = self.strips[self.site.pushed_strip(ld)]
-                nodes = pushed_nodes(st)
-                if not st.get("rigid"):
-                    if st["slide_support"] is not None:
-                        raise GeometryError(
-                            f"{ld!r} on a frictionless contact (Contact.kt = 0): nothing but the held middle "
-                            "node resists the push; give Contact.kt > 0"
-                        )
-                    model.fix(nodes, "alpha")
-                model.prescribe(nodes, "u", ld.u)
-            else:  # a vertical pressure per horizontal metre on the ground: L/6, 4L/6, L/6 per quadratic edge
-                nodes = self.ground_nodes(ld.x0, ld.x1)
-                xs = self.mesh.xy[nodes, 0]
-                f = np.zeros(len(nodes))
-                for i in range(0, len(nodes) - 2, 2):
-                    f[i : i + 3] += np.array([1.0, 4.0, 1.0]) * (xs[i + 2] - xs[i]) / 6.0
-                model.add_load(nodes, "w", -ld.q * f)
+            f_vec, held = ld.effect(self)
+            nz = np.flatnonzero(f_vec)
+            if nz.size:
+                self.model.add_element_load(nz[None], f_vec[nz][None])
+            self.model.prescribe_dofs(np.array(list(held), np.int64), list(held.values()))
+
+    # ---- what a load's effect asks of a built model (as BuiltScene answers it) ---------------------------
+    def plate_node_at(self, x: float) -> int:
+        """Model id of the plate node at ``x`` [m] of the strip under it (a GeometryError if none is
+        there)."""
+        ids = self.strips[self.site._strip_at(x)]["plate_nodes"]
+        i = int(np.argmin(np.abs(self.model.coords[ids, 0] - x)))
+        if abs(self.model.coords[ids[i], 0] - x) > 1e-6:
+            raise GeometryError(f"ColumnLoad at x={x:g} m is not a node of its strip")
+        return int(ids[i])
+
+    def slides_freely_at(self, x: float) -> bool:
+        """True if the plate strip under ``x`` [m] has no shear stiffness (Contact.kt = 0: its middle node's u
+        held)."""
+        return self.strips[self.site._strip_at(x)]["slide_support"] is not None
+
+    def foundation_spans(self) -> list[tuple[float, float]]:
+        """(x0, x1) [m] of every strip: a ground pressure must stay clear of them."""
+        return [s.ends for s in self.site.strips]
+
+    def ground_weights(self, x0: float, x1: float) -> tuple[np.ndarray, np.ndarray]:
+        """(ground node ids from ``x0`` to ``x1`` [m], their share [m] of the loaded length): L/6, 4L/6, L/6
+        of each quadratic edge of length L (a vertical pressure per horizontal metre of ground)."""
+        nodes = self.ground_nodes(x0, x1)
+        xs = self.mesh.xy[nodes, 0]
+        w = np.zeros(len(nodes))
+        for i in range(0, len(nodes) - 2, 2):
+            w[i : i + 3] += np.array([1.0, 4.0, 1.0]) * (xs[i + 2] - xs[i]) / 6.0
+        return nodes, w
+
+    def push_held(self, push) -> dict[int, float]:
+        """{dof: prescribed increment [m]} of a :class:`~ssi.scene.loads.Push` (its ``effect``): the pushed
+        strip's nodes' u (a plate's rotations held; a RigidStrip's base and side body)."""
+        st = self.strips[self.site.pushed_strip(push)]
+        nodes, model = pushed_nodes(st), self.model
+        held = {int(d): float(push.u) for d in model.dof(nodes, "u")}
+        if not st.get("rigid"):
+            if st["slide_support"] is not None:
+                raise GeometryError(
+                    f"{push!r} on a frictionless contact (Contact.kt = 0): nothing but the held middle "
+                    "node resists the push; give Contact.kt > 0"
+                )
+            held.update({int(d): 0.0 for d in model.dof(nodes, "alpha")})
+        return held
 
     @property
     def is_linear(self) -> bool:
