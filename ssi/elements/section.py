@@ -29,7 +29,9 @@ from numpy.typing import ArrayLike
 from ..core.protocol import K0_MATRIX
 from ..core.quadrature import layer_rule
 from ..core.validate import check_array, check_int, check_real
+from ..materials.concrete import N_CONCRETE_PARAMS
 from ..materials.layer_laws import CONCRETE, ELASTIC, N_LAYER_HIST, STEEL, layer_update
+from ..materials.steel import N_STEEL_PARAMS
 
 __all__ = ["Section", "homogeneous", "layered", "paper_rc_section", "rc_section", "with_crack_spacing_band"]
 
@@ -72,6 +74,19 @@ class Section:
             raise ValueError(
                 f"Section.params must have shape ({n}, n_par >= 2), one row per layer, got {params.shape}"
             )
+        # a CONCRETE or STEEL layer reads its law's whole parameter row (ssi.materials.rc.concrete_params,
+        # steel_params): a shorter row (an elastic [E, nu] row given a concrete kind) is refused here, by
+        # name, not met as an index error inside the crack band or the kernels
+        for law, name, n_par, maker in (
+            (CONCRETE, "CONCRETE", N_CONCRETE_PARAMS, "concrete_params"),
+            (STEEL, "STEEL", N_STEEL_PARAMS, "steel_params"),
+        ):
+            if np.any(kind == law) and params.shape[1] < n_par:
+                layer = int(np.flatnonzero(kind == law)[0])
+                raise ValueError(
+                    f"Section.params has {params.shape[1]} columns, but layer {layer} is {name}, whose law "
+                    f"needs {n_par} (build its row with ssi.materials.rc.{maker})"
+                )
         if not params[:, 0].min() > 0.0:
             raise ValueError(
                 f"Section.params[:, 0] (each layer's initial modulus) must be > 0, got {params[:, 0].min()!r}"

@@ -306,7 +306,8 @@ class SoilLayer:
         modulus G at the undrained Poisson's ratio nu_u, K_u = 2G(1 + nu_u) / (3(1 - 2 nu_u))."""
         if not (self.nu < self.nu_u < 0.5):
             raise ValueError(
-                f"nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got {self.nu_u}"
+                f"SoilLayer.nu_u must lie in (nu, 0.5) = ({self.nu}, 0.5) for an undrained layer, got "
+                f"{self.nu_u}"
             )
         shear = self.E / (2.0 * (1.0 + self.nu))
         k_skeleton = self.E / (3.0 * (1.0 - 2.0 * self.nu))
@@ -354,7 +355,14 @@ class SoilLayer:
         check_bool("SoilLayer.drift", self.drift)
         check_optional_real("SoilLayer.unit_weight_sat", self.unit_weight_sat, lo=0.0, unit="N/m^3")
         check_choice("SoilLayer.drainage", self.drainage, DRAINAGE)
-        check_real("SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, hi_open=True, unit="(nu <= nu_u < 0.5)")
+        # nu_u matters only where the layer is undrained: a drained layer (nu up to 0.5) keeps the default
+        # nu_u unchecked against nu; a phase that makes it undrained meets undrained_k_water's check
+        check_real("SoilLayer.nu_u", self.nu_u, lo=-1.0, hi=0.5, lo_open=True, hi_open=True)
+        if self.drainage == "undrained_A":
+            check_real(
+                "SoilLayer.nu_u", self.nu_u, lo=self.nu, hi=0.5, lo_open=True, hi_open=True,
+                unit="(nu < nu_u < 0.5)",
+            )  # fmt: skip
         if self.c == 0.0 and self.phi_deg == 0.0:
             raise ValueError(
                 "SoilLayer: c=0 and phi_deg=0 give a soil without strength; need c > 0 or "

@@ -294,7 +294,19 @@ class Site:
                 f"Site.ground at x={x:g} m lies at or below the block bottom z={self.z_bottom:g} m"
             )
         for k in range(len(self._raw)):
+            bx = self._raw[k][0]
+            if bx.max() < self.x_left or bx.min() > self.x_right:  # no point of it over the block
+                raise GeometryError(
+                    f"layer boundary {k} (x from {bx.min():g} to {bx.max():g} m) lies beyond the block "
+                    f"[{self.x_left:g}, {self.x_right:g}] m: give its points over the site"
+                )
             b = np.interp(xs, *self._raw[k])
+            if np.all(b >= g - TOL * self.width):  # above the ground everywhere: the layers above it empty
+                raise GeometryError(
+                    f"layer boundary {k} lies at or above the ground everywhere (z from {b.min():g} to "
+                    f"{b.max():g} m, ground from {g.min():g} to {g.max():g} m): layer {k} has no soil in the "
+                    "site; give boundaries below the ground, or leave the layer out"
+                )
             if np.any(b < self.z_bottom - TOL * self.width):
                 x = xs[np.argmax(b < self.z_bottom)]
                 raise GeometryError(

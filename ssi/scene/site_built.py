@@ -119,11 +119,20 @@ class BuiltSite:
         model.add_group(g)
         _fix_sides(model, self.mesh.xy, site)
         if plastic:
+            from ..solver import NonConvergence
             from .stages import _run_phase
 
             weight = model.load_vectors()[1]
             g.unit_weight = None  # the weight becomes the reference load, ramped from zero
-            res = _run_phase(model, [1.0], None, loads=(weight, np.zeros(model.n_dof)))
+            try:
+                res = _run_phase(model, [1.0], None, loads=(weight, np.zeros(model.n_dof)))
+            except NonConvergence as err:  # the soil cannot carry its own weight: the input's fault, named
+                raise ValueError(
+                    f'Site.initial_stress = "gravity_plastic": the soil does not carry its own weight under '
+                    f"its own laws (the gravity phase stopped at {err.result.load_factor[-1]:.3g} of the "
+                    f"weight: {err.report.get('reason')}); a slope steeper than its soil's friction angle "
+                    "(without cohesion) cannot stand -- flatten it or give the soil a cohesion c > 0"
+                ) from err
         else:
             res = model.solve_linear()
         self.gravity_displacement = res.u[-1]
