@@ -91,7 +91,7 @@ FIELD_UNITS = {
 
 
 def _is_site(result) -> bool:
-    return hasattr(result.built, "site")
+    return result.kind == "site"
 
 
 def _plate_strips(result) -> list[dict]:

@@ -139,8 +139,8 @@ def write_limit_result(path: str | os.PathLike, cap, overwrite: bool = False) ->
         h5.attrs["kind"] = "limit"
         h5.attrs["limit"] = json.dumps(cap.to_dict(), default=_plain)
         h5.attrs["summary"] = cap.summary()
-        if scene is not None and hasattr(scene, "foundation"):  # a Scene (a Site has no scene_to_dict form)
-            h5.attrs["scene"] = json.dumps(scene_to_dict(scene))
+        if scene is not None:  # the input, a scene's or a site's plain form (one writer): "scene" or "site"
+            h5.attrs[scene.kind] = json.dumps(scene_to_dict(scene), default=_plain)
         for name, run in _runs(cap).items():
             f = _fields(run)
             grp = h5.create_group(name)

@@ -261,7 +261,12 @@ def limit_problem(
         raise ValueError(f"side_soil must be one of {SIDE_SOIL} or None, got {side_soil!r}")
     with_mn = strip == "beam_mn"  # a beam whose hinges' capacity is the section's M-N polygon
     strip = "beam" if with_mn else strip
-    if hasattr(scene, "geometry") and hasattr(scene, "strips"):
+    kind = getattr(scene, "kind", None)  # any object may come in: a Scene or a Site says which it is
+    if kind not in ("scene", "site"):
+        raise TypeError(
+            f"scene must be an ssi.scene.Scene or ssi.scene.site.Site, got {type(scene).__name__}"
+        )
+    if kind == "site":
         if phase is not None:
             raise ValueError(f"phase={phase!r}: a Site has one phase (its loads); give phase=None")
         if strip == "beam":
@@ -274,10 +279,6 @@ def limit_problem(
             )
         return _site_problem(scene)
     side_soil = "surcharge" if side_soil is None else side_soil
-    if not all(hasattr(scene, a) for a in ("layers", "_block", "_mesh_layers", "_footprint")):
-        raise TypeError(
-            f"scene must be an ssi.scene.Scene or ssi.scene.site.Site, got {type(scene).__name__}"
-        )
     phases = _phases(scene)
     if not phases:
         raise ValueError("the scene has no loads (Scene.loads and Scene.phases are empty): nothing to scale")
@@ -581,7 +582,7 @@ def _site_problem(site) -> LimitProblem:
     xs = geo.points[:, 0]
     width = float(np.ptp(xs))
     strips = list(site.strips)
-    rigid = [s for s in strips if hasattr(s, "settle")]  # a RigidStrip (the site module imports this one)
+    rigid = [s for s in strips if s.rigid]
     if rigid and (len(strips) > 1 or site.loads):
         raise ValueError(
             "Site.strips: a RigidStrip is pushed by a settlement (lambda = its force); ssi.limit takes it "
@@ -599,7 +600,7 @@ def _site_problem(site) -> LimitProblem:
         )
         walls[i] = (lv, side)
     for i, st in enumerate(strips):
-        if hasattr(st, "settle"):
+        if st.rigid:
             ends.append((st.x0, st.x1))
             itf = Interface("rough" if st.rough else "smooth")
             footings.append(Footing(itf, (0.0, -1.0), (0.0, 0.0), ("z",)))

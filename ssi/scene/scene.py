@@ -59,6 +59,7 @@ What a foundation engineer adds to that (see ``chapters/12_engineering_scenes.py
 import math
 from dataclasses import dataclass, field, replace
 from itertools import pairwise
+from typing import ClassVar
 
 import numpy as np
 
@@ -146,6 +147,8 @@ class Scene:
     gamma_w: float = GAMMA_W
     symmetric: bool = False
     side_contact: Contact | None = None
+
+    kind: ClassVar[str] = "scene"  # the input's kind (a Site's: "site"), as result files name it
 
     def __post_init__(self):
         width = check_real("Scene.width", self.width, lo=0.0, lo_open=True, unit="m")

@@ -68,6 +68,7 @@ Supports: the bottom fixed, the sides on vertical rollers (the separated block o
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import ClassVar
 
 import numpy as np
 
@@ -118,6 +119,8 @@ class Site:
     its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
     "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled)."""
+
+    kind: ClassVar[str] = "site"  # the input's kind (a Scene's: "scene"), as result files name it
 
     width: float
     depth: float
