@@ -5,10 +5,11 @@ engineering quantities (``SceneResult``).
 * ``loads`` -- the loads; ``parts`` -- foundation, contact, mesh size, phases, excavations;
 * ``checks`` -- checks across the fields of a scene; ``scene`` -- ``Scene`` and its builder;
 * ``built`` -- ``BuiltScene``: load effects, water fields, the staged analysis; ``stages`` -- its pieces;
-* ``view`` -- ``SceneResult``; ``scene_file`` -- scenes as TOML and plain dicts;
+* ``view`` -- ``SceneResult``; ``foundation_result`` -- one plate strip's view (a scene's or a site's);
+* ``scene_file`` -- scenes and sites as TOML and plain dicts (one reader), ``file_schema`` -- their keys;
 * sites of any layering: ``site`` -- ``Site`` (geometry, mesh); ``site_parts`` -- ``Borehole``,
   ``DepthVarying``, ``Strip``, ``RigidStrip``; ``site_built`` -- ``BuiltSite``; ``site_view`` --
-  ``SiteResult``; ``site_file`` -- sites as TOML.
+  ``SiteResult``.
 """
 
 from ..materials.soil_laws import SoilLayer
