@@ -46,6 +46,10 @@ class ColumnLoad:
         """(x [m], N [N/m] > 0 down) of each column force this load applies: this column."""
         return [(self.x, self.N)]
 
+    def ground_span(self) -> tuple[float, float] | None:
+        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
+        return None
+
     def mesh_lines(self) -> list[float]:
         """The column's x [m]: a plate (and surface) node."""
         return [self.x]
@@ -79,6 +83,10 @@ class SurfacePressure:
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
         return []
+
+    def ground_span(self) -> tuple[float, float] | None:
+        """(x0, x1) [m] of the ground this pressure loads."""
+        return self.x0, self.x1
 
     def mesh_lines(self) -> list[float]:
         """Both ends [m]."""
@@ -115,6 +123,10 @@ class StripLoad:
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
         return []
+
+    def ground_span(self) -> tuple[float, float] | None:
+        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
+        return None
 
     def mesh_lines(self) -> list[float]:
         """The ends [m] that are given."""
@@ -163,6 +175,10 @@ class StripWeight:
         """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
         return []
 
+    def ground_span(self) -> tuple[float, float] | None:
+        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
+        return None
+
     def mesh_lines(self) -> list[float]:
         """None: the weight acts on the whole strip."""
         return []
@@ -191,6 +207,10 @@ class Settlement:
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
         return []
+
+    def ground_span(self) -> tuple[float, float] | None:
+        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
+        return None
 
     def mesh_lines(self) -> list[float]:
         """The settled columns' x [m] (none for the whole strip)."""
@@ -234,6 +254,10 @@ class Push:
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
         return []
+
+    def ground_span(self) -> tuple[float, float] | None:
+        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
+        return None
 
     def mesh_lines(self) -> list[float]:
         """None: the push moves the whole strip."""

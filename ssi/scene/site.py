@@ -79,7 +79,7 @@ from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
 from .capacity import CapacityResult, limit_analysis
-from .loads import LOAD_TYPES, ColumnLoad, Push, SurfacePressure
+from .loads import LOAD_TYPES, Push
 from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
@@ -350,24 +350,24 @@ class Site:
         for i, x0, x1, lv in self.embedded():
             self._check_trench(i, x0, x1, lv, xs)
         for i, ld in enumerate(self.loads):
-            if isinstance(ld, Push):
+            if ld.drives == "horizontal":  # a Push
                 s = self.strips[self.pushed_strip(ld)]
                 if s.rigid and not s.rough:
                     raise GeometryError(
                         f"loads[{i}]: {ld!r} pushes a smooth RigidStrip (rough=False), whose base nodes "
                         "slide freely: nothing carries the push; give rough=True"
                     )
-            if isinstance(ld, ColumnLoad) and self._strip_at(ld.x) is None:
-                raise GeometryError(f"loads[{i}]: ColumnLoad at x={ld.x:g} m lies on no strip {ends}")
-            if isinstance(ld, SurfacePressure):
-                if not (self.x_left <= ld.x0 < ld.x1 <= self.x_right):
-                    raise GeometryError(
-                        f"loads[{i}]: SurfacePressure ({ld.x0:g}, {ld.x1:g}) m outside the block"
-                    )
+            for x, _ in ld.columns():
+                if self._strip_at(x) is None:
+                    raise GeometryError(f"loads[{i}]: ColumnLoad at x={x:g} m lies on no strip {ends}")
+            if ld.ground_span() is not None:
+                x0, x1 = ld.ground_span()
+                if not (self.x_left <= x0 < x1 <= self.x_right):
+                    raise GeometryError(f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m outside the block")
                 for a, b in ends:
-                    if min(ld.x1, b) - max(ld.x0, a) > TOL * self.width:
+                    if min(x1, b) - max(x0, a) > TOL * self.width:
                         raise GeometryError(
-                            f"loads[{i}]: SurfacePressure ({ld.x0:g}, {ld.x1:g}) m overlaps the strip "
+                            f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m overlaps the strip "
                             f"({a:g}, {b:g})"
                         )
 
@@ -444,7 +444,7 @@ class Site:
                 f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
             )
         options.pop("phase", None)
-        pushes = [ld for ld in self.loads if isinstance(ld, Push)]
+        pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
         if pushes:
             raise ValueError(
                 f"Site.limit_analysis: {pushes[0]!r} in Site.loads: a horizontal push is not built in the "
@@ -508,10 +508,7 @@ class Site:
     def _load_points(self) -> list[float]:
         out = []
         for ld in self.loads:
-            if isinstance(ld, ColumnLoad):
-                out.append(ld.x)
-            elif isinstance(ld, SurfacePressure):
-                out += [ld.x0, ld.x1]
+            out += ld.mesh_lines()  # a column's x, a pressure's ends (a Push: none)
         return out
 
     def pushed_strip(self, push: Push) -> int:
@@ -534,9 +531,9 @@ class Site:
         if self.strips:
             foot = self.strips[0].ends
         else:
-            pressures = [ld for ld in self.loads if isinstance(ld, SurfacePressure)]
+            pressures = [ld.ground_span() for ld in self.loads if ld.ground_span() is not None]
             foot = (
-                (min(p.x0 for p in pressures), max(p.x1 for p in pressures))
+                (min(a for a, _ in pressures), max(b for _, b in pressures))
                 if pressures
                 else (-0.25 * self.width, 0.25 * self.width)
             )
@@ -572,10 +569,10 @@ class Site:
             if top - self.base_z(i) > TOL * self.width:  # the trench walls of an embedded strip
                 n_w = max(1, round((top - self.base_z(i)) / m.h_fine))
                 ref += [(x, z) for x in (x0, x1) for z in np.linspace(self.base_z(i), top, n_w + 1)]
-        for ld in self.loads:
-            if isinstance(ld, SurfacePressure):
-                n = max(1, round((ld.x1 - ld.x0) / m.h_fine))
-                ref += [(x, float(self.ground_z(x))) for x in np.linspace(ld.x0, ld.x1, n + 1)]
+        for span in (ld.ground_span() for ld in self.loads):
+            if span is not None:
+                n = max(1, round((span[1] - span[0]) / m.h_fine))
+                ref += [(x, float(self.ground_z(x))) for x in np.linspace(*span, n + 1)]
         return mesh_geometry(self.geometry(), m.h_fine, m.h_coarse, m.growth, np.array(ref) if ref else None)
 
 
