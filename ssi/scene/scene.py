@@ -97,7 +97,7 @@ from .checks import (
     _segments,
     _warn_implausible_units,
 )
-from .loads import LOAD_TYPES, ColumnLoad, Push, SurfacePressure
+from .loads import LOAD_TYPES
 from .parts import CONTACT_SEGMENT_TYPES, Contact, Foundation, MeshSize, Phase, RigidFooting, _check_list
 
 
@@ -200,10 +200,11 @@ class Scene:
                 "the foundation)"
             )
         for i, load in enumerate(self.loads):
-            if isinstance(load, ColumnLoad) and f is not None and not x0 <= load.x <= x1:
-                raise ValueError(
-                    f"loads[{i}].x={load.x!r} must lie on the foundation [x0, x1] = [{x0:g}, {x1:g}]"
-                )
+            for x, _ in load.columns():
+                if f is not None and not x0 <= x <= x1:
+                    raise ValueError(
+                        f"loads[{i}].x={x!r} must lie on the foundation [x0, x1] = [{x0:g}, {x1:g}]"
+                    )
 
     def build(self) -> "BuiltScene":
         """Mesh the block, add only the groups the scene needs, supports, the geostatic state and loads.
@@ -215,7 +216,7 @@ class Scene:
             raise ValueError("contact: a foundation needs a Contact (interface) to rest on the soil")
         if isinstance(self.foundation, RigidFooting):
             _check_rigid_footing(self)
-        strip_loads = [ld for ld in self._all_loads() if not isinstance(ld, SurfacePressure)]
+        strip_loads = [ld for ld in self._all_loads() if ld.ground_span() is None]
         if self.foundation is None and strip_loads:
             raise ValueError(
                 f"loads: {type(strip_loads[0]).__name__} needs a foundation to act on (a pressure on "
@@ -309,7 +310,7 @@ class Scene:
 
     def _refuse_push(self, what: str) -> None:
         """A horizontal Push is not represented by the limit analysis (ssi.limit pushes vertically)."""
-        pushes = [ld for ld in self._all_loads() if isinstance(ld, Push)]
+        pushes = [ld for ld in self._all_loads() if ld.drives == "horizontal"]
         if pushes:
             raise ValueError(
                 f"{what}: {pushes[0]!r} in the scene's loads: a horizontal push is not built in the limit "
