@@ -1,0 +1,125 @@
+"""The checks of a :class:`~ssi.scene.site.Site`'s geometry that need the whole site (ground, boundaries,
+strips, trenches, loads): a mixin the Site inherits, each failure a GeometryError naming the part and
+where."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core.geometry import GeometryError
+
+TOL = 1e-9  # relative to the site's size: coordinates closer than this are one point
+
+
+class SiteChecks:
+    """``_check_geometry`` (run by ``Site.__post_init__``) and ``_check_trench`` of an embedded strip."""
+
+    def _check_geometry(self):
+        xs = self.breaks()
+        g = self.ground_z(xs)
+        if np.any(g <= self.z_bottom):
+            x = xs[np.argmax(g <= self.z_bottom)]
+            raise GeometryError(
+                f"Site.ground at x={x:g} m lies at or below the block bottom z={self.z_bottom:g} m"
+            )
+        for k in range(len(self._raw)):
+            bx = self._raw[k][0]
+            if bx.max() < self.x_left or bx.min() > self.x_right:  # no point of it over the block
+                raise GeometryError(
+                    f"layer boundary {k} (x from {bx.min():g} to {bx.max():g} m) lies beyond the block "
+                    f"[{self.x_left:g}, {self.x_right:g}] m: give its points over the site"
+                )
+            b = np.interp(xs, *self._raw[k])
+            if np.all(b >= g - TOL * self.width):  # above the ground everywhere: the layers above it empty
+                raise GeometryError(
+                    f"layer boundary {k} lies at or above the ground everywhere (z from {b.min():g} to "
+                    f"{b.max():g} m, ground from {g.min():g} to {g.max():g} m): layer {k} has no soil in the "
+                    "site; give boundaries below the ground, or leave the layer out"
+                )
+            if np.any(b < self.z_bottom - TOL * self.width):
+                x = xs[np.argmax(b < self.z_bottom)]
+                raise GeometryError(
+                    f"layer boundary {k} at x={x:g} m lies below the block bottom z={self.z_bottom:g} m "
+                    f"(z={np.interp(x, *self._raw[k]):g} m): deepen the block"
+                )
+            if k and np.any(b > np.interp(xs, *self._raw[k - 1]) + TOL * self.width):
+                x = xs[np.argmax(b > np.interp(xs, *self._raw[k - 1]) + TOL * self.width)]
+                raise GeometryError(
+                    f"layer boundaries {k - 1} and {k} cross near x={x:g} m: boundary {k} must not rise "
+                    "above "
+                    f"boundary {k - 1} (equal: layer {k} pinched out)"
+                )
+        ends = self._strip_ends()
+        for (a0, a1), (b0, b1) in zip(ends, ends[1:]):
+            if b0 < a1 - TOL * self.width:
+                raise GeometryError(f"strips ({a0:g}, {a1:g}) and ({b0:g}, {b1:g}) m overlap")
+        for i, s in enumerate(self.strips):
+            x0, x1 = s.ends
+            if not (self.x_left <= x0 < x1 <= self.x_right):
+                raise GeometryError(
+                    f"strips[{i}] ({x0:g}, {x1:g}) m must lie within the block "
+                    f"[{self.x_left:g}, {self.x_right:g}]"
+                )
+            inside = xs[(xs >= x0) & (xs <= x1)]
+            gz = self.ground_z(inside)
+            if np.ptp(gz) > TOL * self.width:
+                raise GeometryError(
+                    f"strips[{i}] ({x0:g}, {x1:g}) m: the ground under it is not level "
+                    f"(z from {gz.min():g} "
+                    f"to {gz.max():g} m); level the ground under the strip (a berm)"
+                )
+            if s.level is not None and s.level > gz[0] + TOL * self.width:
+                raise GeometryError(
+                    f"strips[{i}].level={s.level:g} m lies above the ground (z={gz[0]:g} m there): a "
+                    "foundation in the air"
+                )
+        for i, x0, x1, lv in self.embedded():
+            self._check_trench(i, x0, x1, lv, xs)
+        for i, ld in enumerate(self.loads):
+            if ld.drives == "horizontal":  # a Push
+                s = self.strips[self.pushed_strip(ld)]
+                if s.rigid and not s.rough:
+                    raise GeometryError(
+                        f"loads[{i}]: {ld!r} pushes a smooth RigidStrip (rough=False), whose base nodes "
+                        "slide freely: nothing carries the push; give rough=True"
+                    )
+            for x, _ in ld.columns():
+                if self._strip_at(x) is None:
+                    raise GeometryError(f"loads[{i}]: ColumnLoad at x={x:g} m lies on no strip {ends}")
+            if ld.ground_span() is not None:
+                x0, x1 = ld.ground_span()
+                if not (self.x_left <= x0 < x1 <= self.x_right):
+                    raise GeometryError(f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m outside the block")
+                for a, b in ends:
+                    if min(x1, b) - max(x0, a) > TOL * self.width:
+                        raise GeometryError(
+                            f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m overlaps the strip "
+                            f"({a:g}, {b:g})"
+                        )
+
+    def _check_trench(self, i, x0, x1, level, xs):
+        """An embedded strip's trench: inside the block, clear of every other foundation (a wall of backfill
+        between them) and dry (a flooded trench is not built)."""
+        if level <= self.z_bottom + TOL * self.width:
+            raise GeometryError(
+                f"strips[{i}].level={level:g} m lies at or below the block bottom z={self.z_bottom:g} m"
+            )
+        if x0 <= self.x_left + TOL * self.width or x1 >= self.x_right - TOL * self.width:
+            raise GeometryError(
+                f"strips[{i}] ({x0:g}, {x1:g}) m is embedded (level {level:g} m) against the block's side: "
+                "its trench needs backfill on both sides; widen the block"
+            )
+        for j, other in enumerate(self.strips):
+            a, b = other.ends
+            if j != i and b >= x0 - TOL * self.width and a <= x1 + TOL * self.width:
+                raise GeometryError(
+                    f"strips[{j}] ({a:g}, {b:g}) m touches or overlaps the trench of the embedded "
+                    f"strips[{i}] ({x0:g}, {x1:g}) m, level {level:g} m: leave backfill between them"
+                )
+        inside = xs[(xs >= x0) & (xs <= x1)]
+        if self.water_table is not None and np.any(self.water_z(inside) > level + TOL * self.width):
+            raise GeometryError(
+                f"strips[{i}]: the water table (z up to {float(self.water_z(inside).max()):g} m) lies above "
+                f"its base level {level:g} m: a flooded trench is not built; lower the water table or "
+                "raise the strip"
+            )
