@@ -73,7 +73,8 @@ from ssi.lab.digitize import read_reference
 from ssi.lab.examples import chapter11_foundation, punch_settlement, winkler_strip
 from ssi.lab.report import check, record, record_empty, save_figure
 from ssi.materials.soil_laws import ELASTIC, elastic_params
-from ssi.scene.estimate import RefinedSolver, richardson, solve_to_target
+from ssi.scene.estimate import RefinedSolver, richardson
+from ssi.scene.estimate_target import solve_to_target
 from ssi.solver import NonConvergence, Settings
 
 FAST = paths.FAST

@@ -18,10 +18,10 @@ from ssi.scene.estimate import (
     refined_scene,
     refined_steps,
     richardson,
-    solve_to_target,
     solve_with_error,
     split_section,
 )
+from ssi.scene.estimate_target import solve_to_target
 from ssi.solver import Settings
 
 

@@ -229,7 +229,7 @@ class BuiltScene:
         ``out.solver_result`` joins their rows (:func:`join_phases`).
 
         An error estimate, or a refinement to a target error, is a study above the scene:
-        :func:`ssi.scene.estimate.estimate`, :func:`ssi.scene.estimate.solve_to_target`."""
+        :func:`ssi.scene.estimate.estimate`, :func:`ssi.scene.estimate_target.solve_to_target`."""
         if n_steps is not None:
             check_int("n_steps", n_steps, lo=1)
         check_instance("settings", settings, Settings, optional=True)
