@@ -23,8 +23,26 @@ if TYPE_CHECKING:  # for annotations only: the built scene and site import this 
     from .site_built import BuiltSite
 
 
+class Load:
+    """What every load answers besides its ``effect`` and ``mesh_lines`` (the defaults of a force on the
+    foundation that a site does not take); each load class overrides what differs. The result views, the
+    checks and the summaries ask these, never the load's class."""
+
+    drives: ClassVar[str | None] = None  # None: a force (the load given, the displacement the answer);
+    # "vertical" / "horizontal": a prescribed displacement whose reaction is the load
+    on_site: ClassVar[bool] = False  # whether a Site applies it (a Scene applies every load)
+
+    def columns(self) -> list[tuple[float, float]]:
+        """(x [m], N [N/m] > 0 down) of each column force this load applies: none by default."""
+        return []
+
+    def ground_span(self) -> tuple[float, float] | None:
+        """(x0, x1) [m] of the ground a pressure loads; None: not a pressure on the ground."""
+        return None
+
+
 @dataclass(frozen=True)
-class ColumnLoad:
+class ColumnLoad(Load):
     """Column forces at ``x`` [m] on the strip (the plate mesh gets a node there): ``N`` [N/m] downwards,
     ``H`` [N/m] in +x, ``M`` [N m/m] counter-clockwise, all per metre of the strip's length."""
 
@@ -39,16 +57,11 @@ class ColumnLoad:
         check_real("ColumnLoad.H", self.H, unit="N/m")
         check_real("ColumnLoad.M", self.M, unit="N m/m")
 
-    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
     on_site: ClassVar[bool] = True  # a site applies it
 
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m] > 0 down) of each column force this load applies: this column."""
         return [(self.x, self.N)]
-
-    def ground_span(self) -> tuple[float, float] | None:
-        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
-        return None
 
     def mesh_lines(self) -> list[float]:
         """The column's x [m]: a plate (and surface) node."""
@@ -69,7 +82,7 @@ class ColumnLoad:
 
 
 @dataclass(frozen=True)
-class SurfacePressure:
+class SurfacePressure(Load):
     """A pressure ``q`` [Pa] (> 0 downwards) on the ground surface from ``x0`` to ``x1`` [m] (both become mesh
     lines); beside the foundation, not under it (a load on the strip is a :class:`StripLoad`)."""
 
@@ -77,12 +90,7 @@ class SurfacePressure:
     x1: float
     q: float
 
-    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
     on_site: ClassVar[bool] = True  # a site applies it
-
-    def columns(self) -> list[tuple[float, float]]:
-        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
-        return []
 
     def ground_span(self) -> tuple[float, float] | None:
         """(x0, x1) [m] of the ground this pressure loads."""
@@ -108,7 +116,7 @@ class SurfacePressure:
 
 
 @dataclass(frozen=True)
-class StripLoad:
+class StripLoad(Load):
     """A distributed load on the strip [N/m^2 = Pa], > 0 downwards: ``q`` at ``x0`` varying linearly to
     ``q_end`` at ``x1`` (default: uniform ``q`` over the whole strip). x0, x1 [m] become plate nodes."""
 
@@ -116,17 +124,6 @@ class StripLoad:
     q_end: float | None = None
     x0: float | None = None
     x1: float | None = None
-
-    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
-    on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
-
-    def columns(self) -> list[tuple[float, float]]:
-        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
-        return []
-
-    def ground_span(self) -> tuple[float, float] | None:
-        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
-        return None
 
     def mesh_lines(self) -> list[float]:
         """The ends [m] that are given."""
@@ -160,24 +157,13 @@ class StripLoad:
 
 
 @dataclass(frozen=True)
-class StripWeight:
+class StripWeight(Load):
     """Self-weight of the strip from its section: ``unit_weight`` [N/m^3] times the section depth [m], a
     uniform downward load [Pa] applied in the phase that lists it (reinforced concrete: 25e3). Below the
     water level the strip's buoyancy gamma_w [N/m^3] times its submerged thickness [m] is netted from it (the
     water pressure on its base exceeds that on its top by that much)."""
 
     unit_weight: float = 25e3
-
-    drives: ClassVar[str | None] = None  # a force: the load is given, the displacement the answer
-    on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
-
-    def columns(self) -> list[tuple[float, float]]:
-        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
-        return []
-
-    def ground_span(self) -> tuple[float, float] | None:
-        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
-        return None
 
     def mesh_lines(self) -> list[float]:
         """None: the weight acts on the whole strip."""
@@ -192,7 +178,7 @@ class StripWeight:
 
 
 @dataclass(frozen=True)
-class Settlement:
+class Settlement(Load):
     """Push-over: a prescribed further settlement ``w`` [m] (> 0 downwards) during the phase that lists it.
     ``x=None``: the rigid strip (every plate node settles by w, rotations held); else the plate nodes at the
     positions ``x`` [m] (columns) settle by w. The reaction is the load: read it with
@@ -202,15 +188,6 @@ class Settlement:
     x: tuple | None = None
 
     drives: ClassVar[str | None] = "vertical"  # a prescribed settlement: the load is the soil's reaction
-    on_site: ClassVar[bool] = False  # a site does not apply it (a Scene's load only)
-
-    def columns(self) -> list[tuple[float, float]]:
-        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
-        return []
-
-    def ground_span(self) -> tuple[float, float] | None:
-        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
-        return None
 
     def mesh_lines(self) -> list[float]:
         """The settled columns' x [m] (none for the whole strip)."""
@@ -231,7 +208,7 @@ class Settlement:
 
 
 @dataclass(frozen=True)
-class Push:
+class Push(Load):
     """Horizontal push-over: a prescribed further horizontal displacement ``u`` [m] (> 0 in +x) of the whole
     foundation during the phase that lists it: every plate node's u by ``u``, their rotations held, their
     w free (the strip translates as a rigid body and may rise or settle); of a RigidFooting its base nodes'
@@ -250,14 +227,6 @@ class Push:
 
     drives: ClassVar[str | None] = "horizontal"  # a prescribed displacement: the load is the reaction
     on_site: ClassVar[bool] = True  # a site applies it
-
-    def columns(self) -> list[tuple[float, float]]:
-        """(x [m], N [N/m]) of each column force this load applies: none (see :meth:`ColumnLoad.columns`)."""
-        return []
-
-    def ground_span(self) -> tuple[float, float] | None:
-        """None: not a pressure on the ground (see :meth:`SurfacePressure.ground_span`)."""
-        return None
 
     def mesh_lines(self) -> list[float]:
         """None: the push moves the whole strip."""
