@@ -103,12 +103,20 @@ def test_tanh_spring_asymptote_is_a_plateau_not_a_failure():
     assert 2.0 * (1.0 - 3 * PLATEAU_RISE) < res.limit_load_factor <= 2.0 * (1.0 + 1e-9)
 
 
-def test_injected_failure_is_nonconvergence_never_a_limit():
+def test_injected_failure_is_nonconvergence_never_a_limit(monkeypatch):
     """A problem that completes with the default cap fails with 3 iterations per step and a too-large
-    minimum step: NonConvergence with its diagnosis (control value, lambda), not a limit load."""
+    minimum step. The fallback where the corrector stalls (damped dynamics at a prescribed load factor,
+    ``path._relax``) finds those steps' equilibria below the peak and the path completes; where the fallback
+    fails as well (injected): NonConvergence with its diagnosis (control value, lambda), not a limit load."""
+    from ssi.solver import path
+    from ssi.solver.relax import Relaxation
+
     model, nodes = _softening_model()
     assert run(model, [0.9], Settings(control="work", force_tol=1e-12)).status == COMPLETED
     settings = Settings(control="work", max_iter=3, force_tol=1e-12, energy_tol=1e-16, min_step=0.05)
+    res = run(model, [0.9], settings)
+    assert res.status == COMPLETED and res.relaxed_steps >= 1
+    monkeypatch.setattr(path, "relax", lambda u, *a, **k: Relaxation(False, u, None, 1, [1.0], [], "injected"))
     with pytest.raises(NonConvergence) as err:
         run(model, [0.9], settings)
     assert err.value.result.status == "stopped"
@@ -228,3 +236,32 @@ def test_davis_mode_passes_a_soil_node_without_stiffness_to_the_peak():
     assert res.status == LIMIT_LOAD
     row = read_zoo_brackets()[1][name]
     assert 0.97 * float(row["lb_davis"]) <= res.limit_load_factor <= 1.03 * float(row["ub"])
+
+
+def test_a_stalled_step_is_completed_by_damped_dynamics_and_meets_the_force_tolerance():
+    """Random zoo scene 46 (seed 1; psi = 0 under phi = 25.5 deg, psi = 5 under 35 deg; LB_Davis 1.02):
+    the corrector stalls at the top layer's plastic front (lambda ~ 0.866; it stopped there before issue
+    45), where the non-associated tangent has a negative eigenvalue. The step is then found at a prescribed
+    load factor by damped dynamics on K0 (``path._relax``, ``ssi.solver.relax``) and the path completes.
+    Every committed step, the relaxed one included, is re-evaluated here from its recorded displacement
+    and the previous step's states: its residual meets ``force_tol`` against the structural load (the
+    path's own reference) and the return map gives back the recorded states (yield met at every point)."""
+    from ssi.core.model import System
+    from ssi.lab.zoo import random_scenes
+
+    name, scene = random_scenes(47, seed=1)[46]
+    settings = Settings(control="work")
+    res = scene.build().solve(settings=settings).solver_result
+    assert res.status == COMPLETED and res.load_factor[-1] == pytest.approx(1.0, abs=1e-12)
+    assert res.relaxed_steps >= 1 and res.relaxed_iterations >= res.relaxed_steps
+    assert "one of several" in res.message and "psi = 0 deg" in res.relaxed_note
+    system = System(res.model)
+    free = system.free
+    for k in range(1, res.n_steps + 1):
+        u, lam = res.u[k], res.load_factor[k]
+        f_int, _, states = system.evaluate(u, u - res.u[k - 1], res.states[k - 1], None)
+        r = (lam * res.f_ref + res.f_dead - f_int)[free]
+        scale = max(abs(lam) * np.linalg.norm(res.f_ref), np.linalg.norm(f_int - res.f_int_origin))
+        assert np.linalg.norm(r) <= settings.force_tol * scale, k
+        for a, b in zip(states, res.states[k]):
+            np.testing.assert_array_equal(a, b)

@@ -45,6 +45,9 @@ class Result:
     step_viscosity: list = field(default_factory=list)  # per step: the Duvaut-Lions tau it was solved with
     # (0: a state of the rate-independent law; > 0: a viscous state, which carries overstress)
     cuts: int = 0
+    relaxed_steps: int = 0  # controlled path: steps found by damped dynamics where the corrector stalled
+    relaxed_iterations: int = 0  # ... and the iterations of every relaxation, converged or not
+    relaxed_note: str = ""  # where a relaxed state has yielding non-associated soil: why it is one of several
     wall_time: float = 0.0
     factorizations: int = 0
     status: str = COMPLETED
@@ -174,5 +177,14 @@ class Result:
             if self.limit_mechanism is not None:
                 text += f"; mechanism certificate lambda_k / lambda_peak = {self.limit_mechanism:.4f}"
             text += ")"
-            return text + (f"; suspect: {self.limit_suspect}" if self.limit_suspect else "")
-        return f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps"
+            return text + (f"; suspect: {self.limit_suspect}" if self.limit_suspect else "") + self._relaxed()
+        return f"completed: lambda = {self.load_factor[-1]:.6g} in {self.n_steps} steps" + self._relaxed()
+
+    def _relaxed(self) -> str:
+        """What the message adds where the controlled path took relaxed steps ('' where it took none)."""
+        if not self.relaxed_steps:
+            return ""
+        text = f"; {self.relaxed_steps} relaxed steps ({self.relaxed_iterations} iterations)"
+        if self.relaxed_note:
+            text += f"; the state is one of several: {self.relaxed_note}"
+        return text

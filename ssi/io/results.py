@@ -27,7 +27,8 @@ Layout::
     /solver/f_int, iterations, residuals + residual_counts, energies + energy_counts, stiffness,
             step_viscosity, load_factor, u_origin, f_int_origin, f_ref and f_dead (the loads it was solved
             with); attrs cuts, wall_time, factorizations, status, limit_load_factor, limit_evidence,
-            limit_uncertainty, limit_suspect, limit_mechanism, limit_stored_share (files written before
+            limit_uncertainty, limit_suspect, limit_mechanism, limit_stored_share; relaxation_steps,
+            relaxation_iterations, relaxation_note where the controlled path relaxed (files written before
             issue 31 also hold limit_load_upper, relaxed_steps and viscous_from of the removed viscous
             fallback: not read)
                                     (the result's; of a SceneResult its solver_result, except of a phased one)
@@ -297,6 +298,9 @@ def _write_solver(grp, res, u, states, names):
         grp[f"{key}_counts"] = np.array([len(row) for row in rows], np.int64)
     for key in ("cuts", "wall_time", "factorizations"):
         grp.attrs[key] = getattr(res, key)
+    if res.relaxed_steps or res.relaxed_iterations:  # written only where the path relaxed: the files of
+        for key in ("steps", "iterations", "note"):  # every other run unchanged (not "relaxed_steps": an
+            grp.attrs[f"relaxation_{key}"] = getattr(res, f"relaxed_{key}")  # old file's, see above)
     grp["stiffness"] = np.asarray(res.stiffness, np.float64)
     grp["step_viscosity"] = np.asarray(res.step_viscosity, np.float64)
     grp.attrs["status"] = res.status
@@ -557,6 +561,9 @@ def _solver_result(model, rec, lam, u, states):
         # a file written before the field existed: its steps read as rate independent, as they were then
         step_viscosity=list(rec.get("step_viscosity", np.zeros(len(rec["iterations"])))),
         cuts=int(rec["cuts"]),
+        relaxed_steps=int(rec.get("relaxation_steps", 0)),
+        relaxed_iterations=int(rec.get("relaxation_iterations", 0)),
+        relaxed_note=str(rec.get("relaxation_note", "")),
         wall_time=float(rec["wall_time"]),
         factorizations=int(rec["factorizations"]),
         status=str(rec.get("status", "completed")),

@@ -44,7 +44,10 @@ State table (one row per transition; a "step" is one control increment ds)::
     any    | symmetric: the line search overshoots    | regula falsi on G below t = 0.05    | (same)
            |   (G(t) < 0, |r| grew)                   |   (_overshoot)                      |
     any    | not converged                            | ds <- ds / 2; next step from K0     | STEP
-    any    | not converged, ds < ds_min               | NonConvergence (diagnosis: groups,  | end
+    any    | not converged, ds < ds_min               | RELAX: damped dynamics on K0 at a   | WATCH
+           |                                          |   prescribed lambda (_relax,        |
+           |                                          |   _dynamic); ds <- ds_min           |
+    RELAX  | no load increment converges              | NonConvergence (diagnosis: groups,  | end
            |                                          |   points changing state, lambda, s) |
     FINAL  | converged                                | commit (ds kept)                    | WATCH,
            |                                          |                                     | next
@@ -55,6 +58,10 @@ State table (one row per transition; a "step" is one control increment ds)::
     WATCH  | P within PLATEAU_RISE of P_max since the | as above                            | LIMIT
            |   control was s_p, and s - s_p >=        |                                     |
            |   s_p / 2 over >= PLATEAU_STEPS steps    |                                     |
+    WATCH  | (either above) after a relaxed step      | damped dynamics to (1 + 2           | STEP
+           |                                          |   PLATEAU_RISE) x the peak (_above):|
+           |                                          |   converged -> committed, no limit  |
+    WATCH  | the peak is a relaxed state              | NonConvergence, never a limit       | end
     WATCH  | otherwise                                | --                                  | STEP
 
 ds_max is ``max_step`` of the elastic work at the largest target, or of the work done so far if larger
@@ -67,7 +74,14 @@ mechanism certificate of its increment (``limit_mechanism``, ``limit_stored_shar
 :mod:`ssi.solver.mechanism`) and, when a check fails, ``limit_suspect`` with the reason
 (:func:`ssi.limit.flag_suspect` adds the limit-analysis bracket's verdict).
 
-Where the path still stops: non-associated soil at the edge of its plastic zone. In 10 of the random zoo's 12
+Where the corrector stalls at the smallest step (issue 45): past a bifurcation of the non-associated soil
+the equilibrium it sits on is a saddle (the tangent has a negative eigenvalue), and the step is found at a
+prescribed load factor by damped dynamics on K0 (:mod:`ssi.solver.relax`), which leave the saddle and settle
+on a stable equilibrium, accepted by the same tests as any step; the result then says the state is one of
+several (``Result.relaxed_note``). A peak at such a state is never a limit. What was measured:
+docs/solver/decisions.md (#relax, #no-limit-from-a-relaxed-state).
+
+Where the path stopped before that fallback: non-associated soil at the edge of its plastic zone. In 10 of the random zoo's 12
 stopped scenes (seed 1), at the bench footing's failed steps and at chapter 13's graded copy (whose round-off
 copies stop at lambda ~ 0.902), the residual hovers at 1-13 times ``force_tol`` while soil points flip between
 elastic and plastic: the tangent there is nearly singular (x.K_t.x / x.K0.x from -2.5e-3 to 3e-3) and along an
@@ -148,11 +162,12 @@ from ..elements.soil_q8 import SoilQ8
 from ..elements.spring import Spring
 from ..materials.layer_laws import ELASTIC
 from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
-from .diagnostics import _failure_report
+from .diagnostics import _failure_report, ill_posed_soil
 from .increment import TANGENT_SOLVE_TOL, _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
 from .mechanism import check_mechanism, flow_is_associated, increment_energy
 from .progress import SolverProgress, solver_progress
 from .record import _record, _start
+from .relax import relax
 from .settings import NonConvergence, Settings
 
 PLATEAU_RISE = 2e-3  # a load rising less than 0.2 % over the continuation below is on a plateau
@@ -220,6 +235,8 @@ SECANT_RULE = "poor"  # when the corrector factorises SECANT_SOFTENING (ssi.core
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
 OVERSHOOT_TRIALS = 8  # _overshoot: trials below the Matthies & Strang search's smallest step ...
 OVERSHOOT_MIN = 1e-3  # ... and the smallest step fraction it tries
+RELAX_HALVINGS = 3  # _relax: load increments tried where the corrector stalls: dlam, dlam / 2, ...
+# (RELAX_HALVINGS + 1 in all; decisions.md#relax)
 KEPT_STEPS = 24  # committed steps kept for the half-size redo of the steps around a peak
 REDO_STEPS = 3  # steps before (and after) the peak that the redo covers; the uncertainty is the larger
 # of the redo's change of the peak and the excess of the parabola through the peak and its neighbours
@@ -319,6 +336,7 @@ class _Follower:
         self.prev = None  # (du, dlam, ds) of the last committed step: the secant predictor
         self._k0_diag = None  # diag(K0) over the free DOFs, for a singular tangent (see _regularised)
         self.kept = deque(maxlen=KEPT_STEPS)  # (k, u, states, lam, s, P)
+        self.relaxed = {}  # step -> the corrector's failure that a relaxed step (_relax) replaced
         self.loads = [self._load_measure(self.u, self.result.f_int[0], 0.0)]
         self.controls = [self.s]
         self.kept.append((0, self.u, self.states, 0.0, self.s, self.loads[0]))
@@ -370,7 +388,15 @@ class _Follower:
                 self.result.cuts += 1
                 self.ds *= 0.5
                 if self.ds < self.ds_min * (1.0 - 1e-9):
-                    self._fail()
+                    out = self._relax(target)  # the corrector stalled: a stable equilibrium at a fixed lambda
+                    if out is None:
+                        self._fail()
+                    self.started = True
+                    self._commit(out)
+                    self.relaxed[self.result.n_steps] = self.last_failure
+                    self.ds = self.ds_min  # the controlled steps start again from the smallest
+                    if self._limit():
+                        return True
                 continue
             self._commit(out, adapt=not final)  # a step cut short by the target says nothing of the size
             if self._limit():
@@ -490,6 +516,11 @@ class _Follower:
         plateau = continued and not below
         if not (fell or plateau):
             return False
+        if self.relaxed and self._above(float(p[k_max])):
+            return False  # an equilibrium above the "peak": the path had left its branch, no limit
+        if k_max in self.relaxed:  # the peak is a relaxed state: a fall from it is no evidence of a collapse
+            self.last_failure = self.relaxed[k_max]  # (one of several states of the ill-posed soil): the
+            self._fail()  # stop of the corrector that could not go on there
         res = self.result
         res.status, res.limit_load_factor = LIMIT_LOAD, float(res.load_factor[k_max])
         what = "peak passed" if fell else f"plateau over {n - on} steps"
@@ -586,6 +617,102 @@ class _Follower:
         return float(np.abs(self.result.u[k][dofs] - self.result.u_origin[dofs]).max()), width
 
     # ----------------------------------------------------------------------------------------------------
+    def _relax(self, target):
+        """A step the corrector could not take (the control step halved below ``min_step``): an equilibrium
+        at a prescribed load factor found by damped dynamics on K0 (``_dynamic``). The load increment: the
+        last committed step's (or the elastic one of ``min_step``), halved up to ``RELAX_HALVINGS`` times;
+        None if none converges (``last_failure`` then the corrector's own, for the diagnosis)."""
+        failure = self.last_failure
+        first = self.prev[1] if self.prev is not None and self.prev[1] > 0.0 else 0.0
+        first = max(first, self.ds_min / self.w1)
+        self.fac = self.k0  # the stalled step's factor is suspect: the next controlled step refactorises
+        for k in range(RELAX_HALVINGS + 1):
+            lam_to = min(target, self.lam + first * 0.5**k)
+            out = self._dynamic(self.u, self.states, self.lam, lam_to)
+            if out is not None:
+                self.bar.note(f"relaxed step to lambda={lam_to:.6g} in {out['iterations']} iterations")
+                self.last_failure = failure  # the corrector's failure, recorded against the relaxed step
+                return out
+        self.last_failure = failure
+        return None
+
+    def _above(self, peak) -> bool:
+        """Where a path that took a relaxed step falls or levels off: is there an equilibrium above its peak?
+        Damped dynamics (``_dynamic``) from the current state at (1 + 2 ``PLATEAU_RISE``) x the peak load
+        factor; converged -> committed (True). Why: a relaxed step finds one of several states of the
+        ill-posed soil, from which the controlled steps may follow a descending branch that is no collapse
+        (docs/solver/decisions.md#no-limit-from-a-relaxed-state)."""
+        lam_to = min(peak * (1.0 + 2.0 * PLATEAU_RISE), self.scale)
+        if not lam_to > self.lam:
+            return False
+        failure = self.last_failure
+        out = self._dynamic(self.u, self.states, self.lam, lam_to)
+        self.fac = self.k0
+        if out is None:
+            self.last_failure = failure
+            return False
+        self._commit(out)
+        self.relaxed[self.result.n_steps] = failure
+        return True
+
+    def _dynamic(self, u_n, states_n, lam_n, lam):
+        """:func:`ssi.solver.relax.relax` from the committed state at the load factor ``lam``: the residual
+        of the material update from the committed state over the whole increment (as in any step), K0 the
+        mass, accepted by ``_converged`` with the force and energy references of a K0 step. Returns the
+        step (dict, as ``_step``'s) or None (kept in ``last_failure``); counts the relaxation on the
+        result."""
+        st, sy = self.settings, self.system
+        free = sy.free
+        u = u_n.copy()
+        if self.prev is not None:  # the secant predictor of a step to a prescribed lambda (see _step)
+            du_p, dlam_p, _ = self.prev
+            u[free] += (max((lam - lam_n) / dlam_p, 0.0) if dlam_p != 0.0 else 0.0) * du_p
+        else:
+            u = self._prescribed_predictor(u_n, states_n, lam)
+        sy.apply_constraints(u, lam)
+        f_ext = lam * self.f_ref + self.f_dead
+        energies, trials = [], deque([None, None], maxlen=2)  # the last two iterates' states (diagnosis)
+
+        def full(u_f):
+            v = u.copy()
+            v[free] = u_f
+            return v
+
+        def residual(u_f):
+            ev = self._evaluate(full(u_f), u_n, states_n, lam)
+            if ev is None:
+                return None
+            f_int, trial, r = ev
+            trials.append(trial)
+            rel = _norm(r[free]) / _force_scale(st, lam, self.f_ref, f_ext, f_int, self.result)
+            return r[free], rel, (f_int, trial, r)
+
+        energy0 = []
+
+        def converged(rel, energy, it, u_f, data):
+            if not energy0:
+                energy0.append(energy)
+            energies.append(energy / _energy_scale(energy0[0], full(u_f), data[0], self.result, st))
+            return _converged(rel, energies[-1], it, st) or rel <= 1e-14 * st.force_tol
+
+        run = relax(u[free], residual, self.k0.solve, converged)
+        self.result.relaxed_iterations += run.iterations
+        out = {"converged": run.converged, "residuals": run.residuals, "energies": energies}
+        out.update(iterations=run.iterations, lam=lam, u=full(run.u), trial_prev=trials[0])
+        if run.data is not None:
+            f_int, trial, r = run.data
+            out.update(residual=r, trial=trial, f_int=f_int, states=trial)
+        if not run.converged:
+            out.update(reason=run.reason)
+            self.last_failure = out
+            return None
+        self.result.relaxed_steps += 1
+        out["s"] = float(self.f @ (out["u"][free] - self.result.u_origin[free])) if self.work else lam
+        note = ill_posed_soil(self.model, out["states"])
+        if note and not self.result.relaxed_note:
+            self.result.relaxed_note = note
+        return out
+
     def _step(self, u_n, states_n, lam_n, ds, lam_target=None):
         """One step from a committed state: work control (``ds``) or, with ``lam_target`` (or displacement
         control), the load factor prescribed. Returns the converged step (dict) or None (kept in
