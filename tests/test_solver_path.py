@@ -116,7 +116,11 @@ def test_injected_failure_is_nonconvergence_never_a_limit(monkeypatch):
     settings = Settings(control="work", max_iter=3, force_tol=1e-12, energy_tol=1e-16, min_step=0.05)
     res = run(model, [0.9], settings)
     assert res.status == COMPLETED and res.relaxed_steps >= 1
-    monkeypatch.setattr(path, "relax", lambda u, *a, **k: Relaxation(False, u, None, 1, [1.0], [], "injected"))
+
+    def failed(u, *args, **kwargs):
+        return Relaxation(False, u, None, 1, [1.0], [], "injected")
+
+    monkeypatch.setattr(path, "relax", failed)
     with pytest.raises(NonConvergence) as err:
         run(model, [0.9], settings)
     assert err.value.result.status == "stopped"

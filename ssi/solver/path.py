@@ -81,29 +81,29 @@ on a stable equilibrium, accepted by the same tests as any step; the result then
 several (``Result.relaxed_note``). A peak at such a state is never a limit. What was measured:
 docs/solver/decisions.md (#relax, #no-limit-from-a-relaxed-state).
 
-Where the path stopped before that fallback: non-associated soil at the edge of its plastic zone. In 10 of the random zoo's 12
-stopped scenes (seed 1), at the bench footing's failed steps and at chapter 13's graded copy (whose round-off
-copies stop at lambda ~ 0.902), the residual hovers at 1-13 times ``force_tol`` while soil points flip between
-elastic and plastic: the tangent there is nearly singular (x.K_t.x / x.K0.x from -2.5e-3 to 3e-3) and along an
-exact Newton direction |r| falls only up to t ~ 1e-3 - 1e-2, where plastic points unload elastically. Measured
-and not kept (issue 31; zoo outcomes completed / limit / NonConvergence from 57 / 31 / 12): full Newton over
-the whole path (6 of the 12 solved, two others stopped earlier); a rewind of 23 steps with full Newton after a
-failure at the smallest step (60 / 33 / 7, the zoo 1.35-1.6x slower, chapter 10's finest psi = 0 push 3.7x: a
-retry after a failure, which this module does not do); a Levenberg- Marquardt shift of 6e-3 x the soil's K0 in
-its tangent (6 solved; scene 86 lost, five limits down by 0.46-8 %); 1e-3 of the elastic matrix at apex points
-(one solved, one lost, limits -3.3 % and -8.1 %); the shift of ``_regularised`` on the soil's DOFs (none
-solved); the elastic tangent at near-neutral plastic points (the footing's copies 5 of 6 at threshold 0.1,
-stopped at 0.3); ``force_tol`` 1e-4 (4 of the 12 solved, the others stopping elsewhere), 1e-3 (7 of 12 end,
-scene 21 at a false early peak 0.344 where full Newton's plateau is 0.499) and 1e-6 (2 of 12, the others
-earlier); on chapter 13's copy a control on the strip's end zone and the bordered solve on the tangent's
-factor (both stop at ~0.902). In Davis mode the same scenes complete or peak. Also measured and not kept
-(speed10): ``min_step`` 1e-5 and 1e-6 on the path in place of 1e-4. The bench footing's ten round-off copies
-(settlement x (1 + eps), |eps| <= 2e-12) then complete 9 and 10 of 10 (with 1e-4: 6, the others stopping at
-lambda = 0.655-0.752; in the copy traced, 4 soil points flipping and the smallest steps' residuals at 1.4-1.8
-x ``force_tol``), with the key's own time unchanged; the random zoo 57 / 31 / 12 -> 57 / 35 / 8 and 57 / 36 /
-7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now at a limit; the 31 limits unchanged, no scene lost), but three
-of the new limits are false collapses by the limit-analysis bracket -- 21 at 0.291, 50 at 0.812 and 82 at
-0.730 lie below 0.97 x their Davis lower bounds (0.314, 0.907, 1.510;
+Where the path stopped before that fallback: non-associated soil at the edge of its plastic zone. In 10 of the
+random zoo's 12 stopped scenes (seed 1), at the bench footing's failed steps and at chapter 13's graded copy
+(whose round-off copies stop at lambda ~ 0.902), the residual hovers at 1-13 times ``force_tol`` while soil
+points flip between elastic and plastic: the tangent there is nearly singular (x.K_t.x / x.K0.x from -2.5e-3
+to 3e-3) and along an exact Newton direction |r| falls only up to t ~ 1e-3 - 1e-2, where plastic points unload
+elastically. Measured and not kept (issue 31; zoo outcomes completed / limit / NonConvergence from 57 / 31 /
+12): full Newton over the whole path (6 of the 12 solved, two others stopped earlier); a rewind of 23 steps
+with full Newton after a failure at the smallest step (60 / 33 / 7, the zoo 1.35-1.6x slower, chapter 10's
+finest psi = 0 push 3.7x: a retry after a failure, which this module does not do); a Levenberg- Marquardt
+shift of 6e-3 x the soil's K0 in its tangent (6 solved; scene 86 lost, five limits down by 0.46-8 %); 1e-3 of
+the elastic matrix at apex points (one solved, one lost, limits -3.3 % and -8.1 %); the shift of
+``_regularised`` on the soil's DOFs (none solved); the elastic tangent at near-neutral plastic points (the
+footing's copies 5 of 6 at threshold 0.1, stopped at 0.3); ``force_tol`` 1e-4 (4 of the 12 solved, the others
+stopping elsewhere), 1e-3 (7 of 12 end, scene 21 at a false early peak 0.344 where full Newton's plateau is
+0.499) and 1e-6 (2 of 12, the others earlier); on chapter 13's copy a control on the strip's end zone and the
+bordered solve on the tangent's factor (both stop at ~0.902). In Davis mode the same scenes complete or peak.
+Also measured and not kept (speed10): ``min_step`` 1e-5 and 1e-6 on the path in place of 1e-4. The bench
+footing's ten round-off copies (settlement x (1 + eps), |eps| <= 2e-12) then complete 9 and 10 of 10 (with
+1e-4: 6, the others stopping at lambda = 0.655-0.752; in the copy traced, 4 soil points flipping and the
+smallest steps' residuals at 1.4-1.8 x ``force_tol``), with the key's own time unchanged; the random zoo 57 /
+31 / 12 -> 57 / 35 / 8 and 57 / 36 / 7 (scenes 21, 22, 50, 82 and, with 1e-6, 54 now at a limit; the 31 limits
+unchanged, no scene lost), but three of the new limits are false collapses by the limit-analysis bracket -- 21
+at 0.291, 50 at 0.812 and 82 at 0.730 lie below 0.97 x their Davis lower bounds (0.314, 0.907, 1.510;
 ``reference_data/zoo_brackets_random.csv``), only 22 (0.225, 2.8 % above 1.03 x its associated upper bound)
 and 54 (0.839, in its bracket) pass -- and the zoo took 1.33x the time with 1e-5 (run beside main's, same
 load: scene 22 crawls along its plateau for 403 steps, 4 s -> 76 s; scene 0 takes steps below 1e-4, 16 s -> 68
