@@ -169,16 +169,27 @@ class Split:
 
 
 def report(key, solve, n_iterations):
-    """Best of REPEAT runs (the split timers cost microseconds per call); the split is the best run's."""
+    """Best of REPEAT runs (the split timers cost microseconds per call); the split is the best run's. A run
+    that stops (NonConvergence) is reported as "stopped at lambda" with its time, and the bench goes on."""
     runs = []
     for _ in range(REPEAT):
         with Split() as split:
             t0, c0 = time.perf_counter(), time.process_time()
-            out = solve()
+            try:
+                out = solve()
+            except NonConvergence as err:
+                out = err
             runs.append((time.perf_counter() - t0, split, out, time.process_time() - c0))
     total, split, out, cpu = min(runs, key=lambda r: r[0])
     wall = total
     goal = GOALS.get(key)
+    stopped = [r[2] for r in runs if isinstance(r[2], NonConvergence)]
+    if stopped:  # a stop is no time of the key's work: it is reported as such, never as a pass
+        lam = ", ".join(f"{err.result.load_factor[-1]:.4g}" for err in stopped)
+        print(
+            f"{key}: {wall:.3f}   (stopped at lambda = {lam}: NonConvergence in {len(stopped)} of {REPEAT})"
+        )
+        return wall
     print(
         f"{key}: {wall:.3f}" + (verdict(wall, "<=", goal, " s") if goal else "   (no goal set)"), flush=True
     )
