@@ -744,7 +744,10 @@ if ordinary:
 
 
 # %% [markdown]
-# **What the 12 NonConvergence runs are.** (A growth limit on the line search's root, `path.G_GROWTH`, passes
+# **What the 12 NonConvergence runs were** before issue 45's fallback (where the corrector stalls, the step
+# is found at its load factor by damped dynamics on K0, `ssi.solver.relax`: the stored table now has 5 stops,
+# 21, 22, 61, 66 and 80, all but 66 past 0.9 × their Davis lower bound, and 23, 36, 46, 50, 82 complete;
+# docs/solver/decisions.md). (A growth limit on the line search's root, `path.G_GROWTH`, passes
 # random 46, 50 and 82 when applied to every model, but at 10 it lost random 30's limit and stopped chapter
 # 10's ψ = 0 footing, and at 30 it took 46 to a "limit" 0.69 % below 0.97 × its certified Davis floor — a
 # false collapse by this chapter's own check; it now applies only to a cracking strip, where it was measured.)
@@ -878,8 +881,8 @@ for flow in ("davis",) if FAST else ("user", "davis"):
 print(f"(h) {sum(len(r) for _, r in roundoff.values())} runs, {time.perf_counter() - t_roundoff:.1f} s wall")
 
 # %% [markdown]
-# **Why the 12 stop.** Every random scene's soil flows non-associatively: the top layer with ψ = 0 under its
-# φ, the lower one with ψ = 5° under φ = 35°. Perfectly plastic Mohr–Coulomb flow with ψ < φ has lost
+# **Why the 12 stopped.** Every random scene's soil flows non-associatively: the top layer with ψ = 0 under
+# its φ, the lower one with ψ = 5° under φ = 35°. Perfectly plastic Mohr–Coulomb flow with ψ < φ has lost
 # ellipticity wherever it yields: the acoustic tensor Q(n) = n·D_ep·n of its tangent is singular for some
 # band normal n as soon as h_crit > 0 = h, which Rudnicki & Rice's condition gives for any ψ < φ (Vermeer &
 # de Borst 1984 discuss it for soils). Associated flow sits exactly on the boundary (det Q = 0 at Coulomb's
