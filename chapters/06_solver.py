@@ -534,21 +534,43 @@ for (scene_name, strategy), c in compare.items():
 
 # %% [markdown]
 # (c) **An injected failure.** The footing of (b), which completes on the controlled path, run again with an
-# iteration cap of 3: the steps cannot converge, are halved down to the smallest step, and the run must end
-# in `NonConvergence` (its partial result's status "stopped"), never as a limit — a failure to converge is
-# not evidence of a collapse.
+# iteration cap of 3: the steps cannot converge and are halved down to the smallest step. There the path's
+# fallback takes the step at its load factor by damped dynamics on K0 (`ssi.solver.relax`, issue 45), which
+# is not bound by the corrector's cap and meets the same tolerances; so the fallback's failure is injected
+# as well (its iteration replaced by one that never converges). The run must then end in `NonConvergence`
+# (its partial result's status "stopped"), never as a limit — a failure to converge is not evidence of a
+# collapse.
 
 # %%
-try:
-    run(
+from ssi.solver.relax import Relaxation  # noqa: E402
+
+
+def capped_footing():
+    return run(
         chapter10_footing(h_fine=H_CTRL, settle=0.06).model,
         [1.0],
         Settings(control="work", symmetric_tangent=True, max_iter=3, **SUPERLU),
     )
+
+
+def relax_fails(u, *args, **kwargs):
+    return Relaxation(False, u, None, 1, [float("inf")], [], "injected failure")
+
+
+try:
+    capped = capped_footing()
+    print(f"(c) iteration cap 3, the fallback as it is: {capped.message[:160]}")
+except NonConvergence as err:
+    print(f"(c) iteration cap 3, the fallback as it is: NonConvergence, {str(err)[:160]} ...")
+relax_kept, solver_path.relax = solver_path.relax, relax_fails
+try:
+    capped_footing()
     injected = "no failure"
 except NonConvergence as err:
     injected = err.result.status
-    print(f"(c) iteration cap 3: NonConvergence, {str(err)[:240]} ...")
+    print(f"(c) iteration cap 3 and the fallback failing: NonConvergence, {str(err)[:240]} ...")
+finally:
+    solver_path.relax = relax_kept
 
 # %% [markdown]
 # (d) **An associated, cohesionless contact** (ψ_i = φ_i = 25°, c_i = 0) with slipping edges under an
@@ -629,7 +651,8 @@ assert ctrl_z["failure"] is None and ctrl_z["res"].status == LIMIT
 assert full_z["carried"] <= ctrl_z["carried"] * 1.01 and ctrl_z["carried"] - full_z["carried"] < 0.05 + 0.01
 report.check(
     "injected_failure",
-    "chapter 10's associated footing on the controlled path (completes) with an iteration cap of 3: "
+    "chapter 10's associated footing on the controlled path (completes) with an iteration cap of 3 and the "
+    "stall fallback's failure injected: "
     "1 when it ends in NonConvergence (status 'stopped'), 0 when it reports a limit or completes",
     1.0 if injected == "stopped" else 0.0,
     1.0,
