@@ -290,8 +290,17 @@ def limit_analysis(
         itf.kind == "coulomb" and itf.psi_deg not in (None, itf.phi_deg) for itf in problem.site.interfaces
     )
     if davis and non_assoc:
-        dav = adaptive(problem.site.davis(), mesh, progress=report("Davis"), **kw)
+        # from the associated run's last mesh: refined where the same footings' mechanisms and binding
+        # stresses are (issue 46: the two-strip site's Davis run from the initial mesh took 9 meshes)
+        dav = adaptive(problem.site.davis(), _unparented(res.final.mesh), progress=report("Davis"), **kw)
     return CapacityResult(problem, res, dav, time.perf_counter() - t0)
+
+
+def _unparented(mesh: TriMesh) -> TriMesh:
+    """``mesh`` as a new start: no parent (no carried fields from another run's coarser mesh)."""
+    from dataclasses import replace
+
+    return replace(mesh, parent=None)
 
 
 def _plain(v):
