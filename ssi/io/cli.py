@@ -319,14 +319,17 @@ def _capacity_line(s: dict) -> str | None:
 def summary_text(s: dict) -> str:
     """The summary as the lines ``ssi run`` and ``ssi show`` print (kN, kPa, mm); a site's per foundation
     (:func:`_site_summary_text`)."""
+    from ..scene.verdict import verdict_lines
+
+    head = verdict_lines(s.get("verdict"))
     if s.get("kind") == "site":
-        return _site_summary_text(s)
+        return "\n".join([*head, _site_summary_text(s)])
     state = {
         "completed": ")",
         "limit load reached": ", the limit load)",
         "stopped": ", INCOMPLETE: the run stopped before the end of its load path)",
     }[s["status"]]
-    lines = [f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}"]
+    lines = [*head, f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}"]
     if s.get("phase") is not None:
         lines.append(
             f"last phase       {s['phase']!r} at load factor {s['phase_load_factor']:.4g} of its loads"
@@ -477,6 +480,7 @@ def _phase_line(row, table):
 
 def run_scene_file(
     scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True, estimate=None, echo=None,
+    capacity=True, capacity_gap=0.05,
 ):  # fmt: skip
     """What ``ssi run`` does; returns (result, summary dict, written paths).
 
@@ -485,7 +489,9 @@ def run_scene_file(
     base level, its copies at h/2 and h/4 are solved in addition (about 4 and 16 times the base solve for
     the mesh) and the estimate goes to the summary, the result file and the report. A refined copy that
     the solver cannot finish leaves the estimate ``{"failed": why}``. ``echo``: gets a line before the
-    refined solves start (the command line prints it)."""
+    refined solves start (the command line prints it). ``capacity``: the verdict (:func:`ssi.scene.verdict.
+    verdict`: the capacity bracket of the run's loads to the relative gap ``capacity_gap``, the margin,
+    settlements and RC utilisations) first in the summary; False: skipped."""
     from ..scene.scene_file import read_scene_file
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
@@ -526,6 +532,14 @@ def run_scene_file(
     s = summary(result, wall, complete, stop)
     if estimate and stop is None:
         s["estimate_wall_time_s"] = estimate_wall
+    if capacity:
+        from ..scene.verdict import verdict
+
+        if echo is not None:
+            echo(f"verdict: bracketing the capacity of the run's loads by limit analysis (gap {100 * capacity_gap:g} %)")
+        s = {"verdict": verdict(s, scene, gap=capacity_gap), **s}
+    else:
+        s = {"verdict": {"skipped": "--no-capacity"}, **s}
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
     written.append(summary_path)
@@ -666,6 +680,42 @@ def limit_scene_file(
     return cap, written
 
 
+def safety_scene_file(
+    scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, overwrite=False,
+    echo=print, strip=None, side_soil=None,
+):  # fmt: skip
+    """What ``ssi limit --fos`` does: the factor of safety of a scene or a site file by strength reduction
+    (:meth:`ssi.scene.Scene.safety_factor`, :meth:`ssi.scene.Site.safety_factor`), a certified bracket
+    refined to ``gap``; writes ``<name>_fos.json`` (``out``). Returns (SafetyFactorResult, written)."""
+    from ..scene.scene_file import read_scene_file
+    from .results import atomic_path
+
+    scene_path = Path(scene_path)
+    stem = scene_path.with_suffix("")
+    out = Path(out) if out else stem.parent / (stem.name + "_fos.json")
+    if out.exists() and not overwrite:
+        raise FileExistsError(f"{out} exists; pass --overwrite to replace it")
+    scene, _, _ = read_scene_file(scene_path)
+    options = {"gap": gap, "h": h, "h_min": h_min, "max_elements": max_elements}
+    if phase is not None:
+        options["phase"] = phase
+    if strip is not None:
+        options["strip"] = strip
+    if side_soil is not None:
+        options["side_soil"] = side_soil
+
+    def progress(r):
+        echo(
+            f"F search   mesh {r['step']:2d}: {r['n_el']:6d} triangles  F_LB {r['f_lower']:.5g}  "
+            f"F_UB {r['f_upper']:.5g}  gap {100 * r['gap']:6.2f} %  ({r['solves']} solves, {r['time']:.1f} s)"
+        )
+
+    sf = scene.safety_factor(progress=progress, **options)
+    with atomic_path(out, overwrite) as tmp:
+        tmp.write_text(json.dumps(sf.to_dict(), indent=1))
+    return sf, [out]
+
+
 def _save_limit_figure(cap, path: Path, overwrite: bool) -> Path:
     import matplotlib.pyplot as plt
 
@@ -693,6 +743,17 @@ def _refinements(text: str | None) -> tuple | None:
     return names
 
 
+class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """``--help`` with every option's default (argparse's ArgumentDefaultsHelpFormatter), except where the
+    help already says it or there is none to show (a flag, an option whose default is computed)."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if "default" in text or action.default in (None, False) or action.default is argparse.SUPPRESS:
+            return text
+        return super()._get_help_string(action)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(
         prog="ssi",
@@ -700,7 +761,11 @@ def main(argv=None) -> int:
         "foundations: solve a scene file, show a result file.",
     )
     sub = parser.add_subparsers(dest="command", required=True)
-    run_p = sub.add_parser("run", help="solve a TOML scene file; write result, ParaView file, plots, summary")
+    run_p = sub.add_parser(
+        "run",
+        help="solve a TOML scene or site file; write result, ParaView file, plots, summary, verdict",
+        formatter_class=_DefaultsFormatter,
+    )
     run_p.add_argument("scene", type=Path)
     run_p.add_argument("-o", "--out", type=Path, help="result file (default: <scene>.h5)")
     run_p.add_argument("--plots", type=Path, help="folder for the figures (default: <scene>_plots)")
@@ -710,6 +775,17 @@ def main(argv=None) -> int:
     run_p.add_argument("--no-plots", action="store_true", help="skip the figures")
     run_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run_p.add_argument(
+        "--no-capacity",
+        action="store_true",
+        help="skip the verdict's capacity bracket (limit analysis of the run's loads)",
+    )
+    run_p.add_argument(
+        "--capacity-gap",
+        type=float,
+        default=0.05,
+        help="relative gap (UB-LB)/(UB+LB) of the verdict's capacity bracket",
+    )
     # a flag, and the refinements under their own option: an optional value on --estimate would swallow
     # the scene's path in `ssi run --estimate scene.toml`
     run_p.add_argument(
@@ -735,7 +811,11 @@ def main(argv=None) -> int:
     show_p.add_argument("--overwrite", action="store_true", help="redraw into <result>_plots, replacing it")
     show_p.add_argument("--json", action="store_true", help="print the summary as JSON")
     sub.add_parser("schema", help="print the scene file's tables, keys and units")
-    lim_p = sub.add_parser("limit", help="bracket the capacity of a TOML scene by limit analysis")
+    lim_p = sub.add_parser(
+        "limit",
+        help="bracket the capacity of a TOML scene or site by limit analysis (--fos: its factor of safety)",
+        formatter_class=_DefaultsFormatter,
+    )
     lim_p.add_argument("scene", type=Path)
     lim_p.add_argument("--phase", help="the phase whose loads are scaled (default: the last)")
     lim_p.add_argument("--gap", type=float, default=0.02, help="relative gap (UB-LB)/(UB+LB) to reach")
@@ -763,9 +843,30 @@ def main(argv=None) -> int:
     lim_p.add_argument("--no-plots", action="store_true", help="skip the figure")
     lim_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     lim_p.add_argument("--json", action="store_true", help="print the numbers as JSON")
+    lim_p.add_argument(
+        "--fos",
+        action="store_true",
+        help="the factor of safety by strength reduction (c/F, tan(phi)/F) instead of the capacity: a "
+        "certified bracket [F_LB, F_UB] under the weight, the dead loads and 1 x the loads (a site without "
+        "loads: its weight alone, e.g. a slope); written to <scene>_fos.json",
+    )
     args = parser.parse_args(argv)
     from .results import OutputExistsError
 
+    if args.command == "limit" and args.fos:
+        try:
+            sf, written = safety_scene_file(
+                args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
+                args.overwrite, echo=lambda s: print(s, flush=True), strip=args.strip,
+                side_soil=args.side_soil,
+            )  # fmt: skip
+        except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
+            print(f"ssi: error: {err}", file=sys.stderr)
+            return 2
+        print(json.dumps(sf.to_dict(), indent=1) if args.json else sf.summary())
+        for p in written:
+            print(f"wrote {p}")
+        return 0
     if args.command == "limit":
         try:
             cap, written = limit_scene_file(
@@ -793,6 +894,7 @@ def main(argv=None) -> int:
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,
                 _refinements(estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
+                capacity=not args.no_capacity, capacity_gap=args.capacity_gap,
             )  # fmt: skip
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)
