@@ -19,9 +19,9 @@ import time
 from pathlib import Path
 
 from goals import verdict
+from ssi.scene.site_file import read_site_file
 
 from ssi.scene import RigidFooting, Scene, Settlement, SoilLayer
-from ssi.scene.site_file import read_site_file
 
 
 def readme_scene() -> Scene:

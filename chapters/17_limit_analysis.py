@@ -813,7 +813,9 @@ def slope_site(H=10.0, c_ratio=0.05, phi=20.0, gamma=20e3, n=2.0, back=3.0):
     pts = [(0.0, 0.0), (L, 0.0), (L, H), (n * H, H)]
     top = Boundary("free")
     segs = ((0, 1, Boundary("fixed")), (1, 2, Boundary("symmetry")), (2, 3, top), (3, 0, top))
-    return Site(np.array(pts, float), segs, ((L - 1.0, 0.5 * H, 0),), (Material(c_ratio * gamma * H, phi, gamma),))
+    return Site(
+        np.array(pts, float), segs, ((L - 1.0, 0.5 * H, 0),), (Material(c_ratio * gamma * H, phi, gamma),)
+    )
 
 
 def cut_site(H=5.0, c=40e3, gamma=20e3):
@@ -828,8 +830,9 @@ def cut_site(H=5.0, c=40e3, gamma=20e3):
 
 def graded_to(points, h_min, slope=0.3):
     pts = np.asarray(points, float)
-    return lambda p: h_min + slope * np.min(
-        np.hypot(p[:, None, 0] - pts[None, :, 0], p[:, None, 1] - pts[None, :, 1]), axis=1
+    return lambda p: (
+        h_min
+        + slope * np.min(np.hypot(p[:, None, 0] - pts[None, :, 0], p[:, None, 1] - pts[None, :, 1]), axis=1)
     )
 
 
@@ -854,7 +857,11 @@ site_c = cut_site(H_CUT, C_CUT, G_CUT)
 mesh_c = triangulate(site_c, H_CUT / 2.0, size=graded_to([(0.0, 0.0), (0.0, H_CUT)], H_CUT / 25.0))
 fos_c = strength_reduction(site_c, mesh_c, gap=0.05 if FAST else 0.01)
 ns = (fos_c.f_lower / r_cut, fos_c.f_upper / r_cut)
-print(f"vertical cut: gamma H / c in [{ns[0]:.4f}, {ns[1]:.4f}]", fos_c.summary(), f"({time.perf_counter() - t0:.1f} s)")
+print(
+    f"vertical cut: gamma H / c in [{ns[0]:.4f}, {ns[1]:.4f}]",
+    fos_c.summary(),
+    f"({time.perf_counter() - t0:.1f} s)",
+)
 report.check(
     "fos_vertical_cut",
     "relative distance of Pastor et al.'s stability number gamma H/c = 3.772..3.776 from the certified "
@@ -862,6 +869,60 @@ report.check(
     max(ns[0] / 3.776 - 1.0, 1.0 - ns[1] / 3.772),
     0.0,
     passed=ns[0] <= 3.776 * (1 + 1e-6) and ns[1] >= 3.772 * (1 - 1e-6) and fos_c.converged,
+)
+
+# %% [markdown]
+# ### The verdict of a run
+#
+# `ssi run` ends with a verdict (`ssi.scene.verdict`): the capacity bracket of the run's own loads, the
+# margin λ as the Davis bracket, and one sentence. A 2 m strip bonded to Tresca clay (s_u = 20 kPa) under a
+# 400 kN/m column: Prandtl's (2 + π) s_u B = 205.7 kN/m (hand value) is about half the load, λ* = 0.514, so
+# the scene must say "does not carry its loads" with a bracket containing 0.514 (`verdict_overloaded`).
+# Its incremental run on the default mesh peaks above the associated upper bound (a displacement mesh is
+# too stiff at collapse): the verdict flags a limit above 1.03 × UB_assoc with its excess
+# (`limit_vs_bracket_flagged`).
+
+# %%
+from ssi.elements.section import homogeneous  # noqa: E402
+from ssi.io.cli import summary as run_summary  # noqa: E402
+from ssi.scene import ColumnLoad, Contact, Foundation, SoilLayer  # noqa: E402
+from ssi.scene.verdict import verdict, verdict_lines  # noqa: E402
+
+S_U, B_V, N_V = 20e3, 2.0, 400e3
+lam_prandtl = (2.0 + math.pi) * S_U * B_V / N_V
+over = Scene(
+    width=12.0,
+    depth=5.0,
+    layers=[SoilLayer(5.0, E=30e6, nu=0.3, c=S_U, phi_deg=0.0, psi_deg=0.0)],
+    foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)),
+    contact=Contact(kn=1e10, kt=1e9),
+    loads=[ColumnLoad(0.0, N=N_V)],
+)
+t0 = time.perf_counter()
+res_over = over.build().solve(n_steps=8)
+v_over = verdict(run_summary(res_over, None), over, gap=0.05)
+print("\n".join(verdict_lines(v_over)), f"\n({time.perf_counter() - t0:.1f} s)")
+b_over = v_over["capacity"]
+report.check(
+    "verdict_overloaded",
+    "Davis upper bound of the load factor of a strip loaded at 1.95 x Prandtl's (2+pi) s_u B; the verdict "
+    "must read 'does not carry its loads' and its bracket contain the hand value 0.514 (passes when < 1)",
+    b_over["ub_davis"],
+    1.0,
+    passed=v_over["carries"] is False
+    and v_over["line"].startswith("does not carry its loads")
+    and b_over["lb_davis"] * (1 - 1e-6) <= lam_prandtl <= b_over["ub_davis"] * (1 + 1e-6),
+)
+lim = v_over["incremental_limit"]
+report.check(
+    "limit_vs_bracket_flagged",
+    "excess of the overloaded strip's incremental limit load factor over its associated upper bound (a "
+    "ceiling for any psi <= phi), flagged in the verdict when above 3 %",
+    lim["excess"],
+    0.03,
+    passed=(lim["value"] > 1.03 * lim["ub_assoc"]) == bool(lim["flag"])
+    and bool(lim["flag"])
+    and any("above the associated upper bound" in f for f in v_over["flags"]),
 )
 
 # %% [markdown]

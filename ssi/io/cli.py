@@ -69,6 +69,13 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     ``error_estimate``: :meth:`ssi.scene.estimate.ErrorEstimate.to_dict` of the result (``ssi run
     --estimate``; the capacity's part is also ``capacity["estimate"]``), ``{"failed": reason}`` when a
     refined copy could not be solved, None when not asked."""
+    v = getattr(result, "verdict", None)
+    if v is not None:  # a run's verdict (ssi run), first; stored in the result file for ssi show
+        result.verdict = None
+        try:
+            return {"verdict": v, **summary(result, wall_time, complete, stop)}
+        finally:
+            result.verdict = v
     if result.kind == "site":
         return _site_summary(result, wall_time, complete, stop)
     x_s, s_max = result.max_settlement()
@@ -108,6 +115,7 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
         out.update(_limit_checks(result))
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
+    out["stop_message"] = _stop_message(stop, "scene")
     # a soil whose rate problem is ill-posed at the stop (psi < phi yielding): why, and what is well posed
     out["stop_ill_posed"] = None if stop is None else stop.get("ill_posed")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
@@ -122,6 +130,18 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["error_estimate"] = result.error_estimate
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
+
+
+def _stop_message(stop, kind: str) -> str | None:
+    """A solver stop's report as one engineering sentence (:func:`ssi.scene.verdict.stop_sentence`); a
+    report read back from a file as text is given as it is."""
+    if stop is None:
+        return None
+    if not isinstance(stop, dict):
+        return str(stop)
+    from ..scene.verdict import stop_sentence
+
+    return stop_sentence(stop, kind)
 
 
 def _column_force_on(loads, x0: float, x1: float) -> float:
@@ -181,6 +201,7 @@ def _site_summary(result, wall_time: float | None = None, complete: bool = True,
             result.solver_result.limit_load_factor if status == "limit load reached" else None
         ),
         "stop": None if stop is None else str(stop),
+        "stop_message": _stop_message(stop, "site"),
         "mesher": built.mesher,
         "initial_stress": built.initial_stress_method,
         "n_elements": int(len(built.mesh.conn)),
@@ -205,7 +226,7 @@ def _site_summary_text(s: dict) -> str:
         f"{s['initial_stress']}; status: {site_status_line(s)}"
     ]
     if s["stop"]:
-        lines.append(f"  stopped: {s['stop']}")
+        lines.append(f"  stopped: {s.get('stop_message') or s['stop']}")
     for f in s["foundations"]:
         where = f"#{f['index']} {f['type']} [{f['x0_m']:g}, {f['x1_m']:g}] m"
         if f["type"] == "rigid strip":
@@ -384,6 +405,8 @@ def summary_text(s: dict) -> str:
             f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
             f"(solver failure, not a detected limit load: {s['stop_reason']})"
         )
+        if s.get("stop_message"):
+            lines.append(f"                 {s['stop_message']}")
         if s.get("stop_ill_posed"):
             lines.append(f"ill-posed soil   {s['stop_ill_posed']}")
     if s.get("design"):
@@ -521,14 +544,11 @@ def run_scene_file(
             estimate_wall = _estimate_run(result, n_steps, settings, estimate, wall, echo)
         elif estimate:  # a stopped run has no answer whose error could be estimated
             result.error_estimate = {"failed": "the run stopped before the end of its load path"}
-    for w in caught:
-        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
-    run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
+    # for an engineer: what, where, what to do (the warnings' own texts), not a Python source path
+    run_warnings = list(dict.fromkeys(str(w.message) for w in caught))
+    for text in run_warnings:
+        print(f"WARNING: {text}", file=sys.stderr)
     complete = stop is None
-    written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
-    from .export import export_series
-
-    written.append(export_series(result, paraview, overwrite=overwrite))
     s = summary(result, wall, complete, stop)
     if estimate and stop is None:
         s["estimate_wall_time_s"] = estimate_wall
@@ -536,10 +556,18 @@ def run_scene_file(
         from ..scene.verdict import verdict
 
         if echo is not None:
-            echo(f"verdict: bracketing the capacity of the run's loads by limit analysis (gap {100 * capacity_gap:g} %)")
-        s = {"verdict": verdict(s, scene, gap=capacity_gap), **s}
+            echo(
+                "verdict: bracketing the capacity of the run's loads by limit analysis (gap "
+                f"{100 * capacity_gap:g} %)"
+            )
+        result.verdict = verdict(s, scene, gap=capacity_gap)
     else:
-        s = {"verdict": {"skipped": "--no-capacity"}, **s}
+        result.verdict = {"skipped": "--no-capacity"}
+    s = {"verdict": result.verdict, **s}
+    written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
+    from .export import export_series
+
+    written.append(export_series(result, paraview, overwrite=overwrite))
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
     written.append(summary_path)

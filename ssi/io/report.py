@@ -141,6 +141,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             f"The run stopped before the end of its load path (solver failure, not a detected limit load): "
             f"{s.get('stop_reason')}. The values are those of the last converged step."
         )
+        if s.get("stop_message"):
+            out.append(s["stop_message"])
         if s.get("stop_ill_posed"):
             out.append(f"Where it stopped, the soil's rate problem is ill-posed: {s['stop_ill_posed']}.")
     elif s["status"] == "limit load reached":
@@ -342,12 +344,17 @@ def site_report_html(
     stress, one row per foundation (settlement, tilt, pressure), the differential settlements, the
     warnings and the figures."""
     esc = html.escape
-    parts = _page_head(title) + _verdict_section(s) + [
-        f'<p class="status">status: {esc(site_status_line(s))}</p>',
-        f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial stress "
-        f"{esc(s['initial_stress'])}.</p>",
-    ]
-    warn = list(run_warnings or []) + ([f"The run stopped: {s['stop']}"] if s.get("stop") else [])
+    parts = (
+        _page_head(title)
+        + _verdict_section(s)
+        + [
+            f'<p class="status">status: {esc(site_status_line(s))}</p>',
+            f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial "
+            f"stress {esc(s['initial_stress'])}.</p>",
+        ]
+    )
+    stopped = s.get("stop_message") or s.get("stop")
+    warn = list(run_warnings or []) + ([f"The run stopped: {stopped}"] if stopped else [])
     if warn:
         parts.append("<h2>Warnings</h2>")
         parts += [f'<div class="warn">{esc(w)}</div>' for w in warn]

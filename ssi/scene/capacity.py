@@ -27,8 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.validate import check_int, check_optional_real, check_real
-from ..limit import Interface, Material, adaptive, triangulate
-from ..limit import bisect
+from ..limit import Interface, Material, adaptive, bisect, triangulate
 from ..limit.analysis import AdaptiveResult, SafetyFactor, relative_gap, strength_reduction
 from ..limit.mesh import TriMesh
 from .limit_problem import LimitProblem, limit_problem
@@ -385,7 +384,9 @@ class SafetyFactorResult:
             "davis": self.davis,
             "loads": self.problem.reference,
             "n_triangles": int(self.n_triangles),
-            "meshes": [] if self.result is None else [{k: _plain(v) for k, v in r.items()} for r in self.result.history],
+            "meshes": []
+            if self.result is None
+            else [{k: _plain(v) for k, v in r.items()} for r in self.result.history],
             "bound_solves": len(self.trials),
             "time_s": float(self.time),
         }
@@ -400,7 +401,8 @@ class SafetyFactorResult:
         return (
             f"factor of safety (strength reduction, {kind}) F in [{self.f_lb:.3f}, {self.f_ub:.3f}], gap "
             f"{100 * self.gap:.2f} % ({state})\n  under {self.problem.reference} at load factor 1\n  "
-            f"{self.n_triangles} triangles ({meshes} meshes), {len(self.trials)} bound solves, {self.time:.1f} s"
+            f"{self.n_triangles} triangles ({meshes} meshes), {len(self.trials)} bound solves, "
+            f"{self.time:.1f} s"
         )
 
 

@@ -349,7 +349,9 @@ class Site(SiteChecks):
         RigidStrip (a push, no load to carry) and a horizontal :class:`Push` are refused
         (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
         if options.get("phase") is not None:
-            raise ValueError(f"phase={options['phase']!r}: a site has no phases (its loads are the ones held)")
+            raise ValueError(
+                f"phase={options['phase']!r}: a site has no phases (its loads are the ones held)"
+            )
         options.pop("phase", None)
         pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
         if pushes:

@@ -120,16 +120,16 @@ def _limit_flag(s: dict, b: dict) -> dict | None:
     if ub is not None and value > UB_EXCESS * ub:
         out["excess"] = value / ub - 1.0
         out["flag"] = (
-            f"the incremental limit {k * value:.4g}{unit} lies {100 * out['excess']:.1f} % above the associated "
-            f"upper bound {k * ub:.4g}{unit}, a ceiling for any psi <= phi: a mesh overestimate, not a "
-            "capacity. Refine the mesh (`ssi run --estimate`) or read the bracket"
+            f"the incremental limit {k * value:.4g}{unit} lies {100 * out['excess']:.1f} % above the "
+            f"associated upper bound {k * ub:.4g}{unit}, a ceiling for any psi <= phi: a mesh "
+            "overestimate, not a capacity. Refine the mesh (`ssi run --estimate`) or read the bracket"
         )
     elif (hi_d is not None and value > hi_d) or (lo_d is not None and value < lo_d):
         bound = hi_d if value > (hi_d or math.inf) else lo_d
         out["excess"] = value / bound - 1.0
         out["flag"] = (
-            f"the incremental limit {k * value:.4g}{unit} lies {100 * out['excess']:+.1f} % outside the Davis "
-            f"bracket [{k * (lo_d or 0):.4g}, {k * (hi_d or math.inf):.4g}]{unit}: refine the mesh "
+            f"the incremental limit {k * value:.4g}{unit} lies {100 * out['excess']:+.1f} % outside the "
+            f"Davis bracket [{k * (lo_d or 0):.4g}, {k * (hi_d or math.inf):.4g}]{unit}: refine the mesh "
             "(`ssi run --estimate`) or read the bracket"
         )
     return out
@@ -158,6 +158,7 @@ def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_lim
             "foundation, or improve the soil"
         )
     fnds = []
+    at_limit = s.get("status") == "limit load reached"
     if s.get("kind") == "site":
         for f in s["foundations"]:
             where = f"foundation #{f['index']} ({f['type']} [{f['x0_m']:g}, {f['x1_m']:g}] m)"
@@ -198,6 +199,7 @@ def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_lim
         "incremental_limit": lim,
         "w_k_limit_mm": w_k_limit_mm,
         "flags": flags,
+        "at_limit": at_limit,
     }
 
 
@@ -217,13 +219,16 @@ def verdict_lines(v: dict | None) -> list[str]:
 
         lines.append(
             f"  capacity of {b['reference']}: associated ceiling [{fmt(b['lb'])}, {fmt(b['ub'])}]{unit} gap "
-            f"{100 * (b['gap'] or 0):.1f} %; Davis estimate [{fmt(b['lb_davis'])}, {fmt(b['ub_davis'])}]{unit} "
-            f"gap {100 * (b['gap_davis'] or 0):.1f} % ({b['n_triangles']} triangles, {b['time_s']:.1f} s)"
+            f"{100 * (b['gap'] or 0):.1f} %; Davis estimate [{fmt(b['lb_davis'])}, "
+            f"{fmt(b['ub_davis'])}]{unit} gap {100 * (b['gap_davis'] or 0):.1f} % ({b['n_triangles']} "
+            f"triangles, {b['time_s']:.1f} s)"
         )
     for f in v["foundations"]:
         parts = []
         if f.get("settlement_m") is not None:
             parts.append(f"settlement {1e3 * f['settlement_m']:.2f} mm")
+            if v.get("at_limit"):
+                parts[-1] += " at the limit load (a mechanism's, not a service settlement)"
         if f.get("tilt_rad") is not None:
             parts.append(f"tilt {1e3 * f['tilt_rad']:.2f} mm/m")
         for key, val in (f.get("utilisation") or {}).items():
@@ -235,3 +240,37 @@ def verdict_lines(v: dict | None) -> list[str]:
     for fl in v["flags"]:
         lines.append(f"  WARNING: {fl}")
     return lines
+
+
+def stop_sentence(report: dict | None, kind: str = "scene") -> str:
+    """A solver stop (:class:`ssi.solver.NonConvergence`'s ``report``) as one sentence an engineer reads:
+    where (the load factor, the worst point), which material (the ill-posed soil, or the groups active
+    there) and what to do. The full report stays in the result file and the JSON summary."""
+    if not report:
+        return ""
+    lam = report.get("load_factor_from")
+    where = f"at load factor {lam:.4g}" if isinstance(lam, (int, float)) else "during the run"
+    xy = report.get("node_xy")
+    if xy:
+        where += f", worst near x = {xy[0]:.2f} m, z = {xy[1]:.2f} m"
+    reason = str(report.get("reason", "unknown"))
+    if report.get("ill_posed"):
+        what = (
+            "non-associated soil (psi < phi) yielding there has lost ellipticity, so the path need not "
+            "continue on this mesh"
+        )
+        todo = (
+            'read the capacity from the verdict\'s bracket, or solve in Davis mode ([solve] flow = "davis"); '
+            "the path up to the stop is valid"
+        )
+    elif report.get("soft_mode"):
+        what = f"{reason}; the structure softens ({report['soft_mode']})"
+        todo = "the loads are near the capacity: compare them with the verdict's bracket"
+    else:
+        groups = report.get("worst_groups")
+        what = reason + (f" (active there: {str(groups)[:160]})" if groups else "")
+        todo = (
+            "try more load steps ([solve] n_steps), a finer mesh near that point, or check the loads "
+            "against the verdict's capacity bracket"
+        )
+    return f"The {kind}'s solver stopped {where}: {what}. What to do: {todo}. Details in the result file."
