@@ -199,6 +199,8 @@ G_GROWTH = 10.0  # on an unsymmetric tangent's factor of a model with a cracking
 # on h = 0.0625 m. On chapter 11 at h = 0.125 m (SECANT_RULE "poor"): 53 factorisations and 0 failed steps
 # with 10, 171 and 6 without the rule.
 SECANT_RULE = "poor"  # when the corrector factorises SECANT_SOFTENING (ssi.core.protocol: the consistent
+
+
 # tangent with the secant sig / e at the plate's concrete points loading on their cracked tension envelope) in
 # place of CONSISTENT (_tangent_flag): "never", "poor" (a refactorisation asked for by a poor contraction; the
 # factor is then kept, lagged, like any other) or "always". With G_GROWTH = 10, "poor": chapter 11 at h =
