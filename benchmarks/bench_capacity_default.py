@@ -19,9 +19,9 @@ import time
 from pathlib import Path
 
 from goals import verdict
-from ssi.scene.site_file import read_site_file
 
 from ssi.scene import RigidFooting, Scene, Settlement, SoilLayer
+from ssi.scene.scene_file import read_scene_file
 
 
 def readme_scene() -> Scene:
@@ -62,7 +62,7 @@ def main() -> int:
     if only in (None, "readme"):
         ok &= run("capacity_readme_gap5pct_s", readme_scene(), 0.05, 5.0)
     if only in (None, "site"):
-        site = read_site_file(Path(__file__).parent / "data" / "two_strip_site.toml")[0]
+        site = read_scene_file(Path(__file__).parent / "data" / "two_strip_site.toml")[0]
         ok &= run("capacity_two_strip_site_gap3pct_s", site, 0.03, 30.0)
     return 0 if ok else 1
 
