@@ -836,10 +836,10 @@ def graded_to(points, h_min, slope=0.3):
     )
 
 
-GAP_FOS = 0.03 if FAST else 0.01
+GAP_FOS = 0.05 if FAST else 0.01  # fast mode: a wider bracket, still certified
 t0 = time.perf_counter()
 site_s = slope_site()
-mesh_s = triangulate(site_s, 2.5, size=graded_to([(0.0, 0.0), (20.0, 10.0)], 0.6))
+mesh_s = triangulate(site_s, 2.5, size=graded_to([(0.0, 0.0), (20.0, 10.0)], 1.0 if FAST else 0.6))
 fos_s = strength_reduction(site_s, mesh_s, gap=GAP_FOS)
 print("2:1 slope:", fos_s.summary(), f"({time.perf_counter() - t0:.1f} s)")
 report.check(
@@ -854,8 +854,9 @@ H_CUT, C_CUT, G_CUT = 5.0, 40e3, 20e3
 r_cut = C_CUT / (G_CUT * H_CUT)
 t0 = time.perf_counter()
 site_c = cut_site(H_CUT, C_CUT, G_CUT)
-mesh_c = triangulate(site_c, H_CUT / 2.0, size=graded_to([(0.0, 0.0), (0.0, H_CUT)], H_CUT / 25.0))
-fos_c = strength_reduction(site_c, mesh_c, gap=0.05 if FAST else 0.01)
+h_cut = H_CUT / (12.0 if FAST else 25.0)
+mesh_c = triangulate(site_c, H_CUT / 2.0, size=graded_to([(0.0, 0.0), (0.0, H_CUT)], h_cut))
+fos_c = strength_reduction(site_c, mesh_c, gap=0.08 if FAST else 0.01)
 ns = (fos_c.f_lower / r_cut, fos_c.f_upper / r_cut)
 print(
     f"vertical cut: gamma H / c in [{ns[0]:.4f}, {ns[1]:.4f}]",

@@ -107,6 +107,8 @@ def _verdict_section(s: dict) -> list[str]:
     from ..scene.verdict import verdict_lines
 
     cls = {True: " ok", False: " fail"}.get(v.get("carries"), "")
+    if v.get("rc_ok") is False:
+        cls = " fail"
     lines = verdict_lines(v)
     rest = [ln.strip() for ln in lines[1:] if not ln.strip().startswith("WARNING")]
     out = [f'<div class="verdict{cls}"><h2>Verdict</h2><p class="line">{esc(v["line"])}</p>']

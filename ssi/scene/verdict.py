@@ -183,6 +183,15 @@ def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_lim
         flags += fl
         fnds.append(row)
         diff = []
+    over = [
+        f"{k} {val:.2f}"
+        for f in fnds
+        for k, val in (f.get("utilisation") or {}).items()
+        if val is not None and math.isfinite(val) and val > 1.0
+    ]
+    rc_ok = not over
+    if over:  # the soil may carry the loads while the strip does not: said in the same sentence
+        line += "; but the RC strip is over-utilised (" + ", ".join(over) + " > 1)"
     lim = _limit_flag(s, b)
     if lim and lim["flag"]:
         flags.append(lim["flag"])
@@ -200,6 +209,7 @@ def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_lim
         "w_k_limit_mm": w_k_limit_mm,
         "flags": flags,
         "at_limit": at_limit,
+        "rc_ok": rc_ok,
     }
 
 
