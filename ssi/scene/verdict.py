@@ -260,13 +260,16 @@ def stop_sentence(report: dict | None, kind: str = "scene") -> str:
         return ""
     lam = report.get("load_factor_from")
     where = f"at load factor {lam:.4g}" if isinstance(lam, (int, float)) else "during the run"
+    if report.get("phase"):
+        where += f" of phase {report['phase']!r}"
     xy = report.get("node_xy")
     if xy:
         where += f", worst near x = {xy[0]:.2f} m, z = {xy[1]:.2f} m"
     reason = str(report.get("reason", "unknown"))
     if report.get("ill_posed"):
+        which = str(report["ill_posed"]).split(":")[0]  # "<n> plastic points of <group> material <i> (phi.."
         what = (
-            "non-associated soil (psi < phi) yielding there has lost ellipticity, so the path need not "
+            f"{which}): non-associated soil yielding there has lost ellipticity, so the path need not "
             "continue on this mesh"
         )
         todo = (
