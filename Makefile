@@ -85,7 +85,7 @@ lint: $(STAMP)
 SLOW_FIRST := 10_bearing_capacity 12_engineering_scenes 13_accuracy 15_results_and_files 06_solver \
 	17_limit_analysis 14_uncertainty 08_rc_beam 05_soil_element 11_foundation_scene
 SLOW_TEST_FILES := tests/test_kernel_regression.py tests/test_zoo.py tests/test_results.py tests/test_sweep.py \
-	tests/test_browser.py
+	tests/test_browser.py tests/test_limit_fos.py tests/test_verdict.py
 # the notebooks of the chapters named in $(1) first, in that order, then the others
 notebooks_slow_first = $(filter $(NOTEBOOKS),$(patsubst %,build/notebooks/%.ipynb,$(1))) \
 	$(filter-out $(patsubst %,build/notebooks/%.ipynb,$(1)),$(NOTEBOOKS))

@@ -7,9 +7,9 @@ References (not produced by the code under test):
   Griffiths & Lane (1999, Geotechnique 49(3), their first example, elasto-plastic strength reduction with
   psi = 0) F = 1.40. Neither is a bound of the associated collapse factor: Bishop's circles and the
   elasto-plastic non-convergence criterion each differ from it by about 1 %. The assertion is that the
-  certified bracket overlaps [1.38, 1.40] (F_L <= 1.40 and F_U >= 1.38) and is narrow (gap <= 1.5 %,
-  (F_U - F_L) / (F_U + F_L)): a bracket that missed the range would contradict both references by more
-  than their own spread.
+  certified bracket overlaps [1.38, 1.40] (F_L <= 1.40 and F_U >= 1.38) at a gap (F_U - F_L) / (F_U +
+  F_L) <= 4 % here (a coarse mesh keeps `make test` short; chapter 17's `fos_slope_2to1` asks 1 % in full
+  mode): a bracket that missed the range would contradict both references by more than their own spread.
 - a vertical cut of height H in Tresca soil (c = s_u) over a deep stratum: the stability number gamma H /
   c at collapse lies in [3.772, 3.776] (Pastor, Thai & Francescato 2003, Int. J. Numer. Anal. Meth.
   Geomech. 27: rigorous lower and upper bounds). For phi = 0 strength reduction divides c alone, so F* =
@@ -68,11 +68,11 @@ def graded(points, h_min, slope=0.3):
 def test_slope_2to1_own_factor_of_safety():
     """fos_slope_2to1: the slope under its weight alone (no load to scale: lambda multiplies the weight)."""
     site = slope_site()
-    mesh = triangulate(site, 2.5, size=graded([(0.0, 0.0), (20.0, 10.0)], 0.6))
-    res = strength_reduction(site, mesh, gap=0.015)
+    mesh = triangulate(site, 2.5, size=graded([(0.0, 0.0), (20.0, 10.0)], 1.0))
+    res = strength_reduction(site, mesh, gap=0.04)
     assert res.converged, res.summary()
     assert res.f_lower <= 1.40 and res.f_upper >= 1.38, res.summary()
-    assert res.gap <= 0.015
+    assert res.gap <= 0.04
     # every proven trial sits on its side of the bracket: safe ones at or below F_L, unsafe at or above F_U
     for t in res.trials:
         if t["proven"] and t["bound"] == "lb":
@@ -86,10 +86,10 @@ def test_vertical_cut_stability_number():
     H, c, gamma = 5.0, 40e3, 20e3
     r = c / (gamma * H)  # 0.4: F* = 1.509 .. 1.510
     site = cut_site(H, c, gamma)
-    mesh = triangulate(site, H / 2.0, size=graded([(0.0, 0.0), (0.0, H)], H / 25.0))
-    res = strength_reduction(site, mesh, gap=0.02)
+    mesh = triangulate(site, H / 2.0, size=graded([(0.0, 0.0), (0.0, H)], H / 12.0))
+    res = strength_reduction(site, mesh, gap=0.05)
     assert res.f_lower <= 3.776 * r * (1 + REL) and res.f_upper >= 3.772 * r * (1 - REL), res.summary()
-    assert res.converged and res.gap <= 0.02, res.summary()
+    assert res.converged and res.gap <= 0.05, res.summary()
     # as a stability number: gamma H / c at collapse in [F_L, F_U] / r
     assert res.f_lower / r <= 3.776 and res.f_upper / r >= 3.772
 
@@ -107,8 +107,8 @@ def test_statuses_read_for_what_they_mean():
     assert not up.certified and up.collapse_proven(1.0)
     lo = lower_bound(weak, mesh)
     assert not lo.certified and math.isnan(lo.lam)
-    ref = strength_reduction(site, mesh, gap=0.03, loads="ref", max_steps=0)
-    allm = strength_reduction(site, mesh, gap=0.03, loads="all", max_steps=0)
+    ref = strength_reduction(site, mesh, gap=0.08, loads="ref", max_steps=0)
+    allm = strength_reduction(site, mesh, gap=0.08, loads="all", max_steps=0)
     assert np.isfinite(ref.f_upper) and ref.f_lower > 1.0
     assert max(ref.f_lower, allm.f_lower) <= min(ref.f_upper, allm.f_upper) * (1 + REL)
     # the crest load is small: both near the slope's own factor
