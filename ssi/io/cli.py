@@ -560,7 +560,12 @@ def run_scene_file(
                 "verdict: bracketing the capacity of the run's loads by limit analysis (gap "
                 f"{100 * capacity_gap:g} %)"
             )
-        result.verdict = verdict(s, scene, gap=capacity_gap)
+        with warnings.catch_warnings(record=True) as caught_v:  # as the run's: for the engineer, no path
+            warnings.simplefilter("default")
+            result.verdict = verdict(s, scene, gap=capacity_gap)
+        for text in dict.fromkeys(f"capacity bracket: {w.message}" for w in caught_v):
+            print(f"WARNING: {text}", file=sys.stderr)
+            run_warnings.append(text)
     else:
         result.verdict = {"skipped": "--no-capacity"}
     s = {"verdict": result.verdict, **s}
