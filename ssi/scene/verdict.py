@@ -124,13 +124,20 @@ def _limit_flag(s: dict, b: dict) -> dict | None:
             f"associated upper bound {k * ub:.4g}{unit}, a ceiling for any psi <= phi: a mesh "
             "overestimate, not a capacity. Refine the mesh (`ssi run --estimate`) or read the bracket"
         )
-    elif (hi_d is not None and value > hi_d) or (lo_d is not None and value < lo_d):
-        bound = hi_d if value > (hi_d or math.inf) else lo_d
-        out["excess"] = value / bound - 1.0
+    elif hi_d is not None and value > hi_d:
+        out["excess"] = value / hi_d - 1.0
         out["flag"] = (
-            f"the incremental limit {k * value:.4g}{unit} lies {100 * out['excess']:+.1f} % outside the "
-            f"Davis bracket [{k * (lo_d or 0):.4g}, {k * (hi_d or math.inf):.4g}]{unit}: refine the mesh "
-            "(`ssi run --estimate`) or read the bracket"
+            f"the incremental limit {k * value:.4g}{unit} lies {100 * out['excess']:.1f} % above the Davis "
+            f"bracket [{k * (lo_d or 0):.4g}, {k * hi_d:.4g}]{unit}: a mesh overestimate of the conventional "
+            "capacity. Refine the mesh (`ssi run --estimate`) or read the bracket"
+        )
+    elif lo_d is not None and value < lo_d:
+        out["excess"] = value / lo_d - 1.0
+        out["flag"] = (
+            f"the incremental limit {k * value:.4g}{unit} lies {-100 * out['excess']:.1f} % below the Davis "
+            f"bracket [{k * lo_d:.4g}, {k * (hi_d or math.inf):.4g}]{unit}: the non-associated path "
+            "(psi < phi) peaked or stalled below the conventional capacity. Read the bracket, and check the "
+            'path\'s limit on a finer mesh or in Davis mode ([solve] flow = "davis")'
         )
     return out
 
@@ -195,6 +202,8 @@ def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_lim
     lim = _limit_flag(s, b)
     if lim and lim["flag"]:
         flags.append(lim["flag"])
+        if carries and lim["value"] < 1.0:  # the two answers disagree: said in the sentence, not hidden
+            line += f"; but the incremental run peaked at lambda = {lim['value']:.3g} < 1 (see the warning)"
     margin = None
     if "not_computed" not in b and not push:
         margin = [b["lb_davis"], b["ub_davis"]]
