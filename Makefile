@@ -1,3 +1,6 @@
+# make demo       -- set up a venv with the runtime dependencies only (no test, docs or bench extras) and run
+#                    `ssi run` on a shipped foundation example; prints where its HTML report is. Afterwards
+#                    the command is .venv/bin/ssi (or `source .venv/bin/activate`, then `ssi`)
 # make lint       -- ruff check + ruff format --check (rules in pyproject.toml) and the control-byte check
 # make test       -- unit tests and every chapter in fast mode (what CI runs, after make lint)
 # make reproduce  -- every chapter in full mode, the figures and figures/report.csv
@@ -23,7 +26,29 @@ export OMP_WAIT_POLICY := PASSIVE
 # notebooks keep their figures (with MPLBACKEND=Agg exported here they had none, and the book none either);
 # the unit tests get matplotlib's own choice, Agg on a machine without a display
 
-.PHONY: lint test reproduce bench book notebooks clean
+.PHONY: demo lint test reproduce bench book notebooks clean
+
+# the runtime install (`make demo`): the package and its `dependencies` only; `make test` later adds the
+# test extra to the same venv ($(STAMP))
+RUNTIME := $(VENV)/.runtime
+DEMO_EXAMPLE ?= examples/strip_mohr_coulomb.toml
+$(RUNTIME): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -e .
+	# compile the numba kernels now, with the notice, so that the demo's run and the user's first scene
+	# load cached machine code (the runtime install has no test extra: warm_cache.py needs none)
+	$(BIN)/python tools/warm_cache.py
+	touch $@
+
+demo: $(RUNTIME)
+	@mkdir -p build/demo
+	@cp $(DEMO_EXAMPLE) build/demo/
+	$(BIN)/ssi run build/demo/$(notdir $(DEMO_EXAMPLE)) --overwrite
+	@echo ""
+	@echo "report: $(CURDIR)/build/demo/$(basename $(notdir $(DEMO_EXAMPLE)))_report.html"
+	@echo "the ssi command: $(abspath $(BIN))/ssi (ssi run <scene.toml>, ssi limit <scene.toml>, ssi --help)"
+	@echo "demo_s: $(ELAPSED)"
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -60,7 +85,7 @@ lint: $(STAMP)
 SLOW_FIRST := 10_bearing_capacity 12_engineering_scenes 13_accuracy 15_results_and_files 06_solver \
 	17_limit_analysis 14_uncertainty 08_rc_beam 05_soil_element 11_foundation_scene
 SLOW_TEST_FILES := tests/test_kernel_regression.py tests/test_zoo.py tests/test_results.py tests/test_sweep.py \
-	tests/test_browser.py
+	tests/test_browser.py tests/test_limit_fos.py tests/test_verdict.py
 # the notebooks of the chapters named in $(1) first, in that order, then the others
 notebooks_slow_first = $(filter $(NOTEBOOKS),$(patsubst %,build/notebooks/%.ipynb,$(1))) \
 	$(filter-out $(patsubst %,build/notebooks/%.ipynb,$(1)),$(NOTEBOOKS))

@@ -785,6 +785,148 @@ print(f"F in [{f_lb:.3f}, {f_ub:.3f}] ({len(trials)} bound solves, {time.perf_co
 assert f_lb < f_ub
 
 # %% [markdown]
+# ### A slope's own factor of safety, and a vertical cut
+#
+# `strength_reduction` scales every load together (the weight included) when it tests a factor F: F is
+# safe exactly when the reduced site carries λ_all ≥ 1, both conic programs stay bounded, and a slope under
+# its weight alone needs no load to scale. Each bound is read by what it proves: a certified λ_LB ≥ 1
+# proves F safe, a kinematically admissible field whose loads out-work its dissipation (the optimum, or the
+# ray of an unbounded program) proves F unsafe; anything else (an infeasible program) proves nothing.
+#
+# - A 2:1 slope on a rough base at its toe (D = 1), φ = 20°, c/(γH) = 0.05, dry: Bishop & Morgenstern's
+#   charts give F = 1.380, Griffiths & Lane's elastic-plastic strength reduction (ψ = 0) F = 1.40. Neither
+#   is a bound of the associated collapse factor (each method differs from it by about 1 %), so the claim
+#   is that the certified bracket overlaps [1.38, 1.40] (`fos_slope_2to1`, value ≤ 0: the relative distance
+#   of the range from the bracket). A tight bracket must exclude 1.40: at a 0.5 % gap F_U = 1.392.
+# - A vertical cut in Tresca soil: γH/c at collapse lies in [3.772, 3.776] (Pastor, Thai & Francescato
+#   2003, rigorous bounds); for φ = 0, F* = N_s c/(γH) exactly, so any rigorous bracket meets that range
+#   with no tolerance (`fos_vertical_cut`).
+
+# %%
+from ssi.limit import strength_reduction  # noqa: E402
+
+
+def slope_site(H=10.0, c_ratio=0.05, phi=20.0, gamma=20e3, n=2.0, back=3.0):
+    """A 1:n slope of height H on a rough rigid base at the toe's level, the ground behind the crest to
+    (n + back) H (a vertical roller there)."""
+    L = (n + back) * H
+    pts = [(0.0, 0.0), (L, 0.0), (L, H), (n * H, H)]
+    top = Boundary("free")
+    segs = ((0, 1, Boundary("fixed")), (1, 2, Boundary("symmetry")), (2, 3, top), (3, 0, top))
+    return Site(
+        np.array(pts, float), segs, ((L - 1.0, 0.5 * H, 0),), (Material(c_ratio * gamma * H, phi, gamma),)
+    )
+
+
+def cut_site(H=5.0, c=40e3, gamma=20e3):
+    """A vertical cut of height H in Tresca soil, the soil below the toe to depth H (a rough base)."""
+    W, L, D = 1.5 * H, 2.5 * H, 1.0 * H
+    pts = [(-W, -D), (L, -D), (L, H), (0.0, H), (0.0, 0.0), (-W, 0.0)]
+    free = Boundary("free")
+    segs = ((0, 1, Boundary("fixed")), (1, 2, Boundary("symmetry")), (2, 3, free), (3, 4, free))
+    segs += ((4, 5, free), (5, 0, Boundary("symmetry")))
+    return Site(np.array(pts, float), segs, ((L - 0.5, 0.0, 0),), (Material(c, 0.0, gamma),))
+
+
+def graded_to(points, h_min, slope=0.3):
+    pts = np.asarray(points, float)
+    return lambda p: (
+        h_min
+        + slope * np.min(np.hypot(p[:, None, 0] - pts[None, :, 0], p[:, None, 1] - pts[None, :, 1]), axis=1)
+    )
+
+
+GAP_FOS = 0.05 if FAST else 0.01  # fast mode: a wider bracket, still certified
+t0 = time.perf_counter()
+site_s = slope_site()
+mesh_s = triangulate(site_s, 2.5, size=graded_to([(0.0, 0.0), (20.0, 10.0)], 1.0 if FAST else 0.6))
+fos_s = strength_reduction(site_s, mesh_s, gap=GAP_FOS)
+print("2:1 slope:", fos_s.summary(), f"({time.perf_counter() - t0:.1f} s)")
+report.check(
+    "fos_slope_2to1",
+    "relative distance of Bishop-Morgenstern/Griffiths-Lane F = 1.38..1.40 from the certified strength-"
+    "reduction bracket of a 2:1 slope, phi = 20, c/(gamma H) = 0.05 (<= 0: they overlap)",
+    max(fos_s.f_lower / 1.40 - 1.0, 1.0 - fos_s.f_upper / 1.38),
+    0.0,
+    passed=fos_s.f_lower <= 1.40 and fos_s.f_upper >= 1.38 and fos_s.converged,
+)
+H_CUT, C_CUT, G_CUT = 5.0, 40e3, 20e3
+r_cut = C_CUT / (G_CUT * H_CUT)
+t0 = time.perf_counter()
+site_c = cut_site(H_CUT, C_CUT, G_CUT)
+h_cut = H_CUT / (12.0 if FAST else 25.0)
+mesh_c = triangulate(site_c, H_CUT / 2.0, size=graded_to([(0.0, 0.0), (0.0, H_CUT)], h_cut))
+fos_c = strength_reduction(site_c, mesh_c, gap=0.08 if FAST else 0.01)
+ns = (fos_c.f_lower / r_cut, fos_c.f_upper / r_cut)
+print(
+    f"vertical cut: gamma H / c in [{ns[0]:.4f}, {ns[1]:.4f}]",
+    fos_c.summary(),
+    f"({time.perf_counter() - t0:.1f} s)",
+)
+report.check(
+    "fos_vertical_cut",
+    "relative distance of Pastor et al.'s stability number gamma H/c = 3.772..3.776 from the certified "
+    "strength-reduction bracket of a vertical Tresca cut (<= 0: contained or overlapping)",
+    max(ns[0] / 3.776 - 1.0, 1.0 - ns[1] / 3.772),
+    0.0,
+    passed=ns[0] <= 3.776 * (1 + 1e-6) and ns[1] >= 3.772 * (1 - 1e-6) and fos_c.converged,
+)
+
+# %% [markdown]
+# ### The verdict of a run
+#
+# `ssi run` ends with a verdict (`ssi.scene.verdict`): the capacity bracket of the run's own loads, the
+# margin λ as the Davis bracket, and one sentence. A 2 m strip bonded to Tresca clay (s_u = 20 kPa) under a
+# 400 kN/m column: Prandtl's (2 + π) s_u B = 205.7 kN/m (hand value) is about half the load, λ* = 0.514, so
+# the scene must say "does not carry its loads" with a bracket containing 0.514 (`verdict_overloaded`).
+# Its incremental run on the default mesh peaks above the associated upper bound (a displacement mesh is
+# too stiff at collapse): the verdict flags a limit above 1.03 × UB_assoc with its excess
+# (`limit_vs_bracket_flagged`).
+
+# %%
+from ssi.elements.section import homogeneous  # noqa: E402
+from ssi.io.cli import summary as run_summary  # noqa: E402
+from ssi.scene import ColumnLoad, Contact, Foundation, SoilLayer  # noqa: E402
+from ssi.scene.verdict import verdict, verdict_lines  # noqa: E402
+
+S_U, B_V, N_V = 20e3, 2.0, 400e3
+lam_prandtl = (2.0 + math.pi) * S_U * B_V / N_V
+over = Scene(
+    width=12.0,
+    depth=5.0,
+    layers=[SoilLayer(5.0, E=30e6, nu=0.3, c=S_U, phi_deg=0.0, psi_deg=0.0)],
+    foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)),
+    contact=Contact(kn=1e10, kt=1e9),
+    loads=[ColumnLoad(0.0, N=N_V)],
+)
+t0 = time.perf_counter()
+res_over = over.build().solve(n_steps=8)
+v_over = verdict(run_summary(res_over, None), over, gap=0.05)
+print("\n".join(verdict_lines(v_over)), f"\n({time.perf_counter() - t0:.1f} s)")
+b_over = v_over["capacity"]
+report.check(
+    "verdict_overloaded",
+    "Davis upper bound of the load factor of a strip loaded at 1.95 x Prandtl's (2+pi) s_u B; the verdict "
+    "must read 'does not carry its loads' and its bracket contain the hand value 0.514 (passes when < 1)",
+    b_over["ub_davis"],
+    1.0,
+    passed=v_over["carries"] is False
+    and v_over["line"].startswith("does not carry its loads")
+    and b_over["lb_davis"] * (1 - 1e-6) <= lam_prandtl <= b_over["ub_davis"] * (1 + 1e-6),
+)
+lim = v_over["incremental_limit"]
+report.check(
+    "limit_vs_bracket_flagged",
+    "excess of the overloaded strip's incremental limit load factor over its associated upper bound (a "
+    "ceiling for any psi <= phi), flagged in the verdict when above 3 %",
+    lim["excess"],
+    0.03,
+    passed=(lim["value"] > 1.03 * lim["ub_assoc"]) == bool(lim["flag"])
+    and bool(lim["flag"])
+    and any("above the associated upper bound" in f for f in v_over["flags"]),
+)
+
+# %% [markdown]
 # ## Verification
 #
 # The report rows above assert their conditions; here the lower bounds' certificates and the upper bounds'

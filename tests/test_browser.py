@@ -153,13 +153,14 @@ def test_run_reports_render_offline(name, tmp_path, chromium):
 
     scene = tmp_path / f"{name}.toml"
     shutil.copy2(ROOT / "examples" / f"{name}.toml", scene)
-    _, s, written = run_scene_file(scene)
+    _, s, written = run_scene_file(scene, capacity_gap=0.25)  # the verdict, cheap
     page = tmp_path / f"{name}_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / f"report-{name}.png", width=1280, height=900)
     assert report.problems() == [], name
     pngs = [p for p in written if p.suffix == ".png"]
     assert len(report.images) == len(pngs) >= 3 and all(i["naturalWidth"] > 0 for i in report.images)
     assert "largest settlement at the end" in report.text and "mm" in report.text
+    assert s["verdict"]["line"] in report.text  # the verdict, on the first screen (first after the title)
     if s["push_over"]:
         assert "Capacity" in report.text and f"{s['capacity']['load'] / 1e3:.2f}" in report.text
 
@@ -172,7 +173,7 @@ def test_site_run_report_renders_offline(tmp_path, chromium):
 
     site = tmp_path / "boreholes.toml"
     shutil.copy2(ROOT / "examples" / "sites" / "boreholes.toml", site)
-    _, s, written = run_scene_file(site)
+    _, s, written = run_scene_file(site, capacity_gap=0.25)
     page = tmp_path / "boreholes_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / "report-site-boreholes.png", width=1280, height=900)
     assert report.problems() == []
@@ -193,7 +194,7 @@ def test_estimated_push_over_report_renders_offline(tmp_path, chromium):
     text = text.replace("n_steps = 30", "n_steps = 8")
     scene = tmp_path / "push.toml"
     scene.write_text(text)
-    _, s, written = run_scene_file(scene, estimate=("mesh",))
+    _, s, written = run_scene_file(scene, estimate=("mesh",), capacity_gap=0.25)
     assert s["capacity"]["estimate"] is not None
     page = tmp_path / "push_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / "report-push-estimate.png", width=1280, height=900)

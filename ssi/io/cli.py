@@ -69,6 +69,13 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     ``error_estimate``: :meth:`ssi.scene.estimate.ErrorEstimate.to_dict` of the result (``ssi run
     --estimate``; the capacity's part is also ``capacity["estimate"]``), ``{"failed": reason}`` when a
     refined copy could not be solved, None when not asked."""
+    v = getattr(result, "verdict", None)
+    if v is not None:  # a run's verdict (ssi run), first; stored in the result file for ssi show
+        result.verdict = None
+        try:
+            return {"verdict": v, **summary(result, wall_time, complete, stop)}
+        finally:
+            result.verdict = v
     if result.kind == "site":
         return _site_summary(result, wall_time, complete, stop)
     x_s, s_max = result.max_settlement()
@@ -108,6 +115,7 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
         out.update(_limit_checks(result))
     out["stopped_at_column_load"] = None if complete else out["column_load"]
     out["stop_reason"] = None if stop is None else stop.get("reason")
+    out["stop_message"] = _stop_message(stop, "scene")
     # a soil whose rate problem is ill-posed at the stop (psi < phi yielding): why, and what is well posed
     out["stop_ill_posed"] = None if stop is None else stop.get("ill_posed")
     if result.built.plate is not None:  # an RC strip: crack widths, utilisations (None for an elastic one)
@@ -122,6 +130,18 @@ def summary(result, wall_time=None, complete=True, stop=None) -> dict:
     out["error_estimate"] = result.error_estimate
     out["wall_time_s"] = wall_time  # ssi run: build + solve (with any first-time compilation)
     return out
+
+
+def _stop_message(stop, kind: str) -> str | None:
+    """A solver stop's report as one engineering sentence (:func:`ssi.scene.verdict.stop_sentence`); a
+    report read back from a file as text is given as it is."""
+    if stop is None:
+        return None
+    if not isinstance(stop, dict):
+        return str(stop)
+    from ..scene.verdict import stop_sentence
+
+    return stop_sentence(stop, kind)
 
 
 def _column_force_on(loads, x0: float, x1: float) -> float:
@@ -181,6 +201,7 @@ def _site_summary(result, wall_time: float | None = None, complete: bool = True,
             result.solver_result.limit_load_factor if status == "limit load reached" else None
         ),
         "stop": None if stop is None else str(stop),
+        "stop_message": _stop_message(stop, "site"),
         "mesher": built.mesher,
         "initial_stress": built.initial_stress_method,
         "n_elements": int(len(built.mesh.conn)),
@@ -205,7 +226,7 @@ def _site_summary_text(s: dict) -> str:
         f"{s['initial_stress']}; status: {site_status_line(s)}"
     ]
     if s["stop"]:
-        lines.append(f"  stopped: {s['stop']}")
+        lines.append(f"  stopped: {s.get('stop_message') or s['stop']}")
     for f in s["foundations"]:
         where = f"#{f['index']} {f['type']} [{f['x0_m']:g}, {f['x1_m']:g}] m"
         if f["type"] == "rigid strip":
@@ -319,14 +340,17 @@ def _capacity_line(s: dict) -> str | None:
 def summary_text(s: dict) -> str:
     """The summary as the lines ``ssi run`` and ``ssi show`` print (kN, kPa, mm); a site's per foundation
     (:func:`_site_summary_text`)."""
+    from ..scene.verdict import verdict_lines
+
+    head = verdict_lines(s.get("verdict"))
     if s.get("kind") == "site":
-        return _site_summary_text(s)
+        return "\n".join([*head, _site_summary_text(s)])
     state = {
         "completed": ")",
         "limit load reached": ", the limit load)",
         "stopped": ", INCOMPLETE: the run stopped before the end of its load path)",
     }[s["status"]]
-    lines = [f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}"]
+    lines = [*head, f"steps            {s['steps']} (load factor {s['load_factor']:.4g}{state}"]
     if s.get("phase") is not None:
         lines.append(
             f"last phase       {s['phase']!r} at load factor {s['phase_load_factor']:.4g} of its loads"
@@ -381,6 +405,8 @@ def summary_text(s: dict) -> str:
             f"stopped          at load factor {s['load_factor']:.4g}{where}{load} "
             f"(solver failure, not a detected limit load: {s['stop_reason']})"
         )
+        if s.get("stop_message"):
+            lines.append(f"                 {s['stop_message']}")
         if s.get("stop_ill_posed"):
             lines.append(f"ill-posed soil   {s['stop_ill_posed']}")
     if s.get("design"):
@@ -477,6 +503,7 @@ def _phase_line(row, table):
 
 def run_scene_file(
     scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True, estimate=None, echo=None,
+    capacity=True, capacity_gap=0.05,
 ):  # fmt: skip
     """What ``ssi run`` does; returns (result, summary dict, written paths).
 
@@ -485,7 +512,9 @@ def run_scene_file(
     base level, its copies at h/2 and h/4 are solved in addition (about 4 and 16 times the base solve for
     the mesh) and the estimate goes to the summary, the result file and the report. A refined copy that
     the solver cannot finish leaves the estimate ``{"failed": why}``. ``echo``: gets a line before the
-    refined solves start (the command line prints it)."""
+    refined solves start (the command line prints it). ``capacity``: the verdict (:func:`ssi.scene.verdict.
+    verdict`: the capacity bracket of the run's loads to the relative gap ``capacity_gap``, the margin,
+    settlements and RC utilisations) first in the summary; False: skipped."""
     from ..scene.scene_file import read_scene_file
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
@@ -515,17 +544,35 @@ def run_scene_file(
             estimate_wall = _estimate_run(result, n_steps, settings, estimate, wall, echo)
         elif estimate:  # a stopped run has no answer whose error could be estimated
             result.error_estimate = {"failed": "the run stopped before the end of its load path"}
-    for w in caught:
-        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
-    run_warnings = [f"{w.category.__name__}: {w.message}" for w in caught]
+    # for an engineer: what, where, what to do (the warnings' own texts), not a Python source path
+    run_warnings = list(dict.fromkeys(str(w.message) for w in caught))
+    for text in run_warnings:
+        print(f"WARNING: {text}", file=sys.stderr)
     complete = stop is None
+    s = summary(result, wall, complete, stop)
+    if estimate and stop is None:
+        s["estimate_wall_time_s"] = estimate_wall
+    if capacity:
+        from ..scene.verdict import verdict
+
+        if echo is not None:
+            echo(
+                "verdict: bracketing the capacity of the run's loads by limit analysis (gap "
+                f"{100 * capacity_gap:g} %)"
+            )
+        with warnings.catch_warnings(record=True) as caught_v:  # as the run's: for the engineer, no path
+            warnings.simplefilter("default")
+            result.verdict = verdict(s, scene, gap=capacity_gap)
+        for text in dict.fromkeys(f"capacity bracket: {w.message}" for w in caught_v):
+            print(f"WARNING: {text}", file=sys.stderr)
+            run_warnings.append(text)
+    else:
+        result.verdict = {"skipped": "--no-capacity"}
+    s = {"verdict": result.verdict, **s}
     written = [write_result(out, result, settings, overwrite=overwrite, complete=complete, stop=stop)]
     from .export import export_series
 
     written.append(export_series(result, paraview, overwrite=overwrite))
-    s = summary(result, wall, complete, stop)
-    if estimate and stop is None:
-        s["estimate_wall_time_s"] = estimate_wall
     with atomic_path(summary_path, overwrite) as tmp:
         tmp.write_text(json.dumps(s, indent=1))
     written.append(summary_path)
@@ -666,6 +713,42 @@ def limit_scene_file(
     return cap, written
 
 
+def safety_scene_file(
+    scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, overwrite=False,
+    echo=print, strip=None, side_soil=None,
+):  # fmt: skip
+    """What ``ssi limit --fos`` does: the factor of safety of a scene or a site file by strength reduction
+    (:meth:`ssi.scene.Scene.safety_factor`, :meth:`ssi.scene.Site.safety_factor`), a certified bracket
+    refined to ``gap``; writes ``<name>_fos.json`` (``out``). Returns (SafetyFactorResult, written)."""
+    from ..scene.scene_file import read_scene_file
+    from .results import atomic_path
+
+    scene_path = Path(scene_path)
+    stem = scene_path.with_suffix("")
+    out = Path(out) if out else stem.parent / (stem.name + "_fos.json")
+    if out.exists() and not overwrite:
+        raise FileExistsError(f"{out} exists; pass --overwrite to replace it")
+    scene, _, _ = read_scene_file(scene_path)
+    options = {"gap": gap, "h": h, "h_min": h_min, "max_elements": max_elements}
+    if phase is not None:
+        options["phase"] = phase
+    if strip is not None:
+        options["strip"] = strip
+    if side_soil is not None:
+        options["side_soil"] = side_soil
+
+    def progress(r):
+        echo(
+            f"F search   mesh {r['step']:2d}: {r['n_el']:6d} triangles  F_LB {r['f_lower']:.5g}  "
+            f"F_UB {r['f_upper']:.5g}  gap {100 * r['gap']:6.2f} %  ({r['solves']} solves, {r['time']:.1f} s)"
+        )
+
+    sf = scene.safety_factor(progress=progress, **options)
+    with atomic_path(out, overwrite) as tmp:
+        tmp.write_text(json.dumps(sf.to_dict(), indent=1))
+    return sf, [out]
+
+
 def _save_limit_figure(cap, path: Path, overwrite: bool) -> Path:
     import matplotlib.pyplot as plt
 
@@ -693,6 +776,17 @@ def _refinements(text: str | None) -> tuple | None:
     return names
 
 
+class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """``--help`` with every option's default (argparse's ArgumentDefaultsHelpFormatter), except where the
+    help already says it or there is none to show (a flag, an option whose default is computed)."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if "default" in text or action.default in (None, False) or action.default is argparse.SUPPRESS:
+            return text
+        return super()._get_help_string(action)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(
         prog="ssi",
@@ -700,7 +794,11 @@ def main(argv=None) -> int:
         "foundations: solve a scene file, show a result file.",
     )
     sub = parser.add_subparsers(dest="command", required=True)
-    run_p = sub.add_parser("run", help="solve a TOML scene file; write result, ParaView file, plots, summary")
+    run_p = sub.add_parser(
+        "run",
+        help="solve a TOML scene or site file; write result, ParaView file, plots, summary, verdict",
+        formatter_class=_DefaultsFormatter,
+    )
     run_p.add_argument("scene", type=Path)
     run_p.add_argument("-o", "--out", type=Path, help="result file (default: <scene>.h5)")
     run_p.add_argument("--plots", type=Path, help="folder for the figures (default: <scene>_plots)")
@@ -710,6 +808,17 @@ def main(argv=None) -> int:
     run_p.add_argument("--no-plots", action="store_true", help="skip the figures")
     run_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     run_p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run_p.add_argument(
+        "--no-capacity",
+        action="store_true",
+        help="skip the verdict's capacity bracket (limit analysis of the run's loads)",
+    )
+    run_p.add_argument(
+        "--capacity-gap",
+        type=float,
+        default=0.05,
+        help="relative gap (UB-LB)/(UB+LB) of the verdict's capacity bracket",
+    )
     # a flag, and the refinements under their own option: an optional value on --estimate would swallow
     # the scene's path in `ssi run --estimate scene.toml`
     run_p.add_argument(
@@ -735,7 +844,11 @@ def main(argv=None) -> int:
     show_p.add_argument("--overwrite", action="store_true", help="redraw into <result>_plots, replacing it")
     show_p.add_argument("--json", action="store_true", help="print the summary as JSON")
     sub.add_parser("schema", help="print the scene file's tables, keys and units")
-    lim_p = sub.add_parser("limit", help="bracket the capacity of a TOML scene by limit analysis")
+    lim_p = sub.add_parser(
+        "limit",
+        help="bracket the capacity of a TOML scene or site by limit analysis (--fos: its factor of safety)",
+        formatter_class=_DefaultsFormatter,
+    )
     lim_p.add_argument("scene", type=Path)
     lim_p.add_argument("--phase", help="the phase whose loads are scaled (default: the last)")
     lim_p.add_argument("--gap", type=float, default=0.02, help="relative gap (UB-LB)/(UB+LB) to reach")
@@ -763,9 +876,30 @@ def main(argv=None) -> int:
     lim_p.add_argument("--no-plots", action="store_true", help="skip the figure")
     lim_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     lim_p.add_argument("--json", action="store_true", help="print the numbers as JSON")
+    lim_p.add_argument(
+        "--fos",
+        action="store_true",
+        help="the factor of safety by strength reduction (c/F, tan(phi)/F) instead of the capacity: a "
+        "certified bracket [F_LB, F_UB] under the weight, the dead loads and 1 x the loads (a site without "
+        "loads: its weight alone, e.g. a slope); written to <scene>_fos.json",
+    )
     args = parser.parse_args(argv)
     from .results import OutputExistsError
 
+    if args.command == "limit" and args.fos:
+        try:
+            sf, written = safety_scene_file(
+                args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
+                args.overwrite, echo=lambda s: print(s, flush=True), strip=args.strip,
+                side_soil=args.side_soil,
+            )  # fmt: skip
+        except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
+            print(f"ssi: error: {err}", file=sys.stderr)
+            return 2
+        print(json.dumps(sf.to_dict(), indent=1) if args.json else sf.summary())
+        for p in written:
+            print(f"wrote {p}")
+        return 0
     if args.command == "limit":
         try:
             cap, written = limit_scene_file(
@@ -793,6 +927,7 @@ def main(argv=None) -> int:
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,
                 _refinements(estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
+                capacity=not args.no_capacity, capacity_gap=args.capacity_gap,
             )  # fmt: skip
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)

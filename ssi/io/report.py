@@ -75,6 +75,9 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; }
 .scroll { overflow-x: auto; }
 .warn { background: #fff4e0; border-left: 4px solid #e69500; padding: 0.3em 0.8em; margin: 0.3em 0; }
 .status { font-weight: bold; }
+.verdict { border: 2px solid #444; padding: 0.4em 1em; margin: 0.5em 0 1em 0; }
+.verdict p.line { font-size: 1.2em; font-weight: bold; margin: 0.3em 0; }
+.verdict.ok { border-color: #2a7a2a; } .verdict.fail { border-color: #b00020; background: #fff0f0; }
 figure { margin: 1em 0; } figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 pre { background: #f6f6f6; padding: 0.5em; overflow-x: auto; }
 """
@@ -90,6 +93,29 @@ def _page_head(title: str) -> list[str]:
         f"<style>{STYLE}</style></head><body>",
         f"<h1>{esc(title)}</h1>",
     ]
+
+
+def _verdict_section(s: dict) -> list[str]:
+    """The verdict (:mod:`ssi.scene.verdict`) as the report's first screen: the sentence, the capacity
+    bracket, per foundation the settlement, tilt and RC utilisations (above 1 flagged), the warnings."""
+    v = s.get("verdict")
+    if not v:
+        return []
+    esc = html.escape
+    if v.get("skipped"):
+        return [f'<div class="verdict"><p class="line">Verdict not asked ({esc(v["skipped"])})</p></div>']
+    from ..scene.verdict import verdict_lines
+
+    cls = {True: " ok", False: " fail"}.get(v.get("carries"), "")
+    if v.get("rc_ok") is False:
+        cls = " fail"
+    lines = verdict_lines(v)
+    rest = [ln.strip() for ln in lines[1:] if not ln.strip().startswith("WARNING")]
+    out = [f'<div class="verdict{cls}"><h2>Verdict</h2><p class="line">{esc(v["line"])}</p>']
+    out += [f"<p>{esc(ln)}</p>" for ln in rest]
+    out += [f'<div class="warn">{esc(fl)}</div>' for fl in v.get("flags", [])]
+    out.append("</div>")
+    return out
 
 
 def _fmt(value, scale, fmt) -> str:
@@ -117,6 +143,8 @@ def report_warnings(s: dict, run_warnings: list[str] | None = None) -> list[str]
             f"The run stopped before the end of its load path (solver failure, not a detected limit load): "
             f"{s.get('stop_reason')}. The values are those of the last converged step."
         )
+        if s.get("stop_message"):
+            out.append(s["stop_message"])
         if s.get("stop_ill_posed"):
             out.append(f"Where it stopped, the soil's rate problem is ill-posed: {s['stop_ill_posed']}.")
     elif s["status"] == "limit load reached":
@@ -222,7 +250,7 @@ def report_html(
     paths, linked relative to the folder ``base`` the page is written into), ``title`` (the scene's name),
     ``run_warnings`` (texts)."""
     esc = html.escape
-    parts = _page_head(title)
+    parts = _page_head(title) + _verdict_section(s)
     status = {"completed": "completed", "limit load reached": "limit load reached", "stopped": "INCOMPLETE"}
     parts.append(
         f'<p class="status">status: {esc(status.get(s["status"], s["status"]))}'
@@ -318,12 +346,17 @@ def site_report_html(
     stress, one row per foundation (settlement, tilt, pressure), the differential settlements, the
     warnings and the figures."""
     esc = html.escape
-    parts = _page_head(title) + [
-        f'<p class="status">status: {esc(site_status_line(s))}</p>',
-        f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial stress "
-        f"{esc(s['initial_stress'])}.</p>",
-    ]
-    warn = list(run_warnings or []) + ([f"The run stopped: {s['stop']}"] if s.get("stop") else [])
+    parts = (
+        _page_head(title)
+        + _verdict_section(s)
+        + [
+            f'<p class="status">status: {esc(site_status_line(s))}</p>',
+            f"<p>{s['n_elements']} soil elements ({esc(s['mesher'])} mesh), {s['n_dof']} DOFs; initial "
+            f"stress {esc(s['initial_stress'])}.</p>",
+        ]
+    )
+    stopped = s.get("stop_message") or s.get("stop")
+    warn = list(run_warnings or []) + ([f"The run stopped: {stopped}"] if stopped else [])
     if warn:
         parts.append("<h2>Warnings</h2>")
         parts += [f'<div class="warn">{esc(w)}</div>' for w in warn]

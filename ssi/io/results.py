@@ -241,6 +241,7 @@ def _write_site_result(h5, result):
             "mesher": built.mesher,
             "initial_stress_method": built.initial_stress_method,
             "error_estimate": result.error_estimate,
+            "verdict": result.verdict,
         },
         default=_jsonable,
     )
@@ -523,8 +524,9 @@ def _site_result(info, lam, u, states, solver, coords):
         )
     estimate = info.get("extra", {}).get("error_estimate")
     return SiteResult(
-        built, _solver_result(built.model, solver, lam, list(u), states), error_estimate=estimate
-    )
+        built, _solver_result(built.model, solver, lam, list(u), states), error_estimate=estimate,
+        verdict=info.get("extra", {}).get("verdict"),
+    )  # fmt: skip
 
 
 def _linear_result(model, u, states):

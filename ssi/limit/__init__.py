@@ -5,7 +5,9 @@
 - :mod:`.mesh`: Triangle quality meshes and nested longest-edge bisection;
 - :mod:`.lower`: the lower bound (linear-stress triangles, SOCP, certified by projection);
 - :mod:`.upper`: the upper bound (6-node quadratic-velocity triangles, SOCP, recomputed from velocities);
-- :mod:`.analysis`: brackets, the gap split by element, adaptivity, the factor of safety;
+- :mod:`.analysis`: brackets, the gap split by element, adaptivity (the gap shares and the lower bound's own
+  indicator), the factor of safety by strength reduction as a certified bracket (:func:`strength_reduction`:
+  with or without loads, a slope under its weight alone; every conic status read for what it proves);
 - :mod:`.check`: an incremental analysis's limit load against a bracket (inside, false collapse, mesh
   overestimate).
 
@@ -27,7 +29,17 @@ an embedded footing's trench walls on a side contact unlike its base). Both boun
 on two threads (``SSI_LIMIT_THREADS=1``: one).
 """
 
-from .analysis import AdaptiveResult, Bracket, adaptive, bracket, gap_shares, safety_factor
+from .analysis import (
+    AdaptiveResult,
+    Bracket,
+    SafetyFactor,
+    adaptive,
+    bracket,
+    gap_shares,
+    refine_marks,
+    safety_factor,
+    strength_reduction,
+)
 from .check import LimitCheck, check_limit, flag_suspect
 from .geometry import (
     Beam,
@@ -54,6 +66,7 @@ __all__ = [
     "LimitCheck",
     "LowerBound",
     "Material",
+    "SafetyFactor",
     "Site",
     "TriMesh",
     "UpperBound",
@@ -65,8 +78,10 @@ __all__ = [
     "davis_beta",
     "gap_shares",
     "lower_bound",
+    "refine_marks",
     "safety_factor",
     "site_from_geometry",
+    "strength_reduction",
     "strip_site",
     "triangulate",
     "upper_bound",

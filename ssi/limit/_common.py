@@ -35,6 +35,16 @@ def scales(site: Site) -> Scales:
         s += [abs(f.moment_ref) / L**2, abs(f.moment_dead) / L**2]
         ref += float(np.hypot(*f.load_ref)) + abs(f.moment_ref) / L
     S = max(max(s), 1e-12)
+    if site.scale_all:  # lambda scales the dead loads and the weight too: they are part of the reference
+        for i, j, b in site.segments:
+            if b is not None and b.kind == "free":
+                length = float(np.hypot(*(site.points[j] - site.points[i])))
+                ref += 0.5 * (abs(b.dead_at(*site.points[i])) + abs(b.dead_at(*site.points[j]))) * length
+        for f in site.footings:
+            ref += float(np.hypot(*f.load_dead)) + abs(f.moment_dead) / L
+        ref += max(m.gamma for m in site.materials) * L * L  # the weight's order of magnitude
+        if ref == 0.0:
+            raise ValueError("the site has no load at all: no weight, no dead load, no reference load")
     if ref == 0.0:
         raise ValueError("the site has no reference load: give a footing load_ref or a pressure_ref")
     return Scales(L, S, ref / (S * L))

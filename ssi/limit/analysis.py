@@ -31,6 +31,9 @@ from .upper import UpperBound, footing_velocity_at, upper_bound
 # chapter 10's Prandtl footing, 1 086 triangles: the lower bound's Clarabel solve 1.8 s let a Python thread
 # tick 1 126 times, i.e. the GIL is released while it solves)
 THREADS = 1 if os.environ.get("SSI_LIMIT_THREADS", "2") == "1" else 2
+# adaptivity marks the lower bound's own indicator as well as the gap shares (refine_marks) unless
+# SSI_LIMIT_LB_INDICATOR=0 (the marking before issue 46: the gap shares alone)
+LOWER_INDICATOR = os.environ.get("SSI_LIMIT_LB_INDICATOR", "1") == "1"
 
 __all__ = [
     "AdaptiveResult",
@@ -40,7 +43,10 @@ __all__ = [
     "carry_stress",
     "carry_velocity",
     "gap_shares",
+    "refine_marks",
     "safety_factor",
+    "strength_reduction",
+    "SafetyFactor",
 ]
 
 
@@ -148,6 +154,7 @@ def bracket(
         if lo_c.certified and (not lo.certified or lo_c.lam > lo.lam):
             lo_c.time, lo_c.iterations, lo_c.status = lo.time, lo.iterations, f"carried ({lo.status})"
             lo_c.lam_solver = lo.lam_solver
+            lo_c.yield_work = lo.yield_work  # the solve's own indicator (a carried field has no dual)
             lo = lo_c
     if previous is not None and mesh.parent is not None and up.lam > previous.ub:
         v, fv = carry_velocity(previous.mesh, mesh, previous.upper.velocity), previous.upper.footing_velocity
@@ -207,7 +214,10 @@ def carry_velocity(coarse: TriMesh, fine: TriMesh, velocity: np.ndarray) -> np.n
 class AdaptiveResult:
     """The adaptive sequence: ``history`` rows (n_el, lb, ub, gap, t_lb [s], t_ub [s], iterations lb, ub,
     cones lb, ub), the last ``final`` bracket, ``lb``/``ub`` the best certified bounds of the sequence,
-    ``monotone``: the nested meshes gave a non-decreasing lb and non-increasing ub (to ``mono_tol``
+    ``reason``: why the sequence stopped, in words ("gap reached"; "refinement cap (max_steps = 12)" or
+    "(max_elements = 20000)", with "; the lower bound stalled" / "the upper bound stalled" when it did not
+    improve by 0.1 % over the last three meshes; "no mechanism on the mesh"), ``monotone``: the nested
+    meshes gave a non-decreasing lb and non-increasing ub (to ``mono_tol``
     relative), ``converged``: gap reached, ``solver_setbacks``: steps where the solver's own optimum was
     worse than the previous mesh's (impossible in exact arithmetic on nested meshes: the solver stopped
     short), which the carried fields of :func:`bracket` make up for."""
@@ -219,10 +229,46 @@ class AdaptiveResult:
     monotone: bool = True
     converged: bool = False
     solver_setbacks: int = 0
+    reason: str = ""
 
     @property
     def gap(self) -> float:
         return relative_gap(self.lb, self.ub)
+
+    def stalled(self, window: int = 3, rel: float = 1e-3) -> dict:
+        """Which best bound did not improve by more than ``rel`` (relative) over the last ``window`` meshes:
+        {"lb": bool, "ub": bool} (False for both with fewer meshes)."""
+        h = self.history
+        if len(h) <= window:
+            return {"lb": False, "ub": False}
+        a, b = h[-window - 1], h[-1]
+        lb_moved = np.isfinite(a["best_lb"]) and b["best_lb"] > a["best_lb"] * (1 + rel)
+        ub_moved = np.isfinite(b["best_ub"]) and b["best_ub"] < a["best_ub"] * (1 - rel)
+        return {"lb": not lb_moved, "ub": not ub_moved}
+
+
+def _doerfler(eta: np.ndarray, theta: float) -> np.ndarray:
+    """The fewest elements holding ``theta`` of the summed indicator ``eta`` >= 0 (indices)."""
+    if not np.any(eta > 0):
+        return np.zeros(0, np.int64)
+    order = np.argsort(-eta, kind="stable")
+    csum = np.cumsum(eta[order])
+    return order[: int(np.searchsorted(csum, theta * csum[-1]) + 1)]
+
+
+def refine_marks(br: Bracket, theta: float = 0.5) -> np.ndarray:
+    """The elements to bisect after bracket ``br`` (indices): Doerfler marking of the gap shares (where
+    the upper bound's mechanism and the lower bound's stresses disagree) united with Doerfler marking of
+    the lower bound's own indicator, the stress power of its program's dual mechanism
+    (:attr:`LowerBound.yield_work`: where its yield conditions bind and limit lambda). The gap shares live
+    where the upper bound's mechanism deforms; a lower bound limited elsewhere (a second footing, a soft
+    lens, a layer boundary the mechanism does not cross) then never improves (issue 46: 0.95953 from mesh
+    3 to 12)."""
+    marks = _doerfler(np.maximum(br.shares, 0.0), theta)
+    yw = getattr(br.lower, "yield_work", None)
+    if yw is not None and len(yw) == br.mesh.n_el and np.any(yw > 0):
+        marks = np.union1d(marks, _doerfler(np.maximum(yw, 0.0), theta))
+    return np.sort(marks)
 
 
 def relative_gap(lb: float, ub: float) -> float:
@@ -292,17 +338,218 @@ def adaptive(
             progress(row)
         if relative_gap(best_lb, best_ub) <= gap:
             out.converged = True
+            out.reason = "gap reached"
             break
         if mesh.n_el >= max_elements or step == max_steps:
+            cap = f"max_steps = {max_steps}" if step == max_steps else f"max_elements = {max_elements}"
+            out.reason = f"refinement cap ({cap}) at gap {100 * relative_gap(best_lb, best_ub):.2f} %"
+            stall = out.stalled()
+            out.reason += "".join(f"; the {w} bound stalled" for k, w in (("lb", "lower"), ("ub", "upper"))
+                                  if stall[k])  # fmt: skip
             break
         if not br.upper.certified:  # no mechanism to compare with: the gap shares say nothing
+            out.reason = f"no mechanism on the mesh (upper-bound status {br.upper.status})"
             break
-        eta = np.maximum(br.shares, 0.0)
-        order = np.argsort(-eta, kind="stable")
-        csum = np.cumsum(eta[order])
-        n_mark = int(np.searchsorted(csum, theta * csum[-1]) + 1)
-        mesh = bisect(mesh, np.sort(order[:n_mark]))
+        marks = refine_marks(br, theta) if LOWER_INDICATOR else _doerfler(np.maximum(br.shares, 0.0), theta)
+        mesh = bisect(mesh, marks)
     out.lb, out.ub = float(best_lb), float(best_ub)
+    return out
+
+
+@dataclass
+class SafetyFactor:
+    """A strength-reduction factor of safety as a certified bracket: F* in [``f_lower``, ``f_upper``].
+
+    ``f_lower``: a factor whose reduced site (c / F, tan phi / F) has a certified lower bound >= 1 (a
+    statically admissible stress field carrying the loads: F* >= f_lower); ``f_upper``: a factor whose
+    reduced site has a kinematically admissible field on which the loads' power exceeds the dissipation
+    (F* <= f_upper). 0 / +inf where no such factor was found (``reason`` says why). ``loads``: "all" (lambda
+    multiplies every load, the weight included: the programs are bounded) or "ref" (the dead loads held,
+    the reference loads at 1; an unbounded upper-bound program is read from its ray). ``trials``: one dict
+    per solve (bound, F, lam, proven, status, n_el); ``history``: one row per mesh (n_el, f_lower, f_upper,
+    gap, solves, time [s]); ``mesh`` the last mesh; ``converged``: the gap (f_upper - f_lower) / (f_upper +
+    f_lower) reached ``gap``."""
+
+    f_lower: float
+    f_upper: float
+    loads: str
+    mesh: TriMesh
+    trials: list = field(default_factory=list)
+    history: list = field(default_factory=list)
+    converged: bool = False
+    reason: str = ""
+
+    @property
+    def gap(self) -> float:
+        return relative_gap(self.f_lower, self.f_upper)
+
+    def contains(self, value: float) -> bool:
+        return bool(self.f_lower <= value <= self.f_upper)
+
+    def summary(self) -> str:
+        state = "gap reached" if self.converged else f"gap not reached: {self.reason}"
+        return (
+            f"factor of safety (strength reduction) F in [{self.f_lower:.4g}, {self.f_upper:.4g}], gap "
+            f"{100 * self.gap:.2f} % ({state}); {self.mesh.n_el} triangles, {len(self.history)} meshes, "
+            f"{len(self.trials)} bound solves"
+        )
+
+
+F_RANGE = (1e-3, 1e3)  # the factors searched: a site outside is reported as such, not bracketed
+
+
+def _fos_test(site: Site, mesh: TriMesh, kind: str, F: float, loads: str, interface: bool, trials: list):
+    """One bound at factor F: (proven, lam, result). "lb": proven safe (a certified lambda_LB >= 1); "ub":
+    proven unsafe (:meth:`UpperBound.collapse_proven` at lambda 1: the optimum's lambda_UB <= 1, or the ray
+    of an unbounded program). Anything else proves nothing, whatever the status says: an infeasible
+    lower-bound program means no admissible stress field on this mesh (a finer one may have one), a
+    primal-infeasible upper-bound program no mechanism on this mesh."""
+    s = site.reduced(F, interface=interface)
+    if loads == "all":
+        s = s.all_loads()
+    if kind == "lb":
+        r = lower_bound(s, mesh)
+        lam = r.lam if r.certified else float("nan")
+        proven = bool(r.certified and r.lam >= 1.0)
+    else:
+        r = upper_bound(s, mesh)
+        lam = r.lam if r.certified else -np.inf if r.collapse_proven(1.0) else float("nan")
+        proven = r.collapse_proven(1.0)
+    trials.append(dict(bound=kind, F=F, lam=float(lam), proven=proven, status=r.status, n_el=mesh.n_el))
+    return proven, lam, r
+
+
+def _fos_search(site, mesh, kind, loads, interface, trials, lo, hi, f0, rel_tol):
+    """The factor where one bound changes its verdict, on one mesh: for "lb" the largest F proven safe
+    (returned as ``lo``), for "ub" the smallest proven unsafe (``hi``). ``lo``: a factor known not to be
+    proven unsafe / known safe, ``hi`` likewise above (None: unknown); ``f0`` the first trial. lambda(F) is
+    non-increasing (the reduced yield sets are nested), about 1 / F (exactly for phi = 0 with every load
+    scaled): the next trial is F lambda(F) (Newton's step in log F with slope -1), safeguarded by
+    bisection in log F once both ends are known. Returns (lo, hi)."""
+    F = f0
+    g_lo = g_hi = None  # ln lambda at the ends, where known
+    last = None
+    # aim a little inside the side the bound proves (lambda_LB just above 1, lambda_UB just below): a trial
+    # that lands on lambda = 1 to the solver's accuracy then proves its side instead of missing it
+    g_aim = np.log1p(0.3 * rel_tol) if kind == "lb" else np.log1p(-0.3 * rel_tol)
+    for _ in range(60):
+        F = float(np.clip(F, *F_RANGE))
+        proven, lam, _ = _fos_test(site, mesh, kind, F, loads, interface, trials)
+        safe_side = proven if kind == "lb" else not proven
+        g = float(np.log(lam)) if np.isfinite(lam) and lam > 0 else None
+        if safe_side:
+            lo, g_lo = F, g
+        else:
+            hi, g_hi = F, g
+        if lo is not None and hi is not None and hi / lo - 1.0 <= rel_tol:
+            return lo, hi
+        if lo is None and F <= F_RANGE[0]:
+            return None, hi
+        if hi is None and F >= F_RANGE[1]:
+            return lo, None
+        # next trial: the secant through both ends in (ln F, ln lambda) once both are known (bisection in ln F
+        # when the same end moved twice running: no creeping end), else Newton's step with slope -1 (F lambda)
+        side = "lo" if safe_side else "hi"
+        step = F * lam / np.exp(g_aim) if g is not None else None
+        if lo is not None and hi is not None:
+            a, b = np.log(lo), np.log(hi)
+            x = 0.5 * (a + b)
+            if side != last and g_lo is not None and g_hi is not None and g_lo > g_hi:
+                x = a + (g_lo - g_aim) / (g_lo - g_hi) * (b - a)
+            elif side != last and step is not None and step > 0:
+                x = np.log(step)
+            x = min(max(x, a + 0.05 * (b - a)), b - 0.05 * (b - a))
+            F = float(np.exp(x))
+        elif lo is None:  # everything tried so far is on the unsafe side: go down
+            F = min(step, F / 1.05) if step is not None and step > 0 else F / 2.0
+            F = max(F, hi / 4.0)
+        else:  # everything tried so far on the safe side: go up
+            F = max(step, F * 1.05) if step is not None else F * 2.0
+            F = min(F, lo * 4.0)
+        last = side
+    return lo, hi
+
+
+def strength_reduction(
+    site: Site,
+    mesh: TriMesh,
+    gap: float = 0.01,
+    loads: str = "all",
+    interface: bool = True,
+    max_steps: int = 8,
+    max_elements: int = 20000,
+    theta: float = 0.5,
+    f_start: float = 1.0,
+    progress=None,
+) -> SafetyFactor:
+    """The strength-reduction factor of safety of ``site`` as a certified bracket (:class:`SafetyFactor`):
+    the loads are the site's weight, its dead loads and 1 x its reference loads (a site with no reference
+    load: its weight and dead loads alone, e.g. a slope). On each mesh both bounds are searched in F
+    (:func:`_fos_search`, to a tenth of ``gap``); then, until (F_U - F_L)/(F_U + F_L) <= ``gap`` or
+    ``max_steps`` / ``max_elements``, the mesh is bisected where the bracket at F = sqrt(F_L F_U) has its
+    gap (:func:`refine_marks`: the gap shares and the lower bound's own indicator). A factor proven on a
+    coarser mesh stays proven (it is a property of the site, not of the mesh), so each mesh only narrows
+    the bracket. ``loads``: "all" (default; every program bounded) or "ref" (the dead loads held at 1: an
+    unbounded upper-bound program, the dead loads alone collapsing the reduced site, is read from its ray).
+    ``interface``: reduce the footing interfaces too."""
+    gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
+    if loads not in ("all", "ref"):
+        raise ValueError(f"loads must be 'all' or 'ref', got {loads!r}")
+    max_elements = check_int("max_elements", max_elements, lo=1)
+    f_start = check_real("f_start", f_start, lo=F_RANGE[0], hi=F_RANGE[1])
+    rel_tol = gap / 5.0
+    out = SafetyFactor(0.0, float("inf"), loads, mesh)
+    f_lo, f_hi = None, None  # proven safe, proven unsafe
+    for step in range(max_steps + 1):
+        t0 = time.perf_counter()
+        n0 = len(out.trials)
+        start = f_start if f_lo is None else f_lo
+        lo_l, _ = _fos_search(site, mesh, "lb", loads, interface, out.trials, f_lo, f_hi, start, rel_tol)
+        start = f_hi if f_hi is not None else (lo_l if lo_l is not None else f_start)
+        _, hi_u = _fos_search(site, mesh, "ub", loads, interface, out.trials, lo_l, f_hi, start, rel_tol)
+        if lo_l is not None:
+            f_lo = lo_l if f_lo is None else max(f_lo, lo_l)
+        if hi_u is not None:
+            f_hi = hi_u if f_hi is None else min(f_hi, hi_u)
+        out.f_lower = 0.0 if f_lo is None else f_lo
+        out.f_upper = float("inf") if f_hi is None else f_hi
+        out.mesh = mesh
+        row = dict(
+            step=step,
+            n_el=mesh.n_el,
+            f_lower=out.f_lower,
+            f_upper=out.f_upper,
+            gap=out.gap,
+            solves=len(out.trials) - n0,
+            time=time.perf_counter() - t0,
+        )
+        out.history.append(row)
+        if progress is not None:
+            progress(row)
+        if f_hi is None:
+            out.reason = (
+                f"no factor up to F = {F_RANGE[1]:g} made the site fail on this mesh: no mechanism found (a "
+                "confined site, or one whose loads do no work)"
+            )
+            break
+        if f_lo is None:
+            out.reason = f"no factor down to F = {F_RANGE[0]:g} was proven safe on this mesh"
+            break
+        if out.gap <= gap:
+            out.converged = True
+            out.reason = ""
+            break
+        if step == max_steps or mesh.n_el >= max_elements:
+            out.reason = f"refinement cap ({'max_steps' if step == max_steps else 'max_elements'})"
+            break
+        # refine where the bracket at the middle factor has its gap
+        fm = float(np.sqrt(f_lo * f_hi))
+        s_m = site.reduced(fm, interface=interface)
+        br = bracket(s_m.all_loads() if loads == "all" else s_m, mesh)
+        if not br.upper.certified:
+            out.reason = f"no mechanism at F = {fm:.4g} to refine by (upper-bound status {br.upper.status})"
+            break
+        mesh = bisect(mesh, refine_marks(br, theta))
     return out
 
 
@@ -312,50 +559,20 @@ def safety_factor(
     interface: bool = True,
     rel_tol: float = 2e-3,
     f_start: float = 1.0,
+    loads: str = "all",
 ) -> tuple[float, float, list]:
-    """The strength-reduction factor of safety as a bracket [F_LB, F_UB]: the loads are the site's dead
-    loads plus 1 x its reference loads; F_LB is a verified F whose reduced site (c / F, tan phi / F; the
-    interfaces too if ``interface``) has a certified lower bound >= 1 (so F* >= F_LB), F_UB a verified F whose
-    upper bound is < 1 (so F* < F_UB). Both by bisection in log F to ``rel_tol``. Returns (F_LB, F_UB,
-    trials) with trials rows (bound, F, lambda)."""
-    trials = []
-
-    def lam(kind, F):
-        s = site.reduced(F, interface=interface)
-        v = lower_bound(s, mesh).lam if kind == "lb" else upper_bound(s, mesh).lam
-        # an uncertified lower bound (NaN) proves nothing safe; an uncertified upper bound (+inf) proves
-        # nothing failing, and stays +inf
-        v = -np.inf if kind == "lb" and not np.isfinite(v) else v
-        trials.append((kind, F, v))
-        return v
-
-    def solve(kind):
-        # safe(F): the bound says the reduced site carries the loads
-        lo, hi = f_start, f_start
-        if lam(kind, f_start) >= 1.0:
-            while True:
-                hi *= 2.0
-                if lam(kind, hi) < 1.0:
-                    break
-                lo = hi
-                if hi > 1e3:
-                    raise ValueError("no strength reduction up to F = 1000 makes the site fail")
-        else:
-            while True:
-                lo /= 2.0
-                if lam(kind, lo) >= 1.0:
-                    break
-                hi = lo
-                if lo < 1e-3:
-                    raise ValueError("the site fails even with its strength multiplied by 1000")
-        while hi / lo - 1.0 > rel_tol:
-            mid = np.sqrt(lo * hi)
-            if lam(kind, mid) >= 1.0:
-                lo = mid
-            else:
-                hi = mid
-        return lo, hi
-
-    f_lb, _ = solve("lb")
-    _, f_ub = solve("ub")
-    return f_lb, f_ub, trials
+    """The strength-reduction factor of safety on one mesh as a bracket [F_LB, F_UB] (no refinement:
+    :func:`strength_reduction` with ``max_steps=0``; its bisections to ``rel_tol``): the loads are the site's
+    weight and dead loads plus 1 x its reference loads; F_LB a factor whose reduced site (c / F, tan phi / F;
+    the interfaces too if ``interface``) has a certified lower bound >= 1 (F* >= F_LB), F_UB one whose
+    reduced site has a kinematically admissible field with more load power than dissipation (F* <= F_UB).
+    Returns (F_LB, F_UB, trials) with trials rows (bound, F, lambda). Raises ValueError when no factor in
+    [1e-3, 1e3] is proven on one side."""
+    rel_tol = check_real("rel_tol", rel_tol, lo=0.0, lo_open=True, hi=0.5)
+    res = strength_reduction(site, mesh, gap=5.0 * rel_tol, loads=loads, interface=interface,
+                             max_steps=0, f_start=f_start)  # fmt: skip
+    if not np.isfinite(res.f_upper):
+        raise ValueError(f"no strength reduction up to F = {F_RANGE[1]:g} makes the site fail: {res.reason}")
+    if res.f_lower <= 0.0:
+        raise ValueError(f"the site is not proven safe even with its strength multiplied by {F_RANGE[1]:g}")
+    return res.f_lower, res.f_upper, [(t["bound"], t["F"], t["lam"]) for t in res.trials]

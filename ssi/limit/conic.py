@@ -66,6 +66,8 @@ class ConicSolution:
     iterations: int
     time: float
     n_soc: int
+    z: np.ndarray | None = None  # the dual point of the scaled rows (None: no solve)
+    s: np.ndarray | None = None  # the slacks b - A x of the scaled rows
 
 
 def solve_conic(
@@ -105,4 +107,7 @@ def solve_conic(
     solver = clarabel.DefaultSolver(P, np.asarray(q, float), A, b, cones, settings)
     sol = solver.solve()
     elapsed = time.perf_counter() - t0
-    return ConicSolution(np.array(sol.x), str(sol.status), int(sol.iterations), elapsed, n_soc)
+    return ConicSolution(
+        np.array(sol.x), str(sol.status), int(sol.iterations), elapsed, n_soc, np.array(sol.z),
+        np.array(sol.s),
+    )  # fmt: skip

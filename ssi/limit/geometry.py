@@ -409,13 +409,20 @@ class Site:
     so that the domain lies on the left of i -> j (counter-clockwise), or (i, j, None) for an interior
     polyline that splits regions; ``regions``: (x, z, material index) seed points, one inside each region;
     ``materials`` and ``footings`` are indexed by regions and boundaries. ``max_area`` [m^2] per region
-    material (None: the global ``h`` of the mesher)."""
+    material (None: the global ``h`` of the mesher).
+
+    ``scale_all``: lambda multiplies every load together -- the soil's weight, the dead loads and the
+    reference loads at factor 1 -- instead of the reference loads alone (:meth:`all_loads`). Both bound
+    programs are then bounded whatever the dead loads (the dissipation is >= 0), and lambda >= 1 says
+    exactly that the site carries its loads: the test of a strength-reduction factor of safety, also for a
+    site loaded by its weight alone (a slope)."""
 
     points: np.ndarray
     segments: tuple
     regions: tuple
     materials: tuple
     footings: tuple = ()
+    scale_all: bool = False
 
     def __post_init__(self):
         pts = np.ascontiguousarray(self.points, dtype=float)
@@ -468,6 +475,10 @@ class Site:
         """The site with c / F and tan phi / F (soil and, if ``interface``, the footing interfaces)."""
         out = self.map_materials(lambda m: m.reduced(factor))
         return out.map_interfaces(lambda i: i.reduced(factor)) if interface else out
+
+    def all_loads(self) -> Site:
+        """A copy whose lambda multiplies every load together (``scale_all``; class docstring)."""
+        return replace(self, scale_all=True)
 
     @property
     def length_scale(self) -> float:

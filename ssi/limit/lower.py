@@ -86,6 +86,7 @@ class LowerBound:
     status: str
     n_cones: int
     n_rows: int
+    yield_work: np.ndarray | None = None
 
 
 def _assemble(site: Site, mesh: TriMesh, margin: float):
@@ -268,7 +269,26 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             soc.add([3 * v + 2], [-2.0], 0.0)
     q = np.zeros(n)
     q[imu] = -1.0
-    return sc, _independent_local_rows(eq, 9 * n_el), ineq, soc, q, n, n_itf, beams
+    eq = _independent_local_rows(eq, 9 * n_el)
+    if site.scale_all:
+        if beams:
+            raise NotImplementedError("scale_all with a bending footing (Beam): its M-N rows hold dead parts")
+        eq = _scale_all_rows(eq, imu, sc.k)
+    return sc, eq, ineq, soc, q, n, n_itf, beams
+
+
+def _scale_all_rows(eq: Rows, imu: int, k: float) -> Rows:
+    """Every equality row A sig + a mu = b (b: the dead loads and the weight) as A sig + (a - b / k) mu = 0:
+    lambda = mu / k then multiplies the dead loads and the weight as well as the reference loads
+    (:attr:`ssi.limit.geometry.Site.scale_all`). Only equality rows carry loads; the inequality and cone
+    rows' right-hand sides are strengths and stay."""
+    rhs = np.asarray(eq.rhs, float)
+    r = np.flatnonzero(rhs != 0.0)
+    out = Rows(list(eq.rows), list(eq.cols), list(eq.vals), [0.0] * len(rhs))
+    out.rows.extend(r.tolist())
+    out.cols.extend([imu] * len(r))
+    out.vals.extend((-rhs[r] / k).tolist())
+    return out
 
 
 def _independent_local_rows(eq: Rows, n_sig: int) -> Rows:
@@ -405,6 +425,17 @@ def lower_bound(
     if beam_bad:
         reasons.append(f"{beam_bad} beam moments beyond M_p")
     certified = not reasons
+    # the lower bound's own refinement indicator: at each vertex cone the product of the first components of
+    # the dual point z (the plastic multiplier of the program's dual mechanism) and the slack s (the cone's
+    # radius there), equal at the optimum to the stress power of that mechanism's strain rate (z . s = 0 in
+    # the cone): where the yield condition binds and limits lambda, cohesionless soil included (lambda
+    # units, summed per element)
+    yield_work = None
+    if sol.z is not None and sol.s is not None and np.all(np.isfinite(sol.z)) and np.all(np.isfinite(sol.s)):
+        nv = 3 * mesh.n_el
+        r0 = len(sol.z) - 3 * sol.n_soc  # the first cone row
+        w = sol.s[r0 : r0 + 3 * nv : 3] * sol.z[r0 : r0 + 3 * nv : 3]
+        yield_work = np.maximum(w, 0.0).reshape(mesh.n_el, 3).sum(axis=1) / sc.k
     apex_gap = max(float(-marg[slack].min(initial=0.0)), float(itf_viol[itf_slack].max(initial=0.0)))
     lam = x[-1] / sc.k
     return LowerBound(
@@ -431,4 +462,5 @@ def lower_bound(
         status=sol.status,
         n_cones=sol.n_soc,
         n_rows=Ae.shape[0] + Ai.shape[0] + 3 * sol.n_soc,
+        yield_work=yield_work,
     )

@@ -102,6 +102,22 @@ class UpperBound:
     n_rows: int
     certified: bool = True
     lam_recomputed: float = float("nan")
+    admissible: bool = True
+    power: tuple = (float("nan"), float("nan"), float("nan"))
+
+    def collapse_proven(self, lam: float = 1.0) -> bool:
+        """Whether the recomputed field proves that the site collapses under its dead loads plus ``lam``
+        times its reference loads: a kinematically admissible field (flow rule met to ``FLOW_TOL``, whatever
+        the solver's status) on which the loads do more work than the soil dissipates, D < P_dead + lam
+        P_ref. With the solver's optimum (P_ref = 1) this is lam_UB < lam; with the ray of an unbounded
+        program (status DualInfeasible: D - P_dead unbounded below) it holds for every lam when the dead
+        loads alone do more work than the soil dissipates. The comparison keeps a relative margin of
+        ``POWER_TOL`` of the largest term."""
+        d, pd, pr = self.power
+        if not (self.admissible and np.isfinite(d) and np.isfinite(pd) and np.isfinite(pr)):
+            return False
+        excess = pd + lam * pr - d
+        return bool(excess > POWER_TOL * max(abs(d), abs(pd), abs(lam * pr)))
 
 
 # Admissibility tolerance of a recomputed velocity field: flow-rule (eps_v >= sin(phi) e) and interface
@@ -110,6 +126,10 @@ class UpperBound:
 # soil takes the solver's slack); fields of infeasible programs 3 .. 7. Certified below 1e-4: four orders
 # apart from either, and a residual that small changes the dissipation by about as much relatively.
 FLOW_TOL = 1e-4
+# the relative margin by which the loads' power must exceed the dissipation for a field to prove collapse
+# (UpperBound.collapse_proven): the recomputed powers are sums of 1e3 .. 1e5 terms in double precision, the
+# solver's slack enters through the flow-rule residual (<= FLOW_TOL, changing D by about as much)
+POWER_TOL = 1e-6
 
 
 def _vertex_gradients(b, c, A):
@@ -408,6 +428,9 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         if fvar[f, 2] >= 0:
             p_ref[fvar[f, 2]] += ft.moment_ref / (sc.S * sc.L**2) / sc.k
             p_dead[fvar[f, 2]] += ft.moment_dead / (sc.S * sc.L**2)
+    if site.scale_all:  # lambda multiplies the dead loads and the weight too (Site.scale_all)
+        p_ref = p_ref + p_dead / sc.k
+        p_dead = np.zeros(n)
     nz_ = np.flatnonzero(p_ref)
     eq.add(list(nz_), list(p_ref[nz_]), 1.0)
     q -= p_dead
@@ -491,10 +514,15 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         if bk.u_el is not None:
             x_rec[bk.u_node], x_rec[bk.u_el] = x[bk.u_node], x[bk.u_el]
     pr, pd = float(p_ref @ x_rec), float(p_dead @ x_rec)
-    lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a ray of an unbounded program: P_ref ~ 0
+        lam = (diss.sum() - pd) / pr / sc.k  # the objective is mu = k lambda (conic module's scaling)
     certified = bool(
         flow_res <= FLOW_TOL and pr > 0.0 and np.isfinite(lam) and "Infeasible" not in sol.status
     )
+    # admissible whatever the status (the ray of an unbounded program too): a field the solver returns for
+    # a primal-infeasible program (no mechanism) has flow-rule residuals of order one (FLOW_TOL comment)
+    finite = bool(np.all(np.isfinite(x_rec)))
+    admissible = bool(flow_res <= FLOW_TOL and finite and "PrimalInfeasible" not in sol.status)
     unit = 1.0 / (sc.S * sc.L * sc.k * pr)  # real velocities with a reference power of 1 N/m . m/s
     return UpperBound(
         lam=float(lam) if certified else float("inf"),
@@ -527,6 +555,8 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         n_rows=len(eq.rhs) + len(ineq.rhs) + len(soc.rhs),
         certified=certified,
         lam_recomputed=float(lam),
+        admissible=admissible,
+        power=(float(diss.sum()), pd, pr * sc.k),
     )
 
 

@@ -242,7 +242,11 @@ def _mirror_symmetric(f, xl, xr, fref, fdead, mref, mdead, p_dead, p_ref, width)
 
 
 def limit_problem(
-    scene, phase: str | None = None, strip: str | None = None, side_soil: str | None = None
+    scene,
+    phase: str | None = None,
+    strip: str | None = None,
+    side_soil: str | None = None,
+    unloaded: bool = False,
 ) -> LimitProblem:
     """The limit-analysis problem of ``scene`` with lambda scaling the loads of ``phase`` (module
     docstring; None: the last phase). ``strip``: "rigid" or "beam" (a plate Foundation's strip as a beam
@@ -253,7 +257,9 @@ def limit_problem(
     brittle under force loads a beam represents, else "rigid" (with a warning for a brittle section or such
     a load). ``side_soil``: how an embedded strip's side soil enters, "surcharge" (its overburden on the
     ground at the base level) or "soil" (modelled; module docstring, *Embedment*); None: "surcharge" for a
-    Scene, "soil" for a Site (the only model of a site's trench). Raises ValueError naming
+    Scene, "soil" for a Site (the only model of a site's trench). ``unloaded``: a Site with no loads is
+    accepted (its factor of safety under its own weight, :func:`ssi.scene.capacity.safety_factor`), else
+    refused: nothing to scale. Raises ValueError naming
     whatever the scene holds that :mod:`ssi.limit` cannot represent."""
     if strip is not None and strip not in ("rigid", "beam", "beam_mn"):
         raise ValueError(f"strip must be 'rigid', 'beam', 'beam_mn' or None, got {strip!r}")
@@ -277,7 +283,7 @@ def limit_problem(
                 "modelled (the site's geometry, the walls free faces or on its side_contact); give "
                 "side_soil='soil' or None"
             )
-        return _site_problem(scene)
+        return _site_problem(scene, unloaded)
     side_soil = "surcharge" if side_soil is None else side_soil
     phases = _phases(scene)
     if not phases:
@@ -560,7 +566,7 @@ def _wall_pressure(scene, pa, pb) -> Boundary:
     return Boundary("free", pressure_dead=sa - slope * za, pressure_dead_grad=(0.0, slope))
 
 
-def _site_problem(site) -> LimitProblem:
+def _site_problem(site, unloaded: bool = False) -> LimitProblem:
     """The limit problem of an :class:`ssi.scene.site.Site` (any layering and ground, several strips): its
     one geometry (:meth:`Site.geometry`, cells cut at the water table) with the buoyant unit weight below
     the water table, every :class:`Strip` a rigid footing on its contact, the site's loads
@@ -673,9 +679,12 @@ def _site_problem(site) -> LimitProblem:
             if isinstance(ld, ColumnLoad)
         ]
         parts += [f"pressure q={q / 1e3:g} kPa on x=[{a:g}, {b:g}] m" for a, b, q in pressures]
-        unit, ref, ref_force = "", "the site's loads: " + ", ".join(parts), float(n_total)
-    if not (rigid or site.loads):
-        raise ValueError("Site.loads: the site has no load to scale")
+        loads = "the site's loads: " + ", ".join(parts) if parts else "no load (the soil's weight alone)"
+        unit, ref, ref_force = "", loads, float(n_total)
+    if not (rigid or site.loads or unloaded):
+        raise ValueError(
+            "Site.loads: the site has no load to scale (its own factor of safety: Site.safety_factor)"
+        )
     width_f = ends[0][1] - ends[0][0] if len(ends) == 1 else 0.0
     return LimitProblem(lsite, "loads", unit, ref, singular, width_f, False, site, ref_force)
 

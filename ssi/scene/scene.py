@@ -287,8 +287,9 @@ class Scene(SceneParts):
 
     def safety_factor(self, phase: str | None = None, **options) -> SafetyFactorResult:
         """The factor of safety by strength reduction (c / F, tan phi / F of the soil and the contact) under
-        the dead loads plus the loads of ``phase`` at factor 1, bracketed [F_LB, F_UB] by both bounds
-        (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
+        the soil's weight, the dead loads and the loads of ``phase`` at factor 1, a certified bracket
+        [F_LB, F_UB] refined adaptively to ``gap`` (default 2 %; :func:`ssi.scene.capacity.safety_factor`
+        for ``options``)."""
         self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
 

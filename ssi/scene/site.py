@@ -78,7 +78,7 @@ from ..core.mesh import soil_block
 from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
-from .capacity import CapacityResult, limit_analysis
+from .capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from .loads import LOAD_TYPES, Push
 from .parts import MeshSize
 from .site_built import BuiltSite
@@ -341,6 +341,25 @@ class Site(SiteChecks):
                 "SiteResult.push_force"
             )
         return limit_analysis(self, gap=gap, **options)
+
+    def safety_factor(self, gap: float = 0.02, **options) -> SafetyFactorResult:
+        """The site's factor of safety by strength reduction (c / F, tan phi / F of the soil and the
+        contacts) as a certified bracket [F_LB, F_UB] refined to the relative ``gap``: under its weight and
+        its loads at factor 1, or, without loads, its weight alone (a slope's own factor). A lone
+        RigidStrip (a push, no load to carry) and a horizontal :class:`Push` are refused
+        (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
+        if options.get("phase") is not None:
+            raise ValueError(
+                f"phase={options['phase']!r}: a site has no phases (its loads are the ones held)"
+            )
+        options.pop("phase", None)
+        pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
+        if pushes:
+            raise ValueError(
+                f"Site.safety_factor: {pushes[0]!r} in Site.loads: a horizontal push has no load to carry; "
+                "give the horizontal force as ColumnLoad.H"
+            )
+        return safety_factor(self, gap=gap, **options)
 
     def is_level(self) -> bool:
         """Level ground at z = 0, level layer boundaries and a level water table (or none): the K0 state and

@@ -28,6 +28,7 @@ class SiteResult:
     # run --estimate`): ErrorEstimate.to_dict(), or {"failed": why}; None: not estimated
     error_estimate: dict | None = None
     capacity_error: dict | None = None  # a site answers no capacity (kept for the estimate's interface)
+    verdict: dict | None = None  # the run's verdict (ssi.scene.verdict, `ssi run`); kept by the result file
 
     @property
     def solver_result(self):

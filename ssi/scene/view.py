@@ -38,6 +38,9 @@ class SceneResult(LoadPathView):
     # quantity's value, error, relative error, extrapolated value, orders), attached with capacity_error by
     # solve_with_error and estimate_solved (ssi run --estimate); kept by the result file. None: not estimated
     error_estimate: dict | None = None
+    # the run's verdict (ssi.scene.verdict.verdict, `ssi run`): the capacity bracket of its loads, the
+    # margin, settlements and RC utilisations; kept by the result file. None: not asked
+    verdict: dict | None = None
 
     @property
     def load_factor(self) -> list:

@@ -214,6 +214,8 @@ G_GROWTH = 10.0  # on an unsymmetric tangent's factor of a model with a cracking
 # on h = 0.0625 m. On chapter 11 at h = 0.125 m (SECANT_RULE "poor"): 53 factorisations and 0 failed steps
 # with 10, 171 and 6 without the rule.
 SECANT_RULE = "poor"  # when the corrector factorises SECANT_SOFTENING (ssi.core.protocol: the consistent
+
+
 # tangent with the secant sig / e at the plate's concrete points loading on their cracked tension envelope) in
 # place of CONSISTENT (_tangent_flag): "never", "poor" (a refactorisation asked for by a poor contraction; the
 # factor is then kept, lagged, like any other) or "always". With G_GROWTH = 10, "poor": chapter 11 at h =
@@ -232,6 +234,19 @@ SECANT_RULE = "poor"  # when the corrector factorises SECANT_SOFTENING (ssi.core
 # secant one (1-5 failed steps each copy), the secant only from the second poor refactorisation of a step
 # (1-12 failed, one NonConvergence), and the secant everywhere after the path's first failed step (3 copies:
 # 103-125 steps, 11-16 s)
+def _carrying_strip_x(model, dofs, x):
+    """The x of the nodes of every element group carrying the loaded ``dofs`` whose elements have nodal
+    ``coords`` and ``edofs`` (a plate strip under a column load); ``x`` itself when there is none."""
+    out = []
+    for g in model.groups:
+        edofs, coords = getattr(g, "edofs", None), getattr(g, "coords", None)
+        if edofs is None or coords is None or np.ndim(coords) != 3:
+            continue
+        if np.isin(np.asarray(edofs), dofs).any():
+            out.append(np.asarray(coords)[..., 0].ravel())
+    return np.concatenate(out) if out else x
+
+
 SMALL_STRAIN = 0.1  # loaded displacement / loaded width beyond which a limit is suspect (not small strain)
 OVERSHOOT_TRIALS = 8  # _overshoot: trials below the Matthies & Strang search's smallest step ...
 OVERSHOOT_MIN = 1e-3  # ... and the smallest step fraction it tries
@@ -610,6 +625,9 @@ class _Follower:
         x = self.model.coords[nodes, 0]
         width = float(np.ptp(x))
         mirror = self.model.info.get("mirror_x")
+        if width <= 0.0:  # a point load (one column): the width of the strip it stands on
+            x = _carrying_strip_x(self.model, dofs, x)
+            width = float(np.ptp(x))
         if mirror is not None and abs(x.min() - mirror) <= 1e-9 * (1.0 + np.abs(x).max()):
             width = 2.0 * float(np.abs(x - mirror).max())
         if width <= 0.0:

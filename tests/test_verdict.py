@@ -1,0 +1,147 @@
+"""The verdict of `ssi run` (ssi.scene.verdict), the factor of safety of scenes and sites (Scene/Site
+.safety_factor, `ssi limit --fos`), `ssi limit --help` defaults and the engineering stop sentence (issue 46).
+
+Expected values are independent of the code: Prandtl's (2 + pi) s_u B for a strip on Tresca clay (exact for
+phi = 0, rough or smooth, weight irrelevant), so a 400 kN/m column on a 2 m strip on s_u = 20 kPa is carried
+at lambda* = 205.66 / 400 = 0.514 only.
+"""
+
+import json
+import math
+
+import pytest
+
+from ssi.io.cli import main
+from ssi.scene.verdict import stop_sentence, verdict
+
+OVERLOADED = """
+width = 12.0
+depth = 5.0
+
+[[layers]]
+thickness = 5.0
+E = 30e6
+nu = 0.3
+c = 20e3
+phi_deg = 0.0
+psi_deg = 0.0
+
+[foundation]
+x0 = -1.0
+x1 = 1.0
+section = { homogeneous = { thickness = 0.5, E = 30e9, nu = 0.2 } }
+
+[contact]
+kn = 1e10
+kt = 1e9
+
+[[loads]]
+x = 0.0
+N = %s
+
+[mesh]
+h_fine = 0.5
+h_coarse = 2.0
+
+[solve]
+n_steps = 4
+"""
+
+SLOPE = """
+width = 60.0
+depth = 1.0
+ground = [[-30.0, 10.0], [0.0, 10.0], [20.0, 0.0], [30.0, 0.0]]
+
+[[layers]]
+E = 20e6
+nu = 0.3
+unit_weight = 20e3
+c = 10e3
+phi_deg = 20.0
+"""
+
+LAM_STAR = (2.0 + math.pi) * 20e3 * 2.0 / 400e3  # 0.514
+
+
+def test_an_overloaded_scene_does_not_carry_its_loads(tmp_path, capsys):
+    path = tmp_path / "over.toml"
+    path.write_text(OVERLOADED % "400e3")
+    assert main(["run", str(path), "--no-plots", "--capacity-gap", "0.08"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("VERDICT          does not carry its loads")
+    s = json.loads((tmp_path / "over_summary.json").read_text())
+    assert next(iter(s)) == "verdict"
+    v = s["verdict"]
+    assert v["carries"] is False
+    lo, hi = v["margin"]
+    assert lo <= LAM_STAR <= hi < 1.0
+    html = (tmp_path / "over_report.html").read_text()
+    assert html.index("does not carry its loads") < html.index("<h2>Summary</h2>")  # the first screen
+    # the incremental limit against the bracket: flagged when above 1.03 x UB_assoc, with its excess
+    lim = v["incremental_limit"]
+    assert lim is not None and (lim["value"] > 1.03 * lim["ub_assoc"]) == bool(lim["flag"])
+
+
+def test_a_scene_at_half_its_capacity_carries_its_loads_with_margin(tmp_path, capsys):
+    path = tmp_path / "half.toml"
+    path.write_text(OVERLOADED % "100e3")  # lambda* = 2 x 1.028 = 2.06
+    assert main(["run", str(path), "--no-plots", "--capacity-gap", "0.08"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("VERDICT          carries its loads with margin lambda in [")
+    s = json.loads((tmp_path / "half_summary.json").read_text())
+    lo, hi = s["verdict"]["margin"]
+    assert 1.0 <= lo <= 4 * LAM_STAR <= hi
+
+
+def test_no_capacity_skips_and_an_elastic_layer_is_named(tmp_path, capsys):
+    path = tmp_path / "half.toml"
+    path.write_text(OVERLOADED % "100e3")
+    assert main(["run", str(path), "--no-plots", "--no-capacity"]) == 0
+    assert capsys.readouterr().out.startswith("VERDICT          not asked (--no-capacity)")
+    elastic = (OVERLOADED % "100e3").replace("c = 20e3\nphi_deg = 0.0\npsi_deg = 0.0\n", "")
+    path = tmp_path / "elastic.toml"
+    path.write_text(elastic)
+    assert main(["run", str(path), "--no-plots"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("VERDICT          capacity not computed: Scene.layers[0] is elastic")
+
+
+def test_rc_utilisations_above_one_are_flagged():
+    s = {
+        "kind": "scene",
+        "status": "completed",
+        "max_settlement": 0.01,
+        "design": {"util_M_max": 0.8, "util_V_max": 1.14, "w_k_max_mm": 0.43},
+    }
+    v = verdict(s, None, bracket={"not_computed": "test"})
+    u = v["foundations"][0]["utilisation"]
+    assert u["V_Ed/V_Rd,c"] == 1.14 and u["w_k/w_lim"] == pytest.approx(0.43 / 0.3)
+    assert len([f for f in v["flags"] if "> 1" in f]) == 2  # shear and crack width, not bending
+
+
+def test_a_slope_site_has_its_own_factor_of_safety(tmp_path, capsys):
+    """A Site without loads: its factor of safety under its weight alone (no "no load to scale")."""
+    path = tmp_path / "slope.toml"
+    path.write_text(SLOPE)
+    assert main(["limit", "--fos", str(path), "--gap", "0.08"]) == 0
+    out = capsys.readouterr().out
+    assert "factor of safety (strength reduction" in out and "gap reached" in out
+    d = json.loads((tmp_path / "slope_fos.json").read_text())
+    # a 2:1 slope, phi = 20, c/(gamma H) = 0.05, base 1 m below the toe: near 1.38 (Bishop-Morgenstern D = 1)
+    assert 1.0 < d["f_lower"] <= d["f_upper"] < 1.8
+
+
+def test_limit_help_shows_defaults(capsys):
+    with pytest.raises(SystemExit):
+        main(["limit", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "(default: 0.02)" in text and "(default: 20000)" in text
+
+
+def test_stop_sentence_names_where_and_what_to_do():
+    text = stop_sentence(
+        {"reason": "residual stagnates", "load_factor_from": 0.8, "node_xy": (1.0, -0.5), "ill_posed": "x"},
+        "scene",
+    )
+    assert text.startswith("The scene's solver stopped at load factor 0.8, worst near x = 1.00 m")
+    assert "Davis" in text and "What to do" in text and len(text) < 600
