@@ -31,7 +31,7 @@ export OMP_WAIT_POLICY := PASSIVE
 # the runtime install (`make demo`): the package and its `dependencies` only; `make test` later adds the
 # test extra to the same venv ($(STAMP))
 RUNTIME := $(VENV)/.runtime
-DEMO_EXAMPLE ?= examples/strip_mohr_coulomb.toml
+DEMO_EXAMPLE ?= examples/capacity.toml  # every layer has a strength, so the verdict brackets its capacity
 $(RUNTIME): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
