@@ -31,7 +31,8 @@ export OMP_WAIT_POLICY := PASSIVE
 # the runtime install (`make demo`): the package and its `dependencies` only; `make test` later adds the
 # test extra to the same venv ($(STAMP))
 RUNTIME := $(VENV)/.runtime
-DEMO_EXAMPLE ?= examples/capacity.toml  # every layer has a strength, so the verdict brackets its capacity
+# every layer of this example has a strength, so the demo's verdict brackets its capacity
+DEMO_EXAMPLE ?= examples/capacity.toml
 $(RUNTIME): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
