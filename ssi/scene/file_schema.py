@@ -30,7 +30,8 @@ UNITS = {
         "boreholes": "list of Borehole tables (or boundaries; the layer boundaries)",
         "boundaries": "[[[x m, z m], ...], ...] one polyline per layer boundary, from the top down",
         "ground": "[[x m, z m], ...] ground polyline (leave out: level at z = 0)",
-        "water_table": "m ELEVATION of the water table, or [[x m, z m], ...] (leave out: dry)",
+        "water_table": "m DEPTH of the water table below the ground, as a Scene's (on sloping ground it "
+        "follows the ground; >= 0: a site builds no ponding); or give water_level; leave both out: dry",
         "strips": "list of Strip tables (type = 'RigidStrip': a RigidStrip table)",
         "loads": "list of load tables (type = 'ColumnLoad' | 'SurfacePressure' | 'Push')",
         "mesh": "MeshSize table",
@@ -38,6 +39,8 @@ UNITS = {
         "initial_stress": "'auto' | 'K0' | 'gravity' | 'gravity_plastic'",
         "gamma_w": "N/m^3",
         "depth_varying": "'gauss' | 'centroid' (where a DepthVarying layer is sampled)",
+        "water_level": "m ELEVATION of the water table (z up, as ground: PLAXIS's phreatic level), or "
+        "[[x m, z m], ...] a polyline of elevations; or give water_table (a depth); leave both out: dry",
     },
     "DepthVarying": {
         "layer": "- (not a key: the SoilLayer keys stand in the same [[layers]] table)",

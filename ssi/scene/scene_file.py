@@ -66,12 +66,13 @@ An embedded strip's side contact is a ``[side_contact]`` table (:class:`ssi.scen
 ``embedment`` > 0): ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` is a smooth side.
 
 A site (:class:`~ssi.scene.site.Site`: boreholes or boundary polylines, a ground polyline, several strips;
-``water_table`` there is an ELEVATION [m] or a polyline, a scene's a depth below the ground)::
+``water_table`` is a DEPTH [m] below the ground in both, as in a scene; a site's ``water_level`` is an
+ELEVATION [m] or a polyline of elevations, PLAXIS's phreatic level -- one of the two)::
 
     width = 30.0                          # [m]  Site.width
     depth = 12.0                          # [m]  Site.depth
     ground = [[-15.0, 1.0], [-4.0, 1.0], [4.0, 0.0], [15.0, 0.0]]   # [m] (x, z) polyline
-    water_table = -3.0                    # [m] elevation, or a polyline; leave out: dry
+    water_level = -3.0                    # [m] elevation, or a polyline; or water_table = 3.0 (depth)
     initial_stress = "auto"               # "auto" | "K0" | "gravity" | "gravity_plastic"
     mesher = "auto"                       # "auto" | "structured" | "gmsh"
 
@@ -120,7 +121,9 @@ from .site import Site
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
 
 # top-level keys a site file may have and a scene file may not (a scene file has a ``foundation``)
-SITE_ONLY_KEYS = frozenset({"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress"})
+SITE_ONLY_KEYS = frozenset(
+    {"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress", "water_level"}
+)
 DEPTH_KEYS = ("E_inc", "c_inc", "z_ref")  # a site's layer with these is a DepthVarying layer
 
 _LOAD = "load"  # marks a field holding load tables

@@ -62,6 +62,13 @@ Stiffness and strength growing with depth: :class:`DepthVarying` (PLAXIS's E_inc
 piecewise-constant field, whose error falls only with the element size). A site without DepthVarying
 layers builds the element-wise group either way.
 
+Water. ``water_level`` is the water table's ELEVATION [m] (a level or a polyline of (x, z) points, as the
+ground: PLAXIS's phreatic level); ``water_table`` its DEPTH [m] below the ground, the word's meaning in a
+:class:`~ssi.scene.scene.Scene` too (on sloping ground the table then follows the ground). One or neither.
+A value that reads as the other convention is refused by name: a level above the ground everywhere, a
+negative depth (ponding, which a site does not build), a polyline given as a depth, either at or below the
+block bottom everywhere (for a dry site leave both out).
+
 Supports: the bottom fixed, the sides on vertical rollers (the separated block of the paper's Fig. 1).
 """
 
@@ -73,8 +80,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..core.geometry import Geometry, GeometryError, from_cells
-from ..core.gmsh_mesh import UnstructuredMesh, check_quality, mesh_geometry
-from ..core.mesh import soil_block
+from ..core.gmsh_mesh import check_quality
 from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
@@ -83,6 +89,7 @@ from .loads import LOAD_TYPES, Push
 from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_checks import TOL, SiteChecks
+from .site_mesh import SiteMesh
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
 from .site_view import SiteResult, gibson_settlement
 
@@ -110,10 +117,12 @@ def _polyline(name, pts):
 
 
 @dataclass
-class Site(SiteChecks):
+class Site(SiteChecks, SiteMesh):
     """A site: see the module docstring. ``layers`` (SoilLayer or DepthVarying) from the top down;
     ``boreholes`` or ``boundaries`` (len(layers) - 1 boundaries); ``ground`` polyline [(x, z)] [m];
-    ``water_table``: elevation [m] or polyline (None: dry), the weight below it is the buoyant one;
+    ``water_level``: the water table's ELEVATION [m] (z up, as ``ground``: PLAXIS's phreatic level) or a
+    polyline [(x, z)], or ``water_table``: its DEPTH [m] below the ground, as a :class:`Scene`'s (on sloping
+    ground it follows the ground); one of them or neither (dry); the weight below it is the buoyant one;
     ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground, Push of a strip sideways:
     its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
@@ -127,7 +136,7 @@ class Site(SiteChecks):
     boreholes: list | None = None
     boundaries: list | None = None
     ground: list | None = None
-    water_table: float | list | None = None
+    water_table: float | None = None
     strips: list = field(default_factory=list)
     loads: list = field(default_factory=list)
     mesh: MeshSize = field(default_factory=MeshSize)
@@ -135,6 +144,7 @@ class Site(SiteChecks):
     initial_stress: str = "auto"
     gamma_w: float = GAMMA_W
     depth_varying: str = "gauss"
+    water_level: float | list | None = None
 
     def __post_init__(self):
         self.width = check_real("Site.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -197,6 +207,7 @@ class Site(SiteChecks):
                     f"Site.boundaries: {len(self.boundaries)} given, {len(self.layers)} layers need {n_b}"
                 )
             self._raw = [_polyline(f"Site.boundaries[{k}]", p) for k, p in enumerate(self.boundaries)]
+        self._water = self._water_line()
         self._check_geometry()
 
     @property
@@ -227,12 +238,20 @@ class Site(SiteChecks):
         return np.minimum(np.interp(x, *self._raw[k]), self.ground_z(x))
 
     def water_z(self, x) -> np.ndarray:
-        """Elevation [m] of the water table at ``x`` (-inf: dry)."""
-        if self.water_table is None:
+        """Elevation [m] of the water table at ``x`` (-inf: dry), whichever field gave it."""
+        kind, value = self._water
+        if kind == "dry":
             return np.full(np.shape(x), -np.inf)
-        if np.ndim(self.water_table) == 0:
-            return np.full(np.shape(x), float(self.water_table))
-        return np.interp(x, *_polyline("Site.water_table", self.water_table))
+        if kind == "depth":
+            return self.ground_z(x) - value
+        if kind == "level":
+            return np.full(np.shape(x), value)
+        return np.interp(x, *value)
+
+    @property
+    def has_water(self) -> bool:
+        """True if the site has a water table (``water_level`` or ``water_table`` given)."""
+        return self._water[0] != "dry"
 
     def _strip_ends(self):
         return sorted(s.ends for s in self.strips)
@@ -258,7 +277,7 @@ class Site(SiteChecks):
     def _cut_lines(self, xs) -> list[np.ndarray]:
         """Elevations [m] at ``xs`` of the lines every layer is cut along (mesh lines): the water table and
         the base level of every embedded strip (so the trench walls end at a mesh node)."""
-        cuts = [] if self.water_table is None else [self.water_z(xs)]
+        cuts = [self.water_z(xs)] if self.has_water else []
         return cuts + [np.full(np.shape(xs), lv) for _, _, _, lv in self.embedded()]
 
     def breaks(self) -> np.ndarray:
@@ -270,9 +289,8 @@ class Site(SiteChecks):
             xs += [a, b]
         xs += self._load_points()
         xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
-        if self.water_table is not None and np.ndim(self.water_table):
-            xs = np.unique(np.clip(np.concatenate([xs, _polyline("Site.water_table", self.water_table)[0]]),
-                                   self.x_left, self.x_right))  # fmt: skip
+        if self._water[0] == "polyline":
+            xs = np.unique(np.clip(np.concatenate([xs, self._water[1][0]]), self.x_left, self.x_right))
         # where the ground crosses a boundary (the cut boundary has a kink there) and where a cut line (the
         # water table, an embedded strip's base level) crosses the ground, a boundary or another cut line
         lines = [np.interp(xs, *r) for r in self._raw]
@@ -347,7 +365,7 @@ class Site(SiteChecks):
         the structured mesh apply."""
         xs = self.breaks()
         flat = np.all(np.abs(self.ground_z(xs)) <= TOL * self.width)
-        water = self.water_table is None or np.ptp(self.water_z(xs)) <= TOL * self.width
+        water = not self.has_water or np.ptp(self.water_z(xs)) <= TOL * self.width
         return bool(flat and water) and all(np.ptp(np.interp(xs, *r)) <= TOL * self.width for r in self._raw)
 
     def layer_thicknesses(self) -> list[float]:
@@ -414,55 +432,6 @@ class Site(SiteChecks):
             if x0 - TOL * self.width <= push.x <= x1 + TOL * self.width:
                 return i
         raise GeometryError(f"{push!r}: Push.x={push.x:g} m lies on no strip {self._strip_ends()}")
-
-    def _structured_mesh(self):
-        m = self.mesh
-        if self.strips:
-            foot = self.strips[0].ends
-        else:
-            pressures = [ld.ground_span() for ld in self.loads if ld.ground_span() is not None]
-            foot = (
-                (min(a for a, _ in pressures), max(b for _, b in pressures))
-                if pressures
-                else (-0.25 * self.width, 0.25 * self.width)
-            )
-        breaks = self._load_points()
-        # the layers split at the water table (a mesh line there, as the layered scene does): each element
-        # wholly above or below it; and at an embedded strip's base (the trench's bottom, as soil_block needs)
-        d_w = np.inf if self.water_table is None else -float(self.water_z(0.0))
-        trench = self.embedded()
-        d_base = -trench[0][3] if trench else 0.0
-        thick, owner, top = [], [], 0.0
-        for k, t in enumerate(self.layer_thicknesses()):
-            inner = sorted({d for d in (d_w, d_base) if 1e-9 * t < d - top < t * (1 - 1e-9)})
-            for a, b in zip([top, *inner], [*inner, top + t]):
-                thick.append(b - a)
-                owner.append(k)
-            top += t
-        mesh = soil_block(
-            self.width, self.depth, thick, foot, m.h_fine, m.h_coarse, m.growth,
-            breaks=breaks, embedment=d_base, end_grading=m.end_grading,
-        )  # fmt: skip
-        mesh.el_layer = np.array(owner, np.int64)[mesh.el_layer]
-        return mesh
-
-    def _gmsh_mesh(self) -> UnstructuredMesh:
-        m = self.mesh
-        ref = []
-        for i, s in enumerate(self.strips):
-            x0, x1 = s.ends
-            n = max(1, round((x1 - x0) / m.h_fine))
-            xs = np.linspace(x0, x1, n + 1)
-            ref += [(x, self.base_z(i)) for x in xs]
-            top = float(self.ground_z(x0))
-            if top - self.base_z(i) > TOL * self.width:  # the trench walls of an embedded strip
-                n_w = max(1, round((top - self.base_z(i)) / m.h_fine))
-                ref += [(x, z) for x in (x0, x1) for z in np.linspace(self.base_z(i), top, n_w + 1)]
-        for span in (ld.ground_span() for ld in self.loads):
-            if span is not None:
-                n = max(1, round((span[1] - span[0]) / m.h_fine))
-                ref += [(x, float(self.ground_z(x))) for x in np.linspace(*span, n + 1)]
-        return mesh_geometry(self.geometry(), m.h_fine, m.h_coarse, m.growth, np.array(ref) if ref else None)
 
 
 def _unique(xs, scale):

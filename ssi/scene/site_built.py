@@ -94,7 +94,7 @@ class BuiltSite:
         if self.initial_stress_method == "K0":
             layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in site.layers]
             layers = [replace(lay, thickness=t) for lay, t in zip(layers, site.layer_thicknesses())]
-            wt = None if site.water_table is None else -float(site.water_z(0.0))
+            wt = -float(site.water_z(0.0)) if site.has_water else None
             return geostatic_stress(
                 soil.integration_points()[..., 1], layers, water_table=wt, gamma_w=site.gamma_w
             )

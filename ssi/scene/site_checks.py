@@ -7,16 +7,81 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.geometry import GeometryError
+from ..core.validate import check_real
 
 TOL = 1e-9  # relative to the site's size: coordinates closer than this are one point
 
 
+# what the two water fields mean, for the messages that name the other one
+_LEVEL = "Site.water_level is the water table's ELEVATION [m] (z up, as the ground polyline)"
+_DEPTH = "Site.water_table is the water table's DEPTH [m] below the ground (as a Scene's)"
+
+
 class SiteChecks:
-    """``_check_geometry`` (run by ``Site.__post_init__``) and ``_check_trench`` of an embedded strip."""
+    """``_check_geometry`` (run by ``Site.__post_init__``), ``_check_trench`` of an embedded strip and the
+    water table's two fields (``_water_line``, ``_check_water``)."""
+
+    def _water_line(self):
+        """("dry", None) | ("depth", d) | ("level", z) | ("polyline", (xs, zs)) from ``water_table`` (a depth
+        below the ground) or ``water_level`` (an elevation or a polyline of elevations): one field, one
+        meaning. A polyline given as a depth is refused by name (a polyline is (x, z) points: elevations)."""
+        from .site import _polyline
+
+        if self.water_table is not None and self.water_level is not None:
+            raise ValueError(
+                f"Site: give the water table by water_level={self.water_level!r} (an ELEVATION [m]) or by "
+                f"water_table={self.water_table!r} (a DEPTH [m] below the ground), not both"
+            )
+        if self.water_table is not None:
+            if np.ndim(self.water_table) != 0:
+                raise ValueError(
+                    f"{_DEPTH}: one number, got {self.water_table!r}; a polyline [(x, z), ...] of elevations "
+                    "is Site.water_level"
+                )
+            d = check_real("Site.water_table", self.water_table, unit="m (depth below the ground)")
+            if d < 0.0:
+                raise ValueError(
+                    f"{_DEPTH}; water_table={d:g} m puts free water {-d:g} m above the ground (ponding), "
+                    f"which a site does not build; if {d:g} m is the water table's elevation, give "
+                    f"water_level={d:g}"
+                )
+            return "depth", d
+        if self.water_level is None:
+            return "dry", None
+        if np.ndim(self.water_level) == 0:
+            return "level", check_real("Site.water_level", self.water_level, unit="m (elevation)")
+        return "polyline", _polyline("Site.water_level", self.water_level)
+
+    def _check_water(self, xs, g):
+        """A water table that reads as the other field's convention, refused by name: an elevation above the
+        ground everywhere (a depth given as an elevation: ``water_level=2.0`` for 2 m down), or either field
+        at or below the block bottom everywhere (no soil wet: a dry site is None)."""
+        kind, value = self._water
+        if kind == "dry":
+            return
+        w = self.water_z(xs)
+        if kind != "depth" and np.all(w > g + TOL * self.width):
+            raise ValueError(
+                f"{_LEVEL}; water_level={self.water_level!r} lies above the ground everywhere (ground z from "
+                f"{g.min():g} to {g.max():g} m, water from {w.min():g} to {w.max():g} m): the whole site "
+                f"under free water, which a site does not build. If it is a depth below the ground, give "
+                f"water_table={self.water_level!r}; for a submerged site give the ground's level (the free "
+                "water above changes no effective stress)"
+            )
+        if np.all(w <= self.z_bottom + TOL * self.width):
+            name, conv, other = (
+                ("water_table", _DEPTH, _LEVEL) if kind == "depth" else ("water_level", _LEVEL, _DEPTH)
+            )
+            raise ValueError(
+                f"{conv}; {name}={getattr(self, name)!r} lies at or below the block bottom "
+                f"z={self.z_bottom:g} m everywhere (water z up to {float(w.max()):g} m), so no soil is wet: "
+                f"for a dry site leave it out (None); the other convention is the other field ({other})"
+            )
 
     def _check_geometry(self):
         xs = self.breaks()
         g = self.ground_z(xs)
+        self._check_water(xs, g)
         if np.any(g <= self.z_bottom):
             x = xs[np.argmax(g <= self.z_bottom)]
             raise GeometryError(
@@ -117,7 +182,7 @@ class SiteChecks:
                     f"strips[{i}] ({x0:g}, {x1:g}) m, level {level:g} m: leave backfill between them"
                 )
         inside = xs[(xs >= x0) & (xs <= x1)]
-        if self.water_table is not None and np.any(self.water_z(inside) > level + TOL * self.width):
+        if self.has_water and np.any(self.water_z(inside) > level + TOL * self.width):
             raise GeometryError(
                 f"strips[{i}]: the water table (z up to {float(self.water_z(inside).max()):g} m) lies above "
                 f"its base level {level:g} m: a flooded trench is not built; lower the water table or "
