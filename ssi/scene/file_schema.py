@@ -39,6 +39,7 @@ UNITS = {
         "initial_stress": "'auto' | 'K0' | 'gravity' | 'gravity_plastic'",
         "gamma_w": "N/m^3",
         "depth_varying": "'gauss' | 'centroid' (where a DepthVarying layer is sampled)",
+        "phases": "list of Phase tables (loads and factors; excavate and drainage: a Scene's only)",
         "water_level": "m ELEVATION of the water table (z up, as ground: PLAXIS's phreatic level), or "
         "[[x m, z m], ...] a polyline of elevations; or give water_table (a depth); leave both out: dry",
     },

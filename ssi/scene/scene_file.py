@@ -139,6 +139,7 @@ _NESTED = {
     (ContactSegment, "contact"): (Contact, "one"),
     (Scene, "side_contact"): (Contact, "one"),
     (Site, "loads"): (_LOAD, "list"),
+    (Site, "phases"): (Phase, "list"),
     (Site, "mesh"): (MeshSize, "one"),
     (Site, "boreholes"): (Borehole, "list"),
     (Strip, "foundation"): (Foundation, "one"),

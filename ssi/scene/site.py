@@ -126,7 +126,9 @@ class Site(SiteChecks, SiteMesh):
     ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground, Push of a strip sideways:
     its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
-    "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled)."""
+    "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled);
+    ``phases``: :class:`~ssi.scene.parts.Phase` s solved in turn after ``loads`` (their loads and factors,
+    as a scene's; excavations and drainage switches are a scene's only, refused by name)."""
 
     kind: ClassVar[str] = "site"  # the input's kind (a Scene's: "scene"), as result files name it
 
@@ -145,6 +147,7 @@ class Site(SiteChecks, SiteMesh):
     gamma_w: float = GAMMA_W
     depth_varying: str = "gauss"
     water_level: float | list | None = None
+    phases: list = field(default_factory=list)
 
     def __post_init__(self):
         self.width = check_real("Site.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -167,6 +170,7 @@ class Site(SiteChecks, SiteMesh):
                 raise ValueError(
                     f"Site.loads[{i}]: {type(ld).__name__} is not one a site takes: {site_loads}"
                 )
+        self._check_phases()
         n_b = len(self.layers) - 1
         if self.boreholes is not None and self.boundaries is not None:
             raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
@@ -210,11 +214,9 @@ class Site(SiteChecks, SiteMesh):
         self._water = self._water_line()
         self._check_geometry()
 
-    @property
-    def phases(self) -> tuple:
-        """A site is loaded in one phase (its ``loads``, scaled by the load factor): no construction phases
-        (yet)."""
-        return ()
+    def all_loads(self) -> list:
+        """``loads`` and every phase's loads, in that order (what the mesh and the checks must serve)."""
+        return list(self.loads) + [ld for ph in self.phases for ld in ph.loads]
 
     def sections(self) -> list:
         """The sections of the plate strips, in the order of ``strips`` (a RigidStrip has none)."""
@@ -346,9 +348,11 @@ class Site(SiteChecks, SiteMesh):
         :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
         stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
         (:mod:`ssi.scene.limit_problem`). A site has no phases: ``phase`` is refused by name."""
-        if options.get("phase") is not None:
+        if options.get("phase") is not None or self.phases:
             raise ValueError(
-                f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
+                f"phase={options.get('phase')!r}, Site.phases={[ph.name for ph in self.phases]}: the limit "
+                "analysis of a phased site is not built (a site's limit analysis scales its loads); give "
+                "the loads to scale as Site.loads of a site without phases"
             )
         options.pop("phase", None)
         pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
@@ -414,7 +418,7 @@ class Site(SiteChecks, SiteMesh):
 
     def _load_points(self) -> list[float]:
         out = []
-        for ld in self.loads:
+        for ld in self.all_loads():
             out += ld.mesh_lines()  # a column's x, a pressure's ends (a Push: none)
         return out
 

@@ -307,10 +307,18 @@ class BuiltSite:
     def solve(self, n_steps: int | None = None, settings=None, load_factors=None) -> SiteResult:
         """Apply the loads to load factor 1 from the initial stress: one linear solve for a linear site, else
         the solver's automatic increments (``n_steps``, ``settings`` as for a scene; ``load_factors``: the
-        levels themselves, e.g. a graded push of a RigidStrip)."""
+        levels themselves, e.g. a graded push of a RigidStrip). With ``site.phases``: the geostatic phase,
+        then ``site.loads`` (if any, as a phase named "loads") and each phase in turn
+        (:func:`ssi.scene.stages.solve_site_phases`); ``out.phases`` lists them."""
         from ..solver import Settings
-        from .stages import _load_levels, _run_phase
+        from .stages import _load_levels, _run_phase, solve_site_phases
 
+        if self.site.phases:
+            if load_factors is not None:
+                raise ValueError(
+                    f"load_factors={load_factors!r}: a phased site steps each phase by its own n_steps"
+                )
+            return solve_site_phases(self, n_steps, settings)
         if self.is_linear and load_factors is None:
             return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
         levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)

@@ -21,6 +21,44 @@ class SiteChecks:
     """``_check_geometry`` (run by ``Site.__post_init__``), ``_check_trench`` of an embedded strip and the
     water table's two fields (``_water_line``, ``_check_water``)."""
 
+    def _check_phases(self):
+        """Each phase a Phase whose loads a site takes, its factors naming earlier phases, no excavation or
+        drainage switch (a scene's: not built on a site's mesh), names unique; a RigidStrip's ``settle`` is
+        a single-phase site's (a phased one would hold it at zero)."""
+        from .loads import LOAD_TYPES
+        from .parts import Phase
+
+        names = ["loads"] if self.loads else []
+        for i, ph in enumerate(self.phases):
+            if not isinstance(ph, Phase):
+                raise TypeError(f"Site.phases[{i}] must be a Phase, got {ph!r}")
+            where = f"Site.phases[{i}] ({ph.name!r})"
+            if ph.name in names or ph.name == "geostatic":
+                raise ValueError(f"{where}: the name is taken (earlier phases: {['geostatic', *names]})")
+            for j, ld in enumerate(ph.loads):
+                if not ld.on_site:
+                    site_loads = sorted(n for n, c in LOAD_TYPES.items() if c.on_site)
+                    raise ValueError(
+                        f"{where}.loads[{j}]: {type(ld).__name__} is not one a site takes: {site_loads}"
+                    )
+            for key in ph.factors:
+                if key not in names:
+                    raise ValueError(
+                        f"{where}.factors[{key!r}]: no earlier phase of that name (earlier: {names})"
+                    )
+            if ph.excavate or ph.drainage:
+                raise ValueError(
+                    f"{where}: excavate={ph.excavate!r}, drainage={ph.drainage!r}: excavations and "
+                    "drainage switches are built on a Scene only; a site's phases carry loads and factors"
+                )
+            names.append(ph.name)
+        for i, s in enumerate(self.strips):
+            if self.phases and s.rigid and s.settle != 0.0:
+                raise ValueError(
+                    f"Site.strips[{i}]: RigidStrip.settle={s.settle!r} m in a phased site is not built (the "
+                    "phases set every prescribed motion); give settle=0 or solve the site without phases"
+                )
+
     def _water_line(self):
         """("dry", None) | ("depth", d) | ("level", z) | ("polyline", (xs, zs)) from ``water_table`` (a depth
         below the ground) or ``water_level`` (an elevation or a polyline of elevations): one field, one
@@ -140,7 +178,7 @@ class SiteChecks:
                 )
         for i, x0, x1, lv in self.embedded():
             self._check_trench(i, x0, x1, lv, xs)
-        for i, ld in enumerate(self.loads):
+        for i, ld in enumerate(self.all_loads()):  # i: of loads, then of each phase's
             if ld.drives == "horizontal":  # a Push
                 s = self.strips[self.pushed_strip(ld)]
                 if s.rigid and not s.rough:

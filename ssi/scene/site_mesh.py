@@ -20,7 +20,7 @@ class SiteMesh:
         if self.strips:
             foot = self.strips[0].ends
         else:
-            pressures = [ld.ground_span() for ld in self.loads if ld.ground_span() is not None]
+            pressures = [ld.ground_span() for ld in self.all_loads() if ld.ground_span() is not None]
             foot = (
                 (min(a for a, _ in pressures), max(b for _, b in pressures))
                 if pressures
@@ -58,7 +58,7 @@ class SiteMesh:
             if top - self.base_z(i) > TOL * self.width:  # the trench walls of an embedded strip
                 n_w = max(1, round((top - self.base_z(i)) / m.h_fine))
                 ref += [(x, z) for x in (x0, x1) for z in np.linspace(self.base_z(i), top, n_w + 1)]
-        for span in (ld.ground_span() for ld in self.loads):
+        for span in (ld.ground_span() for ld in self.all_loads()):
             if span is not None:
                 n = max(1, round((span[1] - span[0]) / m.h_fine))
                 ref += [(x, float(self.ground_z(x))) for x in np.linspace(*span, n + 1)]
