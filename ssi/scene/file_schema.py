@@ -29,7 +29,8 @@ UNITS = {
         "decide), or DepthVarying ones",
         "boreholes": "list of Borehole tables (or boundaries; the layer boundaries)",
         "boundaries": "[[[x m, z m], ...], ...] one polyline per layer boundary, from the top down",
-        "ground": "[[x m, z m], ...] ground polyline (leave out: level at z = 0)",
+        "ground": "[[x m, z m], ...] ground polyline, x increasing; two points at one x: a vertical step "
+        "(a cut's face) (leave out: level at z = 0)",
         "water_table": "m DEPTH of the water table below the ground, as a Scene's (on sloping ground it "
         "follows the ground; >= 0: a site builds no ponding); or give water_level; leave both out: dry",
         "strips": "list of Strip tables (type = 'RigidStrip': a RigidStrip table)",

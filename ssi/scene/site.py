@@ -14,7 +14,9 @@ water table, several foundations, and stiffness and strength growing with depth 
     out.strip_settlement(0), out.differential_settlement(0, 1)
 
 Geometry. The block spans x in [-width/2, width/2] down to z = -depth (z upwards, m). The ground is the
-polyline ``ground`` (x increasing; extended level beyond its ends; default z = 0). Layers are listed from the
+polyline ``ground`` (x increasing; extended level beyond its ends; default z = 0); two consecutive points at
+one x are a vertical step, the face of a cut (the cells beside it made conforming, meshed by gmsh; a
+SurfacePressure may end at its crest, not cross it). Layers are listed from the
 top down; the boundary between layer k and k + 1 is given either by ``boreholes`` (each lists the boundary
 elevations at its x, from the top down; between boreholes the boundaries are interpolated linearly, beyond
 the outermost ones they are level) or by ``boundaries`` (one polyline per boundary). Equal elevations make a
@@ -89,7 +91,7 @@ from .loads import LOAD_TYPES, Push
 from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_checks import TOL, SiteChecks
-from .site_mesh import SiteMesh
+from .site_mesh import SiteMesh, conforming_cells
 from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
 from .site_view import SiteResult, gibson_settlement
 
@@ -106,13 +108,20 @@ __all__ = [
 ]
 
 
-def _polyline(name, pts):
-    """(x, z) arrays of a polyline [(x, z), ...] with x strictly increasing."""
+def _polyline(name, pts, steps=False):
+    """(x, z) arrays of a polyline [(x, z), ...] with x strictly increasing; ``steps``: two consecutive points
+    may share an x (a vertical step, e.g. the face of a cut), never three."""
     a = np.asarray(pts, np.float64)
     if a.ndim != 2 or a.shape[1] != 2 or len(a) < 1 or not np.all(np.isfinite(a)):
         raise GeometryError(f"{name} must be a list of (x, z) points [m], got {pts!r}")
-    if np.any(np.diff(a[:, 0]) <= 0):
-        raise GeometryError(f"{name}: the x of its points must increase strictly, got {a[:, 0].tolist()}")
+    dx = np.diff(a[:, 0])
+    if np.any(dx < 0) or (not steps and np.any(dx == 0)):
+        rule = "must increase strictly"
+        if steps:
+            rule = "must not decrease (a vertical step: two points at one x)"
+        raise GeometryError(f"{name}: the x of its points {rule}, got {a[:, 0].tolist()}")
+    if steps and np.any((dx[:-1] == 0) & (dx[1:] == 0)):
+        raise GeometryError(f"{name}: three points at one x (a step has two), got {a[:, 0].tolist()}")
     return a[:, 0], a[:, 1]
 
 
@@ -183,9 +192,18 @@ class Site(SiteChecks, SiteMesh):
         gx, gz = (
             (np.array([0.0]), np.array([0.0]))
             if self.ground is None
-            else _polyline("Site.ground", self.ground)
+            else _polyline("Site.ground", self.ground, steps=True)
         )
         self._ground = (gx, gz)
+        # the vertical steps of the ground (i: points i and i + 1 share their x): the ground has two
+        # elevations there, the one left of the step and the one right of it
+        self._steps = [int(i) for i in np.flatnonzero(np.diff(gx) == 0.0)]
+        for i in self._steps:
+            if not (self.x_left < gx[i] < self.x_right):
+                raise GeometryError(
+                    f"Site.ground: the vertical step at x={gx[i]:g} m must lie inside the block "
+                    f"({self.x_left:g}, {self.x_right:g}) m"
+                )
         self._raw = []  # (x, z) of each boundary
         if self.boreholes is not None:
             if not self.boreholes:
@@ -231,21 +249,30 @@ class Site(SiteChecks, SiteMesh):
         return replace(self, strips=strips)
 
     # ---- geometry -----------------------------------------------------------------------------------------
-    def ground_z(self, x) -> np.ndarray:
-        """Elevation [m] of the ground at ``x``."""
-        return np.interp(x, *self._ground)
+    def ground_z(self, x, side: str | None = None) -> np.ndarray:
+        """Elevation [m] of the ground at ``x``; at a vertical step the top of its face, or with ``side``
+        "left" / "right" the ground just left / right of it (what a column of the geometry ending / starting
+        there has)."""
+        gx, gz = self._ground
+        z = np.interp(x, gx, gz)
+        for i in self._steps:
+            at = np.abs(np.asarray(x, np.float64) - gx[i]) <= TOL * max(1.0, self.width)
+            pick = {None: max(gz[i], gz[i + 1]), "left": gz[i], "right": gz[i + 1]}[side]
+            z = np.where(at, pick, z)
+        return z
 
-    def boundary_z(self, k: int, x) -> np.ndarray:
+    def boundary_z(self, k: int, x, side: str | None = None) -> np.ndarray:
         """Elevation [m] of the boundary below layer ``k`` at ``x``, cut by the ground (min of both)."""
-        return np.minimum(np.interp(x, *self._raw[k]), self.ground_z(x))
+        return np.minimum(np.interp(x, *self._raw[k]), self.ground_z(x, side))
 
-    def water_z(self, x) -> np.ndarray:
-        """Elevation [m] of the water table at ``x`` (-inf: dry), whichever field gave it."""
+    def water_z(self, x, side: str | None = None) -> np.ndarray:
+        """Elevation [m] of the water table at ``x`` (-inf: dry), whichever field gave it (``side``: at a step
+        of the ground, as :meth:`ground_z`)."""
         kind, value = self._water
         if kind == "dry":
             return np.full(np.shape(x), -np.inf)
         if kind == "depth":
-            return self.ground_z(x) - value
+            return self.ground_z(x, side) - value
         if kind == "level":
             return np.full(np.shape(x), value)
         return np.interp(x, *value)
@@ -266,7 +293,7 @@ class Site(SiteChecks, SiteMesh):
         for i, s in enumerate(self.strips):
             if s.level is not None:
                 x0, x1 = s.ends
-                if s.level < float(self.ground_z(x0)) - TOL * self.width:
+                if s.level < float(self.ground_z(x0, "right")) - TOL * self.width:
                     out.append((i, x0, x1, float(s.level)))
         return out
 
@@ -274,12 +301,12 @@ class Site(SiteChecks, SiteMesh):
         """Elevation [m] of the base of strip ``i``: its level if embedded, else the ground under it."""
         s = self.strips[i]
         x0, _ = s.ends
-        return float(self.ground_z(x0)) if s.level is None else float(s.level)
+        return float(self.ground_z(x0, "right")) if s.level is None else float(s.level)
 
-    def _cut_lines(self, xs) -> list[np.ndarray]:
+    def _cut_lines(self, xs, side: str | None = None) -> list[np.ndarray]:
         """Elevations [m] at ``xs`` of the lines every layer is cut along (mesh lines): the water table and
         the base level of every embedded strip (so the trench walls end at a mesh node)."""
-        cuts = [self.water_z(xs)] if self.has_water else []
+        cuts = [self.water_z(xs, side)] if self.has_water else []
         return cuts + [np.full(np.shape(xs), lv) for _, _, _, lv in self.embedded()]
 
     def breaks(self) -> np.ndarray:
@@ -295,16 +322,20 @@ class Site(SiteChecks, SiteMesh):
             xs = np.unique(np.clip(np.concatenate([xs, self._water[1][0]]), self.x_left, self.x_right))
         # where the ground crosses a boundary (the cut boundary has a kink there) and where a cut line (the
         # water table, an embedded strip's base level) crosses the ground, a boundary or another cut line
-        lines = [np.interp(xs, *r) for r in self._raw]
-        pairs = [(self.ground_z(xs), b) for b in lines]
-        cuts = self._cut_lines(xs)
+        # each line as (its values just right of xs, just left of them): they differ at a step of the ground
+        # only, and a crossing within (xs[i], xs[i + 1]) is a change of sign from the right of xs[i] to the
+        # left of xs[i + 1]
+        lines = [(b, b) for b in (np.interp(xs, *r) for r in self._raw)]
+        ground = (self.ground_z(xs, "right"), self.ground_z(xs, "left"))
+        pairs = [(ground, b) for b in lines]
+        cuts = list(zip(self._cut_lines(xs, "right"), self._cut_lines(xs, "left")))
         for k, c in enumerate(cuts):
-            pairs += [(c, self.ground_z(xs))] + [(c, b) for b in lines] + [(c, d) for d in cuts[k + 1 :]]
+            pairs += [(c, ground)] + [(c, b) for b in lines] + [(c, d) for d in cuts[k + 1 :]]
         extra = []
-        for f, g in pairs:
-            d = f - g
-            for i in np.flatnonzero(d[:-1] * d[1:] < 0.0):
-                extra.append(xs[i] + (xs[i + 1] - xs[i]) * d[i] / (d[i] - d[i + 1]))
+        for (f_r, f_l), (g_r, g_l) in pairs:
+            d_r, d_l = f_r - g_r, f_l - g_l
+            for i in np.flatnonzero(d_r[:-1] * d_l[1:] < 0.0):
+                extra.append(xs[i] + (xs[i + 1] - xs[i]) * d_r[i] / (d_r[i] - d_l[i + 1]))
         return _unique(np.concatenate([xs, extra]), self.width)
 
     def _strip_at(self, x):
@@ -323,14 +354,21 @@ class Site(SiteChecks, SiteMesh):
         trenches = self.embedded()
         eps = TOL * self.width
         for xa, xb in zip(xs[:-1], xs[1:]):
-            ends = np.array([xa, xb])
-            top = self.ground_z(ends)
+
+            def at_ends(values_a, values_b):  # a column's left end sees the right of xa, its right end...
+                return [np.array([a, b], np.float64) for a, b in zip(values_a, values_b)]
+
+            (top,) = at_ends([self.ground_z(xa, "right")], [self.ground_z(xb, "left")])
             for _, x0, x1, lv in trenches:  # inside a trench the soil ends at the strip's base level
                 if xa >= x0 - eps and xb <= x1 + eps:
                     top = np.minimum(top, lv)
-            tops = [top] + [np.minimum(self.boundary_z(k, ends), top) for k in range(n - 1)]
+            bounds = at_ends(
+                [self.boundary_z(k, xa, "right") for k in range(n - 1)],
+                [self.boundary_z(k, xb, "left") for k in range(n - 1)],
+            )
+            tops = [top] + [np.minimum(b, top) for b in bounds]
             tops.append(np.array([self.z_bottom, self.z_bottom]))
-            cuts = self._cut_lines(ends)
+            cuts = at_ends(self._cut_lines(xa, "right"), self._cut_lines(xb, "left"))
             for k in range(n):
                 t, b = tops[k], tops[k + 1]
                 # the cut lines within the layer (on its top or bottom if outside), bottom up
@@ -338,6 +376,8 @@ class Site(SiteChecks, SiteMesh):
                 for lo, hi in zip([b, *inner], [*inner, t]):  # a cell of zero area is dropped by from_cells
                     polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
                     regions.append(k)
+        if self._steps:  # a step's face: the cells beside it get their neighbours' vertices (conforming)
+            polys, regions = conforming_cells(polys, regions, TOL * max(1.0, self.width))
         return from_cells(polys, regions, tol=TOL)
 
     def limit_analysis(self, gap: float = 0.02, **options) -> CapacityResult:

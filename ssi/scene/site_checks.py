@@ -120,8 +120,9 @@ class SiteChecks:
         xs = self.breaks()
         g = self.ground_z(xs)
         self._check_water(xs, g)
-        if np.any(g <= self.z_bottom):
-            x = xs[np.argmax(g <= self.z_bottom)]
+        low = np.minimum(self.ground_z(xs, "left"), self.ground_z(xs, "right"))  # the foot of a step
+        if np.any(low <= self.z_bottom):
+            x = xs[np.argmax(low <= self.z_bottom)]
             raise GeometryError(
                 f"Site.ground at x={x:g} m lies at or below the block bottom z={self.z_bottom:g} m"
             )
@@ -163,8 +164,12 @@ class SiteChecks:
                     f"strips[{i}] ({x0:g}, {x1:g}) m must lie within the block "
                     f"[{self.x_left:g}, {self.x_right:g}]"
                 )
-            inside = xs[(xs >= x0) & (xs <= x1)]
-            gz = self.ground_z(inside)
+            inside = xs[(xs > x0) & (xs < x1)]
+            # the ground just right of x0, on both sides of every break within, just left of x1
+            gz = np.concatenate([
+                [self.ground_z(x0, "right")], self.ground_z(inside, "left"), self.ground_z(inside, "right"),
+                [self.ground_z(x1, "left")],
+            ])  # fmt: skip
             if np.ptp(gz) > TOL * self.width:
                 raise GeometryError(
                     f"strips[{i}] ({x0:g}, {x1:g}) m: the ground under it is not level "
@@ -193,6 +198,20 @@ class SiteChecks:
                 x0, x1 = ld.ground_span()
                 if not (self.x_left <= x0 < x1 <= self.x_right):
                     raise GeometryError(f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m outside the block")
+                gx, gz, eps = *self._ground, TOL * self.width
+                # a pressure may end at the crest of a step (its nodes there are the ground's), not at its
+                # foot nor across it
+                steps = [
+                    gx[j] for j in self._steps
+                    if x0 + eps < gx[j] < x1 - eps
+                    or (abs(gx[j] - x1) <= eps and gz[j] < gz[j + 1])
+                    or (abs(gx[j] - x0) <= eps and gz[j + 1] < gz[j])
+                ]  # fmt: skip
+                if steps:
+                    raise GeometryError(
+                        f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m reaches the vertical step of the "
+                        f"ground at x={steps[0]:g} m: give a pressure on each side of it, clear of the step"
+                    )
                 for a, b in ends:
                     if min(x1, b) - max(x0, a) > TOL * self.width:
                         raise GeometryError(

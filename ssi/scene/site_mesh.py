@@ -63,3 +63,36 @@ class SiteMesh:
                 n = max(1, round((span[1] - span[0]) / m.h_fine))
                 ref += [(x, float(self.ground_z(x))) for x in np.linspace(*span, n + 1)]
         return mesh_geometry(self.geometry(), m.h_fine, m.h_coarse, m.growth, np.array(ref) if ref else None)
+
+
+def conforming_cells(polys, regions, tol):
+    """The column cells [(xa, lo0), (xb, lo1), (xb, hi1), (xa, hi0)] made conforming where a column's end
+    has vertices its neighbour's has not (beside a vertical step of the ground the taller column's edge
+    carries the lower column's vertices): each such cell split, up its two vertical edges, into quads and
+    triangles through every vertex that lies on them. Returns (cells, regions)."""
+    at_x: dict = {}
+    for p in polys:
+        for x, z in p:
+            at_x.setdefault(round(x / tol), []).append(z)
+
+    def on_edge(x, lo, hi):
+        zs = sorted({z for z in at_x[round(x / tol)] if lo + tol < z < hi - tol})
+        return [lo, *zs, hi]
+
+    out, out_regions = [], []
+    for p, r in zip(polys, regions):
+        (xa, lo0), (xb, lo1), (_, hi1), (_, hi0) = p
+        left, right = on_edge(xa, lo0, hi0), on_edge(xb, lo1, hi1)
+        i = j = 0
+        while i < len(left) - 1 or j < len(right) - 1:  # a ladder up both edges: quads, then triangles
+            if i < len(left) - 1 and j < len(right) - 1:
+                out.append([(xa, left[i]), (xb, right[j]), (xb, right[j + 1]), (xa, left[i + 1])])
+                i, j = i + 1, j + 1
+            elif i < len(left) - 1:
+                out.append([(xa, left[i]), (xb, right[j]), (xa, left[i + 1])])
+                i += 1
+            else:
+                out.append([(xa, left[i]), (xb, right[j]), (xb, right[j + 1])])
+                j += 1
+            out_regions.append(r)
+    return out, out_regions
