@@ -67,6 +67,7 @@ def test_a_step_is_two_points_at_one_x_and_a_pressure_stays_off_its_face():
     with pytest.raises(GeometryError, match="vertical step of the ground at x=0"):  # at the face's foot
         Site(30.0, 10.0, soil, ground=CUT, loads=[SurfacePressure(0.0, 2.0, 10e3)])
     # at the crest it is the ground's edge: accepted, and the surcharge is carried (w under it > 0)
-    out = Site(30.0, 10.0, soil, ground=CUT, loads=[SurfacePressure(-2.0, 0.0, 10e3)], mesh=MESH).build().solve()
+    crest = SurfacePressure(-2.0, 0.0, 10e3)
+    out = Site(30.0, 10.0, soil, ground=CUT, loads=[crest], mesh=MESH).build().solve()
     x, w = out.ground_settlement(-2.0, 0.0)
     assert np.all(w > 0.0)

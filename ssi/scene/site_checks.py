@@ -12,6 +12,23 @@ from ..core.validate import check_real
 TOL = 1e-9  # relative to the site's size: coordinates closer than this are one point
 
 
+def _polyline(name, pts, steps=False):
+    """(x, z) arrays of a polyline [(x, z), ...] with x strictly increasing; ``steps``: two consecutive points
+    may share an x (a vertical step, e.g. the face of a cut), never three."""
+    a = np.asarray(pts, np.float64)
+    if a.ndim != 2 or a.shape[1] != 2 or len(a) < 1 or not np.all(np.isfinite(a)):
+        raise GeometryError(f"{name} must be a list of (x, z) points [m], got {pts!r}")
+    dx = np.diff(a[:, 0])
+    if np.any(dx < 0) or (not steps and np.any(dx == 0)):
+        rule = "must increase strictly"
+        if steps:
+            rule = "must not decrease (a vertical step: two points at one x)"
+        raise GeometryError(f"{name}: the x of its points {rule}, got {a[:, 0].tolist()}")
+    if steps and np.any((dx[:-1] == 0) & (dx[1:] == 0)):
+        raise GeometryError(f"{name}: three points at one x (a step has two), got {a[:, 0].tolist()}")
+    return a[:, 0], a[:, 1]
+
+
 # what the two water fields mean, for the messages that name the other one
 _LEVEL = "Site.water_level is the water table's ELEVATION [m] (z up, as the ground polyline)"
 _DEPTH = "Site.water_table is the water table's DEPTH [m] below the ground (as a Scene's)"
@@ -63,8 +80,6 @@ class SiteChecks:
         """("dry", None) | ("depth", d) | ("level", z) | ("polyline", (xs, zs)) from ``water_table`` (a depth
         below the ground) or ``water_level`` (an elevation or a polyline of elevations): one field, one
         meaning. A polyline given as a depth is refused by name (a polyline is (x, z) points: elevations)."""
-        from .site import _polyline
-
         if self.water_table is not None and self.water_level is not None:
             raise ValueError(
                 f"Site: give the water table by water_level={self.water_level!r} (an ELEVATION [m]) or by "

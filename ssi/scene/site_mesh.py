@@ -1,19 +1,92 @@
-"""A :class:`~ssi.scene.site.Site`'s two meshes (a mixin the Site inherits): the graded structured block
-of :func:`ssi.core.mesh.soil_block` where it serves (level ground and boundaries, one strip) and gmsh's Q8
-mesh of the site's geometry otherwise, refined along the strips, their trench walls and the loaded
+"""A :class:`~ssi.scene.site.Site`'s geometry and its two meshes (a mixin the Site inherits): the site cut
+into cells at its breaks (``geometry``, the one description gmsh and a triangle mesher read); the graded
+structured block of :func:`ssi.core.mesh.soil_block` where it serves (level ground and boundaries, one
+strip), else gmsh's Q8 mesh of the geometry, refined along the strips, their trench walls and the loaded
 ground."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..core.geometry import Geometry, from_cells
 from ..core.gmsh_mesh import UnstructuredMesh, mesh_geometry
 from ..core.mesh import soil_block
 from .site_checks import TOL
 
 
 class SiteMesh:
-    """``_structured_mesh`` and ``_gmsh_mesh`` (``Site.build`` picks one)."""
+    """``breaks`` and ``geometry`` (the site cut into cells), ``_structured_mesh`` and ``_gmsh_mesh``
+    (``Site.build`` picks one)."""
+
+    def _cut_lines(self, xs, side: str | None = None) -> list[np.ndarray]:
+        """Elevations [m] at ``xs`` of the lines every layer is cut along (mesh lines): the water table and
+        the base level of every embedded strip (so the trench walls end at a mesh node)."""
+        cuts = [self.water_z(xs, side)] if self.has_water else []
+        return cuts + [np.full(np.shape(xs), lv) for _, _, _, lv in self.embedded()]
+
+    def breaks(self) -> np.ndarray:
+        """x [m] of the vertical cuts of the geometry (see the module docstring), sorted, unique."""
+        xs = [self.x_left, self.x_right, *self._ground[0]]
+        for bx, _ in self._raw:
+            xs += list(bx)
+        for a, b in self._strip_ends():
+            xs += [a, b]
+        xs += self._load_points()
+        xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
+        if self._water[0] == "polyline":
+            xs = np.unique(np.clip(np.concatenate([xs, self._water[1][0]]), self.x_left, self.x_right))
+        # where the ground crosses a boundary (the cut boundary has a kink there) and where a cut line (the
+        # water table, an embedded strip's base level) crosses the ground, a boundary or another cut line
+        # each line as (its values just right of xs, just left of them): they differ at a step of the ground
+        # only, and a crossing within (xs[i], xs[i + 1]) is a change of sign from the right of xs[i] to the
+        # left of xs[i + 1]
+        lines = [(b, b) for b in (np.interp(xs, *r) for r in self._raw)]
+        ground = (self.ground_z(xs, "right"), self.ground_z(xs, "left"))
+        pairs = [(ground, b) for b in lines]
+        cuts = list(zip(self._cut_lines(xs, "right"), self._cut_lines(xs, "left")))
+        for k, c in enumerate(cuts):
+            pairs += [(c, ground)] + [(c, b) for b in lines] + [(c, d) for d in cuts[k + 1 :]]
+        extra = []
+        for (f_r, f_l), (g_r, g_l) in pairs:
+            d_r, d_l = f_r - g_r, f_l - g_l
+            for i in np.flatnonzero(d_r[:-1] * d_l[1:] < 0.0):
+                extra.append(xs[i] + (xs[i + 1] - xs[i]) * d_r[i] / (d_r[i] - d_l[i + 1]))
+        return _unique(np.concatenate([xs, extra]), self.width)
+
+    def geometry(self) -> Geometry:
+        """The site cut into cells (columns between breaks, layers within each, each layer cut by the water
+        table where it passes), region = layer index."""
+        xs = self.breaks()
+        polys, regions = [], []
+        n = len(self.layers)
+        trenches = self.embedded()
+        eps = TOL * self.width
+        for xa, xb in zip(xs[:-1], xs[1:]):
+
+            def at_ends(values_a, values_b):  # a column's left end sees the right of xa, its right end...
+                return [np.array([a, b], np.float64) for a, b in zip(values_a, values_b)]
+
+            (top,) = at_ends([self.ground_z(xa, "right")], [self.ground_z(xb, "left")])
+            for _, x0, x1, lv in trenches:  # inside a trench the soil ends at the strip's base level
+                if xa >= x0 - eps and xb <= x1 + eps:
+                    top = np.minimum(top, lv)
+            bounds = at_ends(
+                [self.boundary_z(k, xa, "right") for k in range(n - 1)],
+                [self.boundary_z(k, xb, "left") for k in range(n - 1)],
+            )
+            tops = [top] + [np.minimum(b, top) for b in bounds]
+            tops.append(np.array([self.z_bottom, self.z_bottom]))
+            cuts = at_ends(self._cut_lines(xa, "right"), self._cut_lines(xb, "left"))
+            for k in range(n):
+                t, b = tops[k], tops[k + 1]
+                # the cut lines within the layer (on its top or bottom if outside), bottom up
+                inner = sorted((np.clip(c, b, t) for c in cuts), key=lambda c: float(c.sum()))
+                for lo, hi in zip([b, *inner], [*inner, t]):  # a cell of zero area is dropped by from_cells
+                    polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
+                    regions.append(k)
+        if self._steps:  # a step's face: the cells beside it get their neighbours' vertices (conforming)
+            polys, regions = conforming_cells(polys, regions, TOL * max(1.0, self.width))
+        return from_cells(polys, regions, tol=TOL)
 
     def _structured_mesh(self):
         m = self.mesh
@@ -96,3 +169,9 @@ def conforming_cells(polys, regions, tol):
                 j += 1
             out_regions.append(r)
     return out, out_regions
+
+
+def _unique(xs, scale):
+    xs = np.sort(np.asarray(xs, np.float64))
+    keep = np.concatenate([[True], np.diff(xs) > TOL * max(scale, 1.0)])
+    return xs[keep]
