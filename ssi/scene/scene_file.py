@@ -93,8 +93,11 @@ ELEVATION [m] or a polyline of elevations, PLAXIS's phreatic level -- one of the
     x = -5.0
     N = 300e3
 
-``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes; a strip table
-with ``type = "RigidStrip"`` holds a :class:`~ssi.scene.site.RigidStrip`'s fields.
+``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes, or mix with
+them: an empty polyline ``[]`` (None in Python) takes that boundary from the boreholes, which then list only
+those; a strip table with ``type = "RigidStrip"`` holds a :class:`~ssi.scene.site.RigidStrip`'s fields. A
+lens (:class:`~ssi.scene.site.Lens`) is a ``[[lenses]]`` table: ``points = [[x, z], ...]`` its outline and a
+``layer`` table of SoilLayer keys (E_inc, c_inc, z_ref: a DepthVarying one).
 
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.elements.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.elements.section.rc_section` with
@@ -118,7 +121,7 @@ from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWei
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
 from .site import Site
-from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
+from .site_parts import Borehole, DepthVarying, Lens, RigidStrip, Strip
 
 # top-level keys a site file may have and a scene file may not (a scene file has a ``foundation``)
 SITE_ONLY_KEYS = frozenset(
@@ -140,6 +143,7 @@ _NESTED = {
     (Scene, "side_contact"): (Contact, "one"),
     (Site, "loads"): (_LOAD, "list"),
     (Site, "phases"): (Phase, "list"),
+    (Site, "lenses"): (Lens, "list"),
     (Site, "mesh"): (MeshSize, "one"),
     (Site, "boreholes"): (Borehole, "list"),
     (Strip, "foundation"): (Foundation, "one"),
@@ -219,6 +223,8 @@ def _build(cls, data, where):
             kwargs[key] = _foundation(value, f"{where}.foundation")
         elif cls is Site and key in ("layers", "strips"):
             kwargs[key] = _site_items(key, value, f"{where}.{key}")
+        elif cls is Lens and key == "layer":  # a site's layer table (thickness optional, E_inc...)
+            kwargs[key] = _site_items("layers", [value], f"{where}.layer")[0]
         elif cls is Foundation and key == "section":
             kwargs[key] = section_from_dict(value, f"{where}.section")
         elif cls is Scene and key == "contact" and value is not None:

@@ -19,8 +19,12 @@ one x are a vertical step, the face of a cut (the cells beside it made conformin
 SurfacePressure may end at its crest, not cross it). Layers are listed from the
 top down; the boundary between layer k and k + 1 is given either by ``boreholes`` (each lists the boundary
 elevations at its x, from the top down; between boreholes the boundaries are interpolated linearly, beyond
-the outermost ones they are level) or by ``boundaries`` (one polyline per boundary). Equal elevations make a
-layer pinch out; a boundary above the ground is cut by it (the layer is eroded there). A layer's
+the outermost ones they are level) or by ``boundaries`` (one polyline per boundary), or both mixed (a None
+-- in a file an empty ``[]`` -- in ``boundaries`` takes that boundary from the boreholes, which list only
+those). A :class:`Lens` is a closed region of another soil (an x-monotone outline: its lower and upper sides
+are cut lines of the columns it spans, its cells region ``len(layers) + j``; the K0 state, the structured
+mesh and the limit analysis are refused with one). Equal elevations make a layer pinch out; a boundary
+above the ground is cut by it (the layer is eroded there). A layer's
 ``SoilLayer.thickness`` is not used by a site (the boundaries decide), except on the structured path, where it
 is set from the boundaries.
 
@@ -92,7 +96,7 @@ from .parts import MeshSize
 from .site_built import BuiltSite
 from .site_checks import TOL, SiteChecks, _polyline
 from .site_mesh import SiteMesh
-from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
+from .site_parts import Borehole, DepthVarying, Lens, RigidStrip, Strip
 from .site_view import SiteResult, gibson_settlement
 
 # the public names of a site, importable from here (the README and chapter 19 do)
@@ -100,6 +104,7 @@ __all__ = [
     "Borehole",
     "BuiltSite",
     "DepthVarying",
+    "Lens",
     "RigidStrip",
     "Site",
     "SiteResult",
@@ -119,6 +124,7 @@ class Site(SiteChecks, SiteMesh):
     its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
     "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled);
+    ``lenses``: :class:`Lens` es, closed regions of another soil;
     ``phases``: :class:`~ssi.scene.parts.Phase` s solved in turn after ``loads`` (their loads and factors,
     as a scene's; excavations and drainage switches are a scene's only, refused by name)."""
 
@@ -140,6 +146,7 @@ class Site(SiteChecks, SiteMesh):
     depth_varying: str = "gauss"
     water_level: float | list | None = None
     phases: list = field(default_factory=list)
+    lenses: list = field(default_factory=list)
 
     def __post_init__(self):
         self.width = check_real("Site.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -164,12 +171,6 @@ class Site(SiteChecks, SiteMesh):
                 )
         self._check_phases()
         n_b = len(self.layers) - 1
-        if self.boreholes is not None and self.boundaries is not None:
-            raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
-        if n_b and self.boreholes is None and self.boundaries is None:
-            raise GeometryError(
-                f"Site: {len(self.layers)} layers need boreholes or boundaries ({n_b} boundaries)"
-            )
         self.x_left, self.x_right = -0.5 * self.width, 0.5 * self.width
         self.z_bottom = -self.depth
         gx, gz = (
@@ -187,33 +188,15 @@ class Site(SiteChecks, SiteMesh):
                     f"Site.ground: the vertical step at x={gx[i]:g} m must lie inside the block "
                     f"({self.x_left:g}, {self.x_right:g}) m"
                 )
-        self._raw = []  # (x, z) of each boundary
-        if self.boreholes is not None:
-            if not self.boreholes:
-                raise GeometryError("Site.boreholes: give at least one borehole")
-            bh = sorted(self.boreholes, key=lambda b: b.x)
-            for b in bh:
-                if not (self.x_left <= b.x <= self.x_right):
-                    raise GeometryError(
-                        f"Borehole at x={b.x} lies outside the block [{self.x_left:g}, {self.x_right:g}] m"
-                    )
-                if len(b.boundaries) != n_b:
-                    raise GeometryError(
-                        f"Borehole at x={b.x} lists {len(b.boundaries)} boundaries, the {len(self.layers)} "
-                        f"layers need {n_b}"
-                    )
-            if len({b.x for b in bh}) != len(bh):
-                raise GeometryError(f"Site.boreholes: two boreholes at the same x ({[b.x for b in bh]})")
-            xs = np.array([b.x for b in bh])
-            self._raw = [(xs, np.array([b.boundaries[k] for b in bh])) for k in range(n_b)]
-        elif self.boundaries is not None:
-            if len(self.boundaries) != n_b:
-                raise GeometryError(
-                    f"Site.boundaries: {len(self.boundaries)} given, {len(self.layers)} layers need {n_b}"
-                )
-            self._raw = [_polyline(f"Site.boundaries[{k}]", p) for k, p in enumerate(self.boundaries)]
+        self._raw = self._boundary_lines(n_b)  # (x, z) of each boundary
+        for i, lens in enumerate(self.lenses):
+            check_instance(f"Site.lenses[{i}]", lens, Lens)
         self._water = self._water_line()
         self._check_geometry()
+
+    def soils(self) -> list:
+        """The soil of each region of the geometry: ``layers``, then each lens's layer (region = index)."""
+        return list(self.layers) + [lens.layer for lens in self.lenses]
 
     def all_loads(self) -> list:
         """``loads`` and every phase's loads, in that order (what the mesh and the checks must serve)."""
@@ -308,6 +291,12 @@ class Site(SiteChecks, SiteMesh):
                 "the loads to scale as Site.loads of a site without phases"
             )
         options.pop("phase", None)
+        if self.lenses:
+            raise ValueError(
+                f"Site.limit_analysis: Site.lenses ({len(self.lenses)}): a lens's soil is not built in the "
+                "limit analysis (it would take the layer around it); solve the site, or give the lens as a "
+                "layer between boundaries"
+            )
         pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
         if pushes:
             raise ValueError(
@@ -323,7 +312,8 @@ class Site(SiteChecks, SiteMesh):
         xs = self.breaks()
         flat = np.all(np.abs(self.ground_z(xs)) <= TOL * self.width)
         water = not self.has_water or np.ptp(self.water_z(xs)) <= TOL * self.width
-        return bool(flat and water) and all(np.ptp(np.interp(xs, *r)) <= TOL * self.width for r in self._raw)
+        level = all(np.ptp(np.interp(xs, *r)) <= TOL * self.width for r in self._raw)
+        return bool(flat and water and level and not self.lenses)
 
     def layer_thicknesses(self) -> list[float]:
         """Thicknesses [m] of the layers of a level site (:meth:`is_level`), top down."""

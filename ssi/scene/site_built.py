@@ -285,7 +285,7 @@ class BuiltSite:
 
     @property
     def is_linear(self) -> bool:
-        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
+        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.soils()]
         return all(lay.c is None for lay in layers) and all(
             (s.side_contact is None or s.side_contact.phi_deg is None)
             and (
@@ -345,11 +345,11 @@ def _materials(site: Site, mesh, centre, points):
     properties vary with depth, one per Gauss point (``points`` (n_el, n_ip, 2); site.depth_varying
     "gauss": the index is (n_el, n_ip)) or per element (evaluated at its ``centre``; "centroid")."""
     rows, el_mat, weights = [], np.zeros(len(mesh.conn), np.int64), []
-    per_point = site.depth_varying == "gauss" and any(isinstance(lay, DepthVarying) for lay in site.layers)
+    per_point = site.depth_varying == "gauss" and any(isinstance(lay, DepthVarying) for lay in site.soils())
     point_mat = np.zeros(points.shape[:2], np.int64)
     layer_of = np.asarray(mesh.el_layer, np.int64)
     wet = centre[:, 1] < site.water_z(centre[:, 0])
-    for k, lay in enumerate(site.layers):
+    for k, lay in enumerate(site.soils()):  # the layers, then the lenses (region n_layers + j)
         base = lay.layer if isinstance(lay, DepthVarying) else lay
         sat = base.unit_weight if base.unit_weight_sat is None else base.unit_weight_sat
         for is_wet in (False, True):

@@ -38,6 +38,53 @@ class SiteChecks:
     """``_check_geometry`` (run by ``Site.__post_init__``), ``_check_trench`` of an embedded strip and the
     water table's two fields (``_water_line``, ``_check_water``)."""
 
+    def _boundary_lines(self, n_b):
+        """(x, z) of each of the ``n_b`` layer boundaries, from ``boreholes`` (interpolated between them),
+        ``boundaries`` (polylines), or both mixed: then ``boundaries[k]`` is a polyline or None, None taking
+        boundary k from the boreholes, which list exactly those boundaries, from the top down."""
+        bh, lines = self.boreholes, self.boundaries
+        if n_b and bh is None and lines is None:
+            raise GeometryError(
+                f"Site: {len(self.layers)} layers need boreholes or boundaries ({n_b} boundaries)"
+            )
+        if lines is not None and len(lines) != n_b:
+            raise GeometryError(f"Site.boundaries: {len(lines)} given, {len(self.layers)} layers need {n_b}")
+        # an empty polyline is None (a file's form: TOML has no null)
+        lines = [None] * n_b if lines is None else [None if p is None or len(p) == 0 else p for p in lines]
+        from_bh = [k for k, p in enumerate(lines) if p is None]
+        if bh is not None and n_b and not from_bh:
+            raise GeometryError(
+                "Site: boreholes and boundaries are both given, but every boundary is a polyline: mark the "
+                "boundaries the boreholes give with None in Site.boundaries, or leave the boreholes out"
+            )
+        if from_bh and bh is None:
+            raise GeometryError(
+                f"Site.boundaries{from_bh}: None takes a boundary from the boreholes, and none are given"
+            )
+        raw = [None if p is None else _polyline(f"Site.boundaries[{k}]", p) for k, p in enumerate(lines)]
+        if bh is None:
+            return raw
+        if not bh:
+            raise GeometryError("Site.boreholes: give at least one borehole")
+        bh = sorted(bh, key=lambda b: b.x)
+        for b in bh:
+            if not (self.x_left <= b.x <= self.x_right):
+                raise GeometryError(
+                    f"Borehole at x={b.x} lies outside the block [{self.x_left:g}, {self.x_right:g}] m"
+                )
+            if len(b.boundaries) != len(from_bh):
+                given = "" if len(from_bh) == n_b else f" (boundaries {from_bh}: the others are polylines)"
+                raise GeometryError(
+                    f"Borehole at x={b.x} lists {len(b.boundaries)} boundaries, the {len(self.layers)} "
+                    f"layers need {len(from_bh)}{given}"
+                )
+        if len({b.x for b in bh}) != len(bh):
+            raise GeometryError(f"Site.boreholes: two boreholes at the same x ({[b.x for b in bh]})")
+        xs = np.array([b.x for b in bh])
+        for j, k in enumerate(from_bh):
+            raw[k] = (xs, np.array([b.boundaries[j] for b in bh]))
+        return raw
+
     def _check_phases(self):
         """Each phase a Phase whose loads a site takes, its factors naming earlier phases, no excavation or
         drainage switch (a scene's: not built on a site's mesh), names unique; a RigidStrip's ``settle`` is
@@ -135,6 +182,7 @@ class SiteChecks:
         xs = self.breaks()
         g = self.ground_z(xs)
         self._check_water(xs, g)
+        self._check_lenses(xs)
         low = np.minimum(self.ground_z(xs, "left"), self.ground_z(xs, "right"))  # the foot of a step
         if np.any(low <= self.z_bottom):
             x = xs[np.argmax(low <= self.z_bottom)]
@@ -233,6 +281,36 @@ class SiteChecks:
                             f"loads[{i}]: SurfacePressure ({x0:g}, {x1:g}) m overlaps the strip "
                             f"({a:g}, {b:g})"
                         )
+
+    def _check_lenses(self, xs):
+        """Each lens inside the block and below the ground, and no two overlapping."""
+        for j in range(len(self.lenses)):
+            x0, x1 = self._lens_span(j)
+            if x0 < self.x_left - TOL * self.width or x1 > self.x_right + TOL * self.width:
+                raise GeometryError(
+                    f"Site.lenses[{j}] (x from {x0:g} to {x1:g} m) reaches beyond the block "
+                    f"[{self.x_left:g}, {self.x_right:g}] m"
+                )
+            at = xs[(xs >= x0) & (xs <= x1)]
+            lower, upper = (c[0] for c in self._lens_at(j, at))
+            ground = np.minimum(self.ground_z(at, "left"), self.ground_z(at, "right"))
+            if np.any(upper > ground + TOL * self.width):
+                x = at[np.argmax(upper > ground + TOL * self.width)]
+                raise GeometryError(
+                    f"Site.lenses[{j}] at x={x:g} m rises above the ground (z={float(self.ground_z(x)):g} "
+                    "m): a lens is a region of soil below the ground"
+                )
+            if np.any(lower < self.z_bottom - TOL * self.width):
+                raise GeometryError(
+                    f"Site.lenses[{j}] reaches below the block bottom z={self.z_bottom:g} m: deepen the block"
+                )
+            for i in range(j):  # the outlines are linear between breaks: an overlap shows at one
+                a0, a1 = self._lens_span(i)
+                both = at[(at >= a0) & (at <= a1)]
+                lo_j, up_j = (c[0] for c in self._lens_at(j, both))
+                lo_i, up_i = (c[0] for c in self._lens_at(i, both))
+                if len(both) and np.any(np.minimum(up_j, up_i) - np.maximum(lo_j, lo_i) > TOL * self.width):
+                    raise GeometryError(f"Site.lenses[{i}] and [{j}] overlap: give each soil one region")
 
     def _check_trench(self, i, x0, x1, level, xs):
         """An embedded strip's trench: inside the block, clear of every other foundation (a wall of backfill

@@ -35,6 +35,9 @@ class SiteMesh:
         xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
         if self._water[0] == "polyline":
             xs = np.unique(np.clip(np.concatenate([xs, self._water[1][0]]), self.x_left, self.x_right))
+        for lens in self.lenses:  # its vertices
+            (lx, _), (ux, _) = lens.chains()
+            xs = np.unique(np.clip(np.concatenate([xs, lx, ux]), self.x_left, self.x_right))
         # where the ground crosses a boundary (the cut boundary has a kink there) and where a cut line (the
         # water table, an embedded strip's base level) crosses the ground, a boundary or another cut line
         # each line as (its values just right of xs, just left of them): they differ at a step of the ground
@@ -46,16 +49,39 @@ class SiteMesh:
         cuts = list(zip(self._cut_lines(xs, "right"), self._cut_lines(xs, "left")))
         for k, c in enumerate(cuts):
             pairs += [(c, ground)] + [(c, b) for b in lines] + [(c, d) for d in cuts[k + 1 :]]
-        extra = []
-        for (f_r, f_l), (g_r, g_l) in pairs:
-            d_r, d_l = f_r - g_r, f_l - g_l
-            for i in np.flatnonzero(d_r[:-1] * d_l[1:] < 0.0):
-                extra.append(xs[i] + (xs[i + 1] - xs[i]) * d_r[i] / (d_r[i] - d_l[i + 1]))
+        extra = _crossings(xs, pairs)
+        # where a lens's outline crosses the ground, a boundary, a cut line or another lens, within its span
+        lens_lines = [(self._lens_span(j), c) for j in range(len(self.lenses)) for c in self._lens_at(j, xs)]
+        others = [ground, *lines, *cuts]
+        for k, (span, c) in enumerate(lens_lines):
+            pairs = [(c, o) for o in others] + [(c, d) for _, d in lens_lines[k + 1 :]]
+            extra += [x for x in _crossings(xs, pairs) if span[0] < x < span[1]]
         return _unique(np.concatenate([xs, extra]), self.width)
+
+    def _lens_span(self, j: int) -> tuple[float, float]:
+        """(x0, x1) [m] of lens ``j``."""
+        (lx, _), _ = self.lenses[j].chains()
+        return float(lx[0]), float(lx[-1])
+
+    def _lens_at(self, j: int, xs) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Lens ``j``'s lower and upper outline at ``xs`` [m], each as (right, left) values (the outline is
+        continuous: both the same), level beyond its span."""
+        lower, upper = self.lenses[j].chains()
+        return [(np.interp(xs, *c),) * 2 for c in (lower, upper)]
+
+    def _lens_of(self, x: float, z: float) -> int | None:
+        """Index of the lens that holds the point (x, z), None if none does."""
+        for j, lens in enumerate(self.lenses):
+            x0, x1 = self._lens_span(j)
+            lower, upper = lens.chains()
+            if x0 < x < x1 and np.interp(x, *lower) < z < np.interp(x, *upper):
+                return j
+        return None
 
     def geometry(self) -> Geometry:
         """The site cut into cells (columns between breaks, layers within each, each layer cut by the water
-        table where it passes), region = layer index."""
+        table and the lenses' outlines where they pass), region = layer index (a lens's cells: the number of
+        layers plus the lens's index, :meth:`Site.soils`)."""
         xs = self.breaks()
         polys, regions = [], []
         n = len(self.layers)
@@ -77,13 +103,19 @@ class SiteMesh:
             tops = [top] + [np.minimum(b, top) for b in bounds]
             tops.append(np.array([self.z_bottom, self.z_bottom]))
             cuts = at_ends(self._cut_lines(xa, "right"), self._cut_lines(xb, "left"))
+            for j in range(len(self.lenses)):  # a lens's outline over the column is two more cut lines
+                x0, x1 = self._lens_span(j)
+                if xa >= x0 - eps and xb <= x1 + eps:
+                    cuts += [np.array([c[0][0], c[0][1]]) for c in self._lens_at(j, np.array([xa, xb]))]
             for k in range(n):
                 t, b = tops[k], tops[k + 1]
                 # the cut lines within the layer (on its top or bottom if outside), bottom up
                 inner = sorted((np.clip(c, b, t) for c in cuts), key=lambda c: float(c.sum()))
                 for lo, hi in zip([b, *inner], [*inner, t]):  # a cell of zero area is dropped by from_cells
                     polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
-                    regions.append(k)
+                    mid = (0.5 * (xa + xb), 0.25 * float(lo.sum() + hi.sum()))
+                    lens = self._lens_of(*mid) if self.lenses else None
+                    regions.append(k if lens is None else n + lens)  # a lens's soil: region n + its index
         if self._steps:  # a step's face: the cells beside it get their neighbours' vertices (conforming)
             polys, regions = conforming_cells(polys, regions, TOL * max(1.0, self.width))
         return from_cells(polys, regions, tol=TOL)
@@ -169,6 +201,16 @@ def conforming_cells(polys, regions, tol):
                 j += 1
             out_regions.append(r)
     return out, out_regions
+
+
+def _crossings(xs, pairs) -> list[float]:
+    """x [m] where the lines of each pair ((right, left) values at ``xs``) cross between two of ``xs``."""
+    extra = []
+    for (f_r, f_l), (g_r, g_l) in pairs:
+        d_r, d_l = f_r - g_r, f_l - g_l
+        for i in np.flatnonzero(d_r[:-1] * d_l[1:] < 0.0):
+            extra.append(xs[i] + (xs[i + 1] - xs[i]) * d_r[i] / (d_r[i] - d_l[i + 1]))
+    return extra
 
 
 def _unique(xs, scale):
