@@ -34,8 +34,8 @@ def _footing(loads, **kw):
 
 def _strip(loads=(), **kw):
     f = Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2))
-    return Scene(12.0, 6.0, SOIL, foundation=f, contact=Contact(kn=1e10, kt=1e9), loads=list(loads), mesh=COARSE,
-                 **kw)  # fmt: skip
+    contact = Contact(kn=1e10, kt=1e9)
+    return Scene(12.0, 6.0, SOIL, foundation=f, contact=contact, loads=list(loads), mesh=COARSE, **kw)
 
 
 def test_what_a_rigid_footing_carries():
@@ -75,7 +75,8 @@ def test_a_load_in_kilo_units_is_warned_about_by_its_own_label(load, label):
         _strip([load]).build()
     with warnings.catch_warnings():  # the same load in SI: no warning
         warnings.simplefilter("error")
-        _strip([type(load)(**{**vars(load), **{k: v * 1e3 for k, v in _magnitude(load).items()}})]).build()
+        si = {k: v * 1e3 for k, v in _magnitude(load).items()}
+        _strip([type(load)(**{**vars(load), **si})]).build()
 
 
 def _magnitude(load):
