@@ -15,7 +15,6 @@ UNITS = {
         "loads": "list of load tables (type = ...) of the first phase",
         "mesh": "MeshSize table",
         "surcharge": "Pa",
-        "lenses": "list of Lens tables (closed regions of another soil)",
         "phases": "list of Phase tables",
         "embedment": "m (depth of the strip's base)",
         "water_table": "m (depth below the ground; < 0: free water above it, ponding; leave out: dry)",

@@ -284,11 +284,15 @@ class Site(SiteChecks, SiteMesh):
         :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
         stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
         (:mod:`ssi.scene.limit_problem`). A site has no phases: ``phase`` is refused by name."""
-        if options.get("phase") is not None or self.phases:
+        if options.get("phase") is not None and not self.phases:
             raise ValueError(
-                f"phase={options.get('phase')!r}, Site.phases={[ph.name for ph in self.phases]}: the limit "
-                "analysis of a phased site is not built (a site's limit analysis scales its loads); give "
-                "the loads to scale as Site.loads of a site without phases"
+                f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
+            )
+        if self.phases:
+            raise ValueError(
+                f"Site.phases={[ph.name for ph in self.phases]}: the limit analysis of a phased site is not "
+                "built (a site's limit analysis scales its loads); give the loads to scale as Site.loads of "
+                "a site without phases"
             )
         options.pop("phase", None)
         if self.lenses:
