@@ -93,3 +93,19 @@ def test_a_phased_site_round_trips_through_its_file_form():
     assert isinstance(again, Site) and scene_to_dict(again) == plain
     assert [ph.name for ph in again.phases] == ["fill", "column", "unload"]
     assert again.phases[2].factors == {"column": 0.0} and again.phases[1].loads == PHASES[1].loads
+
+
+def test_a_phased_site_result_file_reads_back_its_phases(plastic, tmp_path):
+    """The result file of a phased site keeps each phase's record: read back, the same phases, rows and
+    per-phase contact resultants (the one result-file kind for a scene and a site)."""
+    from ssi.io.results import read_result, write_result
+
+    path = write_result(tmp_path / "phased.h5", plastic)
+    back = read_result(path)
+    assert [(r["name"], r["first"], r["last"]) for r in back.phases] == [
+        (r["name"], r["first"], r["last"]) for r in plastic.phases
+    ]
+    np.testing.assert_array_equal(back.load_factor, plastic.load_factor)
+    k = plastic.phases[2]["last"]  # the column phase's end
+    assert back.contact_resultant(0, k)["N"] == plastic.contact_resultant(0, k)["N"]
+    assert back.status == plastic.status
