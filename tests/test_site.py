@@ -325,12 +325,12 @@ def test_water_table_is_a_mesh_line_and_gravity_matches_buoyant_k0(mesher):
         SoilLayer(3.0, E=20e6, nu=0.3, unit_weight=18e3, unit_weight_sat=20e3),
         SoilLayer(7.0, E=60e6, nu=0.25, unit_weight=19e3, unit_weight_sat=21e3),
     ]
-    site = Site(12.0, 10.0, wet, boreholes=[Borehole(0.0, [-3.0])], water_table=-2.0, mesh=COARSE,
+    site = Site(12.0, 10.0, wet, boreholes=[Borehole(0.0, [-3.0])], water_level=-2.0, mesh=COARSE,
                 mesher=mesher, initial_stress="gravity")  # fmt: skip
     built = site.build()
     zc = built.mesh.xy[built.mesh.conn[:, :4], 1]
     assert np.all((zc.max(axis=1) <= -2.0 + 1e-9) | (zc.min(axis=1) >= -2.0 - 1e-9))
-    k0 = Site(12.0, 10.0, wet, boreholes=[Borehole(0.0, [-3.0])], water_table=-2.0, mesh=COARSE,
+    k0 = Site(12.0, 10.0, wet, boreholes=[Borehole(0.0, [-3.0])], water_level=-2.0, mesh=COARSE,
               mesher="structured", initial_stress="K0").build()  # fmt: skip
     gw = 9.81e3
 

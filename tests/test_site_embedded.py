@@ -119,7 +119,7 @@ def test_embedded_strip_named_errors():
         two = [Strip(Foundation(-1.0, 1.0, SEC), BASE, level=-1.0), Strip(Foundation(1.0, 3.0, SEC), BASE)]
         Site(width=16.0, depth=8.0, layers=[LOW], strips=two)
     with pytest.raises(GeometryError, match="flooded trench"):
-        _site(water_table=-0.5)
+        _site(water_level=-0.5)
     with pytest.raises(GeometryError, match="against the block's side"):
         Site(width=16.0, depth=8.0, layers=[LOW], strips=[Strip(Foundation(6.0, 8.0, SEC), BASE, level=-1.0)])
     with pytest.raises(GeometryError, match="block bottom"):

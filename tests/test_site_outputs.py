@@ -19,7 +19,7 @@ from ssi.scene.site import Borehole, DepthVarying, RigidStrip, Site, Strip
 SITE_TOML = """
 width = 30.0
 depth = 12.0
-water_table = -3.0
+water_level = -3.0
 [[layers]]
 E = 10e6
 nu = 0.3
@@ -161,7 +161,7 @@ def test_site_to_dict_round_trips_rigid_strips_depth_variation_and_water():
     strip = Strip(Foundation(1.0, 3.0, homogeneous(0.5, 30e9, 0.2)), Contact(kn=1e10, kt=1e9))
     site = Site(
         12.0, 6.0, [soft, SoilLayer(1.0, E=5e7, nu=0.3)],
-        boreholes=[Borehole(-3.0, [-2.0]), Borehole(3.0, [-2.5])], water_table=-1.0,
+        boreholes=[Borehole(-3.0, [-2.0]), Borehole(3.0, [-2.5])], water_level=-1.0,
         strips=[RigidStrip(-4.0, -2.0, settle=0.01), strip],
         loads=[ColumnLoad(2.0, N=100e3)], mesh=MeshSize(h_fine=0.5, h_coarse=2.0),
     )  # fmt: skip
@@ -169,7 +169,7 @@ def test_site_to_dict_round_trips_rigid_strips_depth_variation_and_water():
     again = site_from_dict(json.loads(json.dumps(plain)))
     assert scene_to_dict(again) == plain
     assert isinstance(again.strips[0], RigidStrip) and isinstance(again.layers[0], DepthVarying)
-    assert again.layers[0].E_inc == 1e6 and again.water_table == -1.0
+    assert again.layers[0].E_inc == 1e6 and again.water_level == -1.0
 
 
 def test_a_rigid_strip_site_round_trips_through_its_file(tmp_path):

@@ -375,7 +375,11 @@ def ground_line(site) -> tuple[np.ndarray, np.ndarray]:
     (down its left wall, along the base level, up its right wall), x non-decreasing (a wall: two points at
     the same x)."""
     xs = np.unique(np.concatenate([np.linspace(site.x_left, site.x_right, 401), site.breaks()]))
-    pts = [(x, float(site.ground_z(x))) for x in xs]
+    # a vertical step of the ground (a cut's face): both its ends at one x, the left one first
+    pts = []
+    for x in xs:
+        z_left, z_right = float(site.ground_z(x, "left")), float(site.ground_z(x, "right"))
+        pts += [(x, z_left)] + ([(x, z_right)] if z_right != z_left else [])
     for _, x0, x1, lv in site.embedded():
         left = [p for p in pts if p[0] < x0]  # the ground over the trench (x0 to x1) is gone
         right = [p for p in pts if p[0] > x1]

@@ -217,15 +217,7 @@ def _write_scene_result(h5, result):
     h5.attrs["extra"] = json.dumps(extra, default=_jsonable)
     _write_mesh(h5, built.model)
     _write_steps(h5, built.model, result.load_factor, result.u, result.states)
-    names = group_names(built.model)
-    for i, record in enumerate(result.phases or []):
-        grp = h5.create_group(f"phases/{i}")
-        for key, value in record.items():
-            if key != "result":
-                grp.attrs[key] = json.dumps(value, default=_jsonable)
-        _write_solver(grp, record["result"], result.u, result.states, names)
-    if not result.phases:  # a phased result's own is its phases' joined (scene.join_phases): rebuilt
-        _write_solver(h5.create_group("solver"), result.solver_result, result.u, result.states, names)
+    _write_phases(h5, result, result.solver_result, group_names(built.model))
 
 
 def _write_site_result(h5, result):
@@ -248,7 +240,20 @@ def _write_site_result(h5, result):
     _write_mesh(h5, built.model)
     h5["mesh"].create_dataset("element_layer", data=np.asarray(built.element_layer, np.int64))
     _write_steps(h5, built.model, res.load_factor, res.u, res.states)
-    _write_solver(h5.create_group("solver"), res, res.u, res.states, group_names(built.model))
+    _write_phases(h5, result, res, group_names(built.model))
+
+
+def _write_phases(h5, result, joined, names):
+    """Each phase's record and solver result (``phases/<i>``) of a phased SceneResult or SiteResult, else
+    the one solver result (``solver``): a phased result's own is its phases' joined, rebuilt on reading."""
+    for i, record in enumerate(result.phases or []):
+        grp = h5.create_group(f"phases/{i}")
+        for key, value in record.items():
+            if key != "result":
+                grp.attrs[key] = json.dumps(value, default=_jsonable)
+        _write_solver(grp, record["result"], result.u, result.states, names)
+    if not result.phases:
+        _write_solver(h5.create_group("solver"), joined, result.u, result.states, names)
 
 
 def _write_model_result(h5, result):
@@ -435,7 +440,7 @@ def read_result(path: str | os.PathLike) -> "SceneResult | SiteResult | StoredRe
             for i in range(len(solver["state_own"][group_order[0]]))
         ]
     if info["kind"] == "site":
-        return _site_result(info, lam, u, states, solver, coords)
+        return _site_result(info, lam, u, states, solver, phases, coords)
     if info["kind"] != "scene":
         return StoredResult(
             coords=coords,
@@ -510,9 +515,10 @@ def _scene_result(info, lam, u, states, solver, phases, coords):
     return SceneResult(built, solver_result, phases=records or None, **extra)
 
 
-def _site_result(info, lam, u, states, solver, coords):
+def _site_result(info, lam, u, states, solver, phases, coords):
     """A :class:`ssi.scene.SiteResult` from a file: the site rebuilt from its description (its mesh must
-    be the stored one), its solver result from the stored record."""
+    be the stored one), its solver result from the stored record (a phased site's: its phases' joined)."""
+    from ..scene import join_phases
     from ..scene.scene_file import site_from_dict
     from ..scene.site_view import SiteResult
 
@@ -523,8 +529,16 @@ def _site_result(info, lam, u, states, solver, coords):
             f"version? this is ssi {__version__}, the file {info.get('ssi_version')})"
         )
     estimate = info.get("extra", {}).get("error_estimate")
+    records = [
+        {**meta, "result": _solver_result(built.model, rec, lam, list(u), states)} for rec, meta in phases
+    ]
+    joined = (
+        join_phases(built.model, records)
+        if records
+        else _solver_result(built.model, solver, lam, list(u), states)
+    )
     return SiteResult(
-        built, _solver_result(built.model, solver, lam, list(u), states), error_estimate=estimate,
+        built, joined, error_estimate=estimate, phases=records or None,
         verdict=info.get("extra", {}).get("verdict"),
     )  # fmt: skip
 

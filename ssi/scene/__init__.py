@@ -8,7 +8,7 @@ engineering quantities (``SceneResult``).
 * ``view`` -- ``SceneResult``; ``foundation_result`` -- one plate strip's view (a scene's or a site's);
 * ``scene_file`` -- scenes and sites as TOML and plain dicts (one reader), ``file_schema`` -- their keys;
 * sites of any layering: ``site`` -- ``Site`` (geometry, mesh); ``site_parts`` -- ``Borehole``,
-  ``DepthVarying``, ``Strip``, ``RigidStrip``; ``site_built`` -- ``BuiltSite``; ``site_view`` --
+  ``DepthVarying``, ``Lens``, ``Strip``, ``RigidStrip``; ``site_built`` -- ``BuiltSite``; ``site_view`` --
   ``SiteResult``.
 """
 
@@ -18,7 +18,7 @@ from .loads import ColumnLoad, Push, Settlement, StripLoad, StripWeight, Surface
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
 from .site import BuiltSite, Site, SiteResult
-from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
+from .site_parts import Borehole, DepthVarying, Lens, RigidStrip, Strip
 from .stages import PhaseNonConvergence, join_phases
 from .view import SceneResult
 
@@ -30,6 +30,7 @@ __all__ = [
     "Contact",
     "ContactSegment",
     "DepthVarying",
+    "Lens",
     "Excavation",
     "Foundation",
     "MeshSize",

@@ -6,7 +6,6 @@ import warnings
 
 import numpy as np
 
-from .loads import ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Contact, ContactSegment, Foundation
 
 
@@ -41,7 +40,7 @@ def _segment_at(segments, x):
 def _check_symmetric(scene):
     """A symmetric scene: a RigidFooting (or no foundation) centred on the axis x = 0."""
     f = scene.foundation
-    pushes = [ld for ld in scene._all_loads() if isinstance(ld, Push)]
+    pushes = [ld for ld in scene._all_loads() if ld.drives == "horizontal"]
     if pushes:
         raise ValueError(
             f"Scene.symmetric=True: {pushes[0]!r} pushes the footing sideways, which is not symmetric about "
@@ -69,7 +68,7 @@ def _check_rigid_footing(scene):
     if scene.embedment:
         raise ValueError(f"embedment={scene.embedment}: a RigidFooting sits on the ground (embedment 0)")
     for load in scene._all_loads():
-        if isinstance(load, (SurfacePressure, Push)) or (isinstance(load, Settlement) and load.x is None):
+        if load.on_rigid_footing():
             continue
         raise ValueError(
             f"loads: a RigidFooting takes only Settlement(w) (x=None: it settles as a whole), Push(u) and "
@@ -133,18 +132,18 @@ def _check_phase_soil(scene, k, ph):
             except ValueError as err:
                 raise ValueError(f"{where}: drainage[{key}] = 'undrained_A': {err}") from err
     lo, hi = scene._block()
-    pressures = [ld for p in scene.phases for ld in p.loads if isinstance(ld, SurfacePressure)]
-    pressures += [ld for ld in scene.loads if isinstance(ld, SurfacePressure)]
+    loads = [ld for p in scene.phases for ld in p.loads] + list(scene.loads)
+    spans = [ld.ground_span() for ld in loads if ld.ground_span() is not None]  # the ground pressures
     for j, ex in enumerate(ph.excavate):
         name = f"{where}.excavate[{j}]"
         if ex.x0 < lo - 1e-9 or ex.x1 > hi + 1e-9:
             raise ValueError(f"{name}: x0={ex.x0}, x1={ex.x1} must lie in the block [{lo:g}, {hi:g}] m")
         if ex.bottom >= scene.depth:
             raise ValueError(f"{name}: bottom={ex.bottom} m must be < the block depth {scene.depth:g} m")
-        for ld in pressures:
-            if ex.top == 0.0 and min(ex.x1, ld.x1) - max(ex.x0, ld.x0) > 1e-9:
+        for x0, x1 in spans:
+            if ex.top == 0.0 and min(ex.x1, x1) - max(ex.x0, x0) > 1e-9:
                 raise ValueError(
-                    f"{name}: ({ex.x0}, {ex.x1}) removes the ground under SurfacePressure({ld.x0}, {ld.x1})"
+                    f"{name}: ({ex.x0}, {ex.x1}) removes the ground under SurfacePressure({x0}, {x1})"
                 )
 
 
@@ -176,9 +175,5 @@ def _warn_implausible_units(scene):
     ):
         warn("contact.kn", c.kn, "Pa/m", "kn")
     for load in scene._all_loads():
-        if isinstance(load, ColumnLoad):
-            warn("ColumnLoad.N", load.N, "N/m", "force")
-        elif isinstance(load, (SurfacePressure, StripLoad)):
-            warn(f"{type(load).__name__}.q", load.q, "Pa", "pressure")
-        elif isinstance(load, StripWeight):
-            warn("StripWeight.unit_weight", load.unit_weight, "N/m^3", "unit_weight")
+        for label, value, unit, kind in load.magnitudes():
+            warn(label, value, unit, kind)

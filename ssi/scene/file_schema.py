@@ -28,9 +28,12 @@ UNITS = {
         "layers": "list of SoilLayer tables from the top down (thickness: not needed, the boundaries "
         "decide), or DepthVarying ones",
         "boreholes": "list of Borehole tables (or boundaries; the layer boundaries)",
-        "boundaries": "[[[x m, z m], ...], ...] one polyline per layer boundary, from the top down",
-        "ground": "[[x m, z m], ...] ground polyline (leave out: level at z = 0)",
-        "water_table": "m ELEVATION of the water table, or [[x m, z m], ...] (leave out: dry)",
+        "boundaries": "[[[x m, z m], ...], ...] one polyline per layer boundary, from the top down; with "
+        "boreholes, [] takes that boundary from them (they list only those)",
+        "ground": "[[x m, z m], ...] ground polyline, x increasing; two points at one x: a vertical step "
+        "(a cut's face) (leave out: level at z = 0)",
+        "water_table": "m DEPTH of the water table below the ground, as a Scene's (on sloping ground it "
+        "follows the ground; >= 0: a site builds no ponding); or give water_level; leave both out: dry",
         "strips": "list of Strip tables (type = 'RigidStrip': a RigidStrip table)",
         "loads": "list of load tables (type = 'ColumnLoad' | 'SurfacePressure' | 'Push')",
         "mesh": "MeshSize table",
@@ -38,12 +41,20 @@ UNITS = {
         "initial_stress": "'auto' | 'K0' | 'gravity' | 'gravity_plastic'",
         "gamma_w": "N/m^3",
         "depth_varying": "'gauss' | 'centroid' (where a DepthVarying layer is sampled)",
+        "lenses": "list of Lens tables (closed regions of another soil)",
+        "phases": "list of Phase tables (loads and factors; excavate and drainage: a Scene's only)",
+        "water_level": "m ELEVATION of the water table (z up, as ground: PLAXIS's phreatic level), or "
+        "[[x m, z m], ...] a polyline of elevations; or give water_table (a depth); leave both out: dry",
     },
     "DepthVarying": {
         "layer": "- (not a key: the SoilLayer keys stand in the same [[layers]] table)",
         "E_inc": "Pa/m (E grows with the depth below z_ref)",
         "c_inc": "Pa/m (c grows with the depth below z_ref)",
         "z_ref": "m (reference elevation; leave out: the ground above the point)",
+    },
+    "Lens": {
+        "points": "[[x m, z m], ...] the outline (x-monotone: a vertical line meets it at most twice)",
+        "layer": "a SoilLayer table (thickness not needed; E_inc, c_inc, z_ref: a DepthVarying one)",
     },
     "Borehole": {"x": "m", "boundaries": "[z m, ...] elevations of the layer boundaries from the top down"},
     "Strip": {

@@ -40,6 +40,17 @@ class Load:
         """(x0, x1) [m] of the ground a pressure loads; None: not a pressure on the ground."""
         return None
 
+    def on_rigid_footing(self) -> bool:
+        """Whether a scene with a RigidFooting (no plate, no interface: its base nodes settle together) can
+        carry it: a ground pressure, a push and a settlement of the whole footing can; a force on a plate
+        cannot."""
+        return self.ground_span() is not None or self.drives == "horizontal"
+
+    def magnitudes(self) -> list[tuple[str, float, str, str]]:
+        """(label, value, unit, kind) of each value the plausible-units warning reads (kind: "force",
+        "pressure" or "unit_weight"): none by default."""
+        return []
+
 
 @dataclass(frozen=True)
 class ColumnLoad(Load):
@@ -58,6 +69,9 @@ class ColumnLoad(Load):
         check_real("ColumnLoad.M", self.M, unit="N m/m")
 
     on_site: ClassVar[bool] = True  # a site applies it
+
+    def magnitudes(self) -> list[tuple[str, float, str, str]]:
+        return [("ColumnLoad.N", self.N, "N/m", "force")]
 
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m] > 0 down) of each column force this load applies: this column."""
@@ -96,6 +110,9 @@ class SurfacePressure(Load):
         """(x0, x1) [m] of the ground this pressure loads."""
         return self.x0, self.x1
 
+    def magnitudes(self) -> list[tuple[str, float, str, str]]:
+        return [("SurfacePressure.q", self.q, "Pa", "pressure")]
+
     def mesh_lines(self) -> list[float]:
         """Both ends [m]."""
         return [self.x0, self.x1]
@@ -124,6 +141,9 @@ class StripLoad(Load):
     q_end: float | None = None
     x0: float | None = None
     x1: float | None = None
+
+    def magnitudes(self) -> list[tuple[str, float, str, str]]:
+        return [("StripLoad.q", self.q, "Pa", "pressure")]
 
     def mesh_lines(self) -> list[float]:
         """The ends [m] that are given."""
@@ -165,6 +185,9 @@ class StripWeight(Load):
 
     unit_weight: float = 25e3
 
+    def magnitudes(self) -> list[tuple[str, float, str, str]]:
+        return [("StripWeight.unit_weight", self.unit_weight, "N/m^3", "unit_weight")]
+
     def mesh_lines(self) -> list[float]:
         """None: the weight acts on the whole strip."""
         return []
@@ -188,6 +211,10 @@ class Settlement(Load):
     x: tuple | None = None
 
     drives: ClassVar[str | None] = "vertical"  # a prescribed settlement: the load is the soil's reaction
+
+    def on_rigid_footing(self) -> bool:
+        """The whole footing's settlement (``x`` None) only: a RigidFooting has no columns."""
+        return self.x is None
 
     def mesh_lines(self) -> list[float]:
         """The settled columns' x [m] (none for the whole strip)."""

@@ -66,12 +66,13 @@ An embedded strip's side contact is a ``[side_contact]`` table (:class:`ssi.scen
 ``embedment`` > 0): ``side_contact = { kn = 1e10, kt = 0.0, phi_deg = 0.0 }`` is a smooth side.
 
 A site (:class:`~ssi.scene.site.Site`: boreholes or boundary polylines, a ground polyline, several strips;
-``water_table`` there is an ELEVATION [m] or a polyline, a scene's a depth below the ground)::
+``water_table`` is a DEPTH [m] below the ground in both, as in a scene; a site's ``water_level`` is an
+ELEVATION [m] or a polyline of elevations, PLAXIS's phreatic level -- one of the two)::
 
     width = 30.0                          # [m]  Site.width
     depth = 12.0                          # [m]  Site.depth
     ground = [[-15.0, 1.0], [-4.0, 1.0], [4.0, 0.0], [15.0, 0.0]]   # [m] (x, z) polyline
-    water_table = -3.0                    # [m] elevation, or a polyline; leave out: dry
+    water_level = -3.0                    # [m] elevation, or a polyline; or water_table = 3.0 (depth)
     initial_stress = "auto"               # "auto" | "K0" | "gravity" | "gravity_plastic"
     mesher = "auto"                       # "auto" | "structured" | "gmsh"
 
@@ -92,8 +93,11 @@ A site (:class:`~ssi.scene.site.Site`: boreholes or boundary polylines, a ground
     x = -5.0
     N = 300e3
 
-``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes; a strip table
-with ``type = "RigidStrip"`` holds a :class:`~ssi.scene.site.RigidStrip`'s fields.
+``boundaries = [[[x, z], ...], ...]`` (one polyline per boundary) may replace the boreholes, or mix with
+them: an empty polyline ``[]`` (None in Python) takes that boundary from the boreholes, which then list only
+those; a strip table with ``type = "RigidStrip"`` holds a :class:`~ssi.scene.site.RigidStrip`'s fields. A
+lens (:class:`~ssi.scene.site.Lens`) is a ``[[lenses]]`` table: ``points = [[x, z], ...]`` its outline and a
+``layer`` table of SoilLayer keys (E_inc, c_inc, z_ref: a DepthVarying one).
 
 The foundation's ``section`` is one of ``{homogeneous = {...}}`` (arguments of
 :func:`ssi.elements.section.homogeneous`), ``{rc = {...}}`` (:func:`ssi.elements.section.rc_section` with
@@ -117,10 +121,12 @@ from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWei
 from .parts import Contact, ContactSegment, Excavation, Foundation, MeshSize, Phase, RigidFooting
 from .scene import Scene
 from .site import Site
-from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
+from .site_parts import Borehole, DepthVarying, Lens, RigidStrip, Strip
 
 # top-level keys a site file may have and a scene file may not (a scene file has a ``foundation``)
-SITE_ONLY_KEYS = frozenset({"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress"})
+SITE_ONLY_KEYS = frozenset(
+    {"strips", "boreholes", "boundaries", "ground", "mesher", "initial_stress", "water_level"}
+)
 DEPTH_KEYS = ("E_inc", "c_inc", "z_ref")  # a site's layer with these is a DepthVarying layer
 
 _LOAD = "load"  # marks a field holding load tables
@@ -136,6 +142,8 @@ _NESTED = {
     (ContactSegment, "contact"): (Contact, "one"),
     (Scene, "side_contact"): (Contact, "one"),
     (Site, "loads"): (_LOAD, "list"),
+    (Site, "phases"): (Phase, "list"),
+    (Site, "lenses"): (Lens, "list"),
     (Site, "mesh"): (MeshSize, "one"),
     (Site, "boreholes"): (Borehole, "list"),
     (Strip, "foundation"): (Foundation, "one"),
@@ -215,6 +223,8 @@ def _build(cls, data, where):
             kwargs[key] = _foundation(value, f"{where}.foundation")
         elif cls is Site and key in ("layers", "strips"):
             kwargs[key] = _site_items(key, value, f"{where}.{key}")
+        elif cls is Lens and key == "layer":  # a site's layer table (thickness optional, E_inc...)
+            kwargs[key] = _site_items("layers", [value], f"{where}.layer")[0]
         elif cls is Foundation and key == "section":
             kwargs[key] = section_from_dict(value, f"{where}.section")
         elif cls is Scene and key == "contact" and value is not None:

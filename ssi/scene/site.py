@@ -14,11 +14,17 @@ water table, several foundations, and stiffness and strength growing with depth 
     out.strip_settlement(0), out.differential_settlement(0, 1)
 
 Geometry. The block spans x in [-width/2, width/2] down to z = -depth (z upwards, m). The ground is the
-polyline ``ground`` (x increasing; extended level beyond its ends; default z = 0). Layers are listed from the
+polyline ``ground`` (x increasing; extended level beyond its ends; default z = 0); two consecutive points at
+one x are a vertical step, the face of a cut (the cells beside it made conforming, meshed by gmsh; a
+SurfacePressure may end at its crest, not cross it). Layers are listed from the
 top down; the boundary between layer k and k + 1 is given either by ``boreholes`` (each lists the boundary
 elevations at its x, from the top down; between boreholes the boundaries are interpolated linearly, beyond
-the outermost ones they are level) or by ``boundaries`` (one polyline per boundary). Equal elevations make a
-layer pinch out; a boundary above the ground is cut by it (the layer is eroded there). A layer's
+the outermost ones they are level) or by ``boundaries`` (one polyline per boundary), or both mixed (a None
+-- in a file an empty ``[]`` -- in ``boundaries`` takes that boundary from the boreholes, which list only
+those). A :class:`Lens` is a closed region of another soil (an x-monotone outline: its lower and upper sides
+are cut lines of the columns it spans, its cells region ``len(layers) + j``; the K0 state, the structured
+mesh and the limit analysis are refused with one). Equal elevations make a layer pinch out; a boundary
+above the ground is cut by it (the layer is eroded there). A layer's
 ``SoilLayer.thickness`` is not used by a site (the boundaries decide), except on the structured path, where it
 is set from the boundaries.
 
@@ -62,6 +68,13 @@ Stiffness and strength growing with depth: :class:`DepthVarying` (PLAXIS's E_inc
 piecewise-constant field, whose error falls only with the element size). A site without DepthVarying
 layers builds the element-wise group either way.
 
+Water. ``water_level`` is the water table's ELEVATION [m] (a level or a polyline of (x, z) points, as the
+ground: PLAXIS's phreatic level); ``water_table`` its DEPTH [m] below the ground, the word's meaning in a
+:class:`~ssi.scene.scene.Scene` too (on sloping ground the table then follows the ground). One or neither.
+A value that reads as the other convention is refused by name: a level above the ground everywhere, a
+negative depth (ponding, which a site does not build), a polyline given as a depth, either at or below the
+block bottom everywhere (for a dry site leave both out).
+
 Supports: the bottom fixed, the sides on vertical rollers (the separated block of the paper's Fig. 1).
 """
 
@@ -72,9 +85,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..core.geometry import Geometry, GeometryError, from_cells
-from ..core.gmsh_mesh import UnstructuredMesh, check_quality, mesh_geometry
-from ..core.mesh import soil_block
+from ..core.geometry import GeometryError
+from ..core.gmsh_mesh import check_quality
 from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
@@ -82,8 +94,9 @@ from .capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety
 from .loads import LOAD_TYPES, Push
 from .parts import MeshSize
 from .site_built import BuiltSite
-from .site_checks import TOL, SiteChecks
-from .site_parts import Borehole, DepthVarying, RigidStrip, Strip
+from .site_checks import TOL, SiteChecks, _polyline
+from .site_mesh import SiteMesh
+from .site_parts import Borehole, DepthVarying, Lens, RigidStrip, Strip
 from .site_view import SiteResult, gibson_settlement
 
 # the public names of a site, importable from here (the README and chapter 19 do)
@@ -91,6 +104,7 @@ __all__ = [
     "Borehole",
     "BuiltSite",
     "DepthVarying",
+    "Lens",
     "RigidStrip",
     "Site",
     "SiteResult",
@@ -99,25 +113,20 @@ __all__ = [
 ]
 
 
-def _polyline(name, pts):
-    """(x, z) arrays of a polyline [(x, z), ...] with x strictly increasing."""
-    a = np.asarray(pts, np.float64)
-    if a.ndim != 2 or a.shape[1] != 2 or len(a) < 1 or not np.all(np.isfinite(a)):
-        raise GeometryError(f"{name} must be a list of (x, z) points [m], got {pts!r}")
-    if np.any(np.diff(a[:, 0]) <= 0):
-        raise GeometryError(f"{name}: the x of its points must increase strictly, got {a[:, 0].tolist()}")
-    return a[:, 0], a[:, 1]
-
-
 @dataclass
-class Site(SiteChecks):
+class Site(SiteChecks, SiteMesh):
     """A site: see the module docstring. ``layers`` (SoilLayer or DepthVarying) from the top down;
     ``boreholes`` or ``boundaries`` (len(layers) - 1 boundaries); ``ground`` polyline [(x, z)] [m];
-    ``water_table``: elevation [m] or polyline (None: dry), the weight below it is the buoyant one;
+    ``water_level``: the water table's ELEVATION [m] (z up, as ``ground``: PLAXIS's phreatic level) or a
+    polyline [(x, z)], or ``water_table``: its DEPTH [m] below the ground, as a :class:`Scene`'s (on sloping
+    ground it follows the ground); one of them or neither (dry); the weight below it is the buoyant one;
     ``strips``; ``loads`` (ColumnLoad on a strip, SurfacePressure on the ground, Push of a strip sideways:
     its ``x`` picks the strip, None: the only one); ``mesh`` sizes;
     ``mesher`` "auto" | "structured" | "gmsh"; ``initial_stress`` "auto" | "K0" | "gravity" |
-    "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled)."""
+    "gravity_plastic"; ``depth_varying`` "gauss" | "centroid" (where a DepthVarying layer is sampled);
+    ``lenses``: :class:`Lens` es, closed regions of another soil;
+    ``phases``: :class:`~ssi.scene.parts.Phase` s solved in turn after ``loads`` (their loads and factors,
+    as a scene's; excavations and drainage switches are a scene's only, refused by name)."""
 
     kind: ClassVar[str] = "site"  # the input's kind (a Scene's: "scene"), as result files name it
 
@@ -127,7 +136,7 @@ class Site(SiteChecks):
     boreholes: list | None = None
     boundaries: list | None = None
     ground: list | None = None
-    water_table: float | list | None = None
+    water_table: float | None = None
     strips: list = field(default_factory=list)
     loads: list = field(default_factory=list)
     mesh: MeshSize = field(default_factory=MeshSize)
@@ -135,6 +144,9 @@ class Site(SiteChecks):
     initial_stress: str = "auto"
     gamma_w: float = GAMMA_W
     depth_varying: str = "gauss"
+    water_level: float | list | None = None
+    phases: list = field(default_factory=list)
+    lenses: list = field(default_factory=list)
 
     def __post_init__(self):
         self.width = check_real("Site.width", self.width, lo=0.0, lo_open=True, unit="m")
@@ -157,53 +169,38 @@ class Site(SiteChecks):
                 raise ValueError(
                     f"Site.loads[{i}]: {type(ld).__name__} is not one a site takes: {site_loads}"
                 )
+        self._check_phases()
         n_b = len(self.layers) - 1
-        if self.boreholes is not None and self.boundaries is not None:
-            raise GeometryError("Site: give the layer boundaries by boreholes or by boundaries, not both")
-        if n_b and self.boreholes is None and self.boundaries is None:
-            raise GeometryError(
-                f"Site: {len(self.layers)} layers need boreholes or boundaries ({n_b} boundaries)"
-            )
         self.x_left, self.x_right = -0.5 * self.width, 0.5 * self.width
         self.z_bottom = -self.depth
         gx, gz = (
             (np.array([0.0]), np.array([0.0]))
             if self.ground is None
-            else _polyline("Site.ground", self.ground)
+            else _polyline("Site.ground", self.ground, steps=True)
         )
         self._ground = (gx, gz)
-        self._raw = []  # (x, z) of each boundary
-        if self.boreholes is not None:
-            if not self.boreholes:
-                raise GeometryError("Site.boreholes: give at least one borehole")
-            bh = sorted(self.boreholes, key=lambda b: b.x)
-            for b in bh:
-                if not (self.x_left <= b.x <= self.x_right):
-                    raise GeometryError(
-                        f"Borehole at x={b.x} lies outside the block [{self.x_left:g}, {self.x_right:g}] m"
-                    )
-                if len(b.boundaries) != n_b:
-                    raise GeometryError(
-                        f"Borehole at x={b.x} lists {len(b.boundaries)} boundaries, the {len(self.layers)} "
-                        f"layers need {n_b}"
-                    )
-            if len({b.x for b in bh}) != len(bh):
-                raise GeometryError(f"Site.boreholes: two boreholes at the same x ({[b.x for b in bh]})")
-            xs = np.array([b.x for b in bh])
-            self._raw = [(xs, np.array([b.boundaries[k] for b in bh])) for k in range(n_b)]
-        elif self.boundaries is not None:
-            if len(self.boundaries) != n_b:
+        # the vertical steps of the ground (i: points i and i + 1 share their x): the ground has two
+        # elevations there, the one left of the step and the one right of it
+        self._steps = [int(i) for i in np.flatnonzero(np.diff(gx) == 0.0)]
+        for i in self._steps:
+            if not (self.x_left < gx[i] < self.x_right):
                 raise GeometryError(
-                    f"Site.boundaries: {len(self.boundaries)} given, {len(self.layers)} layers need {n_b}"
+                    f"Site.ground: the vertical step at x={gx[i]:g} m must lie inside the block "
+                    f"({self.x_left:g}, {self.x_right:g}) m"
                 )
-            self._raw = [_polyline(f"Site.boundaries[{k}]", p) for k, p in enumerate(self.boundaries)]
+        self._raw = self._boundary_lines(n_b)  # (x, z) of each boundary
+        for i, lens in enumerate(self.lenses):
+            check_instance(f"Site.lenses[{i}]", lens, Lens)
+        self._water = self._water_line()
         self._check_geometry()
 
-    @property
-    def phases(self) -> tuple:
-        """A site is loaded in one phase (its ``loads``, scaled by the load factor): no construction phases
-        (yet)."""
-        return ()
+    def soils(self) -> list:
+        """The soil of each region of the geometry: ``layers``, then each lens's layer (region = index)."""
+        return list(self.layers) + [lens.layer for lens in self.lenses]
+
+    def all_loads(self) -> list:
+        """``loads`` and every phase's loads, in that order (what the mesh and the checks must serve)."""
+        return list(self.loads) + [ld for ph in self.phases for ld in ph.loads]
 
     def sections(self) -> list:
         """The sections of the plate strips, in the order of ``strips`` (a RigidStrip has none)."""
@@ -218,21 +215,38 @@ class Site(SiteChecks):
         return replace(self, strips=strips)
 
     # ---- geometry -----------------------------------------------------------------------------------------
-    def ground_z(self, x) -> np.ndarray:
-        """Elevation [m] of the ground at ``x``."""
-        return np.interp(x, *self._ground)
+    def ground_z(self, x, side: str | None = None) -> np.ndarray:
+        """Elevation [m] of the ground at ``x``; at a vertical step the top of its face, or with ``side``
+        "left" / "right" the ground just left / right of it (what a column of the geometry ending / starting
+        there has)."""
+        gx, gz = self._ground
+        z = np.interp(x, gx, gz)
+        for i in self._steps:
+            at = np.abs(np.asarray(x, np.float64) - gx[i]) <= TOL * max(1.0, self.width)
+            pick = {None: max(gz[i], gz[i + 1]), "left": gz[i], "right": gz[i + 1]}[side]
+            z = np.where(at, pick, z)
+        return z
 
-    def boundary_z(self, k: int, x) -> np.ndarray:
+    def boundary_z(self, k: int, x, side: str | None = None) -> np.ndarray:
         """Elevation [m] of the boundary below layer ``k`` at ``x``, cut by the ground (min of both)."""
-        return np.minimum(np.interp(x, *self._raw[k]), self.ground_z(x))
+        return np.minimum(np.interp(x, *self._raw[k]), self.ground_z(x, side))
 
-    def water_z(self, x) -> np.ndarray:
-        """Elevation [m] of the water table at ``x`` (-inf: dry)."""
-        if self.water_table is None:
+    def water_z(self, x, side: str | None = None) -> np.ndarray:
+        """Elevation [m] of the water table at ``x`` (-inf: dry), whichever field gave it (``side``: at a step
+        of the ground, as :meth:`ground_z`)."""
+        kind, value = self._water
+        if kind == "dry":
             return np.full(np.shape(x), -np.inf)
-        if np.ndim(self.water_table) == 0:
-            return np.full(np.shape(x), float(self.water_table))
-        return np.interp(x, *_polyline("Site.water_table", self.water_table))
+        if kind == "depth":
+            return self.ground_z(x, side) - value
+        if kind == "level":
+            return np.full(np.shape(x), value)
+        return np.interp(x, *value)
+
+    @property
+    def has_water(self) -> bool:
+        """True if the site has a water table (``water_level`` or ``water_table`` given)."""
+        return self._water[0] != "dry"
 
     def _strip_ends(self):
         return sorted(s.ends for s in self.strips)
@@ -245,7 +259,7 @@ class Site(SiteChecks):
         for i, s in enumerate(self.strips):
             if s.level is not None:
                 x0, x1 = s.ends
-                if s.level < float(self.ground_z(x0)) - TOL * self.width:
+                if s.level < float(self.ground_z(x0, "right")) - TOL * self.width:
                     out.append((i, x0, x1, float(s.level)))
         return out
 
@@ -253,39 +267,7 @@ class Site(SiteChecks):
         """Elevation [m] of the base of strip ``i``: its level if embedded, else the ground under it."""
         s = self.strips[i]
         x0, _ = s.ends
-        return float(self.ground_z(x0)) if s.level is None else float(s.level)
-
-    def _cut_lines(self, xs) -> list[np.ndarray]:
-        """Elevations [m] at ``xs`` of the lines every layer is cut along (mesh lines): the water table and
-        the base level of every embedded strip (so the trench walls end at a mesh node)."""
-        cuts = [] if self.water_table is None else [self.water_z(xs)]
-        return cuts + [np.full(np.shape(xs), lv) for _, _, _, lv in self.embedded()]
-
-    def breaks(self) -> np.ndarray:
-        """x [m] of the vertical cuts of the geometry (see the module docstring), sorted, unique."""
-        xs = [self.x_left, self.x_right, *self._ground[0]]
-        for bx, _ in self._raw:
-            xs += list(bx)
-        for a, b in self._strip_ends():
-            xs += [a, b]
-        xs += self._load_points()
-        xs = np.unique(np.clip(np.array(xs, np.float64), self.x_left, self.x_right))
-        if self.water_table is not None and np.ndim(self.water_table):
-            xs = np.unique(np.clip(np.concatenate([xs, _polyline("Site.water_table", self.water_table)[0]]),
-                                   self.x_left, self.x_right))  # fmt: skip
-        # where the ground crosses a boundary (the cut boundary has a kink there) and where a cut line (the
-        # water table, an embedded strip's base level) crosses the ground, a boundary or another cut line
-        lines = [np.interp(xs, *r) for r in self._raw]
-        pairs = [(self.ground_z(xs), b) for b in lines]
-        cuts = self._cut_lines(xs)
-        for k, c in enumerate(cuts):
-            pairs += [(c, self.ground_z(xs))] + [(c, b) for b in lines] + [(c, d) for d in cuts[k + 1 :]]
-        extra = []
-        for f, g in pairs:
-            d = f - g
-            for i in np.flatnonzero(d[:-1] * d[1:] < 0.0):
-                extra.append(xs[i] + (xs[i + 1] - xs[i]) * d[i] / (d[i] - d[i + 1]))
-        return _unique(np.concatenate([xs, extra]), self.width)
+        return float(self.ground_z(x0, "right")) if s.level is None else float(s.level)
 
     def _strip_at(self, x):
         for i, s in enumerate(self.strips):
@@ -293,32 +275,6 @@ class Site(SiteChecks):
             if not s.rigid and x0 - 1e-9 <= x <= x1 + 1e-9:
                 return i
         return None
-
-    def geometry(self) -> Geometry:
-        """The site cut into cells (columns between breaks, layers within each, each layer cut by the water
-        table where it passes), region = layer index."""
-        xs = self.breaks()
-        polys, regions = [], []
-        n = len(self.layers)
-        trenches = self.embedded()
-        eps = TOL * self.width
-        for xa, xb in zip(xs[:-1], xs[1:]):
-            ends = np.array([xa, xb])
-            top = self.ground_z(ends)
-            for _, x0, x1, lv in trenches:  # inside a trench the soil ends at the strip's base level
-                if xa >= x0 - eps and xb <= x1 + eps:
-                    top = np.minimum(top, lv)
-            tops = [top] + [np.minimum(self.boundary_z(k, ends), top) for k in range(n - 1)]
-            tops.append(np.array([self.z_bottom, self.z_bottom]))
-            cuts = self._cut_lines(ends)
-            for k in range(n):
-                t, b = tops[k], tops[k + 1]
-                # the cut lines within the layer (on its top or bottom if outside), bottom up
-                inner = sorted((np.clip(c, b, t) for c in cuts), key=lambda c: float(c.sum()))
-                for lo, hi in zip([b, *inner], [*inner, t]):  # a cell of zero area is dropped by from_cells
-                    polys.append([(xa, lo[0]), (xb, lo[1]), (xb, hi[1]), (xa, hi[0])])
-                    regions.append(k)
-        return from_cells(polys, regions, tol=TOL)
 
     def limit_analysis(self, gap: float = 0.02, **options) -> CapacityResult:
         """The site's capacity as a certified bracket by finite-element limit analysis: lambda scales the
@@ -328,11 +284,23 @@ class Site(SiteChecks):
         :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
         stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
         (:mod:`ssi.scene.limit_problem`). A site has no phases: ``phase`` is refused by name."""
-        if options.get("phase") is not None:
+        if options.get("phase") is not None and not self.phases:
             raise ValueError(
                 f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
             )
+        if self.phases:
+            raise ValueError(
+                f"Site.phases={[ph.name for ph in self.phases]}: the limit analysis of a phased site is not "
+                "built (a site's limit analysis scales its loads); give the loads to scale as Site.loads of "
+                "a site without phases"
+            )
         options.pop("phase", None)
+        if self.lenses:
+            raise ValueError(
+                f"Site.limit_analysis: Site.lenses ({len(self.lenses)}): a lens's soil is not built in the "
+                "limit analysis (it would take the layer around it); solve the site, or give the lens as a "
+                "layer between boundaries"
+            )
         pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
         if pushes:
             raise ValueError(
@@ -366,8 +334,9 @@ class Site(SiteChecks):
         the structured mesh apply."""
         xs = self.breaks()
         flat = np.all(np.abs(self.ground_z(xs)) <= TOL * self.width)
-        water = self.water_table is None or np.ptp(self.water_z(xs)) <= TOL * self.width
-        return bool(flat and water) and all(np.ptp(np.interp(xs, *r)) <= TOL * self.width for r in self._raw)
+        water = not self.has_water or np.ptp(self.water_z(xs)) <= TOL * self.width
+        level = all(np.ptp(np.interp(xs, *r)) <= TOL * self.width for r in self._raw)
+        return bool(flat and water and level and not self.lenses)
 
     def layer_thicknesses(self) -> list[float]:
         """Thicknesses [m] of the layers of a level site (:meth:`is_level`), top down."""
@@ -415,7 +384,7 @@ class Site(SiteChecks):
 
     def _load_points(self) -> list[float]:
         out = []
-        for ld in self.loads:
+        for ld in self.all_loads():
             out += ld.mesh_lines()  # a column's x, a pressure's ends (a Push: none)
         return out
 
@@ -433,58 +402,3 @@ class Site(SiteChecks):
             if x0 - TOL * self.width <= push.x <= x1 + TOL * self.width:
                 return i
         raise GeometryError(f"{push!r}: Push.x={push.x:g} m lies on no strip {self._strip_ends()}")
-
-    def _structured_mesh(self):
-        m = self.mesh
-        if self.strips:
-            foot = self.strips[0].ends
-        else:
-            pressures = [ld.ground_span() for ld in self.loads if ld.ground_span() is not None]
-            foot = (
-                (min(a for a, _ in pressures), max(b for _, b in pressures))
-                if pressures
-                else (-0.25 * self.width, 0.25 * self.width)
-            )
-        breaks = self._load_points()
-        # the layers split at the water table (a mesh line there, as the layered scene does): each element
-        # wholly above or below it; and at an embedded strip's base (the trench's bottom, as soil_block needs)
-        d_w = np.inf if self.water_table is None else -float(self.water_z(0.0))
-        trench = self.embedded()
-        d_base = -trench[0][3] if trench else 0.0
-        thick, owner, top = [], [], 0.0
-        for k, t in enumerate(self.layer_thicknesses()):
-            inner = sorted({d for d in (d_w, d_base) if 1e-9 * t < d - top < t * (1 - 1e-9)})
-            for a, b in zip([top, *inner], [*inner, top + t]):
-                thick.append(b - a)
-                owner.append(k)
-            top += t
-        mesh = soil_block(
-            self.width, self.depth, thick, foot, m.h_fine, m.h_coarse, m.growth,
-            breaks=breaks, embedment=d_base, end_grading=m.end_grading,
-        )  # fmt: skip
-        mesh.el_layer = np.array(owner, np.int64)[mesh.el_layer]
-        return mesh
-
-    def _gmsh_mesh(self) -> UnstructuredMesh:
-        m = self.mesh
-        ref = []
-        for i, s in enumerate(self.strips):
-            x0, x1 = s.ends
-            n = max(1, round((x1 - x0) / m.h_fine))
-            xs = np.linspace(x0, x1, n + 1)
-            ref += [(x, self.base_z(i)) for x in xs]
-            top = float(self.ground_z(x0))
-            if top - self.base_z(i) > TOL * self.width:  # the trench walls of an embedded strip
-                n_w = max(1, round((top - self.base_z(i)) / m.h_fine))
-                ref += [(x, z) for x in (x0, x1) for z in np.linspace(self.base_z(i), top, n_w + 1)]
-        for span in (ld.ground_span() for ld in self.loads):
-            if span is not None:
-                n = max(1, round((span[1] - span[0]) / m.h_fine))
-                ref += [(x, float(self.ground_z(x))) for x in np.linspace(*span, n + 1)]
-        return mesh_geometry(self.geometry(), m.h_fine, m.h_coarse, m.growth, np.array(ref) if ref else None)
-
-
-def _unique(xs, scale):
-    xs = np.sort(np.asarray(xs, np.float64))
-    keep = np.concatenate([[True], np.diff(xs) > TOL * max(scale, 1.0)])
-    return xs[keep]

@@ -94,7 +94,7 @@ class BuiltSite:
         if self.initial_stress_method == "K0":
             layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in site.layers]
             layers = [replace(lay, thickness=t) for lay, t in zip(layers, site.layer_thicknesses())]
-            wt = None if site.water_table is None else -float(site.water_z(0.0))
+            wt = -float(site.water_z(0.0)) if site.has_water else None
             return geostatic_stress(
                 soil.integration_points()[..., 1], layers, water_table=wt, gamma_w=site.gamma_w
             )
@@ -285,7 +285,7 @@ class BuiltSite:
 
     @property
     def is_linear(self) -> bool:
-        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.layers]
+        layers = [lay.layer if isinstance(lay, DepthVarying) else lay for lay in self.site.soils()]
         return all(lay.c is None for lay in layers) and all(
             (s.side_contact is None or s.side_contact.phi_deg is None)
             and (
@@ -307,10 +307,18 @@ class BuiltSite:
     def solve(self, n_steps: int | None = None, settings=None, load_factors=None) -> SiteResult:
         """Apply the loads to load factor 1 from the initial stress: one linear solve for a linear site, else
         the solver's automatic increments (``n_steps``, ``settings`` as for a scene; ``load_factors``: the
-        levels themselves, e.g. a graded push of a RigidStrip)."""
+        levels themselves, e.g. a graded push of a RigidStrip). With ``site.phases``: the geostatic phase,
+        then ``site.loads`` (if any, as a phase named "loads") and each phase in turn
+        (:func:`ssi.scene.stages.solve_site_phases`); ``out.phases`` lists them."""
         from ..solver import Settings
-        from .stages import _load_levels, _run_phase
+        from .stages import _load_levels, _run_phase, solve_site_phases
 
+        if self.site.phases:
+            if load_factors is not None:
+                raise ValueError(
+                    f"load_factors={load_factors!r}: a phased site steps each phase by its own n_steps"
+                )
+            return solve_site_phases(self, n_steps, settings)
         if self.is_linear and load_factors is None:
             return SiteResult(self, self.model.solve_linear(backend=(settings or Settings()).backend))
         levels = _load_levels(n_steps) if load_factors is None else np.asarray(load_factors, np.float64)
@@ -337,11 +345,11 @@ def _materials(site: Site, mesh, centre, points):
     properties vary with depth, one per Gauss point (``points`` (n_el, n_ip, 2); site.depth_varying
     "gauss": the index is (n_el, n_ip)) or per element (evaluated at its ``centre``; "centroid")."""
     rows, el_mat, weights = [], np.zeros(len(mesh.conn), np.int64), []
-    per_point = site.depth_varying == "gauss" and any(isinstance(lay, DepthVarying) for lay in site.layers)
+    per_point = site.depth_varying == "gauss" and any(isinstance(lay, DepthVarying) for lay in site.soils())
     point_mat = np.zeros(points.shape[:2], np.int64)
     layer_of = np.asarray(mesh.el_layer, np.int64)
     wet = centre[:, 1] < site.water_z(centre[:, 0])
-    for k, lay in enumerate(site.layers):
+    for k, lay in enumerate(site.soils()):  # the layers, then the lenses (region n_layers + j)
         base = lay.layer if isinstance(lay, DepthVarying) else lay
         sat = base.unit_weight if base.unit_weight_sat is None else base.unit_weight_sat
         for is_wet in (False, True):

@@ -7,12 +7,14 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
+import numpy as np
+
 from ..core.geometry import GeometryError
 from ..core.validate import check_instance, check_optional_real, check_real
 from ..materials.soil_laws import SoilLayer
 from .parts import Contact, Foundation
 
-__all__ = ["Borehole", "DepthVarying", "RigidStrip", "Strip"]
+__all__ = ["Borehole", "DepthVarying", "Lens", "RigidStrip", "Strip"]
 
 
 @dataclass(frozen=True)
@@ -36,6 +38,69 @@ class Borehole:
                     "list them from the top down (equal values: a layer pinched out)"
                 )
         object.__setattr__(self, "boundaries", z)
+
+
+@dataclass(frozen=True)
+class Lens:
+    """A closed region of another soil in a site (a lens, a pocket, a wedge): ``points`` [(x, z), ...] [m]
+    its outline (a polygon, either orientation, not closed by repeating the first point), ``layer`` its
+    SoilLayer or DepthVarying (``thickness`` not used). The outline must be x-monotone -- every vertical
+    line meets it at most twice, so it is the region between a lower and an upper chain -- which is what a
+    lens drawn from boreholes is; an outline that folds back is refused by name."""
+
+    points: tuple
+    layer: object
+
+    def __post_init__(self):
+        check_instance("Lens.layer", self.layer, (SoilLayer, DepthVarying))
+        try:
+            pts = tuple((float(x), float(z)) for x, z in self.points)
+        except (TypeError, ValueError) as err:
+            raise GeometryError(
+                f"Lens.points must be a list of (x, z) points [m], got {self.points!r}"
+            ) from err
+        for i, (x, z) in enumerate(pts):
+            check_real(f"Lens.points[{i}].x", x, unit="m")
+            check_real(f"Lens.points[{i}].z", z, unit="m")
+        if len(pts) < 3:
+            raise GeometryError(f"Lens.points: an outline needs at least 3 points, got {len(pts)}")
+        object.__setattr__(self, "points", pts)
+        self.chains()  # refuses an outline that is not x-monotone or has no area
+
+    def chains(self):
+        """((xs, zs) of the lower chain, (xs, zs) of the upper chain), each with x strictly increasing from
+        the outline's leftmost to its rightmost x (a vertical end edge: the lowest point starts the lower
+        chain, the highest the upper)."""
+        pts = list(self.points)
+        area2 = sum(x0 * z1 - x1 * z0 for (x0, z0), (x1, z1) in zip(pts, pts[1:] + pts[:1]))
+        if abs(area2) <= 1e-12 * max(1.0, max(abs(v) for p in pts for v in p)) ** 2:
+            raise GeometryError(f"Lens.points {pts}: the outline has no area")
+        if area2 < 0:  # counter-clockwise: along the bottom to the right, back along the top
+            pts = pts[::-1]
+        n, xs = len(pts), [p[0] for p in pts]
+        lo_x, hi_x = min(xs), max(xs)
+        start = min((i for i in range(n) if xs[i] == lo_x), key=lambda i: pts[i][1])
+        end = min((i for i in range(n) if xs[i] == hi_x), key=lambda i: pts[i][1])
+        top_r = max((i for i in range(n) if xs[i] == hi_x), key=lambda i: pts[i][1])
+        top_l = max((i for i in range(n) if xs[i] == lo_x), key=lambda i: pts[i][1])
+
+        def walk(a, b):  # the points from a to b, counter-clockwise
+            out = [pts[a]]
+            while a != b:
+                a = (a + 1) % n
+                out.append(pts[a])
+            return out
+
+        lower, upper = walk(start, end), walk(top_r, top_l)[::-1]
+        for name, chain in (("lower", lower), ("upper", upper)):
+            cx = [p[0] for p in chain]
+            if any(b <= a for a, b in zip(cx, cx[1:])) or len(lower) + len(upper) < n:
+                raise GeometryError(
+                    f"Lens.points {list(self.points)}: the outline is not x-monotone (its {name} side turns "
+                    "back in x): a vertical line must meet it at most twice; split it into such lenses"
+                )
+        as_arrays = [tuple(np.array(v, np.float64) for v in zip(*c)) for c in (lower, upper)]
+        return as_arrays[0], as_arrays[1]
 
 
 @dataclass(frozen=True)

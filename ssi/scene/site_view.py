@@ -29,6 +29,9 @@ class SiteResult:
     error_estimate: dict | None = None
     capacity_error: dict | None = None  # a site answers no capacity (kept for the estimate's interface)
     verdict: dict | None = None  # the run's verdict (ssi.scene.verdict, `ssi run`); kept by the result file
+    # a phased solve (Site.phases): [{"name", "first", "last" (row indices), "result"}], the geostatic phase
+    # first; None: one loading phase
+    phases: list | None = None
 
     @property
     def solver_result(self):
@@ -119,19 +122,14 @@ class SiteResult:
     @property
     def is_push_over(self) -> bool:
         """True if a strip is driven by a prescribed displacement (a RigidStrip's settlement, a Push)."""
-        return any(st.get("rigid") for st in self.built.strips) or any(
-            ld.drives for ld in self.built.site.loads
-        )
+        site = self.built.site
+        loads = list(site.loads) + [ld for ph in site.phases for ld in ph.loads]
+        return any(st.get("rigid") for st in self.built.strips) or any(ld.drives for ld in loads)
 
     @property
     def limit_load_factor(self) -> float | None:
         """Load factor of the detected collapse (fraction of the site's loads), None if completed."""
         return self.result.limit_load_factor
-
-    @property
-    def phases(self) -> None:
-        """A site is solved in one loading phase (the rows of its phases: None)."""
-        return None
 
     def foundation_result(self, i: int) -> FoundationResult:
         """The view of plate strip ``i`` (the one a scene's strip has): settlement, contact, strip forces, RC
@@ -143,8 +141,9 @@ class SiteResult:
             )
         part = self.built.site.strips[i]
         return FoundationResult(
-            self, self.built.model, part.foundation, st["plate"], st["interface"], st["plate_nodes"]
-        )
+            self, self.built.model, part.foundation, st["plate"], st["interface"], st["plate_nodes"],
+            self.phases,
+        )  # fmt: skip
 
     def strip_forces(self, i: int, k: int = -1) -> dict[str, np.ndarray]:
         """Stress resultants of the plate strip ``i`` at step ``k`` (:meth:`FoundationResult.strip_forces`):

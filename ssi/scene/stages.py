@@ -105,3 +105,64 @@ def _hold(model, dofs, start, increment):
     """Constrain ``dofs`` to start + lambda * increment during a phase (the model stores a DOF's fixed value
     and its prescribed reference apart; both are set here)."""
     model.hold_dofs(dofs, start, increment)
+
+
+def solve_site_phases(built, n_steps, settings):
+    """A :class:`~ssi.scene.site.Site`'s phased solve (``built`` a BuiltSite): the geostatic phase (the
+    initial stress, in equilibrium with the soil's weight: a check, its rows at phase time 0), then ``loads``
+    (if any) as a first phase named "loads" and each of ``site.phases`` in turn, as a scene's
+    (:meth:`~ssi.scene.built.BuiltScene.solve`): a phase adds its loads at full value at its end, rescales
+    earlier phases' loads by its ``factors`` (0 removes them), its prescribed motions (a Push) held from
+    the phase's first state. The weights (soil, strips' ``self_weight``) are dead loads in every phase, as
+    in a single-phase site. A phase that reaches a limit load ends the analysis. Returns a SiteResult whose
+    ``phases`` are the records (:func:`join_phases`)."""
+    from .parts import Phase
+    from .site_view import SiteResult
+
+    site, model = built.site, built.model
+    n = model.n_dof
+    phases = ([Phase("loads", tuple(site.loads))] if site.loads else []) + list(site.phases)
+    f_dead = model.load_vectors()[1]
+    saved = model.constraint_state()
+    model.fix_prescribed()  # the phases set every prescribed motion themselves
+    try:
+        res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_dead))
+        records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
+        effects, factors, held_from, f_prev = {}, {}, {}, np.zeros(n)
+        for ph in phases:
+            parts = [ld.effect(built) for ld in ph.loads]
+            held = {}
+            for _, p in parts:
+                for d, v in p.items():
+                    held[d] = held.get(d, 0.0) + v
+            effects[ph.name] = (sum((p[0] for p in parts), np.zeros(n)), held)
+            factors[ph.name] = 1.0
+            factors.update(ph.factors)
+            held_from[ph.name] = {d: float(res.u[-1][d]) for d in held}
+            f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
+            target = {}
+            for k, start in held_from.items():
+                for d, u0 in start.items():
+                    target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
+            dofs = np.array(sorted(target), np.int64)
+            now, goal = res.u[-1][dofs], np.array([target[d] for d in dofs])
+            _hold(model, dofs, now, goal - now)
+            try:
+                res = _run_phase(
+                    model, _load_levels(ph.n_steps or n_steps), settings, start=res,
+                    loads=(f_end - f_prev, f_dead + f_prev),
+                )  # fmt: skip
+            except NonConvergence as err:
+                partial = records + [_phase_record(ph.name, records, err.result)]
+                done = [f"{r['name']} (steps {r['first']}-{r['last']})" for r in records[1:]]
+                report = {"phase": ph.name, "completed_phases": done, **err.report}
+                view = SiteResult(built, join_phases(model, partial), phases=partial)
+                raise PhaseNonConvergence(report, err.result, view) from err
+            _hold(model, dofs, goal, np.zeros(len(dofs)))
+            f_prev = f_end
+            records.append(_phase_record(ph.name, records, res))
+            if res.collapsed:
+                break
+    finally:
+        model.restore_constraints(saved)
+    return SiteResult(built, join_phases(model, records), phases=records)
