@@ -1,7 +1,7 @@
 """Benchmark of issue 46, item 4: is the capacity fast enough to be ``ssi run``'s default?
 
-- ``capacity_readme_gap5pct_s``: the README's capacity scene ("Its capacity, as a bracket": chapter 10's
-  rigid footing, c = 10 kPa, phi = 20 deg, psi = 0, a Settlement push; the README's "Your own scene" has an
+- ``capacity_readme_gap5pct_s``: the README's capacity scene ("Capacity and safety": chapter 10's
+  rigid footing, c = 10 kPa, phi = 20 deg, psi = 0, a Settlement push; the README's "A scene" has an
   elastic second layer, which limit analysis refuses) bracketed to a 5 % gap, associated and Davis
   (``Scene.limit_analysis(gap=0.05)``); goal <= 5 s.
 - ``capacity_two_strip_site_gap3pct_s``: a two-strip site of the issue's shape (``data/two_strip_site.toml``:

@@ -1,6 +1,6 @@
 """Benchmark of issue 13: what the first run after an install costs, beside a warm run.
 
-Runs the README's "Your own scene" block in a fresh Python process twice on one new, empty numba cache
+Runs the README's "A scene" block in a fresh Python process twice on one new, empty numba cache
 folder: the first process compiles every kernel it needs (``first_run_cold_s``), the second finds them
 cached (``readme_scene_s``, best of 3). Both are whole-process wall times (interpreter start, imports, build,
 solve), with the processes' CPU times beside them. Goal (issue 16): cold <= 5 x warm + 10 s. A user who

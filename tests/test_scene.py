@@ -129,7 +129,7 @@ def test_a_layer_without_psi_does_not_dilate():
 
 
 def test_readme_scene_runs_as_written():
-    """The README's 'Your own scene' block, executed as written: it converges (a NonConvergence would raise)
+    """The README's 'A scene' block, executed as written: it converges (a NonConvergence would raise)
     and the column load is carried by the contact (equilibrium, independent of the solver's tolerance)."""
     import pathlib
     import re

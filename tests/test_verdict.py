@@ -145,3 +145,25 @@ def test_stop_sentence_names_where_and_what_to_do():
     )
     assert text.startswith("The scene's solver stopped at load factor 0.8, worst near x = 1.00 m")
     assert "Davis" in text and "What to do" in text and len(text) < 600
+
+
+def test_readme_demo_verdict_is_what_ssi_run_prints(tmp_path, capsys):
+    """The README's quick-start verdict block is what `ssi run examples/capacity.toml` (the file `make demo`
+    runs) prints first, line for line; only the limit analysis' wall time in the closing parenthesis varies
+    with the machine and is masked on both sides. A hand copy that drifted from the run would fail here."""
+    import pathlib
+    import re
+    import shutil
+
+    root = pathlib.Path(__file__).resolve().parent.parent
+    readme = (root / "README.md").read_text()
+    shown = re.search(r"```text\n(VERDICT.*?)```", readme, re.S).group(1).strip().splitlines()
+    scene = tmp_path / "capacity.toml"
+    shutil.copy(root / "examples" / "capacity.toml", scene)
+    assert main(["run", str(scene), "--no-plots"]) == 0
+    printed = capsys.readouterr().out.splitlines()
+    start = next(i for i, line in enumerate(printed) if line.startswith("VERDICT"))
+    seconds = re.compile(r", [0-9.]+ s\)$")
+    assert [seconds.sub(", T s)", line) for line in printed[start : start + len(shown)]] == [
+        seconds.sub(", T s)", line) for line in shown
+    ]
