@@ -28,7 +28,16 @@ from ..solver import NonConvergence, Settings
 from .checks import _segments
 from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure
 from .parts import Phase
-from .stages import _hold, _load_levels, _phase_failure, _phase_record, _run_phase, join_phases
+from .stages import (
+    _held,
+    _hold,
+    _load_levels,
+    _phase_failure,
+    _phase_record,
+    _phase_targets,
+    _run_phase,
+    join_phases,
+)
 from .view import SceneResult
 
 if TYPE_CHECKING:  # for annotations only: these modules import this one
@@ -263,21 +272,13 @@ class BuiltScene:
             for i, ph in enumerate(phases):
                 parts = [self.load_effect(ld) for ld in ph.loads]
                 f_ph = sum((p[0] for p in parts), np.zeros(n)) + (plate_weight if i == 0 else 0.0)
-                held = {}
-                for p in parts:
-                    for d, v in p[1].items():
-                        held[d] = held.get(d, 0.0) + v
+                held = _held(parts)
                 effects[ph.name] = (f_ph, held)
                 factors[ph.name] = 1.0
                 factors.update(ph.factors)
                 for d in held:
                     held_from.setdefault(ph.name, {})[d] = float(res.u[-1][d])
-                f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
-                target = {}
-                for k, start in held_from.items():
-                    for d, u0 in start.items():
-                        target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
-                dofs = np.array(sorted(target), np.int64)
+                f_end, dofs, goal = _phase_targets(effects, factors, held_from, n)
                 now = res.u[-1][dofs]
                 soil_before = config
                 config = self._phase_soil(config, ph, res.u[-1])
@@ -285,7 +286,7 @@ class BuiltScene:
                     self.soil.configure(config["active"], config["k_water"], config["reference"])
                     self._fix_removed_nodes(config, res.u[-1])
                     f_geo = self._body_force() + self.geostatic_load - self._removed_ground_load(config)
-                _hold(model, dofs, now, np.array([target[d] for d in dofs]) - now)
+                _hold(model, dofs, now, goal - now)
                 # a changed soil releases the forces it no longer carries: the out-of-balance force g of the
                 # phase's first state (removed elements' stress and weight, the released pore water) is
                 # applied at the start and falls to zero over the phase
@@ -300,7 +301,7 @@ class BuiltScene:
                     )
                 except NonConvergence as err:
                     raise _phase_failure(self, err, ph.name, records) from err
-                _hold(model, dofs, np.array([target[d] for d in dofs]), np.zeros(len(dofs)))
+                _hold(model, dofs, goal, np.zeros(len(dofs)))
                 f_prev = f_end
                 records.append(_phase_record(ph.name, records, res))
                 if res.collapsed:

@@ -107,6 +107,28 @@ def _hold(model, dofs, start, increment):
     model.hold_dofs(dofs, start, increment)
 
 
+def _phase_targets(effects, factors, held_from, n):
+    """A phase's end state: the force of every phase's loads so far at its factor, and the prescribed DOFs
+    with their targets (each phase's held motion, from where that phase began, at its factor). One place for
+    a scene's and a site's phases, so the two cannot drift apart."""
+    f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
+    target = {}
+    for k, start in held_from.items():
+        for d, u0 in start.items():
+            target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
+    dofs = np.array(sorted(target), np.int64)
+    return f_end, dofs, np.array([target[d] for d in dofs])
+
+
+def _held(parts):
+    """The prescribed motions of a phase's load effects, summed per DOF."""
+    held = {}
+    for _, p in parts:
+        for d, v in p.items():
+            held[d] = held.get(d, 0.0) + v
+    return held
+
+
 def solve_site_phases(built, n_steps, settings):
     """A :class:`~ssi.scene.site.Site`'s phased solve (``built`` a BuiltSite): the geostatic phase (the
     initial stress, in equilibrium with the soil's weight: a check, its rows at phase time 0), then ``loads``
@@ -131,21 +153,13 @@ def solve_site_phases(built, n_steps, settings):
         effects, factors, held_from, f_prev = {}, {}, {}, np.zeros(n)
         for ph in phases:
             parts = [ld.effect(built) for ld in ph.loads]
-            held = {}
-            for _, p in parts:
-                for d, v in p.items():
-                    held[d] = held.get(d, 0.0) + v
+            held = _held(parts)
             effects[ph.name] = (sum((p[0] for p in parts), np.zeros(n)), held)
             factors[ph.name] = 1.0
             factors.update(ph.factors)
             held_from[ph.name] = {d: float(res.u[-1][d]) for d in held}
-            f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
-            target = {}
-            for k, start in held_from.items():
-                for d, u0 in start.items():
-                    target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
-            dofs = np.array(sorted(target), np.int64)
-            now, goal = res.u[-1][dofs], np.array([target[d] for d in dofs])
+            f_end, dofs, goal = _phase_targets(effects, factors, held_from, n)
+            now = res.u[-1][dofs]
             _hold(model, dofs, now, goal - now)
             try:
                 res = _run_phase(
