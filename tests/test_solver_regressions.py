@@ -7,17 +7,14 @@ import dataclasses
 import pytest
 
 from ssi.lab.bearing_capacity import chapter10_footing, push_footing
-from ssi.lab.examples import chapter11_foundation
+from ssi.lab.examples import CHAPTER11_COLUMN_LOAD, chapter11_foundation
 from ssi.solver import Settings
 
 
 def test_full_newton_on_a_cracking_rc_strip_on_elastic_soil_completes():
     """Chapter 11's RC strip (cracking concrete, yielding steel) on its two layers made elastic, h = 0.5 m,
     ``Settings(method="full")`` (load control, automatic increments): completed at b6147fc (14 steps,
-    max settlement 33.5155 mm) and here (11 steps, 33.5201 mm). Not checked here: the same strip at h =
-    0.25 m, or with 1.5 x the column loads, completes at b6147fc only through the load-control fallback to
-    L-BFGS that issue 31 removed (775de14: "no fallback behind the chosen method"), and stops here
-    (lambda 0.408 and 0.279, 'no convergence in 30 iterations')."""
+    max settlement 33.5155 mm) and here (9 steps since full Newton's secant restart; 11 before it)."""
     scene = chapter11_foundation(0.5)
     scene = dataclasses.replace(scene, layers=[dataclasses.replace(la, c=None) for la in scene.layers])
     out = scene.build().solve(settings=Settings(method="full"))
@@ -25,6 +22,24 @@ def test_full_newton_on_a_cracking_rc_strip_on_elastic_soil_completes():
     # the two trees' settlements differ by 1.4e-4 relative (different increments); 1e-3 is the regression
     # band, far below what a different cracked state would change
     assert out.max_settlement()[1] == pytest.approx(0.0335155, rel=1e-3)
+
+
+@pytest.mark.parametrize(("h", "load"), [(0.25, 1.0), (0.5, 1.5)])
+def test_full_newton_on_a_cracking_rc_strip_passes_where_its_tangent_cycles(h, load):
+    """The same strip at h = 0.25 m, and at h = 0.5 m with 1.5 x the column loads: at b6147fc both completed
+    (through the fallback to L-BFGS; 14 steps each, max settlement 34.146 and 51.474 mm), at 723f474 the
+    consistent tangent cycled where the strip cracks and the run stopped (lambda 0.408 and 0.279). Full
+    Newton now restarts such an increment on the secant softening tangent (increment.py, FULL_SECANT_RUN).
+    Checked: completion at lambda = 1, the settlement within 1e-3 of b6147fc's, and equilibrium -- the
+    contact resultant carries the two columns and the strip's weight."""
+    scene = chapter11_foundation(h, column_load=load * CHAPTER11_COLUMN_LOAD)
+    scene = dataclasses.replace(scene, layers=[dataclasses.replace(la, c=None) for la in scene.layers])
+    out = scene.build().solve(settings=Settings(method="full"))
+    assert out.status == "completed"
+    assert out.solver_result.load_factor[-1] == 1.0
+    assert out.max_settlement()[1] == pytest.approx({0.25: 0.0341463, 0.5: 0.0514738}[h], rel=1e-3)
+    applied = 2.0 * load * CHAPTER11_COLUMN_LOAD + 25e3 * 0.4 * 6.0
+    assert out.contact_resultant()["N"] == pytest.approx(applied, rel=1e-4)
 
 
 @pytest.mark.parametrize("n_steps", [30, 40])
