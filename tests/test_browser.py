@@ -165,6 +165,23 @@ def test_run_reports_render_offline(name, tmp_path, chromium):
         assert "Capacity" in report.text and f"{s['capacity']['load'] / 1e3:.2f}" in report.text
 
 
+def test_run_report_opens_on_its_verdict(tmp_path, chromium):
+    """The report of `make demo`'s example (examples/capacity.toml) at 1400 x 900 px: the verdict's sentence
+    ("carries its loads with margin ...") ends above the bottom of the first screen, so an engineer reads it
+    without scrolling (issue 46); the box carries the sentence the run printed."""
+    from ssi.io.cli import run_scene_file
+
+    scene = tmp_path / "capacity.toml"
+    shutil.copy2(ROOT / "examples" / "capacity.toml", scene)
+    _, s, _ = run_scene_file(scene, capacity_gap=0.25)  # the verdict, cheap: its place is what is checked
+    page = tmp_path / "capacity_report.html"
+    report = browser.inspect_page(chromium, page, SHOTS / "report-verdict-1400.png", width=1400, height=900)
+    assert report.problems() == []
+    assert s["verdict"]["line"].startswith("carries its loads") and s["verdict"]["line"] in report.text
+    bottom, height = report.layout["verdict_bottom"], report.layout["viewport_height"]
+    assert bottom is not None and 0.0 < bottom <= height, (bottom, height)
+
+
 def test_site_run_report_renders_offline(tmp_path, chromium):
     """``ssi run`` on the example borehole site: its report (one row per foundation, the differential
     settlement, the figures with the site's geometry) in the browser with no network: every figure decodes,

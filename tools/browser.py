@@ -262,8 +262,12 @@ _LAYOUT_JS = r"""
     return {width: t.scrollWidth, right: r.right, column_right: column.right, column_width: column.width,
             scrolls: scrolls(t)};
   });
+  const verdict = document.querySelector(".verdict p.line, .verdict");
   return {
     viewport_width: vw,
+    viewport_height: window.innerHeight,
+    // the run report's verdict sentence: where its box ends, in CSS px from the top of the first screen
+    verdict_bottom: verdict ? verdict.getBoundingClientRect().bottom : null,
     page_width: document.documentElement.scrollWidth,
     header_height: header,
     h1_top: h1 ? h1.getBoundingClientRect().top : null,
