@@ -1,7 +1,7 @@
 """The controlled path's corrector where a cracking strip puts kinks in the residual (issue 31, crack8 and
 secant8; ``path.G_GROWTH``, ``path.SECANT_RULE``): where no backtracking step on an unsymmetric tangent's
 factor lowers |r|, Matthies & Strang's root of G is taken only if it raises |r| less than G_GROWTH times --
-in a model with a cracking strip only (``path.cracking_strip``).
+in a model with a cracking strip only (``increment.cracking_strip``).
 
 Chapter 11's scene at h = 0.125 m, 10 targets: with the rule (and the secant rule "poor") it completes with 0
 failed steps and 53 factorisations; without the rule it took 6 failed steps and 171 factorisations (measured
@@ -10,7 +10,7 @@ at this commit, 9 s: not repeated here)."""
 from ssi.lab.examples import chapter11_foundation
 from ssi.lab.zoo import random_scenes
 from ssi.solver import Settings
-from ssi.solver.path import cracking_strip
+from ssi.solver.increment import cracking_strip
 
 
 def test_the_rule_applies_to_a_cracking_strip_only():

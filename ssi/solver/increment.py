@@ -12,6 +12,8 @@ import numpy as np
 
 from ..core.linsolve import Factorization
 from ..core.protocol import CONSISTENT, SECANT_SOFTENING
+from ..elements.plate import PlateStrip
+from ..materials.layer_laws import ELASTIC
 from .lbfgs import lbfgs_first_loop, lbfgs_second_loop
 
 
@@ -79,14 +81,14 @@ FULL_SECANT_RUN = 3  # full Newton: this many iterations in a row that do not lo
 FULL_SECANT_GAIN = 0.8
 FULL_SECANT_BUDGET = 5  # full Newton on the secant: iterations beyond max_iter while |r| still falls
 # (_stagnates on the secant iterations: a new smallest residual 10 % below the one before within 15
-# iterations), up to this x max_iter. Only on a model with a cracking strip (path.cracking_strip): elsewhere
+# iterations), up to this x max_iter. Only on a model with a cracking strip (cracking_strip): elsewhere
 # SECANT_SOFTENING is the consistent tangent and a restart would repeat the increment
 
 
-def _cracking_strip(model):
-    from .path import cracking_strip  # path imports this module
-
-    return cracking_strip(model)
+def cracking_strip(model) -> bool:
+    """True if a plate strip of the model has a layer that is not elastic (RC concrete that can crack):
+    where full Newton's secant restart (``FULL_SECANT_*``) and the path's ``G_GROWTH`` apply."""
+    return any(isinstance(g, PlateStrip) and np.any(g.section.kind != ELASTIC) for g in model.groups)
 
 
 # the search direction of each method (settings.METHODS): f(iteration state, element matrices, free residual)
@@ -109,7 +111,7 @@ def _increment(system, settings, fac_k0, u_conv, states, lam, f_ref, f_dead, res
     evaluated = _evaluate(system, u, u_conv, states, it_state.use_k0, f_ext)
     trial_prev = None
     poor, secant_from = 0, None  # full Newton: poor iterations in a row; first iteration on the secant
-    secant_rule = method == "full" and _cracking_strip(system.model)
+    secant_rule = method == "full" and cracking_strip(system.model)
     it = 0
     while True:
         it += 1

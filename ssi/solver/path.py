@@ -163,7 +163,16 @@ from ..elements.spring import Spring
 from ..materials.layer_laws import ELASTIC
 from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
 from .diagnostics import _failure_report, ill_posed_soil
-from .increment import TANGENT_SOLVE_TOL, _converged, _energy_scale, _force_scale, _Lbfgs, _norm, _stagnates
+from .increment import (
+    TANGENT_SOLVE_TOL,
+    _converged,
+    _energy_scale,
+    _force_scale,
+    _Lbfgs,
+    _norm,
+    _stagnates,
+    cracking_strip,
+)
 from .mechanism import check_mechanism, flow_is_associated, increment_energy
 from .progress import SolverProgress, solver_progress
 from .record import _record, _start
@@ -310,12 +319,6 @@ def associated(model: Model) -> bool:
         elif not isinstance(g, Spring):
             return False
     return True
-
-
-def cracking_strip(model: Model) -> bool:
-    """True if a plate strip of the model has a layer that is not elastic (RC concrete that can crack):
-    where ``G_GROWTH`` applies."""
-    return any(isinstance(g, PlateStrip) and np.any(g.section.kind != ELASTIC) for g in model.groups)
 
 
 class _Follower:
