@@ -41,15 +41,15 @@ class PhaseNonConvergence(NonConvergence):
         self.args = (text + " (all in .scene_result)",)
 
 
-def _phase_failure(built, err, name, records):
+def _phase_failure(built, err, name, records, view=SceneResult):
     """The PhaseNonConvergence of phase ``name`` from the solver's NonConvergence ``err``, with the completed
-    phases' ``records``."""
+    phases' ``records``; ``view`` the result class of ``built`` (a scene's or a site's)."""
     partial = err.result
     records = records + [_phase_record(name, records, partial)]
     done = [f"{r['name']} (steps {r['first']}-{r['last']})" for r in records[:-1]]
     report = {"phase": name, "completed_phases": done, **err.report}
-    scene_result = SceneResult(built, join_phases(built.model, records), phases=records)
-    return PhaseNonConvergence(report, partial, scene_result)
+    result_view = view(built, join_phases(built.model, records), phases=records)
+    return PhaseNonConvergence(report, partial, result_view)
 
 
 def _phase_record(name, records, result):
@@ -167,11 +167,7 @@ def solve_site_phases(built, n_steps, settings):
                     loads=(f_end - f_prev, f_dead + f_prev),
                 )  # fmt: skip
             except NonConvergence as err:
-                partial = records + [_phase_record(ph.name, records, err.result)]
-                done = [f"{r['name']} (steps {r['first']}-{r['last']})" for r in records[1:]]
-                report = {"phase": ph.name, "completed_phases": done, **err.report}
-                view = SiteResult(built, join_phases(model, partial), phases=partial)
-                raise PhaseNonConvergence(report, err.result, view) from err
+                raise _phase_failure(built, err, ph.name, records, view=SiteResult) from err
             _hold(model, dofs, goal, np.zeros(len(dofs)))
             f_prev = f_end
             records.append(_phase_record(ph.name, records, res))
