@@ -29,6 +29,7 @@ strip's side soil does (its overburden, or modelled with its trench walls: ``ssi
 """
 
 import argparse
+import functools
 import json
 import sys
 import time
@@ -886,31 +887,25 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     from .results import OutputExistsError
 
-    if args.command == "limit" and args.fos:
-        try:
-            sf, written = safety_scene_file(
-                args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
-                args.overwrite, echo=lambda s: print(s, flush=True), strip=args.strip,
-                side_soil=args.side_soil,
-            )  # fmt: skip
-        except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
-            print(f"ssi: error: {err}", file=sys.stderr)
-            return 2
-        print(json.dumps(sf.to_dict(), indent=1) if args.json else sf.summary())
-        for p in written:
-            print(f"wrote {p}")
-        return 0
     if args.command == "limit":
+        # the bracket of the capacity, or with --fos of the factor of safety: one call, one way to report it
+        echo = functools.partial(print, flush=True)
         try:
-            cap, written = limit_scene_file(
-                args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
-                args.plot, args.overwrite, not args.no_plots, echo=lambda s: print(s, flush=True),
-                strip=args.strip, side_soil=args.side_soil,
-            )  # fmt: skip
+            if args.fos:
+                answer, written = safety_scene_file(
+                    args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
+                    args.overwrite, echo=echo, strip=args.strip, side_soil=args.side_soil,
+                )  # fmt: skip
+            else:
+                answer, written = limit_scene_file(
+                    args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
+                    args.plot, args.overwrite, not args.no_plots, echo=echo, strip=args.strip,
+                    side_soil=args.side_soil,
+                )  # fmt: skip
         except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
             print(f"ssi: error: {err}", file=sys.stderr)
             return 2
-        print(json.dumps(cap.to_dict(), indent=1) if args.json else cap.summary())
+        print(json.dumps(answer.to_dict(), indent=1) if args.json else answer.summary())
         for p in written:
             print(f"wrote {p}")
         return 0
