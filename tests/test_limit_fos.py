@@ -141,3 +141,35 @@ def test_adaptive_says_why_it_stopped():
     res = adaptive(site, mesh, gap=0.5)
     assert res.converged and res.reason == "gap reached"
     assert res.stalled() == {"lb": False, "ub": False}  # too few meshes to say
+
+
+def prandtl_weightless(c, phi_deg, q):
+    """Prandtl's bearing pressure of a strip on weightless soil with surcharge q: c N_c + q N_q [Pa]
+    (N_q = e^(pi tan phi) tan^2(45 + phi/2), N_c = (N_q - 1) cot phi; exact, rough or smooth)."""
+    t = math.tan(math.radians(phi_deg))
+    nq = math.exp(math.pi * t) * math.tan(math.radians(45.0 + phi_deg / 2.0)) ** 2
+    return c * (nq - 1.0) / t + q * nq
+
+
+def test_surcharge_that_outgrows_the_load_is_read_as_safe():
+    """Every load scaled together, a surcharge whose q N_q (426 kPa) exceeds twice the footing pressure
+    (200 kPa) makes lambda_all unbounded at F = 1 (the lower-bound program's status DualInfeasible): that
+    is safe, not "no proof" (which sent the search down to F < 0.5, where tan(phi) / F passes 60 deg:
+    make demo's scene). The factor is the F* where the reduced Prandtl pressure (c / F) N_c + q N_q of
+    tan(phi) / F equals the load, found here by bisection of the closed form."""
+    from ssi.limit import strip_site
+
+    c, phi, q, p = 5e3, 25.0, 40e3, 200e3
+    lo, hi = 1.0, 3.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        phi_f = math.degrees(math.atan(math.tan(math.radians(phi)) / mid))
+        lo, hi = (mid, hi) if prandtl_weightless(c / mid, phi_f, q) > p else (lo, mid)
+    f_star = 0.5 * (lo + hi)
+    site = strip_site(2.0, Material(c, phi), half_width=8.0, depth=5.0, surcharge=q, load_ref=(0.0, -p))
+    mesh = triangulate(site, 2.0, size=graded([(1.0, 0.0)], 0.15))
+    first = lower_bound(site.all_loads(), mesh)
+    assert "DualInfeasible" in first.status  # the case this test is about
+    res = strength_reduction(site, mesh, gap=0.08)
+    assert res.converged, res.summary()
+    assert res.f_lower <= f_star * (1 + REL) and res.f_upper >= f_star * (1 - REL), (f_star, res.summary())
