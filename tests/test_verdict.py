@@ -83,21 +83,33 @@ def test_an_overloaded_scene_does_not_carry_its_loads(tmp_path, capsys):
 
 
 def test_a_scene_at_half_its_capacity_carries_its_loads_with_margin(tmp_path, capsys):
+    """Both margins contain the hand value. On Tresca clay (phi = 0) strength reduction divides c alone and
+    the strip's capacity (2 + pi) c B does not depend on the weight, so the factor of safety on strength is
+    the load factor: F* = lambda* = (2 + pi) s_u B / N = 2.057 for N = 100 kN/m (Prandtl)."""
     path = tmp_path / "half.toml"
     path.write_text(OVERLOADED % "100e3")  # lambda* = 2 x 1.028 = 2.06
-    assert main(["run", str(path), "--no-plots", "--capacity-gap", "0.08"]) == 0
-    first = capsys.readouterr().out.splitlines()[0]
-    assert first.startswith("VERDICT          carries its loads with margin lambda in [")
+    assert main(["run", str(path), "--no-plots", "--capacity-gap", "0.08", "--fos-gap", "0.08"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith("VERDICT          carries its loads with margin lambda in [")
+    assert "(Davis bracket) and factor of safety on strength F in [" in out[0]
+    assert any(line.startswith("  factor of safety on strength (c/F, tan(phi)/F, ") for line in out[:4])
     s = json.loads((tmp_path / "half_summary.json").read_text())
     lo, hi = s["verdict"]["margin"]
     assert 1.0 <= lo <= 4 * LAM_STAR <= hi
+    f_lo, f_hi = s["verdict"]["fos_margin"]
+    assert f_lo <= 4 * LAM_STAR <= f_hi and (f_hi - f_lo) / (f_hi + f_lo) <= 0.08
+    assert s["verdict"]["fos"]["converged"] is True
+    html = (tmp_path / "half_report.html").read_text()
+    assert html.index("factor of safety on strength") < html.index("<h2>Summary</h2>")
 
 
 def test_no_capacity_skips_and_an_elastic_layer_is_named(tmp_path, capsys):
     path = tmp_path / "half.toml"
     path.write_text(OVERLOADED % "100e3")
     assert main(["run", str(path), "--no-plots", "--no-capacity"]) == 0
-    assert capsys.readouterr().out.startswith("VERDICT          not asked (--no-capacity)")
+    out = capsys.readouterr().out
+    assert out.startswith("VERDICT          not asked (--no-capacity)")
+    assert "factor of safety" not in out  # skipped with the capacity
     elastic = (OVERLOADED % "100e3").replace("c = 20e3\nphi_deg = 0.0\npsi_deg = 0.0\n", "")
     path = tmp_path / "elastic.toml"
     path.write_text(elastic)

@@ -504,7 +504,7 @@ def _phase_line(row, table):
 
 def run_scene_file(
     scene_path, out=None, plots=None, paraview=None, overwrite=False, figures=True, estimate=None, echo=None,
-    capacity=True, capacity_gap=0.05,
+    capacity=True, capacity_gap=0.05, fos_gap=0.05,
 ):  # fmt: skip
     """What ``ssi run`` does; returns (result, summary dict, written paths).
 
@@ -515,7 +515,8 @@ def run_scene_file(
     the solver cannot finish leaves the estimate ``{"failed": why}``. ``echo``: gets a line before the
     refined solves start (the command line prints it). ``capacity``: the verdict (:func:`ssi.scene.verdict.
     verdict`: the capacity bracket of the run's loads to the relative gap ``capacity_gap``, the margin,
-    settlements and RC utilisations) first in the summary; False: skipped."""
+    settlements and RC utilisations) first in the summary; False: skipped. ``fos_gap``: the relative gap of
+    the verdict's factor of safety on strength (:func:`ssi.scene.verdict.fos_bracket`; None: not asked)."""
     from ..scene.scene_file import read_scene_file
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
@@ -560,10 +561,15 @@ def run_scene_file(
             echo(
                 "verdict: bracketing the capacity of the run's loads by limit analysis (gap "
                 f"{100 * capacity_gap:g} %)"
+                + (
+                    ""
+                    if fos_gap is None
+                    else f" and its factor of safety on strength (gap {100 * fos_gap:g} %)"
+                )
             )
         with warnings.catch_warnings(record=True) as caught_v:  # as the run's: for the engineer, no path
             warnings.simplefilter("default")
-            result.verdict = verdict(s, scene, gap=capacity_gap)
+            result.verdict = verdict(s, scene, gap=capacity_gap, fos_gap=fos_gap)
         for text in dict.fromkeys(f"capacity bracket: {w.message}" for w in caught_v):
             print(f"WARNING: {text}", file=sys.stderr)
             run_warnings.append(text)
@@ -665,13 +671,16 @@ def _show_limit_file(path: Path, plots, overwrite: bool, figures: bool):
 
 def limit_scene_file(
     scene_path, phase=None, gap=0.02, h=None, h_min=None, max_elements=20000, out=None, plot=None,
-    overwrite=False, figures=True, echo=print, strip=None, side_soil=None,
+    overwrite=False, figures=True, echo=print, strip=None, side_soil=None, report=None,
 ):  # fmt: skip
     """What ``ssi limit`` does with a scene or a site file (:meth:`ssi.scene.Site.limit_analysis`: its loads
     scaled, no ``phase``); returns (CapacityResult, written paths): ``<name>_limit.json`` (the numbers,
     ``out``), ``<name>_limit.h5`` (the result file: bounds, meshes, mechanism, dissipation, stress field;
     :mod:`ssi.io.results_limit`), ``<name>_limit.vtu`` (ParaView: the mechanism's triangles with velocity,
-    dissipation and stress) and ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``). ``echo``
+    dissipation and stress), ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``) and
+    ``<name>_limit_report.html`` (``report``: the brackets, what the adaptive runs did and why they stopped,
+    the mechanism embedded; :mod:`ssi.io.report_limit`). Every target is checked before anything is
+    solved: an existing one is kept unless ``overwrite``. ``echo``
     gets one line of progress per mesh of the adaptive runs. ``strip``: a plate strip "rigid", a "beam"
     with plastic hinges of M_p at N = 0 or "beam_mn" (hinges on the section's M-N polygon; None: the scene's
     default, :func:`ssi.scene.limit_problem.limit_problem`). ``side_soil``: an embedded strip's side soil
@@ -687,7 +696,8 @@ def limit_scene_file(
     plot = Path(plot) if plot else stem.parent / (stem.name + "_limit.png")
     h5_path = stem.parent / (stem.name + "_limit.h5")
     vtu_path = stem.parent / (stem.name + "_limit.vtu")
-    for target in (out, h5_path, vtu_path, plot) if figures else (out, h5_path, vtu_path):
+    report = Path(report) if report else stem.parent / (stem.name + "_limit_report.html")
+    for target in (out, h5_path, vtu_path, report) + ((plot,) if figures else ()):
         if target.exists() and not overwrite:
             raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
     scene, _, _ = read_scene_file(scene_path)  # a scene or a site (which refuses a phase by name)
@@ -711,7 +721,15 @@ def limit_scene_file(
     written = [out, write_limit_result(h5_path, cap, overwrite), export_limit_vtu(cap, vtu_path, overwrite)]
     if figures:
         written.append(_save_limit_figure(cap, plot, overwrite))
+    written.append(_write_limit_report(cap, report, scene_path.name, figures, overwrite))
     return cap, written
+
+
+def _write_limit_report(cap, path: Path, title: str, figure: bool, overwrite: bool) -> Path:
+    """``ssi limit``'s HTML report (:func:`ssi.io.report_limit.write_limit_report`)."""
+    from .report_limit import write_limit_report
+
+    return write_limit_report(cap, path, title=f"ssi limit {title}", figure=figure, overwrite=overwrite)
 
 
 def safety_scene_file(
@@ -820,6 +838,13 @@ def main(argv=None) -> int:
         default=0.05,
         help="relative gap (UB-LB)/(UB+LB) of the verdict's capacity bracket",
     )
+    run_p.add_argument(
+        "--fos-gap",
+        type=float,
+        default=0.05,
+        help="relative gap (F_UB-F_LB)/(F_UB+F_LB) of the verdict's factor of safety on strength (c/F, "
+        "tan(phi)/F; skipped with --no-capacity)",
+    )
     # a flag, and the refinements under their own option: an optional value on --estimate would swallow
     # the scene's path in `ssi run --estimate scene.toml`
     run_p.add_argument(
@@ -853,8 +878,14 @@ def main(argv=None) -> int:
     lim_p.add_argument("scene", type=Path)
     lim_p.add_argument("--phase", help="the phase whose loads are scaled (default: the last)")
     lim_p.add_argument("--gap", type=float, default=0.02, help="relative gap (UB-LB)/(UB+LB) to reach")
-    lim_p.add_argument("--h", type=float, help="largest initial triangle [m]")
-    lim_p.add_argument("--h-min", type=float, help="initial triangle at the footing's ends [m]")
+    lim_p.add_argument(
+        "--h", type=float, help="largest initial triangle [m] (default: the block's larger side / 6)"
+    )
+    lim_p.add_argument(
+        "--h-min",
+        type=float,
+        help="initial triangle at the footing's ends [m] (default: max(footing width, block size / 10) / 8)",
+    )
     lim_p.add_argument("--max-elements", type=int, default=20000, help="stop refining at this many")
     lim_p.add_argument(
         "--strip",
@@ -874,7 +905,13 @@ def main(argv=None) -> int:
     )
     lim_p.add_argument("-o", "--out", type=Path, help="numbers as JSON (default: <scene>_limit.json)")
     lim_p.add_argument("--plot", type=Path, help="mechanism figure (default: <scene>_limit.png)")
-    lim_p.add_argument("--no-plots", action="store_true", help="skip the figure")
+    lim_p.add_argument(
+        "--report",
+        type=Path,
+        help="HTML report: the brackets, what the adaptive runs did, the mechanism (default: "
+        "<scene>_limit_report.html)",
+    )
+    lim_p.add_argument("--no-plots", action="store_true", help="skip the figure (the report has none)")
     lim_p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     lim_p.add_argument("--json", action="store_true", help="print the numbers as JSON")
     lim_p.add_argument(
@@ -900,7 +937,7 @@ def main(argv=None) -> int:
                 answer, written = limit_scene_file(
                     args.scene, args.phase, args.gap, args.h, args.h_min, args.max_elements, args.out,
                     args.plot, args.overwrite, not args.no_plots, echo=echo, strip=args.strip,
-                    side_soil=args.side_soil,
+                    side_soil=args.side_soil, report=args.report,
                 )  # fmt: skip
         except (FileExistsError, FileNotFoundError, ValueError, TypeError) as err:
             print(f"ssi: error: {err}", file=sys.stderr)
@@ -922,7 +959,7 @@ def main(argv=None) -> int:
             _, s, written = run_scene_file(
                 args.scene, args.out, args.plots, args.paraview, args.overwrite, not args.no_plots,
                 _refinements(estimate), echo=lambda line: print(line, file=sys.stderr, flush=True),
-                capacity=not args.no_capacity, capacity_gap=args.capacity_gap,
+                capacity=not args.no_capacity, capacity_gap=args.capacity_gap, fos_gap=args.fos_gap,
             )  # fmt: skip
         else:
             _, s, written = show_result_file(args.result, args.plots, args.overwrite, not args.no_plots)

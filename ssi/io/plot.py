@@ -583,38 +583,99 @@ def _step(result, k):
     return range(len(result.load_factor))[k]
 
 
+MECHANISM_SPEED_SHARE = 0.02  # a node moves with the mechanism when |v| exceeds this share of the largest
+MECHANISM_DISSIPATION_SHARE = 1e-3  # a triangle dissipates when its density exceeds this share of the largest
+
+
+def _footing_segments(capacity) -> list[np.ndarray]:
+    """The foundations' base lines ((2, 2) arrays of (x, z) [m]) of a live limit analysis (its problem's
+    site: the segments of kind "footing"); none for one read back from its file (no geometry stored)."""
+    site = getattr(getattr(capacity, "problem", None), "site", None)
+    if site is None:
+        return []
+    return [
+        site.points[[i, j]]
+        for i, j, b in site.segments
+        if b is not None and getattr(b, "kind", "") == "footing"
+    ]
+
+
+def mechanism_fields(capacity, margin: float = 0.15) -> dict:
+    """What :func:`limit_mechanism` draws, as data: ``speed`` (n_nodes,) |v| at the corner nodes and
+    ``velocity`` (n_nodes, 2) [m/s at unit reference power: the pattern, not the size], ``dissipation``
+    (n_el,) each triangle's plastic dissipation [lambda units] and ``density`` (n_el,) per m^2, ``centroid``
+    (n_el, 2) [m], ``footings`` (the base lines, :func:`_footing_segments`) and ``window`` (x0, x1, z0, z1)
+    [m]: the box of the nodes that move (|v| above ``MECHANISM_SPEED_SHARE`` of the largest), of the
+    triangles that dissipate (above ``MECHANISM_DISSIPATION_SHARE`` of the largest density) and of the
+    foundations, widened by ``margin`` of its size, clipped to the mesh (a little room above the ground)."""
+    mesh = capacity.mesh
+    xy, tri = mesh.xy, mesh.tri
+    vel = np.asarray(capacity.velocity)[: len(xy)]
+    speed = np.hypot(vel[:, 0], vel[:, 1])
+    diss = np.asarray(capacity.dissipation, float)
+    dens = diss / mesh.areas()
+    cen = xy[tri].mean(axis=1)
+    feet = _footing_segments(capacity)
+    pts = [xy[speed > MECHANISM_SPEED_SHARE * speed.max()]] if speed.max() > 0 else []
+    if dens.max() > 0:
+        pts.append(xy[tri[dens > MECHANISM_DISSIPATION_SHARE * dens.max()]].reshape(-1, 2))
+    pts += feet
+    box = np.concatenate(pts) if pts else xy
+    lo, hi = box.min(axis=0), box.max(axis=0)
+    pad = margin * max(float(np.max(hi - lo)), 1e-9)
+    lo = np.maximum(lo - pad, xy.min(axis=0))
+    hi = np.minimum(hi + pad, xy.max(axis=0))
+    hi[1] += 0.04 * (hi[1] - lo[1])  # room above the ground, so a foundation's line on it shows whole
+    return {
+        "velocity": vel, "speed": speed, "dissipation": diss, "density": dens, "centroid": cen,
+        "footings": feet, "window": (float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1])),
+    }  # fmt: skip
+
+
 def limit_mechanism(capacity, axes=None, window=None):
-    """The collapse mechanism of a limit analysis (:class:`ssi.scene.capacity.CapacityResult`, its upper
-    bound on the last associated mesh): the speed with the velocity arrows (left) and where the plastic
-    dissipation happens, log10 of each triangle's dissipation density over the largest (right).
-    ``axes``: two axes to draw into; ``window`` (x0, x1, z0, z1) [m] (default: the whole block). The
+    """The collapse mechanism of a limit analysis (:class:`ssi.scene.capacity.CapacityResult` or one read
+    back, :class:`ssi.io.results_limit.StoredLimit`; its upper bound on the last associated mesh), two
+    panels over the same window: the speed |v| in colour with arrows of the velocity on a regular grid
+    (left) and where the plastic dissipation happens, log10 of each triangle's dissipation density over
+    the largest, over a light grey mesh (right). The foundations are drawn as thick black lines (a live
+    result only: a file stores no geometry). ``axes``: two axes to draw into; ``window`` (x0, x1, z0, z1)
+    [m] (default: cropped to where the mechanism is, :func:`mechanism_fields`). Equal axes, z up. The
     velocities are those of unit reference power: only their pattern and ratios mean anything."""
+    from matplotlib.tri import LinearTriInterpolator, Triangulation
+
+    f = mechanism_fields(capacity)
     mesh = capacity.mesh
     xy, tri = mesh.xy, mesh.tri
     if axes is None:
         fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
     fig = axes[0].figure
-    vel = capacity.velocity[: len(xy)]
-    speed = np.hypot(vel[:, 0], vel[:, 1])
-    tp = axes[0].tripcolor(xy[:, 0], xy[:, 1], tri, speed, shading="gouraud", cmap="viridis")
-    axes[0].triplot(xy[:, 0], xy[:, 1], tri, lw=0.1, color="w")
-    step = max(1, len(xy) // 400)  # at most ~400 arrows
-    axes[0].quiver(xy[::step, 0], xy[::step, 1], vel[::step, 0], vel[::step, 1], color="w", width=0.002)
-    fig.colorbar(tp, ax=axes[0], label="|velocity| (unit reference power)")
-    dens = np.maximum(capacity.dissipation, 1e-300) / mesh.areas()
-    tp = axes[1].tripcolor(
-        xy[:, 0], xy[:, 1], tri, facecolors=np.log10(dens / dens.max() + 1e-12), cmap="magma"
-    )
-    tp.set_clim(-4, 0)
-    fig.colorbar(tp, ax=axes[1], label="log10 dissipation density / max")
-    if window is None:
-        window = (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
-    x0, x1, z0, z1 = window
-    for ax, title in zip(axes, ("mechanism (upper bound)", "plastic dissipation")):
+    x0, x1, z0, z1 = f["window"] if window is None else window
+    smax = max(float(f["speed"].max()), 1e-300)
+    tp = axes[0].tripcolor(xy[:, 0], xy[:, 1], tri, f["speed"] / smax, shading="gouraud", cmap="Blues")
+    tp.set_clim(0.0, 1.0)
+    fig.colorbar(tp, ax=axes[0], label="|velocity| / largest")
+    # arrows on a regular grid of the window (not at the nodes: a graded mesh would bunch them at the edge)
+    tr = Triangulation(xy[:, 0], xy[:, 1], tri)
+    nx = 28
+    ny = max(4, int(round(nx * (z1 - z0) / max(x1 - x0, 1e-9))))
+    gx, gz = np.meshgrid(np.linspace(x0, x1, nx + 2)[1:-1], np.linspace(z0, z1, ny + 2)[1:-1])
+    u = LinearTriInterpolator(tr, f["velocity"][:, 0])(gx, gz)
+    w = LinearTriInterpolator(tr, f["velocity"][:, 1])(gx, gz)
+    keep = ~np.ma.getmaskarray(u) & (np.hypot(u.filled(0.0), w.filled(0.0)) > MECHANISM_SPEED_SHARE * smax)
+    axes[0].quiver(gx[keep], gz[keep], u.filled(0.0)[keep], w.filled(0.0)[keep], color="k", width=0.0025)
+    dens = f["density"]
+    rel = np.log10(np.maximum(dens, 0.0) / max(float(dens.max()), 1e-300) + 1e-12)
+    tp = axes[1].tripcolor(xy[:, 0], xy[:, 1], tri, facecolors=rel, cmap="Reds")
+    tp.set_clim(-3, 0)
+    axes[1].triplot(xy[:, 0], xy[:, 1], tri, lw=0.15, color="0.6", alpha=0.5)
+    fig.colorbar(tp, ax=axes[1], label="log10 dissipation density / largest")
+    for ax, title in zip(axes, ("mechanism (upper bound): velocity", "plastic dissipation")):
+        for seg in f["footings"]:
+            ax.plot(seg[:, 0], seg[:, 1], color="k", lw=4, solid_capstyle="butt")
         ax.set_aspect("equal")
         ax.set_xlim(x0, x1)
         ax.set_ylim(z0, z1)
         ax.set_xlabel("x [m]")
-        ax.set_ylabel("z [m]")
+        ax.set_ylabel("z [m] (up)")
         ax.set_title(title)
     return fig

@@ -6,8 +6,12 @@ brackets the capacity of the run's loads by limit analysis (:meth:`ssi.scene.Sce
 associated ceiling and the Davis estimate, each with its gap, to a cheap ``gap``). The margin is the Davis
 bracket of the load factor lambda (the conventional value for psi < phi; the associated one when psi =
 phi): lambda_LB >= 1 carries the loads, lambda_UB < 1 does not, a bracket containing 1 is undecided (the
-bracket is refined by ``ssi limit`` with a smaller gap). What the limit analysis cannot represent (an
-elastic layer, an excavation, a horizontal push ...) is named as the reason the capacity was not computed.
+bracket is refined by ``ssi limit`` with a smaller gap). The margin's second number is the factor of
+safety on strength (:meth:`ssi.scene.Scene.safety_factor`: the F that brings c / F and tan phi / F to
+collapse under the loads at factor 1, a certified bracket of the Davis materials at ``fos_gap``): lambda
+says how far the loads may grow, F how far the soil's strength may fall. What the limit analysis cannot
+represent (an elastic layer, an excavation, a horizontal push ...) is named as the reason the capacity was
+not computed.
 
 Beside it, per foundation: settlement, tilt, differential settlement and the RC utilisations (M_Ed/M_Rd,
 V_Ed/V_Rd,c, the crack width w_k against ``w_k_limit``), each above 1 flagged; and the incremental run's
@@ -50,6 +54,28 @@ def capacity_bracket(scene, gap: float = 0.05, max_elements: int = 6000) -> dict
         "gap_target": gap,
         "reason": cap.associated.reason if cap.davis is None else cap.davis.reason,
         "n_triangles": int(cap.n_triangles),
+        "time_s": time.perf_counter() - t0,
+    }
+
+
+def fos_bracket(scene, gap: float = 0.05, max_elements: int = 6000) -> dict:
+    """The factor of safety on strength of the scene's (or site's) loads as plain data (:meth:`ssi.scene.
+    Scene.safety_factor`, Davis materials, a certified bracket refined to the relative ``gap``), or
+    ``{"not_computed": why}`` when the strength reduction refuses the problem (the refusal's own message)."""
+    t0 = time.perf_counter()
+    try:
+        sf = scene.safety_factor(gap=gap, max_elements=max_elements)
+    except (ValueError, NotImplementedError, TypeError) as err:
+        return {"not_computed": str(err)}
+    return {
+        "lb": _finite(sf.f_lb),
+        "ub": _finite(sf.f_ub),
+        "gap": _finite(sf.gap),
+        "gap_target": gap,
+        "davis": bool(sf.davis),
+        "converged": bool(sf.converged),
+        "reason": sf.reason or "gap reached",
+        "n_triangles": int(sf.n_triangles),
         "time_s": time.perf_counter() - t0,
     }
 
@@ -142,12 +168,17 @@ def _limit_flag(s: dict, b: dict) -> dict | None:
     return out
 
 
-def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_limit_mm: float = W_K_LIMIT_MM,
-            bracket: dict | None = None) -> dict:  # fmt: skip
+def verdict(
+    s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_limit_mm: float = W_K_LIMIT_MM,
+    bracket: dict | None = None, fos_gap: float | None = 0.05, fos: dict | None = None,
+) -> dict:  # fmt: skip
     """The verdict of a run whose summary is ``s`` (a scene's or a site's) on ``scene`` (the Scene or Site
     it solved): ``line`` (one sentence), ``carries`` (True / False / None: undecided or not computed),
     ``capacity`` (:func:`capacity_bracket`, or ``bracket`` when given), ``margin`` the Davis lambda bracket
-    [lb, ub] (None without one), ``foundations`` (per foundation: settlement [m], tilt [rad], the RC
+    [lb, ub] (None without one), ``fos`` the factor of safety on strength (:func:`fos_bracket` at the
+    relative gap ``fos_gap``, or ``fos`` when given; ``{"not_computed": why}`` without a capacity bracket or
+    for a push-over; None: ``fos_gap`` None, not asked), ``fos_margin`` its [F_LB, F_UB] (None without one),
+    ``foundations`` (per foundation: settlement [m], tilt [rad], the RC
     utilisations), ``differential_settlement`` [m], ``incremental_limit`` (:func:`_limit_flag`) and
     ``flags`` (sentences for an engineer: what, where, what to do)."""
     b = capacity_bracket(scene, gap, max_elements) if bracket is None else bracket
@@ -207,10 +238,24 @@ def verdict(s: dict, scene, gap: float = 0.05, max_elements: int = 6000, w_k_lim
     margin = None
     if "not_computed" not in b and not push:
         margin = [b["lb_davis"], b["ub_davis"]]
+    if fos is None and fos_gap is not None:
+        if "not_computed" in b:
+            fos = {"not_computed": "no capacity bracket (above)"}
+        elif push:
+            fos = {"not_computed": "a push-over has no loads to carry at factor 1"}
+        else:
+            fos = fos_bracket(scene, fos_gap, max_elements)
+    fos_margin = None if not fos or "not_computed" in fos else [fos["lb"], fos["ub"]]
+    if carries and fos_margin is not None:  # the margin in both senses, in the one sentence
+        hi = "inf" if fos["ub"] is None else f"{fos['ub']:.3g}"
+        head, sep, tail = line.partition(" bracket)")
+        line = f"{head}{sep} and factor of safety on strength F in [{fos['lb'] or 0:.3g}, {hi}]{tail}"
     return {
         "line": line,
         "carries": carries,
         "margin": margin,
+        "fos": fos,
+        "fos_margin": fos_margin,
         "capacity": b,
         "foundations": fnds,
         "differential_settlement": diff,
@@ -241,6 +286,21 @@ def verdict_lines(v: dict | None) -> list[str]:
             f"{100 * (b['gap'] or 0):.1f} %; Davis estimate [{fmt(b['lb_davis'])}, "
             f"{fmt(b['ub_davis'])}]{unit} gap {100 * (b['gap_davis'] or 0):.1f} % ({b['n_triangles']} "
             f"triangles, {b['time_s']:.1f} s)"
+        )
+    fos = v.get("fos")
+    if fos and "not_computed" in fos:
+        lines.append(f"  factor of safety on strength: not computed ({fos['not_computed']})")
+    elif fos:
+        state = (
+            ""
+            if fos["converged"]
+            else f", gap target {100 * fos['gap_target']:g} % NOT reached: {fos['reason']}"
+        )
+        hi = "inf" if fos["ub"] is None else f"{fos['ub']:.4g}"
+        lines.append(
+            f"  factor of safety on strength (c/F, tan(phi)/F, {'Davis' if fos['davis'] else 'associated'}): "
+            f"F in [{fos['lb'] or 0:.4g}, {hi}] gap {100 * (fos['gap'] or 0):.1f} %{state} "
+            f"({fos['n_triangles']} triangles, {fos['time_s']:.1f} s)"
         )
     for f in v["foundations"]:
         parts = []
