@@ -23,12 +23,16 @@ summary of a result file (a scene's or a site's) and redraws its plots and repor
 (:meth:`ssi.scene.Scene.limit_analysis`): one line of progress per refinement, then the summary; it writes
 ``<name>_limit.json`` (the numbers), ``<name>_limit.h5`` (the result file: bounds, Davis bounds, gaps, the
 mesh, the mechanism's velocity, the dissipation and the stress field; ``ssi show`` reads it back),
-``<name>_limit.vtu`` (ParaView) and ``<name>_limit.png`` (the mechanism and the dissipation). ``--strip``
+``<name>_limit.vtu`` (ParaView), ``<name>_limit.png`` (the mechanism and the dissipation) and
+``<name>_limit_report.html`` (:mod:`ssi.io.report_limit`). ``--strip``
 chooses how a plate strip enters (rigid, a beam with plastic hinges), ``--side-soil`` how an embedded
 strip's side soil does (its overburden, or modelled with its trench walls: ``ssi limit --help``).
+Warnings reach the reader as an engineer's sentences (:func:`warning_text`: what, where, what to do), on
+stderr as ``WARNING: ...`` and in the reports, never as a Python warning with its source path.
 """
 
 import argparse
+import contextlib
 import functools
 import json
 import sys
@@ -37,6 +41,51 @@ import warnings
 from pathlib import Path
 
 EXIT_INCOMPLETE = 3
+
+# what to do, for a warning whose text says what happened and where but not that (by its category's name)
+WARNING_ADVICE = {
+    "CrackBandWarning": "nothing if the cracking moment is not the question (the band keeps its fracture "
+    "energy, the strip only cracks earlier); to keep fr, shorten the crack spacing s_r,max at that face "
+    "(closer, smaller bars)",
+    "PlainConcreteWarning": "add reinforcement if the strip must not crack brittly; the answer after the "
+    "first crack is that of an unreinforced strip",
+}
+# ... or by a phrase of its text
+WARNING_ADVICE_BY_TEXT = (
+    ("looks small for SI units", "check the value's unit in the input file (`ssi schema` lists every key's)"),
+    ("the strip is taken rigid", "read the bracket as a rigid strip's: the strip's bending is not in it"),
+)
+
+
+def warning_text(w: warnings.WarningMessage) -> str:
+    """A caught warning as an engineer reads it: its own text (what and where) and what to do
+    (``WARNING_ADVICE``), without the Python category, file and line."""
+    text = str(w.message).rstrip()
+    advice = WARNING_ADVICE.get(w.category.__name__)
+    if advice is None:
+        advice = next((a for phrase, a in WARNING_ADVICE_BY_TEXT if phrase in text), None)
+    if advice and "what to do" not in text.lower():
+        text = f"{text.rstrip('.')}. What to do: {advice}."
+    return text
+
+
+@contextlib.contextmanager
+def engineer_warnings(sink: list):
+    """Catch every warning raised inside (Python's "default" filter: once per place) and append its
+    :func:`warning_text` to ``sink`` (each text once) when the block ends, an exception included."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("default")
+        try:
+            yield sink
+        finally:
+            for text in dict.fromkeys(warning_text(w) for w in caught):
+                if text not in sink:
+                    sink.append(text)
+
+
+def _print_warnings(texts) -> None:
+    for text in texts:
+        print(f"WARNING: {text}", file=sys.stderr)
 
 
 def _column_loads_exist(scene) -> bool:
@@ -525,7 +574,9 @@ def run_scene_file(
     from .results import atomic_path, run_output_paths, write_result
 
     scene_path = Path(scene_path)
-    scene, n_steps, settings = read_scene_file(scene_path)  # a scene or a site: the same path from here
+    file_warnings = []  # the input's own (a value that looks like kPa given as Pa ...), first in the report
+    with engineer_warnings(file_warnings):
+        scene, n_steps, settings = read_scene_file(scene_path)  # a scene or a site: the same path from here
     paths = run_output_paths(scene_path, out, paraview, plots, overwrite)
     out, paraview, plots, summary_path, report_path = paths
     announce_compilation()
@@ -547,7 +598,7 @@ def run_scene_file(
         elif estimate:  # a stopped run has no answer whose error could be estimated
             result.error_estimate = {"failed": "the run stopped before the end of its load path"}
     # for an engineer: what, where, what to do (the warnings' own texts), not a Python source path
-    run_warnings = list(dict.fromkeys(str(w.message) for w in caught))
+    run_warnings = list(dict.fromkeys(file_warnings + [warning_text(w) for w in caught]))
     for text in run_warnings:
         print(f"WARNING: {text}", file=sys.stderr)
     complete = stop is None
@@ -570,7 +621,7 @@ def run_scene_file(
         with warnings.catch_warnings(record=True) as caught_v:  # as the run's: for the engineer, no path
             warnings.simplefilter("default")
             result.verdict = verdict(s, scene, gap=capacity_gap, fos_gap=fos_gap)
-        for text in dict.fromkeys(f"capacity bracket: {w.message}" for w in caught_v):
+        for text in dict.fromkeys(f"capacity bracket: {warning_text(w)}" for w in caught_v):
             print(f"WARNING: {text}", file=sys.stderr)
             run_warnings.append(text)
     else:
@@ -700,7 +751,9 @@ def limit_scene_file(
     for target in (out, h5_path, vtu_path, report) + ((plot,) if figures else ()):
         if target.exists() and not overwrite:
             raise FileExistsError(f"{target} exists; pass --overwrite to replace it")
-    scene, _, _ = read_scene_file(scene_path)  # a scene or a site (which refuses a phase by name)
+    limit_warnings = []  # printed and in the report, as an engineer reads them
+    with engineer_warnings(limit_warnings):
+        scene, _, _ = read_scene_file(scene_path)  # a scene or a site (which refuses a phase by name)
     options = {} if phase is None else {"phase": phase}
     if strip is not None:
         options["strip"] = strip
@@ -713,23 +766,27 @@ def limit_scene_file(
             f"UB {r['best_ub']:.5g}  gap {100 * r['gap']:6.2f} %  ({r['t_lb'] + r['t_ub']:.1f} s)"
         )
 
-    cap = scene.limit_analysis(
-        gap=gap, h=h, h_min=h_min, max_elements=max_elements, progress=progress, **options
-    )
+    with engineer_warnings(limit_warnings):
+        cap = scene.limit_analysis(
+            gap=gap, h=h, h_min=h_min, max_elements=max_elements, progress=progress, **options
+        )
+    _print_warnings(limit_warnings)
     with atomic_path(out, overwrite) as tmp:
         tmp.write_text(json.dumps(cap.to_dict(), indent=1))
     written = [out, write_limit_result(h5_path, cap, overwrite), export_limit_vtu(cap, vtu_path, overwrite)]
     if figures:
         written.append(_save_limit_figure(cap, plot, overwrite))
-    written.append(_write_limit_report(cap, report, scene_path.name, figures, overwrite))
+    written.append(_write_limit_report(cap, report, scene_path.name, figures, overwrite, limit_warnings))
     return cap, written
 
 
-def _write_limit_report(cap, path: Path, title: str, figure: bool, overwrite: bool) -> Path:
+def _write_limit_report(cap, path: Path, title: str, figure: bool, overwrite: bool, texts=None) -> Path:
     """``ssi limit``'s HTML report (:func:`ssi.io.report_limit.write_limit_report`)."""
     from .report_limit import write_limit_report
 
-    return write_limit_report(cap, path, title=f"ssi limit {title}", figure=figure, overwrite=overwrite)
+    return write_limit_report(
+        cap, path, title=f"ssi limit {title}", figure=figure, overwrite=overwrite, run_warnings=texts
+    )
 
 
 def safety_scene_file(
@@ -807,6 +864,18 @@ class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
 
 
 def main(argv=None) -> int:
+    """``ssi``'s entry point: the command's exit status. A warning no command caught for its report (a
+    figure's, a file writer's, ``ssi show``'s, ``ssi limit --fos``'s) is printed as the others are, an
+    engineer's sentence on stderr (:func:`warning_text`), never as Python's category, file and line."""
+    texts: list = []
+    try:
+        with engineer_warnings(texts):
+            return _main(argv)
+    finally:
+        _print_warnings(texts)
+
+
+def _main(argv=None) -> int:
     parser = argparse.ArgumentParser(
         prog="ssi",
         description="2D soil-structure interaction of strip "

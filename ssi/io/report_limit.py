@@ -77,9 +77,12 @@ def _forces_table(forces) -> list[str]:
     return out
 
 
-def limit_report_html(cap, title: str = "ssi limit", png: bytes | None = None) -> str:
+def limit_report_html(
+    cap, title: str = "ssi limit", png: bytes | None = None, run_warnings: list[str] | None = None
+) -> str:
     """The page as a string: ``cap`` a :class:`ssi.scene.capacity.CapacityResult` (or a StoredLimit),
-    ``png`` the mechanism figure's bytes (None: no figure, as ``--no-plots``)."""
+    ``png`` the mechanism figure's bytes (None: no figure, as ``--no-plots``), ``run_warnings`` the
+    analysis's warnings as an engineer reads them (:func:`ssi.io.cli.warning_text`)."""
     esc = html.escape
     d = cap.to_dict()
     force = d.get("lambda_unit") == "N/m"
@@ -126,6 +129,9 @@ def limit_report_html(cap, title: str = "ssi limit", png: bytes | None = None) -
             cls = "" if reason == "gap reached" else ' class="warn"'
             parts.append(f"<p{cls}>{name} run: {esc(words)}.</p>")
     parts.append("</div>")
+    if run_warnings:
+        parts.append("<h2>Warnings</h2>")
+        parts += [f'<div class="warn">{esc(w)}</div>' for w in run_warnings]
     forces = getattr(cap, "foundation_forces", None)
     if forces is None:
         forces = d.get("foundation_forces")
@@ -178,13 +184,14 @@ def limit_report_html(cap, title: str = "ssi limit", png: bytes | None = None) -
 
 
 def write_limit_report(
-    cap, path: str | Path, title: str | None = None, figure: bool = True, overwrite: bool = False
-) -> Path:
+    cap, path: str | Path, title: str | None = None, figure: bool = True, overwrite: bool = False,
+    run_warnings: list[str] | None = None,
+) -> Path:  # fmt: skip
     """Write :func:`limit_report_html` to ``path`` (atomically, the user's umask; an existing file is kept
     unless ``overwrite``), the mechanism figure embedded unless ``figure`` is False. Returns the path."""
     path = Path(path)
     png = mechanism_png(cap) if figure else None
-    text = limit_report_html(cap, title or path.stem, png)
+    text = limit_report_html(cap, title or path.stem, png, run_warnings)
     with atomic_path(path, overwrite) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path
