@@ -81,7 +81,7 @@ def test_ssi_limit_writes_its_report_with_the_bracket_and_the_mechanism(tmp_path
     assert re.search(r'<img src="data:image/png;base64,[A-Za-z0-9+/]{1000,}', text)  # embedded, one file
     assert "gap target met (10 %)" in text or "gap target of 10 % NOT met" in text
     rows = d["history_associated"]
-    assert f"<h3>associated ({len(rows)} meshes)</h3>" in text
+    assert f"<h3>associated ({len(rows)} mesh" in text
     # a second run keeps the user's report: refused before anything is solved, the file unchanged
     before = report.stat().st_mtime_ns
     (tmp_path / "push_limit.json").unlink()

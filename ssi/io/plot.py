@@ -635,21 +635,28 @@ def mechanism_fields(capacity, margin: float = 0.15) -> dict:
 def limit_mechanism(capacity, axes=None, window=None):
     """The collapse mechanism of a limit analysis (:class:`ssi.scene.capacity.CapacityResult` or one read
     back, :class:`ssi.io.results_limit.StoredLimit`; its upper bound on the last associated mesh), two
-    panels over the same window: the speed |v| in colour with arrows of the velocity on a regular grid
-    (left) and where the plastic dissipation happens, log10 of each triangle's dissipation density over
-    the largest, over a light grey mesh (right). The foundations are drawn as thick black lines (a live
-    result only: a file stores no geometry). ``axes``: two axes to draw into; ``window`` (x0, x1, z0, z1)
-    [m] (default: cropped to where the mechanism is, :func:`mechanism_fields`). Equal axes, z up. The
-    velocities are those of unit reference power: only their pattern and ratios mean anything."""
+    panels over the same window (stacked for a wide window, else side by side): the speed |v| in colour
+    with arrows of the velocity on a regular grid, and where the plastic dissipation happens, log10 of each
+    triangle's dissipation density over the largest, over a light grey mesh. The foundations are drawn as
+    thick black lines (a live result only: a file stores no geometry). ``axes``: two axes to draw into;
+    ``window`` (x0, x1, z0, z1) [m] (default: cropped to where the mechanism is, :func:`mechanism_fields`).
+    Equal axes, z up. The velocities are those of unit reference power: only their pattern and ratios mean
+    anything."""
     from matplotlib.tri import LinearTriInterpolator, Triangulation
 
     f = mechanism_fields(capacity)
     mesh = capacity.mesh
     xy, tri = mesh.xy, mesh.tri
-    if axes is None:
-        fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
-    fig = axes[0].figure
     x0, x1, z0, z1 = f["window"] if window is None else window
+    if axes is None:  # sized to the window (equal axes): side by side when tall, stacked when wide
+        ratio = (z1 - z0) / max(x1 - x0, 1e-9)
+        if ratio < 0.6:
+            size = (10.0, min(2 * 10.0 * ratio + 1.6, 12.0))
+            fig, axes = plt.subplots(2, 1, figsize=size, layout="constrained", sharex=True)
+        else:
+            size = (12.0, min(5.0 * ratio + 1.2, 10.0))
+            fig, axes = plt.subplots(1, 2, figsize=size, layout="constrained")
+    fig = axes[0].figure
     smax = max(float(f["speed"].max()), 1e-300)
     tp = axes[0].tripcolor(xy[:, 0], xy[:, 1], tri, f["speed"] / smax, shading="gouraud", cmap="Blues")
     tp.set_clim(0.0, 1.0)

@@ -147,7 +147,7 @@ def limit_report_html(
     for name, rows in (("associated", d.get("history_associated")), ("Davis", d.get("history_davis"))):
         if not rows:
             continue
-        parts.append(f"<h3>{name} ({len(rows)} meshes)</h3>")
+        parts.append(f"<h3>{name} ({len(rows)} mesh{'es' if len(rows) > 1 else ''})</h3>")
         parts.append(
             '<div class="scroll"><table><tr><th>mesh</th><th>triangles</th><th>LB</th><th>UB</th>'
             f"<th>best LB [{esc(unit)}]</th><th>best UB [{esc(unit)}]</th><th>gap [%]</th><th>time [s]</th>"
@@ -172,8 +172,8 @@ def limit_report_html(
         parts.append(
             f'<figure><img src="data:image/png;base64,{data}" alt="collapse mechanism">'
             "<figcaption>The upper bound's mechanism on the last associated mesh: the speed and the velocity "
-            "(left; unit reference power, only the pattern means anything) and where the soil dissipates "
-            "(right, over the mesh); the foundations in black.</figcaption></figure>"
+            "(unit reference power: only the pattern means anything) and where the soil dissipates (over "
+            "the mesh); the foundations in black.</figcaption></figure>"
         )
     parts.append(f"<h2>As printed</h2><pre>{esc(cap.summary())}</pre>")
     parts.append(
