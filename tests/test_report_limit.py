@@ -82,6 +82,13 @@ def test_ssi_limit_writes_its_report_with_the_bracket_and_the_mechanism(tmp_path
     assert "gap target met (10 %)" in text or "gap target of 10 % NOT met" in text
     rows = d["history_associated"]
     assert f"<h3>associated ({len(rows)} mesh" in text
+    # ssi show of the result file redraws the same page from the stored numbers (no geometry: no footing)
+    assert main(["show", str(tmp_path / "push_limit.h5")]) == 0
+    shown = (tmp_path / "push_limit_plots" / "report.html").read_text()
+    for key in ("lb", "ub"):
+        assert f">{d[key] / 1e3:.4g}<" in shown, key
+    assert "data:image/png;base64," in shown
+    capsys.readouterr()
     # a second run keeps the user's report: refused before anything is solved, the file unchanged
     before = report.stat().st_mtime_ns
     (tmp_path / "push_limit.json").unlink()

@@ -705,8 +705,8 @@ def show_result_file(path, plots=None, overwrite=False, figures=True):
 
 def _show_limit_file(path: Path, plots, overwrite: bool, figures: bool):
     """``ssi show`` of a limit analysis's file: (StoredLimit, its numbers with ``kind`` "limit" and
-    ``summary_text``, the mechanism figure redrawn into ``plots`` -- default ``<file>_plots``, or a new
-    folder beside it)."""
+    ``summary_text``, the mechanism figure and the limit report (``report.html``) redrawn into ``plots`` --
+    default ``<file>_plots``, or a new folder beside it)."""
     from .results_limit import read_limit_result
 
     stored = read_limit_result(path)
@@ -717,6 +717,7 @@ def _show_limit_file(path: Path, plots, overwrite: bool, figures: bool):
         if plots is None and not overwrite:
             folder = _free_folder(folder)
         written.append(_save_limit_figure(stored, folder / "mechanism.png", overwrite))
+        written.append(_write_limit_report(stored, folder / "report.html", path.name, True, overwrite))
     return stored, s, written
 
 
