@@ -91,8 +91,8 @@ def test_a_scene_at_half_its_capacity_carries_its_loads_with_margin(tmp_path, ca
     assert main(["run", str(path), "--no-plots", "--capacity-gap", "0.08", "--fos-gap", "0.08"]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[0].startswith("VERDICT          carries its loads with margin lambda in [")
-    assert "(Davis bracket) and factor of safety on strength F in [" in out[0]
-    assert any(line.startswith("  factor of safety on strength (c/F, tan(phi)/F, ") for line in out[:4])
+    assert "(associated bracket) and factor of safety on strength F in [" in out[0]  # psi = phi = 0
+    assert "  factor of safety on strength (c/F, tan(phi)/F, associated): F in [" in out[2]
     s = json.loads((tmp_path / "half_summary.json").read_text())
     lo, hi = s["verdict"]["margin"]
     assert 1.0 <= lo <= 4 * LAM_STAR <= hi

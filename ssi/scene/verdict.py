@@ -297,8 +297,10 @@ def verdict_lines(v: dict | None) -> list[str]:
             else f", gap target {100 * fos['gap_target']:g} % NOT reached: {fos['reason']}"
         )
         hi = "inf" if fos["ub"] is None else f"{fos['ub']:.4g}"
+        # the Davis materials reduced, which are the associated ones when the scene is associated
+        kind = "Davis" if fos["davis"] and b.get("davis") else "associated"
         lines.append(
-            f"  factor of safety on strength (c/F, tan(phi)/F, {'Davis' if fos['davis'] else 'associated'}): "
+            f"  factor of safety on strength (c/F, tan(phi)/F, {kind}): "
             f"F in [{fos['lb'] or 0:.4g}, {hi}] gap {100 * (fos['gap'] or 0):.1f} %{state} "
             f"({fos['n_triangles']} triangles, {fos['time_s']:.1f} s)"
         )
