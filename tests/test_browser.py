@@ -153,7 +153,7 @@ def test_run_reports_render_offline(name, tmp_path, chromium):
 
     scene = tmp_path / f"{name}.toml"
     shutil.copy2(ROOT / "examples" / f"{name}.toml", scene)
-    _, s, written = run_scene_file(scene, capacity_gap=0.25)  # the verdict, cheap
+    _, s, written = run_scene_file(scene, capacity_gap=0.25, fos_gap=0.25)  # the verdict, cheap
     page = tmp_path / f"{name}_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / f"report-{name}.png", width=1280, height=900)
     assert report.problems() == [], name
@@ -173,7 +173,8 @@ def test_run_report_opens_on_its_verdict(tmp_path, chromium):
 
     scene = tmp_path / "capacity.toml"
     shutil.copy2(ROOT / "examples" / "capacity.toml", scene)
-    _, s, _ = run_scene_file(scene, capacity_gap=0.25)  # the verdict, cheap: its place is what is checked
+    # the verdict, cheap: its place is what is checked
+    _, s, _ = run_scene_file(scene, capacity_gap=0.25, fos_gap=0.25)
     page = tmp_path / "capacity_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / "report-verdict-1400.png", width=1400, height=900)
     assert report.problems() == []
@@ -190,7 +191,7 @@ def test_site_run_report_renders_offline(tmp_path, chromium):
 
     site = tmp_path / "boreholes.toml"
     shutil.copy2(ROOT / "examples" / "sites" / "boreholes.toml", site)
-    _, s, written = run_scene_file(site, capacity_gap=0.25)
+    _, s, written = run_scene_file(site, capacity_gap=0.25, fos_gap=0.25)
     page = tmp_path / "boreholes_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / "report-site-boreholes.png", width=1280, height=900)
     assert report.problems() == []
@@ -211,7 +212,7 @@ def test_estimated_push_over_report_renders_offline(tmp_path, chromium):
     text = text.replace("n_steps = 30", "n_steps = 8")
     scene = tmp_path / "push.toml"
     scene.write_text(text)
-    _, s, written = run_scene_file(scene, estimate=("mesh",), capacity_gap=0.25)
+    _, s, written = run_scene_file(scene, estimate=("mesh",), capacity_gap=0.25, fos_gap=0.25)
     assert s["capacity"]["estimate"] is not None
     page = tmp_path / "push_report.html"
     report = browser.inspect_page(chromium, page, SHOTS / "report-push-estimate.png", width=1280, height=900)
@@ -220,3 +221,21 @@ def test_estimated_push_over_report_renders_offline(tmp_path, chromium):
     assert len(report.images) == len(pngs) >= 3 and all(i["naturalWidth"] > 0 for i in report.images)
     assert "estimated discretisation error" in report.text and "Discretisation error" in report.text
     assert "more than 5%" in report.text
+
+
+def test_limit_report_renders_offline_with_its_mechanism(tmp_path, chromium):
+    """``ssi limit`` on the push-over example (a coarse bracket): its report in the browser with no network,
+    the mechanism figure embedded in the page (one file: a data: URI) and decoded, no console error, the
+    bracket's numbers as the run printed them."""
+    from ssi.io.cli import limit_scene_file
+
+    scene = tmp_path / "push.toml"
+    shutil.copy2(ROOT / "examples" / "pushover_footing.toml", scene)
+    cap, written = limit_scene_file(scene, gap=0.3, max_elements=600, echo=lambda line: None)
+    page = tmp_path / "push_limit_report.html"
+    assert page in written
+    report = browser.inspect_page(chromium, page, SHOTS / "report-limit-push.png", width=1280, height=900)
+    assert report.problems() == []
+    assert len(report.images) == 1 and report.images[0]["naturalWidth"] > 0
+    assert "Capacity bracket" in report.text and f"{cap.lb / 1e3:.4g}" in report.text
+    assert "What the adaptive runs did" in report.text
