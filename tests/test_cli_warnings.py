@@ -94,3 +94,11 @@ def test_limit_warnings_read_as_sentences_in_its_report(tmp_path, capsys):
     assert "brittle on its top face" in line and "What to do: read the bracket as a rigid strip's" in line
     page = (tmp_path / "warn_limit_report.html").read_text()
     assert "<h2>Warnings</h2>" in page and "brittle on its top face" in page and ".py:" not in page
+
+
+def test_a_bad_fos_gap_is_refused_before_the_solve(tmp_path, capsys):
+    path = tmp_path / "warn.toml"
+    path.write_text(SCENE)
+    assert main(["run", str(path), "--fos-gap", "2"]) == 2
+    assert "fos_gap (--fos-gap) must be a finite number in (0, 1], got 2.0" in capsys.readouterr().err
+    assert not (tmp_path / "warn.h5").exists()

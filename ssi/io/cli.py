@@ -566,6 +566,7 @@ def run_scene_file(
     verdict`: the capacity bracket of the run's loads to the relative gap ``capacity_gap``, the margin,
     settlements and RC utilisations) first in the summary; False: skipped. ``fos_gap``: the relative gap of
     the verdict's factor of safety on strength (:func:`ssi.scene.verdict.fos_bracket`; None: not asked)."""
+    from ..core.validate import check_optional_real
     from ..scene.scene_file import read_scene_file
     from ..solver import NonConvergence
     from ..solver.progress import announce_compilation
@@ -573,6 +574,8 @@ def run_scene_file(
     from .report import write_report
     from .results import atomic_path, run_output_paths, write_result
 
+    # checked before the solve: a gap of 2 found after minutes of it would waste them
+    check_optional_real("fos_gap (--fos-gap)", fos_gap, lo=0.0, lo_open=True, hi=1.0)
     scene_path = Path(scene_path)
     file_warnings = []  # the input's own (a value that looks like kPa given as Pa ...), first in the report
     with engineer_warnings(file_warnings):
