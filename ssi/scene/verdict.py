@@ -176,8 +176,8 @@ def verdict(
     it solved): ``line`` (one sentence), ``carries`` (True / False / None: undecided or not computed),
     ``capacity`` (:func:`capacity_bracket`, or ``bracket`` when given), ``margin`` the Davis lambda bracket
     [lb, ub] (None without one), ``fos`` the factor of safety on strength (:func:`fos_bracket` at the
-    relative gap ``fos_gap``, or ``fos`` when given; ``{"not_computed": why}`` without a capacity bracket or
-    for a push-over; None: ``fos_gap`` None, not asked), ``fos_margin`` its [F_LB, F_UB] (None without one),
+    relative gap ``fos_gap``, or ``fos`` when given; ``{"skipped": why}`` without a capacity bracket or for
+    a push-over; None: ``fos_gap`` None, not asked), ``fos_margin`` its [F_LB, F_UB] (None without one),
     ``foundations`` (per foundation: settlement [m], tilt [rad], the RC
     utilisations), ``differential_settlement`` [m], ``incremental_limit`` (:func:`_limit_flag`) and
     ``flags`` (sentences for an engineer: what, where, what to do)."""
@@ -238,14 +238,14 @@ def verdict(
     margin = None
     if "not_computed" not in b and not push:
         margin = [b["lb_davis"], b["ub_davis"]]
-    if fos is None and fos_gap is not None:
+    if fos is None and fos_gap is not None:  # skipped (not printed) where the line above says why already
         if "not_computed" in b:
-            fos = {"not_computed": "no capacity bracket (above)"}
+            fos = {"skipped": "no capacity bracket"}
         elif push:
-            fos = {"not_computed": "a push-over has no loads to carry at factor 1"}
+            fos = {"skipped": "a push-over has no loads to carry at factor 1"}
         else:
             fos = fos_bracket(scene, fos_gap, max_elements)
-    fos_margin = None if not fos or "not_computed" in fos else [fos["lb"], fos["ub"]]
+    fos_margin = None if not fos or "lb" not in fos else [fos["lb"], fos["ub"]]
     if carries and fos_margin is not None:  # the margin in both senses, in the one sentence
         hi = "inf" if fos["ub"] is None else f"{fos['ub']:.3g}"
         head, sep, tail = line.partition(" bracket)")
@@ -288,7 +288,9 @@ def verdict_lines(v: dict | None) -> list[str]:
             f"triangles, {b['time_s']:.1f} s)"
         )
     fos = v.get("fos")
-    if fos and "not_computed" in fos:
+    if not fos or "skipped" in fos:
+        pass
+    elif "not_computed" in fos:
         lines.append(f"  factor of safety on strength: not computed ({fos['not_computed']})")
     elif fos:
         state = (
