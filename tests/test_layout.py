@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "ssi"
-ORDER = ("core", "materials", "elements", "solver", "limit", "scene", "io", "studies", "lab")
+ORDER = ("core", "materials", "elements", "solver", "limit", "capacity", "scene", "io", "studies", "lab")
 RANK = {name: i for i, name in enumerate(ORDER)}
 
 
