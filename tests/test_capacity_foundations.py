@@ -13,7 +13,7 @@ import pathlib
 
 import pytest
 
-from ssi.capacity import limit_problem
+from ssi.capacity import LimitInput, limit_problem
 from ssi.elements.section import homogeneous
 from ssi.scene import ColumnLoad, Contact, Foundation, Phase, Push, Scene, SoilLayer
 from ssi.scene.scene_file import read_scene_file
@@ -30,6 +30,7 @@ def site():
 
 
 def test_each_strip_carries_its_own_column_in_the_limit_problem(site):
+    assert isinstance(site, LimitInput)  # what the bridge takes (it never imports ssi.scene)
     p = limit_problem(site)
     assert p.ref_forces == COLUMNS
     assert p.footing_spans == SPANS
