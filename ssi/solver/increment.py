@@ -12,8 +12,6 @@ import numpy as np
 
 from ..core.linsolve import Factorization
 from ..core.protocol import CONSISTENT, SECANT_SOFTENING
-from ..elements.plate import PlateStrip
-from ..materials.layer_laws import ELASTIC
 from .lbfgs import lbfgs_first_loop, lbfgs_second_loop
 
 
@@ -86,9 +84,10 @@ FULL_SECANT_BUDGET = 5  # full Newton on the secant: iterations beyond max_iter 
 
 
 def cracking_strip(model) -> bool:
-    """True if a plate strip of the model has a layer that is not elastic (RC concrete that can crack):
-    where full Newton's secant restart (``FULL_SECANT_*``) and the path's ``G_GROWTH`` apply."""
-    return any(isinstance(g, PlateStrip) and np.any(g.section.kind != ELASTIC) for g in model.groups)
+    """True if a group of the model can soften (``ElementGroup.softens``: a plate strip with a layer that is
+    not elastic, RC concrete that can crack): where full Newton's secant restart (``FULL_SECANT_*``) and the
+    path's ``PathPolicy.g_growth`` apply."""
+    return any(g.softens() for g in model.groups)
 
 
 # the search direction of each method (settings.METHODS): f(iteration state, element matrices, free residual)
