@@ -305,7 +305,7 @@ def main():
         t_other = report("ch11_h0125_other_rule_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
         roundoff(scene_of, "ch11_h0125_other_rule_roundoff")
     print(
-        f"ch11_h0125_other_rule_ratio: {t_other / t_default:.3f}   (SECANT_RULE {other!r} / the default "
+        f"ch11_h0125_other_rule_ratio: {t_other / t_default:.3f}   (secant_rule {other!r} / the default "
         f"{path.POLICY.secant_rule!r}, same run)"
     )
 

@@ -67,7 +67,7 @@ def _direction_bfgs(it, k_list, r_f):
 FULL_SECANT_RUN = 3  # full Newton: this many iterations in a row that do not lower the increment's smallest
 # residual by 20 % (FULL_SECANT_GAIN), and the increment starts again from its committed state on
 # SECANT_SOFTENING (ssi.core.protocol: the consistent tangent with the secant sig / e at the concrete points
-# loading on their cracked tension envelope), refactorised every iteration: the controlled path's SECANT_RULE
+# loading on their cracked tension envelope), refactorised every iteration: the controlled path's secant_rule
 # "poor". Why (issue 45): on chapter 11's RC strip on elastic soil at h = 0.25 m, and at h = 0.5 m with
 # 1.5 x the column loads, the consistent tangent cycles where the strip cracks -- an exact period-3 cycle of
 # |r| (1.65e-2, 5.04e-2, 3.40e-1, ...) or a slow rise, at every step down to min_step: cracked points flip

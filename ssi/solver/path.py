@@ -390,7 +390,7 @@ class _Follower(_Corrector, _LimitWatch, _Relaxing):
                 break
             poor = poor + 1 if it > 1 and rel > self.policy.poor_contraction * residuals[-2] else 0
             # with an unsymmetric tangent a step that starts on K0 (the first, or the one after a failure)
-            # factorises the consistent tangent of the committed state first (see POOR_RUN)
+            # factorises the consistent tangent of the committed state first (decisions.md#refactorisation)
             stale = poor >= self.policy.poor_run or (
                 it == 1 and self.fac is self.k0 and not st.symmetric_tangent
             )
@@ -435,16 +435,7 @@ class _Follower(_Corrector, _LimitWatch, _Relaxing):
         the prescribed DOFs at ``lam``.
 
         Why: the prescribed DOFs alone moved (the free ones left at u_n) make a first iterate that tears the
-        elements beside them. Measured (issue 31) on the bench footing (psi = 0, h = 0.125 m, pushed 8 cm in
-        12 targets): its first step, 6.7 mm of rigid footing beside unmoved soil, put 968 of the weightless
-        soil's integration points on the Mohr-Coulomb apex and 1 172 plastic; its tangent was singular (24
-        of 26 refactorisations rejected) and the step failed four times (halved to 0.42 mm) before the
-        iterations, 21 of them, reached a state with no plastic point at all. With this predictor the first
-        step converges in 22 iterations: the push completes with 24 failed steps instead of 29 and 361
-        factorisations instead of 450 (q_u / Prandtl 0.99577 against 0.99516), CPU 5.37 s against 6.84 s
-        (best of 3, back to back: 0.785); with five perturbed copies (settlement x (1 + 1e-12), (1 - 1e-12),
-        (1 + 1e-13); 11 and 13 targets) 4 of the 6 complete against 3 of 6. The random zoo and chapter 11
-        (force loads) are unchanged bit for bit."""
+        elements beside them (docs/solver/decisions.md#prescribed-predictor)."""
         sy, free = self.system, self.system.free
         u = sy.apply_constraints(u_n.copy(), lam)
         delta = u - u_n

@@ -81,8 +81,8 @@ class _LimitWatch:
         return [check.reason] if check.reason else []
 
     def _redo(self, k_max):
-        """Relative change of the peak load when the kept steps from REDO_STEPS before the peak to
-        REDO_STEPS after it are redone with each control increment split in two (None: a redo failed)."""
+        """Relative change of the peak load when the kept steps from ``policy.redo_steps`` before the peak
+        to as many after it are redone with each control increment split in two (None: a redo failed)."""
         kept = [
             row
             for row in self.kept

@@ -22,8 +22,8 @@ class _Relaxing:
     def _relax(self, target):
         """A step the corrector could not take (the control step halved below ``min_step``): an equilibrium
         at a prescribed load factor found by damped dynamics on K0 (``_dynamic``). The load increment: the
-        last committed step's (or the elastic one of ``min_step``), halved up to ``RELAX_HALVINGS`` times;
-        None if none converges (``last_failure`` then the corrector's own, for the diagnosis)."""
+        last committed step's (or the elastic one of ``min_step``), halved up to ``policy.relax_halvings``
+        times; None if none converges (``last_failure`` then the corrector's own, for the diagnosis)."""
         failure = self.last_failure
         first = self.prev[1] if self.prev is not None and self.prev[1] > 0.0 else 0.0
         first = max(first, self.ds_min / self.w1)
@@ -40,8 +40,8 @@ class _Relaxing:
 
     def _above(self, peak) -> bool:
         """Where a path that took a relaxed step falls or levels off: is there an equilibrium above its peak?
-        Damped dynamics (``_dynamic``) from the current state at (1 + 2 ``PLATEAU_RISE``) x the peak load
-        factor; converged -> committed (True). Why: a relaxed step finds one of several states of the
+        Damped dynamics (``_dynamic``) from the current state at (1 + 2 ``policy.plateau_rise``) x the peak
+        load factor; converged -> committed (True). Why: a relaxed step finds one of several states of the
         ill-posed soil, from which the controlled steps may follow a descending branch that is no collapse
         (docs/solver/decisions.md#no-limit-from-a-relaxed-state)."""
         lam_to = min(peak * (1.0 + 2.0 * self.policy.plateau_rise), self.scale)
@@ -97,7 +97,16 @@ class _Relaxing:
             energies.append(energy / _energy_scale(energy0[0], full(u_f), data[0], self.result, st))
             return _converged(rel, energies[-1], it, st) or rel <= 1e-14 * st.force_tol
 
-        run = self.relax(u[free], residual, self.k0.solve, converged)
+        pol = self.policy
+        run = self.relax(
+            u[free],
+            residual,
+            self.k0.solve,
+            converged,
+            beta=pol.relax_beta,
+            max_iter=pol.relax_max_iter,
+            window=pol.relax_window,
+        )
         self.result.relaxed_iterations += run.iterations
         out = {"converged": run.converged, "residuals": run.residuals, "energies": energies}
         out.update(iterations=run.iterations, lam=lam, u=full(run.u), trial_prev=trials[0])

@@ -66,6 +66,14 @@ class PathPolicy:
     relax_halvings: int = 3
     """Where the corrector stalls, the relaxation tries the load increments d, d / 2, ... (this + 1 in all;
     decisions.md#relax)."""
+    relax_beta: float = 0.95
+    """Momentum of the relaxation's heavy ball: 0.8 settles too fast to leave the saddle (random 36 stops at
+    its stall), 1 without restarts never settles (decisions.md#relax)."""
+    relax_max_iter: int = 4000
+    """Iterations of one relaxation at a prescribed load factor [iterations] (decisions.md#relax)."""
+    relax_window: int = 1000
+    """Its stagnation window [iterations]: the stable modes reached contract slowly (the smallest eigenvalue
+    of K_t x = mu K0 x at random 36's relaxed state: 1.2e-3, ~1900 iterations a decade)."""
     kept_steps: int = 24
     """Committed steps kept for the half-size redo of the steps around a peak [steps]."""
     redo_steps: int = 3
@@ -91,6 +99,9 @@ class PathPolicy:
         check_int("PathPolicy.overshoot_trials", self.overshoot_trials, 0)
         check_real("PathPolicy.overshoot_min", self.overshoot_min, 0.0, 0.05, lo_open=True)
         check_int("PathPolicy.relax_halvings", self.relax_halvings, 0)
+        check_real("PathPolicy.relax_beta", self.relax_beta, 0.0, 1.0, lo_open=True)
+        check_int("PathPolicy.relax_max_iter", self.relax_max_iter, 1)
+        check_int("PathPolicy.relax_window", self.relax_window, 1)
         check_int("PathPolicy.kept_steps", self.kept_steps, 2)
         check_int("PathPolicy.redo_steps", self.redo_steps, 1)
 
