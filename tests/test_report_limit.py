@@ -56,15 +56,25 @@ def test_mechanism_dissipates_at_the_footing_edge_and_is_cropped_to_it(prandtl):
     matplotlib.pyplot.close(fig)
 
 
-def test_report_shows_foundation_forces_when_the_result_has_them(prandtl):
-    text = limit_report_html(prandtl, "t")
-    assert "Forces on the foundations" not in text and "<img" not in text  # none given, no figure asked
-    prandtl.foundation_forces = [{"foundation": "strip #0", "V_N_per_m": 123456.0}]
-    try:
-        text = limit_report_html(prandtl, "t")
-    finally:
-        del prandtl.foundation_forces
-    assert "Forces on the foundations" in text and "strip #0" in text and "1.2346e+05" in text
+def test_report_shows_the_forces_on_the_foundation():
+    """A 2 m strip bonded to Tresca clay (s_u = 20 kPa) under a 100 kN/m column: the forces row's brackets
+    in kN/m contain Prandtl's (2 + pi) s_u B = 205.7 kN/m (the hand value), the reference is the column."""
+    from ssi.elements.section import homogeneous
+    from ssi.scene import ColumnLoad, Contact, Foundation
+
+    scene = Scene(
+        width=12.0, depth=5.0, layers=[SoilLayer(5.0, E=30e6, nu=0.3, c=20e3, phi_deg=0.0, psi_deg=0.0)],
+        foundation=Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), contact=Contact(kn=1e10, kt=1e9),
+        loads=[ColumnLoad(0.0, N=100e3)],
+    )  # fmt: skip
+    cap = scene.limit_analysis(gap=0.1)
+    text = limit_report_html(cap, "t")
+    assert "<img" not in text  # no figure asked
+    (row,) = cap.to_dict()["foundation_forces_N_per_m"]
+    lo, hi = row["associated"]
+    assert lo <= (2.0 + np.pi) * 20e3 * 2.0 <= hi and row["reference"] == 100e3
+    assert "Forces on the foundations at collapse" in text
+    assert f"[{lo / 1e3:.4g}, {hi / 1e3:.4g}]" in text and ">100<" in text
 
 
 def test_ssi_limit_writes_its_report_with_the_bracket_and_the_mechanism(tmp_path, capsys):

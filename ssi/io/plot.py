@@ -633,7 +633,7 @@ def mechanism_fields(capacity, margin: float = 0.15) -> dict:
 
 
 def limit_mechanism(capacity, axes=None, window=None):
-    """The collapse mechanism of a limit analysis (:class:`ssi.scene.capacity.CapacityResult` or one read
+    """The collapse mechanism of a limit analysis (:class:`ssi.capacity.CapacityResult` or one read
     back, :class:`ssi.io.results_limit.StoredLimit`; its upper bound on the last associated mesh), two
     panels over the same window (stacked for a wide window, else side by side): the speed |v| in colour
     with arrows of the velocity on a regular grid, and where the plastic dissipation happens, log10 of each

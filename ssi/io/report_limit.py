@@ -5,7 +5,7 @@
 The page holds both brackets with their gaps (associated: a ceiling for any psi <= phi; Davis: the
 conventional value for psi < phi) and what the adaptive runs did -- each run's meshes, triangles, time and
 why it stopped (gap target met, refinement cap, a stalled bound: :attr:`ssi.limit.AdaptiveResult.reason`),
-a table per mesh -- the forces on each foundation when the result carries them (``foundation_forces``), and
+a table per mesh -- the forces on each foundation at the bracket's factors (``foundation_forces``), and
 the mechanism figure (:func:`ssi.io.plot.limit_mechanism`) embedded as a PNG (``data:`` URI), so the page is
 one file that can be mailed. The numbers are those of ``cap.to_dict()``, the same as the JSON file's, so a
 limit analysis read back from its file (:class:`ssi.io.results_limit.StoredLimit`) gives the same page.
@@ -52,28 +52,32 @@ def _stop_words(reason: str | None, gap_target: float | None) -> str:
     return f"gap target{asked} NOT met: {reason}"
 
 
-def _forces_table(forces) -> list[str]:
-    """The per-foundation forces (``foundation_forces``: a list of rows or a dict of rows, plain values) as
-    a table; its keys are shown as given (their units are in their names, as in the JSON)."""
-    esc = html.escape
-    rows = list(forces.values()) if isinstance(forces, dict) else list(forces)
-    if isinstance(forces, dict) and not all(isinstance(r, dict) for r in rows):
-        rows = [forces]
-    rows = [r for r in rows if isinstance(r, dict)]
-    if not rows:
-        return [f"<pre>{esc(str(forces))}</pre>"]
-    keys = list(dict.fromkeys(k for r in rows for k in r))
-    out = ['<div class="scroll"><table><tr>' + "".join(f"<th>{esc(str(k))}</th>" for k in keys) + "</tr>"]
-    for r in rows:
-        cells = []
-        for k in keys:
-            v = r.get(k)
-            if isinstance(v, float):
-                cells.append(f'<td class="num">{v:.5g}</td>')
-            else:
-                cells.append(f"<td>{esc('–' if v is None else str(v))}</td>")
-        out.append("<tr>" + "".join(cells) + "</tr>")
+def _forces_table(rows: list[dict]) -> list[str]:
+    """The forces on each foundation at the bracket's factors (``foundation_forces_N_per_m`` of
+    :meth:`ssi.capacity.CapacityResult.to_dict`: per footing ``x0``, ``x1`` [m], ``reference`` [N/m] its
+    loads at lambda = 1, ``associated`` and ``davis`` (lb, ub) [N/m]) as a table in kN/m."""
+
+    def pair(v):
+        return "–" if not v else f"[{_num(v[0], 1e-3)}, {_num(v[1], 1e-3)}]"
+
+    out = [
+        '<div class="scroll"><table><tr><th>#</th><th>x0 [m]</th><th>x1 [m]</th><th>its loads at lambda = 1 '
+        "[kN/m]</th><th>associated [kN/m]</th><th>Davis [kN/m]</th></tr>"
+    ]
+    for i, r in enumerate(rows):
+        out.append(
+            f'<tr><td>{i}</td><td class="num">{_num(r.get("x0"), 1.0, "{:g}")}</td>'
+            f'<td class="num">{_num(r.get("x1"), 1.0, "{:g}")}</td>'
+            f'<td class="num">{_num(r.get("reference"), 1e-3)}</td>'
+            f'<td class="num">{pair(r.get("associated"))}</td>'
+            f'<td class="num">{pair(r.get("davis"))}</td></tr>'
+        )
     out.append("</table></div>")
+    if len(rows) > 1:
+        out.append(
+            "<p>The foundations share one lambda: these sum to the total, but the mechanism that sets lambda "
+            "may be one foundation's (see the figure).</p>"
+        )
     return out
 
 
@@ -132,9 +136,7 @@ def limit_report_html(
     if run_warnings:
         parts.append("<h2>Warnings</h2>")
         parts += [f'<div class="warn">{esc(w)}</div>' for w in run_warnings]
-    forces = getattr(cap, "foundation_forces", None)
-    if forces is None:
-        forces = d.get("foundation_forces")
+    forces = d.get("foundation_forces_N_per_m")  # a push has none: lambda is itself the footing's force
     if forces:
         parts.append("<h2>Forces on the foundations at collapse</h2>")
         parts += _forces_table(forces)
