@@ -10,7 +10,7 @@ import numpy as np
 
 from ..limit import Boundary, Footing, Interface
 from ..materials.soil_laws import SoilLayer
-from .action import LimitInput
+from .action import SiteInput
 from .common import (
     Parts,
     collect_loads,
@@ -34,7 +34,7 @@ class _Phase:
         self.loads = tuple(loads)
 
 
-def site_parts(site: LimitInput, unloaded: bool = False) -> Parts:
+def site_parts(site: SiteInput, unloaded: bool = False) -> Parts:
     """The :class:`~ssi.capacity.common.Parts` of ``site``: its loads scaled by lambda; a single
     :class:`RigidStrip` and no loads: lambda is its vertical force [N/m]. An embedded strip (``level`` below
     the ground) stands in its trench, the side soil modelled by the site's geometry (its strength and

@@ -131,7 +131,7 @@ def _check_phase_soil(scene, k, ph):
                 scene.layers[key].undrained_k_water()
             except ValueError as err:
                 raise ValueError(f"{where}: drainage[{key}] = 'undrained_A': {err}") from err
-    lo, hi = scene._block()
+    lo, hi = scene.block()
     loads = [ld for p in scene.phases for ld in p.loads] + list(scene.loads)
     spans = [ld.ground_span() for ld in loads if ld.ground_span() is not None]  # the ground pressures
     for j, ex in enumerate(ph.excavate):
