@@ -77,7 +77,7 @@ def _check_rigid_footing(scene):
 
 
 def _check_phases(scene):
-    names = (["loads"] if scene.loads else []) + [ph.name for ph in scene.phases]
+    names = [ph.name for ph in scene.load_phases()]
     if len(set(names)) != len(names) or "geostatic" in names:
         raise ValueError(f"phase names {names} must be unique and not 'geostatic' (the first phase's name)")
     for k, ph in enumerate(scene.phases):

@@ -249,6 +249,13 @@ class Phase:
             check_choice(f"Phase({self.name!r}).drainage[{key!r}]", value, DRAINAGE)
 
 
+def load_phases(loads, phases) -> list[Phase]:
+    """The phases after the geostatic one, as a Scene and a Site solve them and the limit problem scales and
+    holds them: ``loads`` (if any) as a first :class:`Phase` named "loads", then ``phases`` in order. The one
+    home of that list (``Scene.load_phases``, ``Site.load_phases``)."""
+    return ([Phase("loads", tuple(loads))] if loads else []) + list(phases)
+
+
 @dataclass(frozen=True)
 class MeshSize:
     """Element size ``h_fine`` [m] under the foundation, ``h_coarse`` [m] far from it, ``growth`` [-] ratio of

@@ -91,7 +91,16 @@ from .checks import (
     _warn_implausible_units,
 )
 from .loads import LOAD_TYPES
-from .parts import CONTACT_SEGMENT_TYPES, Contact, Foundation, MeshSize, Phase, RigidFooting, _check_list
+from .parts import (
+    CONTACT_SEGMENT_TYPES,
+    Contact,
+    Foundation,
+    MeshSize,
+    Phase,
+    RigidFooting,
+    _check_list,
+    load_phases,
+)
 from .scene_parts import SceneParts
 
 
@@ -293,10 +302,10 @@ class Scene(SceneParts):
         self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
 
-    def load_phases(self) -> list:
+    def load_phases(self) -> list[Phase]:
         """The phases after the geostatic one: ``loads`` as a first Phase "loads" (if any), then ``phases``
         (what the limit problem scales and holds)."""
-        return ([Phase("loads", tuple(self.loads))] if self.loads else []) + list(self.phases)
+        return load_phases(self.loads, self.phases)
 
     def contact_laws(self) -> list:
         """The distinct Contact laws under the plate strip: the one ``contact``, or its segments' laws in

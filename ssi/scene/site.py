@@ -92,7 +92,7 @@ from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
 from .loads import LOAD_TYPES, Push
-from .parts import MeshSize
+from .parts import MeshSize, Phase, load_phases
 from .site_built import BuiltSite
 from .site_checks import TOL, SiteChecks, _polyline
 from .site_mesh import SiteMesh
@@ -197,6 +197,11 @@ class Site(SiteChecks, SiteMesh):
     def soils(self) -> list:
         """The soil of each region of the geometry: ``layers``, then each lens's layer (region = index)."""
         return list(self.layers) + [lens.layer for lens in self.lenses]
+
+    def load_phases(self) -> list[Phase]:
+        """The phases after the geostatic one: ``loads`` as a first Phase "loads" (if any), then ``phases``
+        (what :meth:`BuiltSite.solve` runs in turn)."""
+        return load_phases(self.loads, self.phases)
 
     def all_loads(self) -> list:
         """``loads`` and every phase's loads, in that order (what the mesh and the checks must serve)."""

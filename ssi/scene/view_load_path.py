@@ -53,7 +53,7 @@ class LoadPathView:
             return lam * total(self.built.scene.loads)
         out = np.zeros(len(lam))
         factors, own, before = {}, {}, 0.0
-        for ph, record in zip(self.built._phase_list(), self.phases[1:]):
+        for ph, record in zip(self.built.scene.load_phases(), self.phases[1:]):
             own[ph.name] = total(ph.loads)
             factors[ph.name] = 1.0
             factors.update(ph.factors)
