@@ -111,16 +111,9 @@ def test_the_bridge_reads_its_input_through_public_names_only():
 
 
 def test_scene_and_site_satisfy_the_bridge_protocols(site):
-    scene = Scene(
-        width=12.0,
-        depth=6.0,
-        layers=[
-            SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3),
-            SoilLayer(4.0, E=40e6, nu=0.3, unit_weight=20e3),
-        ],
-        symmetric=True,
-        surcharge=10e3,
-    )
+    top = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3)
+    base = SoilLayer(4.0, E=40e6, nu=0.3, unit_weight=20e3)
+    scene = Scene(12.0, 6.0, [top, base], symmetric=True, surcharge=10e3)  # 12 m x 6 m, a 10 kPa surcharge
     assert isinstance(scene, SceneInput) and isinstance(scene, LimitInput)
     assert isinstance(site, SiteInput) and not isinstance(site, SceneInput)
     # the public block, by hand: the half x >= 0 of a symmetric 12 m block; no foundation: the middle half
