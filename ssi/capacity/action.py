@@ -120,6 +120,10 @@ class SiteInput(LimitInput, Protocol):
 
     strips: list
 
+    def soils(self) -> list:
+        """The soil of each region of :meth:`geometry`: the layers, then each lens's (region
+        len(layers) + j)."""
+
     def geometry(self) -> object:
         """The site's :class:`ssi.core.geometry.Geometry` (cells cut at the water table)."""
 
