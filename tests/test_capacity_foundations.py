@@ -9,11 +9,13 @@ the strip [-8, -6] m and N = 300 kN/m at x = -1 m on the strip [-2, 0] m, no sel
 coarse mesh: the identities hold on any mesh.
 """
 
+import ast
 import pathlib
 
+import numpy as np
 import pytest
 
-from ssi.capacity import LimitInput, limit_problem
+from ssi.capacity import LimitInput, SceneInput, SiteInput, limit_problem
 from ssi.elements.section import homogeneous
 from ssi.scene import ColumnLoad, Contact, Foundation, Phase, Push, Scene, SoilLayer
 from ssi.scene.scene_file import read_scene_file
@@ -81,3 +83,43 @@ def test_a_load_the_limit_problem_does_not_represent_is_refused_by_name():
     )
     with pytest.raises(ValueError, match=r"Phase\('push'\)\.loads\[1\]: a horizontal Push is not built"):
         limit_problem(scene)
+
+
+# ---- the protocol the bridge reads a scene or a site through (issue 44: no private method) -------------
+CAPACITY = pathlib.Path(__file__).resolve().parent.parent / "ssi" / "capacity"
+
+
+def _private_reads(source: str) -> list[str]:
+    """``scene._x`` / ``site._x`` attribute reads in ``source`` (the bridge's names for its input)."""
+    tree = ast.parse(source)
+    return [
+        f"{node.value.id}.{node.attr}"
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute)
+        and isinstance(node.value, ast.Name)
+        and node.value.id in ("scene", "site")
+        and node.attr.startswith("_")
+    ]
+
+
+def test_the_bridge_reads_its_input_through_public_names_only():
+    probe = "a, b = scene._block()\nz = site._ground"
+    assert sorted(_private_reads(probe)) == ["scene._block", "site._ground"]
+    found = {p.name: _private_reads(p.read_text()) for p in sorted(CAPACITY.glob("*.py"))}
+    assert len(found) >= 9  # every module of the bridge was read
+    assert {k: v for k, v in found.items() if v} == {}
+
+
+def test_scene_and_site_satisfy_the_bridge_protocols(site):
+    top = SoilLayer(2.0, E=20e6, nu=0.3, unit_weight=18e3)
+    base = SoilLayer(4.0, E=40e6, nu=0.3, unit_weight=20e3)
+    scene = Scene(12.0, 6.0, [top, base], symmetric=True, surcharge=10e3)  # 12 m x 6 m, a 10 kPa surcharge
+    assert isinstance(scene, SceneInput) and isinstance(scene, LimitInput)
+    assert isinstance(site, SiteInput) and not isinstance(site, SceneInput)
+    # the public block, by hand: the half x >= 0 of a symmetric 12 m block; no foundation: the middle half
+    assert scene.block() == (0.0, 6.0)
+    assert scene.footprint() == (0.0, 3.0)
+    assert [(t, g) for t, _, g in scene.mesh_layers()] == [(2.0, 18e3), (4.0, 20e3)]
+    # szz at z = -3 m: q + 18 kN/m^3 x 2 m + 20 kN/m^3 x 1 m = 66 kPa (compression negative)
+    assert scene.geostatic(np.array([-3.0]))[0, 1] == pytest.approx(-66e3, rel=1e-12)
+    assert scene.has_geostatic_stress()

@@ -1,6 +1,8 @@
 """A lens (a closed region of another soil) in a borehole site, and layer boundaries from boreholes and
 polylines mixed. The lens's elements carry the lens's soil, its area is the outline's, and a soft lens under a
-strip makes the strip settle more."""
+strip makes the strip settle more; in the limit analysis its triangles carry its strength."""
+
+import math
 
 import numpy as np
 import pytest
@@ -84,8 +86,8 @@ def test_lens_input_refused_by_name():
         _site([Lens([(-3.0, -1.0), (3.0, -1.0), (0.0, 1.0)], PEAT)])
     with pytest.raises(GeometryError, match="overlap"):
         _site([Lens(OUTLINE, PEAT), Lens([(-1.0, -3.0), (5.0, -3.0), (2.0, -2.0)], PEAT)])
-    with pytest.raises(ValueError, match="lens's soil is not built in the limit analysis"):
-        _site([Lens(OUTLINE, PEAT)]).limit_analysis()
+    with pytest.raises(ValueError, match=r"Site.lenses\[0\].layer is elastic"):
+        _tresca_site([Lens(WEDGE, PEAT)]).limit_analysis()  # the limit analysis needs the lens's strength too
 
 
 def test_a_lens_and_mixed_boundaries_read_from_a_site_file(tmp_path):
@@ -123,3 +125,67 @@ layer = { E = 1e6, nu = 0.3, unit_weight = 11e3 }
     again = model_from_dict(json.loads(json.dumps(plain)))
     assert isinstance(again, Site) and scene_to_dict(again) == plain
     np.testing.assert_array_equal(again.geometry().cell_region, site.geometry().cell_region)
+
+
+# ---- the limit analysis of a site with a lens: its triangles take the lens's strength ----------------------
+C, N_LIM = 20e3, 100e3  # [Pa] s_u of the clay, [N/m] the column lambda scales
+REL = 1e-6  # the bounds' conic solver tolerance, as in tests/test_limit_scene.py
+WEDGE = [(-1.5, -0.2), (1.5, -0.2), (0.0, -1.7)]  # [m] a lens under the 2 m strip, 3 m wide, 1.5 m deep
+
+
+def _clay(s_u=C):
+    return SoilLayer.undrained(5.0, E_u=30e6, s_u=s_u)
+
+
+def _tresca_site(lenses=()):
+    """Test_limit_scene's Prandtl site (a plate strip bonded to weightless Tresca clay, a central column)
+    with ``lenses``."""
+    strip = Strip(Foundation(-1.0, 1.0, homogeneous(0.5, 30e9, 0.2)), Contact(kn=1e10, kt=1e9))
+    return Site(12.0, 5.0, [_clay()], strips=[strip], loads=[ColumnLoad(0.0, N=N_LIM)], lenses=list(lenses))
+
+
+def test_the_limit_triangles_inside_a_lens_carry_its_strength():
+    from ssi.capacity import initial_mesh, limit_problem
+
+    problem = limit_problem(_tresca_site([Lens(WEDGE, _clay(5e3))]))
+    mesh = initial_mesh(problem, None, None)
+    inside = Path(WEDGE).contains_points(mesh.xy[mesh.tri].mean(axis=1))
+    c = np.array([problem.site.materials[k].c for k in mesh.material])
+    assert inside.sum() >= 4  # the lens is meshed
+    assert np.all(c[inside] == 5e3) and np.all(c[~inside] == C)
+    # the triangles conform to the outline: the lens's triangles cover its area exactly (2.25 m^2)
+    assert mesh.areas()[inside].sum() == pytest.approx(0.5 * 3.0 * 1.5, rel=1e-12)
+
+
+@pytest.fixture(scope="module")
+def tresca_brackets():
+    """(no lens, a lens of the host's own strength, a weak lens c = 5 kPa) brackets, gap 5 %."""
+    kw = {"gap": 0.05, "davis": False}
+    return (
+        _tresca_site().limit_analysis(**kw),
+        _tresca_site([Lens(WEDGE, _clay())]).limit_analysis(**kw),
+        _tresca_site([Lens(WEDGE, _clay(5e3))]).limit_analysis(**kw),
+    )
+
+
+def test_a_lens_of_the_hosts_strength_brackets_the_same_load(tresca_brackets):
+    """A lens whose soil is its host's changes only the mesh (its outline), not the problem: both brackets
+    hold Prandtl's exact lambda* = (2 + pi) c B / N (Prandtl 1920, weightless Tresca, rough strip), so they
+    overlap, each within its gap."""
+    bare, same, _ = tresca_brackets
+    exact = (2.0 + math.pi) * C * 2.0 / N_LIM
+    for cap in (bare, same):
+        assert cap.lb * (1 - REL) <= exact <= cap.ub * (1 + REL)
+        assert (cap.ub - cap.lb) / (cap.ub + cap.lb) <= 0.05
+    assert max(bare.lb, same.lb) <= min(bare.ub, same.ub) * (1 + REL)
+
+
+def test_a_weak_lens_under_the_strip_lowers_both_bounds(tresca_brackets):
+    """A quarter-strength lens right under the strip: its upper bound falls below the lens-free lower bound
+    (a mechanism through the lens dissipates less than any through the clay) -- and below Prandtl's
+    lambda* -- while its lower bound stays above the load the lens alone carries, (2 + pi) c_lens B / N
+    (the whole site as weak as the lens)."""
+    bare, _, weak = tresca_brackets
+    assert weak.ub < bare.lb and weak.lb < bare.lb
+    assert weak.ub < (2.0 + math.pi) * C * 2.0 / N_LIM
+    assert weak.lb > (2.0 + math.pi) * 5e3 * 2.0 / N_LIM

@@ -109,3 +109,42 @@ def test_a_phased_site_result_file_reads_back_its_phases(plastic, tmp_path):
     k = plastic.phases[2]["last"]  # the column phase's end
     assert back.contact_resultant(0, k)["N"] == plastic.contact_resultant(0, k)["N"]
     assert back.status == plastic.status
+
+
+def test_a_scene_and_a_site_share_one_phase_list():
+    """``loads`` as a first phase "loads", then ``phases``: one function (``ssi.scene.parts.load_phases``)
+    for a scene and a site, and no other place in ssi that builds that list (found by ast; the check is
+    shown to find a probe)."""
+    import ast
+    import pathlib
+
+    from ssi.scene import Scene
+
+    col, unload = ColumnLoad(-6.5, N=N), Phase("unload", factors={"loads": 0.0})
+    soil = SoilLayer(10.0, E=20e6, nu=0.3)
+    strip = Strip(Foundation(-8.0, -5.0, homogeneous(0.5, 30e9, 0.2)), Contact(kn=1e10, kt=1e9))
+    site = Site(24.0, 10.0, [soil], strips=[strip], loads=[col], phases=[unload])
+    scene = Scene(24.0, 10.0, [soil], foundation=strip.foundation, contact=strip.contact, loads=[col],
+                  phases=[unload])  # fmt: skip
+    for model in (site, scene):
+        phases = model.load_phases()
+        assert [ph.name for ph in phases] == ["loads", "unload"]
+        assert phases[0].loads == (col,) and phases[1] is unload
+    assert [ph.name for ph in _site(None).load_phases()] == [
+        "fill",
+        "column",
+        "unload",
+    ]  # no loads: no "loads"
+
+    def builders(source):  # calls Phase("loads", ...): where the list is built
+        return [
+            n.lineno
+            for n in ast.walk(ast.parse(source))
+            if isinstance(n, ast.Call) and getattr(n.func, "id", None) == "Phase"
+            and n.args and isinstance(n.args[0], ast.Constant) and n.args[0].value == "loads"
+        ]  # fmt: skip
+
+    assert builders('x = 1\nphases = [Phase("loads", tuple(loads))]') == [2]
+    root = pathlib.Path(__file__).resolve().parent.parent / "ssi"
+    found = {str(p.relative_to(root)): builders(p.read_text()) for p in sorted(root.rglob("*.py"))}
+    assert {k: v for k, v in found.items() if v} == {"scene/parts.py": [found["scene/parts.py"][0]]}

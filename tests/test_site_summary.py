@@ -179,3 +179,38 @@ def test_ssi_run_estimate_on_a_site_file(tmp_path, capsys):
     main(["show", str(tmp_path / "two.h5"), "--no-plots", "--json"])
     shown = json.loads(capsys.readouterr().out.split("\nwrote", 1)[0])
     assert shown["error_estimate"] == s["error_estimate"]
+
+
+def test_ssi_run_on_a_phased_site_prints_every_phase(tmp_path, capsys):
+    """A site loaded, then unloaded (``factors = { loads = 0.0 }``), through `ssi run` as a phased scene goes:
+    the printed summary and the JSON give both phases with each one's settlement at its end, read back from
+    the run's own result file, and the column load each phase ends with (the input's: N, then 0)."""
+    from ssi.io.results import read_result
+
+    n = 0.5 * (2.0 + math.pi) * 10e3 * 2.0  # [N/m] half Prandtl's collapse load of the strip (see above)
+    path = tmp_path / "phased.toml"
+    path.write_text(
+        SOFT_CLAY.replace("{N}", repr(n)) + '[[phases]]\nname = "unload"\nfactors = { loads = 0.0 }\n'
+    )
+    assert main(["run", str(path), "--no-plots"]) == 0
+    printed = capsys.readouterr().out
+    s = json.loads((tmp_path / "phased_summary.json").read_text())
+    out = read_result(tmp_path / "phased.h5")
+    assert s["status"] == out.status == "completed" and s["phase"] == "unload"
+    assert [r["name"] for r in s["phases"]] == ["loads", "unload"] == [r["name"] for r in out.phases[1:]]
+    for row, record, column in zip(s["phases"], out.phases[1:], (n, 0.0)):
+        end = record["last"]
+        mean = out.strip_summary(0, end)["mean"]
+        f = row["foundations"][0]
+        assert (row["first"], row["last"]) == (record["first"], end)
+        assert f["mean_settlement_m"] == mean and f["max_settlement_m"] == out.strip_summary(0, end)["max"]
+        assert f["column_N_N_per_m"] == column
+        # the plate's equilibrium: the soil carries what stands on the strip at the phase's end
+        assert out.contact_resultant(0, end)["N"] == pytest.approx(column, rel=1e-9, abs=1e-9 * n)
+        line = printed.split(f"phase {row['name']!r} (steps {record['first']}-{end}", 1)[1].split("\n")[1]
+        assert (
+            f"settlement mean {1e3 * mean:.2f} mm" in line and f"column load {column / 1e3:.2f} kN/m" in line
+        )
+    loaded, unloaded = (r["foundations"][0]["mean_settlement_m"] for r in s["phases"])
+    assert 0.0 <= unloaded < loaded  # unloading recovers the elastic part (the yielded edges keep theirs)
+    assert s["foundations"][0]["applied_N_N_per_m"] == 0.0  # the run ends unloaded

@@ -6,7 +6,7 @@ README.md lists (its functions take a :class:`LimitInput`) and each load through
 ``Scene.safety_factor``, ``Site.limit_analysis`` and ``Site.safety_factor`` call into it.
 """
 
-from .action import FootingFrame, LimitAction, LimitInput
+from .action import FootingFrame, LimitAction, LimitInput, SceneInput, SiteInput
 from .bracket import CapacityResult, capacity_bracket, initial_mesh, limit_analysis
 from .common import SIDE_SOIL, LimitProblem, NotOnBeam
 from .problem import limit_problem
@@ -22,6 +22,8 @@ __all__ = [
     "LimitProblem",
     "NotOnBeam",
     "SafetyFactorResult",
+    "SceneInput",
+    "SiteInput",
     "capacity_bracket",
     "initial_mesh",
     "limit_analysis",

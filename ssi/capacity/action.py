@@ -12,7 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar, Protocol, runtime_checkable
 
-__all__ = ["FootingFrame", "LimitAction", "LimitInput"]
+import numpy as np
+
+__all__ = ["FootingFrame", "LimitAction", "LimitInput", "SceneInput", "SiteInput"]
 
 
 @dataclass(frozen=True)
@@ -65,10 +67,74 @@ class LimitAction:
 @runtime_checkable
 class LimitInput(Protocol):
     """What the bridge takes: a Scene or a Site, named by the fields every input answers (``kind``: "scene"
-    or "site", which geometry applies; the rest each geometry reads is listed in this package's README.md).
-    A protocol, not the classes: ``ssi.scene`` ranks above this package, which never imports it."""
+    or "site", which geometry applies: :class:`SceneInput` or :class:`SiteInput`). A protocol, not the
+    classes: ``ssi.scene`` ranks above this package, which never imports it."""
 
     kind: ClassVar[str]
     loads: list
     layers: list
     gamma_w: float
+
+
+@runtime_checkable
+class SceneInput(LimitInput, Protocol):
+    """What :func:`ssi.capacity.scene_problem.scene_parts` reads of a Scene (``kind == "scene"``) besides the
+    loads (their ``limit_action``) and the layers: its foundation and contacts, its water, and its block."""
+
+    foundation: object
+    side_contact: object
+    embedment: float  # [m] the strip's base below the ground
+    water_table: float | None  # [m] depth below the ground (None: dry)
+    surcharge: float  # [Pa] on the ground in the geostatic state
+    symmetric: bool
+    depth: float  # [m]
+    phases: list
+
+    def load_phases(self) -> list:
+        """The phases after the geostatic one (``name``, ``loads``, ``factors``, ``excavate``,
+        ``drainage``): ``loads`` as a first phase "loads" (if any), then ``phases``."""
+
+    def contact_laws(self) -> list:
+        """The distinct Contact laws under the plate strip."""
+
+    def block(self) -> tuple[float, float]:
+        """(x_left, x_right) [m] of the modelled block."""
+
+    def footprint(self) -> tuple[float, float]:
+        """(x0, x1) [m] of the foundation in the modelled block."""
+
+    def mesh_layers(self) -> list:
+        """[(thickness [m], layer, body-force unit weight [N/m^3])] from the ground down."""
+
+    def geostatic(self, z: np.ndarray) -> np.ndarray:
+        """Effective geostatic stress [Pa], shape ``z.shape + (4,)``, at the elevations ``z`` [m]."""
+
+    def has_geostatic_stress(self) -> bool:
+        """True if the block starts from a geostatic stress (weight or surcharge)."""
+
+
+@runtime_checkable
+class SiteInput(LimitInput, Protocol):
+    """What :func:`ssi.capacity.site_problem.site_parts` reads of a Site (``kind == "site"``) besides the
+    loads and the layers: its strips and its geometry."""
+
+    strips: list
+
+    def soils(self) -> list:
+        """The soil of each region of :meth:`geometry`: the layers, then each lens's (region
+        len(layers) + j)."""
+
+    def geometry(self) -> object:
+        """The site's :class:`ssi.core.geometry.Geometry` (cells cut at the water table)."""
+
+    def embedded(self) -> list:
+        """(index, x0 [m], x1 [m], base level [m]) of every embedded strip."""
+
+    def base_z(self, i: int) -> float:
+        """Elevation [m] of the base of strip ``i``."""
+
+    def ground_z(self, x: np.ndarray) -> np.ndarray:
+        """Elevation [m] of the ground at ``x`` [m]."""
+
+    def water_z(self, x: np.ndarray) -> np.ndarray:
+        """Elevation [m] of the water table at ``x`` [m] (-inf: dry)."""

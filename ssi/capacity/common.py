@@ -84,11 +84,11 @@ class Parts:
     footing_spans: tuple
 
 
-def layer_material(i: int, layer, gamma: float, owner: str = "Scene") -> Material:
-    """The rigid-plastic Mohr--Coulomb :class:`ssi.limit.Material` of ``layer`` (``owner``.layers[i]) with
-    the body-force unit weight ``gamma`` [N/m^3]; refused: an elastic layer, an effective-stress undrained
-    one."""
-    name = f"{owner}.layers[{i}]"
+def layer_material(i: int, layer, gamma: float, owner: str = "Scene", name: str | None = None) -> Material:
+    """The rigid-plastic Mohr--Coulomb :class:`ssi.limit.Material` of ``layer`` (``owner``.layers[i], or
+    ``name`` if given: a site's lens) with the body-force unit weight ``gamma`` [N/m^3]; refused: an elastic
+    layer, an effective-stress undrained one."""
+    name = f"{owner}.layers[{i}]" if name is None else name
     if layer.c is None:
         raise ValueError(
             f"{name} is elastic (c=None): limit analysis needs every layer's strength; give c and phi_deg"

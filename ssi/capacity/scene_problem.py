@@ -13,7 +13,7 @@ import numpy as np
 
 from ..core.geometry import from_cells
 from ..limit import Beam, Boundary, Footing
-from .action import LimitInput
+from .action import SceneInput
 from .common import (
     TOL,
     Parts,
@@ -54,7 +54,7 @@ def _phase_index(phases, phase: str | None) -> int:
     raise ValueError(f"phase={phase!r} is not a phase of the scene; its phases are {names}")
 
 
-def scene_parts(scene: LimitInput, phase: str | None, strip: str | None, side_soil: str):
+def scene_parts(scene: SceneInput, phase: str | None, strip: str | None, side_soil: str):
     """The :class:`~ssi.capacity.common.Parts` of ``scene`` with lambda scaling the loads of ``phase``
     (arguments as :func:`ssi.capacity.problem.limit_problem`'s, ``side_soil`` given)."""
     with_mn = strip == "beam_mn"  # a beam whose hinges' capacity is the section's M-N polygon
@@ -82,9 +82,9 @@ def scene_parts(scene: LimitInput, phase: str | None, strip: str | None, side_so
     ref_phase = phases[k]
 
     f = scene.foundation
-    xl, xr = scene._block()
+    xl, xr = scene.block()
     width = xr - xl
-    fx0, fx1 = scene._footprint() if f is not None else (None, None)
+    fx0, fx1 = scene.footprint() if f is not None else (None, None)
     mp = beam_mode(scene, strip)  # (mp_sag, mp_hog) [N m/m] of a beam strip, None: rigid
     if mp is not None and side_itf is not None:
         msg = (
@@ -128,8 +128,8 @@ def scene_parts(scene: LimitInput, phase: str | None, strip: str | None, side_so
         )
     # the geostatic vertical stress of the base level [Pa]: the surcharge, plus the overburden of an
     # embedded base
-    p_base = -float(scene._geostatic(np.array([-d_base]))[0, 1]) if d_base else float(scene.surcharge)
-    if f is not None and not f.rigid and scene._has_geostatic_stress():
+    p_base = -float(scene.geostatic(np.array([-d_base]))[0, 1]) if d_base else float(scene.surcharge)
+    if f is not None and not f.rigid and scene.has_geostatic_stress():
         fdead[1] -= p_base * (f.x1 - f.x0)  # the strip carries it over its width, as in the incremental scene
         beam_loads["p_dead"] += p_base
     if mp is not None and settle_ref:
@@ -156,7 +156,7 @@ def scene_parts(scene: LimitInput, phase: str | None, strip: str | None, side_so
     if mp is not None:  # a beam's point loads act at base points
         xs |= {x for x, *_ in beam_loads["ref"] + beam_loads["dead"]}
     xs = sorted(x for x in xs if xl - TOL * width <= x <= xr + TOL * width)
-    sub = scene._mesh_layers()  # (thickness, layer, unit weight of its body force), split at the water table
+    sub = scene.mesh_layers()  # (thickness, layer, unit weight of its body force), split at the water table
     owner = [next(i for i, lay in enumerate(scene.layers) if lay is own) for _, own, _ in sub]
     z_tops = -np.concatenate([[0.0], np.cumsum([t for t, _, _ in sub])])
     n_above = 0  # sub-layers above an embedded base
@@ -285,6 +285,6 @@ def _wall_pressure(scene, pa, pb) -> Boundary:
     za, zb = float(pa[1]), float(pb[1])
     inside = 0.25 * (zb - za)  # points inside the segment: an end on a layer boundary reads the layer above
     za, zb = za + inside, zb - inside
-    sa, sb = (-float(scene._geostatic(np.array([z]))[0, 0]) for z in (za, zb))
+    sa, sb = (-float(scene.geostatic(np.array([z]))[0, 0]) for z in (za, zb))
     slope = (sb - sa) / (zb - za)
     return Boundary("free", pressure_dead=sa - slope * za, pressure_dead_grad=(0.0, slope))

@@ -1,5 +1,6 @@
 """A :class:`~ssi.scene.site.Site`'s geometry for the limit problem (:func:`site_parts`): its one polygon
-(:meth:`Site.geometry`, cells cut at the water table) with the buoyant unit weight below the water table,
+(:meth:`Site.geometry`, cells cut at the water table and along each lens's outline, each cell the soil of its
+region, a layer's or a lens's) with the buoyant unit weight below the water table,
 every strip a rigid footing on its contact (a Strip translating and rotating, a RigidStrip pushed down),
 its loads (columns on the strips, pressures on level ground) scaled by lambda. The rest of the problem is
 :mod:`ssi.capacity.common`'s, common with a scene's."""
@@ -10,7 +11,7 @@ import numpy as np
 
 from ..limit import Boundary, Footing, Interface
 from ..materials.soil_laws import SoilLayer
-from .action import LimitInput
+from .action import SiteInput
 from .common import (
     Parts,
     collect_loads,
@@ -34,7 +35,7 @@ class _Phase:
         self.loads = tuple(loads)
 
 
-def site_parts(site: LimitInput, unloaded: bool = False) -> Parts:
+def site_parts(site: SiteInput, unloaded: bool = False) -> Parts:
     """The :class:`~ssi.capacity.common.Parts` of ``site``: its loads scaled by lambda; a single
     :class:`RigidStrip` and no loads: lambda is its vertical force [N/m]. An embedded strip (``level`` below
     the ground) stands in its trench, the side soil modelled by the site's geometry (its strength and
@@ -44,10 +45,16 @@ def site_parts(site: LimitInput, unloaded: bool = False) -> Parts:
     the wall moving with the strip as one rigid body. ``unloaded``: a site without loads is accepted (its
     own factor of safety). Refused: DepthVarying layers, a RigidStrip beside other strips or loads, a
     pressure on sloping ground."""
-    for i, lay in enumerate(site.layers):
+    # the soil of every region of the geometry: the layers, then each lens's (region len(layers) + j), so
+    # a lens's cells, cut along its outline by Site.geometry(), take the lens's strength and weight
+    soils = site.soils()
+    n_layers = len(site.layers)
+    names = [f"layers[{i}]" for i in range(n_layers)]
+    names += [f"lenses[{j}].layer" for j in range(len(soils) - n_layers)]
+    for name, lay in zip(names, soils):
         if not isinstance(lay, SoilLayer):
             raise ValueError(
-                f"Site.layers[{i}] is a {type(lay).__name__}: strength varying with depth is not represented "
+                f"Site.{name} is a {type(lay).__name__}: strength varying with depth is not represented "
                 "by ssi.limit (one material per region)"
             )
     geo = site.geometry()
@@ -88,12 +95,12 @@ def site_parts(site: LimitInput, unloaded: bool = False) -> Parts:
         )  # the centre of its base: the ground, or its trench's bottom
         footings.append(Footing(itf, tuple(fl.ref.tolist()), (0.0, 0.0), moves, centre, float(fl.m_ref)))
     ends = [(f.x0, f.x1) for f in parts]
-    # materials: each layer dry and (below the water table) buoyant; each cell by its centroid
+    # materials: each soil dry and (below the water table) buoyant; each cell by its centroid
     mats, region = [], []
-    for i, lay in enumerate(site.layers):
+    for name, lay in zip(names, soils):
         sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
-        mats.append(layer_material(i, lay, lay.unit_weight, "Site"))
-        mats.append(layer_material(i, lay, max(sat - site.gamma_w, 0.0), "Site"))
+        mats.append(layer_material(0, lay, lay.unit_weight, name=f"Site.{name}"))
+        mats.append(layer_material(0, lay, max(sat - site.gamma_w, 0.0), name=f"Site.{name}"))
     for cell, k in zip(geo.cells, geo.cell_region):
         c = geo.points[list(cell)].mean(axis=0)
         wet = c[1] < float(site.water_z(np.array([c[0]]))[0])

@@ -194,11 +194,6 @@ def _stop_message(stop, kind: str) -> str | None:
     return stop_sentence(stop, kind)
 
 
-def _column_force_on(loads, x0: float, x1: float) -> float:
-    """The column forces N [N/m] of ``loads`` standing on a strip from ``x0`` to ``x1`` [m], summed."""
-    return sum(n for ld in loads for x, n in ld.columns() if x0 - 1e-9 <= x <= x1 + 1e-9)
-
-
 def _site_summary(result, wall_time: float | None = None, complete: bool = True, stop=None) -> dict:
     """The per-foundation summary of a solved site (:class:`ssi.scene.site_view.SiteResult`), SI units in
     the key names: settlement [m] positive down, tilt [rad] (> 0: the right end settles more), pressure
@@ -211,7 +206,10 @@ def _site_summary(result, wall_time: float | None = None, complete: bool = True,
     scene: False only when the solver stopped (a limit load is an answer). A plate strip's row also holds
     its contact resultant (``contact_N_N_per_m``, ``contact_H_N_per_m``, ``contact_M_Nm_per_m`` about
     x = 0), the column load applied on it at the end (``applied_N_N_per_m``), its largest bending moment and
-    its EN 1992 design (``design``: :func:`ssi.scene.design.design_summary`, None without concrete)."""
+    its EN 1992 design (``design``: :func:`ssi.scene.design.design_summary`, None without concrete).
+    ``phases``: :meth:`SiteResult.phase_table`, one row per phase with each foundation's settlement at the
+    phase's end (a phased site; else one row, "loading"); ``phase``: the last phase reached (None: not
+    phased) and ``phase_load_factor`` the load factor reached in it, as a scene's."""
     built = result.built
     foundations, plates = [], []
     lam = float(result.load_factor[-1])
@@ -231,7 +229,7 @@ def _site_summary(result, wall_time: float | None = None, complete: bool = True,
         foundations.append({
             "index": i, "type": "strip", "x0_m": part.foundation.x0, "x1_m": part.foundation.x1,
             "mean_settlement_m": d["mean"], "max_settlement_m": d["max"], "tilt_rad": d["tilt"],
-            "applied_N_N_per_m": lam * _column_force_on(built.site.loads, *part.ends),
+            "applied_N_N_per_m": float(result.column_load(i)[-1]),
             "contact_N_N_per_m": c["N"], "contact_H_N_per_m": c["H"], "contact_M_Nm_per_m": c["M"],
             "max_abs_moment_Nm_per_m": m_max, "x_max_abs_moment_m": x_m,
             "design": view.design_summary(),
@@ -259,6 +257,9 @@ def _site_summary(result, wall_time: float | None = None, complete: bool = True,
         "wall_time_s": None if wall_time is None else float(wall_time),
         "foundations": foundations,
         "differential_settlement": differential,
+        "phases": result.phase_table(),
+        "phase": result.phases[-1]["name"] if result.phases else None,
+        "phase_load_factor": float(result.phases[-1]["result"].load_factor[-1]) if result.phases else lam,
         # the discretisation error of the headline quantities (ssi run --estimate), as a scene's summary
         "error_estimate": result.error_estimate,
     }
@@ -299,12 +300,32 @@ def _site_summary_text(s: dict) -> str:
     for d in s["differential_settlement"]:
         lines.append(f"  differential settlement #{d['i']} - #{d['j']}: "
                      f"{1e3 * d['mean_settlement_i_minus_j_m']:.2f} mm (mean settlements)")  # fmt: skip
+    lines += _site_phase_lines(s.get("phases") or [])
     lines += _estimate_lines(s)
     if s["wall_time_s"] is not None:
         lines.append(f"  wall time {s['wall_time_s']:.2f} s")
     if s.get("estimate_wall_time_s") is not None:
         lines.append(f"  {s['estimate_wall_time_s']:.2f} s (the error estimate's refined solves)")
     return "\n".join(lines)
+
+
+def _site_phase_lines(table: list[dict]) -> list[str]:
+    """Each phase of a phased site at its end (mm, kN/m), one line per foundation: what a phased scene's
+    per-phase table gives (one phase: nothing, the foundation lines above are its end)."""
+    if len(table) < 2:
+        return []
+    lines = ["  per phase (at its end):"]
+    for row in table:
+        lines.append(f"    phase {row['name']!r} (steps {row['first']}-{row['last']}, load factor "
+                     f"{row['end_load_factor']:.4g}):")  # fmt: skip
+        for f in row["foundations"]:
+            if "settlement_m" in f:
+                lines.append(f"      #{f['index']}: settlement {1e3 * f['settlement_m']:.2f} mm")
+            else:
+                lines.append(f"      #{f['index']}: settlement mean {1e3 * f['mean_settlement_m']:.2f} mm, "
+                             f"max {1e3 * f['max_settlement_m']:.2f} mm, tilt {1e3 * f['tilt_rad']:.3f} "
+                             f"mm/m, column load {f['column_N_N_per_m'] / 1e3:.2f} kN/m")  # fmt: skip
+    return lines
 
 
 def _limit_checks(result) -> dict:

@@ -27,14 +27,12 @@ from ..materials.soil_laws import (
 from ..solver import NonConvergence, Settings
 from .checks import _segments
 from .loads import LOAD_TYPES, ColumnLoad, Push, Settlement, StripLoad, StripWeight, SurfacePressure
-from .parts import Phase
 from .stages import (
+    PhaseLoads,
     _held,
     _hold,
     _load_levels,
     _phase_failure,
-    _phase_record,
-    _phase_targets,
     _run_phase,
     join_phases,
 )
@@ -250,7 +248,6 @@ class BuiltScene:
 
     def _solve_phases(self, n_steps, settings):
         scene, model = self.scene, self.model
-        phases = ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
         n = model.n_dof
         body = np.zeros(n)
         for g in model.groups:
@@ -266,19 +263,13 @@ class BuiltScene:
         try:
             res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_geo))
             records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
-            effects, factors, held_from = {}, {}, {}
-            f_prev = np.zeros(n)
+            book = PhaseLoads(n)
             config = self._initial_soil()
-            for i, ph in enumerate(phases):
+            for i, ph in enumerate(scene.load_phases()):
                 parts = [self.load_effect(ld) for ld in ph.loads]
                 f_ph = sum((p[0] for p in parts), np.zeros(n)) + (plate_weight if i == 0 else 0.0)
-                held = _held(parts)
-                effects[ph.name] = (f_ph, held)
-                factors[ph.name] = 1.0
-                factors.update(ph.factors)
-                for d in held:
-                    held_from.setdefault(ph.name, {})[d] = float(res.u[-1][d])
-                f_end, dofs, goal = _phase_targets(effects, factors, held_from, n)
+                f_end, dofs, goal = book.begin(ph, f_ph, _held(parts), res.u[-1])
+                f_prev = book.f_prev
                 now = res.u[-1][dofs]
                 soil_before = config
                 config = self._phase_soil(config, ph, res.u[-1])
@@ -301,10 +292,7 @@ class BuiltScene:
                     )
                 except NonConvergence as err:
                     raise _phase_failure(self, err, ph.name, records) from err
-                _hold(model, dofs, goal, np.zeros(len(dofs)))
-                f_prev = f_end
-                records.append(_phase_record(ph.name, records, res))
-                if res.collapsed:
+                if book.end(model, dofs, goal, f_end, records, ph.name, res):
                     break
         finally:
             model.restore_constraints(saved)
@@ -312,11 +300,6 @@ class BuiltScene:
         return SceneResult(self, join_phases(model, records), phases=records)
 
     # ---- phases that change the soil: excavation, drainage switch ---------------------------------------
-    def _phase_list(self):
-        """The phases after the geostatic one: ``scene.loads`` (if any) as the first, named "loads"."""
-        scene = self.scene
-        return ([Phase("loads", tuple(scene.loads))] if scene.loads else []) + list(scene.phases)
-
     def _initial_soil(self):
         """The soil configuration as built: every element present, each layer's own drainage."""
         n_el = self.soil.n_el
@@ -358,7 +341,7 @@ class BuiltScene:
         from which each undrained element's pore water counts. Replayed from the phases of ``out``."""
         config = self._initial_soil()
         k = k % len(out.u)
-        for phase, record in zip(self._phase_list(), (out.phases or [])[1:]):
+        for phase, record in zip(self.scene.load_phases(), (out.phases or [])[1:]):
             if record["first"] > k:
                 break
             config = self._phase_soil(config, phase, out.u[record["first"] - 1])

@@ -77,7 +77,7 @@ def _check_rigid_footing(scene):
 
 
 def _check_phases(scene):
-    names = (["loads"] if scene.loads else []) + [ph.name for ph in scene.phases]
+    names = [ph.name for ph in scene.load_phases()]
     if len(set(names)) != len(names) or "geostatic" in names:
         raise ValueError(f"phase names {names} must be unique and not 'geostatic' (the first phase's name)")
     for k, ph in enumerate(scene.phases):
@@ -131,7 +131,7 @@ def _check_phase_soil(scene, k, ph):
                 scene.layers[key].undrained_k_water()
             except ValueError as err:
                 raise ValueError(f"{where}: drainage[{key}] = 'undrained_A': {err}") from err
-    lo, hi = scene._block()
+    lo, hi = scene.block()
     loads = [ld for p in scene.phases for ld in p.loads] + list(scene.loads)
     spans = [ld.ground_span() for ld in loads if ld.ground_span() is not None]  # the ground pressures
     for j, ex in enumerate(ph.excavate):

@@ -249,6 +249,33 @@ class Phase:
             check_choice(f"Phase({self.name!r}).drainage[{key!r}]", value, DRAINAGE)
 
 
+def load_phases(loads, phases) -> list[Phase]:
+    """The phases after the geostatic one, as a Scene and a Site solve them and the limit problem scales and
+    holds them: ``loads`` (if any) as a first :class:`Phase` named "loads", then ``phases`` in order. The one
+    home of that list (``Scene.load_phases``, ``Site.load_phases``)."""
+    return ([Phase("loads", tuple(loads))] if loads else []) + list(phases)
+
+
+def load_history(phases: list, records: list[dict], n_rows: int, total) -> np.ndarray:
+    """(n_rows,) a load quantity at every row of a phased solve, e.g. the column force [N/m]: ``total(loads)``
+    of each phase's loads, every earlier phase's at its current factor, the running phase's ramped from the
+    value before it by its own load factor (zero in the geostatic phase). ``phases``: the input's
+    :func:`load_phases`; ``records``: the solve's phase records (``first``, ``last``, ``result``; the
+    geostatic phase first)."""
+    out = np.zeros(n_rows)
+    factors, own, before = {}, {}, 0.0
+    for ph, record in zip(phases, records[1:]):
+        own[ph.name] = total(ph.loads)
+        factors[ph.name] = 1.0
+        factors.update(ph.factors)
+        after = sum(factors[name] * own[name] for name in own)
+        rows = np.arange(record["first"], record["last"] + 1)
+        phase_lam = np.asarray(record["result"].load_factor[1:], np.float64)
+        out[rows] = before + phase_lam * (after - before)
+        before = after
+    return out
+
+
 @dataclass(frozen=True)
 class MeshSize:
     """Element size ``h_fine`` [m] under the foundation, ``h_coarse`` [m] far from it, ``growth`` [-] ratio of

@@ -91,7 +91,16 @@ from .checks import (
     _warn_implausible_units,
 )
 from .loads import LOAD_TYPES
-from .parts import CONTACT_SEGMENT_TYPES, Contact, Foundation, MeshSize, Phase, RigidFooting, _check_list
+from .parts import (
+    CONTACT_SEGMENT_TYPES,
+    Contact,
+    Foundation,
+    MeshSize,
+    Phase,
+    RigidFooting,
+    _check_list,
+    load_phases,
+)
 from .scene_parts import SceneParts
 
 
@@ -186,7 +195,7 @@ class Scene(SceneParts):
             )
         if self.symmetric:
             _check_symmetric(self)
-        a, b = self._footprint()
+        a, b = self.footprint()
         if self.mesh.h_fine > b - a:
             raise ValueError(
                 f"MeshSize.h_fine={self.mesh.h_fine!r} must be <= the foundation width x1 - x0 = "
@@ -223,16 +232,16 @@ class Scene(SceneParts):
         _check_phases(self)
         _warn_implausible_units(self)
         f = self.foundation
-        mesh_layers = self._mesh_layers()
+        mesh_layers = self.mesh_layers()
         mesh = soil_block(
             0.5 * self.width if self.symmetric else self.width,
             self.depth,
             [t for t, _, _ in mesh_layers],
-            self._footprint(),
+            self.footprint(),
             self.mesh.h_fine,
             self.mesh.h_coarse,
             self.mesh.growth,
-            x_left=self._block()[0],
+            x_left=self.block()[0],
             breaks=self._breaks(),
             embedment=self.embedment,
             edges=sorted({v for ph in self.phases for ex in ph.excavate for v in (ex.x0, ex.x1)}),
@@ -257,7 +266,7 @@ class Scene(SceneParts):
             k_water=k_water if k_water.any() else None,
         )
         if weights.any() or self.surcharge:
-            soil.initial_stress = self._geostatic(soil.integration_points()[..., 1])
+            soil.initial_stress = self.geostatic(soil.integration_points()[..., 1])
         model.add_group(soil)
         fix_block(model, mesh, soil_ids)
         built = BuiltScene(self, model, mesh, soil)
@@ -293,10 +302,10 @@ class Scene(SceneParts):
         self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
 
-    def load_phases(self) -> list:
+    def load_phases(self) -> list[Phase]:
         """The phases after the geostatic one: ``loads`` as a first Phase "loads" (if any), then ``phases``
         (what the limit problem scales and holds)."""
-        return ([Phase("loads", tuple(self.loads))] if self.loads else []) + list(self.phases)
+        return load_phases(self.loads, self.phases)
 
     def contact_laws(self) -> list:
         """The distinct Contact laws under the plate strip: the one ``contact``, or its segments' laws in
@@ -328,12 +337,13 @@ class Scene(SceneParts):
                 "analysis; give the horizontal force as ColumnLoad.H, or read the push-over's capacity()"
             )
 
-    def _block(self) -> tuple[float, float]:
+    # ---- the block, as the capacity bridge reads it (ssi.capacity.LimitInput) --------------------------
+    def block(self) -> tuple[float, float]:
         """(x_left, x_right) [m] of the modelled block: the whole width centred on x = 0, or its half x >= 0
         of a symmetric scene."""
         return (0.0 if self.symmetric else -0.5 * self.width), 0.5 * self.width
 
-    def _footprint(self) -> tuple[float, float]:
+    def footprint(self) -> tuple[float, float]:
         """(x0, x1) [m] of the foundation in the modelled block (of a symmetric scene: its half x >= 0);
         without a foundation the middle half of the ground, where the mesh is finest."""
         f = self.foundation
@@ -349,7 +359,7 @@ class Scene(SceneParts):
         f = self.foundation
         for load in self._all_loads():
             out += load.mesh_lines()
-        lo, hi = self._block()
+        lo, hi = self.block()
         bad = [x for x in out if not (lo <= x <= hi)]
         if bad:
             half = " (the modelled half of a symmetric scene)" if self.symmetric else ""
@@ -358,10 +368,11 @@ class Scene(SceneParts):
             out += [v for seg in _segments(self) for v in (seg.x0, seg.x1)]
         return out
 
-    def _mesh_layers(self):
-        """[(thickness, layer, body-force unit weight)] with the layer that holds the water table split there:
-        gamma above the table, the buoyant gamma_sat - gamma_w below it (the soil state is effective
-        stress)."""
+    def mesh_layers(self) -> list[tuple[float, SoilLayer, float]]:
+        """The block's horizontal bands from the ground down: [(thickness [m], layer, body-force unit weight
+        [N/m^3])], each layer split at the water table and at the top and bottom of every excavation; the
+        unit weight is gamma above the water table and the buoyant gamma_sat - gamma_w below it (the soil
+        state is effective stress). The thicknesses tile ``depth``."""
         d_w = math.inf if self.water_table is None else float(self.water_table)
         if self.water_table is not None and not np.isfinite(d_w):
             raise ValueError(f"water_table must be a finite depth below the ground [m] or None, got {d_w}")
@@ -378,11 +389,15 @@ class Scene(SceneParts):
             top = bottom
         return out
 
-    def _geostatic(self, z):
-        """Effective geostatic stress (n, ..., 4) at the points z [m] (see ``geostatic_stress``)."""
+    def geostatic(self, z: np.ndarray) -> np.ndarray:
+        """Effective geostatic stress [Pa] (tension positive), shape ``z.shape + (4,)`` in the order
+        [sxx, szz, txz, syy], at the elevations ``z`` [m] (z = 0 the ground, negative below): the weight of
+        the layers above (buoyant below the water table) plus the ``surcharge``, the horizontal components
+        K0 times the vertical (:func:`ssi.materials.soil_laws.geostatic_stress`)."""
         return geostatic_stress(
             z, self.layers, self.surcharge, water_table=self.water_table, gamma_w=self.gamma_w
         )
 
-    def _has_geostatic_stress(self):
+    def has_geostatic_stress(self) -> bool:
+        """True if the block starts from a geostatic stress: a ``surcharge`` or a layer with weight."""
         return bool(self.surcharge) or any(lay.unit_weight or lay.unit_weight_sat for lay in self.layers)

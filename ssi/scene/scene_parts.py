@@ -29,9 +29,9 @@ class SceneParts:
         the walls of an embedded strip's trench."""
         mesh, model = built.mesh, built.model
         f_vec = np.zeros(model.n_dof)
-        lo, hi = self._block()
+        lo, hi = self.block()
         if self.surcharge:
-            a, b = self._footprint()
+            a, b = self.footprint()
             ranges = [(lo, hi)] if self.foundation is None else [(lo, a), (b, hi)]
             for a, b in ranges:
                 if b - a > 1e-12:
@@ -57,7 +57,7 @@ class SceneParts:
             za = z[i : i + 3]
             for s, w in zip(xi, wt):
                 n = lagrange3(s)[0]
-                sxx = self._geostatic(np.array([n @ za]))[0, 0]
+                sxx = self.geostatic(np.array([n @ za]))[0, 0]
                 f[i : i + 3] += n * sxx * normal * w * 0.5 * (za[2] - za[0])
         return nodes, f
 
@@ -79,7 +79,7 @@ class SceneParts:
         params = np.array([_segment_at(segments, x).contact.params() for x in x_mid])
         # the strip starts carrying the geostatic vertical stress of its base level (surcharge, overburden):
         # contact traction and an equal dead load on the strip, so the initial state is in equilibrium
-        p0 = -float(self._geostatic(np.array([z_base]))[0, 1]) if self._has_geostatic_stress() else 0.0
+        p0 = -float(self.geostatic(np.array([z_base]))[0, 1]) if self.has_geostatic_stress() else 0.0
         iface = add_interface(
             model,
             conn,
@@ -122,14 +122,14 @@ class SceneParts:
                 model, body, conn, self.side_contact.params(), rule=self.side_contact.rule,
                 name=f"side_interface_{'left' if down else 'right'}",
             )  # fmt: skip
-            if self._has_geostatic_stress():
+            if self.has_geostatic_stress():
                 # sig_n of each point: the wall's sig_xx0, taken just inside its element (a point on a layer
                 # boundary then reads its own element's layer)
                 pts = group.ip_coords()[..., 1]
                 centre = group.coords[:, 4:5, 1]
                 z = pts + 1e-9 * (centre - pts)
                 t0 = np.zeros(pts.shape + (2,))
-                t0[..., 1] = self._geostatic(z)[..., 0]
+                t0[..., 1] = self.geostatic(z)[..., 0]
                 group.initial_traction = t0
                 z0 = np.zeros(group.edofs.shape)
                 scatter_vector(
@@ -143,7 +143,7 @@ class SceneParts:
     def _add_rigid_footing(self, built, soil_ids):
         """The soil nodes under a :class:`RigidFooting` are its base: held at rest (w = 0; rough: u = 0 too)
         until a Settlement prescribes their w (:meth:`BuiltScene.load_effect`)."""
-        nodes = soil_ids[built.mesh.nodes_between(*self._footprint())]
+        nodes = soil_ids[built.mesh.nodes_between(*self.footprint())]
         if self.foundation.rough:
             built.model.fix(nodes, "u")
         built.model.fix(nodes, "w")

@@ -22,8 +22,9 @@ elevations at its x, from the top down; between boreholes the boundaries are int
 the outermost ones they are level) or by ``boundaries`` (one polyline per boundary), or both mixed (a None
 -- in a file an empty ``[]`` -- in ``boundaries`` takes that boundary from the boreholes, which list only
 those). A :class:`Lens` is a closed region of another soil (an x-monotone outline: its lower and upper sides
-are cut lines of the columns it spans, its cells region ``len(layers) + j``; the K0 state, the structured
-mesh and the limit analysis are refused with one). Equal elevations make a layer pinch out; a boundary
+are cut lines of the columns it spans, its cells region ``len(layers) + j``; the K0 state and the structured
+mesh are refused with one; in the limit analysis its triangles, conforming to the outline, take its
+strength and weight). Equal elevations make a layer pinch out; a boundary
 above the ground is cut by it (the layer is eroded there). A layer's
 ``SoilLayer.thickness`` is not used by a site (the boundaries decide), except on the structured path, where it
 is set from the boundaries.
@@ -92,7 +93,7 @@ from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
 from .loads import LOAD_TYPES, Push
-from .parts import MeshSize
+from .parts import MeshSize, Phase, load_phases
 from .site_built import BuiltSite
 from .site_checks import TOL, SiteChecks, _polyline
 from .site_mesh import SiteMesh
@@ -198,6 +199,11 @@ class Site(SiteChecks, SiteMesh):
         """The soil of each region of the geometry: ``layers``, then each lens's layer (region = index)."""
         return list(self.layers) + [lens.layer for lens in self.lenses]
 
+    def load_phases(self) -> list[Phase]:
+        """The phases after the geostatic one: ``loads`` as a first Phase "loads" (if any), then ``phases``
+        (what :meth:`BuiltSite.solve` runs in turn)."""
+        return load_phases(self.loads, self.phases)
+
     def all_loads(self) -> list:
         """``loads`` and every phase's loads, in that order (what the mesh and the checks must serve)."""
         return list(self.loads) + [ld for ph in self.phases for ld in ph.loads]
@@ -283,7 +289,8 @@ class Site(SiteChecks, SiteMesh):
         :mod:`ssi.capacity`; ``options`` of :func:`ssi.capacity.limit_analysis`). A
         :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
         stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
-        (:mod:`ssi.capacity`). A site has no phases: ``phase`` is refused by name."""
+        (:mod:`ssi.capacity`). A :class:`Lens` is a region of its own soil there too (its c, phi, weight).
+        A site has no phases: ``phase`` is refused by name."""
         if options.get("phase") is not None and not self.phases:
             raise ValueError(
                 f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
@@ -295,12 +302,6 @@ class Site(SiteChecks, SiteMesh):
                 "a site without phases"
             )
         options.pop("phase", None)
-        if self.lenses:
-            raise ValueError(
-                f"Site.limit_analysis: Site.lenses ({len(self.lenses)}): a lens's soil is not built in the "
-                "limit analysis (it would take the layer around it); solve the site, or give the lens as a "
-                "layer between boundaries"
-            )
         pushes = [ld for ld in self.loads if ld.drives == "horizontal"]
         if pushes:
             raise ValueError(

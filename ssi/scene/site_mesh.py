@@ -116,7 +116,10 @@ class SiteMesh:
                     mid = (0.5 * (xa + xb), 0.25 * float(lo.sum() + hi.sum()))
                     lens = self._lens_of(*mid) if self.lenses else None
                     regions.append(k if lens is None else n + lens)  # a lens's soil: region n + its index
-        if self._steps:  # a step's face: the cells beside it get their neighbours' vertices (conforming)
+        # a step's face, a lens's end: the cells beside it get their neighbours' vertices (conforming; else
+        # the column beside a lens's tip has a hanging vertex there, which a triangle mesher takes as a
+        # boundary running through the soil)
+        if self._steps or self.lenses:
             polys, regions = conforming_cells(polys, regions, TOL * max(1.0, self.width))
         return from_cells(polys, regions, tol=TOL)
 

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from .foundation_result import FoundationResult, NotInThisScene
+from .parts import load_history
 
 if TYPE_CHECKING:  # for annotations only: the built site imports this module
     from .site_built import BuiltSite
@@ -130,6 +131,52 @@ class SiteResult:
     def limit_load_factor(self) -> float | None:
         """Load factor of the detected collapse (fraction of the site's loads), None if completed."""
         return self.result.limit_load_factor
+
+    def column_load(self, i: int) -> np.ndarray:
+        """(n_rows,) column force [N/m] standing on strip ``i`` at every row (the sum of the ColumnLoad N on
+        it): the loads times the load factor of a single-phase solve; of a phased solve every phase's columns
+        at their factors, the running phase's ramped by its load factor (:func:`ssi.scene.parts.load_history`,
+        zero in the geostatic phase)."""
+        x0, x1 = self.built.site.strips[i].ends
+
+        def on_strip(loads):
+            return float(sum(n for ld in loads for x, n in ld.columns() if x0 - 1e-9 <= x <= x1 + 1e-9))
+
+        lam = np.asarray(self.load_factor, np.float64)
+        if not self.phases:
+            return lam * on_strip(self.built.site.loads)
+        return load_history(self.built.site.load_phases(), self.phases, len(lam), on_strip)
+
+    def phase_table(self) -> list[dict]:
+        """Per phase (a single-phase solve: one, named "loading"; the geostatic phase left out), its end
+        state, SI units: ``name``, ``first`` / ``last`` rows, ``end_load_factor`` [-] reached in it,
+        ``max_settlement`` [m] the largest of its foundations' settlements, and ``foundations``, one row per
+        strip: ``index``, a plate strip's ``mean_settlement_m``, ``max_settlement_m`` [m] (positive down),
+        ``tilt_rad`` and the ``column_N_N_per_m`` standing on it; a RigidStrip's ``settlement_m``."""
+        if self.phases:
+            spans = [(r["name"], r["first"], r["last"], r["result"].load_factor[-1]) for r in self.phases[1:]]
+        else:
+            spans = [("loading", 0, len(self.load_factor) - 1, self.load_factor[-1])]
+        strips = self.built.strips
+        columns = {i: self.column_load(i) for i, st in enumerate(strips) if not st.get("rigid")}
+        table = []
+        for name, first, last, lam in spans:
+            rows = []
+            for i, st in enumerate(strips):
+                if st.get("rigid"):
+                    rows.append({"index": i, "settlement_m": float(self.rigid_pressure(i)[0][last])})
+                    continue
+                d = self.strip_summary(i, last)
+                rows.append({
+                    "index": i, "mean_settlement_m": d["mean"], "max_settlement_m": d["max"],
+                    "tilt_rad": d["tilt"], "column_N_N_per_m": float(columns[i][last]),
+                })  # fmt: skip
+            settle = [r.get("max_settlement_m", r.get("settlement_m")) for r in rows]
+            table.append({
+                "name": name, "first": first, "last": last, "end_load_factor": float(lam),
+                "max_settlement": max(settle) if settle else None, "foundations": rows,
+            })  # fmt: skip
+        return table
 
     def foundation_result(self, i: int) -> FoundationResult:
         """The view of plate strip ``i`` (the one a scene's strip has): settlement, contact, strip forces, RC

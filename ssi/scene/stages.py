@@ -107,17 +107,45 @@ def _hold(model, dofs, start, increment):
     model.hold_dofs(dofs, start, increment)
 
 
-def _phase_targets(effects, factors, held_from, n):
-    """A phase's end state: the force of every phase's loads so far at its factor, and the prescribed DOFs
-    with their targets (each phase's held motion, from where that phase began, at its factor). One place for
-    a scene's and a site's phases, so the two cannot drift apart."""
-    f_end = sum((factors[k] * effects[k][0] for k in effects), np.zeros(n))
-    target = {}
-    for k, start in held_from.items():
-        for d, u0 in start.items():
-            target[d] = target.get(d, u0) + factors[k] * effects[k][1][d]
-    dofs = np.array(sorted(target), np.int64)
-    return f_end, dofs, np.array([target[d] for d in dofs])
+class PhaseLoads:
+    """The loads of a phased solve as it goes, for a scene's phases and a site's alike (one place, so the two
+    cannot drift apart): each phase's load effect (its force vector [N/m] and its held motions {dof: [m]}),
+    the factor of every phase so far, and where each phase's held motions started. :meth:`begin` opens a
+    phase and gives its end state, :meth:`end` closes it."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n  # number of DOFs of the model
+        self.effects: dict = {}  # phase name -> (force (n,) [N/m], {dof: held increment [m]})
+        self.factors: dict = {}  # phase name -> its loads' factor now
+        self.held_from: dict = {}  # phase name -> {dof: displacement [m] at that phase's first state}
+        self.f_prev = np.zeros(n)  # the force of all loads at the end of the phase before [N/m]
+
+    def begin(self, phase, force: np.ndarray, held: dict, u: np.ndarray):
+        """Open ``phase`` (a :class:`~ssi.scene.parts.Phase`) whose loads make ``force`` and ``held`` from
+        the state ``u`` (n,) [m]: its loads at factor 1, earlier phases' at its ``factors``. Returns (f_end
+        (n,) [N/m] every phase's loads at their factors, dofs (k,) the prescribed DOFs, goal (k,) [m] their
+        targets at the phase's end)."""
+        self.effects[phase.name] = (force, held)
+        self.factors[phase.name] = 1.0
+        self.factors.update(phase.factors)
+        for d in held:
+            self.held_from.setdefault(phase.name, {})[d] = float(u[d])
+        f_end = sum((self.factors[k] * self.effects[k][0] for k in self.effects), np.zeros(self.n))
+        target = {}
+        for k, start in self.held_from.items():
+            for d, u0 in start.items():
+                target[d] = target.get(d, u0) + self.factors[k] * self.effects[k][1][d]
+        dofs = np.array(sorted(target), np.int64)
+        return f_end, dofs, np.array([target[d] for d in dofs])
+
+    def end(self, model, dofs, goal, f_end, records, name, res) -> bool:
+        """Close phase ``name`` solved to ``res``: its prescribed DOFs held at their ``goal``, its end force
+        the next phase's start, its record appended to ``records``. Returns True if the analysis ends here
+        (the phase reached a limit load)."""
+        _hold(model, dofs, goal, np.zeros(len(dofs)))
+        self.f_prev = f_end
+        records.append(_phase_record(name, records, res))
+        return bool(res.collapsed)
 
 
 def _held(parts):
@@ -138,29 +166,25 @@ def solve_site_phases(built, n_steps, settings):
     the phase's first state. The weights (soil, strips' ``self_weight``) are dead loads in every phase, as
     in a single-phase site. A phase that reaches a limit load ends the analysis. Returns a SiteResult whose
     ``phases`` are the records (:func:`join_phases`)."""
-    from .parts import Phase
     from .site_view import SiteResult
 
     site, model = built.site, built.model
     n = model.n_dof
-    phases = ([Phase("loads", tuple(site.loads))] if site.loads else []) + list(site.phases)
     f_dead = model.load_vectors()[1]
     saved = model.constraint_state()
     model.fix_prescribed()  # the phases set every prescribed motion themselves
     try:
         res = _run_phase(model, [1.0], settings, loads=(np.zeros(n), f_dead))
         records = [{"name": "geostatic", "first": 0, "last": 1, "result": res}]
-        effects, factors, held_from, f_prev = {}, {}, {}, np.zeros(n)
-        for ph in phases:
+        book = PhaseLoads(n)
+        for ph in site.load_phases():
             parts = [ld.effect(built) for ld in ph.loads]
-            held = _held(parts)
-            effects[ph.name] = (sum((p[0] for p in parts), np.zeros(n)), held)
-            factors[ph.name] = 1.0
-            factors.update(ph.factors)
-            held_from[ph.name] = {d: float(res.u[-1][d]) for d in held}
-            f_end, dofs, goal = _phase_targets(effects, factors, held_from, n)
+            f_end, dofs, goal = book.begin(
+                ph, sum((p[0] for p in parts), np.zeros(n)), _held(parts), res.u[-1]
+            )
             now = res.u[-1][dofs]
             _hold(model, dofs, now, goal - now)
+            f_prev = book.f_prev
             try:
                 res = _run_phase(
                     model, _load_levels(ph.n_steps or n_steps), settings, start=res,
@@ -168,10 +192,7 @@ def solve_site_phases(built, n_steps, settings):
                 )  # fmt: skip
             except NonConvergence as err:
                 raise _phase_failure(built, err, ph.name, records, view=SiteResult) from err
-            _hold(model, dofs, goal, np.zeros(len(dofs)))
-            f_prev = f_end
-            records.append(_phase_record(ph.name, records, res))
-            if res.collapsed:
+            if book.end(model, dofs, goal, f_end, records, ph.name, res):
                 break
     finally:
         model.restore_constraints(saved)

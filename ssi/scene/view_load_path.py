@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .parts import load_history
+
 # a push-over's path counts as on its plateau when its last increment's stiffness dP/ds is below this share
 # of its first increment's: a formed mechanism has (nearly) zero stiffness. 2 % is a choice, not a measured
 # constant; capacity() says which criterion it applied, and the tests check a push that reaches its plateau
@@ -51,18 +53,7 @@ class LoadPathView:
 
         if not self.phases:
             return lam * total(self.built.scene.loads)
-        out = np.zeros(len(lam))
-        factors, own, before = {}, {}, 0.0
-        for ph, record in zip(self.built._phase_list(), self.phases[1:]):
-            own[ph.name] = total(ph.loads)
-            factors[ph.name] = 1.0
-            factors.update(ph.factors)
-            after = sum(factors[name] * own[name] for name in own)
-            rows = np.arange(record["first"], record["last"] + 1)
-            phase_lam = np.asarray(record["result"].load_factor[1:], np.float64)
-            out[rows] = before + phase_lam * (after - before)
-            before = after
-        return out
+        return load_history(self.built.scene.load_phases(), self.phases, len(lam), total)
 
     def foundation_load(self) -> np.ndarray:
         """(n_steps + 1,) vertical load [N/m] the foundation carries at every row (downwards positive, per
