@@ -214,3 +214,13 @@ def test_ssi_run_on_a_phased_site_prints_every_phase(tmp_path, capsys):
     loaded, unloaded = (r["foundations"][0]["mean_settlement_m"] for r in s["phases"])
     assert 0.0 <= unloaded < loaded  # unloading recovers the elastic part (the yielded edges keep theirs)
     assert s["foundations"][0]["applied_N_N_per_m"] == 0.0  # the run ends unloaded
+    # the HTML report carries the same per-phase rows as the JSON (mm and kN/m, as printed)
+    report = (tmp_path / "phased_report.html").read_text()
+    assert "<h2>Per phase</h2>" in report
+    for row in s["phases"]:
+        f = row["foundations"][0]
+        cells = (
+            f"<td>{row['name']}</td><td>{row['first']}–{row['last']}</td><td>0</td>"
+            f'<td class="num">{1e3 * f["mean_settlement_m"]:.3f}</td>'
+        )
+        assert cells in report and f'<td class="num">{f["column_N_N_per_m"] / 1e3:.2f}</td>' in report

@@ -324,8 +324,9 @@ def site_status_line(s: dict) -> str:
     """The status as a sentence: the solver's, with the load factor reached and a SUSPECT limit named."""
     if s["status"] == "limit load reached":
         text = (
-            f"limit load reached at load factor {s['limit_load_factor']:.4g} of the site's loads (the path "
-            "up to the limit is the answer)"
+            f"limit load reached at load factor {s['limit_load_factor']:.4g} of "
+            + (f"phase '{s['phase']}' (phase time)" if s.get("phase") else "the site's loads")
+            + " (the path up to the limit is the answer)"
         )
         if s.get("limit_suspect"):
             text += f"; SUSPECT: {s['limit_suspect']}"
@@ -386,6 +387,7 @@ def site_report_html(
             + "</tr>"
         )
     parts.append("</table></div>")
+    parts += _site_phase_rows(s)
     if s["differential_settlement"]:
         parts.append("<h2>Differential settlement</h2>")
         parts.append("<table><tr><th>strips</th><th>mean settlement difference [mm]</th></tr>")
@@ -407,6 +409,35 @@ def site_report_html(
         "Written by ssi.</small></p></body></html>"
     )
     return "\n".join(parts) + "\n"
+
+
+def _site_phase_rows(s: dict) -> list[str]:
+    """A phased site's table: one row per phase and foundation, its end state (the summary's ``phases``)."""
+    table = s.get("phases") or []
+    if len(table) < 2:
+        return []
+    esc = html.escape
+    out = [
+        "<h2>Per phase</h2>",
+        '<div class="scroll"><table><tr><th>phase</th><th>steps</th><th>#</th><th>mean settlement [mm]</th>'
+        "<th>max settlement [mm]</th><th>tilt [mm/m]</th><th>column load [kN/m]</th></tr>",
+    ]
+    for row in table:
+        for f in row["foundations"]:
+            mean = f.get("mean_settlement_m", f.get("settlement_m"))
+            cells = [
+                _fmt(mean, 1e3, "{:.3f}"),
+                _fmt(f.get("max_settlement_m"), 1e3, "{:.3f}"),
+                _fmt(f.get("tilt_rad"), 1e3, "{:.3f}"),
+                _fmt(f.get("column_N_N_per_m"), 1e-3, "{:.2f}"),
+            ]
+            out.append(
+                f"<tr><td>{esc(row['name'])}</td><td>{row['first']}–{row['last']}</td><td>{f['index']}</td>"
+                + "".join(f'<td class="num">{c}</td>' for c in cells)
+                + "</tr>"
+            )
+    out.append("</table></div>")
+    return out
 
 
 def _figures(figures, base) -> list[str]:
