@@ -29,7 +29,7 @@ import numpy as np
 from ..core.validate import check_int, check_optional_real, check_real
 from ..limit import Interface, Material, adaptive, bisect, triangulate
 from ..limit.analysis import AdaptiveResult, SafetyFactor, relative_gap, strength_reduction
-from ..limit.mesh import TriMesh
+from ..limit.mesh import TriMesh, fans_at
 from .limit_problem import LimitProblem, limit_problem
 
 __all__ = ["CapacityResult", "SafetyFactorResult", "initial_mesh", "limit_analysis", "safety_factor"]
@@ -50,7 +50,7 @@ def initial_mesh(problem: LimitProblem, h: float | None, h_min: float | None) ->
         d = np.min(np.hypot(p[:, None, 0] - sing[None, :, 0], p[:, None, 1] - sing[None, :, 1]), axis=1)
         return h_min + 0.3 * d
 
-    return triangulate(problem.site, h, size=graded)
+    return triangulate(problem.site, h, size=graded, fans=fans_at(problem.site, sing, 2.0 * h_min))
 
 
 @dataclass
@@ -291,7 +291,7 @@ def limit_analysis(
     def report(label):
         return None if progress is None else (lambda row: progress(label, row))
 
-    kw = dict(gap=gap, max_elements=max_elements, max_steps=max_steps)
+    kw = dict(gap=gap, max_elements=max_elements, max_steps=max_steps, lazy=True)
     assoc_site = problem.site.map_materials(lambda m: _associated(m))
     assoc_site = assoc_site.map_interfaces(_associated_interface)
     res = adaptive(assoc_site, mesh, progress=report("associated"), **kw)
