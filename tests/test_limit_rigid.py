@@ -132,3 +132,32 @@ def test_lazy_refinement_keeps_the_bracket_certified():
     res = adaptive(site, mesh, gap=0.02, lazy=True)
     assert res.lb <= PRANDTL_HALF * (1 + REL) <= res.ub * (1 + REL)
     assert res.converged
+
+
+def test_a_free_rigid_inclusion_moves_as_a_rigid_body():
+    """A rigid block inside the Tresca soil beside the strip, touching no boundary: the upper bound lets it
+    translate and rotate (three rigid-body unknowns) but not deform; against the same block of soil on the
+    same mesh both bounds can only rise (the lower bound's admissible set grows, the upper bound's
+    kinematic set shrinks)."""
+    pts = np.array(
+        [(0, -3), (6, -3), (6, 0), (1, 0), (0, 0), (1.5, -0.8), (2.5, -0.8), (2.5, -0.4), (1.5, -0.4)], float
+    )
+    segs = (
+        (0, 1, Boundary("fixed")), (1, 2, Boundary("symmetry")), (2, 3, Boundary("free")),
+        (3, 4, Boundary("footing", footing=0)), (4, 0, Boundary("symmetry")),
+        (5, 6, None), (6, 7, None), (7, 8, None), (8, 5, None),
+    )  # fmt: skip
+    footing = (Footing(Interface("rough"), load_ref=(0.0, -1.0), moves=("z",)),)
+    regions = ((4.0, -2.0, 0), (2.0, -0.6, 1))
+    block = Site(pts, segs, regions, (Material(C, 0.0), Material.rigid_body()), footing)
+    soil = Site(pts, segs, regions, (Material(C, 0.0), Material(C, 0.0)), footing)
+    mesh = triangulate(block, 0.5, size=lambda p: 0.1 + 0.3 * np.hypot(p[:, 0] - 1.0, p[:, 1]))
+    br_b, br_s = bracket(block, mesh), bracket(soil, mesh)
+    assert br_b.lower.certified and br_b.upper.certified
+    assert br_b.lb >= br_s.lb * (1 - SOLVER) and br_b.ub >= br_s.ub * (1 - SOLVER)
+    strain = np.abs(br_b.upper.strain)
+    inside = mesh.material == 1
+    assert strain[inside].max() <= 1e-9 * strain.max()  # a rigid motion: no strain rate
+    v = br_b.upper.velocity[: len(mesh.xy)]
+    moving = np.unique(mesh.tri[inside])
+    assert np.abs(v[moving]).max() > 1e-3 * np.abs(v).max()  # and it does move with the soil around it
