@@ -303,7 +303,9 @@ def refine_marks(br: Bracket, theta: float = 0.5) -> np.ndarray:
 
 # adaptive(lazy=True): a bound is left unsolved on the next mesh when it gained less than this fraction of the
 # other's gain on the last step (issue 46's two-strip site, Davis run: the upper bound gained 0.012 and 0.009
-# while the lower bound gained 0.041 and 0.061)
+# while the lower bound gained 0.041 and 0.061). Measured on that site to 3 % (loaded machine, CPU time of
+# the whole bracket): 0.25 left one upper bound unsolved, 67.8 s; 0.5 one lower and one upper, 54.1 s, the
+# same meshes within 6 % and both gaps reached
 LAZY_RATIO = 0.5
 
 
