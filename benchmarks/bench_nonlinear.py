@@ -14,7 +14,7 @@
   3 failed steps while two of four copies stopped in NonConvergence (lambda = 0.9407 and 0.8678, 18
   and 11 failed steps), so "0 failed steps" holds for the solver only if it holds for every copy.
 * ``ch11_h0125_other_rule_s`` and ``ch11_h0125_other_rule_roundoff``: the first and the round-off keys with
-  the corrector's other tangent rule (``path.SECANT_RULE``: "never", main's consistent tangent, when the
+  the corrector's other tangent rule (``PathPolicy.secant_rule``: "never", main's consistent tangent, when the
   default is "poor" -- a refactorisation asked for by a poor contraction factorises the SECANT_SOFTENING
   tangent, the concrete's secant at its softening points; issue 31, secant8 -- and "poor" otherwise), in the
   same run, with the ratio of the two times.
@@ -49,6 +49,7 @@ import os
 import re
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import ClassVar
 
@@ -236,16 +237,17 @@ def report(key, solve, n_iterations):
 
 
 class SecantRule:
-    """``path.SECANT_RULE`` set to ``rule`` within the block (restored on exit)."""
+    """The path's policy with ``secant_rule`` set to ``rule`` within the block (``path.POLICY``, restored on
+    exit)."""
 
     def __init__(self, rule):
         self.rule = rule
 
     def __enter__(self):
-        self.saved, path.SECANT_RULE = path.SECANT_RULE, self.rule
+        self.saved, path.POLICY = path.POLICY, replace(path.POLICY, secant_rule=self.rule)
 
     def __exit__(self, *exc):
-        path.SECANT_RULE = self.saved
+        path.POLICY = self.saved
 
 
 def roundoff(scene_of, key="ch11_h0125_controlled_roundoff"):
@@ -298,13 +300,13 @@ def main():
     )
     print(f"ch11_h0125_controlled_ratio: {t_ctrl / t_default:.3f}   (controlled path / default, same run)")
     roundoff(scene_of)
-    other = "never" if path.SECANT_RULE != "never" else "poor"
+    other = "never" if path.POLICY.secant_rule != "never" else "poor"
     with SecantRule(other):
         t_other = report("ch11_h0125_other_rule_s", ch11, lambda out: int(sum(out.solver_result.iterations)))
         roundoff(scene_of, "ch11_h0125_other_rule_roundoff")
     print(
-        f"ch11_h0125_other_rule_ratio: {t_other / t_default:.3f}   (SECANT_RULE {other!r} / the default "
-        f"{path.SECANT_RULE!r}, same run)"
+        f"ch11_h0125_other_rule_ratio: {t_other / t_default:.3f}   (secant_rule {other!r} / the default "
+        f"{path.POLICY.secant_rule!r}, same run)"
     )
 
     def footing(h):

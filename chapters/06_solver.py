@@ -770,7 +770,7 @@ if ordinary:
 # **What the 12 NonConvergence runs were** before issue 45's fallback (where the corrector stalls, the step
 # is found at its load factor by damped dynamics on K0, `ssi.solver.relax`: the stored table now has 5 stops,
 # 21, 22, 61, 66 and 80, all but 66 past 0.9 × their Davis lower bound, and 23, 36, 46, 50, 82 complete;
-# docs/solver/decisions.md). (A growth limit on the line search's root, `path.G_GROWTH`, passes
+# docs/solver/decisions.md). (A growth limit on the line search's root, `PathPolicy.g_growth`, passes
 # random 46, 50 and 82 when applied to every model, but at 10 it lost random 30's limit and stopped chapter
 # 10's ψ = 0 footing, and at 30 it took 46 to a "limit" 0.69 % below 0.97 × its certified Davis floor — a
 # false collapse by this chapter's own check; it now applies only to a cracking strip, where it was measured.)
@@ -793,7 +793,7 @@ if ordinary:
 # before, reaches 0.5431 since the symmetric line search narrows an overshoot (`path._overshoot`). Where a
 # tangent has a mode without stiffness, the `NonConvergence` report names it (`soft_mode`: its groups and
 # DOFs, and whether the load does work on it): random 61 stops on soil-surface nodes that nothing holds (so
-# did 50 before `G_GROWTH`).
+# did 50 before `g_growth`).
 # These are the solver's failures, reported as such: none is read as a collapse.
 
 

@@ -99,6 +99,7 @@ from dataclasses import replace
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ssi.capacity import strip_beam_capacity, strip_beam_interaction
 from ssi.lab import paths, report
 from ssi.lab.examples import chapter11_section
 from ssi.limit import (
@@ -116,7 +117,6 @@ from ssi.limit import (
     strip_site,
     triangulate,
 )
-from ssi.scene.limit_strip import strip_beam_capacity, strip_beam_interaction
 
 FAST = paths.FAST
 # the requested relative gaps (UB-LB)/(UB+LB): the issue's 2 %, 1 % on request and 3 % for N_gamma in full
@@ -491,7 +491,7 @@ print(f"moment capacity of the bonded strip in [{rot['moment, bonded'].lb / (C *
 # hinges at both ends of every element dissipating M_p |rotation| (M_p sagging or hogging); the lower bound
 # bounds the beam's moment — from the base tractions and the columns — at the four Bernstein points of each
 # element's cubic M(x), so |M| ≤ M_p along the whole beam, not only at the nodes. M_p comes from ssi's own
-# section analysis of the RC section (`RCDesign.M_Rd(N = 0)`, `ssi.scene.limit_problem.strip_beam_capacity`;
+# section analysis of the RC section (`RCDesign.M_Rd(N = 0)`, `ssi.capacity.strip_beam_capacity`;
 # a brittle section, below minimum reinforcement, is refused: it forms no hinge).
 #
 # **Why a trench.** On uniformly strong soil a beam mechanism never governs: the soil can take each column's

@@ -76,7 +76,7 @@ import numpy as np
 from ssi.elements.section import homogeneous
 from ssi.lab import paths
 from ssi.lab.bearing_capacity import footing_settings
-from ssi.lab.report import check, record, save_figure
+from ssi.lab.report import check, save_figure
 from ssi.scene import ColumnLoad, Contact, Foundation, MeshSize, Push, Scene, SoilLayer, SurfacePressure
 from ssi.scene.site import Borehole, DepthVarying, RigidStrip, Site, Strip, gibson_settlement
 
@@ -499,6 +499,8 @@ print(f"limit analysis: N_c in [{nc_lb:.3f}, {nc_ub:.3f}] (gap {la_slope.gap:.1%
 # ## 7. Solve time per DOF: gmsh mesh against the structured block
 #
 # The level site of section 1 on both meshes (linear: one factorisation and one solve each), best of three.
+# A wall time on a shared machine is a benchmark, not a reproduced number: `make bench`
+# (benchmarks/bench_site.py) measures this ratio and the meshing time against their goals; shown here only.
 
 
 # %%
@@ -721,10 +723,10 @@ assert all(v > H_HAND for v in site_side.values()), site_side
 assert all(a > b for a, b in zip(site_side.values(), list(site_side.values())[1:])), site_side
 if not FAST:  # extrapolated from three gmsh meshes: the hand value within the issue's 5 % (as the row's)
     assert abs(site_extrap / H_HAND - 1.0) <= 0.05, site_extrap
-record("site_mesh_s", "4-layer borehole site, two strips: gmsh mesh + build [s] (goal 2 s)", mesh_s, 2.0,
-       mesh_s <= 2.0)  # fmt: skip
-record("site_solve_per_dof_vs_structured", "solve time per DOF, gmsh / structured (goal 1.3)", per_dof_ratio,
-       1.3, per_dof_ratio <= 1.3)  # fmt: skip
+# wall times on a shared machine are benchmarks, not reproduced numbers: the keys site_mesh_s (goal 2 s)
+# and site_solve_per_dof_vs_structured (goal 1.3) are measured by benchmarks/bench_site.py; shown here only
+print(f"this run: gmsh mesh + build {mesh_s:.2f} s; solve time per DOF, gmsh / structured "
+      f"{per_dof_ratio:.2f} (make bench measures both against their goals)")  # fmt: skip
 
 # %% [markdown]
 # ## Figure

@@ -7,8 +7,11 @@ The package is layered by role; each subpackage imports only those before it in 
 * ``ssi.materials`` -- constitutive laws as numba point kernels and their parameter builders;
 * ``ssi.elements`` -- the element groups (soil Q8, plate strip with its layered section, interface, spring);
 * ``ssi.solver`` -- ``Settings`` and ``run``: the incremental-iterative solution of a model;
-* ``ssi.scene`` -- a foundation described by its parts (``Scene``), built and solved in stages, and the
-  properties of its answer: the capacity's bracket (``capacity``) and the discretisation error (``estimate``);
+* ``ssi.limit`` -- finite-element limit analysis: certified bounds of a collapse load;
+* ``ssi.capacity`` -- a scene or a site as a limit-analysis problem: its capacity's and its factor of
+  safety's brackets (read through the scene's protocol, never importing ``ssi.scene``);
+* ``ssi.scene`` -- a foundation described by its parts (``Scene``, ``Site``), built and solved in stages,
+  and the discretisation error of its answer (``estimate``);
 * ``ssi.io`` -- result files (HDF5), ParaView export, plots, the command line;
 * ``ssi.studies`` -- parameter sweeps over many scenes;
 * ``ssi.lab`` -- verification and research tools, never imported by the rest of the package.

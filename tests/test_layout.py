@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "ssi"
-ORDER = ("core", "materials", "elements", "solver", "limit", "scene", "io", "studies", "lab")
+ORDER = ("core", "materials", "elements", "solver", "limit", "capacity", "scene", "io", "studies", "lab")
 RANK = {name: i for i, name in enumerate(ORDER)}
 
 
@@ -301,3 +301,41 @@ def test_editing_a_kernel_file_moves_the_numba_cache(package_copy, edited):
     with open(package_copy / "ssi" / edited, "a") as fh:
         fh.write("\n# an edit\n")
     assert _cache_folder(package_copy) != before
+
+
+def load_class_checks(package: Path = PACKAGE) -> list[str]:
+    """Every ``isinstance(x, <a load class>)`` in the product outside the load registry (``scene/loads.py``),
+    as "file:line name": the bridge, the views and the checks ask a load what it does (``drives``,
+    ``columns()``, ``ground_span()``, ``limit_action(frame)``, ``effect(built)``), never its class."""
+    from ssi.scene.loads import LOAD_TYPES
+
+    names = set(LOAD_TYPES) | {"Load"}
+    found = []
+    for p in sorted(package.rglob("*.py")):
+        if p.relative_to(package).as_posix() == "scene/loads.py":
+            continue
+        for node in ast.walk(ast.parse(p.read_text(), filename=str(p))):
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Name)
+                and node.func.id == "isinstance"
+            ):
+                classes = node.args[1:] and ast.walk(node.args[1])
+                hits = sorted({n.id for n in classes or () if isinstance(n, ast.Name) and n.id in names})
+                found += [f"{p.relative_to(package.parent)}:{node.lineno} {name}" for name in hits]
+    return found
+
+
+def test_no_isinstance_on_load_classes_outside_the_registry():
+    assert load_class_checks() == []
+
+
+def test_the_load_class_check_finds_one(tmp_path):
+    copy = tmp_path / "ssi"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    with open(copy / "capacity" / "common.py", "a") as fh:
+        fh.write("\n\ndef _probe(ld):\n    return isinstance(ld, (ColumnLoad, int))\n")
+    found = load_class_checks(copy)
+    assert (
+        len(found) == 1 and found[0].startswith("ssi/capacity/common.py:") and found[0].endswith("ColumnLoad")
+    )

@@ -32,9 +32,9 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from ssi.capacity import strip_beam_interaction
 from ssi.lab.examples import chapter11_section
 from ssi.limit import Beam, Boundary, Footing, Interface, Material, Site, bracket, strip_site, triangulate
-from ssi.scene.limit_strip import strip_beam_interaction
 
 REL = 1e-6
 HALF_L, A_COL, X_S, S_U, N_REF = 2.0, 1.0, 3.0, 20e6, 100e3

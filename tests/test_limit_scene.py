@@ -1,4 +1,4 @@
-"""A whole scene's capacity by limit analysis (ssi.scene.capacity, ``ssi limit``) and the check of an
+"""A whole scene's capacity by limit analysis (ssi.capacity, ``ssi limit``) and the check of an
 incremental limit against its bracket (ssi.limit.check), on small meshes.
 
 Exact references, from closed forms, not from the code under test:
@@ -24,6 +24,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from ssi.capacity import limit_problem
 from ssi.elements.section import homogeneous
 from ssi.io.cli import main
 from ssi.limit import Interface, bracket, check_limit
@@ -42,7 +43,6 @@ from ssi.scene import (
     StripLoad,
     SurfacePressure,
 )
-from ssi.scene.limit_problem import limit_problem
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 REL = 1e-6
@@ -642,8 +642,8 @@ def test_the_lower_bound_meets_both_tractions_at_a_trench_corner():
     one triangle of the mesh with both edges: its certified stress there must carry both tractions,
     sigma_z = -q on the ground and sigma_x = -K0 q on the wall, tau = 0 (K0 = 1: sigma = -q I; the wall's
     row was skipped before, and this test failed). Tolerance 1e-6 q: the projection's equality residual."""
+    from ssi.capacity import initial_mesh
     from ssi.limit import lower_bound
-    from ssi.scene.capacity import initial_mesh
 
     q = 10e3
     back = SoilLayer(D_EMB, E=20e6, nu=0.3, c=0.0, phi_deg=30.0, unit_weight=GAMMA_BACKFILL, K0=1.0)
@@ -689,7 +689,7 @@ def test_a_side_contact_puts_the_trench_walls_on_the_strip():
     smooth (c_i = 0, phi_i = 0, no tension) <= phi_i = 20 deg <= bonded (to the solvers' REL). Measured on
     this coarse mesh (182 triangles): LB 0.478, 0.487, 0.525, 0.527 MN/m, UB 0.961, 0.980, 1.027, 1.088
     (on the default initial mesh, 302 triangles: LB 0.537, 0.539, 0.586, 0.595, UB 0.771 .. 0.845)."""
-    from ssi.scene.capacity import initial_mesh
+    from ssi.capacity import initial_mesh
 
     sides = (
         None,
@@ -723,7 +723,7 @@ def test_a_sites_embedded_strip_stands_in_its_trench():
     (a theorem), and so, measured, is the certified lower bound (the side soil carries: 5.54 c B on the
     default mesh, 5.61 .. 6.11 c B at a 5 % gap); bonded walls raise both bounds on one mesh (theorem).
     A RigidStrip in a trench (Settlement push) is taken too; side_soil='surcharge' has no meaning here."""
-    from ssi.scene.capacity import initial_mesh
+    from ssi.capacity import initial_mesh
     from ssi.scene.site import RigidStrip, Site, Strip
 
     c, n_col = 20e3, 100e3

@@ -5,6 +5,8 @@ unit slip; Prandtl's bearing capacity; the laws' own energy (a tanh spring store
 from the code under test.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -128,9 +130,8 @@ def test_a_stall_read_as_a_limit_is_flagged(monkeypatch):
     import ssi.solver.path as path
     from ssi.lab.bearing_capacity import chapter10_footing
 
-    monkeypatch.setattr(path, "PLATEAU_RISE", 0.05)
-    monkeypatch.setattr(path, "PLATEAU_STEPS", 3)
-    monkeypatch.setattr(path, "PLATEAU_CONTROL", 0.1)
+    loose = replace(path.POLICY, plateau_rise=0.05, plateau_steps=3, plateau_control=0.1)
+    monkeypatch.setattr(path, "POLICY", loose)
     settings = Settings(control="work", backend="superlu", symmetric_tangent=True, first_step=0.05,
                         max_step=0.05)  # fmt: skip
     scene = chapter10_footing(phi_deg=20.0, psi_deg=20.0, h_fine=0.25, settle=0.06)

@@ -1,7 +1,7 @@
 """The controlled path's corrector where a cracking strip puts kinks in the residual (issue 31, crack8 and
-secant8; ``path.G_GROWTH``, ``path.SECANT_RULE``): where no backtracking step on an unsymmetric tangent's
-factor lowers |r|, Matthies & Strang's root of G is taken only if it raises |r| less than G_GROWTH times --
-in a model with a cracking strip only (``increment.cracking_strip``).
+secant8; ``PathPolicy.g_growth``, ``PathPolicy.secant_rule``): where no backtracking step on an
+unsymmetric tangent's factor lowers |r|, Matthies & Strang's root of G is taken only if it raises |r| less
+than g_growth times -- in a model with a cracking strip only (``increment.cracking_strip``).
 
 Chapter 11's scene at h = 0.125 m, 10 targets: with the rule (and the secant rule "poor") it completes with 0
 failed steps and 53 factorisations; without the rule it took 6 failed steps and 171 factorisations (measured

@@ -6,6 +6,8 @@ Tolerances: the flag changes only which modulus is returned, so stresses, histor
 matrices of points off the softening envelope are compared bit for bit; the secant sig / e is the same
 division the law does, so it is compared to 1e-14 (relative: a few ulps of the division)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -130,10 +132,10 @@ def test_model_gives_the_flag_only_to_groups_that_declare_it():
 
 
 def test_secant_on_poor_contraction_passes_the_fine_strip_without_a_failed_step(monkeypatch):
-    """Chapter 11's scene at h = 0.125 m, 10 targets, with ``path.SECANT_RULE = "poor"``: the run completes
-    without a failed step. Measured on the same commit with the rule "never" (the consistent tangent, as on
-    main c58d17b): 6 failed steps, 56 steps, 98 factorisations; with "poor": 0, 11, 56."""
-    monkeypatch.setattr(path, "SECANT_RULE", "poor")
+    """Chapter 11's scene at h = 0.125 m, 10 targets, with the policy's ``secant_rule = "poor"``: the run
+    completes without a failed step. Measured on the same commit with the rule "never" (the consistent
+    tangent, as on main c58d17b): 6 failed steps, 56 steps, 98 factorisations; with "poor": 0, 11, 56."""
+    monkeypatch.setattr(path, "POLICY", replace(path.POLICY, secant_rule="poor"))
     out = chapter11_foundation(0.125).build().solve(n_steps=10, settings=Settings(control="work"))
     res = out.solver_result
     assert out.status == "completed" and res.load_factor[-1] == 1.0

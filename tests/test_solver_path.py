@@ -16,7 +16,7 @@ from ssi.limit import check_limit, flag_suspect
 from ssi.materials.soil_laws import davis_beta, mohr_coulomb_params
 from ssi.solver import COMPLETED, LIMIT_LOAD, NonConvergence, Settings, run
 from ssi.solver.davis import davis_interface_row, davis_soil_row
-from ssi.solver.path import PLATEAU_RISE
+from ssi.solver.policy import PATH_POLICY
 
 K0, D0 = 1e6, 1e-3  # stiffness [N/m] and peak elongation [m] of the softening spring
 PEAK = K0 * D0 / math.e  # its peak force [N]: F = k0 d exp(-d / d0) is largest at d = d0
@@ -55,7 +55,8 @@ def test_peak_of_a_softening_spring():
     d = res.displacement(nodes[-1], "u")[:, 0]
     k = int(np.argmax(lam))
     assert res.limit_load_factor == lam[k]
-    assert lam[-1] < (1.0 - PLATEAU_RISE) * lam[k]  # the path fell past the peak: that is the evidence
+    # the path fell past the peak: that is the evidence
+    assert lam[-1] < (1.0 - PATH_POLICY.plateau_rise) * lam[k]
     assert d[-1] > D0  # ... on the descending branch, at a larger displacement (work kept rising)
     dd = np.abs(np.diff(d[max(k - 1, 0) : k + 2])).max()
     bound = (0.5 * dd / D0) ** 2 / 2.0 + 1e-9
@@ -100,7 +101,7 @@ def test_tanh_spring_asymptote_is_a_plateau_not_a_failure():
     res = run(model, [5.0], Settings(control="work", force_tol=1e-10))
     assert res.status == LIMIT_LOAD
     # the plateau rule stops within 3 x its tolerance below F_u; above it only by the equilibrium tolerance
-    assert 2.0 * (1.0 - 3 * PLATEAU_RISE) < res.limit_load_factor <= 2.0 * (1.0 + 1e-9)
+    assert 2.0 * (1.0 - 3 * PATH_POLICY.plateau_rise) < res.limit_load_factor <= 2.0 * (1.0 + 1e-9)
 
 
 def test_injected_failure_is_nonconvergence_never_a_limit(monkeypatch):

@@ -142,6 +142,45 @@ class ElementGroup:
         """(n_el, n_ip) quadrature weight times Jacobian of each integration point [m], or None."""
         return None
 
+    # ---- what the solver asks of a group's laws (the defaults: a group the solver knows nothing of) -------
+    def associated_flow(self, tol: float = 0.0) -> bool:
+        """True unless a law of the group flows off the normal of its yield surface by more than ``tol``
+        (|psi - phi| [rad] of a soil row, |tan psi - tan phi| of a contact row); True for a group without a
+        flow rule."""
+        return True
+
+    def symmetric_tangent(self) -> bool:
+        """True if every law of the group has a symmetric consistent tangent; False where not known (a group
+        the solver knows nothing of is not assumed symmetric)."""
+        return False
+
+    def softens(self) -> bool:
+        """True if a law of the group can soften (a plate strip's cracking RC layers): the corrector's rules
+        for a cracking strip then apply."""
+        return False
+
+    def davis_params(self) -> np.ndarray | None:
+        """A new parameter array with Davis' associated, beta-reduced strength (c* = beta c,
+        tan phi* = beta tan phi, psi* = phi*) for the group's Mohr-Coulomb and Coulomb rows, the others
+        copied; ``params`` itself is not touched. None: the group has no such rows."""
+        return None
+
+    def stored_energy(
+        self, u_el: np.ndarray, du_el: np.ndarray, state_old: np.ndarray, state_new: np.ndarray, work: float
+    ) -> float | None:
+        """The elastic energy [J/m] the group stores over the converged increment ``du_el`` from ``state_old``
+        to ``state_new`` (``u_el`` at its end; ``work`` the group's work on it [J/m]); None where the group
+        cannot split its work into stored and dissipated parts."""
+        return None
+
+    def nonassociated_yielding(
+        self, state: np.ndarray, tol: float
+    ) -> list[tuple[int, int, float, float, float]]:
+        """(material row, plastic points in ``state``, nu, phi [rad], psi [rad]) of each Mohr-Coulomb row with
+        phi - psi > ``tol`` that has plastic points (the rows whose rate problem has lost ellipticity); []
+        for a group without such rows."""
+        return []
+
     def assemble_elastic_stiffness(self, smap: np.ndarray, data: np.ndarray) -> np.ndarray:
         """Add K0 into the CSR values ``data`` through this group's scatter map ``smap`` and return ``data``.
         The default scatters :meth:`elastic_stiffness`; a group overrides it to assemble without keeping

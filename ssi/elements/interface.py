@@ -35,7 +35,14 @@ from numba import njit
 from ..core.protocol import CONSISTENT, K0_MATRIX, ElementGroup
 from ..core.quadrature import gauss_legendre, newton_cotes
 from ..core.shapes import lagrange3, lagrange3_into
-from ..materials.interface_law import N_HIST, N_PARAMS, STATE_NAMES, STICK, interface_update
+from ..materials.interface_law import (
+    N_HIST,
+    N_PARAMS,
+    STATE_NAMES,
+    STICK,
+    davis_interface_row,
+    interface_update,
+)
 
 __all__ = ["N_VAR", "V_GN", "V_GT", "V_SIG", "V_STATUS", "V_TAU", "Interface6", "add_interface"]
 
@@ -366,6 +373,31 @@ class Interface6(ElementGroup):
             "params": "[kt, kn, c, tan_phi, tan_psi, sig_t]",
             "params_first": self.params[0].tolist(),
         }
+
+    # ---- what the solver asks (ssi.core.protocol.ElementGroup) -------------------------------------------
+    def associated_flow(self, tol: float = 0.0) -> bool:
+        """True unless a row has |tan psi - tan phi| > ``tol`` (columns 4 and 3 of ``params``)."""
+        return not np.any(np.abs(self.params[:, 4] - self.params[:, 3]) > tol)
+
+    def symmetric_tangent(self) -> bool:
+        """Associated Coulomb contact (tan psi = tan phi exactly) has a symmetric consistent tangent (a point
+        that re-closes within a step excepted: its chained tangent is not, interface_law step 1)."""
+        return self.associated_flow()
+
+    def davis_params(self) -> np.ndarray:
+        """(n_el, N_PARAMS) a new array of Davis' associated rows
+        (:func:`ssi.materials.interface_law.davis_interface_row`)."""
+        return np.ascontiguousarray(np.array([davis_interface_row(p) for p in self.params], np.float64))
+
+    def stored_energy(self, u_el, du_el, state_old, state_new, work) -> float:
+        """sum t_n+1 . K^-1 d_t w |J| with K = diag(kt, kn) of each element [J/m]."""
+        t_new = self.tractions(state_new)
+        dt = t_new - self.tractions(state_old)
+        kt, kn = self.params[:, 0][:, None], self.params[:, 1][:, None]
+        # kt = 0 (allowed: a contact without tangential stiffness) carries no shear traction: no shear term
+        shear = np.divide(t_new[..., 0] * dt[..., 0], kt, out=np.zeros_like(dt[..., 0]), where=kt > 0.0)
+        density = shear + t_new[..., 1] * dt[..., 1] / kn
+        return float(np.sum(density * self.ip_weights()))
 
     def point_codes(self, state) -> np.ndarray:
         """(n_el, n_ip) 0 stick, 1 slip, 2 open (see :meth:`status`)."""

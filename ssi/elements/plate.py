@@ -68,6 +68,7 @@ from ..core.quadrature import gauss_legendre
 from ..core.shapes import lagrange3, lagrange3_into
 from ..materials.layer_laws import (
     CONCRETE,
+    ELASTIC,
     LAYER_HIST_FIELDS,
     N_LAYER_CONSTANTS,
     N_LAYER_HIST,
@@ -662,6 +663,19 @@ class PlateStrip(ElementGroup):
         }
 
     # ---- loads and results --------------------------------------------------------------------------------
+    # ---- what the solver asks (ssi.core.protocol.ElementGroup) -------------------------------------------
+    def softens(self) -> bool:
+        """A layer that is not elastic (RC concrete that cracks, steel): the cracking strip's rules apply."""
+        return bool(np.any(self.section.kind != ELASTIC))
+
+    def symmetric_tangent(self) -> bool:
+        """Elastic layers only: a symmetric tangent."""
+        return not self.softens()
+
+    def stored_energy(self, u_el, du_el, state_old, state_new, work) -> float | None:
+        """Elastic layers only: the whole ``work`` is stored; else None (not split)."""
+        return work if np.all(np.asarray(self.section.kind) == ELASTIC) else None
+
     def distributed_load(self, q, comp="w", elements=None) -> np.ndarray:
         """Equivalent nodal forces (n_el, 9) of a distributed load along the strip (per unit width).
 

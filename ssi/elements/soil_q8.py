@@ -19,8 +19,11 @@ from ..core.quadrature import gauss_2d
 from ..core.shapes import serendipity8
 from ..materials.mc_implicit_scheme import N_MC_WORK_ROWS
 from ..materials.soil_laws import (
+    MOHR_COULOMB,
+    MOHR_COULOMB_EXPLICIT,
     N_SOIL_HIST,
     SOIL_HIST_NAMES,
+    davis_soil_row,
     elastic_matrix,
     law_constants,
     laws_used,
@@ -562,6 +565,70 @@ class SoilQ8(ElementGroup):
     def point_codes(self, state):
         """(n_el, n_ip) 1 where the last stress update returned to the yield surface (plastic), else 0."""
         return (self.history(state, "branch") > 0).astype(int)
+
+    # ---- what the solver asks (ssi.core.protocol.ElementGroup) -------------------------------------------
+    def _mohr_coulomb(self) -> np.ndarray:
+        """(n_mat,) True for the Mohr-Coulomb rows of ``kinds`` (the rows with a friction and a dilatancy
+        angle, columns 3 and 4 of ``params``)."""
+        return np.isin(self.kinds, (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT))
+
+    def associated_flow(self, tol: float = 0.0) -> bool:
+        """True unless a Mohr-Coulomb row has |psi - phi| > ``tol`` [rad] (elastic and von Mises rows are
+        associated)."""
+        mc = self._mohr_coulomb()
+        return not np.any(np.abs(self.params[mc, 4] - self.params[mc, 3]) > tol)
+
+    def symmetric_tangent(self) -> bool:
+        """Associated flow (psi = phi exactly) has a symmetric consistent tangent."""
+        return self.associated_flow()
+
+    def davis_params(self) -> np.ndarray:
+        """(n_mat, n_par) a new array: Davis' associated row of each Mohr-Coulomb row
+        (:func:`ssi.materials.soil_laws.davis_soil_row`), the other rows copied."""
+        rows = [davis_soil_row(p) if m else p.copy() for p, m in zip(self.params, self._mohr_coulomb())]
+        return np.ascontiguousarray(np.array(rows, np.float64))
+
+    def stored_energy(self, u_el, du_el, state_old, state_new, work) -> float:
+        """sum sigma_n+1 : C^-1 d_sigma w |J| (+ the undrained pore water's elastic work) [J/m]."""
+        mat = self.point_materials()
+        e_mod, nu = self.params[mat, 0], self.params[mat, 1]
+        sig = self.stress(state_new)
+        dsig = sig - self.stress(state_old)
+        normal = [0, 1, 3]  # sxx, szz, syy
+        sn, dn = sig[..., normal], dsig[..., normal]
+        dot = np.einsum("eqi,eqi->eq", sn, dn)
+        cross = sn.sum(-1) * dn.sum(-1) - dot  # sum over i != j of s_i ds_j
+        shear = sig[..., 2] * dsig[..., 2]
+        density = (dot - nu * cross + 2.0 * (1.0 + nu) * shear) / e_mod
+        weights = self._point_weights()
+        total = float(np.sum(density * weights))
+        if np.any(self.k_water_of_elements()):  # undrained: the pore water's volumetric spring is elastic
+            dev = np.empty(weights.shape)
+            gp, _ = gauss_2d(self.n_gauss)
+            q8_volumetric_strain(self.coords, np.ascontiguousarray(du_el), gp, dev)
+            total += float(np.sum(-self.excess_pore_pressure(u_el) * dev * weights))
+        return total
+
+    def _point_weights(self) -> np.ndarray:
+        """(n_el, n_ip) Gauss weight times det J of the group's points [m^2 per m of strip]."""
+        gp, gw = gauss_2d(self.n_gauss)
+        dn = np.array([serendipity8(float(x), float(y))[1] for x, y in gp])  # (n_ip, 8, 2)
+        jac = np.einsum("qai,eaj->eqij", dn, self.coords)
+        det = jac[..., 0, 0] * jac[..., 1, 1] - jac[..., 0, 1] * jac[..., 1, 0]
+        return det * gw[None, :]
+
+    def nonassociated_yielding(self, state, tol):
+        """(row, plastic points, nu, phi, psi) of each Mohr-Coulomb row with phi - psi > ``tol`` [rad] that
+        has plastic points in ``state``."""
+        plastic = np.asarray(self.point_codes(state)) > 0
+        rows, counts = np.unique(self.point_materials()[plastic], return_counts=True)
+        out = []
+        for row, count in zip(rows, counts):
+            nu, phi, psi = self.params[row, 1], self.params[row, 3], self.params[row, 4]
+            is_mc = self.kinds[row] in (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT)
+            if is_mc and phi - psi > tol:
+                out.append((row, count, nu, phi, psi))
+        return out
 
     def describe(self):
         return {

@@ -153,6 +153,22 @@ class Spring(ElementGroup):
     def body_force(self):
         return None
 
+    def symmetric_tangent(self) -> bool:
+        """A one-DOF law: its tangent is symmetric."""
+        return True
+
+    def stored_energy(self, u_el, du_el, state_old, state_new, work) -> float | None:
+        """F_n+1 dF / k0 per spring (linear, elastoplastic); the tanh law's whole work F_n+1 dd [J/m]. None
+        for a subclass with a law of its own (its ``evaluate``): what it stores is not known here."""
+        if type(self).evaluate is not Spring.evaluate:
+            return None
+        f_new, f_old = self.history(state_new, "force")[:, 0], self.history(state_old, "force")[:, 0]
+        k0 = self.params[:, 0]
+        dd = du_el[:, 1] - du_el[:, 0]
+        # k0 = 0: a spring that carries no force stores nothing
+        linear = np.divide(f_new * (f_new - f_old), k0, out=np.zeros_like(k0), where=k0 != 0.0)
+        return float(np.sum(np.where(self.kinds == TANH, f_new * dd, linear)))
+
     def describe(self):
         return {
             "name": self.name,

@@ -674,9 +674,9 @@ def limit_scene_file(
     dissipation and stress) and ``<name>_limit.png`` (the mechanism and the dissipation, ``plot``). ``echo``
     gets one line of progress per mesh of the adaptive runs. ``strip``: a plate strip "rigid", a "beam"
     with plastic hinges of M_p at N = 0 or "beam_mn" (hinges on the section's M-N polygon; None: the scene's
-    default, :func:`ssi.scene.limit_problem.limit_problem`). ``side_soil``: an embedded strip's side soil
+    default, :func:`ssi.capacity.limit_problem`). ``side_soil``: an embedded strip's side soil
     "surcharge" (its overburden at the base level) or "soil" (modelled with its strength; None: the scene's
-    default, "surcharge" for a scene, "soil" for a site: :mod:`ssi.scene.limit_problem`, *Embedment*)."""
+    default, "surcharge" for a scene, "soil" for a site: ``ssi/capacity/README.md``, *Embedment*)."""
     from ..scene.scene_file import read_scene_file
     from .results import atomic_path
     from .results_limit import export_limit_vtu, write_limit_result

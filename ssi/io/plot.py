@@ -584,7 +584,7 @@ def _step(result, k):
 
 
 def limit_mechanism(capacity, axes=None, window=None):
-    """The collapse mechanism of a limit analysis (:class:`ssi.scene.capacity.CapacityResult`, its upper
+    """The collapse mechanism of a limit analysis (:class:`ssi.capacity.CapacityResult`, its upper
     bound on the last associated mesh): the speed with the velocity arrows (left) and where the plastic
     dissipation happens, log10 of each triangle's dissipation density over the largest (right).
     ``axes``: two axes to draw into; ``window`` (x0, x1, z0, z1) [m] (default: the whole block). The

@@ -1,4 +1,4 @@
-"""A limit analysis's result (:class:`ssi.scene.capacity.CapacityResult`, ``scene.limit_analysis(...)``) in
+"""A limit analysis's result (:class:`ssi.capacity.CapacityResult`, ``scene.limit_analysis(...)``) in
 a result file and in ParaView.
 
     write_limit_result("strip_limit.h5", cap)          # ssi limit strip.toml writes it
@@ -79,7 +79,7 @@ class LimitRun:
 class StoredLimit:
     """A limit analysis read from its file: ``info`` (CapacityResult.to_dict), ``associated`` and ``davis``
     (:class:`LimitRun`; ``davis`` None for an associated scene) and the same accessors as a
-    :class:`~ssi.scene.capacity.CapacityResult` (``lb``, ``ub``, ``gap``, ``lb_davis``, ``ub_davis``,
+    :class:`~ssi.capacity.CapacityResult` (``lb``, ``ub``, ``gap``, ``lb_davis``, ``ub_davis``,
     ``gap_davis``, ``mesh``, ``velocity``, ``dissipation``, ``stress``, ``to_dict``, ``summary``)."""
 
     info: dict

@@ -83,7 +83,7 @@ def limit_key(scene) -> str:
 def zoo_bracket(scene, gap: float, **options) -> dict:
     """One row of the table: the scene's associated and Davis brackets of lambda (the last phase's loads)
     refined to the relative ``gap``, their achieved gaps, the final mesh's triangles and the wall time [s].
-    Raises ValueError (from :func:`ssi.scene.limit_problem.limit_problem`) for a scene the limit problem
+    Raises ValueError (from :func:`ssi.capacity.limit_problem`) for a scene the limit problem
     cannot represent; ``options`` go to :meth:`Scene.limit_analysis`."""
     t0 = time.perf_counter()
     cap = scene.limit_analysis(gap=gap, **options)

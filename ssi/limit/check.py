@@ -57,7 +57,7 @@ class LimitCheck:
 def check_limit(limit_load: float, bracket, low: float = 0.03, high: float = 0.03) -> LimitCheck:
     """Check an incremental ``limit_load`` against a limit-analysis ``bracket`` (module docstring).
 
-    ``bracket``: a :class:`ssi.scene.capacity.CapacityResult` (its ``lb_davis`` and ``ub``) or a pair
+    ``bracket``: a :class:`ssi.capacity.CapacityResult` (its ``lb_davis`` and ``ub``) or a pair
     (LB_Davis, UB_assoc), in the same units as ``limit_load`` (a scene's load factor of the same phase, or
     the footing's force [N/m] of a Settlement push). ``low``, ``high``: the relative margins of the band."""
     if hasattr(bracket, "lb_davis") and hasattr(bracket, "ub"):

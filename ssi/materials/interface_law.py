@@ -45,6 +45,7 @@ import numpy as np
 from numba import njit
 
 from ..core.protocol import K0_MATRIX
+from .soil_laws import davis_beta
 
 __all__ = [
     "N_HIST",
@@ -260,3 +261,14 @@ def drive_point(params, gap_path, tangent: int = 1):
         st[i] = interface_update(params, path[i] - g_old, t_old, h_old, t_all[i], h_all[i], d_all[i], tangent)
         t_old, h_old, g_old = t_all[i], h_all[i], path[i]
     return t_all, st, d_all, h_all
+
+
+def davis_interface_row(row: np.ndarray) -> np.ndarray:
+    """An interface parameter row [kt, kn, c, tan_phi, tan_psi, sig_t] made associated with Davis' reduced
+    c*, tan phi* (tan psi* = tan phi*; the tension cut-off, at most the apex c / tan phi, is unchanged); a new
+    array, ``row`` is not touched."""
+    out = row.copy()
+    beta = davis_beta(math.degrees(math.atan(row[3])), math.degrees(math.atan(row[4])))
+    out[2] = beta * row[2]
+    out[3] = out[4] = beta * row[3]
+    return out

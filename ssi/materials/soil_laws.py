@@ -72,6 +72,16 @@ def davis_beta(phi_deg: float, psi_deg: float) -> float:
     return math.cos(psi) * math.cos(phi) / (1.0 - math.sin(psi) * math.sin(phi))
 
 
+def davis_soil_row(row: np.ndarray) -> np.ndarray:
+    """A Mohr-Coulomb parameter row [E, nu, c, phi, psi, ...] (angles in rad) made associated with Davis'
+    reduced c*, phi* (psi* = phi*); a new array, ``row`` is not touched."""
+    out = row.copy()
+    beta = davis_beta(math.degrees(row[3]), math.degrees(row[4]))
+    out[2] = beta * row[2]
+    out[3] = out[4] = math.atan(beta * math.tan(row[3]))
+    return out
+
+
 @njit(cache=True)
 def elastic_matrix(E, nu, D):
     """Fill ``D`` (4, 4) with the isotropic linear-elastic matrix in the [xx, zz, xz, yy] order."""

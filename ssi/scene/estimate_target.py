@@ -13,17 +13,15 @@ from dataclasses import dataclass
 
 from ..solver import Settings
 from .estimate import (
-    ORDER_MAX,
-    ORDER_MIN,
     REFINEMENTS,
     ErrorEstimate,
     Level,
     RefinedSolver,
-    Richardson,
     _check_refine,
     _estimate,
     _keys,
 )
+from .richardson import ORDER_MAX, ORDER_MIN, Richardson
 
 __all__ = ["TargetResult", "solve_to_target"]
 

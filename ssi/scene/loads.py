@@ -3,9 +3,11 @@ the ground, a prescribed settlement of a rigid footing and a prescribed horizont
 
 Each load class knows what it does to a built scene and to its mesh: ``effect(built)`` gives its force vector
 (n_dof,) [N/m] and the DOFs it prescribes {dof: displacement increment [m]}; ``mesh_lines()`` the x [m] that
-must be surface nodes of the mesh. ``LOAD_TYPES`` (class name -> class) is the one registry of load types:
-the scene's checks and the scene file read it. A new load is a class here with those two methods and its row
-in ``LOAD_TYPES``.
+must be surface nodes of the mesh; ``limit_action(frame)`` what it is in the limit problem
+(:class:`ssi.capacity.LimitAction`: a ground pressure, a force and moment on the footing, a beam strip's
+loads, a push, or why it is refused). ``LOAD_TYPES`` (class name -> class) is the one registry of load types:
+the scene's checks and the scene file read it. A new load is a class here with those methods and its row in
+``LOAD_TYPES``.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
+from ..capacity.action import FootingFrame, LimitAction
 from ..core.assembly import scatter_vector
 from ..core.validate import check_real
 
@@ -51,6 +54,12 @@ class Load:
         "pressure" or "unit_weight"): none by default."""
         return []
 
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """What this load is in the limit problem at load factor 1, on the footing ``frame`` (None: without
+        one): by default refused by name, so that a load the limit analysis does not represent is never
+        silently dropped."""
+        return LimitAction(refused=f"a {type(self).__name__} is not represented by ssi.limit")
+
 
 @dataclass(frozen=True)
 class ColumnLoad(Load):
@@ -76,6 +85,19 @@ class ColumnLoad(Load):
     def columns(self) -> list[tuple[float, float]]:
         """(x [m], N [N/m] > 0 down) of each column force this load applies: this column."""
         return [(self.x, self.N)]
+
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """N, H, M on the footing (H at the plate's nodes, ``frame.lever`` above the base: its moment about
+        the centre of the base is M - N (x - x_c) - H e); on a beam strip a point load at the base with the
+        couple -H e."""
+        text = f"column N={self.N / 1e3:g} kN/m" + (f" H={self.H / 1e3:g} kN/m" if self.H else "")
+        text += f" at x={self.x:g} m"
+        if frame is None:
+            return LimitAction(text=text)
+        lever = frame.lever
+        m = self.M - self.N * (self.x - frame.xc) - self.H * lever
+        point = (float(self.x), float(self.H), -float(self.N), float(self.M) - float(self.H) * lever)
+        return LimitAction(force=(self.H, -self.N, m), beam_points=(point,), text=text)
 
     def mesh_lines(self) -> list[float]:
         """The column's x [m]: a plate (and surface) node."""
@@ -109,6 +131,11 @@ class SurfacePressure(Load):
     def ground_span(self) -> tuple[float, float] | None:
         """(x0, x1) [m] of the ground this pressure loads."""
         return self.x0, self.x1
+
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """A pressure on the ground beside the footing."""
+        text = f"pressure q={self.q / 1e3:g} kPa on x=[{self.x0:g}, {self.x1:g}] m"
+        return LimitAction(ground=(self.x0, self.x1, self.q), text=text)
 
     def magnitudes(self) -> list[tuple[str, float, str, str]]:
         return [("SurfacePressure.q", self.q, "Pa", "pressure")]
@@ -148,6 +175,28 @@ class StripLoad(Load):
     def mesh_lines(self) -> list[float]:
         """The ends [m] that are given."""
         return [v for v in (self.x0, self.x1) if v is not None]
+
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """Its resultant on the footing at the centroid of the trapezoid; on a beam strip a uniform pressure
+        if it is uniform over the whole strip (else the beam does not represent it)."""
+        q0, q1 = self.q, self.q if self.q_end is None else self.q_end
+        text = f"strip load q={q0 / 1e3:g}..{q1 / 1e3:g} kPa"
+        if frame is None:
+            return LimitAction(text=text)
+        a = frame.x0 if self.x0 is None else self.x0
+        b = frame.x1 if self.x1 is None else self.x1
+        r = 0.5 * (q0 + q1) * (b - a)
+        xr = a + (b - a) * (q0 + 2 * q1) / (3 * (q0 + q1)) if q0 + q1 != 0.0 else 0.5 * (a + b)
+        full = (self.x0 is None or self.x0 <= frame.x0) and (self.x1 is None or self.x1 >= frame.x1)
+        uniform = full and (self.q_end is None or self.q_end == self.q)
+        why = (
+            None
+            if uniform
+            else "a StripLoad not uniform over the whole strip is not represented on a beam strip by "
+            "ssi.limit; give strip='rigid'"
+        )
+        force = (0.0, -r, -(r * (xr - frame.xc)))
+        return LimitAction(force=force, beam_pressure=self.q if uniform else 0.0, not_on_beam=why, text=text)
 
     def profile(self, foundation):
         """q(x) [Pa], > 0 upwards as the plate's distributed load takes it, on ``foundation``'s strip."""
@@ -192,6 +241,14 @@ class StripWeight(Load):
         """None: the weight acts on the whole strip."""
         return []
 
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """The strip's weight less its buoyancy, a uniform pressure over the whole footing."""
+        text = f"strip weight {self.unit_weight / 1e3:g} kN/m^3"
+        if frame is None:
+            return LimitAction(text=text)
+        q = self.unit_weight * frame.thickness - frame.buoyancy
+        return LimitAction(force=(0.0, -(q * (frame.x1 - frame.x0)), 0.0), beam_pressure=q, text=text)
+
     def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
         """The strip's weight less its buoyancy, as the plate's equivalent nodal forces."""
         f_vec = np.zeros(built.model.n_dof)
@@ -219,6 +276,16 @@ class Settlement(Load):
     def mesh_lines(self) -> list[float]:
         """The settled columns' x [m] (none for the whole strip)."""
         return [] if self.x is None else list(self.x)
+
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """The whole footing pushed down (lambda is then its vertical force); settled columns are refused:
+        the limit problem's footing is a rigid body."""
+        if self.x is not None:
+            return LimitAction(
+                refused=f"Settlement at the columns x={self.x!r} pushes a flexible strip; ssi.limit pushes "
+                "the footing as a rigid body: give Settlement(w) with x=None"
+            )
+        return LimitAction(settles=True)
 
     def effect(self, built: BuiltScene) -> tuple[np.ndarray, dict[int, float]]:
         """No force: the settled DOFs prescribed (a rigid footing's base, the whole strip with its rotations
@@ -258,6 +325,13 @@ class Push(Load):
     def mesh_lines(self) -> list[float]:
         """None: the push moves the whole strip."""
         return []
+
+    def limit_action(self, frame: FootingFrame | None = None) -> LimitAction:
+        """Refused: ssi.limit pushes vertically only."""
+        return LimitAction(
+            refused="a horizontal Push is not built in the limit analysis; give the horizontal force as "
+            "ColumnLoad.H"
+        )
 
     def effect(self, built: BuiltScene | BuiltSite) -> tuple[np.ndarray, dict[int, float]]:
         """No force: the pushed DOFs prescribed (``built.push_held``: a rigid footing's base u; the plate

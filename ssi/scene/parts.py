@@ -3,6 +3,7 @@ footing), the contact under it, the mesh size, and the phases of construction wi
 """
 
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 
@@ -44,6 +45,8 @@ class Foundation:
     ``tension_stiffening`` (with ``crack_band="spacing"``): "all" cracked concrete layers (chapter 03's rule)
     or only the "effective_area" h_c,ef around the bars (chapters 03 and 08 score both).
     """
+
+    rigid: ClassVar[bool] = False  # a plate strip on an interface (RigidFooting: True)
 
     x0: float
     x1: float
@@ -109,6 +112,8 @@ class RigidFooting:
     footing carries a ``Scene.surcharge`` over its own width through that reaction; it takes no other load
     (a column, a strip load or the strip's weight needs a plate :class:`Foundation`) and no ``embedment``.
     """
+
+    rigid: ClassVar[bool] = True  # no plate, no interface: its base nodes are pushed down
 
     x0: float
     x1: float

@@ -63,6 +63,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from ..core.mesh import soil_block
 from ..core.model import Model
 from ..core.validate import (
@@ -81,7 +82,6 @@ from ..materials.soil_laws import (
 )
 from ..solver.progress import announce_compilation
 from .built import BuiltScene
-from .capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from .checks import (
     _check_excavations,
     _check_phases,
@@ -208,7 +208,7 @@ class Scene(SceneParts):
             raise ValueError("layers: the scene needs at least one soil layer")
         if isinstance(self.foundation, Foundation) and self.contact is None:
             raise ValueError("contact: a foundation needs a Contact (interface) to rest on the soil")
-        if isinstance(self.foundation, RigidFooting):
+        if self.foundation is not None and self.foundation.rigid:
             _check_rigid_footing(self)
         strip_loads = [ld for ld in self._all_loads() if ld.ground_span() is None]
         if self.foundation is None and strip_loads:
@@ -264,10 +264,10 @@ class Scene(SceneParts):
         owner = [next(i for i, lay in enumerate(self.layers) if lay is own) for _, own, _ in mesh_layers]
         built.element_layer = np.array(owner, np.int64)[mesh.el_layer]
         built.geostatic_load = self._ground_loads(built)
-        if isinstance(f, Foundation):
-            self._add_foundation(built)
-        elif isinstance(f, RigidFooting):
+        if f is not None and f.rigid:
             self._add_rigid_footing(built, soil_ids)
+        elif f is not None:
+            self._add_foundation(built)
         model.add_element_load(np.arange(model.n_dof)[None], built.geostatic_load[None], dead=True)
         _check_excavations(built)
         for load in self.loads:
@@ -279,8 +279,8 @@ class Scene(SceneParts):
         loads of ``phase`` (None: the last phase; a Settlement push: lambda is the footing's vertical force
         [N/m]) with the earlier phases' loads, the surcharge and the soil's weight held; refined until the
         relative gap (UB - LB)/(UB + LB) <= ``gap``. Returns the associated and the Davis brackets, the
-        mesh, the mechanism and the stress field (:class:`ssi.scene.capacity.CapacityResult`; ``options``:
-        see :func:`ssi.scene.capacity.limit_analysis`). Raises ValueError naming any part of the scene that
+        mesh, the mechanism and the stress field (:class:`ssi.capacity.CapacityResult`; ``options``:
+        see :func:`ssi.capacity.limit_analysis`). Raises ValueError naming any part of the scene that
         the limit analysis cannot represent (a horizontal :class:`Push` among them)."""
         self._refuse_push("limit_analysis")
         return limit_analysis(self, phase=phase, gap=gap, **options)
@@ -288,10 +288,26 @@ class Scene(SceneParts):
     def safety_factor(self, phase: str | None = None, **options) -> SafetyFactorResult:
         """The factor of safety by strength reduction (c / F, tan phi / F of the soil and the contact) under
         the soil's weight, the dead loads and the loads of ``phase`` at factor 1, a certified bracket
-        [F_LB, F_UB] refined adaptively to ``gap`` (default 2 %; :func:`ssi.scene.capacity.safety_factor`
+        [F_LB, F_UB] refined adaptively to ``gap`` (default 2 %; :func:`ssi.capacity.safety_factor`
         for ``options``)."""
         self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
+
+    def load_phases(self) -> list:
+        """The phases after the geostatic one: ``loads`` as a first Phase "loads" (if any), then ``phases``
+        (what the limit problem scales and holds)."""
+        return ([Phase("loads", tuple(self.loads))] if self.loads else []) + list(self.phases)
+
+    def contact_laws(self) -> list:
+        """The distinct Contact laws under the plate strip: the one ``contact``, or its segments' laws in
+        order (none without a contact)."""
+        if self.contact is None or isinstance(self.contact, Contact):
+            return [] if self.contact is None else [self.contact]
+        laws = []
+        for seg in self.contact:
+            if seg.contact not in laws:
+                laws.append(seg.contact)
+        return laws
 
     def sections(self) -> list:
         """The sections of the plate strips (the one strip's; none without a plate strip)."""

@@ -85,12 +85,12 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from ..core.geometry import GeometryError
 from ..core.gmsh_mesh import check_quality
 from ..core.validate import check_choice, check_instance, check_real
 from ..materials.soil_laws import GAMMA_W, SoilLayer
 from ..solver.progress import announce_compilation
-from .capacity import CapacityResult, SafetyFactorResult, limit_analysis, safety_factor
 from .loads import LOAD_TYPES, Push
 from .parts import MeshSize
 from .site_built import BuiltSite
@@ -280,10 +280,10 @@ class Site(SiteChecks, SiteMesh):
         """The site's capacity as a certified bracket by finite-element limit analysis: lambda scales the
         site's loads (a lone RigidStrip: lambda is its vertical force [N/m]), the soil's weight held; every
         strip a rigid body on its contact, a RigidStrip translating, a Strip also rotating (see
-        :mod:`ssi.scene.capacity`; ``options`` of :func:`ssi.scene.capacity.limit_analysis`). A
+        :mod:`ssi.capacity`; ``options`` of :func:`ssi.capacity.limit_analysis`). A
         :class:`Push` is refused: a horizontal push is not built in the limit analysis. An embedded strip
         stands in its trench, the side soil modelled, the walls free or on its ``side_contact``
-        (:mod:`ssi.scene.limit_problem`). A site has no phases: ``phase`` is refused by name."""
+        (:mod:`ssi.capacity`). A site has no phases: ``phase`` is refused by name."""
         if options.get("phase") is not None and not self.phases:
             raise ValueError(
                 f"phase={options['phase']!r}: a site has no phases (its loads are the ones scaled)"
@@ -315,7 +315,7 @@ class Site(SiteChecks, SiteMesh):
         contacts) as a certified bracket [F_LB, F_UB] refined to the relative ``gap``: under its weight and
         its loads at factor 1, or, without loads, its weight alone (a slope's own factor). A lone
         RigidStrip (a push, no load to carry) and a horizontal :class:`Push` are refused
-        (:func:`ssi.scene.capacity.safety_factor` for ``options``)."""
+        (:func:`ssi.capacity.safety_factor` for ``options``)."""
         if options.get("phase") is not None:
             raise ValueError(
                 f"phase={options['phase']!r}: a site has no phases (its loads are the ones held)"

@@ -18,7 +18,8 @@ outside the Davis bracket is flagged with its excess and what to do.
 from __future__ import annotations
 
 import math
-import time
+
+from ..capacity import capacity_bracket  # the bracket of the loads as plain data (ssi.capacity)
 
 W_K_LIMIT_MM = 0.3  # EN 1992-1-1 Table 7.1N, exposure XC2-XC4 (quasi-permanent): the default crack limit
 UB_EXCESS = 1.03  # an incremental limit above 1.03 x the associated upper bound is flagged
@@ -26,32 +27,6 @@ UB_EXCESS = 1.03  # an incremental limit above 1.03 x the associated upper bound
 
 def _finite(v) -> float | None:
     return None if v is None or not math.isfinite(float(v)) else float(v)
-
-
-def capacity_bracket(scene, gap: float = 0.05, max_elements: int = 6000) -> dict:
-    """The capacity bracket of the scene's (or site's) loads as plain data, or ``{"not_computed": why}``
-    when the limit analysis refuses the problem (the refusal's own message: it names the part)."""
-    t0 = time.perf_counter()
-    try:
-        cap = scene.limit_analysis(gap=gap, max_elements=max_elements)
-    except (ValueError, NotImplementedError, TypeError) as err:
-        return {"not_computed": str(err)}
-    p = cap.problem
-    return {
-        "unit": p.lam_unit or "",
-        "reference": p.reference,
-        "lb": _finite(cap.lb),
-        "ub": _finite(cap.ub),
-        "gap": _finite(cap.gap),
-        "lb_davis": _finite(cap.lb_davis),
-        "ub_davis": _finite(cap.ub_davis),
-        "gap_davis": _finite(cap.gap_davis),
-        "davis": cap.davis is not None,
-        "gap_target": gap,
-        "reason": cap.associated.reason if cap.davis is None else cap.davis.reason,
-        "n_triangles": int(cap.n_triangles),
-        "time_s": time.perf_counter() - t0,
-    }
 
 
 def _word_line(b: dict, push: bool) -> tuple[str, bool | None]:

@@ -4,7 +4,9 @@
 
 * ``settings`` -- ``Settings`` and ``NonConvergence``;
 * ``path`` -- controlled path following (``Settings(control="work")``, the default): a limit only where
-  the path peaks;
+  the path peaks; its pieces ``path_corrector`` (factorisation, line search), ``path_limit`` (the limit
+  watch and checks), ``path_relax`` (relaxed steps; ``relax`` the damped dynamics) and ``policy``
+  (``PathPolicy``, its tunables);
 * ``control`` -- ``run``, and load control (``Settings(control="load")``): stepping and step cuts, no limit;
 * ``increment`` -- one load-controlled increment: the iterations of each method, line search, tangent
   solve, convergence;

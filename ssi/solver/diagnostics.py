@@ -6,9 +6,7 @@ import math
 
 import numpy as np
 
-from ..elements.soil_q8 import SoilQ8
 from ..materials.mc_localisation import mc_ellipticity
-from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
 from .mechanism import ASSOCIATED_TOL
 
 
@@ -57,15 +55,7 @@ def ill_posed_soil(model, trial) -> str:
         return ""
     parts = []
     for g, state in zip(model.groups, trial):
-        if not isinstance(g, SoilQ8):
-            continue
-        plastic = np.asarray(g.point_codes(state)) > 0
-        rows, counts = np.unique(g.point_materials()[plastic], return_counts=True)
-        for row, count in zip(rows, counts):
-            nu, phi, psi = g.params[row, 1], g.params[row, 3], g.params[row, 4]
-            is_mc = g.kinds[row] in (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT)
-            if not (is_mc and phi - psi > ASSOCIATED_TOL):
-                continue
+        for row, count, nu, phi, psi in g.nonassociated_yielding(state, ASSOCIATED_TOL):
             ratio, theta = mc_ellipticity(phi, psi, nu)
             parts.append(
                 f"{count} plastic points of {g.name} material {row} (phi = {math.degrees(phi):.4g} deg, "

@@ -12,8 +12,6 @@ import numpy as np
 
 from ..core.linsolve import Factorization
 from ..core.protocol import CONSISTENT, SECANT_SOFTENING
-from ..elements.plate import PlateStrip
-from ..materials.layer_laws import ELASTIC
 from .lbfgs import lbfgs_first_loop, lbfgs_second_loop
 
 
@@ -69,7 +67,7 @@ def _direction_bfgs(it, k_list, r_f):
 FULL_SECANT_RUN = 3  # full Newton: this many iterations in a row that do not lower the increment's smallest
 # residual by 20 % (FULL_SECANT_GAIN), and the increment starts again from its committed state on
 # SECANT_SOFTENING (ssi.core.protocol: the consistent tangent with the secant sig / e at the concrete points
-# loading on their cracked tension envelope), refactorised every iteration: the controlled path's SECANT_RULE
+# loading on their cracked tension envelope), refactorised every iteration: the controlled path's secant_rule
 # "poor". Why (issue 45): on chapter 11's RC strip on elastic soil at h = 0.25 m, and at h = 0.5 m with
 # 1.5 x the column loads, the consistent tangent cycles where the strip cracks -- an exact period-3 cycle of
 # |r| (1.65e-2, 5.04e-2, 3.40e-1, ...) or a slow rise, at every step down to min_step: cracked points flip
@@ -86,9 +84,10 @@ FULL_SECANT_BUDGET = 5  # full Newton on the secant: iterations beyond max_iter 
 
 
 def cracking_strip(model) -> bool:
-    """True if a plate strip of the model has a layer that is not elastic (RC concrete that can crack):
-    where full Newton's secant restart (``FULL_SECANT_*``) and the path's ``G_GROWTH`` apply."""
-    return any(isinstance(g, PlateStrip) and np.any(g.section.kind != ELASTIC) for g in model.groups)
+    """True if a group of the model can soften (``ElementGroup.softens``: a plate strip with a layer that is
+    not elastic, RC concrete that can crack): where full Newton's secant restart (``FULL_SECANT_*``) and the
+    path's ``PathPolicy.g_growth`` apply."""
+    return any(g.softens() for g in model.groups)
 
 
 # the search direction of each method (settings.METHODS): f(iteration state, element matrices, free residual)

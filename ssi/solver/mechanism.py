@@ -58,15 +58,6 @@ import numpy as np
 
 from ..core.assembly import gather_vector
 from ..core.protocol import K0_MATRIX
-from ..core.quadrature import gauss_2d
-from ..core.shapes import serendipity8
-from ..elements.interface import Interface6
-from ..elements.plate import PlateStrip
-from ..elements.soil_q8 import SoilQ8, q8_volumetric_strain
-from ..elements.soil_q8_points import SoilQ8Points
-from ..elements.spring import TANH, Spring
-from ..materials.layer_laws import ELASTIC as ELASTIC_LAYER
-from ..materials.soil_laws import MOHR_COULOMB, MOHR_COULOMB_EXPLICIT
 
 __all__ = ["IncrementEnergy", "MechanismCheck", "check_mechanism", "flow_is_associated", "increment_energy"]
 
@@ -129,75 +120,14 @@ def increment_energy(model, u_n, u_new, states_n, states_new, f_dead) -> Increme
         f_el = g.evaluate(u_el, du_el, s_old, K0_MATRIX)[0]  # the converged step's forces, recomputed
         w_g = float(np.einsum("ij,ij->", f_el, du_el))
         work += w_g
-        if isinstance(g, SoilQ8):
-            stored += _soil_stored(g, s_old, s_new, u_el, du_el)
-        elif isinstance(g, Interface6):
-            stored += _contact_stored(g, s_old, s_new)
-        elif type(g) is Spring:  # a subclass may carry a law of its own (tests: a softening total law)
-            stored += _spring_stored(g, s_old, s_new, du_el)
-        elif isinstance(g, PlateStrip) and np.all(np.asarray(g.section.kind) == ELASTIC_LAYER):
-            stored += w_g
-        else:
+        part = g.stored_energy(u_el, du_el, s_old, s_new, w_g)  # None: the group does not split its work
+        if part is None:
             unsplit += w_g
+        else:
+            stored += part
     dead = float(np.asarray(f_dead, np.float64) @ du)
     return IncrementEnergy(work=work, stored=stored, dissipated=work - stored - unsplit, unsplit=unsplit,
                            dead_work=dead)  # fmt: skip
-
-
-def _q8_weights(g: SoilQ8) -> np.ndarray:
-    """(n_el, n_ip) Gauss weight times det J of the group's points [m^2 per m of strip]."""
-    gp, gw = gauss_2d(g.n_gauss)
-    dn = np.array([serendipity8(float(x), float(y))[1] for x, y in gp])  # (n_ip, 8, 2)
-    jac = np.einsum("qai,eaj->eqij", dn, g.coords)
-    det = jac[..., 0, 0] * jac[..., 1, 1] - jac[..., 0, 1] * jac[..., 1, 0]
-    return det * gw[None, :]
-
-
-def _soil_stored(g: SoilQ8, s_old, s_new, u_el, du_el) -> float:
-    """sum sigma_n+1 : C^-1 d_sigma w |J| (+ the undrained pore water's elastic work) [J/m]."""
-    n_ip = s_new.shape[1]
-    if isinstance(g, SoilQ8Points):  # one material row per point
-        mat = np.stack(g.point_mat, axis=1)
-    else:
-        mat = np.repeat(g.el_mat[:, None], n_ip, axis=1)
-    e_mod, nu = g.params[mat, 0], g.params[mat, 1]
-    sig = g.stress(s_new)
-    dsig = sig - g.stress(s_old)
-    normal = [0, 1, 3]  # sxx, szz, syy
-    sn, dn = sig[..., normal], dsig[..., normal]
-    dot = np.einsum("eqi,eqi->eq", sn, dn)
-    cross = sn.sum(-1) * dn.sum(-1) - dot  # sum over i != j of s_i ds_j
-    shear = sig[..., 2] * dsig[..., 2]
-    density = (dot - nu * cross + 2.0 * (1.0 + nu) * shear) / e_mod
-    weights = _q8_weights(g)
-    total = float(np.sum(density * weights))
-    if np.any(g.k_water_of_elements()):  # undrained: the pore water's volumetric spring is elastic
-        dev = np.empty(weights.shape)
-        gp, _ = gauss_2d(g.n_gauss)
-        q8_volumetric_strain(g.coords, np.ascontiguousarray(du_el), gp, dev)
-        total += float(np.sum(-g.excess_pore_pressure(u_el) * dev * weights))
-    return total
-
-
-def _contact_stored(g: Interface6, s_old, s_new) -> float:
-    """sum t_n+1 . K^-1 d_t w |J| with K = diag(kt, kn) of each element [J/m]."""
-    t_new = g.tractions(s_new)
-    dt = t_new - g.tractions(s_old)
-    kt, kn = g.params[:, 0][:, None], g.params[:, 1][:, None]
-    # kt = 0 (allowed: a contact without tangential stiffness) carries no shear traction: no shear term
-    shear = np.divide(t_new[..., 0] * dt[..., 0], kt, out=np.zeros_like(dt[..., 0]), where=kt > 0.0)
-    density = shear + t_new[..., 1] * dt[..., 1] / kn
-    return float(np.sum(density * g.ip_weights()))
-
-
-def _spring_stored(g: Spring, s_old, s_new, du_el) -> float:
-    """F_n+1 dF / k0 per spring (linear, elastoplastic); the tanh law's whole work F_n+1 dd [J/m]."""
-    f_new, f_old = g.history(s_new, "force")[:, 0], g.history(s_old, "force")[:, 0]
-    k0 = g.params[:, 0]
-    dd = du_el[:, 1] - du_el[:, 0]
-    # k0 = 0: a spring that carries no force stores nothing
-    linear = np.divide(f_new * (f_new - f_old), k0, out=np.zeros_like(k0), where=k0 != 0.0)
-    return float(np.sum(np.where(g.kinds == TANH, f_new * dd, linear)))
 
 
 def flow_is_associated(model, davis: bool) -> bool:
@@ -207,15 +137,7 @@ def flow_is_associated(model, davis: bool) -> bool:
     enter (their work is reported unsplit)."""
     if davis:
         return True
-    for g in model.groups:
-        if isinstance(g, SoilQ8):
-            mc = np.isin(g.kinds, (MOHR_COULOMB, MOHR_COULOMB_EXPLICIT))
-            if np.any(np.abs(g.params[mc, 4] - g.params[mc, 3]) > ASSOCIATED_TOL):
-                return False
-        elif isinstance(g, Interface6):
-            if np.any(np.abs(g.params[:, 4] - g.params[:, 3]) > ASSOCIATED_TOL):
-                return False
-    return True
+    return all(g.associated_flow(ASSOCIATED_TOL) for g in model.groups)
 
 
 @dataclass(frozen=True)

@@ -28,12 +28,11 @@ from typing import Any
 import numpy as np
 
 from .increment import _stagnates
+from .policy import PATH_POLICY
 
-BETA = 0.95  # momentum of the heavy ball: 0.8 settles too fast to leave the saddle (random 36 stops at its
-# stall), 1 without restarts never settles (decisions.md#relax)
-MAX_ITER = 4000  # iterations of one relaxation at a prescribed load factor
-WINDOW = 1000  # its stagnation window (_stagnates): the stable modes reached contract slowly (the smallest
-# eigenvalue of K_t x = mu K0 x at random 36's relaxed state: 1.2e-3, ~1900 iterations a decade)
+# the defaults of beta, max_iter and window: the path's policy (PathPolicy.relax_beta, relax_max_iter,
+# relax_window), with why each
+BETA, MAX_ITER, WINDOW = PATH_POLICY.relax_beta, PATH_POLICY.relax_max_iter, PATH_POLICY.relax_window
 
 
 @dataclass

@@ -1,7 +1,7 @@
 """A plate strip in the limit problem as a beam with plastic hinges (:class:`ssi.limit.Beam`): whether it is
-one (:func:`beam_mode`), its hinges' M_p from ssi's own RC section analysis (:func:`strip_beam_capacity`)
-and its loads as a beam carries them (:func:`beam_loads_of`); :mod:`ssi.scene.limit_problem` assembles the
-rest of the problem."""
+one (:func:`beam_mode`) and its hinges' M_p from ssi's own RC section analysis (:func:`strip_beam_capacity`,
+:func:`strip_beam_interaction`); its loads as a beam carries them are each load's ``limit_action``
+(:func:`ssi.capacity.common.beam_loads`), and :mod:`ssi.capacity.scene_problem` assembles the beam."""
 
 from __future__ import annotations
 
@@ -9,17 +9,7 @@ import warnings
 
 import numpy as np
 
-from .loads import ColumnLoad, StripLoad, StripWeight
-from .parts import RigidFooting
-
-__all__ = [
-    "NotOnBeam",
-    "beam_loads_of",
-    "beam_mode",
-    "is_rc",
-    "strip_beam_capacity",
-    "strip_beam_interaction",
-]
+__all__ = ["beam_mode", "is_rc", "strip_beam_capacity", "strip_beam_interaction"]
 
 
 def strip_beam_capacity(section, bar_diameter: float = 0.016) -> tuple[float, float]:
@@ -90,7 +80,7 @@ def beam_mode(scene, strip: str | None):
     f = scene.foundation
     if strip == "rigid" or f is None:
         return None
-    if isinstance(f, RigidFooting):
+    if f.rigid:
         if strip == "beam":
             raise ValueError("strip='beam': a RigidFooting is rigid; a beam strip needs a plate Foundation")
         return None
@@ -108,34 +98,3 @@ def beam_mode(scene, strip: str | None):
             warnings.warn(f"{err}; the strip is taken rigid", stacklevel=3)
             return None
     return strip_beam_capacity(f.section)
-
-
-class NotOnBeam(ValueError):
-    """A load the beam strip does not represent (by default the strip is then taken rigid)."""
-
-
-def beam_loads_of(scene, loads, first_phase: bool, what: str) -> tuple[list, float]:
-    """A beam strip's loads: point loads [(x [m], Fx, Fz [N/m], C [N m/m])] at the base (a column's H at
-    the plate's nodes, e above the base, adds the couple -H e) and the uniform downward pressure [Pa]."""
-    f = scene.foundation
-    lever = -float(f.section.z_bottom)
-    points, p = [], 0.0
-    for i, ld in enumerate(loads):
-        if isinstance(ld, ColumnLoad):
-            points.append((float(ld.x), float(ld.H), -float(ld.N), float(ld.M) - float(ld.H) * lever))
-        elif isinstance(ld, StripLoad):
-            full = (ld.x0 is None or ld.x0 <= f.x0) and (ld.x1 is None or ld.x1 >= f.x1)
-            if not full or (ld.q_end is not None and ld.q_end != ld.q):
-                raise NotOnBeam(
-                    f"{what}[{i}]: a StripLoad not uniform over the whole strip is not represented on a "
-                    "beam strip by ssi.limit; give strip='rigid'"
-                )
-            p += ld.q
-        elif isinstance(ld, StripWeight):
-            t = f.section.thickness
-            wt = scene.water_table
-            submerged = 0.0 if wt is None else min(max(-float(wt), 0.0), t)
-            p += ld.unit_weight * t - scene.gamma_w * submerged
-    if first_phase and f.self_weight:
-        p += f.self_weight
-    return points, p

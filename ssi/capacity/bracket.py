@@ -1,13 +1,14 @@
-"""The capacity of a :class:`~ssi.scene.Scene` as a certified bracket: the scene turned into a
-limit-analysis problem (:mod:`ssi.limit`) and solved for both bounds, associated and Davis.
+"""The capacity of a :class:`~ssi.scene.Scene` or a :class:`~ssi.scene.site.Site` as a certified bracket:
+the input turned into a limit-analysis problem (:mod:`ssi.limit`, :mod:`ssi.capacity.problem`) and solved
+for both bounds, associated and Davis.
 
-    cap = scene.limit_analysis(gap=0.02)       # or capacity.limit_analysis(scene, ...)
+    cap = scene.limit_analysis(gap=0.02)       # or ssi.capacity.limit_analysis(scene, ...)
     print(cap.summary())
     cap.lb, cap.ub                             # associated bracket of the load factor lambda
     cap.lb_davis, cap.ub_davis                 # Davis bracket (the conventional value for psi < phi)
 
 An :class:`ssi.scene.site.Site` (any layering and ground, several strips) maps the same way through its own
-:meth:`Site.geometry` (see :mod:`ssi.scene.limit_problem`): ``site.limit_analysis(gap=0.02)``.
+:meth:`Site.geometry` (see :mod:`ssi.capacity.problem`): ``site.limit_analysis(gap=0.02)``.
 
 What lambda scales. The loads of one phase (``phase``: a name of ``Scene.phases``, or "loads" for
 ``Scene.loads``; None: the last phase) are the reference loads, multiplied by lambda; the loads of the
@@ -16,23 +17,27 @@ the soil's weight. A phase that pushes a rigid footing down (a :class:`Settlemen
 :class:`RigidFooting`, or of a whole plate strip) has no force to scale: lambda is then the footing's
 vertical force [N/m] (of a symmetric scene, the whole footing's, like :meth:`BuiltScene.contact_force`).
 
-The mapping (what lambda scales, what is held, what is refused) is :mod:`ssi.scene.limit_problem`'s.
+The mapping (what lambda scales, what is held, what is refused) is :mod:`ssi.capacity.problem`'s. Of a site
+with several strips lambda scales every strip's loads at once; each foundation's own force at the bracket's
+factors is :meth:`CapacityResult.foundation_forces`.
 """
 
 from __future__ import annotations
 
+import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..core.validate import check_int, check_optional_real, check_real
-from ..limit import Interface, Material, bisect, triangulate
-from ..limit.analysis import AdaptiveResult, SafetyFactor, adaptive_pair, relative_gap, strength_reduction
+from ..limit import Interface, Material, triangulate
+from ..limit.analysis import AdaptiveResult, adaptive_pair
 from ..limit.mesh import TriMesh, fans_at
-from .limit_problem import LimitProblem, limit_problem
+from .action import LimitInput
+from .problem import LimitProblem, limit_problem
 
-__all__ = ["CapacityResult", "SafetyFactorResult", "initial_mesh", "limit_analysis", "safety_factor"]
+__all__ = ["CapacityResult", "capacity_bracket", "initial_mesh", "limit_analysis"]
 
 
 def initial_mesh(problem: LimitProblem, h: float | None, h_min: float | None) -> TriMesh:
@@ -55,7 +60,7 @@ def initial_mesh(problem: LimitProblem, h: float | None, h_min: float | None) ->
 
 @dataclass
 class CapacityResult:
-    """Both brackets of a scene's collapse load factor lambda (see :mod:`ssi.scene.capacity`).
+    """Both brackets of a scene's collapse load factor lambda (see :mod:`ssi.capacity.bracket`).
 
     ``lb``, ``ub``: the **associated** bracket (psi = phi everywhere): rigorous bounds of the associated
     material's collapse load, and ``ub`` a rigorous ceiling of the scene's for the user's psi <= phi
@@ -138,6 +143,26 @@ class CapacityResult:
         """The certified lower-bound stress field (n_el, 3 vertices, 3: sig_x, sig_z, tau) [Pa]."""
         return self.associated.final.lower.stress
 
+    def foundation_forces(self) -> list[dict]:
+        """Each foundation's downward force at the bracket's factors, lambda times its own loads [N/m]: one
+        dict per footing (the order of ``problem.site.footings``, a site's strips) with ``x0``, ``x1`` [m],
+        ``reference`` [N/m] its loads at lambda = 1, ``associated`` and ``davis`` (lb F, ub F) [N/m]. A
+        site's strips share one lambda, so these sum to the total, but the mechanism that sets lambda may be
+        one strip's. Empty for a push (lambda is then itself the footing's force)."""
+        p = self.problem
+        if p.lam_unit:
+            return []
+        return [
+            {
+                "x0": float(x0),
+                "x1": float(x1),
+                "reference": float(f),
+                "associated": (self.lb * f, self.ub * f),
+                "davis": (self.lb_davis * f, self.ub_davis * f),
+            }
+            for (x0, x1), f in zip(p.footing_spans, p.ref_forces)
+        ]
+
     def contains(self, value: float) -> bool:
         """Whether ``value`` (lambda units) lies in the associated bracket."""
         return bool(self.lb <= value <= self.ub)
@@ -173,6 +198,10 @@ class CapacityResult:
             "reason_davis": None if self.davis is None else self.davis.reason,
             "strip": self.strip,
             "strip_mp_sag_hog_N_m_per_m": self.strip_mp,
+            "foundation_forces_N_per_m": [
+                {k: [_plain(v) for v in val] if isinstance(val, tuple) else val for k, val in row.items()}
+                for row in self.foundation_forces()
+            ],
         }
 
     @property
@@ -223,6 +252,14 @@ class CapacityResult:
                 f"{self.ub / b / 1e3:.4g}] kPa, Davis [{self.lb_davis / b / 1e3:.4g}, "
                 f"{self.ub_davis / b / 1e3:.4g}] kPa"
             )
+        elif len(p.ref_forces) > 1:  # one lambda for every strip: each foundation's force at it
+            for i, row in enumerate(self.foundation_forces()):
+                (al, au), (dl, du) = ((v / 1e3 for v in row[k]) for k in ("associated", "davis"))
+                lines.append(
+                    f"  foundation {i} (x = [{row['x0']:g}, {row['x1']:g}] m, its loads "
+                    f"{row['reference'] / 1e3:.4g} kN/m): force on top of the held loads associated "
+                    f"[{al:.4g}, {au:.4g}] kN/m, Davis [{dl:.4g}, {du:.4g}] kN/m"
+                )
         elif p.ref_force:
             f = p.ref_force / 1e3
             lines.append(
@@ -255,7 +292,7 @@ class CapacityResult:
 
 
 def limit_analysis(
-    scene,
+    scene: LimitInput,
     phase: str | None = None,
     gap: float = 0.02,
     h: float | None = None,
@@ -274,10 +311,10 @@ def limit_analysis(
     ends (default: max(footing width, size / 10) / 8). ``progress(label, row)`` is called once per mesh
     (label "associated" or "Davis", row of :attr:`ssi.limit.AdaptiveResult.history`). ``strip``: a plate
     strip "rigid", a "beam" with plastic hinges of M_p at N = 0 or "beam_mn" with its section's M-N
-    polygon (None: a beam for a ductile RC section; :func:`ssi.scene.limit_problem.limit_problem`).
+    polygon (None: a beam for a ductile RC section; :func:`ssi.capacity.problem.limit_problem`).
     ``side_soil``: an embedded strip's side soil as its overburden on the base level ("surcharge": the
     bracket of a strengthless backfill, Terzaghi's assumption, whose lower bound is a lower bound of the
-    scene) or modelled with its strength ("soil"; :mod:`ssi.scene.limit_problem`, *Embedment*); None:
+    scene) or modelled with its strength ("soil"; this package's README.md, *Embedment*); None:
     "surcharge" for a Scene, "soil" for a Site."""
     gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
     check_optional_real("h", h, lo=0.0, lo_open=True, unit="m")
@@ -310,135 +347,38 @@ def _plain(v):
 
 
 def _associated(m: Material) -> Material:
-    from dataclasses import replace
-
     return replace(m, psi_deg=None)
 
 
 def _associated_interface(i: Interface) -> Interface:
-    from dataclasses import replace
-
     return replace(i, psi_deg=None)
 
 
-@dataclass
-class SafetyFactorResult:
-    """The strength-reduction factor of safety of a scene or a site as a certified bracket F* in [``f_lb``,
-    ``f_ub``] (:func:`ssi.limit.strength_reduction`: c / F and tan phi / F of the soil and the contact):
-    under the soil's weight, the dead loads and 1 x the scaled loads (a site with no loads: its weight
-    alone, e.g. a slope's own factor). ``f_lb`` a factor whose reduced problem has a certified lower bound
-    carrying them, ``f_ub`` one with a kinematically admissible mechanism; ``davis``: the Davis materials
-    were reduced (else the associated ones); ``mesh`` the last mesh; ``trials`` the (bound, F, lambda)
-    solves; ``result`` the :class:`ssi.limit.SafetyFactor` (history per mesh, ``converged``, ``reason``);
-    ``time`` [s]."""
-
-    f_lb: float
-    f_ub: float
-    davis: bool
-    mesh: TriMesh
-    trials: list
-    time: float
-    problem: LimitProblem
-    result: SafetyFactor | None = None
-
-    @property
-    def n_triangles(self) -> int:
-        return self.mesh.n_el
-
-    @property
-    def gap(self) -> float:
-        return relative_gap(self.f_lb, self.f_ub)
-
-    @property
-    def converged(self) -> bool:
-        return bool(self.result is not None and self.result.converged)
-
-    @property
-    def reason(self) -> str:
-        return "" if self.result is None else self.result.reason
-
-    def contains(self, value: float) -> bool:
-        return bool(self.f_lb <= value <= self.f_ub)
-
-    def to_dict(self) -> dict:
-        return {
-            "kind": "safety_factor",
-            "f_lower": _plain(float(self.f_lb)),
-            "f_upper": _plain(float(self.f_ub)),
-            "gap": _plain(float(self.gap)),
-            "converged": self.converged,
-            "reason": self.reason,
-            "davis": self.davis,
-            "loads": self.problem.reference,
-            "n_triangles": int(self.n_triangles),
-            "meshes": []
-            if self.result is None
-            else [{k: _plain(v) for k, v in r.items()} for r in self.result.history],
-            "bound_solves": len(self.trials),
-            "time_s": float(self.time),
-        }
-
-    def summary(self) -> str:
-        kind = "Davis materials" if self.davis else "associated materials"
-        if self.result is None or self.converged:
-            state = "gap reached"
-        else:
-            state = f"gap NOT reached: {self.reason}"
-        meshes = 1 if self.result is None else len(self.result.history)
-        return (
-            f"factor of safety (strength reduction, {kind}) F in [{self.f_lb:.3f}, {self.f_ub:.3f}], gap "
-            f"{100 * self.gap:.2f} % ({state})\n  under {self.problem.reference} at load factor 1\n  "
-            f"{self.n_triangles} triangles ({meshes} meshes), {len(self.trials)} bound solves, "
-            f"{self.time:.1f} s"
-        )
+def _finite(v) -> float | None:
+    return None if v is None or not math.isfinite(float(v)) else float(v)
 
 
-def safety_factor(
-    scene,
-    phase: str | None = None,
-    h: float | None = None,
-    h_min: float | None = None,
-    refine: int = 0,
-    rel_tol: float | None = None,
-    gap: float = 0.02,
-    max_steps: int = 8,
-    max_elements: int = 20000,
-    davis: bool = True,
-    strip: str | None = None,
-    side_soil: str | None = None,
-    progress=None,
-) -> SafetyFactorResult:
-    """The factor of safety of a scene or a site by strength reduction, a certified bracket
-    (:func:`ssi.limit.strength_reduction`, every load scaled together: the programs stay bounded): the
-    loads are the soil's weight, the dead loads and the scaled phase's loads at factor 1; a Site without
-    loads is asked for its own factor under its weight (a slope). Of a Settlement push there is no load to
-    carry: refused. From the initial mesh of :func:`limit_analysis` (bisected uniformly ``refine`` times)
-    the mesh is refined adaptively until the relative gap (F_U - F_L)/(F_U + F_L) <= ``gap`` or
-    ``max_steps`` / ``max_elements``; ``rel_tol`` given: one mesh only, each bound searched to that relative
-    width in F (the former one-mesh form). ``davis``: reduce the Davis materials (the conventional value for
-    psi < phi); else the associated ones. ``strip``, ``side_soil``: as in :func:`limit_analysis` (the
-    beam's M_p is not reduced). ``progress(row)``: once per mesh."""
-    problem = limit_problem(scene, phase, strip, side_soil, unloaded=True)
-    if problem.lam_unit:
-        raise ValueError(
-            f"phase {problem.phase!r} is a Settlement push: it has no load to carry at factor 1, so no "
-            "factor of safety; give the phase force loads (ColumnLoad, StripLoad, SurfacePressure)"
-        )
-    refine = check_int("refine", refine, lo=0, hi=6)
-    if rel_tol is not None:
-        rel_tol = check_real("rel_tol", rel_tol, lo=0.0, lo_open=True, hi=0.5)
-        gap, max_steps = 5.0 * rel_tol, 0
-    gap = check_real("gap", gap, lo=0.0, lo_open=True, hi=1.0)
-    max_steps = check_int("max_steps", max_steps, lo=0)
+def capacity_bracket(scene: LimitInput, gap: float = 0.05, max_elements: int = 6000) -> dict:
+    """The capacity bracket of the scene's (or site's) loads as plain data, or ``{"not_computed": why}``
+    when the limit analysis refuses the problem (the refusal's own message: it names the part)."""
     t0 = time.perf_counter()
-    mesh = initial_mesh(problem, h, h_min)
-    for _ in range(refine):
-        mesh = bisect(mesh, np.ones(mesh.n_el, bool))
-    site = problem.site.davis() if davis else problem.site.map_materials(_associated)
-    res = strength_reduction(
-        site, mesh, gap=gap, max_steps=max_steps, max_elements=max_elements, progress=progress
-    )
-    trials = [(t["bound"], t["F"], t["lam"]) for t in res.trials]
-    return SafetyFactorResult(
-        res.f_lower, res.f_upper, davis, res.mesh, trials, time.perf_counter() - t0, problem, res
-    )
+    try:
+        cap = scene.limit_analysis(gap=gap, max_elements=max_elements)
+    except (ValueError, NotImplementedError, TypeError) as err:
+        return {"not_computed": str(err)}
+    p = cap.problem
+    return {
+        "unit": p.lam_unit or "",
+        "reference": p.reference,
+        "lb": _finite(cap.lb),
+        "ub": _finite(cap.ub),
+        "gap": _finite(cap.gap),
+        "lb_davis": _finite(cap.lb_davis),
+        "ub_davis": _finite(cap.ub_davis),
+        "gap_davis": _finite(cap.gap_davis),
+        "davis": cap.davis is not None,
+        "gap_target": gap,
+        "reason": cap.associated.reason if cap.davis is None else cap.davis.reason,
+        "n_triangles": int(cap.n_triangles),
+        "time_s": time.perf_counter() - t0,
+    }
