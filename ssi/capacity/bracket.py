@@ -31,9 +31,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..core.validate import check_int, check_optional_real, check_real
-from ..limit import Interface, Material, adaptive, triangulate
-from ..limit.analysis import AdaptiveResult
-from ..limit.mesh import TriMesh
+from ..limit import Interface, Material, triangulate
+from ..limit.analysis import AdaptiveResult, adaptive_pair
+from ..limit.mesh import TriMesh, fans_at
 from .action import LimitInput
 from .problem import LimitProblem, limit_problem
 
@@ -55,7 +55,7 @@ def initial_mesh(problem: LimitProblem, h: float | None, h_min: float | None) ->
         d = np.min(np.hypot(p[:, None, 0] - sing[None, :, 0], p[:, None, 1] - sing[None, :, 1]), axis=1)
         return h_min + 0.3 * d
 
-    return triangulate(problem.site, h, size=graded)
+    return triangulate(problem.site, h, size=graded, fans=fans_at(problem.site, sing, 2.0 * h_min))
 
 
 @dataclass
@@ -325,27 +325,16 @@ def limit_analysis(
     t0 = time.perf_counter()
     mesh = initial_mesh(problem, h, h_min)
 
-    def report(label):
-        return None if progress is None else (lambda row: progress(label, row))
-
-    kw = dict(gap=gap, max_elements=max_elements, max_steps=max_steps)
+    kw = dict(gap=gap, max_elements=max_elements, max_steps=max_steps, lazy=True)
     assoc_site = problem.site.map_materials(lambda m: _associated(m))
     assoc_site = assoc_site.map_interfaces(_associated_interface)
-    res = adaptive(assoc_site, mesh, progress=report("associated"), **kw)
-    dav = None
     non_assoc = any(not m.associated for m in problem.site.materials) or any(
         itf.kind == "coulomb" and itf.psi_deg not in (None, itf.phi_deg) for itf in problem.site.interfaces
     )
-    if davis and non_assoc:
-        # from the associated run's last mesh: refined where the same footings' mechanisms and binding
-        # stresses are (issue 46: the two-strip site's Davis run from the initial mesh took 9 meshes)
-        dav = adaptive(problem.site.davis(), _unparented(res.final.mesh), progress=report("Davis"), **kw)
+    # the Davis run from the associated run's last mesh (ssi.limit.adaptive_pair)
+    dav_site = problem.site.davis() if davis and non_assoc else None
+    res, dav = adaptive_pair(assoc_site, dav_site, mesh, progress=progress, **kw)
     return CapacityResult(problem, res, dav, time.perf_counter() - t0, gap)
-
-
-def _unparented(mesh: TriMesh) -> TriMesh:
-    """``mesh`` as a new start: no parent (no carried fields from another run's coarser mesh)."""
-    return replace(mesh, parent=None)
 
 
 def _plain(v):

@@ -34,6 +34,7 @@ from .analysis import (
     Bracket,
     SafetyFactor,
     adaptive,
+    adaptive_pair,
     bracket,
     gap_shares,
     refine_marks,
@@ -53,7 +54,7 @@ from .geometry import (
     strip_site,
 )
 from .lower import LowerBound, lower_bound
-from .mesh import TriMesh, bisect, triangulate
+from .mesh import TriMesh, bisect, fans_at, triangulate
 from .upper import UpperBound, upper_bound
 
 __all__ = [
@@ -71,11 +72,13 @@ __all__ = [
     "TriMesh",
     "UpperBound",
     "adaptive",
+    "adaptive_pair",
     "bisect",
     "bracket",
     "check_limit",
     "flag_suspect",
     "davis_beta",
+    "fans_at",
     "gap_shares",
     "lower_bound",
     "refine_marks",

@@ -40,15 +40,35 @@ class Material:
     """A rigid-plastic Mohr-Coulomb material: cohesion ``c`` [Pa], friction angle ``phi_deg`` [deg] (0: Tresca
     with c the undrained strength), unit weight ``gamma`` [N/m^3] (effective, buoyant below water), dilation
     angle ``psi_deg`` [deg] (None: associated, psi = phi; used only by :meth:`davis`), optional
-    ``tension_cutoff`` [Pa]: the largest principal stress allowed (lower bound only; None: no cut-off)."""
+    ``tension_cutoff`` [Pa]: the largest principal stress allowed (lower bound only; None: no cut-off).
+
+    ``rigid``: a material that never yields (:meth:`rigid_body`; an elastic layer's own assumption, as a
+    linear-elastic cluster in PLAXIS): the lower bound imposes no yield condition in it, the upper bound
+    lets it move only as a rigid body (no strain rate, no dissipation, no velocity jump on its boundary,
+    which the continuous velocity field has nowhere); its c and phi_deg are 0 and unused."""
 
     c: float
     phi_deg: float
     gamma: float = 0.0
     psi_deg: float | None = None
     tension_cutoff: float | None = None
+    rigid: bool = False
+
+    @classmethod
+    def rigid_body(cls, gamma: float = 0.0) -> Material:
+        """A material that never yields, of unit weight ``gamma`` [N/m^3] (class docstring)."""
+        return cls(0.0, 0.0, gamma=gamma, rigid=True)
 
     def __post_init__(self):
+        if self.rigid:
+            if self.c != 0.0 or self.phi_deg != 0.0 or self.psi_deg is not None or self.tension_cutoff:
+                raise ValueError(
+                    "a rigid Material has no strength: give c=0, phi_deg=0, no psi_deg or tension_cutoff "
+                    f"(got c={self.c!r}, phi_deg={self.phi_deg!r}, psi_deg={self.psi_deg!r}, "
+                    f"tension_cutoff={self.tension_cutoff!r}); use Material.rigid_body(gamma)"
+                )
+            object.__setattr__(self, "gamma", check_real("gamma", self.gamma, lo=0.0, unit="N/m^3"))
+            return
         object.__setattr__(self, "c", check_real("c", self.c, lo=0.0, unit="Pa"))
         object.__setattr__(self, "phi_deg", check_real("phi_deg", self.phi_deg, lo=0.0, hi=60.0, unit="deg"))
         object.__setattr__(self, "gamma", check_real("gamma", self.gamma, lo=0.0, unit="N/m^3"))
@@ -67,15 +87,18 @@ class Material:
 
     def davis(self) -> Material:
         """The associated material of Davis (1968): c* = beta c, tan phi* = beta tan phi (psi* = phi*)."""
-        if self.associated:
+        if self.associated or self.rigid:
             return replace(self, psi_deg=None)
         b = davis_beta(self.phi_deg, self.psi_deg)
         phi = math.degrees(math.atan(b * math.tan(math.radians(self.phi_deg))))
         return replace(self, c=b * self.c, phi_deg=phi, psi_deg=None)
 
     def reduced(self, factor: float) -> Material:
-        """The strength-reduced material c / F, tan phi / F (F = ``factor`` > 0)."""
+        """The strength-reduced material c / F, tan phi / F (F = ``factor`` > 0); a rigid one stays rigid (it
+        has no strength to reduce, as an elastic cluster in PLAXIS's safety calculation)."""
         factor = check_real("factor", factor, lo=0.0, lo_open=True)
+        if self.rigid:
+            return self
         phi = math.degrees(math.atan(math.tan(math.radians(self.phi_deg)) / factor))
         return replace(self, c=self.c / factor, phi_deg=phi)
 

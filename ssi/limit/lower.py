@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 
 from ._common import boundary_edges, gradients, interior_edges, scales, strength
 from .beam import beam_layout, lower_bound_statics
-from .conic import ConicSolution, Rows, solve_conic
+from .conic import ConicSolution, Rows, needs_refinement, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
 
@@ -119,7 +119,7 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
         bnd = site.segments[be.seg[j]][2]
         if bnd.traction_free:
             free_nodes.update((int(be.p[j]), int(be.q[j])))
-    cohesionless = np.array([m.c == 0.0 for m in site.materials])[mesh.material]
+    cohesionless = np.array([m.c == 0.0 and not m.rigid for m in site.materials])[mesh.material]
     zero = set()
     for e, v in zip(*np.nonzero(np.isin(mesh.tri, list(free_nodes)) & cohesionless[:, None])):
         zero.add(int(9 * e + 3 * v))
@@ -241,13 +241,15 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             G = (a_n * st.BN + a_m * st.B).tocoo() if a_n != 0.0 else (a_m * st.B).tocoo()
             ineq.add_many(G.row, G.col, G.data, (1.0 - margin) * b_ - a_n * st.bN0 - a_m * st.b0)
         beams[f] = st
-    # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x
+    # yield cones at every vertex: s = (f (2c cos - (sx+sz) sin), sx - sz, 2 tau) in SOC_3, s = b - A x; none
+    # in a rigid material (it never yields), so the cones are those of the yielding vertices, in order
     mats = site.materials
     two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in mats)))
     f = 1.0 - margin
-    nv = 3 * n_el
-    s0 = 3 * np.arange(nv)  # flat index of sig_x of each vertex
-    m_v = np.repeat(mesh.material, 3)
+    yielding = _yielding_vertices(site, mesh)
+    nv = len(yielding)
+    s0 = 3 * yielding  # flat index of sig_x of each vertex
+    m_v = np.repeat(mesh.material, 3)[yielding]
     rr = np.arange(nv) * 3
     soc.add_many(
         np.concatenate([rr, rr, rr + 1, rr + 1, rr + 2]),
@@ -257,8 +259,8 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
     )
     cut = [m.tension_cutoff for m in mats]
     if any(t is not None for t in cut):
-        for v in range(nv):
-            t = cut[m_v[v]]
+        for v in yielding:
+            t = cut[np.repeat(mesh.material, 3)[v]]
             if t is None:
                 continue
             # the cut-off lowered to T (1 - margin): shifted, not scaled, which would also shrink the room
@@ -275,6 +277,12 @@ def _assemble(site: Site, mesh: TriMesh, margin: float):
             raise NotImplementedError("scale_all with a bending footing (Beam): its M-N rows hold dead parts")
         eq = _scale_all_rows(eq, imu, sc.k)
     return sc, eq, ineq, soc, q, n, n_itf, beams
+
+
+def _yielding_vertices(site: Site, mesh: TriMesh) -> np.ndarray:
+    """The flat vertex indices 3 e + k of the elements whose material yields (not rigid), in order."""
+    rigid = np.array([m.rigid for m in site.materials], bool)[mesh.material]
+    return np.flatnonzero(np.repeat(~rigid, 3))
 
 
 def _scale_all_rows(eq: Rows, imu: int, k: float) -> Rows:
@@ -367,7 +375,7 @@ def lower_bound(
         raise ValueError(f"margin must be in [0, 0.1), got {margin!r}")
     sc, eq, ineq, soc, q, n, n_itf, beams = _assemble(site, mesh, margin)
     if stress is None:
-        sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+        sol = solve_conic(q, eq, ineq, soc, n, tol=tol, refine=needs_refinement(site.materials))
     else:
         x_in = np.concatenate([np.asarray(stress[0], float).ravel() / sc.S, [stress[1] * sc.k]])
         sol = ConicSolution(x_in, "given", 0, 0.0, len(soc.rhs) // 3)
@@ -381,10 +389,12 @@ def lower_bound(
     # true cones
     two_c, sphi, _ = (np.array(v) for v in zip(*(strength(m, sc.S) for m in site.materials)))
     mv = mesh.material
-    cohesionless_el = np.array([m.c == 0.0 for m in site.materials])[mv]
+    cohesionless_el = np.array([m.c == 0.0 and not m.rigid for m in site.materials])[mv]
+    rigid_el = np.array([m.rigid for m in site.materials], bool)[mv]
     sx, sz, tau = sig[..., 0], sig[..., 1], sig[..., 2]
     rad = np.hypot(sx - sz, 2 * tau)
     top = two_c[mv][:, None] - (sx + sz) * sphi[mv][:, None]
+    top[rigid_el] = np.inf  # no yield condition in a rigid material: every stress is inside
     marg = top - rad
     cuts = [np.inf if m.tension_cutoff is None else 2 * m.tension_cutoff / sc.S for m in site.materials]
     cuts = np.array(cuts)
@@ -432,9 +442,11 @@ def lower_bound(
     # units, summed per element)
     yield_work = None
     if sol.z is not None and sol.s is not None and np.all(np.isfinite(sol.z)) and np.all(np.isfinite(sol.s)):
-        nv = 3 * mesh.n_el
+        yielding = _yielding_vertices(site, mesh)
+        nv = len(yielding)
         r0 = len(sol.z) - 3 * sol.n_soc  # the first cone row
-        w = sol.s[r0 : r0 + 3 * nv : 3] * sol.z[r0 : r0 + 3 * nv : 3]
+        w = np.zeros(3 * mesh.n_el)
+        w[yielding] = sol.s[r0 : r0 + 3 * nv : 3] * sol.z[r0 : r0 + 3 * nv : 3]
         yield_work = np.maximum(w, 0.0).reshape(mesh.n_el, 3).sum(axis=1) / sc.k
     apex_gap = max(float(-marg[slack].min(initial=0.0)), float(itf_viol[itf_slack].max(initial=0.0)))
     lam = x[-1] / sc.k

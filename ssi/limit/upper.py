@@ -56,7 +56,7 @@ from .beam import (
     hinge_dissipation,
     hinge_rows,
 )
-from .conic import ConicSolution, Rows, solve_conic
+from .conic import ConicSolution, Rows, needs_refinement, solve_conic
 from .geometry import Site
 from .mesh import TriMesh
 
@@ -148,11 +148,13 @@ def _vertex_gradients(b, c, A):
     return G
 
 
-def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
+def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int, held=()):
     """Variable index of each nodal velocity component (-1: held at zero), footing variables, and the rows
-    for symmetry rollers that are not axis-aligned."""
+    for symmetry rollers that are not axis-aligned. ``held``: nodes held at zero besides the boundary's
+    (those of a rigid region that cannot move)."""
     n_all = n_nodes + n_mid
     state = np.zeros((n_all, 2), np.int64)  # 0 free, -1 zero, f+1: tied to footing f (rough)
+    state[np.asarray(held, np.int64)] = -1
     oblique = []
     ties: dict = {}  # node: footing, for the rough base of a rotating footing
     for j in range(len(be.p)):
@@ -197,6 +199,50 @@ def _dof_map(site: Site, mesh: TriMesh, be, n_nodes: int, n_mid: int):
     return dof, fvar, nxt, oblique, ties
 
 
+def _rigid_rows(p: np.ndarray, centre: np.ndarray) -> np.ndarray:
+    """(2, 3): the velocity (u, w) at point ``p`` of a rigid motion (U, W, theta) about ``centre``."""
+    return np.array([[1.0, 0.0, -(p[1] - centre[1])], [0.0, 1.0, p[0] - centre[0]]])
+
+
+def _rigid_bodies(rigid_el, nodes6, xy_all, dof, oblique, ties, footing_vars) -> list:
+    """The connected regions of rigid elements (sharing a node), each as a dict: ``nodes`` (its corner and
+    midside nodes), ``centre`` (scaled), ``basis`` (3, k): the rigid motions (U, W, theta) its held nodes
+    allow (fixed: none, k = 0; a symmetry roller: its normal component zero). A rigid region under a
+    rough footing's base is refused: the two rigid bodies' rows would repeat each other."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    els = np.flatnonzero(rigid_el)
+    if not len(els):
+        return []
+    inc = csr_matrix((np.ones(6 * len(els)), (np.repeat(np.arange(len(els)), 6), nodes6[els].ravel())))
+    n_comp, label = connected_components(inc @ inc.T, directed=False)
+    normal = {int(g): (nx, nz) for g, nx, nz in oblique}
+    out = []
+    for r in range(n_comp):
+        nodes = np.unique(nodes6[els[label == r]])
+        centre = xy_all[nodes].mean(axis=0)
+        rows = []
+        for g in nodes:
+            R = _rigid_rows(xy_all[g], centre)
+            if int(g) in normal:
+                rows.append(normal[int(g)][0] * R[0] + normal[int(g)][1] * R[1])
+            rows += [R[d] for d in range(2) if dof[g, d] == -1]
+        if any(int(g) in ties for g in nodes) or np.any(np.isin(dof[nodes], footing_vars)):
+            raise ValueError(
+                "a rigid (elastic) material under a rough footing: the footing and the region would be one "
+                "rigid body; give the footing a smooth or Coulomb interface, or the material a strength"
+            )
+        basis = np.eye(3)
+        if rows:
+            C = np.array(rows)
+            _, sv, vt = np.linalg.svd(C)
+            rank = int(np.sum(sv > 1e-10 * max(sv[0], 1e-300)))
+            basis = vt[rank:].T
+        out.append(dict(nodes=nodes, centre=centre, basis=basis))
+    return out
+
+
 def _free_axial(ft) -> bool:
     """Whether footing ``ft``'s beam hinges extend (:func:`ssi.limit.beam.beam_kinematics`)."""
     return ft.beam is not None and ft.beam.axial and ft.interface.kind != "rough" and "x" in ft.moves
@@ -216,6 +262,16 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     dof, fvar, n_v, oblique, ties = _dof_map(site, mesh, be, n_nodes, n_mid)
     # every node's position (corners, then midsides of the straight edges) and each footing's centre
     xy_all = np.concatenate([xy, 0.5 * (xy[edges[:, 0]] + xy[edges[:, 1]])])
+    nodes6 = np.concatenate([mesh.tri, n_nodes + el_edge], axis=1)  # (n_el, 6)
+    rigid_el = np.array([m.rigid for m in site.materials], bool)[mesh.material]
+    bodies = _rigid_bodies(rigid_el, nodes6, xy_all, dof, oblique, ties, fvar[fvar >= 0])
+    held = [g for body in bodies if body["basis"].shape[1] == 0 for g in body["nodes"]]
+    if held:  # a rigid region that cannot move (an elastic layer on the fixed base): its nodes are held
+        dof, fvar, n_v, oblique, ties = _dof_map(site, mesh, be, n_nodes, n_mid, held)
+    for body in bodies:  # the others move as rigid bodies: k variables each, the amplitudes of its basis
+        body["vars"] = n_v + np.arange(body["basis"].shape[1])
+        n_v += body["basis"].shape[1]
+    on_body = {int(g) for body in bodies for g in body["nodes"]}
     cen = np.array([(0.0, 0.0) if ft.centre is None else ft.centre for ft in site.footings]).reshape(-1, 2)
     cen = cen / sc.L
 
@@ -291,7 +347,6 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     # flow rule at the vertices
     b, c, A = gradients(xy, mesh.tri)
     G = _vertex_gradients(b, c, A)
-    nodes6 = np.concatenate([mesh.tri, n_nodes + el_edge], axis=1)  # (n_el, 6)
     du, dw = dof[nodes6, 0], dof[nodes6, 1]
     c2, sphi, cphi = (np.array(v) for v in zip(*(strength(m, sc.S) for m in site.materials)))
     c_cos = 0.5 * c2[mesh.material]  # c cos phi / S
@@ -305,9 +360,15 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     cw = np.repeat(dw, 3, axis=0)
     ev = ie + np.arange(nv)
     s_v = np.repeat(sinm, 3)
-    row = np.repeat(np.arange(nv), 12)
+    # the flow rule's row of each yielding vertex (-1 in a rigid material: its strain rate is zero by the
+    # rigid-body rows below, so it has no cone, and its multiplier e is zero)
+    yv = np.repeat(~rigid_el, 3)
+    vrow = np.full(nv, -1, np.int64)
+    vrow[yv] = np.arange(int(yv.sum()))
+    n_y = int(yv.sum())
+    row = np.repeat(vrow, 12)
     cols_uw = np.concatenate([cu, cw], axis=1).ravel()
-    keep = cols_uw >= 0
+    keep = (cols_uw >= 0) & (row >= 0)
 
     def add_rows(block: Rows, rows, vals, rhs, extra=None):
         r, c, v = rows[keep], cols_uw[keep], vals.ravel()[keep]
@@ -321,26 +382,35 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         block.add_many(r[order], c[order], v[order], rhs)
 
     # volumetric rate = sin(phi) e
-    add_rows(eq, row, np.concatenate([gx, gz], axis=1), np.zeros(nv), (np.arange(nv), ev, -s_v))
+    add_rows(eq, row, np.concatenate([gx, gz], axis=1), np.zeros(n_y), (vrow[yv], ev[yv], -s_v[yv]))
     # cone rows (s = b - A x): (e, eps_x - eps_z, gamma) in SOC_3
     soc_rows = 3 * row
     add_rows(
         soc,
         soc_rows + 1,
         np.concatenate([-gx, gz], axis=1),
-        np.zeros(3 * nv),
-        (3 * np.arange(nv), ev, -np.ones(nv)),
+        np.zeros(3 * n_y),
+        (3 * vrow[yv], ev[yv], -np.ones(n_y)),
     )
     # the third row of each cone, appended as its own block of entries (the rhs is already there)
     r3 = (soc_rows + 2)[keep]
     v3 = np.concatenate([-gz, -gx], axis=1).ravel()[keep]
-    r0 = len(soc.rhs) - 3 * nv
+    r0 = len(soc.rhs) - 3 * n_y
     soc.rows.extend((r3 + r0).tolist())
     soc.cols.extend(cols_uw[keep].tolist())
     soc.vals.extend(v3.tolist())
     q[ev] += np.repeat(c_cos * A / 3.0, 3)
-    # oblique symmetry rollers
-    for g, nx, nz in dict(((g, (g, nx, nz)) for g, nx, nz in oblique)).values():
+    if n_y < nv:  # a rigid material's multipliers
+        eq.add_many(np.arange(nv - n_y), ev[~yv], np.ones(nv - n_y), np.zeros(nv - n_y))
+    # a rigid body's nodes: each free velocity component is that of the body's motion there
+    for body in bodies:
+        for g in body["nodes"]:
+            for d in range(2):
+                if dof[g, d] >= 0 and body["vars"].size:
+                    coef = _rigid_rows(xy_all[g], body["centre"])[d] @ body["basis"]
+                    eq.add([int(dof[g, d])] + list(body["vars"]), [1.0] + list(-coef), 0.0)
+    # oblique symmetry rollers (on a rigid body: met by its basis)
+    for g, nx, nz in dict(((g, (g, nx, nz)) for g, nx, nz in oblique if g not in on_body)).values():
         cols = [dof[g, 0], dof[g, 1]]
         vals = [nx, nz]
         keep = [i for i, cc in enumerate(cols) if cc >= 0]
@@ -435,7 +505,7 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
     eq.add(list(nz_), list(p_ref[nz_]), 1.0)
     q -= p_dead
     if velocity is None:
-        sol = solve_conic(q, eq, ineq, soc, n, tol=tol)
+        sol = solve_conic(q, eq, ineq, soc, n, tol=tol, refine=needs_refinement(site.materials))
         x = sol.x
     else:  # evaluate a given field (velocities of all nodes (n_nodes + n_edges, 2), footing motions)
         vel_in, fv_in = velocity[0], np.asarray(velocity[1], float)
@@ -446,6 +516,12 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         motion = np.column_stack([fv_in.reshape(-1, 2), rot_in.reshape(-1) * sc.L])  # theta in scaled units
         mf_ = fvar >= 0
         x[fvar[mf_]] = motion[mf_]
+        for body in bodies:  # its amplitudes: the least-squares fit of the given field on its nodes
+            if body["vars"].size:
+                R = np.concatenate(
+                    [_rigid_rows(xy_all[g], body["centre"]) @ body["basis"] for g in body["nodes"]]
+                )
+                x[body["vars"]] = np.linalg.lstsq(R, vel_in[body["nodes"]].ravel(), rcond=None)[0]
         given = velocity[3] if len(velocity) > 3 else {}
         for f, bk in beams.items():
             x[bk.w], x[bk.phi], u_n, u_e = carry_beam(given[f], bk.lay.x * sc.L, sc.L)
@@ -467,6 +543,12 @@ def upper_bound(site: Site, mesh: TriMesh, tol: float = 1e-9, velocity=None) -> 
         for d in range(2):
             if dof[g, d] >= 0:
                 vel[g, d] = fvg[d]
+
+    # a rigid body's nodes take its motion exactly (its rows are met to the solver's tolerance only)
+    for body in bodies:
+        if body["vars"].size:
+            for g in body["nodes"]:
+                vel[g] = _rigid_rows(xy_all[g], body["centre"]) @ body["basis"] @ x[body["vars"]]
 
     ue, we = vel[nodes6, 0], vel[nodes6, 1]  # (n_el, 6)
     ex = np.einsum("evn,en->ev", G[..., 0], ue)
