@@ -61,7 +61,7 @@ def _word_line(b: dict, push: bool) -> tuple[str, bool | None]:
     if "not_computed" in b:
         return f"capacity not computed: {b['not_computed']}", None
     lo, hi = b["lb_davis"], b["ub_davis"]
-    hi_t = "inf" if hi is None else f"{hi:.3g}"
+    hi_t = "inf" if hi is None else f"{hi:#.3g}"  # '#': trailing zeros kept, so both ends read alike
     kind = "Davis" if b["davis"] else "associated"
     if push:  # a Settlement push has no loads to carry: its capacity is the footing's force
         return (
@@ -70,9 +70,9 @@ def _word_line(b: dict, push: bool) -> tuple[str, bool | None]:
             None,
         )
     if lo is not None and lo >= 1.0:
-        return f"carries its loads with margin lambda in [{lo:.3g}, {hi_t}] ({kind} bracket)", True
+        return f"carries its loads with margin lambda in [{lo:#.3g}, {hi_t}] ({kind} bracket)", True
     if hi is not None and hi < 1.0:
-        return f"does not carry its loads ({kind} lambda in [{lo or 0:.3g}, {hi_t}] < 1)", False
+        return f"does not carry its loads ({kind} lambda in [{lo or 0:#.3g}, {hi_t}] < 1)", False
     return (
         f"undecided: the {kind} bracket lambda in [{lo or 0:.3g}, {hi_t}] contains 1 (refine it: "
         "`ssi limit --gap 0.01`)",
@@ -223,9 +223,9 @@ def verdict(
             fos = fos_bracket(scene, fos_gap, max_elements)
     fos_margin = None if not fos or "lb" not in fos else [fos["lb"], fos["ub"]]
     if carries and fos_margin is not None:  # the margin in both senses, in the one sentence
-        hi = "inf" if fos["ub"] is None else f"{fos['ub']:.3g}"
+        hi = "inf" if fos["ub"] is None else f"{fos['ub']:#.3g}"
         head, sep, tail = line.partition(" bracket)")
-        line = f"{head}{sep} and factor of safety on strength F in [{fos['lb'] or 0:.3g}, {hi}]{tail}"
+        line = f"{head}{sep} and factor of safety on strength F in [{fos['lb'] or 0:#.3g}, {hi}]{tail}"
     return {
         "line": line,
         "carries": carries,
