@@ -175,7 +175,7 @@ def _scene(**kw):
 @pytest.mark.parametrize(
     "kw, message",
     [
-        (dict(layers=[SoilLayer(5.0, E=20e6, nu=0.3)]), r"layers\[0\] is elastic \(c=None\)"),
+        (dict(layers=[SoilLayer(5.0, E=20e6, nu=0.3)]), r"every layer of the scene is elastic \(c=None\)"),
         (
             dict(layers=[SoilLayer(5.0, E=20e6, nu=0.3, c=1e3, phi_deg=30.0, drainage="undrained_A")]),
             r"layers\[0\]\.drainage='undrained_A'",
@@ -552,9 +552,10 @@ def test_embedded_options_refused_by_name():
         ValueError, match=r"side_soil must be one of \('surcharge', 'soil'\) or None, got 'air'"
     ):
         limit_problem(_embedded(back), side_soil="air")
+    # an elastic side soil never yields (as in the incremental run): a region of the rigid material
     soft = SoilLayer(D_EMB, E=1e3, nu=0.3, unit_weight=GAMMA_BACKFILL)
-    with pytest.raises(ValueError, match=r"Scene.layers\[0\] is elastic \(c=None\)"):
-        limit_problem(_embedded(soft), side_soil="soil")  # a modelled side soil needs its strength
+    mats = limit_problem(_embedded(soft), side_soil="soil").site.materials
+    assert mats[0].rigid and mats[0].gamma == GAMMA_BACKFILL and not mats[1].rigid
     scene = _scene(
         layers=[back, SoilLayer(5.0, E=20e6, nu=0.3, c=10e3, phi_deg=20.0)],
         depth=5.0 + D_EMB,

@@ -97,8 +97,8 @@ def test_embedded_rigid_strip_named_errors_and_file():
         site.initial_stress = "K0"
         site.build()
     # an embedded RigidStrip is represented by the limit analysis now (its trench modelled); this site is
-    # refused for what the limit problem cannot take, its elastic layer, by name
-    with pytest.raises(ValueError, match=r"layers\[0\] is elastic"):
+    # refused for what has no collapse load, every layer elastic, by name
+    with pytest.raises(ValueError, match=r"every layer of the site is elastic"):
         _site(_rigid()).limit_analysis()
     back = site_from_dict(scene_to_dict(_site(_rigid())))
     assert back.strips == [_rigid()]

@@ -115,7 +115,7 @@ def test_no_capacity_skips_and_an_elastic_layer_is_named(tmp_path, capsys):
     path.write_text(elastic)
     assert main(["run", str(path), "--no-plots"]) == 0
     first = capsys.readouterr().out.splitlines()[0]
-    assert first.startswith("VERDICT          capacity not computed: Scene.layers[0] is elastic")
+    assert first.startswith("VERDICT          capacity not computed: every layer of the scene is elastic")
 
 
 def test_rc_utilisations_above_one_are_flagged():

@@ -75,6 +75,10 @@ class LimitInput(Protocol):
     layers: list
     gamma_w: float
 
+    def soils(self) -> list:
+        """The soil of each region: the layers from the top down, then a site's lenses' (their ``c`` None:
+        elastic, never yielding)."""
+
 
 @runtime_checkable
 class SceneInput(LimitInput, Protocol):
@@ -119,10 +123,6 @@ class SiteInput(LimitInput, Protocol):
     loads and the layers: its strips and its geometry."""
 
     strips: list
-
-    def soils(self) -> list:
-        """The soil of each region of :meth:`geometry`: the layers, then each lens's (region
-        len(layers) + j)."""
 
     def geometry(self) -> object:
         """The site's :class:`ssi.core.geometry.Geometry` (cells cut at the water table)."""

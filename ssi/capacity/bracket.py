@@ -381,4 +381,16 @@ def capacity_bracket(scene: LimitInput, gap: float = 0.05, max_elements: int = 6
         "reason": cap.associated.reason if cap.davis is None else cap.davis.reason,
         "n_triangles": int(cap.n_triangles),
         "time_s": time.perf_counter() - t0,
+        "never_yield": elastic_parts(scene),
     }
+
+
+def elastic_parts(scene: LimitInput) -> list[str]:
+    """The names of the scene's (or site's) elastic soils (``c=None``), which the bracket takes as never
+    yielding, as the incremental model does: a user who means them to fail must give their strength."""
+    owner, n_layers = type(scene).__name__, len(scene.layers)
+    return [
+        f"{owner}.layers[{i}]" if i < n_layers else f"{owner}.lenses[{i - n_layers}]"
+        for i, soil in enumerate(scene.soils())
+        if soil.c is None
+    ]

@@ -86,13 +86,13 @@ class Parts:
 
 def layer_material(i: int, layer, gamma: float, owner: str = "Scene", name: str | None = None) -> Material:
     """The rigid-plastic Mohr--Coulomb :class:`ssi.limit.Material` of ``layer`` (``owner``.layers[i], or
-    ``name`` if given: a site's lens) with the body-force unit weight ``gamma`` [N/m^3]; refused: an elastic
-    layer, an effective-stress undrained one."""
+    ``name`` if given: a site's lens) with the body-force unit weight ``gamma`` [N/m^3]. An elastic layer
+    (``c=None``) never yields in the incremental model, so its limit-analysis image is a region that never
+    yields either (``Material.rigid_body``, as PLAXIS's linear-elastic cluster): the bracket is then the
+    collapse load of the model as given. Refused: an effective-stress undrained layer."""
     name = f"{owner}.layers[{i}]" if name is None else name
     if layer.c is None:
-        raise ValueError(
-            f"{name} is elastic (c=None): limit analysis needs every layer's strength; give c and phi_deg"
-        )
+        return Material.rigid_body(gamma=float(gamma))
     if layer.drainage != "drained":
         raise ValueError(
             f"{name}.drainage={layer.drainage!r}: an effective-stress undrained layer's strength depends on "
@@ -103,6 +103,16 @@ def layer_material(i: int, layer, gamma: float, owner: str = "Scene", name: str 
         return Material(float(layer.c), float(layer.phi_deg), gamma=float(gamma), psi_deg=layer.psi_deg)
     except ValueError as err:
         raise ValueError(f"{name}: {err}") from None
+
+
+def refuse_strengthless(materials, what: str) -> None:
+    """Refuse a problem in which no soil can yield (every layer elastic): it has no collapse load to bracket,
+    whatever its loads."""
+    if all(m.rigid for m in materials):
+        raise ValueError(
+            f"every layer of the {what} is elastic (c=None): nothing in it can yield, so it has no collapse "
+            "load; give the layers that may fail c and phi_deg"
+        )
 
 
 def footing_interface(foundation, laws: list, what: str) -> Interface:

@@ -23,6 +23,7 @@ from .common import (
     footing_interface,
     frame_of,
     layer_material,
+    refuse_strengthless,
 )
 from .strip import beam_mode, strip_beam_interaction
 
@@ -179,6 +180,7 @@ def scene_parts(scene: SceneInput, phase: str | None, strip: str | None, side_so
             stacklevel=3,
         )
     materials = tuple(layer_material(i, lay, g) for i, (_, lay, g) in zip(owner[first:], sub[first:]))
+    refuse_strengthless(materials, "scene")
     z_ground = float(z_tops[first])  # the model's ground: the base level of the surcharge model
     polys, regions = [], []
     for a, b in zip(xs[:-1], xs[1:]):

@@ -20,6 +20,7 @@ from .common import (
     footing_interface,
     frame_of,
     layer_material,
+    refuse_strengthless,
 )
 
 __all__ = ["site_parts"]
@@ -101,6 +102,7 @@ def site_parts(site: SiteInput, unloaded: bool = False) -> Parts:
         sat = lay.unit_weight if lay.unit_weight_sat is None else lay.unit_weight_sat
         mats.append(layer_material(0, lay, lay.unit_weight, name=f"Site.{name}"))
         mats.append(layer_material(0, lay, max(sat - site.gamma_w, 0.0), name=f"Site.{name}"))
+    refuse_strengthless(mats, "site")
     for cell, k in zip(geo.cells, geo.cell_region):
         c = geo.points[list(cell)].mean(axis=0)
         wet = c[1] < float(site.water_z(np.array([c[0]]))[0])

@@ -302,6 +302,10 @@ class Scene(SceneParts):
         self._refuse_push("safety_factor")
         return safety_factor(self, phase=phase, **options)
 
+    def soils(self) -> list:
+        """The soil of each region: the ``layers`` from the top down (a :class:`Site`'s adds its lenses')."""
+        return list(self.layers)
+
     def load_phases(self) -> list[Phase]:
         """The phases after the geostatic one: ``loads`` as a first Phase "loads" (if any), then ``phases``
         (what the limit problem scales and holds)."""

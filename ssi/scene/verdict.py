@@ -263,6 +263,11 @@ def verdict_lines(v: dict | None) -> list[str]:
             f"{fmt(b['ub_davis'])}]{unit} gap {100 * (b['gap_davis'] or 0):.1f} % ({b['n_triangles']} "
             f"triangles, {b['time_s']:.1f} s)"
         )
+        if b.get("never_yield"):
+            lines.append(
+                f"  taken as never yielding (elastic, as in the run): {', '.join(b['never_yield'])}; give c "
+                "and phi_deg where the soil may fail"
+            )
     fos = v.get("fos")
     if not fos or "skipped" in fos:
         pass
