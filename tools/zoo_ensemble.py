@@ -113,15 +113,20 @@ def machine() -> str:
     )
 
 
+# what a run depends on: the package, but not this table's reader nor the guides
+SOURCES = ("ssi", ":(exclude)ssi/lab/zoo_ensemble.py", ":(exclude)*.md")
+
+
 def commit() -> str:
-    """The last commit that changed ``ssi/`` (what the runs depend on: a commit of tools or chapters
-    leaves a half-solved zoo resumable), " + uncommitted ssi/ changes" when the work tree differs."""
+    """The last commit that changed :data:`SOURCES` (a commit of tools, chapters, tests or the table's
+    reader leaves a half-solved zoo resumable), " + uncommitted ssi/ changes" when the work tree differs
+    there."""
 
     def git(*args):
         return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True).stdout.strip()
 
-    at = git("log", "-1", "--format=%h", "--", "ssi")
-    return at + (" + uncommitted ssi/ changes" if git("status", "--porcelain", "ssi") else "")
+    at = git("log", "-1", "--format=%h", "--", *SOURCES)
+    return at + (" + uncommitted ssi/ changes" if git("status", "--porcelain", "--", *SOURCES) else "")
 
 
 def plan(cpu: str) -> list[tuple[str, str]]:
@@ -264,8 +269,8 @@ def store(runs_file: Path, at: str) -> None:
         "trust": "B (numerical: the solver's own outcomes, as they ended)",
         "uncertainty": "none stated: outcomes; their spread over the copies is what the table measures",
         "how_obtained": f"python tools/zoo_ensemble.py --store: solve_zoo(random_scenes(100, seed=1)[i], "
-        f"Settings(control='work', backend=...)), ssi/ at commit {at} (its last change), "
-        f"{datetime.date.today().isoformat()}, "
+        f"Settings(control='work', backend=...)), ssi/ at commit {at} (its last change but the table's "
+        f"reader), {datetime.date.today().isoformat()}, "
         f"{wall:.0f} s of runs (summed)",
         "scenes": scenes,
         "copies": "drawn = as drawn; 1-2e-13, 1-1e-13, 1+1e-13, 1+2e-13 = every soil layer's E x that factor",

@@ -35,6 +35,7 @@ __all__ = [
     "LIMIT_SPREAD",
     "Spread",
     "as_drawn",
+    "ending",
     "path_reach",
     "read_zoo_ensemble",
     "reached",
