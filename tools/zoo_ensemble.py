@@ -137,8 +137,9 @@ def plan(cpu: str) -> list[tuple[str, str]]:
     return [(c, b) for b in backends() for c in COPIES]
 
 
-def solve_scene(task) -> list[dict]:
-    """The runs of one scene (a pool task): ``task`` = (scene index, [(copy, backend), ...], commit)."""
+def solve_scene(task, emit=None) -> list[dict]:
+    """The runs of one scene (a pool task): ``task`` = (scene index, [(copy, backend), ...], commit);
+    ``emit([row])``, when given, is called after each run (a single process keeps each run at once)."""
     from ssi.lab.zoo import random_scenes, solve_zoo
     from ssi.lab.zoo_limits import perturb_soil_modulus
     from ssi.solver import Settings
@@ -173,6 +174,8 @@ def solve_scene(task) -> list[dict]:
             + f" {o.wall_time:6.1f}s",
             flush=True,
         )
+        if emit is not None:
+            emit(rows[-1:])
     return rows
 
 
@@ -221,7 +224,7 @@ def run(indices: list[int], runs_file: Path, workers: int, at: str) -> float:
                 append_runs(runs_file, rows)
     else:
         for task in tasks:
-            append_runs(runs_file, solve_scene(task))
+            solve_scene(task, emit=lambda rows: append_runs(runs_file, rows))
     return time.perf_counter() - t0
 
 
