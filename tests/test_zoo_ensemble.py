@@ -132,3 +132,15 @@ def test_stored_table_reads_back_with_text_copies_and_empty_numbers(tmp_path):
     assert first["copy"] == "drawn" and second["copy"] == "1+1e-13"
     assert first["settlement_m"] == 0.25 and math.isnan(second["settlement_m"])
     assert math.isnan(first["limit"]) and second["load_factor"] == 0.5
+
+
+def test_zoo_outcome_settlement_is_the_results_largest_settlement_at_lambda_one():
+    from ssi.lab.zoo import random_scenes, solve_zoo
+    from ssi.solver import Settings
+
+    name, scene = random_scenes(10, seed=1)[9]  # completes in 5 steps (stored table: 0.06 s)
+    (o,) = solve_zoo([(name, scene)], Settings(control="work"))
+    out = scene.build().solve(settings=Settings(control="work"))
+    assert o.status == "completed" and out.load_factor[-1] == 1.0
+    _, w = out.settlement()  # every foundation node's settlement at lambda = 1, positive down
+    assert o.settlement == w.max() > 0.0
