@@ -267,6 +267,8 @@ class ZooOutcome:
     )
     limit_mechanism: float | None = None  # the limit's mechanism certificate lambda_k / lambda_peak
     # (ssi.solver.mechanism; None where it certifies nothing: non-associated flow)
+    settlement: float | None = None  # [m] the largest settlement under the foundation at the last converged
+    # step (SceneResult.max_settlement; at lambda = 1 when completed); None when the run failed
 
     @property
     def solved(self) -> bool:
@@ -289,11 +291,12 @@ def solve_zoo(scenes, settings: Settings | None = None, check=None) -> list[ZooO
     outcomes = []
     for name, scene in scenes:
         t0 = time.perf_counter()
-        limit, uncertainty, suspect, mechanism = None, None, "", None
+        limit, uncertainty, suspect, mechanism, settlement = None, None, "", None, None
         try:
             out = scene.build().solve(settings=settings)
             status, lam, message = out.status, out.load_factor[-1], out.solver_result.message
             res = out.solver_result
+            settlement = out.max_settlement()[1]
             if status == LIMIT_LOAD:
                 limit = float(lam if res.limit_load_factor is None else res.limit_load_factor)
                 uncertainty = res.limit_uncertainty
@@ -314,6 +317,7 @@ def solve_zoo(scenes, settings: Settings | None = None, check=None) -> list[ZooO
                 uncertainty,
                 suspect,
                 mechanism,
+                settlement,
             )
         )
     return outcomes
