@@ -945,20 +945,31 @@ stopped_names = [n for n, v in stored_rows.items() if v[0] == "failed"]
 print(f"stored NonConvergence: {', '.join(stopped_names)} -- each on a soil with psi < phi")
 
 # %% [markdown]
-# Checks, recorded as measured (rows): `zoo_solved` and `zoo_solved_controlled` PASS only when every scene
-# ends completed or at a limit; `fela_zoo` and `zoo_limits_certified` fail on any false collapse (and the
-# latter on a limit without a certified floor, or one above its ceiling solved here without its excess on
-# the result); the rows that read the stored table fail when it is stale; `roundoff_limits`: the Davis-mode
-# limits move ≤ 0.5 %.
+# Checks, recorded as measured (rows): `zoo_solved` PASSes only when every scene ends completed, at a
+# limit, or (issue 45's decision) at a named stop beyond its capacity (1 > 0.97 LB_Davis);
+# `zoo_solved_controlled` only when every ordinary scene ends completed or at a limit; `fela_zoo` and
+# `zoo_limits_certified` fail on any false collapse (and the latter on a limit without a certified floor, or
+# one above its ceiling solved here without its excess on the result); the rows that read the stored table
+# fail when it is stale; `roundoff_limits`: the Davis-mode limits move ≤ 0.5 %.
 
 # %%
-solved_fraction = (stored_counts["completed"] + stored_counts[LIMIT]) / n_stored
+# issue 45's decision: a named stop (NonConvergence) is an honest end only for a scene loaded beyond its
+# capacity (1 > 0.97 LB_Davis, the certified Davis floor with the band of fela_zoo); one within capacity that
+# stops is a failure of the path. The counts below keep every stop visible.
+stopped_overloaded = [
+    n for n in stopped_names if n in ZOO_BRACKETS and 1.0 > (1 - BAND[0]) * ZOO_BRACKETS[n]["lb_davis"]
+]
+stopped_within = [n for n in stopped_names if n not in stopped_overloaded]
+solved_fraction = (stored_counts["completed"] + stored_counts[LIMIT] + len(stopped_overloaded)) / n_stored
 report.record(
     "zoo_solved",
-    f"fraction of the {n_stored} random zoo scenes (seed 1) ending completed or at a limit on the controlled "
-    f"path, Settings(control='work'), read from reference_data/zoo_controlled_random.csv "
+    f"fraction of the {n_stored} random zoo scenes (seed 1) ending honestly on the controlled path, "
+    f"Settings(control='work'): completed, at a limit, or at a named stop on a scene loaded beyond its "
+    f"capacity (1 > 0.97 LB_Davis; issue 45), read from reference_data/zoo_controlled_random.csv "
     f"({stored_meta['how_obtained']}): {stored_counts['completed']} completed, {stored_counts[LIMIT]} "
-    f"limits, {stored_counts['failed']} NonConvergence; {len(zoo_ctrl)} of them solved here "
+    f"limits, {stored_counts['failed']} NonConvergence, of which beyond capacity: "
+    f"{', '.join(stopped_overloaded) or 'none'}; within capacity: {', '.join(stopped_within) or 'none'}; "
+    f"{len(zoo_ctrl)} of them solved here "
     + (f"STALE (differ: {', '.join(stale)})" if stale else "as stored"),
     solved_fraction,
     1.0,
