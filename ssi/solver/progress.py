@@ -25,7 +25,7 @@ from pathlib import Path
 
 log = logging.getLogger("ssi.solver")
 
-COMPILE_ESTIMATE_S = 60  # measured on the project's 2-core machine: 44-78 s for the scene kernels (issue 13)
+COMPILE_ESTIMATE_S = 20  # the README scene, 2-core machine: 15-17 s cold (2026-12-08; first_run_cold_s)
 
 
 def progress_enabled(enabled: bool | None = None, stream=None) -> bool:
