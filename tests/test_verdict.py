@@ -179,3 +179,22 @@ def test_readme_demo_verdict_is_what_ssi_run_prints(tmp_path, capsys):
     assert [seconds.sub(", T s)", line) for line in printed[start : start + len(shown)]] == [
         seconds.sub(", T s)", line) for line in shown
     ]
+
+
+def test_a_footing_on_soil_that_never_yields_has_no_mechanism(tmp_path, capsys):
+    """The shipped embedded site stands its strip on an elastic layer (c=None), which the run never yields and
+    the bracket takes as never yielding: no mechanism exists, so the lower-bound program is unbounded (every
+    load factor has an admissible field). The verdict says so in words, not "undecided [0, inf]"."""
+    import pathlib
+    import shutil
+
+    root = pathlib.Path(__file__).resolve().parent.parent
+    site = tmp_path / "embedded.toml"
+    shutil.copy(root / "examples" / "sites" / "embedded.toml", site)
+    assert main(["run", str(site), "--no-plots"]) == 0
+    s = json.loads((tmp_path / "embedded_summary.json").read_text())
+    b = s["verdict"]["capacity"]
+    assert b["no_mechanism"] and b["lb_davis"] is None and b["never_yield"] == ["Site.layers[1]"]
+    assert s["verdict"]["carries"] is True
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("VERDICT          carries its loads: no collapse mechanism exists")

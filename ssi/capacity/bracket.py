@@ -382,6 +382,9 @@ def capacity_bracket(scene: LimitInput, gap: float = 0.05, max_elements: int = 6
         "n_triangles": int(cap.n_triangles),
         "time_s": time.perf_counter() - t0,
         "never_yield": elastic_parts(scene),
+        # the lower-bound program unbounded: every load factor has a statically admissible field, so no
+        # mechanism exists (each would cross soil that never yields): the capacity is infinite, certified
+        "no_mechanism": bool(math.isinf(float(cap.lb_davis if cap.davis is not None else cap.lb))),
     }
 
 

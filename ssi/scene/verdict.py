@@ -69,6 +69,12 @@ def _word_line(b: dict, push: bool) -> tuple[str, bool | None]:
             f"{'inf' if hi is None else f'{hi / 1e3:.4g}'}] kN/m ({kind})",
             None,
         )
+    if b.get("no_mechanism"):
+        return (
+            f"carries its loads: no collapse mechanism exists ({kind} lower bound unbounded: every mechanism "
+            "would cross soil taken as never yielding)",
+            True,
+        )
     if lo is not None and lo >= 1.0:
         return f"carries its loads with margin lambda in [{lo:#.3g}, {hi_t}] ({kind} bracket)", True
     if hi is not None and hi < 1.0:
